@@ -1,0 +1,20 @@
+// Subcommands of the `tetlod` command-line tool. Each takes the arguments after
+// its own name and returns the process exit code.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tetlod::app {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 1;  // a file or value that cannot be used
+inline constexpr int kExitUsage = 2;     // a malformed command line
+
+using Args = std::vector<std::string>;
+
+int cmd_stats(const Args& args);
+int cmd_convert(const Args& args);
+int cmd_generate(const Args& args);
+
+}  // namespace tetlod::app

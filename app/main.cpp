@@ -1,0 +1,41 @@
+// tetlod: the command-line tool.
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "app/commands.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: tetlod COMMAND [ARGS...]\n"
+    "\n"
+    "commands:\n"
+    "  stats FILE [--json]              mesh properties (the paper's Table I row) and a\n"
+    "                                   stretch histogram, whole mesh and per material\n"
+    "  convert IN OUT [--msh-version V] convert between .mesh .msh .node/.ele .vtk .vtu\n"
+    "  generate MODEL -o FILE           make a bundled model (motor, spheres, box2) with TetGen\n"
+    "\n"
+    "Run 'tetlod COMMAND --help' for the options of a command.\n"
+    "Exit codes: 0 ok, 1 bad input, 2 bad usage.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace tetlod::app;
+  if (argc < 2) {
+    std::fputs(kUsage, stderr);
+    return kExitUsage;
+  }
+  const std::string command = argv[1];
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::fputs(kUsage, stdout);
+    return kExitOk;
+  }
+  const Args args(argv + 2, argv + argc);
+  if (command == "stats") return cmd_stats(args);
+  if (command == "convert") return cmd_convert(args);
+  if (command == "generate") return cmd_generate(args);
+  std::fprintf(stderr, "tetlod: unknown command '%s'\n\n%s", command.c_str(), kUsage);
+  return kExitUsage;
+}

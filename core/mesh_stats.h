@@ -1,0 +1,42 @@
+// The paper's Table I row (Date et al., "Properties of resulting meshes") for a
+// whole mesh and per material, plus a stretch histogram.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/adjacency.h"
+#include "core/tet_mesh.h"
+
+namespace tetlod {
+
+struct PropertyRow {
+  size_t nodes = 0;
+  size_t edges = 0;
+  size_t elements = 0;
+  double average_stretch = 0;
+  double min_stretch = 0;
+  uint32_t max_valence = 0;  // most edge neighbours of one node
+  double max_size = 0;       // longest edge
+  double volume = 0;
+};
+
+struct MaterialRow {
+  int32_t material = 0;
+  PropertyRow row;  // of the sub-mesh made of this material's tets alone
+};
+
+inline constexpr int kStretchBins = 10;  // bins of width 0.1 over [0, 1]
+
+struct MeshStats {
+  PropertyRow whole;
+  std::vector<MaterialRow> per_material;    // sorted by material id
+  std::vector<uint64_t> stretch_histogram;  // kStretchBins counts, whole mesh
+};
+
+// Histogram bin of a stretch value: [0, 0.1) -> 0 ... [0.9, 1] -> 9; below 0 -> 0.
+int stretch_bin(double stretch);
+
+MeshStats compute_mesh_stats(const TetMesh& mesh, const VertexTets& vertex_tets);
+
+}  // namespace tetlod

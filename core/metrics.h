@@ -1,0 +1,30 @@
+// Mesh property metrics exactly as the paper defines them (Date et al., section III):
+//   size     s_t = longest edge of tet t                                  (III.B)
+//   stretch  d_t = 6*sqrt(6) * V_t / (s_t * A_t), A_t total face area       (eq. 2)
+//            1 for a regular tet, 0 for a flat one
+//   valence  number of edge neighbours of a node
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/tet_mesh.h"
+
+namespace tetlod {
+
+struct TetShape {
+  double volume = 0;   // signed volume V_t
+  double size = 0;     // longest edge s_t
+  double area = 0;     // total face area A_t
+  double stretch = 0;  // d_t; negative for an inverted tet
+};
+
+TetShape tet_shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+inline TetShape tet_shape(const TetMesh& mesh, const Tet& t) {
+  return tet_shape(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]],
+                   mesh.positions[t[3]]);
+}
+
+}  // namespace tetlod

@@ -1,0 +1,50 @@
+// The flat multi-material tetrahedral mesh every part of TetLOD works on.
+//
+// Invariants of a mesh that passed validate_mesh() (every reader runs it):
+//  - every tet index is < vertex_count(), the four ids of a tet are distinct;
+//  - every tet is positively oriented: dot(b-a, cross(c-a, d-a)) > 0, which is
+//    the convention of Gmsh, VTK and Medit/MMG;
+//  - positions are finite; materials are >= 0; every vertex is used by a tet;
+//  - no two tets have the same vertex set.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace tetlod {
+
+using Tet = std::array<uint32_t, 4>;
+
+inline constexpr uint32_t kInvalidIndex = 0xffffffffu;
+// The region outside the mesh, used as the "other" material of boundary faces.
+inline constexpr int32_t kOutsideMaterial = -1;
+
+// Local vertex ids of the face opposite corner i, ordered so that the face
+// normal (right-hand rule) points out of a positively oriented tet.
+inline constexpr int kTetFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+// The six edges of a tet as pairs of local vertex ids.
+inline constexpr int kTetEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+
+struct TetMesh {
+  std::vector<Vec3> positions;
+  std::vector<Tet> tets;
+  std::vector<int32_t> materials;  // one per tet
+
+  size_t vertex_count() const { return positions.size(); }
+  size_t tet_count() const { return tets.size(); }
+};
+
+// Six times the signed volume of the tet (a, b, c, d).
+inline double signed_volume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return dot(b - a, cross(c - a, d - a));
+}
+
+inline double signed_volume6(const TetMesh& mesh, const Tet& t) {
+  return signed_volume6(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]],
+                        mesh.positions[t[3]]);
+}
+
+}  // namespace tetlod

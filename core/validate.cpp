@@ -1,0 +1,147 @@
+#include "core/validate.h"
+
+#include "core/adjacency.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+namespace tetlod {
+namespace {
+
+std::string where(const std::string& source, const std::vector<uint32_t>& tet_lines, size_t tet) {
+  if (tet < tet_lines.size()) return source + ":" + std::to_string(tet_lines[tet]) + ": ";
+  return source + ": ";
+}
+
+std::string tet_name(size_t tet) {
+  return "tetrahedron " + std::to_string(tet + 1);
+}
+
+}  // namespace
+
+Status validate_mesh(TetMesh* mesh, const std::string& source,
+                     const std::vector<uint32_t>& tet_lines, ValidationReport* report) {
+  ValidationReport local;
+  ValidationReport& rep = report ? *report : local;
+  rep = ValidationReport{};
+  const size_t vertex_count = mesh->positions.size();
+  const size_t tet_count = mesh->tets.size();
+
+  if (mesh->materials.size() != tet_count) {
+    return Status::error(source + ": " + std::to_string(tet_count) + " tetrahedra but " +
+                         std::to_string(mesh->materials.size()) + " material ids");
+  }
+  if (tet_count == 0) return Status::error(source + ": the mesh has no tetrahedra");
+  if (vertex_count >= kInvalidIndex) return Status::error(source + ": too many vertices");
+  if (tet_count >= (size_t{1} << 30)) return Status::error(source + ": too many tetrahedra");
+
+  for (size_t i = 0; i < vertex_count; ++i) {
+    if (!is_finite(mesh->positions[i])) {
+      return Status::error(source + ": vertex " + std::to_string(i + 1) +
+                           " has a non-finite coordinate");
+    }
+  }
+
+  for (size_t t = 0; t < tet_count; ++t) {
+    const Tet& tet = mesh->tets[t];
+    for (int k = 0; k < 4; ++k) {
+      if (tet[k] >= vertex_count) {
+        return Status::error(where(source, tet_lines, t) + tet_name(t) + " uses vertex " +
+                             std::to_string(uint64_t{tet[k]} + 1) + " but there are only " +
+                             std::to_string(vertex_count) + " vertices");
+      }
+      for (int l = 0; l < k; ++l) {
+        if (tet[k] == tet[l]) {
+          return Status::error(where(source, tet_lines, t) + tet_name(t) + " repeats vertex " +
+                               std::to_string(uint64_t{tet[k]} + 1));
+        }
+      }
+    }
+    if (mesh->materials[t] < 0) {
+      return Status::error(where(source, tet_lines, t) + tet_name(t) + " has material id " +
+                           std::to_string(mesh->materials[t]) + " (must be >= 0)");
+    }
+  }
+
+  // Orientation and degeneracy.
+  for (size_t t = 0; t < tet_count; ++t) {
+    Tet& tet = mesh->tets[t];
+    const Vec3& a = mesh->positions[tet[0]];
+    const Vec3& b = mesh->positions[tet[1]];
+    const Vec3& c = mesh->positions[tet[2]];
+    const Vec3& d = mesh->positions[tet[3]];
+    const double volume6 = signed_volume6(a, b, c, d);
+    const double longest2 =
+        std::max({squared_length(b - a), squared_length(c - a), squared_length(d - a),
+                  squared_length(c - b), squared_length(d - b), squared_length(d - c)});
+    const double scale = longest2 * std::sqrt(longest2);
+    if (!(std::abs(volume6) > 1e-12 * scale)) {
+      return Status::error(where(source, tet_lines, t) + tet_name(t) +
+                           " is degenerate (zero volume)");
+    }
+    if (volume6 < 0) {
+      std::swap(tet[2], tet[3]);
+      ++rep.reoriented_tets;
+    }
+  }
+
+  // Duplicates: sort tets by their sorted vertex set.
+  {
+    std::vector<Tet> keys(tet_count);
+    for (size_t t = 0; t < tet_count; ++t) {
+      keys[t] = mesh->tets[t];
+      std::sort(keys[t].begin(), keys[t].end());
+    }
+    std::vector<uint32_t> order(tet_count);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
+      return keys[x] != keys[y] ? keys[x] < keys[y] : x < y;
+    });
+    for (size_t i = 1; i < tet_count; ++i) {
+      if (keys[order[i]] == keys[order[i - 1]]) {
+        return Status::error(where(source, tet_lines, order[i]) + tet_name(order[i]) +
+                             " duplicates " + tet_name(order[i - 1]));
+      }
+    }
+  }
+
+  // Every face is shared by at most two tets, lying on opposite sides of it.
+  {
+    std::vector<uint32_t> neighbors;
+    const FaceProblem problem = build_face_neighbors(*mesh, &neighbors);
+    if (problem.kind == FaceProblem::Kind::kNonManifold) {
+      return Status::error(where(source, tet_lines, problem.tet_b) + tet_name(problem.tet_b) +
+                           " shares a face with two other tetrahedra (including " +
+                           tet_name(problem.tet_a) + "): the mesh is not a manifold");
+    }
+    if (problem.kind == FaceProblem::Kind::kOverlap) {
+      return Status::error(where(source, tet_lines, problem.tet_b) + tet_name(problem.tet_b) +
+                           " overlaps " + tet_name(problem.tet_a) +
+                           " (both lie on the same side of their shared face)");
+    }
+  }
+
+  // Drop unused vertices, keeping the order of the used ones.
+  std::vector<uint32_t> remap(vertex_count, kInvalidIndex);
+  for (const Tet& tet : mesh->tets)
+    for (uint32_t v : tet) remap[v] = 0;
+  uint32_t next = 0;
+  for (size_t i = 0; i < vertex_count; ++i) {
+    if (remap[i] == 0) {
+      remap[i] = next;
+      mesh->positions[next] = mesh->positions[i];
+      ++next;
+    }
+  }
+  if (next != vertex_count) {
+    rep.removed_unused_vertices = vertex_count - next;
+    mesh->positions.resize(next);
+    for (Tet& tet : mesh->tets)
+      for (uint32_t& v : tet) v = remap[v];
+  }
+  return Status();
+}
+
+}  // namespace tetlod

@@ -1,0 +1,33 @@
+// Validation of a freshly read mesh. Every reader calls validate_mesh() before
+// handing a mesh out, so the rest of TetLOD can rely on the invariants listed in
+// tet_mesh.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "core/tet_mesh.h"
+
+namespace tetlod {
+
+struct ValidationReport {
+  size_t reoriented_tets = 0;          // negatively oriented tets that were flipped
+  size_t removed_unused_vertices = 0;  // vertices no tet used, dropped
+};
+
+// Checks and repairs `mesh` in place:
+//  - errors: materials.size() != tets.size(), an index out of range, a tet with a
+//    repeated vertex, a non-finite coordinate, a negative material id, a tet of zero
+//    volume (|6V| <= 1e-12 * longest_edge^3), two tets with the same vertex set, a
+//    face shared by three or more tets, two tets overlapping across a shared face;
+//  - repairs (counted in `report`): negatively oriented tets are reoriented by
+//    swapping their last two vertices; unused vertices are removed and tets renumbered.
+// `source` names the input in messages ("path"); `tet_lines`, when not empty, holds
+// the 1-based line of each tet in the file so that messages read "path:line: ...".
+// On error the mesh is left in an unspecified but destructible state.
+Status validate_mesh(TetMesh* mesh, const std::string& source,
+                     const std::vector<uint32_t>& tet_lines, ValidationReport* report);
+
+}  // namespace tetlod

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Set-up plus the whole test suite: every test in the Release build, then the core
+# tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+
+jobs=$(nproc)
+ctest --test-dir build --output-on-failure -j"$jobs"
+
+werror=OFF
+[ "${CI:-}" = "true" ] && werror=ON
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETLOD_SANITIZE=ON \
+  -DTETLOD_CORE_ONLY=ON -DTETLOD_WERROR=$werror
+cmake --build build-asan -j"$jobs"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan --output-on-failure -j"$jobs"

@@ -1,0 +1,72 @@
+// Table I metrics against an independent brute-force computation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+
+#include "core/adjacency.h"
+#include "core/mesh_stats.h"
+#include "core/metrics.h"
+#include "core/test_meshes.h"
+#include "core/validate.h"
+#include "mesh_stats_reference.h"
+
+namespace tetlod {
+namespace {
+
+TEST(Metrics, RegularTetHasStretchOne) {
+  const TetShape s = tet_shape({1, 1, 1}, {1, -1, -1}, {-1, -1, 1}, {-1, 1, -1});
+  EXPECT_NEAR(s.stretch, 1.0, 1e-12);
+  EXPECT_NEAR(s.size, std::sqrt(8.0), 1e-12);
+  EXPECT_NEAR(s.volume, 8.0 / 3.0, 1e-12);
+  EXPECT_NEAR(s.area, 4 * std::sqrt(3.0) / 4 * 8, 1e-12);
+}
+
+TEST(Metrics, FlatAndInvertedTets) {
+  EXPECT_NEAR(tet_shape({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 0}).stretch, 0.0, 1e-15);
+  EXPECT_LT(tet_shape({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 0}).stretch, 0.0);
+  // The corner tet of a unit cube: V = 1/6, s = sqrt(2), A = 3/2 + sqrt(3)/2.
+  const TetShape s = tet_shape({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  EXPECT_NEAR(s.stretch,
+              6 * std::sqrt(6.0) * (1.0 / 6) / (std::sqrt(2.0) * (1.5 + std::sqrt(3.0) / 2)),
+              1e-14);
+}
+
+TEST(MeshStats, MatchesBruteForceOnAPerturbedThreeMaterialGrid) {
+  TetMesh mesh =
+      test::make_grid_mesh(5, 4, 3, [](int i, int j, int) { return i < 2 ? 3 : (j < 2 ? 7 : 0); });
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+  for (Vec3& p : mesh.positions) p = p + Vec3{jitter(rng), jitter(rng), jitter(rng)};
+  ValidationReport report;
+  ASSERT_TRUE(validate_mesh(&mesh, "grid", {}, &report));
+  const MeshStats stats = compute_mesh_stats(mesh, build_vertex_tets(mesh));
+  test::expect_stats_match_reference(mesh, stats);
+  EXPECT_EQ(stats.whole.elements, 5u * 4 * 3 * 6);
+  EXPECT_EQ(stats.whole.nodes, 6u * 5 * 4);
+  ASSERT_EQ(stats.per_material.size(), 3u);
+  EXPECT_EQ(stats.per_material[0].material, 0);
+  EXPECT_EQ(stats.per_material[2].material, 7);
+}
+
+TEST(MeshStats, GridCountsAreExact) {
+  // An n^3 Kuhn grid: (n+1)^3 nodes, 6 n^3 tets; edges: 3n(n+1)^2 axis edges,
+  // 3 n^2 (n+1) face diagonals and n^3 cube diagonals.
+  const int n = 3;
+  const TetMesh mesh = test::make_grid_mesh(n, n, n, [](int, int, int) { return 1; });
+  const MeshStats stats = compute_mesh_stats(mesh, build_vertex_tets(mesh));
+  EXPECT_EQ(stats.whole.nodes, 64u);
+  EXPECT_EQ(stats.whole.edges,
+            static_cast<size_t>(3 * n * (n + 1) * (n + 1) + 3 * n * n * (n + 1) + n * n * n));
+  EXPECT_EQ(stats.whole.max_valence, 14u);  // interior Kuhn vertices
+  EXPECT_NEAR(stats.whole.max_size, std::sqrt(3.0), 1e-15);
+  EXPECT_NEAR(stats.whole.volume, 27.0, 1e-12);
+  uint64_t total = 0;
+  for (uint64_t c : stats.stretch_histogram) total += c;
+  EXPECT_EQ(total, stats.whole.elements);
+}
+
+}  // namespace
+}  // namespace tetlod

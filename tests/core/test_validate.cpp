@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include "core/test_meshes.h"
+#include "core/validate.h"
+
+namespace tetlod {
+namespace {
+
+Status validate(TetMesh* mesh, ValidationReport* report = nullptr,
+                const std::vector<uint32_t>& lines = {}) {
+  ValidationReport local;
+  return validate_mesh(mesh, "m.mesh", lines, report ? report : &local);
+}
+
+TEST(Validate, AcceptsGridAndKeepsIt) {
+  TetMesh mesh = test::make_grid_mesh(2, 2, 2, [](int i, int, int) { return i; });
+  const TetMesh before = mesh;
+  ValidationReport report;
+  ASSERT_TRUE(validate(&mesh, &report)) << validate(&mesh).message();
+  EXPECT_EQ(report.reoriented_tets, 0u);
+  EXPECT_EQ(report.removed_unused_vertices, 0u);
+  EXPECT_EQ(mesh.tets, before.tets);
+  EXPECT_EQ(mesh.positions.size(), before.positions.size());
+}
+
+TEST(Validate, ReorientsNegativeTets) {
+  TetMesh mesh = test::make_grid_mesh(1, 1, 1, [](int, int, int) { return 0; });
+  std::swap(mesh.tets[0][0], mesh.tets[0][1]);
+  std::swap(mesh.tets[3][2], mesh.tets[3][3]);
+  ValidationReport report;
+  ASSERT_TRUE(validate(&mesh, &report));
+  EXPECT_EQ(report.reoriented_tets, 2u);
+  for (const Tet& t : mesh.tets) EXPECT_GT(signed_volume6(mesh, t), 0);
+}
+
+TEST(Validate, DropsUnusedVertices) {
+  TetMesh mesh = test::make_single_tet();
+  mesh.positions.insert(mesh.positions.begin(), Vec3{5, 5, 5});
+  for (uint32_t& v : mesh.tets[0]) ++v;
+  ValidationReport report;
+  ASSERT_TRUE(validate(&mesh, &report));
+  EXPECT_EQ(report.removed_unused_vertices, 1u);
+  ASSERT_EQ(mesh.positions.size(), 4u);
+  EXPECT_EQ(mesh.positions[0], (Vec3{0, 0, 0}));
+  EXPECT_EQ(mesh.tets[0], (Tet{0, 1, 2, 3}));
+}
+
+void expect_error(TetMesh mesh, const std::string& fragment,
+                  const std::vector<uint32_t>& lines = {}) {
+  const Status s = validate(&mesh, nullptr, lines);
+  ASSERT_FALSE(s.ok()) << "expected an error containing '" << fragment << "'";
+  EXPECT_NE(s.message().find(fragment), std::string::npos) << s.message();
+}
+
+TEST(Validate, RejectsBadMeshesWithLineNumbers) {
+  TetMesh m = test::make_single_tet();
+  m.tets[0][2] = 7;
+  expect_error(m, "m.mesh:42: tetrahedron 1 uses vertex 8", {42});
+
+  m = test::make_single_tet();
+  m.tets[0][2] = m.tets[0][1];
+  expect_error(m, "repeats vertex");
+
+  m = test::make_single_tet();
+  m.positions[3] = {0.5, 0.5, 0};  // coplanar
+  expect_error(m, "m.mesh:9: tetrahedron 1 is degenerate", {9});
+
+  m = test::make_single_tet();
+  m.positions[1].y = std::nan("");
+  expect_error(m, "non-finite");
+
+  m = test::make_single_tet();
+  m.materials[0] = -3;
+  expect_error(m, "material id -3");
+
+  m = test::make_single_tet();
+  m.materials.push_back(1);
+  expect_error(m, "material ids");
+
+  m = test::make_single_tet();
+  m.tets.push_back({3, 2, 1, 0});
+  m.materials.push_back(1);
+  expect_error(m, "tetrahedron 2 duplicates tetrahedron 1");
+
+  expect_error(TetMesh{}, "no tetrahedra");
+}
+
+TEST(Validate, RejectsOverlappingAndNonManifoldTets) {
+  // Two tets on the same side of face (0,1,2): they overlap.
+  TetMesh m = test::make_single_tet();
+  m.positions.push_back({0.1, 0.1, 2});
+  m.tets.push_back({0, 1, 2, 4});
+  m.materials.push_back(1);
+  expect_error(m, "overlaps");
+
+  // Three tets around face (0,1,2).
+  m = test::make_single_tet();
+  m.positions.push_back({0.2, 0.2, -1});
+  m.positions.push_back({0.1, 0.1, 2});
+  m.tets.push_back({0, 2, 1, 4});
+  m.tets.push_back({0, 1, 2, 5});
+  m.materials.insert(m.materials.end(), {1, 1});
+  expect_error(m, "not a manifold");
+}
+
+}  // namespace
+}  // namespace tetlod
