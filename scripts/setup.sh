@@ -6,6 +6,9 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libtet1.5-dev libgtest-dev
   libbenchmark-dev)
+# Extra packages a caller needs (scripts/test.sh adds gmsh for the interoperability test).
+read -r -a extra <<<"${TETLOD_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,5 @@
 // Reading and writing tetrahedral meshes in the formats analysts' tools use.
-// The format is chosen from the file extension:
+// The format is chosen from the file extension (ASCII case-insensitive):
 //   .mesh          Medit ASCII (MMG, CGAL, TetWild, Gmsh); material = tet reference
 //   .msh           Gmsh ASCII 2.2 or 4.1 (read: from $MeshFormat; write: 4.1 unless
 //                  WriteOptions::gmsh_version == 22); material = physical tag, else
@@ -11,6 +11,46 @@
 // Every read ends with validate_mesh(); every error reads "path:line: message".
 // Writes go to a temporary file in the same directory that is renamed over the
 // target, so a failed write never leaves a half-written file.
+//
+// Reading, format by format:
+//  - Medit: keywords are case-insensitive, '#' starts a comment. Vertices and
+//    Tetrahedra are read; the other sections of a 3D mesh (Triangles, Edges,
+//    Corners, Ridges, Required*, Normals, Tangents, Prisms, Hexahedra, P2
+//    elements, ...) are skipped by their entry width; an unknown keyword is an
+//    error. `End` is optional.
+//  - Gmsh: element type 4 is a tet; type 11 (10-node tet) gives its four corners;
+//    other element types are skipped. Material = the first physical tag (2.2: the
+//    first element tag when not 0; 4.1: the volume entity's first physical tag in
+//    $Entities), else the elementary (entity) tag. A 3D physical group named
+//    "material_<n>" in $PhysicalNames gives material n whatever its tag. Node and
+//    element tags may be sparse or huge: vertices come out ordered by node tag,
+//    tets by element tag. Binary files are rejected.
+//  - TetGen: `.node` header "n 3 nattr nmarker", `.ele` header "m 4|10 nattr";
+//    0- or 1-based numbering from the first index in .node, '#' comments; the
+//    first region attribute must be an integer (no attribute: material 0). Either
+//    orientation is accepted.
+//  - VTK legacy (3.0 and 5.1 cell layouts) and VTK XML: cell type 10 (tet) and 24
+//    (quadratic tet: its four corners) are read, other cells skipped; material =
+//    cell data array "material" (legacy: SCALARS or FIELD), else 0. Binary,
+//    appended and compressed data are rejected.
+// A file cut short either fails to read or, when the cut removed only text that
+// carries no mesh data (Medit `End`, trailing comments, cell data after
+// "material", sections after $EndElements in .msh), reads as the full mesh. A
+// number that touches the end of the file without a line break after it is taken
+// as cut off and is an error. (VTK legacy has no end marker and its material array
+// is optional: a cut just before that array reads as a mesh without materials.)
+//
+// Writing: tets keep their orientation (positive, which is also TetGen's own
+// output orientation, checked with TetGen 1.5); numbers use the shortest text that
+// reads back to the same double (std::to_chars), so every format round-trips
+// positions, tets (order and vertex order) and materials exactly.
+//  - Gmsh material ids: Gmsh physical tags must be > 0. Material m > 0 is written
+//    as physical tag m (and volume entity m), so other tools see the same ids.
+//    Material 0 is written as the smallest positive tag no material uses, and every
+//    physical group is named "material_<m>" in $PhysicalNames, which our reader
+//    maps back. 4.1 files carry $Entities with bounding boxes, one volume entity
+//    per material.
+//  - TetGen: the pair is written 1-based with one region attribute (the material).
 #pragma once
 
 #include <string>
@@ -31,12 +71,26 @@ struct ReadInfo {
   ValidationReport validation;
 };
 
+// Reads `path`; `*mesh` is replaced only on success. For .msh, info->format tells
+// the version found.
 Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info = nullptr);
+
+// Parses a file's text held in memory (tests, fuzzing). `name` stands for the path
+// in messages. kGmsh22 and kGmsh41 both read either version; kTetGen needs two
+// texts: use read_tetgen_from_memory().
+Status read_mesh_from_memory(std::string_view data, MeshFormat format, const std::string& name,
+                             TetMesh* mesh, ReadInfo* info = nullptr);
+Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_data,
+                               const std::string& node_name, const std::string& ele_name,
+                               TetMesh* mesh, ReadInfo* info = nullptr);
 
 struct WriteOptions {
   int gmsh_version = 41;  // 41 or 22, for .msh
 };
 
+// Writes `mesh` (valid: see tet_mesh.h) in the format of the extension of `path`.
+// For .node/.ele both files of the pair are written. An invalid mesh or an
+// unwritable path gives an error naming the path, and leaves no file behind.
 Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options = {});
 
 }  // namespace tetlod

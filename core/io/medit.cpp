@@ -1,0 +1,204 @@
+// Medit / Gamma Mesh Format, ASCII (.mesh). Entry widths of the skipped keywords
+// follow the keyword table of libMeshb (L. Maréchal, INRIA), for Dimension 3.
+#include <cstring>
+#include <limits>
+
+#include "core/io/mesh_formats.h"
+#include "core/io/text_scanner.h"
+#include "core/io/text_writer.h"
+
+namespace tetlod::io {
+namespace {
+
+struct SkippedKeyword {
+  const char* name;
+  bool has_count;         // "Keyword count" then count entries; else one entry
+  int numbers_per_entry;  // for Dimension 3
+};
+
+constexpr SkippedKeyword kSkippedKeywords[] = {
+    {"Edges", true, 3},
+    {"Triangles", true, 4},
+    {"Quadrilaterals", true, 5},
+    {"Prisms", true, 7},
+    {"Pentahedra", true, 7},
+    {"Pyramids", true, 6},
+    {"Hexahedra", true, 9},
+    {"Corners", true, 1},
+    {"Ridges", true, 1},
+    {"RequiredVertices", true, 1},
+    {"RequiredEdges", true, 1},
+    {"RequiredTriangles", true, 1},
+    {"RequiredQuadrilaterals", true, 1},
+    {"RequiredTetrahedra", true, 1},
+    {"Normals", true, 3},
+    {"Tangents", true, 3},
+    {"NormalAtVertices", true, 2},
+    {"NormalAtTriangleVertices", true, 3},
+    {"NormalAtQuadrilateralVertices", true, 4},
+    {"TangentAtVertices", true, 2},
+    {"TangentAtEdges", true, 3},
+    {"TangentAtEdgeVertices", true, 3},
+    {"EdgesP2", true, 4},
+    {"TrianglesP2", true, 7},
+    {"QuadrilateralsQ2", true, 10},
+    {"TetrahedraP2", true, 11},
+    {"HexahedraQ2", true, 28},
+    {"VerticesOnGeometricVertices", true, 2},
+    {"VerticesOnGeometricEdges", true, 4},
+    {"VerticesOnGeometricTriangles", true, 5},
+    {"EdgesOnGeometricEdges", true, 2},
+    {"TrianglesOnGeometricTriangles", true, 2},
+    {"AngleOfCornerBound", false, 1},
+    {"BoundingBox", false, 6},
+    {"Iterations", false, 1},
+    {"Time", false, 1},
+};
+
+// Keywords followed by one string, possibly quoted with spaces inside.
+constexpr const char* kStringKeywords[] = {"Identifier", "Geometry", "MeshSupportOfVertices"};
+
+const SkippedKeyword* find_skipped(std::string_view keyword) {
+  for (const SkippedKeyword& skipped : kSkippedKeywords) {
+    if (TextScanner::equals_ignore_case(keyword, skipped.name)) return &skipped;
+  }
+  return nullptr;
+}
+
+bool is_string_keyword(std::string_view keyword) {
+  for (const char* name : kStringKeywords) {
+    if (TextScanner::equals_ignore_case(keyword, name)) return true;
+  }
+  return false;
+}
+
+bool skip_string(TextScanner& scanner, std::string_view keyword) {
+  std::string_view token;
+  const std::string what = "the string after " + std::string(keyword);
+  if (!scanner.next_token(&token)) return scanner.fail("unexpected end of file, expected " + what);
+  if (token[0] != '"' || (token.size() > 1 && token.back() == '"')) return true;
+  while (scanner.next_token(&token)) {
+    if (token.back() == '"') return true;
+  }
+  return scanner.fail("unexpected end of file inside " + what);
+}
+
+bool read_vertices(TextScanner& scanner, TetMesh& mesh) {
+  uint64_t count = 0;
+  // An entry "x y z ref" takes at least 8 bytes.
+  if (!scanner.read_count(&count, "vertex count", 8)) return false;
+  if (count >= kInvalidIndex) return scanner.fail("too many vertices");
+  mesh.positions.reserve(count);
+  int64_t reference = 0;
+  for (uint64_t i = 0; i < count; ++i) {
+    Vec3 p;
+    if (!scanner.read_double(&p.x, "x coordinate") || !scanner.read_double(&p.y, "y coordinate") ||
+        !scanner.read_double(&p.z, "z coordinate") ||
+        !scanner.read_int(&reference, "vertex reference")) {
+      return false;
+    }
+    mesh.positions.push_back(p);
+  }
+  return true;
+}
+
+bool read_tets(TextScanner& scanner, ParsedMesh* out) {
+  uint64_t count = 0;
+  // An entry "a b c d ref" takes at least 10 bytes.
+  if (!scanner.read_count(&count, "tetrahedron count", 10)) return false;
+  if (count >= kInvalidIndex) return scanner.fail("too many tetrahedra");
+  TetMesh& mesh = out->mesh;
+  mesh.tets.reserve(count);
+  mesh.materials.reserve(count);
+  out->tet_lines.reserve(count);
+  for (uint64_t i = 0; i < count; ++i) {
+    Tet tet;
+    for (int k = 0; k < 4; ++k) {
+      int64_t index = 0;
+      if (!scanner.read_int(&index, "vertex index")) return false;
+      if (k == 0) out->tet_lines.push_back(line_number(scanner.line()));
+      if (index < 1 || index > int64_t{kInvalidIndex}) {
+        return scanner.fail("vertex index " + std::to_string(index) +
+                            " is out of range (Medit indices start at 1)");
+      }
+      tet[k] = uint32_t(index - 1);
+    }
+    int64_t material = 0;
+    if (!scanner.read_int_in_range(&material, "tetrahedron reference (material)",
+                                   std::numeric_limits<int32_t>::min(),
+                                   std::numeric_limits<int32_t>::max())) {
+      return false;
+    }
+    mesh.tets.push_back(tet);
+    mesh.materials.push_back(int32_t(material));
+  }
+  return true;
+}
+
+}  // namespace
+
+Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out) {
+  TextScanner scanner(text, name, '#');
+  std::string_view keyword;
+  if (!scanner.next_token(&keyword) ||
+      !TextScanner::equals_ignore_case(keyword, "MeshVersionFormatted")) {
+    scanner.fail("not a Medit file: expected 'MeshVersionFormatted' first");
+    return scanner.status();
+  }
+  int64_t value = 0;
+  if (!scanner.read_int_in_range(&value, "MeshVersionFormatted value", 1, 4)) {
+    return scanner.status();
+  }
+  bool seen_vertices = false;
+  bool seen_tets = false;
+  while (!scanner.failed() && scanner.next_token(&keyword)) {
+    auto is = [&](const char* word) { return TextScanner::equals_ignore_case(keyword, word); };
+    if (is("End")) break;
+    if (is("Dimension")) {
+      if (scanner.read_int(&value, "dimension") && value != 3) {
+        scanner.fail("only 3-dimensional meshes are supported (Dimension " + std::to_string(value) +
+                     ")");
+      }
+    } else if (is("Vertices")) {
+      if (seen_vertices) scanner.fail("a second Vertices section");
+      seen_vertices = true;
+      read_vertices(scanner, out->mesh);
+    } else if (is("Tetrahedra")) {
+      if (seen_tets) scanner.fail("a second Tetrahedra section");
+      seen_tets = true;
+      read_tets(scanner, out);
+    } else if (const SkippedKeyword* skipped = find_skipped(keyword)) {
+      uint64_t count = 1;
+      const uint64_t width = uint64_t(skipped->numbers_per_entry);
+      if (skipped->has_count) scanner.read_count(&count, "entry count", 2 * width);
+      if (!scanner.failed()) scanner.skip_numbers(count * width, skipped->name);
+    } else if (is_string_keyword(keyword)) {
+      skip_string(scanner, keyword);
+    } else if (TextScanner::looks_numeric(keyword)) {
+      scanner.fail("found the number " + TextScanner::quote(keyword) +
+                   " where a keyword was expected (is the count of the section above right?)");
+    } else {
+      scanner.fail("unknown keyword " + TextScanner::quote(keyword));
+    }
+  }
+  if (scanner.failed()) return scanner.status();
+  if (!seen_vertices) return Status::error(name + ": no Vertices section");
+  if (!seen_tets) return Status::error(name + ": no Tetrahedra section");
+  return Status();
+}
+
+void write_medit(const TetMesh& mesh, std::string* out) {
+  out->reserve(out->size() + mesh.vertex_count() * 64 + mesh.tet_count() * 40);
+  out->append("MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n");
+  append_line(out, mesh.vertex_count());
+  for (const Vec3& p : mesh.positions) append_line(out, p.x, p.y, p.z, 0);
+  out->append("\nTetrahedra\n");
+  append_line(out, mesh.tet_count());
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    const Tet& tet = mesh.tets[t];
+    append_line(out, tet[0] + 1, tet[1] + 1, tet[2] + 1, tet[3] + 1, mesh.materials[t]);
+  }
+  out->append("\nEnd\n");
+}
+
+}  // namespace tetlod::io

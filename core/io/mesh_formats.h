@@ -1,0 +1,47 @@
+// The per-format parsers and writers behind mesh_io.h (internal to core/io).
+// Parsers fill a ParsedMesh without validating it: mesh_io.cpp runs
+// validate_mesh() on the result with the per-tet line numbers. Writers append the
+// file text to `out`; they expect a mesh whose indices and materials were checked.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/status.h"
+#include "core/tet_mesh.h"
+
+namespace tetlod::io {
+
+struct ParsedMesh {
+  TetMesh mesh;
+  std::vector<uint32_t> tet_lines;  // 1-based line of each tet in the file
+};
+
+Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out);
+// `version` receives 22 or 41.
+Status parse_gmsh(std::string_view text, const std::string& name, ParsedMesh* out, int* version);
+Status parse_tetgen(std::string_view node_text, const std::string& node_name,
+                    std::string_view ele_text, const std::string& ele_name, ParsedMesh* out);
+Status parse_vtk_legacy(std::string_view text, const std::string& name, ParsedMesh* out);
+Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out);
+
+void write_medit(const TetMesh& mesh, std::string* out);
+// `version` is 22 or 41.
+void write_gmsh(const TetMesh& mesh, int version, std::string* out);
+void write_tetgen_node(const TetMesh& mesh, std::string* out);
+void write_tetgen_ele(const TetMesh& mesh, std::string* out);
+void write_vtk_legacy(const TetMesh& mesh, std::string* out);
+void write_vtu(const TetMesh& mesh, std::string* out);
+
+// VTK cell types read as tets (vtk.cpp, vtu.cpp): the quadratic tet gives its corners.
+inline constexpr int64_t kVtkTetra = 10;
+inline constexpr int64_t kVtkQuadraticTetra = 24;
+
+// Saturating conversion of a line number for ParsedMesh::tet_lines.
+inline uint32_t line_number(size_t line) {
+  return line > 0xffffffffu ? 0xffffffffu : uint32_t(line);
+}
+
+}  // namespace tetlod::io

@@ -1,0 +1,207 @@
+// Format dispatch for read_mesh() and write_mesh(): the extension picks the format,
+// io/*.cpp parse and write, validate_mesh() checks every mesh read.
+#include "core/io/mesh_io.h"
+
+#include <utility>
+
+#include "core/io/file_access.h"
+#include "core/io/mesh_formats.h"
+
+namespace tetlod {
+namespace {
+
+constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vtu";
+
+enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu };
+
+// The extension of the file name in `path`, lower case, without the dot.
+std::string extension_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string extension = path.substr(dot + 1);
+  for (char& c : extension) {
+    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
+  }
+  return extension;
+}
+
+Status file_kind(const std::string& path, FileKind* kind) {
+  const std::string extension = extension_of(path);
+  if (extension == "mesh") {
+    *kind = FileKind::kMedit;
+  } else if (extension == "msh") {
+    *kind = FileKind::kGmsh;
+  } else if (extension == "node" || extension == "ele") {
+    *kind = FileKind::kTetGen;
+  } else if (extension == "vtk") {
+    *kind = FileKind::kVtkLegacy;
+  } else if (extension == "vtu") {
+    *kind = FileKind::kVtu;
+  } else if (extension == "meshb") {
+    return Status::error(
+        path + ": binary Medit .meshb is not supported (supported: " + kSupportedExtensions + ")");
+  } else {
+    return Status::error(path + ": unknown mesh file extension '" +
+                         (extension.empty() ? std::string() : "." + extension) +
+                         "' (supported: " + kSupportedExtensions + ")");
+  }
+  return Status();
+}
+
+// "foo.ele" or "foo.node" -> "foo".
+std::string tetgen_base(const std::string& path) {
+  return path.substr(0, path.find_last_of('.'));
+}
+
+Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string& source,
+                   TetMesh* mesh, ReadInfo* info) {
+  ValidationReport report;
+  Status status = validate_mesh(&parsed->mesh, source, parsed->tet_lines, &report);
+  if (!status.ok()) return status;
+  *mesh = std::move(parsed->mesh);
+  if (info) {
+    info->format = format;
+    info->validation = report;
+  }
+  return Status();
+}
+
+// The checks a writer relies on, so that a bad mesh is an error, not a crash.
+Status check_writable(const std::string& path, const TetMesh& mesh) {
+  if (mesh.materials.size() != mesh.tets.size()) {
+    return Status::error(path + ": cannot write a mesh with " + std::to_string(mesh.tet_count()) +
+                         " tetrahedra and " + std::to_string(mesh.materials.size()) +
+                         " material ids");
+  }
+  if (mesh.tets.empty()) return Status::error(path + ": cannot write a mesh without tetrahedra");
+  if (mesh.vertex_count() >= kInvalidIndex) return Status::error(path + ": too many vertices");
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    for (uint32_t v : mesh.tets[t]) {
+      if (v >= mesh.vertex_count()) {
+        return Status::error(path + ": cannot write: tetrahedron " + std::to_string(t + 1) +
+                             " uses a vertex out of range");
+      }
+    }
+    if (mesh.materials[t] < 0) {
+      return Status::error(path + ": cannot write: tetrahedron " + std::to_string(t + 1) +
+                           " has the negative material id " + std::to_string(mesh.materials[t]));
+    }
+  }
+  return Status();
+}
+
+}  // namespace
+
+const char* format_name(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::kMedit:
+      return "Medit .mesh";
+    case MeshFormat::kGmsh22:
+      return "Gmsh 2.2 .msh";
+    case MeshFormat::kGmsh41:
+      return "Gmsh 4.1 .msh";
+    case MeshFormat::kTetGen:
+      return "TetGen .node/.ele";
+    case MeshFormat::kVtkLegacy:
+      return "VTK legacy .vtk";
+    case MeshFormat::kVtu:
+      return "VTK XML .vtu";
+  }
+  return "unknown format";
+}
+
+Status read_mesh_from_memory(std::string_view data, MeshFormat format, const std::string& name,
+                             TetMesh* mesh, ReadInfo* info) {
+  io::ParsedMesh parsed;
+  Status status;
+  switch (format) {
+    case MeshFormat::kMedit:
+      status = io::parse_medit(data, name, &parsed);
+      break;
+    case MeshFormat::kGmsh22:
+    case MeshFormat::kGmsh41: {
+      int version = 0;
+      status = io::parse_gmsh(data, name, &parsed, &version);
+      format = version == 22 ? MeshFormat::kGmsh22 : MeshFormat::kGmsh41;
+      break;
+    }
+    case MeshFormat::kTetGen:
+      return Status::error(name + ": a TetGen mesh is two texts; use read_tetgen_from_memory()");
+    case MeshFormat::kVtkLegacy:
+      status = io::parse_vtk_legacy(data, name, &parsed);
+      break;
+    case MeshFormat::kVtu:
+      status = io::parse_vtu(data, name, &parsed);
+      break;
+  }
+  if (!status.ok()) return status;
+  return finish_read(&parsed, format, name, mesh, info);
+}
+
+Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_data,
+                               const std::string& node_name, const std::string& ele_name,
+                               TetMesh* mesh, ReadInfo* info) {
+  io::ParsedMesh parsed;
+  Status status = io::parse_tetgen(node_data, node_name, ele_data, ele_name, &parsed);
+  if (!status.ok()) return status;
+  return finish_read(&parsed, MeshFormat::kTetGen, ele_name, mesh, info);
+}
+
+Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
+  FileKind kind;
+  Status status = file_kind(path, &kind);
+  if (!status.ok()) return status;
+  if (kind == FileKind::kTetGen) {
+    const std::string base = tetgen_base(path);
+    std::string node_text, ele_text;
+    if (!(status = io::read_file(base + ".node", &node_text)).ok()) return status;
+    if (!(status = io::read_file(base + ".ele", &ele_text)).ok()) return status;
+    return read_tetgen_from_memory(node_text, ele_text, base + ".node", base + ".ele", mesh, info);
+  }
+  std::string text;
+  if (!(status = io::read_file(path, &text)).ok()) return status;
+  static constexpr MeshFormat kFormats[] = {MeshFormat::kMedit, MeshFormat::kGmsh41,
+                                            MeshFormat::kTetGen, MeshFormat::kVtkLegacy,
+                                            MeshFormat::kVtu};
+  return read_mesh_from_memory(text, kFormats[int(kind)], path, mesh, info);
+}
+
+Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options) {
+  FileKind kind;
+  Status status = file_kind(path, &kind);
+  if (!status.ok()) return status;
+  if (kind == FileKind::kGmsh && options.gmsh_version != 22 && options.gmsh_version != 41) {
+    return Status::error(path + ": unsupported Gmsh version " +
+                         std::to_string(options.gmsh_version) + " (use 22 or 41)");
+  }
+  if (!(status = check_writable(path, mesh)).ok()) return status;
+  std::vector<io::OutputFile> files(1);
+  files[0].path = path;
+  switch (kind) {
+    case FileKind::kMedit:
+      io::write_medit(mesh, &files[0].contents);
+      break;
+    case FileKind::kGmsh:
+      io::write_gmsh(mesh, options.gmsh_version, &files[0].contents);
+      break;
+    case FileKind::kTetGen: {
+      const std::string base = tetgen_base(path);
+      files.resize(2);
+      files[0].path = base + ".node";
+      files[1].path = base + ".ele";
+      io::write_tetgen_node(mesh, &files[0].contents);
+      io::write_tetgen_ele(mesh, &files[1].contents);
+      break;
+    }
+    case FileKind::kVtkLegacy:
+      io::write_vtk_legacy(mesh, &files[0].contents);
+      break;
+    case FileKind::kVtu:
+      io::write_vtu(mesh, &files[0].contents);
+      break;
+  }
+  return io::write_files_atomically(files);
+}
+
+}  // namespace tetlod

@@ -1,0 +1,152 @@
+// TetGen .node/.ele pairs, as described in the TetGen 1.5 manual, section 5.2
+// (file formats). TetGen writes tets positively oriented in TetLOD's convention
+// (dot(b-a, cross(c-a, d-a)) > 0; checked with libtet 1.5), so the pair is
+// written in the orientation the mesh has.
+#include <limits>
+
+#include "core/io/mesh_formats.h"
+#include "core/io/text_scanner.h"
+#include "core/io/text_writer.h"
+
+namespace tetlod::io {
+namespace {
+
+// Reads a region attribute that must hold an integer material id ("3" or "3.0").
+bool read_material(TextScanner& scanner, int32_t* material) {
+  int64_t value = 0;
+  if (!scanner.read_integral(&value, "region attribute (material)",
+                             std::numeric_limits<int32_t>::min(),
+                             std::numeric_limits<int32_t>::max())) {
+    return false;
+  }
+  *material = int32_t(value);
+  return true;
+}
+
+bool expect_end_of_file(TextScanner& scanner, const char* items) {
+  std::string_view token;
+  if (!scanner.next_token(&token)) return true;
+  return scanner.fail("unexpected " + TextScanner::quote(token) + " after the last " + items +
+                      " (wrong count in the header?)");
+}
+
+// Reads the .node file; `base` receives the first index (0 or 1).
+bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
+  uint64_t count = 0, attributes = 0, markers = 0;
+  int64_t dimension = 0;
+  // A point line "i x y z\n" takes at least 8 bytes.
+  if (!scanner.read_count(&count, "point count", 8)) return false;
+  if (!scanner.read_int(&dimension, "dimension")) return false;
+  if (dimension != 3) {
+    return scanner.fail("only 3-dimensional points are supported (dimension " +
+                        std::to_string(dimension) + ")");
+  }
+  if (!scanner.read_count(&attributes, "attribute count", 2) ||
+      !scanner.read_count(&markers, "boundary marker count", 2)) {
+    return false;
+  }
+  if (markers > 1) return scanner.fail("boundary marker count must be 0 or 1");
+  if (count == 0) return scanner.fail("no points (points in a .poly file are not supported)");
+  if (count >= kInvalidIndex) return scanner.fail("too many points");
+  mesh.positions.reserve(count);
+  for (uint64_t i = 0; i < count; ++i) {
+    int64_t index = 0;
+    if (!scanner.read_int(&index, "point index")) return false;
+    if (i == 0) {
+      if (index != 0 && index != 1) {
+        return scanner.fail("the first point index is " + std::to_string(index) +
+                            "; it must be 0 or 1");
+      }
+      *base = index;
+    } else if (index != *base + int64_t(i)) {
+      return scanner.fail("expected point index " + std::to_string(*base + int64_t(i)) +
+                          ", found " + std::to_string(index));
+    }
+    Vec3 p;
+    if (!scanner.read_double(&p.x, "x coordinate") || !scanner.read_double(&p.y, "y coordinate") ||
+        !scanner.read_double(&p.z, "z coordinate") ||
+        !scanner.skip_numbers(attributes + markers, "point attributes")) {
+      return false;
+    }
+    mesh.positions.push_back(p);
+  }
+  return expect_end_of_file(scanner, "point");
+}
+
+bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out) {
+  uint64_t count = 0, attributes = 0;
+  int64_t corners = 0;
+  if (!scanner.read_count(&count, "tetrahedron count", 10) ||
+      !scanner.read_int(&corners, "nodes per tetrahedron")) {
+    return false;
+  }
+  if (corners != 4 && corners != 10) {
+    return scanner.fail("nodes per tetrahedron must be 4 or 10, found " + std::to_string(corners));
+  }
+  if (!scanner.read_count(&attributes, "attribute count", 2)) return false;
+  if (count >= kInvalidIndex) return scanner.fail("too many tetrahedra");
+  TetMesh& mesh = out->mesh;
+  mesh.tets.reserve(count);
+  mesh.materials.reserve(count);
+  out->tet_lines.reserve(count);
+  for (uint64_t i = 0; i < count; ++i) {
+    int64_t index = 0;
+    if (!scanner.read_int(&index, "tetrahedron index")) return false;
+    if (index != base + int64_t(i)) {
+      return scanner.fail("expected tetrahedron index " + std::to_string(base + int64_t(i)) +
+                          ", found " + std::to_string(index));
+    }
+    out->tet_lines.push_back(line_number(scanner.line()));
+    Tet tet;
+    for (int k = 0; k < 4; ++k) {
+      int64_t vertex = 0;
+      if (!scanner.read_int(&vertex, "vertex index")) return false;
+      if (vertex < base || vertex - base >= int64_t{kInvalidIndex}) {
+        return scanner.fail("vertex index " + std::to_string(vertex) + " is out of range (the " +
+                            "points are numbered from " + std::to_string(base) + ")");
+      }
+      tet[k] = uint32_t(vertex - base);
+    }
+    int32_t material = 0;
+    if (!scanner.skip_numbers(uint64_t(corners - 4), "vertex indices") ||
+        (attributes > 0 && !read_material(scanner, &material)) ||
+        !scanner.skip_numbers(attributes > 0 ? attributes - 1 : 0, "attributes")) {
+      return false;
+    }
+    mesh.tets.push_back(tet);
+    mesh.materials.push_back(material);
+  }
+  return expect_end_of_file(scanner, "tetrahedron");
+}
+
+}  // namespace
+
+Status parse_tetgen(std::string_view node_text, const std::string& node_name,
+                    std::string_view ele_text, const std::string& ele_name, ParsedMesh* out) {
+  TextScanner nodes(node_text, node_name, '#');
+  int64_t base = 0;
+  if (!read_nodes(nodes, out->mesh, &base)) return nodes.status();
+  TextScanner elements(ele_text, ele_name, '#');
+  if (!read_elements(elements, base, out)) return elements.status();
+  return Status();
+}
+
+void write_tetgen_node(const TetMesh& mesh, std::string* out) {
+  out->reserve(out->size() + mesh.vertex_count() * 64);
+  append_line(out, mesh.vertex_count(), 3, 0, 0);  // count, dimension, attributes, markers
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Vec3& p = mesh.positions[v];
+    append_line(out, v + 1, p.x, p.y, p.z);
+  }
+}
+
+void write_tetgen_ele(const TetMesh& mesh, std::string* out) {
+  out->reserve(out->size() + mesh.tet_count() * 48);
+  append_line(out, mesh.tet_count(), 4, 1);  // count, nodes per tet, attributes
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    const Tet& tet = mesh.tets[t];
+    append_line(out, t + 1, tet[0] + 1, tet[1] + 1, tet[2] + 1, tet[3] + 1, mesh.materials[t]);
+  }
+}
+
+}  // namespace tetlod::io

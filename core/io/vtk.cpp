@@ -1,0 +1,458 @@
+// VTK legacy ASCII unstructured grids (.vtk), as in "The VTK User's Guide",
+// chapter 19 "VTK File Formats", with both cell layouts: "CELLS n size" followed by
+// "k i1 .. ik" lines (file version <= 4.2) and "CELLS n+1 size" followed by OFFSETS
+// and CONNECTIVITY arrays (file version 5.1).
+#include <charconv>
+#include <limits>
+
+#include "core/io/mesh_formats.h"
+#include "core/io/text_scanner.h"
+#include "core/io/text_writer.h"
+#include "core/metrics.h"
+
+namespace tetlod::io {
+namespace {
+
+constexpr const char* kMaterialArray = "material";
+
+std::vector<std::string_view> split(std::string_view line) {
+  std::vector<std::string_view> words;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    const size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    if (i > start) words.push_back(line.substr(start, i - start));
+  }
+  return words;
+}
+
+class VtkLegacyParser {
+ public:
+  VtkLegacyParser(std::string_view text, const std::string& name, ParsedMesh* out)
+      : scanner_(text, name), out_(out) {}
+
+  Status parse() {
+    if (!parse_header()) return scanner_.status();
+    std::string_view keyword;
+    while (!scanner_.failed() && scanner_.next_token(&keyword)) {
+      auto is = [&](const char* word) { return TextScanner::equals_ignore_case(keyword, word); };
+      if (is("POINTS")) {
+        parse_points();
+      } else if (is("CELLS")) {
+        parse_cells();
+      } else if (is("CELL_TYPES")) {
+        parse_cell_types();
+      } else if (is("CELL_DATA") || is("POINT_DATA")) {
+        start_data_section(is("CELL_DATA"));
+      } else if (is("FIELD")) {
+        parse_field();
+      } else if (is("METADATA")) {
+        skip_metadata();
+      } else {
+        parse_attribute(keyword);
+      }
+    }
+    if (!scanner_.failed() && data_section_ != DataSection::kNone && section_arrays_ == 0) {
+      scanner_.fail_at_line(section_line_, "the data section has no arrays (truncated file?)");
+    }
+    if (scanner_.failed() || !build_tets()) return scanner_.status();
+    return Status();
+  }
+
+ private:
+  enum class DataSection { kNone, kPoints, kCells };
+
+  bool parse_header() {
+    const std::string_view magic = "# vtk DataFile Version";
+    const std::string_view first = scanner_.rest_of_line();
+    if (first.size() < magic.size() ||
+        !TextScanner::equals_ignore_case(first.substr(0, magic.size()), magic)) {
+      return scanner_.fail("not a VTK legacy file: expected '# vtk DataFile Version' first");
+    }
+    scanner_.rest_of_line();  // the title
+    std::string_view token;
+    if (!scanner_.next_token(&token))
+      return scanner_.fail("unexpected end of file, expected ASCII");
+    if (TextScanner::equals_ignore_case(token, "BINARY")) {
+      return scanner_.fail("binary .vtk is not supported; save the file as ASCII");
+    }
+    if (!TextScanner::equals_ignore_case(token, "ASCII")) {
+      return scanner_.fail("expected ASCII or BINARY, found " + TextScanner::quote(token));
+    }
+    if (!scanner_.expect_keyword("DATASET")) return false;
+    if (!scanner_.next_token(&token)) {
+      return scanner_.fail("unexpected end of file, expected the dataset type");
+    }
+    if (!TextScanner::equals_ignore_case(token, "UNSTRUCTURED_GRID")) {
+      return scanner_.fail("only DATASET UNSTRUCTURED_GRID is supported, found " +
+                           TextScanner::quote(token));
+    }
+    return true;
+  }
+
+  bool parse_points() {
+    uint64_t count = 0;
+    std::string_view type;
+    // "x y z " takes at least 6 bytes.
+    if (!scanner_.read_count(&count, "point count", 6)) return false;
+    if (seen_points_) return scanner_.fail("a second POINTS section");
+    if (count >= kInvalidIndex) return scanner_.fail("too many points");
+    if (!scanner_.next_token(&type))
+      return scanner_.fail("unexpected end of file, expected a type");
+    seen_points_ = true;
+    std::vector<Vec3>& positions = out_->mesh.positions;
+    positions.reserve(count);
+    for (uint64_t i = 0; i < count; ++i) {
+      Vec3 p;
+      if (!scanner_.read_double(&p.x, "x coordinate") ||
+          !scanner_.read_double(&p.y, "y coordinate") ||
+          !scanner_.read_double(&p.z, "z coordinate")) {
+        return false;
+      }
+      positions.push_back(p);
+    }
+    return true;
+  }
+
+  bool read_vertex_index(uint32_t* vertex) {
+    int64_t value = 0;
+    if (!scanner_.read_int_in_range(&value, "point index", 0, int64_t{kInvalidIndex} - 1)) {
+      return false;
+    }
+    *vertex = uint32_t(value);
+    return true;
+  }
+
+  bool parse_cells() {
+    uint64_t first = 0, second = 0;
+    if (!scanner_.read_count(&first, "cell count", 2) ||
+        !scanner_.read_count(&second, "cell list size", 2)) {
+      return false;
+    }
+    if (seen_cells_) return scanner_.fail("a second CELLS section");
+    seen_cells_ = true;
+    std::string_view token;
+    if (scanner_.peek_token(&token) && TextScanner::equals_ignore_case(token, "OFFSETS")) {
+      return parse_cells_51(first, second);
+    }
+    const uint64_t cell_count = first, size = second;
+    if (cell_count >= kInvalidIndex) return scanner_.fail("too many cells");
+    cell_starts_.reserve(cell_count + 1);
+    cell_lines_.reserve(cell_count);
+    connectivity_.reserve(size);
+    cell_starts_.push_back(0);
+    uint64_t used = 0;
+    for (uint64_t c = 0; c < cell_count; ++c) {
+      uint64_t point_count = 0;
+      if (!scanner_.read_count(&point_count, "point count of a cell", 2)) return false;
+      cell_lines_.push_back(line_number(scanner_.line()));
+      used += point_count + 1;
+      if (used > size) {
+        return scanner_.fail("the cells use more than the " + std::to_string(size) +
+                             " numbers announced after CELLS");
+      }
+      for (uint64_t k = 0; k < point_count; ++k) {
+        uint32_t vertex = 0;
+        if (!read_vertex_index(&vertex)) return false;
+        connectivity_.push_back(vertex);
+      }
+      cell_starts_.push_back(connectivity_.size());
+    }
+    if (used != size) {
+      return scanner_.fail("the cells use " + std::to_string(used) + " numbers, CELLS announced " +
+                           std::to_string(size));
+    }
+    return true;
+  }
+
+  bool parse_cells_51(uint64_t offset_count, uint64_t size) {
+    std::string_view type;
+    if (!scanner_.expect_keyword("OFFSETS") || !scanner_.next_token(&type)) {
+      return scanner_.fail("unexpected end of file, expected the OFFSETS type");
+    }
+    if (offset_count >= kInvalidIndex) return scanner_.fail("too many cells");
+    cell_starts_.reserve(offset_count);
+    for (uint64_t i = 0; i < offset_count; ++i) {
+      int64_t offset = 0;
+      const int64_t previous = cell_starts_.empty() ? 0 : int64_t(cell_starts_.back());
+      if (!scanner_.read_int_in_range(&offset, "offset", previous, int64_t(size))) return false;
+      if (i == 0 && offset != 0) return scanner_.fail("the first offset must be 0");
+      cell_starts_.push_back(uint64_t(offset));
+    }
+    if (!cell_starts_.empty() && cell_starts_.back() != size) {
+      return scanner_.fail("the last offset is " + std::to_string(cell_starts_.back()) +
+                           ", CELLS announced " + std::to_string(size) + " indices");
+    }
+    if (cell_starts_.empty()) cell_starts_.push_back(0);
+    if (!scanner_.expect_keyword("CONNECTIVITY") || !scanner_.next_token(&type)) {
+      return scanner_.fail("unexpected end of file, expected the CONNECTIVITY type");
+    }
+    connectivity_.reserve(size);
+    cell_lines_.reserve(cell_starts_.size() - 1);
+    size_t cell = 0;
+    for (uint64_t i = 0; i < size; ++i) {
+      uint32_t vertex = 0;
+      if (!read_vertex_index(&vertex)) return false;
+      while (cell + 1 < cell_starts_.size() && cell_starts_[cell] == i) {
+        cell_lines_.push_back(line_number(scanner_.line()));
+        ++cell;
+      }
+      connectivity_.push_back(vertex);
+    }
+    while (cell_lines_.size() + 1 < cell_starts_.size()) {
+      cell_lines_.push_back(line_number(scanner_.line()));
+    }
+    return true;
+  }
+
+  size_t cell_count() const { return cell_starts_.empty() ? 0 : cell_starts_.size() - 1; }
+
+  bool parse_cell_types() {
+    uint64_t count = 0;
+    if (!scanner_.read_count(&count, "cell type count", 2)) return false;
+    if (!seen_cells_) return scanner_.fail("CELL_TYPES before CELLS");
+    if (seen_types_) return scanner_.fail("a second CELL_TYPES section");
+    if (count != cell_count()) {
+      return scanner_.fail("CELL_TYPES has " + std::to_string(count) + " entries for " +
+                           std::to_string(cell_count()) + " cells");
+    }
+    seen_types_ = true;
+    cell_types_.reserve(count);
+    for (uint64_t i = 0; i < count; ++i) {
+      int64_t type = 0;
+      if (!scanner_.read_int(&type, "cell type")) return false;
+      cell_types_.push_back(type);
+    }
+    return true;
+  }
+
+  bool start_data_section(bool cells) {
+    uint64_t count = 0;
+    if (!scanner_.read_count(&count, cells ? "cell data count" : "point data count", 0)) {
+      return false;
+    }
+    const uint64_t expected = cells ? cell_count() : out_->mesh.positions.size();
+    if (count != expected) {
+      return scanner_.fail(std::string(cells ? "CELL_DATA" : "POINT_DATA") + " has " +
+                           std::to_string(count) + " entries for " + std::to_string(expected) +
+                           (cells ? " cells" : " points"));
+    }
+    data_section_ = cells ? DataSection::kCells : DataSection::kPoints;
+    section_count_ = count;
+    section_arrays_ = 0;
+    section_line_ = scanner_.line();
+    return true;
+  }
+
+  // Bounds value_count = tuples * components by what the rest of the file holds.
+  bool check_value_count(uint64_t tuples, uint64_t components, uint64_t* value_count) {
+    if (components != 0 && tuples > scanner_.remaining_bytes() / components) {
+      return scanner_.fail("the array is larger than the rest of the file can hold");
+    }
+    *value_count = tuples * components;
+    return true;
+  }
+
+  bool read_materials(uint64_t count) {
+    cell_materials_.clear();
+    cell_materials_.reserve(count);
+    for (uint64_t i = 0; i < count; ++i) {
+      int64_t material = 0;
+      if (!scanner_.read_integral(&material, "material id", std::numeric_limits<int32_t>::min(),
+                                  std::numeric_limits<int32_t>::max())) {
+        return false;
+      }
+      cell_materials_.push_back(int32_t(material));
+    }
+    has_materials_ = true;
+    return true;
+  }
+
+  // SCALARS, VECTORS and the other attributes of a POINT_DATA or CELL_DATA section.
+  bool parse_attribute(std::string_view keyword) {
+    auto is = [&](const char* word) { return TextScanner::equals_ignore_case(keyword, word); };
+    uint64_t components = 0;
+    size_t header_words = 0;
+    if (is("SCALARS")) {
+      header_words = 2;
+    } else if (is("COLOR_SCALARS") || is("LOOKUP_TABLE") || is("TEXTURE_COORDINATES")) {
+      header_words = is("TEXTURE_COORDINATES") ? 3 : 2;
+    } else if (is("VECTORS") || is("NORMALS")) {
+      header_words = 2;
+      components = 3;
+    } else if (is("TENSORS") || is("TENSORS6")) {
+      header_words = 2;
+      components = is("TENSORS") ? 9 : 6;
+    } else if (is("GLOBAL_IDS") || is("PEDIGREE_IDS")) {
+      header_words = 2;
+      components = 1;
+    } else {
+      return scanner_.fail("unknown keyword " + TextScanner::quote(keyword));
+    }
+    if (data_section_ == DataSection::kNone) {
+      return scanner_.fail(TextScanner::quote(keyword) + " outside POINT_DATA or CELL_DATA");
+    }
+    const size_t line = scanner_.line();
+    const std::vector<std::string_view> words = split(scanner_.rest_of_line());
+    if (words.size() < header_words) {
+      return scanner_.fail_at_line(line, "incomplete " + std::string(keyword) + " line");
+    }
+    ++section_arrays_;
+    auto number_word = [&](size_t i, uint64_t max_value, uint64_t* value) {
+      const std::string_view word = words[i];
+      const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), *value);
+      if (error != std::errc() || end != word.data() + word.size() || *value < 1 ||
+          *value > max_value) {
+        return scanner_.fail_at_line(
+            line, "expected a count from 1 to " + std::to_string(max_value) + " in the " +
+                      std::string(keyword) + " line, found " + TextScanner::quote(word));
+      }
+      return true;
+    };
+    uint64_t tuples = section_count_;
+    if (is("SCALARS")) {
+      components = 1;
+      if (words.size() > 2 && !number_word(2, 4, &components)) return false;
+      std::string_view token;
+      if (scanner_.peek_token(&token) && TextScanner::equals_ignore_case(token, "LOOKUP_TABLE")) {
+        scanner_.next_token(&token);
+        scanner_.rest_of_line();
+      }
+      if (data_section_ == DataSection::kCells && words[0] == kMaterialArray) {
+        if (components != 1) return scanner_.fail_at_line(line, "material must have 1 component");
+        return read_materials(section_count_);
+      }
+    } else if (is("COLOR_SCALARS")) {
+      if (!number_word(1, 4, &components)) return false;
+    } else if (is("LOOKUP_TABLE")) {
+      // A table definition: "LOOKUP_TABLE name size" and size RGBA entries.
+      if (!number_word(1, std::numeric_limits<uint32_t>::max(), &tuples)) return false;
+      components = 4;
+    } else if (is("TEXTURE_COORDINATES")) {
+      if (!number_word(1, 3, &components)) return false;
+    }
+    uint64_t value_count = 0;
+    return check_value_count(tuples, components, &value_count) &&
+           scanner_.skip_numbers(value_count, std::string(keyword).c_str());
+  }
+
+  // "FIELD name n" then n arrays "name components tuples type" and their values.
+  bool parse_field() {
+    std::string_view field_name;
+    uint64_t array_count = 0;
+    if (!scanner_.next_token(&field_name)) {
+      return scanner_.fail("unexpected end of file, expected the FIELD name");
+    }
+    if (!scanner_.read_count(&array_count, "field array count", 8)) return false;
+    ++section_arrays_;
+    for (uint64_t a = 0; a < array_count; ++a) {
+      std::string_view array_name, type;
+      uint64_t components = 0, tuples = 0, value_count = 0;
+      // VTK 9 follows each array with a METADATA block.
+      if (scanner_.peek_token(&array_name) &&
+          TextScanner::equals_ignore_case(array_name, "METADATA")) {
+        scanner_.next_token(&array_name);
+        skip_metadata();
+      }
+      if (!scanner_.next_token(&array_name)) {
+        return scanner_.fail("unexpected end of file, expected a field array");
+      }
+      if (!scanner_.read_count(&components, "component count", 1) ||
+          !scanner_.read_count(&tuples, "tuple count", 0) || !scanner_.next_token(&type)) {
+        return scanner_.failed() ? false : scanner_.fail("unexpected end of file, expected a type");
+      }
+      if (data_section_ == DataSection::kCells && array_name == kMaterialArray && components == 1) {
+        if (tuples != section_count_) {
+          return scanner_.fail("the material array has " + std::to_string(tuples) + " values for " +
+                               std::to_string(section_count_) + " cells");
+        }
+        if (!read_materials(tuples)) return false;
+        continue;
+      }
+      if (!check_value_count(tuples, components, &value_count) ||
+          !scanner_.skip_numbers(value_count, "field array")) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // VTK 9 writes "METADATA" and information lines up to an empty line.
+  void skip_metadata() {
+    scanner_.rest_of_line();
+    while (scanner_.remaining_bytes() > 0) {
+      const std::vector<std::string_view> words = split(scanner_.rest_of_line());
+      if (words.empty()) break;
+    }
+  }
+
+  bool build_tets() {
+    if (!seen_points_) return scanner_.fail("no POINTS section");
+    if (!seen_cells_) return scanner_.fail("no CELLS section");
+    if (!seen_types_) return scanner_.fail("no CELL_TYPES section");
+    TetMesh& mesh = out_->mesh;
+    for (size_t c = 0; c < cell_count(); ++c) {
+      const uint64_t size = cell_starts_[c + 1] - cell_starts_[c];
+      const int64_t type = cell_types_[c];
+      if (type != kVtkTetra && type != kVtkQuadraticTetra) continue;
+      if (size != (type == kVtkTetra ? 4u : 10u)) {
+        return scanner_.fail_at_line(cell_lines_[c], "cell " + std::to_string(c) + " of type " +
+                                                         std::to_string(type) + " has " +
+                                                         std::to_string(size) + " points");
+      }
+      const uint32_t* v = connectivity_.data() + cell_starts_[c];
+      mesh.tets.push_back({v[0], v[1], v[2], v[3]});
+      mesh.materials.push_back(has_materials_ ? cell_materials_[c] : 0);
+      out_->tet_lines.push_back(cell_lines_[c]);
+    }
+    return true;
+  }
+
+  TextScanner scanner_;
+  ParsedMesh* out_;
+  bool seen_points_ = false;
+  bool seen_cells_ = false;
+  bool seen_types_ = false;
+  std::vector<uint64_t> cell_starts_;  // cell c is connectivity_[starts[c], starts[c + 1])
+  std::vector<uint32_t> connectivity_;
+  std::vector<uint32_t> cell_lines_;
+  std::vector<int64_t> cell_types_;
+  DataSection data_section_ = DataSection::kNone;
+  uint64_t section_count_ = 0;
+  size_t section_arrays_ = 0;
+  size_t section_line_ = 0;
+  bool has_materials_ = false;
+  std::vector<int32_t> cell_materials_;
+};
+
+}  // namespace
+
+Status parse_vtk_legacy(std::string_view text, const std::string& name, ParsedMesh* out) {
+  VtkLegacyParser parser(text, name, out);
+  return parser.parse();
+}
+
+void write_vtk_legacy(const TetMesh& mesh, std::string* out) {
+  const size_t tet_count = mesh.tet_count();
+  out->reserve(out->size() + mesh.vertex_count() * 64 + tet_count * 64);
+  out->append("# vtk DataFile Version 3.0\nTetLOD tetrahedral mesh\nASCII\n");
+  out->append("DATASET UNSTRUCTURED_GRID\nPOINTS ");
+  append_number(out, mesh.vertex_count());
+  out->append(" double\n");
+  for (const Vec3& p : mesh.positions) append_line(out, p.x, p.y, p.z);
+  out->append("CELLS ");
+  append_line(out, tet_count, 5 * tet_count);
+  for (const Tet& tet : mesh.tets) append_line(out, 4, tet[0], tet[1], tet[2], tet[3]);
+  out->append("CELL_TYPES ");
+  append_line(out, tet_count);
+  for (size_t t = 0; t < tet_count; ++t) out->append("10\n");
+  out->append("CELL_DATA ");
+  append_line(out, tet_count);
+  out->append("SCALARS material int 1\nLOOKUP_TABLE default\n");
+  for (int32_t material : mesh.materials) append_line(out, material);
+  out->append("SCALARS stretch double 1\nLOOKUP_TABLE default\n");
+  for (const Tet& tet : mesh.tets) append_line(out, tet_shape(mesh, tet).stretch);
+}
+
+}  // namespace tetlod::io

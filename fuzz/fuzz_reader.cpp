@@ -1,0 +1,47 @@
+// libFuzzer target for one mesh reader, chosen at build time by TETLOD_FUZZ_FORMAT
+// (fuzz/CMakeLists.txt builds one executable per reader). The reader must never
+// crash, hang or allocate without bound, and a mesh it accepts must hold the
+// invariants of tet_mesh.h. For TetGen the input is "node text \0 ele text".
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "core/io/mesh_io.h"
+
+namespace {
+
+constexpr tetlod::MeshFormat kFormat = tetlod::MeshFormat::TETLOD_FUZZ_FORMAT;
+
+void check_invariants(const tetlod::TetMesh& mesh) {
+  if (mesh.tets.empty() || mesh.materials.size() != mesh.tets.size()) __builtin_trap();
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    for (uint32_t v : mesh.tets[t]) {
+      if (v >= mesh.vertex_count()) __builtin_trap();
+    }
+    if (!(tetlod::signed_volume6(mesh, mesh.tets[t]) > 0) || mesh.materials[t] < 0) {
+      __builtin_trap();
+    }
+  }
+  for (const tetlod::Vec3& p : mesh.positions) {
+    if (!tetlod::is_finite(p)) __builtin_trap();
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string_view input(reinterpret_cast<const char*>(data), size);
+  tetlod::TetMesh mesh;
+  tetlod::Status status;
+  if constexpr (kFormat == tetlod::MeshFormat::kTetGen) {
+    const size_t split = std::min(input.find('\0'), input.size());
+    status = tetlod::read_tetgen_from_memory(input.substr(0, split),
+                                             input.substr(std::min(split + 1, input.size())),
+                                             "fuzz.node", "fuzz.ele", &mesh);
+  } else {
+    status = tetlod::read_mesh_from_memory(input, kFormat, "fuzz", &mesh);
+  }
+  if (status.ok()) check_invariants(mesh);
+  return 0;
+}

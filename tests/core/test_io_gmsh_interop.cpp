@@ -1,0 +1,77 @@
+// Gmsh itself reads what we write: run the `gmsh` binary (when it is on PATH) on
+// our 2.2 and 4.1 files, have it save the mesh again, and read its output back.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "core/io/mesh_io.h"
+#include "core/test_io_helpers.h"
+#include "core/test_meshes.h"
+
+namespace tetlod {
+namespace {
+
+bool gmsh_available() {
+  return std::system("command -v gmsh > /dev/null 2>&1") == 0;
+}
+
+// Runs gmsh with `arguments`, its output going to `log`; true on exit status 0.
+bool run_gmsh(const std::string& arguments, const std::string& log) {
+  return std::system(("gmsh " + arguments + " > '" + log + "' 2>&1").c_str()) == 0;
+}
+
+TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
+  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  const std::string dir = test::output_dir("gmsh_interop");
+  // Materials 0 (named "material_0"), 1..3 and a large id.
+  TetMesh mesh = test::make_grid_mesh(
+      3, 2, 2, [](int i, int j, int) { return i == 2 && j == 1 ? 1000000 : (i + j) % 4; }, 0.25);
+  for (int version : {22, 41}) {
+    SCOPED_TRACE(version);
+    const std::string ours = dir + "/ours" + std::to_string(version) + ".msh";
+    WriteOptions options;
+    options.gmsh_version = version;
+    ASSERT_TRUE(write_mesh(ours, mesh, options).ok());
+    for (const char* out_format : {"msh22", "msh41"}) {
+      SCOPED_TRACE(out_format);
+      const std::string theirs =
+          dir + "/gmsh_" + std::to_string(version) + "_" + out_format + ".msh";
+      const std::string log = theirs + ".log";
+      ASSERT_TRUE(run_gmsh("'" + ours + "' -0 -format " + out_format + " -o '" + theirs + "'", log))
+          << test::read_text(log);
+      const std::string output = test::read_text(log);
+      EXPECT_NE(output.find(std::to_string(mesh.tet_count()) + " elements"), std::string::npos)
+          << output;
+      EXPECT_EQ(output.find("Error"), std::string::npos) << output;
+      // Gmsh renumbers nodes: compare tets by their corner positions and materials.
+      TetMesh back;
+      ReadInfo info;
+      const Status status = read_mesh(theirs, &back, &info);
+      ASSERT_TRUE(status.ok()) << status.message();
+      EXPECT_EQ(info.validation.reoriented_tets, 0u);
+      EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+    }
+  }
+}
+
+TEST(IoGmshInterop, GmshFindsNoInvertedTets) {
+  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  const std::string dir = test::output_dir("gmsh_orientation");
+  const TetMesh mesh = test::make_io_mesh();
+  ASSERT_TRUE(write_mesh(dir + "/m.msh", mesh).ok());
+  // Gmsh's mesh quality plugin warns about every inverted element.
+  test::write_text(dir + "/check.geo", "Merge \"" + dir +
+                                           "/m.msh\";\n"
+                                           "Plugin(AnalyseMeshQuality).JacobianDeterminant = 1;\n"
+                                           "Plugin(AnalyseMeshQuality).CreateView = 0;\n"
+                                           "Plugin(AnalyseMeshQuality).Run;\n");
+  const std::string log = dir + "/check.log";
+  ASSERT_TRUE(run_gmsh("'" + dir + "/check.geo' -0 -o '" + dir + "/unused.msh'", log))
+      << test::read_text(log);
+  const std::string output = test::read_text(log);
+  EXPECT_NE(output.find("Jacobian"), std::string::npos) << output;
+  EXPECT_EQ(output.find("inverted"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace tetlod

@@ -1,0 +1,103 @@
+// Shared pieces of the mesh file format tests (tests/core/test_io_*.cpp).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/io/mesh_io.h"
+#include "core/tet_mesh.h"
+
+namespace tetlod::test {
+
+inline std::string data_path(const std::string& name) {
+  return std::string(TETLOD_SOURCE_DIR) + "/tests/data/" + name;
+}
+
+// A fresh directory under the test output directory.
+inline std::string output_dir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(TETLOD_TEST_OUTPUT_DIR) / "io" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+inline void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+// Two unit-ish cells of six tets each, plus a lone tet, with coordinates that have
+// no short decimal form, materials 0, 7 and INT32_MAX.
+inline TetMesh make_io_mesh() {
+  TetMesh mesh;
+  const double third = 1.0 / 3.0;
+  const Vec3 a{0.1, -2.5e-7, third}, b{1.1, 0.0, third}, c{0.1, 1.0 + 1e-9, third},
+      d{0.1, 0.0, 1.0 + third}, e{1.1, 1.0, 1.0 + third}, f{0.1, 0.0, -1234.5678};
+  mesh.positions = {a, b, c, d, e, f};
+  // Positively oriented: see the signed volumes checked in the tests.
+  mesh.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}, {0, 2, 1, 5}};
+  mesh.materials = {0, 7, 2147483647};
+  return mesh;
+}
+
+inline void expect_same_mesh(const TetMesh& expected, const TetMesh& actual) {
+  ASSERT_EQ(expected.positions.size(), actual.positions.size());
+  for (size_t i = 0; i < expected.positions.size(); ++i) {
+    EXPECT_EQ(expected.positions[i].x, actual.positions[i].x) << "vertex " << i;
+    EXPECT_EQ(expected.positions[i].y, actual.positions[i].y) << "vertex " << i;
+    EXPECT_EQ(expected.positions[i].z, actual.positions[i].z) << "vertex " << i;
+  }
+  EXPECT_EQ(expected.tets, actual.tets);
+  EXPECT_EQ(expected.materials, actual.materials);
+}
+
+// A tet as its material and its four corner positions in a canonical order, so
+// that meshes numbered differently can be compared.
+using CanonicalTet = std::pair<int32_t, std::array<std::array<double, 3>, 4>>;
+
+inline std::vector<CanonicalTet> canonical_tets(const TetMesh& mesh) {
+  std::vector<CanonicalTet> result;
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    CanonicalTet c;
+    c.first = mesh.materials[t];
+    for (int k = 0; k < 4; ++k) {
+      const Vec3& p = mesh.positions[mesh.tets[t][k]];
+      c.second[k] = {p.x, p.y, p.z};
+    }
+    std::sort(c.second.begin(), c.second.end());
+    result.push_back(c);
+  }
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+inline void expect_positive_orientation(const TetMesh& mesh) {
+  for (const Tet& t : mesh.tets) EXPECT_GT(signed_volume6(mesh, t), 0.0);
+}
+
+// The three-tet solid the hand-written samples in tests/data describe:
+// A(0,0,0) B(1,0,0) C(0,1,0) D(0,0,1) E(1,1,1) F(0,0,-1); tets ABCD, BCDE, ACBF
+// with the materials given.
+inline std::vector<CanonicalTet> sample_tets(int32_t abcd, int32_t bcde, int32_t acbf) {
+  TetMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {0, 0, -1}};
+  mesh.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}, {0, 2, 1, 5}};
+  mesh.materials = {abcd, bcde, acbf};
+  return canonical_tets(mesh);
+}
+
+}  // namespace tetlod::test

@@ -1,0 +1,367 @@
+// Hand-made malformed variants of a small valid file of each format: each must fail
+// with "name:LINE: ..." naming the right line and saying what is wrong.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <sstream>
+
+#include "core/io/mesh_io.h"
+#include "core/test_io_helpers.h"
+
+namespace tetlod {
+namespace {
+
+// Replacements of whole lines (1-based) in a text.
+using Edits = std::map<int, std::string>;
+
+std::string edit_lines(const std::string& text, const Edits& edits) {
+  std::istringstream in(text);
+  std::string line, result;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto it = edits.find(number);
+    result += (it != edits.end() ? it->second : line) + "\n";
+  }
+  return result;
+}
+
+struct Case {
+  Edits edits;
+  int line;          // expected line in the message
+  const char* word;  // expected in the message
+};
+
+void expect_failures(MeshFormat format, const std::string& name, const std::string& valid,
+                     const std::vector<Case>& cases) {
+  TetMesh mesh;
+  const Status ok = read_mesh_from_memory(valid, format, name, &mesh);
+  ASSERT_TRUE(ok.ok()) << ok.message();
+  for (const Case& c : cases) {
+    const std::string text = edit_lines(valid, c.edits);
+    SCOPED_TRACE(text);
+    const Status status = read_mesh_from_memory(text, format, name, &mesh);
+    ASSERT_FALSE(status.ok());
+    const std::string where = name + ":" + std::to_string(c.line) + ": ";
+    EXPECT_EQ(status.message().rfind(where, 0), 0u) << status.message();
+    EXPECT_NE(status.message().find(c.word), std::string::npos) << status.message();
+  }
+}
+
+const char* const kMedit =
+    "MeshVersionFormatted 2\n"  // 1
+    "Dimension 3\n"
+    "Vertices\n"
+    "5\n"
+    "0 0 0 0\n"  // 5
+    "1 0 0 0\n"
+    "0 1 0 0\n"
+    "0 0 1 0\n"
+    "1 1 1 0\n"
+    "Tetrahedra\n"  // 10
+    "2\n"
+    "1 2 3 4 1\n"
+    "2 3 4 5 2\n"
+    "End\n";
+
+TEST(IoMalformed, Medit) {
+  expect_failures(MeshFormat::kMedit, "m.mesh", kMedit,
+                  {
+                      {{{4, "6"}}, 10, "not a number"},              // too many vertices announced
+                      {{{4, "4"}}, 9, "count"},                      // too few announced
+                      {{{11, "3"}}, 11, "larger than"},              // too many tets announced
+                      {{{12, "0 2 3 4 1"}}, 12, "start at 1"},       // index 0 in a 1-based file
+                      {{{12, "1 2 3 9 1"}}, 12, "only 5 vertices"},  // index out of range
+                      {{{6, "nan 0 0 0"}}, 6, "not a finite"},       // NaN
+                      {{{6, "1 inf 0 0"}}, 6, "not a finite"},       // infinity
+                      {{{6, "1 0 1e999 0"}}, 6, "overflow"},         // overflowing number
+                      {{{6, "1 0 0x 0"}}, 6, "not a number"},        // garbage
+                      {{{4, "-5"}}, 4, "negative"},                  // negative count
+                      {{{4, "99999999999"}}, 4, "larger than"},      // huge count
+                      {{{13, "1 2 3 4 2"}}, 13, "duplicates"},       // duplicate tet
+                      {{{9, "0.5 0.5 0 0"}, {13, "1 2 3 5 2"}}, 13, "degenerate"},  // zero volume
+                      {{{12, "1 2 2 4 1"}}, 12, "repeats vertex"},          // repeated vertex
+                      {{{12, "1 2 3 4 -1"}}, 12, "must be >= 0"},           // negative material
+                      {{{12, "1 2 3 4 99999999999"}}, 12, "out of range"},  // material beyond int32
+                      {{{10, "Tetrahedrons"}}, 10, "unknown keyword"},
+                      {{{2, "Dimension 2"}}, 2, "3-dimensional"},
+                      {{{1, "MeshVersion 2"}}, 1, "not a Medit file"},
+                      {{{3, "Triangles"}, {4, "6"}}, 10, "expected a number in Triangles"},
+                  });
+}
+
+const char* const kGmsh22 =
+    "$MeshFormat\n"  // 1
+    "2.2 0 8\n"
+    "$EndMeshFormat\n"
+    "$Nodes\n"
+    "5\n"  // 5
+    "1 0 0 0\n"
+    "2 1 0 0\n"
+    "3 0 1 0\n"
+    "4 0 0 1\n"
+    "5 1 1 1\n"  // 10
+    "$EndNodes\n"
+    "$Elements\n"
+    "2\n"
+    "1 4 2 1 1 1 2 3 4\n"
+    "2 4 2 2 2 2 3 4 5\n"  // 15
+    "$EndElements\n";
+
+TEST(IoMalformed, Gmsh22) {
+  expect_failures(MeshFormat::kGmsh22, "m.msh", kGmsh22,
+                  {
+                      {{{2, "2.2 1 8"}}, 2, "binary .msh is not supported"},
+                      {{{2, "3.0 0 8"}}, 2, "unsupported .msh version"},
+                      {{{5, "6"}}, 11, "not an integer"},
+                      {{{5, "4"}}, 10, "wrong count"},
+                      {{{13, "3"}}, 16, "not an integer"},
+                      {{{14, "1 4 2 1 1 1 2 3 9"}}, 14, "not in $Nodes"},
+                      {{{14, "1 4 2 1 1 0 2 3 4"}}, 14, "not in $Nodes"},
+                      {{{7, "2 nan 0 0"}}, 7, "not a finite"},
+                      {{{7, "2 1 -inf 0"}}, 7, "not a finite"},
+                      {{{7, "2 1 0 -1e999"}}, 7, "overflow"},
+                      {{{7, "2 1 0 zz"}}, 7, "not a number"},
+                      {{{5, "-1"}}, 5, "negative"},
+                      {{{5, "99999999999"}}, 5, "larger than"},
+                      {{{15, "2 4 2 2 2 1 2 3 4"}}, 15, "duplicates"},
+                      {{{14, "1 4 2 1 1 1 2 2 4"}}, 14, "repeats vertex"},
+                      {{{10, "5 0.5 0.5 0"}, {15, "2 4 2 2 2 1 2 3 5"}}, 15, "degenerate"},
+                      {{{7, "1 1 0 0"}}, 7, "defined twice"},
+                      {{{15, "1 4 2 2 2 2 3 4 5"}}, 15, "used twice"},
+                      {{{14, "1 4 2 -3 1 1 2 3 4"}}, 14, "must be >= 0"},
+                      {{{4, "$Elements"}}, 4, "before $Nodes"},
+                      {{{11, "$EndNode"}}, 11, "$EndNodes"},
+                      {{{12, "Elements"}}, 12, "expected a section"},
+                  });
+}
+
+const char* const kGmsh41 =
+    "$MeshFormat\n"  // 1
+    "4.1 0 8\n"
+    "$EndMeshFormat\n"
+    "$Entities\n"
+    "0 0 0 1\n"  // 5
+    "7 0 0 0 1 1 1 1 3 0\n"
+    "$EndEntities\n"
+    "$Nodes\n"
+    "1 5 1 5\n"
+    "3 7 0 5\n"  // 10
+    "1\n"
+    "2\n"
+    "3\n"
+    "4\n"
+    "5\n"  // 15
+    "0 0 0\n"
+    "1 0 0\n"
+    "0 1 0\n"
+    "0 0 1\n"
+    "1 1 1\n"  // 20
+    "$EndNodes\n"
+    "$Elements\n"
+    "1 2 1 2\n"
+    "3 7 4 2\n"
+    "1 1 2 3 4\n"  // 25
+    "2 2 3 4 5\n"
+    "$EndElements\n";
+
+TEST(IoMalformed, Gmsh41) {
+  expect_failures(MeshFormat::kGmsh41, "m.msh", kGmsh41,
+                  {
+                      {{{2, "4.1 1 8"}}, 2, "binary .msh is not supported"},
+                      {{{2, "4.0 0 8"}}, 2, "unsupported .msh version"},
+                      {{{9, "1 6 1 6"}}, 20, "header says 6"},
+                      {{{9, "1 6 1 6"}, {10, "3 7 0 6"}}, 16, "out of range"},
+                      {{{24, "3 7 4 3"}}, 24, "more elements"},
+                      {{{26, "2 2 3 4 6"}}, 26, "not in $Nodes"},
+                      {{{17, "1 nan 0"}}, 17, "not a finite"},
+                      {{{17, "1 inf 0"}}, 17, "not a finite"},
+                      {{{17, "1 1e999 0"}}, 17, "overflow"},
+                      {{{17, "1 0 #"}}, 17, "not a number"},
+                      {{{9, "1 -5 1 5"}}, 9, "negative"},
+                      {{{23, "1 99999999999 1 2"}}, 23, "larger than"},
+                      {{{26, "2 1 2 3 4"}}, 26, "duplicates"},
+                      {{{25, "1 1 2 3 3"}}, 25, "repeats vertex"},
+                      {{{20, "0.5 0.5 0"}, {26, "2 1 2 3 5"}}, 26, "degenerate"},
+                      {{{6, "7 0 0 0 1 1 1 1 -3 0"}}, 25, "must be >= 0"},
+                      {{{10, "3 7 2 5"}}, 10, "parametric flag"},
+                  });
+}
+
+const char* const kTetGenNode =
+    "5 3 0 0\n"  // 1
+    "1 0 0 0\n"
+    "2 1 0 0\n"
+    "3 0 1 0\n"
+    "4 0 0 1\n"  // 5
+    "5 1 1 1\n";
+const char* const kTetGenEle =
+    "2 4 1\n"  // 1
+    "1 1 2 3 4 1\n"
+    "2 2 3 4 5 2\n";
+
+struct TetGenCase {
+  Edits node_edits, ele_edits;
+  const char* name;  // the file named in the message
+  int line;
+  const char* word;
+};
+
+TEST(IoMalformed, TetGen) {
+  const std::vector<TetGenCase> cases = {
+      {{{1, "6 3 0 0"}}, {}, "m.node", 6, "end of file"},
+      {{{1, "4 3 0 0"}}, {}, "m.node", 6, "wrong count"},
+      {{}, {{1, "3 4 1"}}, "m.ele", 3, "end of file"},
+      {{}, {{2, "1 0 2 3 4 1"}}, "m.ele", 2, "out of range"},
+      {{}, {{2, "1 1 2 3 9 1"}}, "m.ele", 2, "only 5 vertices"},
+      {{{3, "2 nan 0 0"}}, {}, "m.node", 3, "not a finite"},
+      {{{3, "2 INF 0 0"}}, {}, "m.node", 3, "not a finite"},
+      {{{3, "2 1e999 0 0"}}, {}, "m.node", 3, "overflow"},
+      {{{3, "2 1 0 0q"}}, {}, "m.node", 3, "not a number"},
+      {{{1, "-5 3 0 0"}}, {}, "m.node", 1, "negative"},
+      {{{1, "99999999999 3 0 0"}}, {}, "m.node", 1, "larger than"},
+      {{}, {{3, "2 1 2 3 4 2"}}, "m.ele", 3, "duplicates"},
+      {{}, {{3, "2 1 2 2 4 2"}}, "m.ele", 3, "repeats vertex"},
+      {{{6, "5 0.5 0.5 0"}}, {{3, "2 1 2 3 5 2"}}, "m.ele", 3, "degenerate"},
+      {{}, {{2, "1 1 2 3 4 1.5"}}, "m.ele", 2, "not an integer"},
+      {{}, {{3, "7 2 3 4 5 2"}}, "m.ele", 3, "expected tetrahedron index 2"},
+      {{{2, "2 0 0 0"}}, {}, "m.node", 2, "must be 0 or 1"},
+      {{{1, "5 2 0 0"}}, {}, "m.node", 1, "3-dimensional"},
+      {{}, {{1, "2 6 1"}}, "m.ele", 1, "4 or 10"},
+  };
+  TetMesh mesh;
+  ASSERT_TRUE(read_tetgen_from_memory(kTetGenNode, kTetGenEle, "m.node", "m.ele", &mesh).ok());
+  for (const TetGenCase& c : cases) {
+    const std::string node = edit_lines(kTetGenNode, c.node_edits);
+    const std::string ele = edit_lines(kTetGenEle, c.ele_edits);
+    SCOPED_TRACE(node + "----\n" + ele);
+    const Status status = read_tetgen_from_memory(node, ele, "m.node", "m.ele", &mesh);
+    ASSERT_FALSE(status.ok());
+    const std::string where = std::string(c.name) + ":" + std::to_string(c.line) + ": ";
+    EXPECT_EQ(status.message().rfind(where, 0), 0u) << status.message();
+    EXPECT_NE(status.message().find(c.word), std::string::npos) << status.message();
+  }
+}
+
+const char* const kVtk =
+    "# vtk DataFile Version 3.0\n"  // 1
+    "t\n"
+    "ASCII\n"
+    "DATASET UNSTRUCTURED_GRID\n"
+    "POINTS 5 double\n"  // 5
+    "0 0 0\n"
+    "1 0 0\n"
+    "0 1 0\n"
+    "0 0 1\n"
+    "1 1 1\n"  // 10
+    "CELLS 2 10\n"
+    "4 0 1 2 3\n"
+    "4 1 2 3 4\n"
+    "CELL_TYPES 2\n"
+    "10\n"  // 15
+    "10\n"
+    "CELL_DATA 2\n"
+    "SCALARS material int 1\n"
+    "LOOKUP_TABLE default\n"
+    "1\n"  // 20
+    "2\n";
+
+TEST(IoMalformed, VtkLegacy) {
+  expect_failures(MeshFormat::kVtkLegacy, "m.vtk", kVtk,
+                  {
+                      {{{3, "BINARY"}}, 3, "binary .vtk is not supported"},
+                      {{{4, "DATASET POLYDATA"}}, 4, "UNSTRUCTURED_GRID"},
+                      {{{1, "# vtk"}}, 1, "not a VTK"},
+                      {{{5, "POINTS 6 double"}}, 11, "not a number"},
+                      {{{11, "CELLS 2 11"}}, 13, "announced 11"},
+                      {{{11, "CELLS 3 15"}}, 14, "not an integer"},
+                      {{{12, "4 0 1 2 9"}}, 12, "only 5 vertices"},
+                      {{{12, "4 0 1 2 -1"}}, 12, "out of range"},
+                      {{{7, "nan 0 0"}}, 7, "not a finite"},
+                      {{{7, "inf 0 0"}}, 7, "not a finite"},
+                      {{{7, "1e999 0 0"}}, 7, "overflow"},
+                      {{{7, "1 0 O"}}, 7, "not a number"},
+                      {{{5, "POINTS -5 double"}}, 5, "negative"},
+                      {{{5, "POINTS 99999999999 double"}}, 5, "larger than"},
+                      {{{13, "4 0 1 2 3"}}, 13, "duplicates"},
+                      {{{13, "4 1 2 2 4"}}, 13, "repeats vertex"},
+                      {{{10, "0.5 0.5 0"}, {13, "4 0 1 2 4"}}, 13, "degenerate"},
+                      {{{20, "-1"}}, 12, "must be >= 0"},
+                      {{{20, "1.5"}}, 20, "not an integer"},
+                      {{{14, "CELL_TYPES 3"}}, 14, "entries for 2 cells"},
+                      {{{17, "CELL_DATA 3"}}, 17, "entries for 2 cells"},
+                      {{{13, "3 1 2 3"}, {11, "CELLS 2 9"}}, 13, "has 3 points"},
+                      {{{18, "SCALARS material int 7"}}, 18, "count from 1 to 4"},
+                      {{{18, "SCALAR material int 1"}}, 18, "unknown keyword"},
+                  });
+}
+
+const char* const kVtu =
+    "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"  // 1
+    "<UnstructuredGrid>\n"
+    "<Piece NumberOfPoints=\"5\" NumberOfCells=\"2\">\n"
+    "<Points>\n"
+    "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"  // 5
+    "0 0 0\n"
+    "1 0 0\n"
+    "0 1 0\n"
+    "0 0 1\n"
+    "1 1 1\n"  // 10
+    "</DataArray>\n"
+    "</Points>\n"
+    "<Cells>\n"
+    "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n"
+    "0 1 2 3\n"  // 15
+    "1 2 3 4\n"
+    "</DataArray>\n"
+    "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4 8</DataArray>\n"
+    "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10 10</DataArray>\n"
+    "</Cells>\n"  // 20
+    "<CellData>\n"
+    "<DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">1 2</DataArray>\n"
+    "</CellData>\n"
+    "</Piece>\n"
+    "</UnstructuredGrid>\n"  // 25
+    "</VTKFile>\n";
+
+TEST(IoMalformed, Vtu) {
+  const std::string points = "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=";
+  expect_failures(
+      MeshFormat::kVtu, "m.vtu", kVtu,
+      {
+          {{{5, points + "\"binary\">"}}, 5, "only ASCII .vtu"},
+          {{{5, points + "\"appended\" offset=\"0\"/>"}, {11, ""}, {6, ""}}, 5, "only ASCII .vtu"},
+          {{{3, "<Piece NumberOfPoints=\"6\" NumberOfCells=\"2\">"}}, 10, "end of file"},
+          {{{3, "<Piece NumberOfPoints=\"4\" NumberOfCells=\"2\">"}}, 10, "more values"},
+          {{{15, "0 1 2 9"}}, 15, "only 5 vertices"},
+          {{{15, "0 1 2 -3"}}, 15, "out of range"},
+          {{{7, "nan 0 0"}}, 7, "not a finite"},
+          {{{7, "inf 0 0"}}, 7, "not a finite"},
+          {{{7, "1e999 0 0"}}, 7, "overflow"},
+          {{{7, "1 0 0,"}}, 7, "not a number"},
+          {{{3, "<Piece NumberOfPoints=\"-5\" NumberOfCells=\"2\">"}}, 3, "needs a count"},
+          {{{3, "<Piece NumberOfPoints=\"99999999999\" NumberOfCells=\"2\">"}}, 3, "larger than"},
+          {{{16, "0 1 2 3"}}, 16, "duplicates"},
+          {{{16, "1 2 2 4"}}, 16, "repeats vertex"},
+          {{{10, "0.5 0.5 0"}, {16, "0 1 2 4"}}, 16, "degenerate"},
+          {{{22, "<DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">1 -2</DataArray>"}},
+           16,
+           "must be >= 0"},
+          {{{24, "</Pieces>"}}, 24, "does not match"},
+          {{{1, "<VTKFile type=\"PolyData\" version=\"0.1\">"}}, 1, "UnstructuredGrid"},
+          {{{18, "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4 9</DataArray>"}},
+           18,
+           "past the connectivity"},
+          {{{21, "<AppendedData encoding=\"raw\">"}, {23, "</AppendedData>"}}, 21, "appended"},
+      });
+}
+
+// Inputs the fuzzers found.
+TEST(IoMalformed, FuzzerFindings) {
+  TetMesh mesh;
+  // A self-closing root element (was a read of back() on an empty stack).
+  const Status root = read_mesh_from_memory("<VTKFile type=\"UnstructuredGrid\"/>\n",
+                                            MeshFormat::kVtu, "f.vtu", &mesh);
+  EXPECT_EQ(root.message(), "f.vtu:1: no <Piece>");
+}
+
+}  // namespace
+}  // namespace tetlod

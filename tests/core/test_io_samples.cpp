@@ -1,0 +1,125 @@
+// Files written by hand after the conventions of other tools (tests/data): each
+// describes the same three-tet solid ABCD, BCDE, ACBF with its own materials.
+#include <gtest/gtest.h>
+
+#include "core/io/mesh_io.h"
+#include "core/test_io_helpers.h"
+
+namespace tetlod {
+namespace {
+
+struct Sample {
+  const char* file;
+  MeshFormat format;
+  int32_t abcd, bcde, acbf;  // expected materials
+  size_t reoriented;
+  size_t removed_vertices;
+};
+
+const Sample kSamples[] = {
+    // Physical tags 5 and 3; the third tet has physical tag 0: its elementary tag 12.
+    {"gmsh22_mixed.msh", MeshFormat::kGmsh22, 5, 3, 12, 1, 1},
+    // Volume 1 is the physical group named "material_0", volume 2 has physical 21,
+    // volume 3 has none: its entity tag.
+    {"gmsh41_entities.msh", MeshFormat::kGmsh41, 0, 21, 3, 0, 0},
+    {"medit_sections.mesh", MeshFormat::kMedit, 4, 9, 4, 1, 1},
+    {"tetgen0.node", MeshFormat::kTetGen, 1, 2, 1, 0, 0},
+    {"tetgen1.ele", MeshFormat::kTetGen, 3, 5, 3, 1, 0},
+    {"vtk_mixed.vtk", MeshFormat::kVtkLegacy, 6, 8, 6, 0, 1},
+    {"vtk51_field.vtk", MeshFormat::kVtkLegacy, 2, 3, 4, 0, 0},
+    {"vtu_mixed.vtu", MeshFormat::kVtu, 11, 12, 13, 0, 0},
+};
+
+TEST(IoSamples, ReadFilesInOtherToolsConventions) {
+  for (const Sample& sample : kSamples) {
+    SCOPED_TRACE(sample.file);
+    TetMesh mesh;
+    ReadInfo info;
+    const Status status = read_mesh(test::data_path(sample.file), &mesh, &info);
+    ASSERT_TRUE(status.ok()) << status.message();
+    EXPECT_EQ(info.format, sample.format);
+    EXPECT_EQ(mesh.tet_count(), 3u);
+    EXPECT_EQ(mesh.vertex_count(), 6u);
+    EXPECT_EQ(test::canonical_tets(mesh), test::sample_tets(sample.abcd, sample.bcde, sample.acbf));
+    EXPECT_EQ(info.validation.reoriented_tets, sample.reoriented);
+    EXPECT_EQ(info.validation.removed_unused_vertices, sample.removed_vertices);
+    test::expect_positive_orientation(mesh);
+  }
+}
+
+TEST(IoSamples, GmshOrdersVerticesByNodeTagAndTetsByElementTag) {
+  TetMesh mesh;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh22_mixed.msh"), &mesh).ok());
+  // Node tags 3 (B), 7 (D), 10 (A), 42 (E), 100 (F), 9000000000 (C); 55 is unused.
+  const std::vector<Vec3> expected = {{1, 0, 0}, {0, 0, 1},  {0, 0, 0},
+                                      {1, 1, 1}, {0, 0, -1}, {0, 1, 0}};
+  ASSERT_EQ(mesh.positions.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(mesh.positions[i], expected[i]) << i;
+  // Element tags 4 (ABCD, material 5), 5 (ACBF, 12), 7 (BCDE, 3).
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{5, 12, 3}));
+}
+
+TEST(IoSamples, TetGenTenNodeTetsGiveTheirCorners) {
+  const std::string node = "6 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1\n6 0 0 -1\n";
+  // Mid-edge nodes are not checked by TetLOD; reuse corners for them.
+  const std::string ele = "2 10 1\n1 1 2 3 4 1 1 1 1 1 1 7\n2 2 3 4 5 2 2 2 2 2 2 8\n";
+  TetMesh mesh;
+  const Status status = read_tetgen_from_memory(node, ele, "t.node", "t.ele", &mesh);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(mesh.tets, (std::vector<Tet>{{0, 1, 2, 3}, {1, 2, 3, 4}}));
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{7, 8}));
+}
+
+TEST(IoSamples, GmshTenNodeTetsGiveTheirCorners) {
+  const std::string text =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n"
+      "$EndNodes\n$Elements\n1\n1 11 2 6 6 1 2 3 4 1 1 1 1 1 1\n$EndElements\n";
+  TetMesh mesh;
+  const Status status = read_mesh_from_memory(text, MeshFormat::kGmsh22, "t.msh", &mesh);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(mesh.tets, (std::vector<Tet>{{0, 1, 2, 3}}));
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{6}));
+}
+
+TEST(IoSamples, VtkWithoutMaterialGivesMaterialZero) {
+  const std::string text =
+      "# vtk DataFile Version 2.0\nno data\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+      "POINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n";
+  TetMesh mesh;
+  const Status status = read_mesh_from_memory(text, MeshFormat::kVtkLegacy, "t.vtk", &mesh);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{0}));
+}
+
+TEST(IoSamples, MeditAcceptsWindowsLineEndingsAndMissingEnd) {
+  const std::string text =
+      "MeshVersionFormatted 2\r\nDimension 3\r\nVertices\r\n4\r\n0 0 0 0\r\n1 0 0 0\r\n"
+      "0 1 0 0\r\n0 0 1 0\r\nTetrahedra\r\n1\r\n1 2 3 4 3\r\n";
+  TetMesh mesh;
+  const Status status = read_mesh_from_memory(text, MeshFormat::kMedit, "t.mesh", &mesh);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{3}));
+}
+
+TEST(IoSamples, FailedReadLeavesTheMeshUntouched) {
+  TetMesh mesh;
+  mesh.positions = {{1, 2, 3}};
+  EXPECT_FALSE(read_mesh_from_memory("MeshVersionFormatted 2\nVertices\n1\n0 0 0 0\n",
+                                     MeshFormat::kMedit, "t.mesh", &mesh)
+                   .ok());
+  ASSERT_EQ(mesh.positions.size(), 1u);
+  EXPECT_EQ(mesh.positions[0], (Vec3{1, 2, 3}));
+}
+
+TEST(IoSamples, MissingFileNamesThePath) {
+  TetMesh mesh;
+  const Status status = read_mesh("/nonexistent/dir/m.mesh", &mesh);
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message().rfind("/nonexistent/dir/m.mesh: cannot open", 0), 0u)
+      << status.message();
+  const Status pair = read_mesh("/nonexistent/dir/m.ele", &mesh);
+  EXPECT_EQ(pair.message().rfind("/nonexistent/dir/m.node: cannot open", 0), 0u) << pair.message();
+}
+
+}  // namespace
+}  // namespace tetlod
