@@ -44,6 +44,19 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   return true;
 }
 
+void print_property_table(const MeshStats& stats) {
+  std::printf("%-14s %9s %9s %10s %9s %9s %8s %11s %12s\n", "", "#nodes", "#edges", "#elements",
+              "ave.str", "min.str", "max.val", "max.size", "volume");
+  auto row = [](const std::string& label, const PropertyRow& r) {
+    std::printf("%-14s %9zu %9zu %10zu %9.4f %9.4f %8u %11.5g %12.6g\n", label.c_str(), r.nodes,
+                r.edges, r.elements, r.average_stretch, r.min_stretch, r.max_valence, r.max_size,
+                r.volume);
+  };
+  row("whole mesh", stats.whole);
+  for (const MaterialRow& m : stats.per_material)
+    row("material " + std::to_string(m.material), m.row);
+}
+
 std::string json_escape(const std::string& text) {
   std::string out;
   for (const char c : text) {

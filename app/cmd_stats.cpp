@@ -45,11 +45,6 @@ std::string pair_name(const std::pair<int32_t, int32_t>& p) {
          (p.second == kOutsideMaterial ? std::string("outside") : std::to_string(p.second));
 }
 
-void print_row_text(const char* label, const PropertyRow& r) {
-  std::printf("%-14s %9zu %9zu %10zu %9.4f %9.4f %8u %11.5g %12.6g\n", label, r.nodes, r.edges,
-              r.elements, r.average_stretch, r.min_stretch, r.max_valence, r.max_size, r.volume);
-}
-
 void print_row_json(const PropertyRow& r) {
   std::printf(
       "{\"nodes\": %zu, \"edges\": %zu, \"elements\": %zu, \"average_stretch\": %.17g, "
@@ -130,13 +125,7 @@ int cmd_stats(const Args& args) {
   }
 
   std::printf("%s (%s)\n\n", path.c_str(), format_name(info.format));
-  std::printf("%-14s %9s %9s %10s %9s %9s %8s %11s %12s\n", "", "#nodes", "#edges", "#elements",
-              "ave.str", "min.str", "max.val", "max.size", "volume");
-  print_row_text("whole mesh", stats.whole);
-  for (const MaterialRow& m : stats.per_material) {
-    const std::string label = "material " + std::to_string(m.material);
-    print_row_text(label.c_str(), m.row);
-  }
+  print_property_table(stats);
   std::printf("\nstretch histogram (whole mesh)\n");
   uint64_t most = 1;
   for (uint64_t c : stats.stretch_histogram) most = std::max(most, c);

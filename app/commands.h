@@ -16,5 +16,7 @@ using Args = std::vector<std::string>;
 int cmd_stats(const Args& args);
 int cmd_convert(const Args& args);
 int cmd_generate(const Args& args);
+int cmd_simplify(const Args& args);
+int cmd_lod(const Args& args);
 
 }  // namespace tetlod::app

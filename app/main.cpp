@@ -15,6 +15,8 @@ constexpr const char* kUsage =
     "                                   stretch histogram, whole mesh and per material\n"
     "  convert IN OUT [--msh-version V] convert between .mesh .msh .node/.ele .vtk .vtu\n"
     "  generate MODEL -o FILE           make a bundled model (motor, spheres, box2) with TetGen\n"
+    "  simplify IN -o OUT --size S ...  subdivide and simplify under the four thresholds\n"
+    "  lod HISTORY --elements N -o OUT  write a level of a saved collapse history\n"
     "\n"
     "Run 'tetlod COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input, 2 bad usage.\n";
@@ -36,6 +38,8 @@ int main(int argc, char** argv) {
   if (command == "stats") return cmd_stats(args);
   if (command == "convert") return cmd_convert(args);
   if (command == "generate") return cmd_generate(args);
+  if (command == "simplify") return cmd_simplify(args);
+  if (command == "lod") return cmd_lod(args);
   std::fprintf(stderr, "tetlod: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return kExitUsage;
 }
