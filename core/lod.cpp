@@ -1,0 +1,291 @@
+#include "core/lod.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <utility>
+
+namespace tetlod {
+
+uint32_t CollapseHistory::removed_end(size_t s) const {
+  return s + 1 < steps.size() ? steps[s + 1].removed_begin
+                              : static_cast<uint32_t>(removed_tets.size());
+}
+uint32_t CollapseHistory::rewired_end(size_t s) const {
+  return s + 1 < steps.size() ? steps[s + 1].rewired_begin : static_cast<uint32_t>(rewired.size());
+}
+uint32_t CollapseHistory::moved_end(size_t s) const {
+  return s + 1 < steps.size() ? steps[s + 1].moved_begin : static_cast<uint32_t>(moved.size());
+}
+
+void CollapseHistory::begin_step(uint32_t kept, uint32_t removed, const Vec3& old_position,
+                                 const Vec3& new_position) {
+  Step s;
+  s.kept = kept;
+  s.removed = removed;
+  s.old_position = old_position;
+  s.new_position = new_position;
+  s.removed_begin = static_cast<uint32_t>(removed_tets.size());
+  s.rewired_begin = static_cast<uint32_t>(rewired.size());
+  s.moved_begin = static_cast<uint32_t>(moved.size());
+  steps.push_back(s);
+}
+
+Lod::Lod(TetMesh base, const CollapseHistory* history) : mesh_(std::move(base)), history_(history) {
+  alive_.assign(mesh_.tet_count(), 1);
+  alive_tet_count_ = mesh_.tet_count();
+  tets_at_step_.resize(history_->step_count() + 1);
+  tets_at_step_[0] = alive_tet_count_;
+  for (size_t s = 0; s < history_->step_count(); ++s) {
+    tets_at_step_[s + 1] =
+        tets_at_step_[s] - (history_->removed_end(s) - history_->steps[s].removed_begin);
+  }
+}
+
+size_t Lod::step_for_elements(size_t elements) const {
+  // tets_at_step_ is non-increasing.
+  size_t best = 0;
+  size_t best_distance = static_cast<size_t>(-1);
+  size_t lo = 0, hi = tets_at_step_.size();
+  while (lo < hi) {  // first step with count <= elements
+    const size_t mid = (lo + hi) / 2;
+    if (tets_at_step_[mid] <= elements) {
+      hi = mid;
+    } else {
+      lo = mid + 1;
+    }
+  }
+  for (size_t s : {lo == 0 ? size_t{0} : lo - 1, lo}) {
+    if (s >= tets_at_step_.size()) continue;
+    const size_t c = tets_at_step_[s];
+    const size_t distance = c > elements ? c - elements : elements - c;
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = s;
+    }
+  }
+  return best;
+}
+
+void Lod::apply(size_t s) {
+  const CollapseHistory& h = *history_;
+  const CollapseHistory::Step& step = h.steps[s];
+  mesh_.positions[step.kept] = step.new_position;
+  for (uint32_t k = step.removed_begin; k < h.removed_end(s); ++k) alive_[h.removed_tets[k]] = 0;
+  for (uint32_t k = step.rewired_begin; k < h.rewired_end(s); ++k) {
+    const uint32_t code = h.rewired[k];
+    mesh_.tets[code >> 2][code & 3] = step.kept;
+  }
+  alive_tet_count_ -= h.removed_end(s) - step.removed_begin;
+}
+
+void Lod::undo(size_t s) {
+  const CollapseHistory& h = *history_;
+  const CollapseHistory::Step& step = h.steps[s];
+  mesh_.positions[step.kept] = step.old_position;
+  for (uint32_t k = step.removed_begin; k < h.removed_end(s); ++k) alive_[h.removed_tets[k]] = 1;
+  for (uint32_t k = step.rewired_begin; k < h.rewired_end(s); ++k) {
+    const uint32_t code = h.rewired[k];
+    mesh_.tets[code >> 2][code & 3] = step.removed;
+  }
+  alive_tet_count_ += h.removed_end(s) - step.removed_begin;
+}
+
+void Lod::seek(size_t target, LodDelta* delta) {
+  target = std::min(target, step_count());
+  if (!delta) {
+    while (step_ < target) apply(step_++);
+    while (step_ > target) undo(--step_);
+    return;
+  }
+  // Record every tet touched on the way, with its aliveness before the move.
+  std::vector<std::pair<uint32_t, uint8_t>> touched;
+  const CollapseHistory& h = *history_;
+  auto touch_step = [&](size_t s) {
+    for (uint32_t k = h.steps[s].removed_begin; k < h.removed_end(s); ++k)
+      touched.push_back({h.removed_tets[k], alive_[h.removed_tets[k]]});
+    for (uint32_t k = h.steps[s].rewired_begin; k < h.rewired_end(s); ++k)
+      touched.push_back({h.rewired[k] >> 2, alive_[h.rewired[k] >> 2]});
+    for (uint32_t k = h.steps[s].moved_begin; k < h.moved_end(s); ++k)
+      touched.push_back({h.moved[k], alive_[h.moved[k]]});
+  };
+  while (step_ < target) {
+    touch_step(step_);
+    apply(step_++);
+  }
+  while (step_ > target) {
+    touch_step(--step_);
+    undo(step_);
+  }
+  // The first record of a tet holds its aliveness before the move.
+  std::stable_sort(touched.begin(), touched.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  delta->appeared.clear();
+  delta->vanished.clear();
+  delta->changed.clear();
+  for (size_t k = 0; k < touched.size(); ++k) {
+    if (k > 0 && touched[k].first == touched[k - 1].first) continue;
+    const uint32_t t = touched[k].first;
+    const bool before = touched[k].second != 0;
+    const bool now = alive_[t] != 0;
+    if (before && now) {
+      delta->changed.push_back(t);
+    } else if (now) {
+      delta->appeared.push_back(t);
+    } else if (before) {
+      delta->vanished.push_back(t);
+    }
+  }
+}
+
+TetMesh Lod::extract() const {
+  TetMesh out;
+  std::vector<uint32_t> remap(mesh_.vertex_count(), kInvalidIndex);
+  for (size_t t = 0; t < mesh_.tet_count(); ++t) {
+    if (!alive_[t]) continue;
+    for (uint32_t v : mesh_.tets[t]) remap[v] = 0;
+  }
+  uint32_t next = 0;
+  for (size_t v = 0; v < remap.size(); ++v) {
+    if (remap[v] == 0) {
+      remap[v] = next++;
+      out.positions.push_back(mesh_.positions[v]);
+    }
+  }
+  out.tets.reserve(alive_tet_count_);
+  out.materials.reserve(alive_tet_count_);
+  for (size_t t = 0; t < mesh_.tet_count(); ++t) {
+    if (!alive_[t]) continue;
+    const Tet& tet = mesh_.tets[t];
+    out.tets.push_back({remap[tet[0]], remap[tet[1]], remap[tet[2]], remap[tet[3]]});
+    out.materials.push_back(mesh_.materials[t]);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------
+// History files: "TETLODH1", then counts and raw little-endian arrays.
+
+namespace {
+
+constexpr char kHistoryMagic[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '1'};
+
+struct FileCloser {
+  void operator()(std::FILE* f) const {
+    if (f) std::fclose(f);
+  }
+};
+
+template <class T>
+bool write_array(std::FILE* f, const std::vector<T>& v) {
+  const uint64_t n = v.size();
+  return std::fwrite(&n, sizeof n, 1, f) == 1 &&
+         (n == 0 || std::fwrite(v.data(), sizeof(T), v.size(), f) == v.size());
+}
+
+template <class T>
+bool read_array(std::FILE* f, uint64_t remaining_bytes, std::vector<T>* v) {
+  uint64_t n = 0;
+  if (std::fread(&n, sizeof n, 1, f) != 1) return false;
+  if (n > remaining_bytes / sizeof(T)) return false;  // cannot be in the file
+  v->resize(n);
+  return n == 0 || std::fread(v->data(), sizeof(T), n, f) == n;
+}
+
+}  // namespace
+
+Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history) {
+  const std::string temporary = path + ".tmp";
+  std::FILE* f = std::fopen(temporary.c_str(), "wb");
+  if (!f) return Status::error(path + ": cannot open for writing: " + std::strerror(errno));
+  bool ok = std::fwrite(kHistoryMagic, 1, 8, f) == 8 && write_array(f, base.positions) &&
+            write_array(f, base.tets) && write_array(f, base.materials) &&
+            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
+            write_array(f, history.rewired) && write_array(f, history.moved);
+  ok = (std::fflush(f) == 0) && ok;
+  ok = (std::fclose(f) == 0) && ok;
+  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    return Status::error(path + ": write failed");
+  }
+  return Status();
+}
+
+Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history) {
+  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+  std::FILE* f = file.get();
+  if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
+  std::fseek(f, 0, SEEK_END);
+  const long size = std::ftell(f);
+  std::fseek(f, 0, SEEK_SET);
+  const uint64_t bytes = size > 0 ? static_cast<uint64_t>(size) : 0;
+  char magic[8] = {};
+  if (std::fread(magic, 1, 8, f) != 8 || std::memcmp(magic, kHistoryMagic, 8) != 0) {
+    return Status::error(path + ": not a TetLOD history file");
+  }
+  if (!read_array(f, bytes, &base->positions) || !read_array(f, bytes, &base->tets) ||
+      !read_array(f, bytes, &base->materials) || !read_array(f, bytes, &history->steps) ||
+      !read_array(f, bytes, &history->removed_tets) || !read_array(f, bytes, &history->rewired) ||
+      !read_array(f, bytes, &history->moved)) {
+    return Status::error(path + ": truncated or corrupt history file");
+  }
+  // Every index in range and every range well formed, so replay cannot go astray.
+  const size_t vertex_count = base->positions.size();
+  const size_t tet_count = base->tets.size();
+  auto bad = [&](const std::string& what) {
+    return Status::error(path + ": corrupt history: " + what);
+  };
+  if (base->materials.size() != tet_count) return bad("material count");
+  for (const Vec3& p : base->positions)
+    if (!is_finite(p)) return bad("non-finite position");
+  for (const Tet& t : base->tets)
+    for (uint32_t v : t)
+      if (v >= vertex_count) return bad("tet vertex out of range");
+  uint32_t removed_at = 0, rewired_at = 0, moved_at = 0;
+  for (size_t s = 0; s < history->steps.size(); ++s) {
+    const CollapseHistory::Step& st = history->steps[s];
+    if (st.kept >= vertex_count || st.removed >= vertex_count || st.kept == st.removed)
+      return bad("step " + std::to_string(s) + " vertex out of range");
+    if (!is_finite(st.old_position) || !is_finite(st.new_position)) return bad("non-finite step");
+    if (st.removed_begin != removed_at || st.rewired_begin != rewired_at ||
+        st.moved_begin != moved_at)
+      return bad("step " + std::to_string(s) + " ranges");
+    removed_at = history->removed_end(s);
+    rewired_at = history->rewired_end(s);
+    moved_at = history->moved_end(s);
+    if (removed_at < st.removed_begin || removed_at > history->removed_tets.size() ||
+        rewired_at < st.rewired_begin || rewired_at > history->rewired.size() ||
+        moved_at < st.moved_begin || moved_at > history->moved.size())
+      return bad("step " + std::to_string(s) + " ranges");
+  }
+  if (!history->steps.empty() &&
+      (removed_at != history->removed_tets.size() || rewired_at != history->rewired.size() ||
+       moved_at != history->moved.size()))
+    return bad("trailing entries");
+  for (uint32_t t : history->removed_tets)
+    if (t >= tet_count) return bad("removed tet out of range");
+  for (uint32_t c : history->rewired)
+    if ((c >> 2) >= tet_count) return bad("rewired tet out of range");
+  for (uint32_t t : history->moved)
+    if (t >= tet_count) return bad("moved tet out of range");
+  // Replay once to check the steps are consistent with the mesh (each tet retired
+  // once, rewired corners hold the retired vertex).
+  std::vector<uint8_t> alive(tet_count, 1);
+  std::vector<Tet> tets = base->tets;
+  for (size_t s = 0; s < history->steps.size(); ++s) {
+    const CollapseHistory::Step& st = history->steps[s];
+    for (uint32_t k = st.removed_begin; k < history->removed_end(s); ++k) {
+      if (!alive[history->removed_tets[k]]) return bad("tet retired twice");
+      alive[history->removed_tets[k]] = 0;
+    }
+    for (uint32_t k = st.rewired_begin; k < history->rewired_end(s); ++k) {
+      const uint32_t c = history->rewired[k];
+      if (tets[c >> 2][c & 3] != st.removed) return bad("rewired corner mismatch");
+      tets[c >> 2][c & 3] = st.kept;
+    }
+  }
+  return Status();
+}
+
+}  // namespace tetlod

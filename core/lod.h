@@ -1,0 +1,101 @@
+// Level of detail (paper, section IV.B): the recorded collapse history and an Lod
+// object that moves a mesh to any step of it by edge collapses and vertex splits.
+//
+// Vertex and tet ids are those of the base mesh (the mesh the simplifier started
+// from, after subdivision) at every step: a collapse (i, j) -> k keeps vertex i at
+// k's position, retires vertex j, retires the tets around edge (i, j) and rewires
+// the corners of j's other tets to i. A vertex split does the reverse. Applying
+// then undoing steps gives a bit-identical mesh.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "core/tet_mesh.h"
+
+namespace tetlod {
+
+struct CollapseHistory {
+  struct Step {
+    uint32_t kept = 0;     // vertex i, moved to new_position
+    uint32_t removed = 0;  // vertex j, retired
+    Vec3 old_position;     // i's position before the collapse
+    Vec3 new_position;     // k
+    // Ranges [begin of this step, begin of the next step) in the flat arrays below.
+    uint32_t removed_begin = 0;
+    uint32_t rewired_begin = 0;
+    uint32_t moved_begin = 0;
+    uint32_t reserved = 0;  // keeps the struct free of padding (it is written to files raw)
+  };
+  std::vector<Step> steps;
+  std::vector<uint32_t> removed_tets;  // tets around edge (i, j)
+  std::vector<uint32_t> rewired;       // 4 * tet + corner: the corner held j, now holds i
+  std::vector<uint32_t> moved;         // surviving tets that held i (their shape changed)
+
+  size_t step_count() const { return steps.size(); }
+  // Ends of the ranges of step s.
+  uint32_t removed_end(size_t s) const;
+  uint32_t rewired_end(size_t s) const;
+  uint32_t moved_end(size_t s) const;
+  // Appends a step; the arrays' current sizes are its range begins.
+  void begin_step(uint32_t kept, uint32_t removed, const Vec3& old_position,
+                  const Vec3& new_position);
+};
+
+// What a move between steps changed, for incremental rendering. Lists are sorted
+// and unique; a tet is in at most one of them.
+struct LodDelta {
+  std::vector<uint32_t> appeared;  // alive now, not before
+  std::vector<uint32_t> vanished;  // alive before, not now
+  std::vector<uint32_t> changed;   // alive before and now, with other corners or positions
+};
+
+class Lod {
+ public:
+  // `base` is the mesh at step 0; `history` must outlive the Lod and belong to it.
+  Lod(TetMesh base, const CollapseHistory* history);
+
+  size_t step() const { return step_; }
+  size_t step_count() const { return history_->step_count(); }
+  size_t alive_tet_count() const { return alive_tet_count_; }
+  // Number of tets alive after `step` collapses (O(1)).
+  size_t tet_count_at(size_t step) const { return tets_at_step_[step]; }
+  // The step whose tet count is nearest to `elements` (the earliest on ties).
+  size_t step_for_elements(size_t elements) const;
+
+  // Moves to `step` (clamped to [0, step_count()]) by collapses or splits. If `delta`
+  // is given it receives what changed relative to the step before the call.
+  void seek(size_t step, LodDelta* delta = nullptr);
+
+  // The mesh at the current step, compacted: alive tets and the vertices they use,
+  // in id order.
+  TetMesh extract() const;
+
+  // The current step as the uncompacted base arrays (retired tets keep their last
+  // corners and are flagged in alive()).
+  const std::vector<Vec3>& positions() const { return mesh_.positions; }
+  const std::vector<Tet>& tets() const { return mesh_.tets; }
+  const std::vector<int32_t>& materials() const { return mesh_.materials; }
+  const std::vector<uint8_t>& alive() const { return alive_; }
+
+ private:
+  void apply(size_t s);
+  void undo(size_t s);
+
+  TetMesh mesh_;
+  const CollapseHistory* history_;
+  std::vector<uint8_t> alive_;
+  std::vector<size_t> tets_at_step_;
+  size_t alive_tet_count_ = 0;
+  size_t step_ = 0;
+};
+
+// A saved simplification: the base mesh and its history, so that any level can be
+// written later without simplifying again. Binary, little-endian, versioned; the
+// reader checks every count and index (a hostile file gives an error, never a crash).
+Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history);
+Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history);
+
+}  // namespace tetlod

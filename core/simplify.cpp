@@ -1,0 +1,1001 @@
+// Subdivision and property-controlled edge-collapse simplification.
+//
+// References:
+//  - H. Date et al., "Flexible Control of Multimaterial Tetrahedral Mesh Properties
+//    by Using Multiresolution Techniques", IEEE Trans. Magn.: thresholds (section
+//    IV.A.3), candidate positions (IV.A.2), priority index (eq. 3), LOD (IV.B).
+//  - M. Garland, P. Heckbert, "Surface simplification using quadric error metrics",
+//    SIGGRAPH 1997: the quadrics of eq. (1).
+//  - T. Dey, H. Edelsbrunner et al., "Topology preserving edge contraction", 1999:
+//    the link condition, here with a virtual vertex for the outside of each region.
+//  - M.-C. Rivara, longest-edge bisection: subdivision splits the longest edge first.
+#include "core/simplify.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "core/adjacency.h"
+#include "core/classify.h"
+#include "core/metrics.h"
+#include "core/surface.h"
+
+namespace tetlod {
+
+Status check_params(const SimplifyParams& p) {
+  if (!(std::isfinite(p.tolerance) && p.tolerance >= 0)) {
+    return Status::error("tolerance " + std::to_string(p.tolerance) +
+                         " must be a finite length >= 0");
+  }
+  if (!(std::isfinite(p.min_stretch) && p.min_stretch > 0 && p.min_stretch < 1)) {
+    return Status::error("stretch " + std::to_string(p.min_stretch) +
+                         " must lie strictly between 0 and 1 (1 is a regular tet)");
+  }
+  if (p.max_valence < 4) {
+    return Status::error("valence " + std::to_string(p.max_valence) +
+                         " must be at least 4 (a tet's corner already has 3 neighbours)");
+  }
+  if (p.sizing.unlimited()) return Status::error("no size limit given (set --size)");
+  const double smallest = p.sizing.smallest_size();
+  if (!(smallest > 0) || std::isnan(p.sizing.uniform) || p.sizing.uniform <= 0) {
+    return Status::error("size must be > 0");
+  }
+  if (!(std::isfinite(p.crease_angle_degrees) && p.crease_angle_degrees > 0 &&
+        p.crease_angle_degrees < 180)) {
+    return Status::error("crease angle must lie between 0 and 180 degrees");
+  }
+  return Status();
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr uint32_t kOmega = kInvalidIndex;  // the virtual vertex outside a region
+constexpr size_t kMaxTets = 40'000'000;     // subdivision refuses to grow beyond this
+constexpr uint8_t kMayBeThin = 1;           // below tau_ST
+constexpr uint8_t kMayBeBig = 2;            // above tau_SZ
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Garland-Heckbert quadric of eq. (1): e(p) = p^T A p + 2 B p + C.
+struct Quadric {
+  double a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0;
+  double b0 = 0, b1 = 0, b2 = 0, c = 0;
+
+  static Quadric plane(const Vec3& n, double d) {  // n.p + d = 0, |n| = 1
+    Quadric q;
+    q.a00 = n.x * n.x, q.a01 = n.x * n.y, q.a02 = n.x * n.z;
+    q.a11 = n.y * n.y, q.a12 = n.y * n.z, q.a22 = n.z * n.z;
+    q.b0 = d * n.x, q.b1 = d * n.y, q.b2 = d * n.z;
+    q.c = d * d;
+    return q;
+  }
+  void add(const Quadric& o) {
+    a00 += o.a00, a01 += o.a01, a02 += o.a02, a11 += o.a11, a12 += o.a12, a22 += o.a22;
+    b0 += o.b0, b1 += o.b1, b2 += o.b2, c += o.c;
+  }
+  double error(const Vec3& p) const {
+    const double ax = a00 * p.x + a01 * p.y + a02 * p.z;
+    const double ay = a01 * p.x + a11 * p.y + a12 * p.z;
+    const double az = a02 * p.x + a12 * p.y + a22 * p.z;
+    return p.x * ax + p.y * ay + p.z * az + 2 * (b0 * p.x + b1 * p.y + b2 * p.z) + c;
+  }
+};
+
+enum class Reject : uint8_t { kNone, kTolerance, kStretch, kSize, kValence, kTopology };
+
+struct Collapse {
+  double priority = 0;
+  uint32_t kept = 0, removed = 0;
+  uint32_t version_kept = 0, version_removed = 0;
+  Vec3 position;
+  bool surface_edge = false;
+};
+
+// Max-heap order: larger priority first, then the smaller vertex pair.
+struct CollapseLess {
+  bool operator()(const Collapse& x, const Collapse& y) const {
+    if (x.priority != y.priority) return x.priority < y.priority;
+    const uint64_t kx = (uint64_t{std::min(x.kept, x.removed)} << 32) | std::max(x.kept, x.removed);
+    const uint64_t ky = (uint64_t{std::min(y.kept, y.removed)} << 32) | std::max(y.kept, y.removed);
+    return kx > ky;
+  }
+};
+
+struct Split {
+  double length2;
+  uint32_t a, b;
+};
+struct SplitLess {
+  bool operator()(const Split& x, const Split& y) const {
+    if (x.length2 != y.length2) return x.length2 < y.length2;
+    return x.a != y.a ? x.a > y.a : x.b > y.b;
+  }
+};
+
+// A face (v, a, b) of a tet in the star of v, with the tet on the other side.
+struct StarFace {
+  uint32_t a, b;   // a < b
+  uint32_t tet;    // the tet of the star holding the face
+  uint32_t other;  // the tet across, or kInvalidIndex on the boundary
+};
+
+inline bool tet_has(const Tet& t, uint32_t v) {
+  return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
+}
+
+inline uint64_t edge_key(uint32_t a, uint32_t b) {
+  return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
+}
+
+using Triangle = std::array<uint32_t, 3>;
+
+inline Triangle sorted_triangle(uint32_t a, uint32_t b, uint32_t c) {
+  Triangle t{a, b, c};
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+template <class T>
+void sort_unique(std::vector<T>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+// True if every element of the sorted range `x` that is also in sorted `y` is in sorted `z`.
+template <class T>
+bool intersection_within(const std::vector<T>& x, const std::vector<T>& y,
+                         const std::vector<T>& z) {
+  auto iy = y.begin();
+  for (const T& e : x) {
+    while (iy != y.end() && *iy < e) ++iy;
+    if (iy != y.end() && *iy == e && !std::binary_search(z.begin(), z.end(), e)) return false;
+  }
+  return true;
+}
+
+template <class T>
+bool disjoint(const std::vector<T>& x, const std::vector<T>& y) {
+  auto iy = y.begin();
+  for (const T& e : x) {
+    while (iy != y.end() && *iy < e) ++iy;
+    if (iy != y.end() && *iy == e) return false;
+  }
+  return true;
+}
+
+// The link of a vertex or an edge in a sub-complex, as sorted sets.
+struct Link {
+  std::vector<uint32_t> vertices;
+  std::vector<uint64_t> edges;
+  std::vector<Triangle> triangles;
+  void clear() {
+    vertices.clear();
+    edges.clear();
+    triangles.clear();
+  }
+  void finish() {
+    sort_unique(vertices);
+    sort_unique(edges);
+    sort_unique(triangles);
+  }
+};
+
+class Engine {
+ public:
+  Engine(const TetMesh& input, const SimplifyParams& params, const ProgressCallback& progress,
+         const std::atomic<bool>* cancel)
+      : params_(params),
+        progress_(progress),
+        cancel_(cancel),
+        pos_(input.positions),
+        tets_(input.tets),
+        mat_(input.materials) {
+    tolerance2_ = params.tolerance * params.tolerance;
+    tet_alive_.assign(tets_.size(), 1);
+    tet_allowance_.resize(tets_.size());
+    for (uint32_t t = 0; t < tets_.size(); ++t) tet_allowance_[t] = own_violations(t);
+    vertex_alive_.assign(pos_.size(), 1);
+    star_.resize(pos_.size());
+    for (uint32_t t = 0; t < tets_.size(); ++t)
+      for (uint32_t v : tets_[t]) star_[v].push_back(t);
+    mark_.assign(pos_.size(), 0);
+    input_valence_.resize(pos_.size());
+    for (uint32_t v = 0; v < pos_.size(); ++v) input_valence_[v] = valence(v);
+  }
+
+  Status run(SimplifyResult* result) {
+    auto start = Clock::now();
+    if (params_.subdivide) {
+      Status s = subdivide(result);
+      if (!s) return s;
+    }
+    result->seconds_subdivide = seconds_since(start);
+    result->base.positions = pos_;
+    result->base.tets = tets_;
+    result->base.materials = mat_;
+    if (cancelled()) {
+      result->cancelled = true;
+      result->output = result->base;
+      return Status();
+    }
+
+    start = Clock::now();
+    report("classify", 0);
+    classify();
+    report("classify", 1);
+    result->seconds_classify = seconds_since(start);
+
+    start = Clock::now();
+    simplify(result);
+    result->seconds_simplify = seconds_since(start);
+    result->rejections = rejections_;
+    result->output = compact();
+    count_violations(&result->violations);
+    return Status();
+  }
+
+ private:
+  // ---------------------------------------------------------------- helpers
+  bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+
+  void report(const char* phase, double fraction) {
+    if (progress_) progress_({phase, fraction, collapses_});
+  }
+
+  uint32_t next_stamp() {
+    if (++stamp_ == 0) {
+      std::fill(mark_.begin(), mark_.end(), 0);
+      stamp_ = 1;
+    }
+    return stamp_;
+  }
+
+  uint32_t valence(uint32_t v) {
+    const uint32_t s = next_stamp();
+    mark_[v] = s;
+    uint32_t n = 0;
+    for (uint32_t t : star_[v])
+      for (uint32_t w : tets_[t])
+        if (mark_[w] != s) mark_[w] = s, ++n;
+    return n;
+  }
+
+  void neighbors(uint32_t v, std::vector<uint32_t>* out) {
+    out->clear();
+    const uint32_t s = next_stamp();
+    mark_[v] = s;
+    for (uint32_t t : star_[v])
+      for (uint32_t w : tets_[t])
+        if (mark_[w] != s) mark_[w] = s, out->push_back(w);
+  }
+
+  double size_limit(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
+                    int32_t material) const {
+    return params_.sizing.size_at((a + b + c + d) * 0.25, material);
+  }
+  double size_limit(uint32_t t) const {
+    const Tet& q = tets_[t];
+    return size_limit(pos_[q[0]], pos_[q[1]], pos_[q[2]], pos_[q[3]], mat_[t]);
+  }
+  uint8_t own_violations(uint32_t t) const {
+    const TetShape s = shape(t);
+    return static_cast<uint8_t>((s.stretch < params_.min_stretch ? kMayBeThin : 0) |
+                                (s.size > size_limit(t) ? kMayBeBig : 0));
+  }
+  TetShape shape(uint32_t t) const {
+    const Tet& q = tets_[t];
+    return tet_shape(pos_[q[0]], pos_[q[1]], pos_[q[2]], pos_[q[3]]);
+  }
+
+  // ------------------------------------------------------------ subdivision
+  // Longest edge first (a max-heap on length): a popped edge is the longest edge of
+  // every tet around it, so this is conforming longest-edge bisection. A split is
+  // skipped, and counted, if a child would fall below min(tau_ST, its parent's
+  // stretch) or a node would exceed tau_VL.
+  double edge_size_limit(uint32_t a, uint32_t b) const {
+    double limit = std::numeric_limits<double>::infinity();
+    for (uint32_t t : star_[a])
+      if (tet_has(tets_[t], b)) limit = std::min(limit, size_limit(t));
+    return limit;
+  }
+
+  void push_if_long(std::vector<Split>& heap, uint32_t a, uint32_t b) {
+    const double length2 = squared_length(pos_[a] - pos_[b]);
+    const double half = 0.5 * edge_size_limit(a, b);
+    if (length2 > half * half) {
+      heap.push_back({length2, std::min(a, b), std::max(a, b)});
+      std::push_heap(heap.begin(), heap.end(), SplitLess());
+    }
+  }
+
+  Status subdivide(SimplifyResult* result) {
+    // Refuse sizes that would explode the mesh before doing any work.
+    double predicted = 0;
+    for (uint32_t t = 0; t < tets_.size(); ++t) {
+      const double ratio = 2 * shape(t).size / size_limit(t);
+      if (ratio > 1) predicted += ratio * ratio * ratio;
+    }
+    if (predicted + tets_.size() > static_cast<double>(kMaxTets)) {
+      return Status::error("size " + std::to_string(params_.sizing.smallest_size()) +
+                           " would subdivide the mesh into about " +
+                           std::to_string(static_cast<long long>(predicted)) + " tets (limit " +
+                           std::to_string(kMaxTets) + "); choose a larger size or --no-subdivide");
+    }
+    std::vector<uint32_t> valence_now(pos_.size());
+    for (uint32_t v = 0; v < pos_.size(); ++v) valence_now[v] = input_valence_[v];
+
+    std::vector<Split> heap;
+    std::vector<uint32_t> nb;
+    for (uint32_t v = 0; v < pos_.size(); ++v) {
+      neighbors(v, &nb);
+      for (uint32_t w : nb)
+        if (w > v) push_if_long(heap, v, w);
+    }
+    const size_t initial = std::max<size_t>(1, heap.size());
+    std::vector<uint32_t> ring, opposite;
+    size_t iterations = 0;
+    while (!heap.empty()) {
+      if ((++iterations & 4095) == 0) {
+        if (cancelled()) break;
+        report("subdivide", std::min(1.0, double(result->splits) / double(initial)));
+      }
+      std::pop_heap(heap.begin(), heap.end(), SplitLess());
+      const Split e = heap.back();
+      heap.pop_back();
+      ring.clear();
+      for (uint32_t t : star_[e.a])
+        if (tet_has(tets_[t], e.b)) ring.push_back(t);
+      if (ring.empty()) continue;  // already split
+
+      const Vec3 m = (pos_[e.a] + pos_[e.b]) * 0.5;
+      bool ok = true;
+      opposite.clear();
+      for (uint32_t t : ring) {
+        const double parent = shape(t).stretch;
+        const double floor = std::min(params_.min_stretch, parent);
+        for (uint32_t replaced : {e.a, e.b}) {
+          Vec3 p[4];
+          for (int c = 0; c < 4; ++c) p[c] = tets_[t][c] == replaced ? m : pos_[tets_[t][c]];
+          if (tet_shape(p[0], p[1], p[2], p[3]).stretch < floor) ok = false;
+        }
+        for (uint32_t w : tets_[t])
+          if (w != e.a && w != e.b) opposite.push_back(w);
+      }
+      sort_unique(opposite);
+      if (opposite.size() + 2 > params_.max_valence) ok = false;
+      for (uint32_t w : opposite)
+        if (valence_now[w] + 1 > params_.max_valence) ok = false;
+      if (!ok) {
+        ++result->splits_skipped;
+        continue;
+      }
+      if (tets_.size() + ring.size() > kMaxTets) {
+        return Status::error("subdivision exceeded " + std::to_string(kMaxTets) +
+                             " tets; choose a larger size or --no-subdivide");
+      }
+
+      const uint32_t mid = static_cast<uint32_t>(pos_.size());
+      pos_.push_back(m);
+      vertex_alive_.push_back(1);
+      star_.emplace_back();
+      mark_.push_back(0);
+      input_valence_.push_back(0);
+      valence_now.push_back(static_cast<uint32_t>(opposite.size() + 2));
+      for (uint32_t w : opposite) ++valence_now[w];
+      for (uint32_t t : ring) {
+        const uint32_t child = static_cast<uint32_t>(tets_.size());
+        Tet upper = tets_[t];
+        for (uint32_t& v : upper)
+          if (v == e.a) v = mid;
+        for (uint32_t& v : tets_[t])
+          if (v == e.b) v = mid;
+        tets_.push_back(upper);
+        mat_.push_back(mat_[t]);
+        tet_alive_.push_back(1);
+        tet_allowance_.push_back(tet_allowance_[t]);  // a piece of t may break what t broke
+        // Stars: t keeps a and loses b; the child has b instead of a.
+        auto& sb = star_[e.b];
+        *std::find(sb.begin(), sb.end(), t) = child;
+        for (uint32_t w : upper)
+          if (w != e.b && w != mid) star_[w].push_back(child);
+        star_[mid].push_back(t);
+        star_[mid].push_back(child);
+      }
+      ++result->splits;
+      push_if_long(heap, e.a, mid);
+      push_if_long(heap, mid, e.b);
+      for (uint32_t w : opposite) push_if_long(heap, mid, w);
+    }
+    for (auto& s : star_) std::sort(s.begin(), s.end());
+    report("subdivide", 1);
+    return Status();
+  }
+
+  // --------------------------------------------------------- classification
+  void classify() {
+    TetMesh mesh;
+    mesh.positions = pos_;
+    mesh.tets = tets_;
+    mesh.materials = mat_;
+    std::vector<uint32_t> neighbors_of_tets;
+    build_face_neighbors(mesh, &neighbors_of_tets);
+    const std::vector<SurfaceTriangle> surface = extract_surface(mesh, neighbors_of_tets);
+    ClassifyOptions options;
+    options.crease_angle_degrees = params_.crease_angle_degrees;
+    Classification c = classify_vertices(mesh, surface, options);
+    kind_ = std::move(c.kind);
+    feature_neighbors_.assign(pos_.size(), {});
+    for (const auto& e : c.feature_edges) {
+      feature_neighbors_[e[0]].push_back(e[1]);
+      feature_neighbors_[e[1]].push_back(e[0]);
+    }
+    quadric_.assign(pos_.size(), Quadric());
+    for (const SurfaceTriangle& s : surface) {
+      const Vec3& p = pos_[s.v[0]];
+      Vec3 n = cross(pos_[s.v[1]] - p, pos_[s.v[2]] - p);
+      const double len = length(n);
+      if (!(len > 0)) continue;
+      n = n * (1.0 / len);
+      const Quadric q = Quadric::plane(n, -dot(n, p));
+      for (uint32_t v : s.v) quadric_[v].add(q);
+    }
+    material_ids_ = mat_;
+    sort_unique(material_ids_);
+    material_tets_.assign(material_ids_.size(), 0);
+    for (int32_t m : mat_) ++material_tets_[material_index(m)];
+    stretch_.resize(tets_.size());
+    for (uint32_t t = 0; t < tets_.size(); ++t) stretch_[t] = shape(t).stretch;
+  }
+
+  // ------------------------------------------------------------ evaluation
+  // The faces (v, a, b) of v's star with the tet across each.
+  void star_faces(uint32_t v, std::vector<StarFace>* faces) {
+    faces->clear();
+    for (uint32_t t : star_[v]) {
+      const Tet& q = tets_[t];
+      for (int c = 0; c < 4; ++c) {
+        if (q[c] == v) continue;
+        uint32_t a = kInvalidIndex, b = kInvalidIndex;
+        for (int k = 0; k < 4; ++k) {
+          if (k == c || q[k] == v) continue;
+          (a == kInvalidIndex ? a : b) = q[k];
+        }
+        faces->push_back({std::min(a, b), std::max(a, b), t, kInvalidIndex});
+      }
+    }
+    std::sort(faces->begin(), faces->end(), [](const StarFace& x, const StarFace& y) {
+      return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.tet < y.tet);
+    });
+    for (size_t k = 0; k + 1 < faces->size(); ++k) {
+      StarFace& x = (*faces)[k];
+      StarFace& y = (*faces)[k + 1];
+      if (x.a == y.a && x.b == y.b) {
+        x.other = y.tet;
+        y.other = x.tet;
+      }
+    }
+  }
+
+  // A surface face separates a tet from the outside or from another material.
+  bool is_surface_face(const StarFace& f) const {
+    return f.other == kInvalidIndex || mat_[f.other] != mat_[f.tet];
+  }
+
+  // Link of v in the sub-complex of tets accepted by `in` (all tets, or one
+  // material), with the outside of that sub-complex coned to kOmega.
+  template <class Filter>
+  void vertex_link(const std::vector<StarFace>& faces, uint32_t v, Filter in, Link* link) {
+    link->clear();
+    for (uint32_t t : star_[v]) {
+      if (!in(t)) continue;
+      uint32_t o[3], n = 0;
+      for (uint32_t w : tets_[t])
+        if (w != v) o[n++] = w;
+      link->vertices.insert(link->vertices.end(), {o[0], o[1], o[2]});
+      link->edges.insert(link->edges.end(),
+                         {edge_key(o[0], o[1]), edge_key(o[0], o[2]), edge_key(o[1], o[2])});
+      link->triangles.push_back(sorted_triangle(o[0], o[1], o[2]));
+    }
+    for (const StarFace& f : faces) {
+      if (!in(f.tet) || (f.other != kInvalidIndex && in(f.other))) continue;
+      link->vertices.push_back(kOmega);
+      link->edges.insert(link->edges.end(), {edge_key(f.a, kOmega), edge_key(f.b, kOmega)});
+      link->triangles.push_back({f.a, f.b, kOmega});
+    }
+    link->finish();
+  }
+
+  template <class Filter>
+  void edge_link(const std::vector<StarFace>& faces_i, uint32_t i, uint32_t j, Filter in,
+                 Link* link) {
+    link->clear();
+    for (uint32_t t : star_[i]) {
+      if (!in(t) || !tet_has(tets_[t], j)) continue;
+      uint32_t o[2], n = 0;
+      for (uint32_t w : tets_[t])
+        if (w != i && w != j) o[n++] = w;
+      link->vertices.insert(link->vertices.end(), {o[0], o[1]});
+      link->edges.push_back(edge_key(o[0], o[1]));
+    }
+    for (const StarFace& f : faces_i) {
+      if (f.a != j && f.b != j) continue;
+      if (!in(f.tet) || (f.other != kInvalidIndex && in(f.other))) continue;
+      const uint32_t x = f.a == j ? f.b : f.a;
+      link->vertices.push_back(kOmega);
+      link->edges.push_back(edge_key(x, kOmega));
+    }
+    link->finish();
+  }
+
+  template <class Filter>
+  bool link_condition(uint32_t i, uint32_t j, Filter in) {
+    vertex_link(faces_i_, i, in, &link_i_);
+    vertex_link(faces_j_, j, in, &link_j_);
+    edge_link(faces_i_, i, j, in, &link_ij_);
+    return intersection_within(link_i_.vertices, link_j_.vertices, link_ij_.vertices) &&
+           intersection_within(link_i_.edges, link_j_.edges, link_ij_.edges) &&
+           disjoint(link_i_.triangles, link_j_.triangles);
+  }
+
+  // Topology: the link condition for the whole complex and for every material's
+  // region around the edge, and for the surface complex when the edge lies on it.
+  bool topology_ok(uint32_t i, uint32_t j, bool surface_edge) {
+    star_faces(i, &faces_i_);
+    star_faces(j, &faces_j_);
+    if (!link_condition(i, j, [](uint32_t) { return true; })) return false;
+    edge_materials_.clear();
+    for (uint32_t t : star_[i])
+      if (tet_has(tets_[t], j)) edge_materials_.push_back(mat_[t]);
+    sort_unique(edge_materials_);
+    for (int32_t m : edge_materials_) {
+      if (!link_condition(i, j, [&](uint32_t t) { return mat_[t] == m; })) return false;
+      // No region may vanish: keep at least one tet of every material.
+      size_t removed = 0;
+      for (uint32_t t : star_[i])
+        if (mat_[t] == m && tet_has(tets_[t], j)) ++removed;
+      if (removed >= material_tets_[material_index(m)]) return false;
+    }
+    if (surface_edge) {
+      // Surface complex: common surface neighbours must span a surface triangle with ij.
+      surface_i_.clear();
+      surface_j_.clear();
+      surface_ij_.clear();
+      for (const StarFace& f : faces_i_) {
+        if (!is_surface_face(f) || (f.other != kInvalidIndex && f.other < f.tet)) continue;
+        surface_i_.insert(surface_i_.end(), {f.a, f.b});
+        if (f.a == j) surface_ij_.push_back(f.b);
+        if (f.b == j) surface_ij_.push_back(f.a);
+      }
+      for (const StarFace& f : faces_j_) {
+        if (!is_surface_face(f) || (f.other != kInvalidIndex && f.other < f.tet)) continue;
+        surface_j_.insert(surface_j_.end(), {f.a, f.b});
+      }
+      sort_unique(surface_i_);
+      sort_unique(surface_j_);
+      sort_unique(surface_ij_);
+      surface_i_.erase(std::remove(surface_i_.begin(), surface_i_.end(), j), surface_i_.end());
+      if (!intersection_within(surface_i_, surface_j_, surface_ij_)) return false;
+    }
+    // Curves: two curve vertices joined by a feature edge share no other feature neighbour.
+    for (uint32_t x : feature_neighbors_[i]) {
+      if (x == j) continue;
+      const auto& fj = feature_neighbors_[j];
+      if (std::find(fj.begin(), fj.end(), x) != fj.end()) return false;
+    }
+    return true;
+  }
+
+  size_t material_index(int32_t m) const {
+    return static_cast<size_t>(std::lower_bound(material_ids_.begin(), material_ids_.end(), m) -
+                               material_ids_.begin());
+  }
+
+  bool is_feature_edge(uint32_t i, uint32_t j) const {
+    const auto& f = feature_neighbors_[i];
+    return std::find(f.begin(), f.end(), j) != f.end();
+  }
+
+  // Whether edge (i, j) lies on a boundary or interface triangle.
+  bool is_surface_edge(uint32_t i, uint32_t j) const {
+    for (uint32_t t : star_[i]) {
+      const Tet& q = tets_[t];
+      if (!tet_has(q, j)) continue;
+      for (uint32_t x : q) {
+        if (x == i || x == j) continue;
+        // Face (i, j, x): find the tet across it.
+        uint32_t other = kInvalidIndex;
+        for (uint32_t u : star_[i]) {
+          if (u != t && tet_has(tets_[u], j) && tet_has(tets_[u], x)) {
+            other = u;
+            break;
+          }
+        }
+        if (other == kInvalidIndex || mat_[other] != mat_[t]) return true;
+      }
+    }
+    return false;
+  }
+
+  // Geometry of candidate position k for collapse (i, j): tolerance, stretch and
+  // size of every tet around k. On success sets *priority (eq. 3).
+  Reject check_position(uint32_t i, uint32_t j, const Vec3& k, double old_stretch_mean,
+                        double* priority) {
+    Quadric q = quadric_[i];
+    q.add(quadric_[j]);
+    if (q.error(k) > tolerance2_) return Reject::kTolerance;
+    double stretch_sum = 0, size_sum = 0, limit_sum = 0;
+    size_t count = 0;
+    for (uint32_t v : {i, j}) {
+      const uint32_t other = v == i ? j : i;
+      for (uint32_t t : star_[v]) {
+        const Tet& q4 = tets_[t];
+        if (tet_has(q4, other)) continue;
+        Vec3 p[4];
+        for (int c = 0; c < 4; ++c) p[c] = q4[c] == v ? k : pos_[q4[c]];
+        const TetShape s = tet_shape(p[0], p[1], p[2], p[3]);
+        if (!(s.stretch >= params_.min_stretch)) return Reject::kStretch;
+        const double limit = size_limit(p[0], p[1], p[2], p[3], mat_[t]);
+        if (s.size > limit) return Reject::kSize;
+        stretch_sum += s.stretch;
+        size_sum += s.size;
+        limit_sum += limit;
+        ++count;
+      }
+    }
+    if (count == 0) return Reject::kTopology;
+    // Delta s = tau_SZ / mean size of t*(k); Delta d = mean stretch of t*(k) over the mean
+    // stretch of t*(i) U t*(j). With a size field, tau_SZ is averaged over t*(k).
+    const double delta_s = limit_sum / size_sum;
+    const double delta_d = (stretch_sum / count) / old_stretch_mean;
+    *priority = delta_s * delta_d;
+    return Reject::kNone;
+  }
+
+  // Full evaluation of collapsing edge (a, b). Returns kNone and fills `out` if valid.
+  Reject evaluate(uint32_t a, uint32_t b, Collapse* out) {
+    const FeatureKind ka = kind_[a], kb = kind_[b];
+    const bool a_on = ka != FeatureKind::kInterior, b_on = kb != FeatureKind::kInterior;
+    bool surface_edge = false;
+    if (a_on && b_on) {
+      if (ka == FeatureKind::kCorner && kb == FeatureKind::kCorner) return Reject::kTopology;
+      // The paper's rule: an interior edge joining two surface nodes is never collapsed.
+      surface_edge = is_surface_edge(a, b);
+      if (!surface_edge) return Reject::kTopology;
+      // Two curve/corner nodes may only merge along their curve.
+      if (ka <= FeatureKind::kCurve && kb <= FeatureKind::kCurve && !is_feature_edge(a, b))
+        return Reject::kTopology;
+    }
+
+    // Valence of the new node: |v*(i) U v*(j)| - 2 (its two ends).
+    {
+      const uint32_t s = next_stamp();
+      uint32_t n = 0;
+      for (uint32_t v : {a, b})
+        for (uint32_t t : star_[v])
+          for (uint32_t w : tets_[t])
+            if (mark_[w] != s) mark_[w] = s, ++n;
+      if (n - 2 > params_.max_valence) return Reject::kValence;
+    }
+
+    // Mean stretch of t*(i) U t*(j).
+    double old_sum = 0;
+    size_t old_count = 0;
+    for (uint32_t t : star_[a]) old_sum += stretch_[t], ++old_count;
+    for (uint32_t t : star_[b])
+      if (!tet_has(tets_[t], a)) old_sum += stretch_[t], ++old_count;
+    const double old_mean = old_sum / old_count;
+
+    // Candidates: the more constrained end if the dimensions differ, else the midpoint
+    // and then each end.
+    uint32_t kept_options[3];
+    Vec3 positions[3];
+    int options = 0;
+    if (ka != kb) {
+      const uint32_t keep = ka < kb ? a : b;
+      kept_options[0] = keep;
+      positions[0] = pos_[keep];
+      options = 1;
+    } else {
+      kept_options[0] = std::min(a, b);
+      positions[0] = (pos_[a] + pos_[b]) * 0.5;
+      kept_options[1] = a;
+      positions[1] = pos_[a];
+      kept_options[2] = b;
+      positions[2] = pos_[b];
+      options = 3;
+    }
+    Reject first = Reject::kNone;
+    for (int c = 0; c < options; ++c) {
+      double priority = 0;
+      const Reject r = check_position(a, b, positions[c], old_mean, &priority);
+      if (r == Reject::kNone) {
+        // The link conditions do not depend on the position or the priority: they are
+        // checked when the collapse reaches the top of the queue (see simplify()).
+        out->surface_edge = surface_edge;
+        out->priority = priority;
+        out->kept = kept_options[c];
+        out->removed = out->kept == a ? b : a;
+        out->position = positions[c];
+        out->version_kept = version_[out->kept];
+        out->version_removed = version_[out->removed];
+        return Reject::kNone;
+      }
+      if (first == Reject::kNone) first = r;
+    }
+    return first;
+  }
+
+  void count(Reject r) {
+    switch (r) {
+      case Reject::kTolerance:
+        ++rejections_.tolerance;
+        break;
+      case Reject::kStretch:
+        ++rejections_.stretch;
+        break;
+      case Reject::kSize:
+        ++rejections_.size;
+        break;
+      case Reject::kValence:
+        ++rejections_.valence;
+        break;
+      case Reject::kTopology:
+        ++rejections_.topology;
+        break;
+      case Reject::kNone:
+        break;
+    }
+  }
+
+  void evaluate_and_push(uint32_t a, uint32_t b) {
+    Collapse c;
+    const Reject r = evaluate(a, b, &c);
+    if (r != Reject::kNone) {
+      count(r);
+      return;
+    }
+    heap_.push_back(c);
+    std::push_heap(heap_.begin(), heap_.end(), CollapseLess());
+  }
+
+  // --------------------------------------------------------------- collapse
+  void apply(const Collapse& c, CollapseHistory* history) {
+    const uint32_t i = c.kept, j = c.removed;
+    history->begin_step(i, j, pos_[i], c.position);
+    // Retire the tets around the edge.
+    for (uint32_t t : star_[i]) {
+      if (!tet_has(tets_[t], j)) continue;
+      history->removed_tets.push_back(t);
+      tet_alive_[t] = 0;
+      --material_tets_[material_index(mat_[t])];
+      for (uint32_t w : tets_[t]) {
+        if (w == i || w == j) continue;
+        auto& s = star_[w];
+        s.erase(std::find(s.begin(), s.end(), t));
+      }
+    }
+    auto& si = star_[i];
+    si.erase(std::remove_if(si.begin(), si.end(), [&](uint32_t t) { return !tet_alive_[t]; }),
+             si.end());
+    for (uint32_t t : si) {
+      history->moved.push_back(t);
+      tet_allowance_[t] = 0;
+    }
+    // Rewire j's other tets to i.
+    for (uint32_t t : star_[j]) {
+      if (!tet_alive_[t]) continue;
+      for (int corner = 0; corner < 4; ++corner) {
+        if (tets_[t][corner] == j) {
+          tets_[t][corner] = i;
+          history->rewired.push_back(4 * t + corner);
+        }
+      }
+      tet_allowance_[t] = 0;
+      si.push_back(t);
+    }
+    std::sort(si.begin(), si.end());
+    star_[j].clear();
+    star_[j].shrink_to_fit();
+    vertex_alive_[j] = 0;
+    pos_[i] = c.position;
+    quadric_[i].add(quadric_[j]);
+    // Curves: j's feature neighbours become i's.
+    for (uint32_t x : feature_neighbors_[j]) {
+      if (x == i) continue;
+      for (uint32_t& y : feature_neighbors_[x])
+        if (y == j) y = i;
+      feature_neighbors_[i].push_back(x);
+    }
+    auto& fi = feature_neighbors_[i];
+    fi.erase(std::remove(fi.begin(), fi.end(), j), fi.end());
+    feature_neighbors_[j].clear();
+    for (uint32_t t : si) stretch_[t] = shape(t).stretch;
+    alive_tets_ -=
+        history->removed_end(history->step_count() - 1) - history->steps.back().removed_begin;
+    ++collapses_;
+  }
+
+  // After a collapse onto k: the stars of k and of its neighbours changed. The edges
+  // of k are re-evaluated now; the neighbours are marked dirty, so that their queued
+  // edges are re-evaluated when popped (their version no longer matches) and all
+  // their edges, valid or not before, are re-evaluated by the next sweep.
+  void refresh_around(uint32_t k) {
+    neighbors(k, &ring_);
+    ring_.push_back(k);
+    for (uint32_t v : ring_) {
+      ++version_[v];
+      if (!dirty_[v]) {
+        dirty_[v] = 1;
+        dirty_list_.push_back(v);
+      }
+    }
+    ring_.pop_back();
+    for (uint32_t w : ring_) evaluate_and_push(k, w);
+  }
+
+  // Re-evaluates every edge with a dirty end, once.
+  void sweep() {
+    std::vector<uint32_t> list;
+    list.swap(dirty_list_);
+    std::sort(list.begin(), list.end());
+    for (uint32_t v : list) {
+      if (!vertex_alive_[v]) continue;
+      neighbors(v, &around_);
+      std::sort(around_.begin(), around_.end());
+      for (uint32_t w : around_) {
+        if (w < v && dirty_[w]) continue;  // done from w's side
+        evaluate_and_push(v, w);
+      }
+    }
+    for (uint32_t v : list) dirty_[v] = 0;
+  }
+
+  void simplify(SimplifyResult* result) {
+    version_.assign(pos_.size(), 0);
+    dirty_.assign(pos_.size(), 0);
+    dirty_list_.clear();
+    alive_tets_ = tets_.size();
+    const size_t initial_tets = alive_tets_;
+    std::vector<uint32_t> nb;
+    for (uint32_t v = 0; v < pos_.size(); ++v) {
+      neighbors(v, &nb);
+      for (uint32_t w : nb)
+        if (w > v) evaluate_and_push(v, w);
+    }
+    size_t pops = 0;
+    while (true) {
+      if (params_.target_elements > 0 && alive_tets_ <= params_.target_elements) break;
+      if (heap_.empty()) {
+        if (dirty_list_.empty()) break;
+        sweep();
+        continue;
+      }
+      if ((++pops & 1023) == 0) {
+        if (cancelled()) {
+          result->cancelled = true;
+          break;
+        }
+        report("simplify", 1.0 - double(alive_tets_) / double(initial_tets));
+      }
+      std::pop_heap(heap_.begin(), heap_.end(), CollapseLess());
+      const Collapse c = heap_.back();
+      heap_.pop_back();
+      if (!vertex_alive_[c.kept] || !vertex_alive_[c.removed]) continue;
+      if (c.version_kept != version_[c.kept] || c.version_removed != version_[c.removed]) {
+        // Stale: evaluate again now unless a sweep already did.
+        if (dirty_[c.kept] || dirty_[c.removed]) evaluate_and_push(c.kept, c.removed);
+        continue;
+      }
+      if (!topology_ok(c.kept, c.removed, c.surface_edge)) {
+        count(Reject::kTopology);
+        continue;
+      }
+      apply(c, &result->history);
+      refresh_around(c.kept);
+    }
+    report("simplify", 1);
+  }
+
+  // ----------------------------------------------------------------- output
+  TetMesh compact() const {
+    TetMesh out;
+    std::vector<uint32_t> remap(pos_.size(), kInvalidIndex);
+    for (uint32_t t = 0; t < tets_.size(); ++t)
+      if (tet_alive_[t])
+        for (uint32_t v : tets_[t]) remap[v] = 0;
+    uint32_t next = 0;
+    for (uint32_t v = 0; v < pos_.size(); ++v) {
+      if (remap[v] == 0) {
+        remap[v] = next++;
+        out.positions.push_back(pos_[v]);
+      }
+    }
+    for (uint32_t t = 0; t < tets_.size(); ++t) {
+      if (!tet_alive_[t]) continue;
+      const Tet& q = tets_[t];
+      out.tets.push_back({remap[q[0]], remap[q[1]], remap[q[2]], remap[q[3]]});
+      out.materials.push_back(mat_[t]);
+    }
+    return out;
+  }
+
+  void count_violations(ThresholdViolations* v) {
+    *v = ThresholdViolations{};
+    for (uint32_t t = 0; t < tets_.size(); ++t) {
+      if (!tet_alive_[t]) continue;
+      const TetShape s = shape(t);
+      const bool low = s.stretch < params_.min_stretch;
+      const bool big = s.size > size_limit(t);
+      v->below_stretch += low;
+      v->above_size += big;
+      if ((low && !(tet_allowance_[t] & kMayBeThin)) || (big && !(tet_allowance_[t] & kMayBeBig)))
+        ++v->created;
+    }
+    for (uint32_t x = 0; x < pos_.size(); ++x) {
+      if (!vertex_alive_[x] || star_[x].empty()) continue;
+      const uint32_t n = valence(x);
+      if (n > params_.max_valence) {
+        ++v->above_valence;
+        if (n > input_valence_[x]) ++v->created;
+      }
+    }
+  }
+
+  const SimplifyParams& params_;
+  const ProgressCallback& progress_;
+  const std::atomic<bool>* cancel_;
+  double tolerance2_ = 0;
+
+  std::vector<Vec3> pos_;
+  std::vector<Tet> tets_;
+  std::vector<int32_t> mat_;
+  std::vector<uint8_t> tet_alive_;
+  // Which thresholds a tet may break because the input tet it comes from (unchanged,
+  // or cut into pieces by subdivision) already broke them: kMayBeThin, kMayBeBig.
+  std::vector<uint8_t> tet_allowance_;
+  std::vector<double> stretch_;
+  std::vector<std::vector<uint32_t>> star_;  // sorted tet ids per vertex
+  std::vector<uint8_t> vertex_alive_;
+  std::vector<uint32_t> input_valence_;
+  std::vector<int32_t> material_ids_;  // sorted
+  std::vector<size_t> material_tets_;  // alive tets per material, by index in material_ids_
+
+  std::vector<FeatureKind> kind_;
+  std::vector<std::vector<uint32_t>> feature_neighbors_;
+  std::vector<Quadric> quadric_;
+
+  std::vector<Collapse> heap_;
+  std::vector<uint32_t> version_;
+  std::vector<uint8_t> dirty_;
+  std::vector<uint32_t> dirty_list_;
+  RejectionCounts rejections_;
+  size_t collapses_ = 0;
+  size_t alive_tets_ = 0;
+
+  // Scratch, reused to keep the hot loop free of allocation.
+  std::vector<uint32_t> mark_;
+  uint32_t stamp_ = 0;
+  std::vector<StarFace> faces_i_, faces_j_;
+  Link link_i_, link_j_, link_ij_;
+  std::vector<int32_t> edge_materials_;
+  std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
+  std::vector<uint32_t> ring_, around_;
+};
+
+}  // namespace
+
+Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
+                const ProgressCallback& progress, const std::atomic<bool>* cancel) {
+  Status s = check_params(params);
+  if (!s) return s;
+  *result = SimplifyResult{};
+  Engine engine(input, params, progress, cancel);
+  return engine.run(result);
+}
+
+}  // namespace tetlod

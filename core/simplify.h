@@ -1,0 +1,85 @@
+// Property-controlled simplification of a multi-material tet mesh (Date et al.,
+// sections II and IV): subdivide every edge longer than half its target size, then
+// collapse edges (i, j) -> k in order of the priority index while every threshold
+// holds.
+//
+// The guarantee: no collapse and no split ever creates a tet with stretch below
+// tau_ST or size above tau_SZ, or a node with valence above tau_VL, and every
+// material region, interface, junction curve and corner keeps its topology.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "core/lod.h"
+#include "core/sizing.h"
+#include "core/status.h"
+#include "core/tet_mesh.h"
+
+namespace tetlod {
+
+struct SimplifyParams {
+  double tolerance = 0.1;     // tau_TL: a length in model units; the quadric error of eq. (1),
+                              // a sum of squared distances, must stay <= tau_TL^2
+  double min_stretch = 0.15;  // tau_ST, in (0, 1)
+  uint32_t max_valence = 25;  // tau_VL, >= 4
+  SizingField sizing;         // tau_SZ per tet (see sizing.h); must set some limit
+  bool subdivide = true;
+  size_t target_elements = 0;          // stop once at most this many tets remain; 0: run to the end
+  double crease_angle_degrees = 40.0;  // for the vertex classification (classify.h)
+};
+
+// Checks thresholds for absurd values (NaN, negative, stretch >= 1 or <= 0,
+// valence < 4, no size limit at all) and names the offending one.
+Status check_params(const SimplifyParams& params);
+
+// Why candidate collapses were rejected (each evaluation counts its first failure).
+struct RejectionCounts {
+  uint64_t tolerance = 0;
+  uint64_t stretch = 0;  // includes inverted and flat tets
+  uint64_t size = 0;
+  uint64_t valence = 0;
+  uint64_t topology = 0;  // feature rules and link conditions
+};
+
+// Output tets and nodes that break a threshold. Only what the input already broke
+// can: an input tet no valid collapse could remove, or a piece that subdivision cut
+// from such a tet (a piece never has a lower stretch than its parent, and is
+// smaller), or an input node whose valence no collapse lowered enough. `created`
+// counts anything else and must be 0.
+struct ThresholdViolations {
+  size_t below_stretch = 0;  // tets with d_t < tau_ST
+  size_t above_size = 0;     // tets with s_t > tau_SZ
+  size_t above_valence = 0;  // nodes with valence > tau_VL
+  size_t created = 0;        // of the above, ones the input did not already break
+};
+
+struct SimplifyResult {
+  TetMesh base;             // LOD step 0: the input after subdivision
+  CollapseHistory history;  // every collapse, in order
+  TetMesh output;           // the mesh after the last collapse, compacted
+  RejectionCounts rejections;
+  ThresholdViolations violations;
+  size_t splits = 0;          // subdivision splits done
+  size_t splits_skipped = 0;  // long edges left unsplit because a split would break a threshold
+  bool cancelled = false;
+  double seconds_classify = 0, seconds_subdivide = 0, seconds_simplify = 0;
+};
+
+struct SimplifyProgress {
+  const char* phase = "";  // "classify", "subdivide", "simplify"
+  double fraction = 0;     // of the phase, in [0, 1]; an estimate for "simplify"
+  size_t collapses = 0;
+};
+using ProgressCallback = std::function<void(const SimplifyProgress&)>;
+
+// Runs the pipeline on a validated mesh. `progress` is called from the calling
+// thread every few thousand operations; `cancel`, if set, stops the run at the next
+// check and leaves a consistent result (result->cancelled). Same input and params
+// give the same result, byte for byte. No globals: runs may proceed in parallel.
+Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
+                const ProgressCallback& progress = {}, const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace tetlod

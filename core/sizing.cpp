@@ -1,0 +1,154 @@
+#include "core/sizing.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace tetlod {
+
+double SizingField::size_at(const Vec3& p, int32_t material) const {
+  double size = uniform;
+  if (!material_sizes.empty()) {
+    const auto it = std::lower_bound(
+        material_sizes.begin(), material_sizes.end(), material,
+        [](const std::pair<int32_t, double>& e, int32_t m) { return e.first < m; });
+    if (it != material_sizes.end() && it->first == material) size = std::min(size, it->second);
+  }
+  for (const Radial& r : radial) {
+    Vec3 d = p - r.center;
+    if (r.axis != Vec3{}) d = d - r.axis * dot(d, r.axis);
+    size = std::min(size, r.size0 + r.growth * length(d));
+  }
+  for (const Box& b : boxes) {
+    if (p.x >= b.low.x && p.x <= b.high.x && p.y >= b.low.y && p.y <= b.high.y && p.z >= b.low.z &&
+        p.z <= b.high.z) {
+      size = std::min(size, b.size);
+    }
+  }
+  return size;
+}
+
+double SizingField::smallest_size() const {
+  double size = uniform;
+  for (const auto& m : material_sizes) size = std::min(size, m.second);
+  for (const Radial& r : radial) size = std::min(size, r.size0);
+  for (const Box& b : boxes) size = std::min(size, b.size);
+  return size;
+}
+
+bool SizingField::unlimited() const {
+  return std::isinf(uniform) && material_sizes.empty() && radial.empty() && boxes.empty();
+}
+
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true) {
+    const size_t end = text.find(separator, start);
+    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return parts;
+}
+
+bool to_double(const std::string& text, double* value) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, *value);
+  return ec == std::errc() && ptr == end && std::isfinite(*value);
+}
+
+Status positive_size(const std::string& where, const std::string& text, double* value) {
+  if (!to_double(text, value) || !(*value > 0)) {
+    return Status::error(where + ": size '" + text + "' must be a finite number > 0");
+  }
+  return Status();
+}
+
+}  // namespace
+
+Status parse_material_sizes(const std::string& spec, SizingField* field) {
+  if (spec.empty()) return Status::error("--material-size: empty specification");
+  for (const std::string& item : split(spec, ',')) {
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) {
+      return Status::error("--material-size: '" + item + "' is not of the form MATERIAL=SIZE");
+    }
+    const std::string id_text = item.substr(0, eq);
+    int32_t id = 0;
+    const char* end = id_text.data() + id_text.size();
+    const auto [ptr, ec] = std::from_chars(id_text.data(), end, id);
+    if (ec != std::errc() || ptr != end || id < 0) {
+      return Status::error("--material-size: '" + id_text + "' is not a material id (>= 0)");
+    }
+    double size = 0;
+    Status s = positive_size("--material-size " + item, item.substr(eq + 1), &size);
+    if (!s) return s;
+    for (const auto& m : field->material_sizes) {
+      if (m.first == id) {
+        return Status::error("--material-size: material " + id_text + " is given twice");
+      }
+    }
+    field->material_sizes.push_back({id, size});
+  }
+  std::sort(field->material_sizes.begin(), field->material_sizes.end());
+  return Status();
+}
+
+Status parse_size_field(const std::string& spec, SizingField* field) {
+  if (spec.empty()) return Status::error("--size-field: empty specification");
+  for (const std::string& rule : split(spec, ';')) {
+    const size_t colon = rule.find(':');
+    const std::string kind = rule.substr(0, colon);
+    const std::vector<std::string> values = colon == std::string::npos
+                                                ? std::vector<std::string>{}
+                                                : split(rule.substr(colon + 1), ',');
+    const size_t expected = kind == "radial" ? 5 : kind == "axis" ? 8 : kind == "box" ? 7 : 0;
+    if (expected == 0) {
+      return Status::error("--size-field: unknown rule '" + rule +
+                           "' (expected radial:..., axis:... or box:...)");
+    }
+    if (values.size() != expected) {
+      return Status::error("--size-field: rule '" + rule + "' needs " + std::to_string(expected) +
+                           " comma-separated numbers");
+    }
+    double v[8];
+    for (size_t i = 0; i < expected; ++i) {
+      if (!to_double(values[i], &v[i])) {
+        return Status::error("--size-field: '" + values[i] + "' in rule '" + rule +
+                             "' is not a finite number");
+      }
+    }
+    const std::string where = "--size-field " + rule;
+    if (kind == "box") {
+      SizingField::Box b{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6]};
+      if (!(b.low.x < b.high.x && b.low.y < b.high.y && b.low.z < b.high.z)) {
+        return Status::error(where + ": the box's low corner must be below its high corner");
+      }
+      Status s = positive_size(where, values[6], &b.size);
+      if (!s) return s;
+      field->boxes.push_back(b);
+      continue;
+    }
+    SizingField::Radial r;
+    r.center = {v[0], v[1], v[2]};
+    const size_t k = kind == "axis" ? 6 : 3;
+    if (kind == "axis") {
+      const Vec3 axis{v[3], v[4], v[5]};
+      if (!(length(axis) > 0)) return Status::error(where + ": the axis direction is zero");
+      r.axis = axis * (1.0 / length(axis));
+    }
+    Status s = positive_size(where, values[k], &r.size0);
+    if (!s) return s;
+    r.growth = v[k + 1];
+    if (!(r.growth >= 0)) {
+      return Status::error(where + ": growth '" + values[k + 1] + "' must be >= 0");
+    }
+    field->radial.push_back(r);
+  }
+  return Status();
+}
+
+}  // namespace tetlod

@@ -1,0 +1,60 @@
+// Local property control (paper, section IV.C): the target element size tau_SZ as a
+// field over the mesh, combining uniform, region-based and material-based sizing.
+//
+// The size allowed for a tet of material m whose centroid is p is the minimum of
+//   - the uniform size,
+//   - the size given for material m, if any (so an interface, whose triangles belong
+//     to tets of both materials, gets the smaller of the two: Fig. 4(e)),
+//   - every region rule that applies at p: a radial rule around a point or an axis
+//     (size = size0 + growth * distance, Fig. 4(d)), or a box (size inside it).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/status.h"
+#include "core/vec3.h"
+
+namespace tetlod {
+
+struct SizingField {
+  struct Radial {
+    Vec3 center;
+    Vec3 axis;  // zero: distance from the point; else distance from the line through
+                // `center` along `axis` (normalised on parse)
+    double size0 = 0;
+    double growth = 0;  // size per unit distance, >= 0
+  };
+  struct Box {
+    Vec3 low, high;
+    double size = 0;
+  };
+
+  double uniform = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<int32_t, double>> material_sizes;  // sorted by material, unique
+  std::vector<Radial> radial;
+  std::vector<Box> boxes;
+
+  // tau_SZ for a tet of `material` with centroid `p`; +inf if nothing limits it.
+  double size_at(const Vec3& p, int32_t material) const;
+  // The smallest size any rule can give (a lower bound of size_at), for diagnostics.
+  double smallest_size() const;
+  // True if no rule is set.
+  bool unlimited() const;
+};
+
+// Parses "M=S,M=S,..." (material id, size) into field->material_sizes. Sizes must be
+// finite and > 0; ids >= 0 and not repeated. Errors name the offending item.
+Status parse_material_sizes(const std::string& spec, SizingField* field);
+
+// Parses region rules separated by ';':
+//   radial:cx,cy,cz,size0,growth            distance from a point
+//   axis:cx,cy,cz,dx,dy,dz,size0,growth     distance from a line
+//   box:x0,y0,z0,x1,y1,z1,size              inside an axis-aligned box
+// and appends them to `field`. Errors name the offending rule and value.
+Status parse_size_field(const std::string& spec, SizingField* field);
+
+}  // namespace tetlod

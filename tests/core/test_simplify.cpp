@@ -1,0 +1,132 @@
+// Exact simplifier cases on hand-made meshes: collapses that must happen and ones
+// that must not, one per threshold and topology rule; the LOD round trip.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+
+#include "core/adjacency.h"
+#include "core/lod.h"
+#include "core/metrics.h"
+#include "core/simplify.h"
+#include "core/test_meshes.h"
+#include "core/validate.h"
+
+namespace tetlod {
+namespace {
+
+TetMesh two_material_box(int n) {
+  return test::make_grid_mesh(
+      2 * n, n, n, [&](int i, int, int) { return i < n ? 1 : 2; }, 1.0 / n);
+}
+
+SimplifyParams loose_params(double size) {
+  SimplifyParams p;
+  p.tolerance = 1e-9;
+  p.min_stretch = 0.05;
+  p.max_valence = 40;
+  p.sizing.uniform = size;
+  p.subdivide = false;
+  return p;
+}
+
+std::map<int32_t, double> volume_per_material(const TetMesh& m) {
+  std::map<int32_t, double> v;
+  for (size_t t = 0; t < m.tet_count(); ++t) v[m.materials[t]] += signed_volume6(m, m.tets[t]) / 6;
+  return v;
+}
+
+TEST(Simplify, RejectsAbsurdThresholds) {
+  const TetMesh mesh = two_material_box(1);
+  SimplifyResult r;
+  SimplifyParams p = loose_params(1);
+  p.min_stretch = 1.0;
+  EXPECT_NE(simplify(mesh, p, &r).message().find("stretch"), std::string::npos);
+  p = loose_params(1);
+  p.min_stretch = std::nan("");
+  EXPECT_FALSE(simplify(mesh, p, &r).ok());
+  p = loose_params(1);
+  p.max_valence = 3;
+  EXPECT_NE(simplify(mesh, p, &r).message().find("valence"), std::string::npos);
+  p = loose_params(-1);
+  EXPECT_FALSE(simplify(mesh, p, &r).ok());
+  p = loose_params(1);
+  p.tolerance = -1;
+  EXPECT_NE(simplify(mesh, p, &r).message().find("tolerance"), std::string::npos);
+  p = loose_params(1e-6);
+  p.subdivide = true;
+  EXPECT_NE(simplify(mesh, p, &r).message().find("subdivide"), std::string::npos);
+}
+
+TEST(Simplify, CoarsensTheTwoMaterialBoxKeepingItsShape) {
+  const TetMesh mesh = two_material_box(4);
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(mesh, loose_params(10), &r));
+  EXPECT_GT(r.history.step_count(), 0u);
+  EXPECT_LT(r.output.tet_count(), mesh.tet_count() / 4);
+  // Planar faces and a tolerance of 1e-9: every material keeps its volume.
+  const auto before = volume_per_material(mesh), after = volume_per_material(r.output);
+  ASSERT_EQ(after.size(), 2u);
+  EXPECT_NEAR(after.at(1), before.at(1), 1e-9);
+  EXPECT_NEAR(after.at(2), before.at(2), 1e-9);
+  for (size_t t = 0; t < r.output.tet_count(); ++t) {
+    EXPECT_GE(tet_shape(r.output, r.output.tets[t]).stretch, 0.05);
+  }
+  EXPECT_EQ(r.violations.created, 0u);
+  // The 12 corners (box corners and the ends of the interface rim) survive in place.
+  std::set<std::array<double, 3>> points;
+  for (const Vec3& p : r.output.positions) points.insert({p.x, p.y, p.z});
+  for (double x : {0.0, 1.0, 2.0})
+    for (double y : {0.0, 1.0})
+      for (double z : {0.0, 1.0}) EXPECT_TRUE(points.count({x, y, z})) << x << " " << y << " " << z;
+}
+
+TEST(Simplify, NothingCollapsesWhenEveryThresholdForbidsIt) {
+  const TetMesh mesh = two_material_box(2);
+  SimplifyResult r;
+  // Size: the grid's longest edge is the cube diagonal sqrt(3)/2; any collapse makes a
+  // longer edge.
+  ASSERT_TRUE(simplify(mesh, loose_params(std::sqrt(3.0) / 2 + 1e-9), &r));
+  EXPECT_EQ(r.history.step_count(), 0u);
+  EXPECT_GT(r.rejections.size, 0u);
+  // Stretch: Kuhn tets have stretch ~0.71 at best; asking for 0.9 forbids everything.
+  SimplifyParams p = loose_params(10);
+  p.min_stretch = 0.9;
+  ASSERT_TRUE(simplify(mesh, p, &r));
+  EXPECT_EQ(r.history.step_count(), 0u);
+  EXPECT_GT(r.rejections.stretch, 0u);
+  // Valence: every merged node would have more than 4 neighbours.
+  p = loose_params(10);
+  p.max_valence = 4;
+  ASSERT_TRUE(simplify(mesh, p, &r));
+  EXPECT_EQ(r.history.step_count(), 0u);
+  EXPECT_GT(r.rejections.valence, 0u);
+}
+
+TEST(Lod, ApplyThenUndoIsBitIdentical) {
+  const TetMesh mesh = two_material_box(3);
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(mesh, loose_params(10), &r));
+  ASSERT_GT(r.history.step_count(), 3u);
+  Lod lod(r.base, &r.history);
+  const std::vector<Vec3> positions = lod.positions();
+  const std::vector<Tet> tets = lod.tets();
+  lod.seek(lod.step_count());
+  const TetMesh last = lod.extract();
+  EXPECT_EQ(last.tets, r.output.tets);
+  EXPECT_EQ(last.positions.size(), r.output.positions.size());
+  for (size_t v = 0; v < last.positions.size(); ++v)
+    EXPECT_EQ(last.positions[v], r.output.positions[v]);
+  lod.seek(0);
+  EXPECT_EQ(lod.tets(), tets);
+  ASSERT_EQ(lod.positions().size(), positions.size());
+  EXPECT_EQ(std::memcmp(lod.positions().data(), positions.data(), positions.size() * sizeof(Vec3)),
+            0);
+  EXPECT_EQ(lod.alive_tet_count(), r.base.tet_count());
+}
+
+}  // namespace
+}  // namespace tetlod

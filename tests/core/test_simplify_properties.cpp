@@ -1,0 +1,266 @@
+// Property tests of the simplifier on the bundled multi-material models, checked
+// after every collapse by replaying the LOD history: positive volumes, thresholds
+// held by every tet and node a collapse touched, corners never removed, material
+// regions and interfaces topologically unchanged, volumes within the tolerance, the
+// LOD at a step equal to the run stopped at that step, and identical repeated runs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/adjacency.h"
+#include "core/classify.h"
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/metrics.h"
+#include "core/simplify.h"
+#include "core/surface.h"
+#include "core/validate.h"
+
+namespace tetlod {
+namespace {
+
+std::string asset(const std::string& name) {
+  return std::string(TETLOD_SOURCE_DIR) + "/assets/" + name;
+}
+
+// Connected regions per material (tets joined through shared faces).
+std::map<int32_t, int> regions_per_material(const TetMesh& mesh) {
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(mesh, &neighbors);
+  std::vector<int> component(mesh.tet_count(), -1);
+  std::map<int32_t, int> count;
+  std::vector<uint32_t> stack;
+  for (uint32_t seed = 0; seed < mesh.tet_count(); ++seed) {
+    if (component[seed] >= 0) continue;
+    ++count[mesh.materials[seed]];
+    component[seed] = 1;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const uint32_t t = stack.back();
+      stack.pop_back();
+      for (int f = 0; f < 4; ++f) {
+        const uint32_t o = neighbors[4 * t + f];
+        if (o != kInvalidIndex && component[o] < 0 && mesh.materials[o] == mesh.materials[t]) {
+          component[o] = 1;
+          stack.push_back(o);
+        }
+      }
+    }
+  }
+  return count;
+}
+
+// Euler characteristic V - E + F of the surface of each material pair.
+std::map<std::pair<int32_t, int32_t>, long> interface_euler(const TetMesh& mesh) {
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(mesh, &neighbors);
+  std::map<std::pair<int32_t, int32_t>, std::set<uint32_t>> vertices;
+  std::map<std::pair<int32_t, int32_t>, std::set<std::pair<uint32_t, uint32_t>>> edges;
+  std::map<std::pair<int32_t, int32_t>, long> faces;
+  for (const SurfaceTriangle& s : extract_surface(mesh, neighbors)) {
+    const auto key = std::make_pair(s.inner, s.outer);
+    ++faces[key];
+    for (int k = 0; k < 3; ++k) {
+      vertices[key].insert(s.v[k]);
+      const uint32_t a = s.v[k], b = s.v[(k + 1) % 3];
+      edges[key].insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::map<std::pair<int32_t, int32_t>, long> chi;
+  for (const auto& [key, f] : faces) {
+    chi[key] = static_cast<long>(vertices[key].size()) - static_cast<long>(edges[key].size()) + f;
+  }
+  return chi;
+}
+
+std::map<int32_t, double> volume_per_material(const TetMesh& mesh) {
+  std::map<int32_t, double> volume;
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    volume[mesh.materials[t]] += signed_volume6(mesh, mesh.tets[t]) / 6;
+  }
+  return volume;
+}
+
+std::map<int32_t, double> surface_area_per_material(const TetMesh& mesh) {
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(mesh, &neighbors);
+  std::map<int32_t, double> area;
+  for (const SurfaceTriangle& s : extract_surface(mesh, neighbors)) {
+    const Vec3& a = mesh.positions[s.v[0]];
+    const double triangle =
+        0.5 * length(cross(mesh.positions[s.v[1]] - a, mesh.positions[s.v[2]] - a));
+    area[s.inner] += triangle;
+    if (s.outer != kOutsideMaterial) area[s.outer] += triangle;
+  }
+  return area;
+}
+
+struct Case {
+  const char* asset;
+  double size;
+  double stretch;
+  uint32_t valence;
+  double tolerance;
+};
+
+class SimplifyProperties : public ::testing::TestWithParam<Case> {};
+
+TEST_P(SimplifyProperties, HoldAfterEveryCollapse) {
+  const Case& c = GetParam();
+  TetMesh input;
+  ReadInfo info;
+  const Status read = read_mesh(asset(c.asset), &input, &info);
+  ASSERT_TRUE(read) << read.message();
+
+  SimplifyParams params;
+  params.sizing.uniform = c.size;
+  params.min_stretch = c.stretch;
+  params.max_valence = c.valence;
+  params.tolerance = c.tolerance;
+  SimplifyResult result;
+  const Status s = simplify(input, params, &result);
+  ASSERT_TRUE(s) << s.message();
+  ASSERT_GT(result.history.step_count(), 100u);
+  EXPECT_EQ(result.violations.created, 0u);
+
+  // Corners of the base mesh (the simplifier's own classification input).
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(result.base, &neighbors);
+  const Classification classes =
+      classify_vertices(result.base, extract_surface(result.base, neighbors));
+
+  const auto regions = regions_per_material(result.base);
+  const auto euler = interface_euler(result.base);
+  const auto volume = volume_per_material(result.base);
+  const auto area = surface_area_per_material(result.base);
+
+  Lod lod(result.base, &result.history);
+  LodDelta delta;
+  const size_t steps = lod.step_count();
+  const size_t sample_every = std::max<size_t>(1, steps / 8);
+  std::vector<uint32_t> around;
+  for (size_t step = 0; step < steps; ++step) {
+    const CollapseHistory::Step& st = result.history.steps[step];
+    ASSERT_NE(classes.kind[st.removed], FeatureKind::kCorner) << "step " << step;
+    ASSERT_LE(classes.kind[st.kept], classes.kind[st.removed]) << "step " << step;
+    lod.seek(step + 1, &delta);
+    ASSERT_TRUE(delta.appeared.empty());
+    ASSERT_FALSE(delta.vanished.empty());
+    around.clear();
+    for (uint32_t t : delta.changed) {
+      const Tet& tet = lod.tets()[t];
+      const TetShape shape = tet_shape(lod.positions()[tet[0]], lod.positions()[tet[1]],
+                                       lod.positions()[tet[2]], lod.positions()[tet[3]]);
+      ASSERT_GT(shape.volume, 0) << "step " << step << " tet " << t;
+      ASSERT_GE(shape.stretch, c.stretch) << "step " << step << " tet " << t;
+      ASSERT_LE(shape.size, c.size) << "step " << step << " tet " << t;
+      around.insert(around.end(), tet.begin(), tet.end());
+    }
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    ASSERT_LE(around.size() - 1, c.valence) << "valence of the new node at step " << step;
+
+    if ((step + 1) % sample_every == 0 || step + 1 == steps) {
+      const TetMesh level = lod.extract();
+      EXPECT_EQ(regions_per_material(level), regions) << "step " << step + 1;
+      EXPECT_EQ(interface_euler(level), euler) << "step " << step + 1;
+      for (const auto& [material, v] : volume_per_material(level)) {
+        EXPECT_NEAR(v, volume.at(material), 2 * c.tolerance * area.at(material))
+            << "material " << material << " at step " << step + 1;
+      }
+    }
+  }
+  // Corners stay where they were.
+  for (uint32_t v = 0; v < classes.kind.size(); ++v) {
+    if (classes.kind[v] == FeatureKind::kCorner) {
+      EXPECT_EQ(lod.positions()[v], result.base.positions[v]);
+    }
+  }
+
+  // The LOD at a step equals the run stopped at that step.
+  const size_t middle = steps / 2;
+  SimplifyParams stop = params;
+  stop.target_elements = lod.tet_count_at(middle);
+  SimplifyResult partial;
+  ASSERT_TRUE(simplify(input, stop, &partial));
+  lod.seek(partial.history.step_count());
+  const TetMesh level = lod.extract();
+  EXPECT_EQ(partial.history.step_count(), lod.step_for_elements(stop.target_elements));
+  EXPECT_EQ(level.tets, partial.output.tets);
+  EXPECT_EQ(level.materials, partial.output.materials);
+  ASSERT_EQ(level.positions.size(), partial.output.positions.size());
+  EXPECT_EQ(std::memcmp(level.positions.data(), partial.output.positions.data(),
+                        level.positions.size() * sizeof(Vec3)),
+            0);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Bundled, SimplifyProperties,
+    ::testing::Values(Case{"motor.mesh", 12.0, 0.15, 25, 0.05},
+                      Case{"spheres.mesh", 1.2, 0.15, 25, 0.02}),
+    [](const ::testing::TestParamInfo<Case>& param) {
+      return std::string(param.param.asset).substr(0, std::string(param.param.asset).find('.'));
+    });
+
+TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(asset("spheres.mesh"), &input, &info));
+  SimplifyParams params;
+  params.sizing.uniform = 1.0;
+  params.tolerance = 0.02;
+  SimplifyResult first;
+  ASSERT_TRUE(simplify(input, params, &first));
+  for (int run = 1; run < 5; ++run) {
+    SimplifyResult again;
+    ASSERT_TRUE(simplify(input, params, &again));
+    EXPECT_EQ(again.output.tets, first.output.tets) << "run " << run;
+    ASSERT_EQ(again.output.positions.size(), first.output.positions.size());
+    EXPECT_EQ(std::memcmp(again.output.positions.data(), first.output.positions.data(),
+                          first.output.positions.size() * sizeof(Vec3)),
+              0);
+    ASSERT_EQ(again.history.step_count(), first.history.step_count());
+    EXPECT_EQ(std::memcmp(again.history.steps.data(), first.history.steps.data(),
+                          first.history.steps.size() * sizeof(CollapseHistory::Step)),
+              0);
+    EXPECT_EQ(again.history.removed_tets, first.history.removed_tets);
+    EXPECT_EQ(again.history.rewired, first.history.rewired);
+  }
+}
+
+TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(asset("spheres.mesh"), &input, &info));
+  SimplifyParams params;
+  params.sizing.uniform = 1.0;
+  params.tolerance = 0.02;
+  std::atomic<bool> cancel{false};
+  size_t calls = 0;
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(
+      input, params, &result,
+      [&](const SimplifyProgress& p) {
+        ++calls;
+        if (std::string(p.phase) == "simplify" && p.collapses > 0) cancel = true;
+      },
+      &cancel));
+  EXPECT_TRUE(result.cancelled);
+  EXPECT_GT(calls, 0u);
+  Lod lod(result.base, &result.history);
+  lod.seek(lod.step_count());
+  EXPECT_EQ(lod.extract().tets, result.output.tets);
+  TetMesh check = result.output;
+  ValidationReport report;
+  EXPECT_TRUE(validate_mesh(&check, "cancelled", {}, &report));
+  EXPECT_EQ(report.reoriented_tets, 0u);
+}
+
+}  // namespace
+}  // namespace tetlod
