@@ -23,14 +23,13 @@ namespace {
 
 // A tet face keyed by its two larger vertex ids, stored in the bucket of its smallest.
 struct HalfFace {
-  uint32_t mid;
-  uint32_t high;
+  uint64_t key;     // (middle id << 32) | largest id
   uint32_t half;    // 4 * tet + corner opposite the face
   uint32_t parity;  // 0 if the outward face, rotated to start at its smallest id, is increasing
 };
 
 inline bool face_less(const HalfFace& x, const HalfFace& y) {
-  return x.mid != y.mid ? x.mid < y.mid : (x.high != y.high ? x.high < y.high : x.half < y.half);
+  return x.key != y.key ? x.key < y.key : x.half < y.half;
 }
 
 }  // namespace
@@ -65,8 +64,7 @@ FaceProblem build_face_neighbors(const TetMesh& mesh, std::vector<uint32_t>* nei
         r = tmp;
       }
       HalfFace& h = faces[cursor[p]++];
-      h.mid = std::min(q, r);
-      h.high = std::max(q, r);
+      h.key = (uint64_t{std::min(q, r)} << 32) | std::max(q, r);
       h.half = 4 * ti + static_cast<uint32_t>(i);
       h.parity = q < r ? 0 : 1;
     }
@@ -75,7 +73,7 @@ FaceProblem build_face_neighbors(const TetMesh& mesh, std::vector<uint32_t>* nei
   for (size_t v = 0; v < vertex_count; ++v) {
     HalfFace* first = faces.data() + offsets[v];
     HalfFace* last = faces.data() + offsets[v + 1];
-    if (last - first <= 32) {
+    if (last - first <= 64) {
       for (HalfFace* a = first + 1; a < last; ++a) {  // insertion sort: buckets are small
         const HalfFace key = *a;
         HalfFace* b = a;
@@ -86,11 +84,11 @@ FaceProblem build_face_neighbors(const TetMesh& mesh, std::vector<uint32_t>* nei
         *b = key;
       }
     } else {
-      std::sort(first, last, face_less);
+      std::sort(first, last, [](const HalfFace& x, const HalfFace& y) { return face_less(x, y); });
     }
     for (HalfFace* a = first; a < last;) {
       HalfFace* b = a + 1;
-      while (b < last && b->mid == a->mid && b->high == a->high) ++b;
+      while (b < last && b->key == a->key) ++b;
       const long run = b - a;
       if (run > 2) return {FaceProblem::Kind::kNonManifold, a[0].half / 4, a[2].half / 4};
       if (run == 2) {

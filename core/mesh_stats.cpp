@@ -57,6 +57,27 @@ MeshStats compute_mesh_stats(const TetMesh& mesh, const VertexTets& vertex_tets)
   }
 
   // Per vertex: edge neighbours in the whole mesh and in each material's sub-mesh.
+  // First gather, for every vertex, the other three corners (and the material) of each
+  // tet around it, in one sequential pass over the tets: the per-vertex loop below then
+  // reads memory in order instead of jumping to each tet.
+  struct Corners {
+    uint32_t other[3];
+    uint32_t material;
+  };
+  std::vector<Corners> around(vertex_tets.tets.size());
+  {
+    std::vector<uint32_t> cursor(vertex_tets.offsets.begin(), vertex_tets.offsets.end() - 1);
+    for (size_t t = 0; t < mesh.tet_count(); ++t) {
+      const Tet& q = mesh.tets[t];
+      for (int c = 0; c < 4; ++c) {
+        Corners& e = around[cursor[q[c]]++];
+        int n = 0;
+        for (int k = 0; k < 4; ++k)
+          if (k != c) e.other[n++] = q[k];
+        e.material = dense[t];
+      }
+    }
+  }
   std::vector<uint32_t> mark(mesh.vertex_count(), 0);
   uint32_t stamp = 0;
   auto next_stamp = [&]() {
@@ -70,15 +91,16 @@ MeshStats compute_mesh_stats(const TetMesh& mesh, const VertexTets& vertex_tets)
   size_t whole_edge_ends = 0;
   std::vector<size_t> edge_ends(material_count, 0);
   for (uint32_t v = 0; v < mesh.vertex_count(); ++v) {
-    if (vertex_tets.count(v) == 0) continue;
+    const Corners* first = around.data() + vertex_tets.offsets[v];
+    const Corners* last = around.data() + vertex_tets.offsets[v + 1];
+    if (first == last) continue;
     ++whole.nodes;
     uint32_t s = next_stamp();
-    mark[v] = s;
     uint32_t valence = 0;
-    vertex_materials.clear();
-    for (const uint32_t* t = vertex_tets.begin(v); t != vertex_tets.end(v); ++t) {
-      vertex_materials.push_back(dense[*t]);
-      for (uint32_t w : mesh.tets[*t]) {
+    bool one_material = true;
+    for (const Corners* e = first; e != last; ++e) {
+      one_material = one_material && e->material == first->material;
+      for (uint32_t w : e->other) {
         if (mark[w] != s) {
           mark[w] = s;
           ++valence;
@@ -87,24 +109,24 @@ MeshStats compute_mesh_stats(const TetMesh& mesh, const VertexTets& vertex_tets)
     }
     whole_edge_ends += valence;
     whole.max_valence = std::max(whole.max_valence, valence);
-
-    std::sort(vertex_materials.begin(), vertex_materials.end());
-    vertex_materials.erase(std::unique(vertex_materials.begin(), vertex_materials.end()),
-                           vertex_materials.end());
-    if (vertex_materials.size() == 1) {  // the common case: the sub-mesh sees the same star
-      PropertyRow& r = rows[vertex_materials[0]];
+    if (one_material) {  // the common case: the sub-mesh sees the same star
+      PropertyRow& r = rows[first->material];
       ++r.nodes;
-      edge_ends[vertex_materials[0]] += valence;
+      edge_ends[first->material] += valence;
       r.max_valence = std::max(r.max_valence, valence);
       continue;
     }
+    vertex_materials.clear();
+    for (const Corners* e = first; e != last; ++e) vertex_materials.push_back(e->material);
+    std::sort(vertex_materials.begin(), vertex_materials.end());
+    vertex_materials.erase(std::unique(vertex_materials.begin(), vertex_materials.end()),
+                           vertex_materials.end());
     for (uint32_t m : vertex_materials) {
       s = next_stamp();
-      mark[v] = s;
       uint32_t material_valence = 0;
-      for (const uint32_t* t = vertex_tets.begin(v); t != vertex_tets.end(v); ++t) {
-        if (dense[*t] != m) continue;
-        for (uint32_t w : mesh.tets[*t]) {
+      for (const Corners* e = first; e != last; ++e) {
+        if (e->material != m) continue;
+        for (uint32_t w : e->other) {
           if (mark[w] != s) {
             mark[w] = s;
             ++material_valence;

@@ -87,26 +87,6 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
     }
   }
 
-  // Duplicates: sort tets by their sorted vertex set.
-  {
-    std::vector<Tet> keys(tet_count);
-    for (size_t t = 0; t < tet_count; ++t) {
-      keys[t] = mesh->tets[t];
-      std::sort(keys[t].begin(), keys[t].end());
-    }
-    std::vector<uint32_t> order(tet_count);
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
-      return keys[x] != keys[y] ? keys[x] < keys[y] : x < y;
-    });
-    for (size_t i = 1; i < tet_count; ++i) {
-      if (keys[order[i]] == keys[order[i - 1]]) {
-        return Status::error(where(source, tet_lines, order[i]) + tet_name(order[i]) +
-                             " duplicates " + tet_name(order[i - 1]));
-      }
-    }
-  }
-
   // Every face is shared by at most two tets, lying on opposite sides of it.
   {
     std::vector<uint32_t> neighbors;
@@ -117,6 +97,16 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
                            tet_name(problem.tet_a) + "): the mesh is not a manifold");
     }
     if (problem.kind == FaceProblem::Kind::kOverlap) {
+      // Two tets with the same vertex set share all four faces from the same side.
+      Tet x = mesh->tets[problem.tet_a], y = mesh->tets[problem.tet_b];
+      std::sort(x.begin(), x.end());
+      std::sort(y.begin(), y.end());
+      if (x == y) {
+        const uint32_t first = std::min(problem.tet_a, problem.tet_b);
+        const uint32_t second = std::max(problem.tet_a, problem.tet_b);
+        return Status::error(where(source, tet_lines, second) + tet_name(second) + " duplicates " +
+                             tet_name(first));
+      }
       return Status::error(where(source, tet_lines, problem.tet_b) + tet_name(problem.tet_b) +
                            " overlaps " + tet_name(problem.tet_a) +
                            " (both lie on the same side of their shared face)");
