@@ -99,16 +99,29 @@ void Lod::seek(size_t target, LodDelta* delta) {
     while (step_ > target) undo(--step_);
     return;
   }
-  // Record every tet touched on the way, with its aliveness before the move.
-  std::vector<std::pair<uint32_t, uint8_t>> touched;
+  // Record every tet touched on the way, once, with its aliveness before the move.
+  if (touched_stamp_.size() != mesh_.tet_count()) {
+    touched_stamp_.assign(mesh_.tet_count(), 0);
+    alive_before_.assign(mesh_.tet_count(), 0);
+    stamp_ = 0;
+  }
+  if (++stamp_ == 0) {
+    std::fill(touched_stamp_.begin(), touched_stamp_.end(), 0);
+    stamp_ = 1;
+  }
+  touched_.clear();
   const CollapseHistory& h = *history_;
+  auto touch = [&](uint32_t t) {
+    if (touched_stamp_[t] != stamp_) {
+      touched_stamp_[t] = stamp_;
+      alive_before_[t] = alive_[t];
+      touched_.push_back(t);
+    }
+  };
   auto touch_step = [&](size_t s) {
-    for (uint32_t k = h.steps[s].removed_begin; k < h.removed_end(s); ++k)
-      touched.push_back({h.removed_tets[k], alive_[h.removed_tets[k]]});
-    for (uint32_t k = h.steps[s].rewired_begin; k < h.rewired_end(s); ++k)
-      touched.push_back({h.rewired[k] >> 2, alive_[h.rewired[k] >> 2]});
-    for (uint32_t k = h.steps[s].moved_begin; k < h.moved_end(s); ++k)
-      touched.push_back({h.moved[k], alive_[h.moved[k]]});
+    for (uint32_t k = h.steps[s].removed_begin; k < h.removed_end(s); ++k) touch(h.removed_tets[k]);
+    for (uint32_t k = h.steps[s].rewired_begin; k < h.rewired_end(s); ++k) touch(h.rewired[k] >> 2);
+    for (uint32_t k = h.steps[s].moved_begin; k < h.moved_end(s); ++k) touch(h.moved[k]);
   };
   while (step_ < target) {
     touch_step(step_);
@@ -118,16 +131,12 @@ void Lod::seek(size_t target, LodDelta* delta) {
     touch_step(--step_);
     undo(step_);
   }
-  // The first record of a tet holds its aliveness before the move.
-  std::stable_sort(touched.begin(), touched.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::sort(touched_.begin(), touched_.end());
   delta->appeared.clear();
   delta->vanished.clear();
   delta->changed.clear();
-  for (size_t k = 0; k < touched.size(); ++k) {
-    if (k > 0 && touched[k].first == touched[k - 1].first) continue;
-    const uint32_t t = touched[k].first;
-    const bool before = touched[k].second != 0;
+  for (const uint32_t t : touched_) {
+    const bool before = alive_before_[t] != 0;
     const bool now = alive_[t] != 0;
     if (before && now) {
       delta->changed.push_back(t);

@@ -90,6 +90,11 @@ class Lod {
   std::vector<size_t> tets_at_step_;
   size_t alive_tet_count_ = 0;
   size_t step_ = 0;
+  // Scratch for seek() with a delta.
+  std::vector<uint32_t> touched_stamp_;
+  std::vector<uint8_t> alive_before_;
+  std::vector<uint32_t> touched_;
+  uint32_t stamp_ = 0;
 };
 
 // A saved simplification: the base mesh and its history, so that any level can be

@@ -1,0 +1,86 @@
+// LOD replay benchmark: simplifies a mesh once, then times moving through the whole
+// collapse history (coarsest <-> finest) and reports collapse steps per second.
+//
+//   bench_lod FILE --size S [--tolerance T] [--repeat N]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/simplify.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace tetlod;
+  if (argc < 4 || std::string(argv[2]) != "--size") {
+    std::fprintf(stderr, "usage: bench_lod FILE --size S [--tolerance T] [--repeat N]\n");
+    return 2;
+  }
+  SimplifyParams params;
+  params.sizing.uniform = std::atof(argv[3]);
+  int repeat = 5;
+  for (int i = 4; i + 1 < argc; i += 2) {
+    const std::string flag = argv[i];
+    if (flag == "--tolerance") params.tolerance = std::atof(argv[i + 1]);
+    if (flag == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
+  }
+  TetMesh mesh;
+  ReadInfo info;
+  Status s = read_mesh(argv[1], &mesh, &info);
+  if (!s) {
+    std::fprintf(stderr, "bench_lod: %s\n", s.message().c_str());
+    return 1;
+  }
+  const auto start = Clock::now();
+  SimplifyResult result;
+  s = simplify(mesh, params, &result);
+  if (!s) {
+    std::fprintf(stderr, "bench_lod: %s\n", s.message().c_str());
+    return 1;
+  }
+  const double simplify_seconds = seconds_since(start);
+  Lod lod(result.base, &result.history);
+  std::vector<double> down, up, down_delta;
+  LodDelta delta;
+  for (int r = 0; r < repeat; ++r) {
+    auto t = Clock::now();
+    lod.seek(lod.step_count());
+    down.push_back(seconds_since(t));
+    t = Clock::now();
+    lod.seek(0);
+    up.push_back(seconds_since(t));
+    t = Clock::now();
+    lod.seek(lod.step_count(), &delta);
+    down_delta.push_back(seconds_since(t));
+    lod.seek(0);
+  }
+  const double steps = static_cast<double>(lod.step_count());
+  std::printf("file: %s  tets %zu -> base %zu -> %zu, %zu collapse steps\n", argv[1],
+              mesh.tet_count(), result.base.tet_count(), result.output.tet_count(),
+              lod.step_count());
+  std::printf("simplify (subdivide + classify + collapse): %.3f s\n", simplify_seconds);
+  std::printf("%-40s %10s %14s\n", "LOD move (median)", "seconds", "steps/s");
+  std::printf("%-40s %10.4f %14.3g\n", "finest -> coarsest", median(down), steps / median(down));
+  std::printf("%-40s %10.4f %14.3g\n", "coarsest -> finest", median(up), steps / median(up));
+  std::printf("%-40s %10.4f %14.3g\n", "finest -> coarsest, with render delta", median(down_delta),
+              steps / median(down_delta));
+  return 0;
+}

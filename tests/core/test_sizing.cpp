@@ -1,0 +1,80 @@
+// Local property control: sizing fields and their parsers, and the simplifier
+// honouring per-material and region sizes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/metrics.h"
+#include "core/simplify.h"
+#include "core/sizing.h"
+#include "core/test_meshes.h"
+
+namespace tetlod {
+namespace {
+
+TEST(Sizing, CombinesRulesByTheirMinimum) {
+  SizingField f;
+  f.uniform = 8;
+  ASSERT_TRUE(parse_material_sizes("2=3,5=1.5", &f));
+  ASSERT_TRUE(parse_size_field("radial:0,0,0,1,0.5;box:10,10,10,11,11,11,0.25", &f));
+  EXPECT_DOUBLE_EQ(f.size_at({0, 0, 0}, 1), 1.0);    // radial at the centre
+  EXPECT_DOUBLE_EQ(f.size_at({4, 0, 0}, 1), 3.0);    // 1 + 0.5 * 4
+  EXPECT_DOUBLE_EQ(f.size_at({4, 0, 0}, 5), 1.5);    // material 5 is finer
+  EXPECT_DOUBLE_EQ(f.size_at({100, 0, 0}, 1), 8.0);  // capped by the uniform size
+  EXPECT_DOUBLE_EQ(f.size_at({100, 0, 0}, 2), 3.0);
+  EXPECT_DOUBLE_EQ(f.size_at({10.5, 10.5, 10.5}, 1), 0.25);
+  EXPECT_DOUBLE_EQ(f.smallest_size(), 0.25);
+  SizingField axis;
+  ASSERT_TRUE(parse_size_field("axis:0,0,0,0,0,2,1,1", &axis));
+  EXPECT_DOUBLE_EQ(axis.size_at({3, 4, 50}, 0), 6.0);  // distance 5 from the z axis
+}
+
+TEST(Sizing, ParsersNameTheOffendingValue) {
+  SizingField f;
+  EXPECT_NE(parse_material_sizes("1=2,x=3", &f).message().find("'x'"), std::string::npos);
+  EXPECT_NE(parse_material_sizes("1=-2", &f).message().find("-2"), std::string::npos);
+  EXPECT_NE(parse_material_sizes("1=2,1=3", &f).message().find("twice"), std::string::npos);
+  EXPECT_NE(parse_material_sizes("1", &f).message().find("MATERIAL=SIZE"), std::string::npos);
+  EXPECT_NE(parse_size_field("sphere:1,2,3", &f).message().find("unknown rule"), std::string::npos);
+  EXPECT_NE(parse_size_field("radial:0,0,0,1", &f).message().find("needs 5"), std::string::npos);
+  EXPECT_NE(parse_size_field("radial:0,0,0,nan,1", &f).message().find("nan"), std::string::npos);
+  EXPECT_NE(parse_size_field("radial:0,0,0,1,-1", &f).message().find("growth"), std::string::npos);
+  EXPECT_NE(parse_size_field("axis:0,0,0,0,0,0,1,1", &f).message().find("zero"), std::string::npos);
+  EXPECT_NE(parse_size_field("box:1,0,0,0,1,1,1", &f).message().find("low corner"),
+            std::string::npos);
+}
+
+TEST(Sizing, SimplifierKeepsEachMaterialWithinItsOwnSize) {
+  const int n = 6;
+  const TetMesh mesh = test::make_grid_mesh(
+      2 * n, n, n, [&](int i, int, int) { return i < n ? 1 : 2; }, 1.0 / n);
+  SimplifyParams p;
+  p.tolerance = 1e-9;
+  p.min_stretch = 0.05;
+  p.max_valence = 40;
+  p.subdivide = false;
+  p.sizing.uniform = 0.9;
+  ASSERT_TRUE(parse_material_sizes("1=0.4", &p.sizing));
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(mesh, p, &r));
+  double max1 = 0, max2 = 0;
+  size_t count1 = 0, count2 = 0;
+  for (size_t t = 0; t < r.output.tet_count(); ++t) {
+    const double s = tet_shape(r.output, r.output.tets[t]).size;
+    if (r.output.materials[t] == 1) {
+      max1 = std::max(max1, s);
+      ++count1;
+    } else {
+      max2 = std::max(max2, s);
+      ++count2;
+    }
+  }
+  EXPECT_LE(max1, 0.4);
+  EXPECT_LE(max2, 0.9);
+  EXPECT_GT(max2, 0.4);       // material 2 did coarsen beyond material 1's size
+  EXPECT_GT(count1, count2);  // so the finer material keeps more elements
+  EXPECT_EQ(r.violations.created, 0u);
+}
+
+}  // namespace
+}  // namespace tetlod
