@@ -9,24 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/simplify.h"
 
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
+using tetlod::bench::Clock;
+using tetlod::bench::median;
+using tetlod::bench::seconds_since;
 
 int main(int argc, char** argv) {
   using namespace tetlod;

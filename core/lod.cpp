@@ -148,29 +148,36 @@ void Lod::seek(size_t target, LodDelta* delta) {
   }
 }
 
-TetMesh Lod::extract() const {
+TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>& tets,
+                      const std::vector<int32_t>& materials, const std::vector<uint8_t>& alive) {
   TetMesh out;
-  std::vector<uint32_t> remap(mesh_.vertex_count(), kInvalidIndex);
-  for (size_t t = 0; t < mesh_.tet_count(); ++t) {
-    if (!alive_[t]) continue;
-    for (uint32_t v : mesh_.tets[t]) remap[v] = 0;
+  std::vector<uint32_t> remap(positions.size(), kInvalidIndex);
+  size_t alive_count = 0;
+  for (size_t t = 0; t < tets.size(); ++t) {
+    if (!alive[t]) continue;
+    ++alive_count;
+    for (uint32_t v : tets[t]) remap[v] = 0;
   }
   uint32_t next = 0;
   for (size_t v = 0; v < remap.size(); ++v) {
     if (remap[v] == 0) {
       remap[v] = next++;
-      out.positions.push_back(mesh_.positions[v]);
+      out.positions.push_back(positions[v]);
     }
   }
-  out.tets.reserve(alive_tet_count_);
-  out.materials.reserve(alive_tet_count_);
-  for (size_t t = 0; t < mesh_.tet_count(); ++t) {
-    if (!alive_[t]) continue;
-    const Tet& tet = mesh_.tets[t];
+  out.tets.reserve(alive_count);
+  out.materials.reserve(alive_count);
+  for (size_t t = 0; t < tets.size(); ++t) {
+    if (!alive[t]) continue;
+    const Tet& tet = tets[t];
     out.tets.push_back({remap[tet[0]], remap[tet[1]], remap[tet[2]], remap[tet[3]]});
-    out.materials.push_back(mesh_.materials[t]);
+    out.materials.push_back(materials[t]);
   }
   return out;
+}
+
+TetMesh Lod::extract() const {
+  return extract_alive(mesh_.positions, mesh_.tets, mesh_.materials, alive_);
 }
 
 // ---------------------------------------------------------------------------------

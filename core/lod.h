@@ -97,6 +97,10 @@ class Lod {
   uint32_t stamp_ = 0;
 };
 
+// The alive tets and the vertices they use, compacted in id order.
+TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>& tets,
+                      const std::vector<int32_t>& materials, const std::vector<uint8_t>& alive);
+
 // A saved simplification: the base mesh and its history, so that any level can be
 // written later without simplifying again. Binary, little-endian, versioned; the
 // reader checks every count and index (a hostile file gives an error, never a crash).

@@ -902,27 +902,7 @@ class Engine {
   }
 
   // ----------------------------------------------------------------- output
-  TetMesh compact() const {
-    TetMesh out;
-    std::vector<uint32_t> remap(pos_.size(), kInvalidIndex);
-    for (uint32_t t = 0; t < tets_.size(); ++t)
-      if (tet_alive_[t])
-        for (uint32_t v : tets_[t]) remap[v] = 0;
-    uint32_t next = 0;
-    for (uint32_t v = 0; v < pos_.size(); ++v) {
-      if (remap[v] == 0) {
-        remap[v] = next++;
-        out.positions.push_back(pos_[v]);
-      }
-    }
-    for (uint32_t t = 0; t < tets_.size(); ++t) {
-      if (!tet_alive_[t]) continue;
-      const Tet& q = tets_[t];
-      out.tets.push_back({remap[q[0]], remap[q[1]], remap[q[2]], remap[q[3]]});
-      out.materials.push_back(mat_[t]);
-    }
-    return out;
-  }
+  TetMesh compact() const { return extract_alive(pos_, tets_, mat_, tet_alive_); }
 
   void count_violations(ThresholdViolations* v) {
     *v = ThresholdViolations{};
