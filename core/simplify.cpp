@@ -206,6 +206,7 @@ class Engine {
     mark_.assign(pos_.size(), 0);
     input_valence_.resize(pos_.size());
     for (uint32_t v = 0; v < pos_.size(); ++v) input_valence_[v] = valence(v);
+    reorder_for_locality();
   }
 
   Status run(SimplifyResult* result) {
@@ -214,6 +215,7 @@ class Engine {
       Status s = subdivide(result);
       if (!s) return s;
     }
+    if (result->splits > 0) reorder_for_locality();  // new vertices were appended
     result->seconds_subdivide = seconds_since(start);
     result->base.positions = pos_;
     result->base.tets = tets_;
@@ -290,6 +292,69 @@ class Engine {
   TetShape shape(uint32_t t) const {
     const Tet& q = tets_[t];
     return tet_shape(pos_[q[0]], pos_[q[1]], pos_[q[2]], pos_[q[3]]);
+  }
+
+  // Renumbers vertices along a Morton (Z-order) curve and tets by their smallest
+  // vertex, so that the stars the simplifier walks lie close together in memory.
+  // Only internal ids change; the result is a function of the input alone.
+  void reorder_for_locality() {
+    const size_t vertex_count = pos_.size(), tet_count = tets_.size();
+    Vec3 lo = pos_[0], hi = pos_[0];
+    for (const Vec3& p : pos_) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-300});
+    auto spread = [](uint64_t x) {  // 21 bits -> every third bit of 63
+      x &= 0x1fffff;
+      x = (x | x << 32) & 0x1f00000000ffffull;
+      x = (x | x << 16) & 0x1f0000ff0000ffull;
+      x = (x | x << 8) & 0x100f00f00f00f00full;
+      x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+      x = (x | x << 2) & 0x1249249249249249ull;
+      return x;
+    };
+    std::vector<std::pair<uint64_t, uint32_t>> order(vertex_count);
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+      const Vec3 q = (pos_[v] - lo) * (2097151.0 / extent);
+      order[v] = {spread(static_cast<uint64_t>(q.x)) | spread(static_cast<uint64_t>(q.y)) << 1 |
+                      spread(static_cast<uint64_t>(q.z)) << 2,
+                  v};
+    }
+    std::sort(order.begin(), order.end());
+    std::vector<uint32_t> new_id(vertex_count);
+    for (uint32_t k = 0; k < vertex_count; ++k) new_id[order[k].second] = k;
+    std::vector<Vec3> positions(vertex_count);
+    std::vector<uint32_t> valences(vertex_count);
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+      positions[new_id[v]] = pos_[v];
+      valences[new_id[v]] = input_valence_[v];
+    }
+    pos_.swap(positions);
+    input_valence_.swap(valences);
+    for (Tet& t : tets_)
+      for (uint32_t& v : t) v = new_id[v];
+
+    std::vector<std::pair<uint64_t, uint32_t>> tet_order(tet_count);
+    for (uint32_t t = 0; t < tet_count; ++t) {
+      const Tet& q = tets_[t];
+      tet_order[t] = {(uint64_t{std::min({q[0], q[1], q[2], q[3]})} << 32) | t, t};
+    }
+    std::sort(tet_order.begin(), tet_order.end());
+    std::vector<Tet> tets(tet_count);
+    std::vector<int32_t> materials(tet_count);
+    std::vector<uint8_t> allowance(tet_count);
+    for (uint32_t k = 0; k < tet_count; ++k) {
+      tets[k] = tets_[tet_order[k].second];
+      materials[k] = mat_[tet_order[k].second];
+      allowance[k] = tet_allowance_[tet_order[k].second];
+    }
+    tets_.swap(tets);
+    mat_.swap(materials);
+    tet_allowance_.swap(allowance);
+    for (auto& star : star_) star.clear();
+    for (uint32_t t = 0; t < tet_count; ++t)
+      for (uint32_t v : tets_[t]) star_[v].push_back(t);
   }
 
   // ------------------------------------------------------------ subdivision
