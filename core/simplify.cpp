@@ -426,7 +426,13 @@ class Engine {
         for (uint32_t replaced : {e.a, e.b}) {
           Vec3 p[4];
           for (int c = 0; c < 4; ++c) p[c] = tets_[t][c] == replaced ? m : pos_[tets_[t][c]];
-          if (tet_shape(p[0], p[1], p[2], p[3]).stretch < floor) ok = false;
+          const TetShape child = tet_shape(p[0], p[1], p[2], p[3]);
+          if (child.stretch < floor) ok = false;
+          // A piece may only be above its own size limit if its parent already was
+          // above its own (with a size field the limits of parent and piece differ).
+          if (!(tet_allowance_[t] & kMayBeBig) &&
+              child.size > size_limit(p[0], p[1], p[2], p[3], mat_[t]))
+            ok = false;
         }
         for (uint32_t w : tets_[t])
           if (w != e.a && w != e.b) opposite.push_back(w);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/io/mesh_io.h"
 #include "core/metrics.h"
 #include "core/simplify.h"
 #include "core/sizing.h"
@@ -73,6 +74,29 @@ TEST(Sizing, SimplifierKeepsEachMaterialWithinItsOwnSize) {
   EXPECT_LE(max2, 0.9);
   EXPECT_GT(max2, 0.4);       // material 2 did coarsen beyond material 1's size
   EXPECT_GT(count1, count2);  // so the finer material keeps more elements
+  EXPECT_EQ(r.violations.created, 0u);
+}
+
+}  // namespace
+}  // namespace tetlod
+
+namespace tetlod {
+namespace {
+
+// With a size field, a subdivision piece has its own size limit (at its own centroid):
+// subdivision must not cut a tet that was within its limit into pieces that are not.
+TEST(Sizing, RegionSizingCreatesNoViolations) {
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh", &input, &info));
+  SimplifyParams p;
+  p.tolerance = 0.05;
+  p.sizing.uniform = 20;
+  ASSERT_TRUE(parse_size_field("axis:0,0,0,0,0,1,2.5,0.25", &p.sizing));
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(input, p, &r));
+  EXPECT_GT(r.splits, 0u);
+  EXPECT_GT(r.history.step_count(), 0u);
   EXPECT_EQ(r.violations.created, 0u);
 }
 
