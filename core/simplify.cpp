@@ -196,6 +196,8 @@ class Engine {
         tets_(input.tets),
         mat_(input.materials) {
     tolerance2_ = params.tolerance * params.tolerance;
+    uniform_sizing_ = params.sizing.material_sizes.empty() && params.sizing.radial.empty() &&
+                      params.sizing.boxes.empty();
     tet_alive_.assign(tets_.size(), 1);
     tet_allowance_.resize(tets_.size());
     for (uint32_t t = 0; t < tets_.size(); ++t) tet_allowance_[t] = own_violations(t);
@@ -623,8 +625,14 @@ class Engine {
     for (uint32_t t : star_[i])
       if (tet_has(tets_[t], j)) edge_materials_.push_back(mat_[t]);
     sort_unique(edge_materials_);
+    // If every tet around i and j has one material, that material's complex is the
+    // whole complex there, already checked.
+    bool one_material = true;
+    for (uint32_t v : {i, j})
+      for (uint32_t t : star_[v]) one_material = one_material && mat_[t] == edge_materials_[0];
     for (int32_t m : edge_materials_) {
-      if (!link_condition(i, j, [&](uint32_t t) { return mat_[t] == m; })) return false;
+      if (!one_material && !link_condition(i, j, [&](uint32_t t) { return mat_[t] == m; }))
+        return false;
       // No region may vanish: keep at least one tet of every material.
       size_t removed = 0;
       for (uint32_t t : star_[i])
@@ -692,37 +700,75 @@ class Engine {
     return false;
   }
 
+  // A tet of t*(i) U t*(j) that survives the collapse, reduced to what its shape
+  // with the moving corner at k needs: the fixed face and its fixed lengths.
+  struct MovingTet {
+    Vec3 f0, f1, f2;    // the three corners that stay
+    Vec3 inward;        // (f1 - f0) x (f2 - f0) oriented towards the moving corner
+    double fixed_area;  // area of the fixed face
+    double fixed_max2;  // longest squared edge among the fixed corners
+    int32_t material;
+  };
+
+  // Collects the tets of t*(a) U t*(b) without edge (a, b) into moving_.
+  void gather_moving(uint32_t a, uint32_t b) {
+    moving_.clear();
+    for (uint32_t v : {a, b}) {
+      const uint32_t other = v == a ? b : a;
+      for (uint32_t t : star_[v]) {
+        const Tet& q = tets_[t];
+        if (tet_has(q, other)) continue;
+        int slot = 0;
+        while (q[slot] != v) ++slot;
+        const int* f = kTetFace[slot];  // outward: its normal points away from slot
+        MovingTet m;
+        m.f0 = pos_[q[f[0]]];
+        m.f1 = pos_[q[f[1]]];
+        m.f2 = pos_[q[f[2]]];
+        const Vec3 outward = cross(m.f1 - m.f0, m.f2 - m.f0);
+        m.inward = outward * -1.0;
+        m.fixed_area = 0.5 * length(outward);
+        m.fixed_max2 = std::max({squared_length(m.f1 - m.f0), squared_length(m.f2 - m.f0),
+                                 squared_length(m.f2 - m.f1)});
+        m.material = mat_[t];
+        moving_.push_back(m);
+      }
+    }
+  }
+
   // Geometry of candidate position k for collapse (i, j): tolerance, stretch and
-  // size of every tet around k. On success sets *priority (eq. 3).
+  // size of every tet around k (moving_ must hold them). On success sets *priority
+  // (eq. 3).
   Reject check_position(uint32_t i, uint32_t j, const Vec3& k, double old_stretch_mean,
                         double* priority) {
     Quadric q = quadric_[i];
     q.add(quadric_[j]);
     if (q.error(k) > tolerance2_) return Reject::kTolerance;
+    if (moving_.empty()) return Reject::kTopology;
+    const double uniform = params_.sizing.uniform;
     double stretch_sum = 0, size_sum = 0, limit_sum = 0;
-    size_t count = 0;
-    for (uint32_t v : {i, j}) {
-      const uint32_t other = v == i ? j : i;
-      for (uint32_t t : star_[v]) {
-        const Tet& q4 = tets_[t];
-        if (tet_has(q4, other)) continue;
-        Vec3 p[4];
-        for (int c = 0; c < 4; ++c) p[c] = q4[c] == v ? k : pos_[q4[c]];
-        const TetShape s = tet_shape(p[0], p[1], p[2], p[3]);
-        if (!(s.stretch >= params_.min_stretch)) return Reject::kStretch;
-        const double limit = size_limit(p[0], p[1], p[2], p[3], mat_[t]);
-        if (s.size > limit) return Reject::kSize;
-        stretch_sum += s.stretch;
-        size_sum += s.size;
-        limit_sum += limit;
-        ++count;
-      }
+    for (const MovingTet& m : moving_) {
+      const Vec3 d0 = m.f0 - k, d1 = m.f1 - k, d2 = m.f2 - k;
+      const double volume6 = -dot(m.inward, d0);  // = 6 V of the tet with k in place
+      if (!(volume6 > 0)) return Reject::kStretch;
+      const double size2 =
+          std::max({m.fixed_max2, squared_length(d0), squared_length(d1), squared_length(d2)});
+      const double limit = uniform_sizing_ ? uniform : size_limit(m.f0, m.f1, m.f2, k, m.material);
+      if (size2 > limit * limit) return Reject::kSize;
+      const double size = std::sqrt(size2);
+      const double area = m.fixed_area + 0.5 * (length(cross(d0, d1)) + length(cross(d1, d2)) +
+                                                length(cross(d2, d0)));
+      // Paper eq. (2): d_t = 6 sqrt(6) V_t / (s_t A_t), with 6 V_t = volume6.
+      const double stretch = std::sqrt(6.0) * volume6 / (size * area);
+      if (!(stretch >= params_.min_stretch)) return Reject::kStretch;
+      stretch_sum += stretch;
+      size_sum += size;
+      limit_sum += limit;
     }
-    if (count == 0) return Reject::kTopology;
     // Delta s = tau_SZ / mean size of t*(k); Delta d = mean stretch of t*(k) over the mean
     // stretch of t*(i) U t*(j). With a size field, tau_SZ is averaged over t*(k).
     const double delta_s = limit_sum / size_sum;
-    const double delta_d = (stretch_sum / count) / old_stretch_mean;
+    const double delta_d = (stretch_sum / static_cast<double>(moving_.size())) / old_stretch_mean;
     *priority = delta_s * delta_d;
     return Reject::kNone;
   }
@@ -742,24 +788,27 @@ class Engine {
         return Reject::kTopology;
     }
 
-    // Valence of the new node: |v*(i) U v*(j)| - 2 (its two ends).
+    // One pass over t*(i) U t*(j): the valence of the new node, |v*(i) U v*(j)| - 2
+    // (its two ends), and the mean stretch before the collapse.
+    double old_sum = 0;
+    size_t old_count = 0;
     {
       const uint32_t s = next_stamp();
       uint32_t n = 0;
-      for (uint32_t v : {a, b})
-        for (uint32_t t : star_[v])
-          for (uint32_t w : tets_[t])
+      for (uint32_t v : {a, b}) {
+        for (uint32_t t : star_[v]) {
+          const Tet& q = tets_[t];
+          if (v == b && tet_has(q, a)) continue;  // counted from a's side
+          old_sum += stretch_[t];
+          ++old_count;
+          for (uint32_t w : q)
             if (mark_[w] != s) mark_[w] = s, ++n;
+        }
+      }
       if (n - 2 > params_.max_valence) return Reject::kValence;
     }
-
-    // Mean stretch of t*(i) U t*(j).
-    double old_sum = 0;
-    size_t old_count = 0;
-    for (uint32_t t : star_[a]) old_sum += stretch_[t], ++old_count;
-    for (uint32_t t : star_[b])
-      if (!tet_has(tets_[t], a)) old_sum += stretch_[t], ++old_count;
-    const double old_mean = old_sum / old_count;
+    const double old_mean = old_sum / static_cast<double>(old_count);
+    gather_moving(a, b);
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
     // and then each end.
@@ -1036,6 +1085,8 @@ class Engine {
   std::vector<int32_t> edge_materials_;
   std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
   std::vector<uint32_t> ring_, around_;
+  std::vector<MovingTet> moving_;
+  bool uniform_sizing_ = false;  // only the uniform size is set: no per-tet field lookups
 };
 
 }  // namespace
