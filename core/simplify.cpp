@@ -84,6 +84,18 @@ struct Quadric {
     const double az = a02 * p.x + a12 * p.y + a22 * p.z;
     return p.x * ax + p.y * ay + p.z * az + 2 * (b0 * p.x + b1 * p.y + b2 * p.z) + c;
   }
+  // The expanded form cancels: an error that is exactly 0 evaluates to about
+  // 1e-16 |p|^2. This bounds the rounding of error(p), so that a position on every
+  // plane is never rejected by a tolerance below that noise (or by a zero tolerance).
+  double rounding(const Vec3& p) const {
+    const Vec3 a{std::abs(p.x), std::abs(p.y), std::abs(p.z)};
+    const double quadratic =
+        a.x * (std::abs(a00) * a.x + std::abs(a01) * a.y + std::abs(a02) * a.z) +
+        a.y * (std::abs(a01) * a.x + std::abs(a11) * a.y + std::abs(a12) * a.z) +
+        a.z * (std::abs(a02) * a.x + std::abs(a12) * a.y + std::abs(a22) * a.z);
+    const double linear = 2 * (std::abs(b0) * a.x + std::abs(b1) * a.y + std::abs(b2) * a.z);
+    return 1e-14 * (quadratic + linear + std::abs(c));
+  }
 };
 
 enum class Reject : uint8_t { kNone, kTolerance, kStretch, kSize, kValence, kTopology };
@@ -743,7 +755,7 @@ class Engine {
                         double* priority) {
     Quadric q = quadric_[i];
     q.add(quadric_[j]);
-    if (q.error(k) > tolerance2_) return Reject::kTolerance;
+    if (q.error(k) > tolerance2_ + q.rounding(k)) return Reject::kTolerance;
     if (moving_.empty()) return Reject::kTopology;
     const double uniform = params_.sizing.uniform;
     double stretch_sum = 0, size_sum = 0, limit_sum = 0;
