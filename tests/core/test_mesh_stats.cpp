@@ -70,3 +70,34 @@ TEST(MeshStats, GridCountsAreExact) {
 
 }  // namespace
 }  // namespace tetlod
+
+namespace tetlod {
+namespace {
+
+// Many materials and large ids take other paths (lookup table limits, bit masks).
+TEST(MeshStats, ManyAndLargeMaterialIdsMatchBruteForce) {
+  for (int variant = 0; variant < 3; ++variant) {
+    TetMesh mesh = test::make_grid_mesh(8, 6, 5, [&](int i, int j, int k) {
+      const int cell = (k * 6 + j) * 8 + i;
+      if (variant == 0) return cell % 40;                // > 32 materials
+      if (variant == 1) return cell;                     // 240 materials, one per cube
+      return cell % 3 == 0 ? 2000000000 : 7 + cell % 5;  // huge id mixed with small ones
+    });
+    std::mt19937 rng(11 + variant);
+    std::uniform_real_distribution<double> jitter(-0.1, 0.1);
+    for (Vec3& p : mesh.positions) p = p + Vec3{jitter(rng), jitter(rng), jitter(rng)};
+    ValidationReport report;
+    ASSERT_TRUE(validate_mesh(&mesh, "grid", {}, &report));
+    const MeshStats stats = compute_mesh_stats(mesh, build_vertex_tets(mesh));
+    test::expect_stats_match_reference(mesh, stats);
+  }
+  // More than 256 materials.
+  TetMesh mesh =
+      test::make_grid_mesh(10, 10, 3, [](int i, int j, int k) { return (k * 10 + j) * 10 + i; });
+  const MeshStats stats = compute_mesh_stats(mesh, build_vertex_tets(mesh));
+  EXPECT_EQ(stats.per_material.size(), 300u);
+  test::expect_stats_match_reference(mesh, stats);
+}
+
+}  // namespace
+}  // namespace tetlod
