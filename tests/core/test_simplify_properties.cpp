@@ -18,6 +18,7 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/metrics.h"
+#include "core/region_labels.h"
 #include "core/simplify.h"
 #include "core/surface.h"
 #include "core/validate.h"
@@ -29,30 +30,14 @@ std::string asset(const std::string& name) {
   return std::string(TETLOD_SOURCE_DIR) + "/assets/" + name;
 }
 
-// Connected regions per material (tets joined through shared faces).
+// Connected regions per material.
 std::map<int32_t, int> regions_per_material(const TetMesh& mesh) {
-  std::vector<uint32_t> neighbors;
-  build_face_neighbors(mesh, &neighbors);
-  std::vector<int> component(mesh.tet_count(), -1);
+  int region_count = 0;
+  const std::vector<int> label = test::region_labels(mesh, &region_count);
+  std::vector<int32_t> material_of(region_count);
+  for (size_t t = 0; t < mesh.tet_count(); ++t) material_of[label[t]] = mesh.materials[t];
   std::map<int32_t, int> count;
-  std::vector<uint32_t> stack;
-  for (uint32_t seed = 0; seed < mesh.tet_count(); ++seed) {
-    if (component[seed] >= 0) continue;
-    ++count[mesh.materials[seed]];
-    component[seed] = 1;
-    stack.assign(1, seed);
-    while (!stack.empty()) {
-      const uint32_t t = stack.back();
-      stack.pop_back();
-      for (int f = 0; f < 4; ++f) {
-        const uint32_t o = neighbors[4 * t + f];
-        if (o != kInvalidIndex && component[o] < 0 && mesh.materials[o] == mesh.materials[t]) {
-          component[o] = 1;
-          stack.push_back(o);
-        }
-      }
-    }
-  }
+  for (int32_t m : material_of) ++count[m];
   return count;
 }
 

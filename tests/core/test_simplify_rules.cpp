@@ -23,6 +23,7 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/metrics.h"
+#include "core/region_labels.h"
 #include "core/rule_meshes.h"
 #include "core/simplify.h"
 #include "core/surface.h"
@@ -129,34 +130,6 @@ bool face_has_edge(const Face& f, uint32_t a, uint32_t b) {
   return has_a && has_b;
 }
 
-// Connected regions per material (tets joined through shared faces), labelled per tet.
-std::vector<int> region_labels(const TetMesh& mesh, int* region_count) {
-  std::vector<uint32_t> neighbors;
-  build_face_neighbors(mesh, &neighbors);
-  std::vector<int> label(mesh.tet_count(), -1);
-  int count = 0;
-  std::vector<uint32_t> stack;
-  for (uint32_t seed = 0; seed < mesh.tet_count(); ++seed) {
-    if (label[seed] >= 0) continue;
-    label[seed] = count;
-    stack.assign(1, seed);
-    while (!stack.empty()) {
-      const uint32_t t = stack.back();
-      stack.pop_back();
-      for (int f = 0; f < 4; ++f) {
-        const uint32_t o = neighbors[4 * t + f];
-        if (o != kInvalidIndex && label[o] < 0 && mesh.materials[o] == mesh.materials[t]) {
-          label[o] = count;
-          stack.push_back(o);
-        }
-      }
-    }
-    ++count;
-  }
-  *region_count = count;
-  return label;
-}
-
 struct Region {
   int32_t material = 0;
   size_t tets = 0;
@@ -167,7 +140,7 @@ struct Region {
 // The regions of `mesh`, sorted by (material, volume, first point).
 std::vector<Region> regions_of(const TetMesh& mesh) {
   int count = 0;
-  const std::vector<int> label = region_labels(mesh, &count);
+  const std::vector<int> label = test::region_labels(mesh, &count);
   std::vector<Region> regions(count);
   for (uint32_t t = 0; t < mesh.tet_count(); ++t) {
     Region& g = regions[label[t]];
@@ -765,7 +738,7 @@ void expect_closed_sphere(const TetMesh& m, size_t s) {
     EXPECT_EQ(count, fan.size()) << "vertex " << v << " pinched after step " << s;
   }
   int regions = 0;
-  region_labels(m, &regions);
+  test::region_labels(m, &regions);
   EXPECT_EQ(regions, 1) << "after step " << s;
 }
 
