@@ -18,9 +18,9 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/metrics.h"
-#include "core/region_labels.h"
 #include "core/simplify.h"
 #include "core/surface.h"
+#include "core/topology_checks.h"
 #include "core/validate.h"
 
 namespace tetlod {
@@ -39,29 +39,6 @@ std::map<int32_t, int> regions_per_material(const TetMesh& mesh) {
   std::map<int32_t, int> count;
   for (int32_t m : material_of) ++count[m];
   return count;
-}
-
-// Euler characteristic V - E + F of the surface of each material pair.
-std::map<std::pair<int32_t, int32_t>, long> interface_euler(const TetMesh& mesh) {
-  std::vector<uint32_t> neighbors;
-  build_face_neighbors(mesh, &neighbors);
-  std::map<std::pair<int32_t, int32_t>, std::set<uint32_t>> vertices;
-  std::map<std::pair<int32_t, int32_t>, std::set<std::pair<uint32_t, uint32_t>>> edges;
-  std::map<std::pair<int32_t, int32_t>, long> faces;
-  for (const SurfaceTriangle& s : extract_surface(mesh, neighbors)) {
-    const auto key = std::make_pair(s.inner, s.outer);
-    ++faces[key];
-    for (int k = 0; k < 3; ++k) {
-      vertices[key].insert(s.v[k]);
-      const uint32_t a = s.v[k], b = s.v[(k + 1) % 3];
-      edges[key].insert({std::min(a, b), std::max(a, b)});
-    }
-  }
-  std::map<std::pair<int32_t, int32_t>, long> chi;
-  for (const auto& [key, f] : faces) {
-    chi[key] = static_cast<long>(vertices[key].size()) - static_cast<long>(edges[key].size()) + f;
-  }
-  return chi;
 }
 
 std::map<int32_t, double> volume_per_material(const TetMesh& mesh) {
@@ -121,7 +98,7 @@ TEST_P(SimplifyProperties, HoldAfterEveryCollapse) {
       classify_vertices(result.base, extract_surface(result.base, neighbors));
 
   const auto regions = regions_per_material(result.base);
-  const auto euler = interface_euler(result.base);
+  const auto euler = test::interface_euler(result.base);
   const auto volume = volume_per_material(result.base);
   const auto area = surface_area_per_material(result.base);
 
@@ -154,7 +131,7 @@ TEST_P(SimplifyProperties, HoldAfterEveryCollapse) {
     if ((step + 1) % sample_every == 0 || step + 1 == steps) {
       const TetMesh level = lod.extract();
       EXPECT_EQ(regions_per_material(level), regions) << "step " << step + 1;
-      EXPECT_EQ(interface_euler(level), euler) << "step " << step + 1;
+      EXPECT_EQ(test::interface_euler(level), euler) << "step " << step + 1;
       for (const auto& [material, v] : volume_per_material(level)) {
         EXPECT_NEAR(v, volume.at(material), 2 * c.tolerance * area.at(material))
             << "material " << material << " at step " << step + 1;

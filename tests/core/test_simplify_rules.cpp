@@ -23,10 +23,10 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/metrics.h"
-#include "core/region_labels.h"
 #include "core/rule_meshes.h"
 #include "core/simplify.h"
 #include "core/surface.h"
+#include "core/topology_checks.h"
 
 namespace tetlod {
 namespace {
@@ -567,29 +567,6 @@ TEST(SimplifyRules, VerticesMoveOnlyWithinTheirFeature) {
 }
 
 // ------------------------------------------------------ 8. topology (d): material regions
-// Euler characteristic V - E + F of the boundary/interface triangles of each material
-// pair (inner < outer; -1 is the outside).
-std::map<std::pair<int32_t, int32_t>, long> interface_euler(const TetMesh& mesh) {
-  std::vector<uint32_t> neighbors;
-  build_face_neighbors(mesh, &neighbors);
-  std::map<std::pair<int32_t, int32_t>, std::set<uint32_t>> vertices;
-  std::map<std::pair<int32_t, int32_t>, std::set<std::pair<uint32_t, uint32_t>>> edges;
-  std::map<std::pair<int32_t, int32_t>, long> faces;
-  for (const SurfaceTriangle& f : extract_surface(mesh, neighbors)) {
-    const auto pair = std::make_pair(std::min(f.inner, f.outer), std::max(f.inner, f.outer));
-    ++faces[pair];
-    for (int k = 0; k < 3; ++k) {
-      vertices[pair].insert(f.v[k]);
-      edges[pair].insert({std::min(f.v[k], f.v[(k + 1) % 3]), std::max(f.v[k], f.v[(k + 1) % 3])});
-    }
-  }
-  std::map<std::pair<int32_t, int32_t>, long> euler;
-  for (const auto& [pair, count] : faces)
-    euler[pair] =
-        static_cast<long>(vertices[pair].size()) - static_cast<long>(edges[pair].size()) + count;
-  return euler;
-}
-
 // Inclusions of material 2 in material 1: after every step, each region still exists
 // (same material, > 0 tets), none is split or merged, every interface keeps its Euler
 // characteristic, and inclusions that touch at a vertex or along an edge touch exactly
@@ -601,7 +578,7 @@ void expect_regions_kept(const TetMesh& mesh, const std::string& name,
   SCOPED_TRACE(name + ", crease " + std::to_string(crease_angle_degrees));
   const bool exact_volumes = crease_angle_degrees < 90;
   const std::vector<Region> before = regions_of(mesh);
-  const auto euler_before = interface_euler(mesh);
+  const auto euler_before = test::interface_euler(mesh);
   SimplifyParams p = loose_params();
   p.crease_angle_degrees = crease_angle_degrees;
   const SimplifyResult r = run(mesh, p);
@@ -610,7 +587,7 @@ void expect_regions_kept(const TetMesh& mesh, const std::string& name,
   for (size_t s = 1; s <= r.history.step_count(); ++s) {
     lod.seek(s);
     const TetMesh now = lod.extract();
-    EXPECT_EQ(interface_euler(now), euler_before) << "after step " << s;
+    EXPECT_EQ(test::interface_euler(now), euler_before) << "after step " << s;
     // The step that led here satisfied the link condition in every material's region,
     // including a region that touches both ends but not the edge.
     previous.seek(s - 1);
