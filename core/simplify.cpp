@@ -197,6 +197,20 @@ struct Link {
   }
 };
 
+// Everything the evaluation of a collapse reads of a tet, in one 32-byte record, so
+// that walking a star costs one cache line per tet instead of one per array.
+struct TetRecord {
+  Tet v{};
+  double stretch = 0;  // d_t, kept up to date from classification on
+  int32_t material = 0;
+  uint8_t alive = 1;
+  // Which thresholds the tet may break because the input tet it comes from
+  // (unchanged, or cut into pieces by subdivision) already broke them: kMayBeThin,
+  // kMayBeBig.
+  uint8_t allowance = 0;
+};
+static_assert(sizeof(TetRecord) == 32, "one tet, one half cache line");
+
 class Engine {
  public:
   Engine(const TetMesh& input, const SimplifyParams& params, const ProgressCallback& progress,
@@ -204,19 +218,20 @@ class Engine {
       : params_(params),
         progress_(progress),
         cancel_(cancel),
-        pos_(input.positions),
-        tets_(input.tets),
-        mat_(input.materials) {
+        pos_(input.positions) {
     tolerance2_ = params.tolerance * params.tolerance;
     uniform_sizing_ = params.sizing.material_sizes.empty() && params.sizing.radial.empty() &&
                       params.sizing.boxes.empty();
-    tet_alive_.assign(tets_.size(), 1);
-    tet_allowance_.resize(tets_.size());
-    for (uint32_t t = 0; t < tets_.size(); ++t) tet_allowance_[t] = own_violations(t);
+    tet_.resize(input.tets.size());
+    for (uint32_t t = 0; t < tet_.size(); ++t) {
+      tet_[t].v = input.tets[t];
+      tet_[t].material = input.materials[t];
+      tet_[t].allowance = own_violations(t);
+    }
     vertex_alive_.assign(pos_.size(), 1);
     star_.resize(pos_.size());
-    for (uint32_t t = 0; t < tets_.size(); ++t)
-      for (uint32_t v : tets_[t]) star_[v].push_back(t);
+    for (uint32_t t = 0; t < tet_.size(); ++t)
+      for (uint32_t v : tet_[t].v) star_[v].push_back(t);
     mark_.assign(pos_.size(), 0);
     input_valence_.resize(pos_.size());
     for (uint32_t v = 0; v < pos_.size(); ++v) input_valence_[v] = valence(v);
@@ -231,9 +246,7 @@ class Engine {
     }
     if (result->splits > 0) reorder_for_locality();  // new vertices were appended
     result->seconds_subdivide = seconds_since(start);
-    result->base.positions = pos_;
-    result->base.tets = tets_;
-    result->base.materials = mat_;
+    result->base = mesh_now();
     if (cancelled()) {
       result->cancelled = true;
       result->output = result->base;
@@ -276,7 +289,7 @@ class Engine {
     mark_[v] = s;
     uint32_t n = 0;
     for (uint32_t t : star_[v])
-      for (uint32_t w : tets_[t])
+      for (uint32_t w : tet_[t].v)
         if (mark_[w] != s) mark_[w] = s, ++n;
     return n;
   }
@@ -286,7 +299,7 @@ class Engine {
     const uint32_t s = next_stamp();
     mark_[v] = s;
     for (uint32_t t : star_[v])
-      for (uint32_t w : tets_[t])
+      for (uint32_t w : tet_[t].v)
         if (mark_[w] != s) mark_[w] = s, out->push_back(w);
   }
 
@@ -295,8 +308,8 @@ class Engine {
     return params_.sizing.size_at((a + b + c + d) * 0.25, material);
   }
   double size_limit(uint32_t t) const {
-    const Tet& q = tets_[t];
-    return size_limit(pos_[q[0]], pos_[q[1]], pos_[q[2]], pos_[q[3]], mat_[t]);
+    const Tet& q = tet_[t].v;
+    return size_limit(pos_[q[0]], pos_[q[1]], pos_[q[2]], pos_[q[3]], tet_[t].material);
   }
   uint8_t own_violations(uint32_t t) const {
     const TetShape s = shape(t);
@@ -304,7 +317,7 @@ class Engine {
                                 (s.size > size_limit(t) ? kMayBeBig : 0));
   }
   TetShape shape(uint32_t t) const {
-    const Tet& q = tets_[t];
+    const Tet& q = tet_[t].v;
     return tet_shape(pos_[q[0]], pos_[q[1]], pos_[q[2]], pos_[q[3]]);
   }
 
@@ -312,7 +325,7 @@ class Engine {
   // vertex, so that the stars the simplifier walks lie close together in memory.
   // Only internal ids change; the result is a function of the input alone.
   void reorder_for_locality() {
-    const size_t vertex_count = pos_.size(), tet_count = tets_.size();
+    const size_t vertex_count = pos_.size(), tet_count = tet_.size();
     Vec3 lo = pos_[0], hi = pos_[0];
     for (const Vec3& p : pos_) {
       lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
@@ -346,29 +359,21 @@ class Engine {
     }
     pos_.swap(positions);
     input_valence_.swap(valences);
-    for (Tet& t : tets_)
-      for (uint32_t& v : t) v = new_id[v];
+    for (TetRecord& t : tet_)
+      for (uint32_t& v : t.v) v = new_id[v];
 
     std::vector<std::pair<uint64_t, uint32_t>> tet_order(tet_count);
     for (uint32_t t = 0; t < tet_count; ++t) {
-      const Tet& q = tets_[t];
+      const Tet& q = tet_[t].v;
       tet_order[t] = {(uint64_t{std::min({q[0], q[1], q[2], q[3]})} << 32) | t, t};
     }
     std::sort(tet_order.begin(), tet_order.end());
-    std::vector<Tet> tets(tet_count);
-    std::vector<int32_t> materials(tet_count);
-    std::vector<uint8_t> allowance(tet_count);
-    for (uint32_t k = 0; k < tet_count; ++k) {
-      tets[k] = tets_[tet_order[k].second];
-      materials[k] = mat_[tet_order[k].second];
-      allowance[k] = tet_allowance_[tet_order[k].second];
-    }
-    tets_.swap(tets);
-    mat_.swap(materials);
-    tet_allowance_.swap(allowance);
+    std::vector<TetRecord> tets(tet_count);
+    for (uint32_t k = 0; k < tet_count; ++k) tets[k] = tet_[tet_order[k].second];
+    tet_.swap(tets);
     for (auto& star : star_) star.clear();
     for (uint32_t t = 0; t < tet_count; ++t)
-      for (uint32_t v : tets_[t]) star_[v].push_back(t);
+      for (uint32_t v : tet_[t].v) star_[v].push_back(t);
   }
 
   // ------------------------------------------------------------ subdivision
@@ -379,7 +384,7 @@ class Engine {
   double edge_size_limit(uint32_t a, uint32_t b) const {
     double limit = std::numeric_limits<double>::infinity();
     for (uint32_t t : star_[a])
-      if (tet_has(tets_[t], b)) limit = std::min(limit, size_limit(t));
+      if (tet_has(tet_[t].v, b)) limit = std::min(limit, size_limit(t));
     return limit;
   }
 
@@ -395,11 +400,11 @@ class Engine {
   Status subdivide(SimplifyResult* result) {
     // Refuse sizes that would explode the mesh before doing any work.
     double predicted = 0;
-    for (uint32_t t = 0; t < tets_.size(); ++t) {
+    for (uint32_t t = 0; t < tet_.size(); ++t) {
       const double ratio = 2 * shape(t).size / size_limit(t);
       if (ratio > 1) predicted += ratio * ratio * ratio;
     }
-    if (predicted + tets_.size() > static_cast<double>(kMaxTets)) {
+    if (predicted + tet_.size() > static_cast<double>(kMaxTets)) {
       return Status::error("size " + std::to_string(params_.sizing.smallest_size()) +
                            " would subdivide the mesh into about " +
                            std::to_string(static_cast<long long>(predicted)) + " tets (limit " +
@@ -428,7 +433,7 @@ class Engine {
       heap.pop_back();
       ring.clear();
       for (uint32_t t : star_[e.a])
-        if (tet_has(tets_[t], e.b)) ring.push_back(t);
+        if (tet_has(tet_[t].v, e.b)) ring.push_back(t);
       if (ring.empty()) continue;  // already split
 
       const Vec3 m = (pos_[e.a] + pos_[e.b]) * 0.5;
@@ -439,16 +444,16 @@ class Engine {
         const double floor = std::min(params_.min_stretch, parent);
         for (uint32_t replaced : {e.a, e.b}) {
           Vec3 p[4];
-          for (int c = 0; c < 4; ++c) p[c] = tets_[t][c] == replaced ? m : pos_[tets_[t][c]];
+          for (int c = 0; c < 4; ++c) p[c] = tet_[t].v[c] == replaced ? m : pos_[tet_[t].v[c]];
           const TetShape child = tet_shape(p[0], p[1], p[2], p[3]);
           if (child.stretch < floor) ok = false;
           // A piece may only be above its own size limit if its parent already was
           // above its own (with a size field the limits of parent and piece differ).
-          if (!(tet_allowance_[t] & kMayBeBig) &&
-              child.size > size_limit(p[0], p[1], p[2], p[3], mat_[t]))
+          if (!(tet_[t].allowance & kMayBeBig) &&
+              child.size > size_limit(p[0], p[1], p[2], p[3], tet_[t].material))
             ok = false;
         }
-        for (uint32_t w : tets_[t])
+        for (uint32_t w : tet_[t].v)
           if (w != e.a && w != e.b) opposite.push_back(w);
       }
       sort_unique(opposite);
@@ -459,7 +464,7 @@ class Engine {
         ++result->splits_skipped;
         continue;
       }
-      if (tets_.size() + ring.size() > kMaxTets) {
+      if (tet_.size() + ring.size() > kMaxTets) {
         return Status::error("subdivision exceeded " + std::to_string(kMaxTets) +
                              " tets; choose a larger size or --no-subdivide");
       }
@@ -473,20 +478,19 @@ class Engine {
       valence_now.push_back(static_cast<uint32_t>(opposite.size() + 2));
       for (uint32_t w : opposite) ++valence_now[w];
       for (uint32_t t : ring) {
-        const uint32_t child = static_cast<uint32_t>(tets_.size());
-        Tet upper = tets_[t];
-        for (uint32_t& v : upper)
+        const uint32_t child = static_cast<uint32_t>(tet_.size());
+        // The upper piece copies t's material and allowance: a piece of t may break
+        // what t broke.
+        TetRecord upper = tet_[t];
+        for (uint32_t& v : upper.v)
           if (v == e.a) v = mid;
-        for (uint32_t& v : tets_[t])
+        for (uint32_t& v : tet_[t].v)
           if (v == e.b) v = mid;
-        tets_.push_back(upper);
-        mat_.push_back(mat_[t]);
-        tet_alive_.push_back(1);
-        tet_allowance_.push_back(tet_allowance_[t]);  // a piece of t may break what t broke
+        tet_.push_back(upper);
         // Stars: t keeps a and loses b; the child has b instead of a.
         auto& sb = star_[e.b];
         *std::find(sb.begin(), sb.end(), t) = child;
-        for (uint32_t w : upper)
+        for (uint32_t w : upper.v)
           if (w != e.b && w != mid) star_[w].push_back(child);
         star_[mid].push_back(t);
         star_[mid].push_back(child);
@@ -503,10 +507,7 @@ class Engine {
 
   // --------------------------------------------------------- classification
   void classify() {
-    TetMesh mesh;
-    mesh.positions = pos_;
-    mesh.tets = tets_;
-    mesh.materials = mat_;
+    const TetMesh mesh = mesh_now();
     std::vector<uint32_t> neighbors_of_tets;
     build_face_neighbors(mesh, &neighbors_of_tets);
     const std::vector<SurfaceTriangle> surface = extract_surface(mesh, neighbors_of_tets);
@@ -529,12 +530,11 @@ class Engine {
       const Quadric q = Quadric::plane(n, -dot(n, p));
       for (uint32_t v : s.v) quadric_[v].add(q);
     }
-    material_ids_ = mat_;
+    material_ids_ = mesh.materials;
     sort_unique(material_ids_);
     material_tets_.assign(material_ids_.size(), 0);
-    for (int32_t m : mat_) ++material_tets_[material_index(m)];
-    stretch_.resize(tets_.size());
-    for (uint32_t t = 0; t < tets_.size(); ++t) stretch_[t] = shape(t).stretch;
+    for (int32_t m : mesh.materials) ++material_tets_[material_index(m)];
+    for (uint32_t t = 0; t < tet_.size(); ++t) tet_[t].stretch = shape(t).stretch;
   }
 
   // ------------------------------------------------------------ evaluation
@@ -542,7 +542,7 @@ class Engine {
   void star_faces(uint32_t v, std::vector<StarFace>* faces) {
     faces->clear();
     for (uint32_t t : star_[v]) {
-      const Tet& q = tets_[t];
+      const Tet& q = tet_[t].v;
       for (int c = 0; c < 4; ++c) {
         if (q[c] == v) continue;
         uint32_t a = kInvalidIndex, b = kInvalidIndex;
@@ -568,7 +568,7 @@ class Engine {
 
   // A surface face separates a tet from the outside or from another material.
   bool is_surface_face(const StarFace& f) const {
-    return f.other == kInvalidIndex || mat_[f.other] != mat_[f.tet];
+    return f.other == kInvalidIndex || tet_[f.other].material != tet_[f.tet].material;
   }
 
   // Link of v in the sub-complex of tets accepted by `in` (all tets, or one
@@ -579,7 +579,7 @@ class Engine {
     for (uint32_t t : star_[v]) {
       if (!in(t)) continue;
       uint32_t o[3], n = 0;
-      for (uint32_t w : tets_[t])
+      for (uint32_t w : tet_[t].v)
         if (w != v) o[n++] = w;
       link->vertices.insert(link->vertices.end(), {o[0], o[1], o[2]});
       link->edges.insert(link->edges.end(),
@@ -600,9 +600,9 @@ class Engine {
                  Link* link) {
     link->clear();
     for (uint32_t t : star_[i]) {
-      if (!in(t) || !tet_has(tets_[t], j)) continue;
+      if (!in(t) || !tet_has(tet_[t].v, j)) continue;
       uint32_t o[2], n = 0;
-      for (uint32_t w : tets_[t])
+      for (uint32_t w : tet_[t].v)
         if (w != i && w != j) o[n++] = w;
       link->vertices.insert(link->vertices.end(), {o[0], o[1]});
       link->edges.push_back(edge_key(o[0], o[1]));
@@ -635,20 +635,20 @@ class Engine {
     if (!link_condition(i, j, [](uint32_t) { return true; })) return false;
     edge_materials_.clear();
     for (uint32_t t : star_[i])
-      if (tet_has(tets_[t], j)) edge_materials_.push_back(mat_[t]);
+      if (tet_has(tet_[t].v, j)) edge_materials_.push_back(tet_[t].material);
     sort_unique(edge_materials_);
     // If every tet around i and j has one material, that material's complex is the
     // whole complex there, already checked.
     bool one_material = true;
     for (uint32_t v : {i, j})
-      for (uint32_t t : star_[v]) one_material = one_material && mat_[t] == edge_materials_[0];
+      for (uint32_t t : star_[v]) one_material = one_material && tet_[t].material == edge_materials_[0];
     for (int32_t m : edge_materials_) {
-      if (!one_material && !link_condition(i, j, [&](uint32_t t) { return mat_[t] == m; }))
+      if (!one_material && !link_condition(i, j, [&](uint32_t t) { return tet_[t].material == m; }))
         return false;
       // No region may vanish: keep at least one tet of every material.
       size_t removed = 0;
       for (uint32_t t : star_[i])
-        if (mat_[t] == m && tet_has(tets_[t], j)) ++removed;
+        if (tet_[t].material == m && tet_has(tet_[t].v, j)) ++removed;
       if (removed >= material_tets_[material_index(m)]) return false;
     }
     if (surface_edge) {
@@ -691,24 +691,29 @@ class Engine {
     return std::find(f.begin(), f.end(), j) != f.end();
   }
 
-  // Whether edge (i, j) lies on a boundary or interface triangle.
-  bool is_surface_edge(uint32_t i, uint32_t j) const {
+  // Whether edge (i, j) lies on a boundary or interface triangle. The tets around an
+  // edge inside one material form a closed ring, in which every face (i, j, x) is
+  // shared by two of them; the edge lies on a surface if the ring is open (a face on
+  // the boundary) or holds two materials (a face between them).
+  bool is_surface_edge(uint32_t i, uint32_t j) {
+    ring_others_.clear();
+    int32_t material = 0;
+    bool first = true;
     for (uint32_t t : star_[i]) {
-      const Tet& q = tets_[t];
-      if (!tet_has(q, j)) continue;
-      for (uint32_t x : q) {
-        if (x == i || x == j) continue;
-        // Face (i, j, x): find the tet across it.
-        uint32_t other = kInvalidIndex;
-        for (uint32_t u : star_[i]) {
-          if (u != t && tet_has(tets_[u], j) && tet_has(tets_[u], x)) {
-            other = u;
-            break;
-          }
-        }
-        if (other == kInvalidIndex || mat_[other] != mat_[t]) return true;
+      const TetRecord& r = tet_[t];
+      if (!tet_has(r.v, j)) continue;
+      if (first) {
+        material = r.material;
+        first = false;
+      } else if (r.material != material) {
+        return true;
       }
+      for (uint32_t x : r.v)
+        if (x != i && x != j) ring_others_.push_back(x);
     }
+    std::sort(ring_others_.begin(), ring_others_.end());
+    for (size_t k = 0; k < ring_others_.size(); k += 2)
+      if (k + 1 == ring_others_.size() || ring_others_[k] != ring_others_[k + 1]) return true;
     return false;
   }
 
@@ -728,7 +733,7 @@ class Engine {
     for (uint32_t v : {a, b}) {
       const uint32_t other = v == a ? b : a;
       for (uint32_t t : star_[v]) {
-        const Tet& q = tets_[t];
+        const Tet& q = tet_[t].v;
         if (tet_has(q, other)) continue;
         int slot = 0;
         while (q[slot] != v) ++slot;
@@ -742,7 +747,7 @@ class Engine {
         m.fixed_area = 0.5 * length(outward);
         m.fixed_max2 = std::max({squared_length(m.f1 - m.f0), squared_length(m.f2 - m.f0),
                                  squared_length(m.f2 - m.f1)});
-        m.material = mat_[t];
+        m.material = tet_[t].material;
         moving_.push_back(m);
       }
     }
@@ -809,9 +814,9 @@ class Engine {
       uint32_t n = 0;
       for (uint32_t v : {a, b}) {
         for (uint32_t t : star_[v]) {
-          const Tet& q = tets_[t];
+          const Tet& q = tet_[t].v;
           if (v == b && tet_has(q, a)) continue;  // counted from a's side
-          old_sum += stretch_[t];
+          old_sum += tet_[t].stretch;
           ++old_count;
           for (uint32_t w : q)
             if (mark_[w] != s) mark_[w] = s, ++n;
@@ -901,33 +906,33 @@ class Engine {
     history->begin_step(i, j, pos_[i], c.position);
     // Retire the tets around the edge.
     for (uint32_t t : star_[i]) {
-      if (!tet_has(tets_[t], j)) continue;
+      if (!tet_has(tet_[t].v, j)) continue;
       history->removed_tets.push_back(t);
-      tet_alive_[t] = 0;
-      --material_tets_[material_index(mat_[t])];
-      for (uint32_t w : tets_[t]) {
+      tet_[t].alive = 0;
+      --material_tets_[material_index(tet_[t].material)];
+      for (uint32_t w : tet_[t].v) {
         if (w == i || w == j) continue;
         auto& s = star_[w];
         s.erase(std::find(s.begin(), s.end(), t));
       }
     }
     auto& si = star_[i];
-    si.erase(std::remove_if(si.begin(), si.end(), [&](uint32_t t) { return !tet_alive_[t]; }),
+    si.erase(std::remove_if(si.begin(), si.end(), [&](uint32_t t) { return !tet_[t].alive; }),
              si.end());
     for (uint32_t t : si) {
       history->moved.push_back(t);
-      tet_allowance_[t] = 0;
+      tet_[t].allowance = 0;
     }
     // Rewire j's other tets to i.
     for (uint32_t t : star_[j]) {
-      if (!tet_alive_[t]) continue;
+      if (!tet_[t].alive) continue;
       for (int corner = 0; corner < 4; ++corner) {
-        if (tets_[t][corner] == j) {
-          tets_[t][corner] = i;
+        if (tet_[t].v[corner] == j) {
+          tet_[t].v[corner] = i;
           history->rewired.push_back(4 * t + corner);
         }
       }
-      tet_allowance_[t] = 0;
+      tet_[t].allowance = 0;
       si.push_back(t);
     }
     std::sort(si.begin(), si.end());
@@ -946,7 +951,7 @@ class Engine {
     auto& fi = feature_neighbors_[i];
     fi.erase(std::remove(fi.begin(), fi.end(), j), fi.end());
     feature_neighbors_[j].clear();
-    for (uint32_t t : si) stretch_[t] = shape(t).stretch;
+    for (uint32_t t : si) tet_[t].stretch = shape(t).stretch;
     alive_tets_ -=
         history->removed_end(history->step_count() - 1) - history->steps.back().removed_begin;
     ++collapses_;
@@ -991,7 +996,7 @@ class Engine {
     version_.assign(pos_.size(), 0);
     dirty_.assign(pos_.size(), 0);
     dirty_list_.clear();
-    alive_tets_ = tets_.size();
+    alive_tets_ = tet_.size();
     const size_t initial_tets = alive_tets_;
     std::vector<uint32_t> nb;
     for (uint32_t v = 0; v < pos_.size(); ++v) {
@@ -1034,18 +1039,36 @@ class Engine {
   }
 
   // ----------------------------------------------------------------- output
-  TetMesh compact() const { return extract_alive(pos_, tets_, mat_, tet_alive_); }
+  // The current arrays, every tet (alive or not).
+  TetMesh mesh_now() const {
+    TetMesh mesh;
+    mesh.positions = pos_;
+    mesh.tets.resize(tet_.size());
+    mesh.materials.resize(tet_.size());
+    for (size_t t = 0; t < tet_.size(); ++t) {
+      mesh.tets[t] = tet_[t].v;
+      mesh.materials[t] = tet_[t].material;
+    }
+    return mesh;
+  }
+
+  TetMesh compact() const {
+    const TetMesh mesh = mesh_now();
+    std::vector<uint8_t> alive(tet_.size());
+    for (size_t t = 0; t < tet_.size(); ++t) alive[t] = tet_[t].alive;
+    return extract_alive(mesh.positions, mesh.tets, mesh.materials, alive);
+  }
 
   void count_violations(ThresholdViolations* v) {
     *v = ThresholdViolations{};
-    for (uint32_t t = 0; t < tets_.size(); ++t) {
-      if (!tet_alive_[t]) continue;
+    for (uint32_t t = 0; t < tet_.size(); ++t) {
+      if (!tet_[t].alive) continue;
       const TetShape s = shape(t);
       const bool low = s.stretch < params_.min_stretch;
       const bool big = s.size > size_limit(t);
       v->below_stretch += low;
       v->above_size += big;
-      if ((low && !(tet_allowance_[t] & kMayBeThin)) || (big && !(tet_allowance_[t] & kMayBeBig)))
+      if ((low && !(tet_[t].allowance & kMayBeThin)) || (big && !(tet_[t].allowance & kMayBeBig)))
         ++v->created;
     }
     for (uint32_t x = 0; x < pos_.size(); ++x) {
@@ -1064,13 +1087,7 @@ class Engine {
   double tolerance2_ = 0;
 
   std::vector<Vec3> pos_;
-  std::vector<Tet> tets_;
-  std::vector<int32_t> mat_;
-  std::vector<uint8_t> tet_alive_;
-  // Which thresholds a tet may break because the input tet it comes from (unchanged,
-  // or cut into pieces by subdivision) already broke them: kMayBeThin, kMayBeBig.
-  std::vector<uint8_t> tet_allowance_;
-  std::vector<double> stretch_;
+  std::vector<TetRecord> tet_;
   std::vector<std::vector<uint32_t>> star_;  // sorted tet ids per vertex
   std::vector<uint8_t> vertex_alive_;
   std::vector<uint32_t> input_valence_;
@@ -1096,7 +1113,7 @@ class Engine {
   Link link_i_, link_j_, link_ij_;
   std::vector<int32_t> edge_materials_;
   std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
-  std::vector<uint32_t> ring_, around_;
+  std::vector<uint32_t> ring_, around_, ring_others_;
   std::vector<MovingTet> moving_;
   bool uniform_sizing_ = false;  // only the uniform size is set: no per-tet field lookups
 };
