@@ -215,10 +215,7 @@ class Engine {
  public:
   Engine(const TetMesh& input, const SimplifyParams& params, const ProgressCallback& progress,
          const std::atomic<bool>* cancel)
-      : params_(params),
-        progress_(progress),
-        cancel_(cancel),
-        pos_(input.positions) {
+      : params_(params), progress_(progress), cancel_(cancel), pos_(input.positions) {
     tolerance2_ = params.tolerance * params.tolerance;
     uniform_sizing_ = params.sizing.material_sizes.empty() && params.sizing.radial.empty() &&
                       params.sizing.boxes.empty();
@@ -641,7 +638,8 @@ class Engine {
     // whole complex there, already checked.
     bool one_material = true;
     for (uint32_t v : {i, j})
-      for (uint32_t t : star_[v]) one_material = one_material && tet_[t].material == edge_materials_[0];
+      for (uint32_t t : star_[v])
+        one_material = one_material && tet_[t].material == edge_materials_[0];
     for (int32_t m : edge_materials_) {
       if (!one_material && !link_condition(i, j, [&](uint32_t t) { return tet_[t].material == m; }))
         return false;
@@ -724,7 +722,10 @@ class Engine {
     Vec3 inward;        // (f1 - f0) x (f2 - f0) oriented towards the moving corner
     double fixed_area;  // area of the fixed face
     double fixed_max2;  // longest squared edge among the fixed corners
+    double stretch;     // its stretch now
+    uint32_t owner;     // the end of the edge the tet holds
     int32_t material;
+    uint8_t allowance;  // TetRecord::allowance
   };
 
   // Collects the tets of t*(a) U t*(b) without edge (a, b) into moving_.
@@ -747,40 +748,71 @@ class Engine {
         m.fixed_area = 0.5 * length(outward);
         m.fixed_max2 = std::max({squared_length(m.f1 - m.f0), squared_length(m.f2 - m.f0),
                                  squared_length(m.f2 - m.f1)});
+        m.stretch = tet_[t].stretch;
+        m.owner = v;
         m.material = tet_[t].material;
+        m.allowance = tet_[t].allowance;
         moving_.push_back(m);
       }
     }
+    candidate_.resize(moving_.size());
   }
 
   // Geometry of candidate position k for collapse (i, j): tolerance, stretch and
   // size of every tet around k (moving_ must hold them). On success sets *priority
-  // (eq. 3).
-  Reject check_position(uint32_t i, uint32_t j, const Vec3& k, double old_stretch_mean,
-                        double* priority) {
+  // (eq. 3). Cheapest first: a pass without square roots rejects inverted, oversized
+  // and clearly flat tets (a bound on the stretch), then a pass computes the exact
+  // stretch of eq. (2) only when every tet passed the first. If k is the position of
+  // end `unmoved` (else kInvalidIndex), the tets of that end keep their shape: one
+  // that meets every threshold (allowance 0) needs only its size, for eq. (3).
+  Reject check_position(uint32_t i, uint32_t j, const Vec3& k, uint32_t unmoved,
+                        double old_stretch_mean, double* priority) {
     Quadric q = quadric_[i];
     q.add(quadric_[j]);
     if (q.error(k) > tolerance2_ + q.rounding(k)) return Reject::kTolerance;
     if (moving_.empty()) return Reject::kTopology;
     const double uniform = params_.sizing.uniform;
-    double stretch_sum = 0, size_sum = 0, limit_sum = 0;
-    for (const MovingTet& m : moving_) {
+    // The bound: with a_1..a_4 the face areas, (sum a)^2 >= sum a^2, so
+    // d_t^2 = 6 (6V)^2 / (s^2 A^2) <= 6 (6V)^2 / (s^2 sum a^2); a tet whose bound is
+    // below tau_ST^2 (with a margin far above the rounding) fails the exact test too.
+    const double floor2 = params_.min_stretch * params_.min_stretch * (1 - 1e-9);
+    for (size_t n = 0; n < moving_.size(); ++n) {
+      const MovingTet& m = moving_[n];
       const Vec3 d0 = m.f0 - k, d1 = m.f1 - k, d2 = m.f2 - k;
-      const double volume6 = -dot(m.inward, d0);  // = 6 V of the tet with k in place
-      if (!(volume6 > 0)) return Reject::kStretch;
       const double size2 =
           std::max({m.fixed_max2, squared_length(d0), squared_length(d1), squared_length(d2)});
       const double limit = uniform_sizing_ ? uniform : size_limit(m.f0, m.f1, m.f2, k, m.material);
+      if (m.owner == unmoved && m.allowance == 0) {
+        candidate_[n] = {-1, size2, 0, 0, 0, limit};  // volume6 < 0: unchanged
+        continue;
+      }
+      const double volume6 = -dot(m.inward, d0);  // = 6 V of the tet with k in place
+      if (!(volume6 > 0)) return Reject::kStretch;
       if (size2 > limit * limit) return Reject::kSize;
-      const double size = std::sqrt(size2);
-      const double area = m.fixed_area + 0.5 * (length(cross(d0, d1)) + length(cross(d1, d2)) +
-                                                length(cross(d2, d0)));
+      const double face0 = squared_length(cross(d0, d1)), face1 = squared_length(cross(d1, d2)),
+                   face2 = squared_length(cross(d2, d0));
+      const double area_squares = m.fixed_area * m.fixed_area + 0.25 * (face0 + face1 + face2);
+      if (6 * volume6 * volume6 < floor2 * size2 * area_squares) return Reject::kStretch;
+      candidate_[n] = {volume6, size2, face0, face1, face2, limit};
+    }
+    double stretch_sum = 0, size_sum = 0, limit_sum = 0;
+    for (size_t n = 0; n < moving_.size(); ++n) {
+      const CandidateTet& c = candidate_[n];
+      const double size = std::sqrt(c.size2);
+      if (c.volume6 < 0) {
+        stretch_sum += moving_[n].stretch;
+        size_sum += size;
+        limit_sum += c.limit;
+        continue;
+      }
+      const double area = moving_[n].fixed_area +
+                          0.5 * (std::sqrt(c.face0) + std::sqrt(c.face1) + std::sqrt(c.face2));
       // Paper eq. (2): d_t = 6 sqrt(6) V_t / (s_t A_t), with 6 V_t = volume6.
-      const double stretch = std::sqrt(6.0) * volume6 / (size * area);
+      const double stretch = std::sqrt(6.0) * c.volume6 / (size * area);
       if (!(stretch >= params_.min_stretch)) return Reject::kStretch;
       stretch_sum += stretch;
       size_sum += size;
-      limit_sum += limit;
+      limit_sum += c.limit;
     }
     // Delta s = tau_SZ / mean size of t*(k); Delta d = mean stretch of t*(k) over the mean
     // stretch of t*(i) U t*(j). With a size field, tau_SZ is averaged over t*(k).
@@ -829,27 +861,28 @@ class Engine {
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
     // and then each end.
-    uint32_t kept_options[3];
+    uint32_t kept_options[3], unmoved[3];
     Vec3 positions[3];
     int options = 0;
     if (ka != kb) {
       const uint32_t keep = ka < kb ? a : b;
-      kept_options[0] = keep;
+      kept_options[0] = unmoved[0] = keep;
       positions[0] = pos_[keep];
       options = 1;
     } else {
       kept_options[0] = std::min(a, b);
+      unmoved[0] = kInvalidIndex;
       positions[0] = (pos_[a] + pos_[b]) * 0.5;
-      kept_options[1] = a;
+      kept_options[1] = unmoved[1] = a;
       positions[1] = pos_[a];
-      kept_options[2] = b;
+      kept_options[2] = unmoved[2] = b;
       positions[2] = pos_[b];
       options = 3;
     }
     Reject first = Reject::kNone;
     for (int c = 0; c < options; ++c) {
       double priority = 0;
-      const Reject r = check_position(a, b, positions[c], old_mean, &priority);
+      const Reject r = check_position(a, b, positions[c], unmoved[c], old_mean, &priority);
       if (r == Reject::kNone) {
         // The link conditions do not depend on the position or the priority: they are
         // checked when the collapse reaches the top of the queue (see simplify()).
@@ -1115,6 +1148,12 @@ class Engine {
   std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
   std::vector<uint32_t> ring_, around_, ring_others_;
   std::vector<MovingTet> moving_;
+  // What the first pass of check_position() found of each moving tet, for the second.
+  struct CandidateTet {
+    double volume6, size2, face0, face1, face2;  // squared doubled areas of k's faces
+    double limit;                                // tau_SZ of the tet
+  };
+  std::vector<CandidateTet> candidate_;
   bool uniform_sizing_ = false;  // only the uniform size is set: no per-tet field lookups
 };
 
