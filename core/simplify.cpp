@@ -7,7 +7,8 @@
 //  - M. Garland, P. Heckbert, "Surface simplification using quadric error metrics",
 //    SIGGRAPH 1997: the quadrics of eq. (1).
 //  - T. Dey, H. Edelsbrunner et al., "Topology preserving edge contraction", 1999:
-//    the link condition, here with a virtual vertex for the outside of each region.
+//    the link condition, here with a virtual vertex for the outside of each region,
+//    evaluated on the few vertices of the link of the edge.
 //  - M.-C. Rivara, longest-edge bisection: subdivision splits the longest edge first.
 #include "core/simplify.h"
 
@@ -52,10 +53,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr uint32_t kOmega = kInvalidIndex;  // the virtual vertex outside a region
-constexpr size_t kMaxTets = 40'000'000;     // subdivision refuses to grow beyond this
-constexpr uint8_t kMayBeThin = 1;           // below tau_ST
-constexpr uint8_t kMayBeBig = 2;            // above tau_SZ
+constexpr size_t kMaxTets = 40'000'000;  // subdivision refuses to grow beyond this
+constexpr uint8_t kMayBeThin = 1;        // below tau_ST
+constexpr uint8_t kMayBeBig = 2;         // above tau_SZ
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -179,23 +179,6 @@ bool disjoint(const std::vector<T>& x, const std::vector<T>& y) {
   }
   return true;
 }
-
-// The link of a vertex or an edge in a sub-complex, as sorted sets.
-struct Link {
-  std::vector<uint32_t> vertices;
-  std::vector<uint64_t> edges;
-  std::vector<Triangle> triangles;
-  void clear() {
-    vertices.clear();
-    edges.clear();
-    triangles.clear();
-  }
-  void finish() {
-    sort_unique(vertices);
-    sort_unique(edges);
-    sort_unique(triangles);
-  }
-};
 
 // Everything the evaluation of a collapse reads of a tet, in one 32-byte record, so
 // that walking a star costs one cache line per tet instead of one per array.
@@ -517,8 +500,12 @@ class Engine {
       feature_neighbors_[e[0]].push_back(e[1]);
       feature_neighbors_[e[1]].push_back(e[0]);
     }
+    outer_.assign(pos_.size(), 0);
+    ring_mark_.assign(pos_.size(), 0);
     quadric_.assign(pos_.size(), Quadric());
     for (const SurfaceTriangle& s : surface) {
+      if (s.outer == kOutsideMaterial)
+        for (uint32_t v : s.v) outer_[v] = 1;
       const Vec3& p = pos_[s.v[0]];
       Vec3 n = cross(pos_[s.v[1]] - p, pos_[s.v[2]] - p);
       const double len = length(n);
@@ -568,68 +555,137 @@ class Engine {
     return f.other == kInvalidIndex || tet_[f.other].material != tet_[f.tet].material;
   }
 
-  // Link of v in the sub-complex of tets accepted by `in` (all tets, or one
-  // material), with the outside of that sub-complex coned to kOmega.
+  // The link condition Lk(i) n Lk(j) = Lk(ij) (Dey et al.) in the sub-complex of the
+  // tets accepted by `in`, the outside of that complex coned to a virtual vertex
+  // (omega). A simplex common to Lk(i) and Lk(j) has its real vertices among the
+  // common neighbours of i and j, which the vertex condition confines to the few
+  // vertices R of Lk(ij) (the ring of tets around the edge); so the edge and triangle
+  // conditions only look at the faces of the two stars whose vertices all lie in R.
+  // boundary_i / boundary_j: whether i / j lies on the boundary of the sub-complex
+  // (omega is in its link).
   template <class Filter>
-  void vertex_link(const std::vector<StarFace>& faces, uint32_t v, Filter in, Link* link) {
-    link->clear();
-    for (uint32_t t : star_[v]) {
-      if (!in(t)) continue;
-      uint32_t o[3], n = 0;
-      for (uint32_t w : tet_[t].v)
-        if (w != v) o[n++] = w;
-      link->vertices.insert(link->vertices.end(), {o[0], o[1], o[2]});
-      link->edges.insert(link->edges.end(),
-                         {edge_key(o[0], o[1]), edge_key(o[0], o[2]), edge_key(o[1], o[2])});
-      link->triangles.push_back(sorted_triangle(o[0], o[1], o[2]));
-    }
-    for (const StarFace& f : faces) {
-      if (!in(f.tet) || (f.other != kInvalidIndex && in(f.other))) continue;
-      link->vertices.push_back(kOmega);
-      link->edges.insert(link->edges.end(), {edge_key(f.a, kOmega), edge_key(f.b, kOmega)});
-      link->triangles.push_back({f.a, f.b, kOmega});
-    }
-    link->finish();
-  }
-
-  template <class Filter>
-  void edge_link(const std::vector<StarFace>& faces_i, uint32_t i, uint32_t j, Filter in,
-                 Link* link) {
-    link->clear();
+  bool link_condition(uint32_t i, uint32_t j, Filter in, bool boundary_i, bool boundary_j) {
+    ring_vertices_.clear();
+    ring_edges_.clear();
     for (uint32_t t : star_[i]) {
-      if (!in(t) || !tet_has(tet_[t].v, j)) continue;
+      const Tet& q = tet_[t].v;
+      if (!in(t) || !tet_has(q, j)) continue;
       uint32_t o[2], n = 0;
-      for (uint32_t w : tet_[t].v)
+      for (uint32_t w : q)
         if (w != i && w != j) o[n++] = w;
-      link->vertices.insert(link->vertices.end(), {o[0], o[1]});
-      link->edges.push_back(edge_key(o[0], o[1]));
+      ring_vertices_.insert(ring_vertices_.end(), {o[0], o[1]});
+      ring_edges_.push_back(edge_key(o[0], o[1]));
     }
-    for (const StarFace& f : faces_i) {
-      if (f.a != j && f.b != j) continue;
-      if (!in(f.tet) || (f.other != kInvalidIndex && in(f.other))) continue;
-      const uint32_t x = f.a == j ? f.b : f.a;
-      link->vertices.push_back(kOmega);
-      link->edges.push_back(edge_key(x, kOmega));
+    std::sort(ring_vertices_.begin(), ring_vertices_.end());
+    std::sort(ring_edges_.begin(), ring_edges_.end());
+    // R, marked in ring_mark_; a ring vertex x seen once closes a face (i, j, x) on the
+    // boundary, so (x, omega) is in Lk(ij).
+    const uint32_t in_ring = next_ring_stamp();
+    ring_open_.clear();
+    for (size_t k = 0; k < ring_vertices_.size();) {
+      const uint32_t x = ring_vertices_[k];
+      size_t seen = 0;
+      while (k < ring_vertices_.size() && ring_vertices_[k] == x) ++k, ++seen;
+      ring_mark_[x] = in_ring;
+      if (seen == 1) ring_open_.push_back(x);
     }
-    link->finish();
+    // Vertices: omega is common unless the edge lies on the boundary; every real common
+    // neighbour must be in R.
+    if (boundary_i && boundary_j && ring_open_.empty()) return false;
+    const uint32_t near_i = next_stamp();
+    for (uint32_t t : star_[i])
+      if (in(t))
+        for (uint32_t w : tet_[t].v) mark_[w] = near_i;
+    for (uint32_t t : star_[j]) {
+      if (!in(t)) continue;
+      for (uint32_t w : tet_[t].v)
+        if (w != i && w != j && mark_[w] == near_i && ring_mark_[w] != in_ring) return false;
+    }
+    // Real edges and triangles: the faces (v, x, y) and tets (v, x, y, z) of each star,
+    // outside the ring, with x, y (, z) in R.
+    for (int side = 0; side < 2; ++side) {
+      const uint32_t v = side == 0 ? i : j, other = side == 0 ? j : i;
+      auto& pairs = side == 0 ? pairs_i_ : pairs_j_;
+      auto& triples = side == 0 ? triples_i_ : triples_j_;
+      pairs.clear();
+      triples.clear();
+      for (uint32_t t : star_[v]) {
+        const Tet& q = tet_[t].v;
+        if (!in(t) || tet_has(q, other)) continue;
+        uint32_t o[3], n = 0;
+        for (uint32_t w : q)
+          if (w != v) o[n++] = w;
+        const bool r0 = ring_mark_[o[0]] == in_ring, r1 = ring_mark_[o[1]] == in_ring,
+                   r2 = ring_mark_[o[2]] == in_ring;
+        if (r0 && r1) pairs.push_back(edge_key(o[0], o[1]));
+        if (r0 && r2) pairs.push_back(edge_key(o[0], o[2]));
+        if (r1 && r2) pairs.push_back(edge_key(o[1], o[2]));
+        if (r0 && r1 && r2) triples.push_back(sorted_triangle(o[0], o[1], o[2]));
+      }
+      sort_unique(pairs);
+      std::sort(triples.begin(), triples.end());
+    }
+    if (!intersection_within(pairs_i_, pairs_j_, ring_edges_)) return false;
+    if (!disjoint(triples_i_, triples_j_)) return false;
+    if (!(boundary_i && boundary_j)) return true;
+    // Cone simplices: (x, omega) for x on a boundary face (v, x, y) of each star, which
+    // must be in Lk(ij), and (x, y, omega), never common.
+    for (int side = 0; side < 2; ++side) {
+      const uint32_t v = side == 0 ? i : j;
+      auto& vertices = side == 0 ? cone_vertices_i_ : cone_vertices_j_;
+      auto& pairs = side == 0 ? cone_pairs_i_ : cone_pairs_j_;
+      vertices.clear();
+      pairs.clear();
+      face_keys_.clear();
+      for (uint32_t t : star_[v]) {
+        if (!in(t)) continue;
+        uint32_t o[3], n = 0;
+        for (uint32_t w : tet_[t].v)
+          if (w != v) o[n++] = w;
+        face_keys_.insert(face_keys_.end(),
+                          {edge_key(o[0], o[1]), edge_key(o[0], o[2]), edge_key(o[1], o[2])});
+      }
+      std::sort(face_keys_.begin(), face_keys_.end());
+      for (size_t k = 0; k < face_keys_.size();) {
+        const uint64_t key = face_keys_[k];
+        size_t seen = 0;
+        while (k < face_keys_.size() && face_keys_[k] == key) ++k, ++seen;
+        if (seen != 1) continue;  // a face (v, x, y) shared by two tets
+        const uint32_t x = static_cast<uint32_t>(key >> 32), y = static_cast<uint32_t>(key);
+        const bool rx = ring_mark_[x] == in_ring, ry = ring_mark_[y] == in_ring;
+        if (rx) vertices.push_back(x);
+        if (ry) vertices.push_back(y);
+        if (rx && ry) pairs.push_back(key);
+      }
+      sort_unique(vertices);
+      std::sort(pairs.begin(), pairs.end());
+    }
+    std::sort(ring_open_.begin(), ring_open_.end());
+    return intersection_within(cone_vertices_i_, cone_vertices_j_, ring_open_) &&
+           disjoint(cone_pairs_i_, cone_pairs_j_);
   }
 
-  template <class Filter>
-  bool link_condition(uint32_t i, uint32_t j, Filter in) {
-    vertex_link(faces_i_, i, in, &link_i_);
-    vertex_link(faces_j_, j, in, &link_j_);
-    edge_link(faces_i_, i, j, in, &link_ij_);
-    return intersection_within(link_i_.vertices, link_j_.vertices, link_ij_.vertices) &&
-           intersection_within(link_i_.edges, link_j_.edges, link_ij_.edges) &&
-           disjoint(link_i_.triangles, link_j_.triangles);
+  uint32_t next_ring_stamp() {
+    if (++ring_stamp_ == 0) {
+      std::fill(ring_mark_.begin(), ring_mark_.end(), 0);
+      ring_stamp_ = 1;
+    }
+    return ring_stamp_;
+  }
+
+  // Whether v has a tet of another material than m (then it lies on m's boundary).
+  bool touches_other_material(uint32_t v, int32_t m) const {
+    for (uint32_t t : star_[v])
+      if (tet_[t].material != m) return true;
+    return false;
   }
 
   // Topology: the link condition for the whole complex and for every material's
   // region around the edge, and for the surface complex when the edge lies on it.
   bool topology_ok(uint32_t i, uint32_t j, bool surface_edge) {
-    star_faces(i, &faces_i_);
-    star_faces(j, &faces_j_);
-    if (!link_condition(i, j, [](uint32_t) { return true; })) return false;
+    if (!link_condition(
+            i, j, [](uint32_t) { return true; }, outer_[i], outer_[j]))
+      return false;
     edge_materials_.clear();
     for (uint32_t t : star_[i])
       if (tet_has(tet_[t].v, j)) edge_materials_.push_back(tet_[t].material);
@@ -641,8 +697,12 @@ class Engine {
       for (uint32_t t : star_[v])
         one_material = one_material && tet_[t].material == edge_materials_[0];
     for (int32_t m : edge_materials_) {
-      if (!one_material && !link_condition(i, j, [&](uint32_t t) { return tet_[t].material == m; }))
-        return false;
+      if (!one_material) {
+        auto in_m = [&](uint32_t t) { return tet_[t].material == m; };
+        if (!link_condition(i, j, in_m, outer_[i] || touches_other_material(i, m),
+                            outer_[j] || touches_other_material(j, m)))
+          return false;
+      }
       // No region may vanish: keep at least one tet of every material.
       size_t removed = 0;
       for (uint32_t t : star_[i])
@@ -650,6 +710,8 @@ class Engine {
       if (removed >= material_tets_[material_index(m)]) return false;
     }
     if (surface_edge) {
+      star_faces(i, &faces_i_);
+      star_faces(j, &faces_j_);
       // Surface complex: common surface neighbours must span a surface triangle with ij.
       surface_i_.clear();
       surface_j_.clear();
@@ -974,6 +1036,7 @@ class Engine {
     vertex_alive_[j] = 0;
     pos_[i] = c.position;
     quadric_[i].add(quadric_[j]);
+    outer_[i] |= outer_[j];
     // Curves: j's feature neighbours become i's.
     for (uint32_t x : feature_neighbors_[j]) {
       if (x == i) continue;
@@ -1143,7 +1206,12 @@ class Engine {
   std::vector<uint32_t> mark_;
   uint32_t stamp_ = 0;
   std::vector<StarFace> faces_i_, faces_j_;
-  Link link_i_, link_j_, link_ij_;
+  std::vector<uint32_t> ring_vertices_, ring_open_, ring_mark_;
+  uint32_t ring_stamp_ = 0;
+  std::vector<uint64_t> ring_edges_, pairs_i_, pairs_j_, face_keys_, cone_pairs_i_, cone_pairs_j_;
+  std::vector<Triangle> triples_i_, triples_j_;
+  std::vector<uint32_t> cone_vertices_i_, cone_vertices_j_;
+  std::vector<uint8_t> outer_;  // on the boundary of the whole mesh
   std::vector<int32_t> edge_materials_;
   std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
   std::vector<uint32_t> ring_, around_, ring_others_;
