@@ -790,34 +790,66 @@ class Engine {
     uint8_t allowance;  // TetRecord::allowance
   };
 
-  // Collects the tets of t*(a) U t*(b) without edge (a, b) into moving_.
-  void gather_moving(uint32_t a, uint32_t b) {
+  // |f*(a,b)|: the distinct vertices x of the triangles (a, b, x) around edge (a, b).
+  uint32_t edge_triangle_count(uint32_t a, uint32_t b) {
+    const uint32_t s = next_stamp();
+    uint32_t n = 0;
+    for (uint32_t t : star_[a]) {
+      const Tet& q = tet_[t].v;
+      if (!tet_has(q, b)) continue;
+      for (uint32_t w : q)
+        if (w != a && w != b && mark_[w] != s) mark_[w] = s, ++n;
+    }
+    return n;
+  }
+
+  // Lists the tets of t*(a) U t*(b) without edge (a, b) in moving_source_, and sets
+  // *old_mean to the mean stretch of t*(a) U t*(b). Their MovingTet records are made
+  // on demand by moving_tet(), as most candidates are rejected after a few tets.
+  void gather_moving(uint32_t a, uint32_t b, double* old_mean) {
     moving_.clear();
+    moving_source_.clear();
+    double sum = 0;
+    size_t count = 0;
     for (uint32_t v : {a, b}) {
       const uint32_t other = v == a ? b : a;
       for (uint32_t t : star_[v]) {
-        const Tet& q = tet_[t].v;
-        if (tet_has(q, other)) continue;
-        int slot = 0;
-        while (q[slot] != v) ++slot;
-        const int* f = kTetFace[slot];  // outward: its normal points away from slot
-        MovingTet m;
-        m.f0 = pos_[q[f[0]]];
-        m.f1 = pos_[q[f[1]]];
-        m.f2 = pos_[q[f[2]]];
-        const Vec3 outward = cross(m.f1 - m.f0, m.f2 - m.f0);
-        m.inward = outward * -1.0;
-        m.fixed_area = 0.5 * length(outward);
-        m.fixed_max2 = std::max({squared_length(m.f1 - m.f0), squared_length(m.f2 - m.f0),
-                                 squared_length(m.f2 - m.f1)});
-        m.stretch = tet_[t].stretch;
-        m.owner = v;
-        m.material = tet_[t].material;
-        m.allowance = tet_[t].allowance;
-        moving_.push_back(m);
+        const TetRecord& r = tet_[t];
+        if (tet_has(r.v, other)) {
+          if (v == a) sum += r.stretch, ++count;  // a ring tet, counted once
+          continue;
+        }
+        sum += r.stretch;
+        ++count;
+        moving_source_.push_back({t, v});
       }
     }
-    candidate_.resize(moving_.size());
+    *old_mean = sum / static_cast<double>(count);
+    candidate_.resize(moving_source_.size());
+  }
+
+  // The record of moving_source_[n]; made when first asked for (in order).
+  const MovingTet& moving_tet(size_t n) {
+    if (n < moving_.size()) return moving_[n];
+    const auto [t, v] = moving_source_[n];
+    const TetRecord& r = tet_[t];
+    int slot = 0;
+    while (r.v[slot] != v) ++slot;
+    const int* f = kTetFace[slot];  // outward: its normal points away from slot
+    MovingTet& m = moving_.emplace_back();
+    m.f0 = pos_[r.v[f[0]]];
+    m.f1 = pos_[r.v[f[1]]];
+    m.f2 = pos_[r.v[f[2]]];
+    const Vec3 outward = cross(m.f1 - m.f0, m.f2 - m.f0);
+    m.inward = outward * -1.0;
+    m.fixed_area = 0.5 * length(outward);
+    m.fixed_max2 = std::max(
+        {squared_length(m.f1 - m.f0), squared_length(m.f2 - m.f0), squared_length(m.f2 - m.f1)});
+    m.stretch = r.stretch;
+    m.owner = v;
+    m.material = r.material;
+    m.allowance = r.allowance;
+    return m;
   }
 
   // Geometry of candidate position k for collapse (i, j): tolerance, stretch and
@@ -832,14 +864,14 @@ class Engine {
     Quadric q = quadric_[i];
     q.add(quadric_[j]);
     if (q.error(k) > tolerance2_ + q.rounding(k)) return Reject::kTolerance;
-    if (moving_.empty()) return Reject::kTopology;
+    if (moving_source_.empty()) return Reject::kTopology;
     const double uniform = params_.sizing.uniform;
     // The bound: with a_1..a_4 the face areas, (sum a)^2 >= sum a^2, so
     // d_t^2 = 6 (6V)^2 / (s^2 A^2) <= 6 (6V)^2 / (s^2 sum a^2); a tet whose bound is
     // below tau_ST^2 (with a margin far above the rounding) fails the exact test too.
     const double floor2 = params_.min_stretch * params_.min_stretch * (1 - 1e-9);
-    for (size_t n = 0; n < moving_.size(); ++n) {
-      const MovingTet& m = moving_[n];
+    for (size_t n = 0; n < moving_source_.size(); ++n) {
+      const MovingTet& m = moving_tet(n);
       const Vec3 d0 = m.f0 - k, d1 = m.f1 - k, d2 = m.f2 - k;
       const double size2 =
           std::max({m.fixed_max2, squared_length(d0), squared_length(d1), squared_length(d2)});
@@ -899,27 +931,13 @@ class Engine {
         return Reject::kTopology;
     }
 
-    // One pass over t*(i) U t*(j): the valence of the new node, |v*(i) U v*(j)| - 2
-    // (its two ends), and the mean stretch before the collapse.
-    double old_sum = 0;
-    size_t old_count = 0;
-    {
-      const uint32_t s = next_stamp();
-      uint32_t n = 0;
-      for (uint32_t v : {a, b}) {
-        for (uint32_t t : star_[v]) {
-          const Tet& q = tet_[t].v;
-          if (v == b && tet_has(q, a)) continue;  // counted from a's side
-          old_sum += tet_[t].stretch;
-          ++old_count;
-          for (uint32_t w : q)
-            if (mark_[w] != s) mark_[w] = s, ++n;
-        }
-      }
-      if (n - 2 > params_.max_valence) return Reject::kValence;
-    }
-    const double old_mean = old_sum / static_cast<double>(old_count);
-    gather_moving(a, b);
+    // The paper's valence of the new node, |v*(i)| + |v*(j)| - (|f*(i,j)| + 2), with
+    // f*(i,j) the triangles (i, j, x) around the edge. It is the exact valence when
+    // the link condition holds and an overestimate otherwise, so never too low.
+    if (valence_[a] + valence_[b] - edge_triangle_count(a, b) - 2 > params_.max_valence)
+      return Reject::kValence;
+    double old_mean = 0;
+    gather_moving(a, b, &old_mean);
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
     // and then each end.
@@ -999,9 +1017,16 @@ class Engine {
   void apply(const Collapse& c, CollapseHistory* history) {
     const uint32_t i = c.kept, j = c.removed;
     history->begin_step(i, j, pos_[i], c.position);
+    // Valences: i gets the neighbours of both ends (the paper's formula, exact under the
+    // link condition); each vertex x of a triangle (i, j, x) loses one (j).
+    const uint32_t triangles = edge_triangle_count(i, j);
+    valence_[i] = valence_[i] + valence_[j] - triangles - 2;
+    const uint32_t around_edge = stamp_;  // edge_triangle_count() marked the x's
     // Retire the tets around the edge.
     for (uint32_t t : star_[i]) {
       if (!tet_has(tet_[t].v, j)) continue;
+      for (uint32_t x : tet_[t].v)
+        if (mark_[x] == around_edge) mark_[x] = 0, --valence_[x];
       history->removed_tets.push_back(t);
       tet_[t].alive = 0;
       --material_tets_[material_index(tet_[t].material)];
@@ -1094,6 +1119,8 @@ class Engine {
     dirty_list_.clear();
     alive_tets_ = tet_.size();
     const size_t initial_tets = alive_tets_;
+    valence_.resize(pos_.size());
+    for (uint32_t v = 0; v < pos_.size(); ++v) valence_[v] = valence(v);
     std::vector<uint32_t> nb;
     for (uint32_t v = 0; v < pos_.size(); ++v) {
       neighbors(v, &nb);
@@ -1216,6 +1243,8 @@ class Engine {
   std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
   std::vector<uint32_t> ring_, around_, ring_others_;
   std::vector<MovingTet> moving_;
+  std::vector<std::pair<uint32_t, uint32_t>> moving_source_;  // (tet, its end of the edge)
+  std::vector<uint32_t> valence_;  // per vertex, kept up to date by apply()
   // What the first pass of check_position() found of each moving tet, for the second.
   struct CandidateTet {
     double volume6, size2, face0, face1, face2;  // squared doubled areas of k's faces
