@@ -3,10 +3,11 @@
 // uniformly 1:8 once (~129k tets) and twice (~1.03M tets), solved as the two-layer
 // spherical capacitor (material 1 at 1, material 4 grounded, eps2 = 2, eps3 = 5).
 // With --box, material 4 is a dielectric (eps 1) and the box boundary is grounded
-// instead, which leaves about 4x more unknowns. Prints the median of N runs of each
-// phase, the iterations and the capacitance.
+// instead. Any other mesh: --conductor M (at 1) and --ground M|boundary, every other
+// material eps 1. Prints the median of N runs of each phase, the iterations and C.
 //
-//   bench_solve [--repeat N] [--levels L] [--box] [--jacobi] [--direct] [--tolerance T] [MESH]
+//   bench_solve [--repeat N] [--levels L] [--box] [--jacobi] [--direct] [--tolerance T]
+//               [--conductor M --ground M|boundary] [MESH]
 //
 // MESH defaults to assets/spheres.mesh (run from the repository root).
 #include <cstdio>
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   int repeat = 5, levels = 2;
   SolveOptions options;
   bool box = false;
+  int conductor = -1, ground = -1;  // -1: the spheres capacitor; ground -2: boundary
   options.method = SolverMethod::kIterative;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -38,6 +40,11 @@ int main(int argc, char** argv) {
       levels = std::max(0, std::atoi(argv[++i]));
     } else if (a == "--tolerance" && i + 1 < argc) {
       options.tolerance = std::atof(argv[++i]);
+    } else if (a == "--conductor" && i + 1 < argc) {
+      conductor = std::atoi(argv[++i]);
+    } else if (a == "--ground" && i + 1 < argc) {
+      ++i;
+      ground = std::string(argv[i]) == "boundary" ? -2 : std::atoi(argv[i]);
     } else if (a == "--box") {
       box = true;
     } else if (a == "--jacobi") {
@@ -49,7 +56,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_solve [--repeat N] [--levels L] [--box] [--jacobi] [--direct] "
-                   "[--tolerance T] [MESH]\n");
+                   "[--tolerance T] [--conductor M --ground M|boundary] [MESH]\n");
       return 2;
     }
   }
@@ -65,6 +72,15 @@ int main(int argc, char** argv) {
   if (box) {
     problem.ground_materials.clear();
     problem.ground_boundary = true;
+  }
+  if (conductor >= 0) {
+    problem = ElectrostaticsProblem();
+    problem.conductors = {{conductor, 1.0}};
+    if (ground == -2) {
+      problem.ground_boundary = true;
+    } else {
+      problem.ground_materials = {ground};
+    }
   }
   std::printf("%-9s %9s %9s %7s %8s %8s %8s %8s %8s %6s %10s %9s\n", "level", "tets", "unknowns",
               "nnz/1e6", "setup", "assemble", "factor", "solve", "total", "iters", "residual", "C");
