@@ -29,7 +29,7 @@ constexpr const char* kSolveUsage =
     "  --ground G,...       'boundary' and/or material ids held at 0\n"
     "  --eps M=E,...        permittivity per material, E > 0 (default 1 for the rest)\n"
     "  -o FIELD.vtu         write the potential (point data) and |E| (cell data) for ParaView\n"
-    "  --solver S           auto (direct up to 5000 unknowns, else cg), direct, cg\n"
+    "  --solver S           auto (direct up to 2000 unknowns, else cg), direct, cg\n"
     "  --preconditioner P   for cg: jacobi (default) or ic (incomplete Cholesky)\n"
     "  --tolerance T        cg stops at relative residual T (default 1e-10)\n"
     "Example, the bundled two-layer spherical capacitor:\n"
@@ -116,7 +116,6 @@ int cmd_solve(const Args& args) {
   std::string in, out;
   ElectrostaticsProblem problem;
   SolveOptions options;
-  options.preconditioner = Preconditioner::kJacobi;
   bool ground_given = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];

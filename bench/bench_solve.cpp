@@ -6,7 +6,7 @@
 // instead. Any other mesh: --conductor M (at 1) and --ground M|boundary, every other
 // material eps 1. Prints the median of N runs of each phase, the iterations and C.
 //
-//   bench_solve [--repeat N] [--levels L] [--box] [--jacobi] [--direct] [--tolerance T]
+//   bench_solve [--repeat N] [--levels L] [--box] [--ic] [--direct] [--tolerance T]
 //               [--conductor M --ground M|boundary] [MESH]
 //
 // MESH defaults to assets/spheres.mesh (run from the repository root).
@@ -47,15 +47,15 @@ int main(int argc, char** argv) {
       ground = std::string(argv[i]) == "boundary" ? -2 : std::atoi(argv[i]);
     } else if (a == "--box") {
       box = true;
-    } else if (a == "--jacobi") {
-      options.preconditioner = Preconditioner::kJacobi;
+    } else if (a == "--ic") {
+      options.preconditioner = Preconditioner::kIncompleteCholesky;
     } else if (a == "--direct") {
       options.method = SolverMethod::kDirect;
     } else if (!a.empty() && a[0] != '-') {
       path = a;
     } else {
       std::fprintf(stderr,
-                   "usage: bench_solve [--repeat N] [--levels L] [--box] [--jacobi] [--direct] "
+                   "usage: bench_solve [--repeat N] [--levels L] [--box] [--ic] [--direct] "
                    "[--tolerance T] [--conductor M --ground M|boundary] [MESH]\n");
       return 2;
     }
