@@ -8,12 +8,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
 #include "core/electrostatics.h"
 #include "core/io/mesh_io.h"
+#include "core/lod.h"
 #include "core/refine.h"
+#include "core/simplify.h"
 #include "core/test_meshes.h"
 #include "core/validate.h"
 
@@ -131,7 +134,7 @@ TEST(Electrostatics, BadSetUpsNameTheOffendingValue) {
   EXPECT_TRUE(has(m, "ground material 7 does not exist")) << m;
   m = solve_error(mesh, with([](P* p) { p->permittivities.push_back({12, 1.0}); }));
   EXPECT_TRUE(has(m, "material 12")) << m;
-  for (const double bad : {0.0, -1.0, std::nan(""), 1.0 / 0.0}) {
+  for (const double bad : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
     m = solve_error(mesh, with([&](P* p) { p->permittivities = {{2, bad}}; }));
     EXPECT_TRUE(has(m, "permittivity of material 2")) << m;
   }
@@ -350,6 +353,56 @@ TEST(Electrostatics, VtuCarriesPotentialAndField) {
   bad = write_vtu_with_fields(bad_path, mesh, fields);
   EXPECT_NE(bad.message().find("a<b"), std::string::npos) << bad.message();
   EXPECT_FALSE(std::filesystem::exists(bad_path));
+}
+
+TEST(Electrostatics, EveryLodLevelOfThePlatesIsExact) {
+  // The layered plates at 4x the resolution, simplified with a tolerance that keeps the
+  // planar interfaces and boundary exactly: every level still conforms to the layers,
+  // so P1 holds the exact piecewise-linear potential and C = 3/7 on every level — the
+  // path the viewer takes (simplify, seek a level, extract, solve).
+  const TetMesh mesh = test::make_grid_mesh(
+      12, 4, 4, [](int i, int, int) { return i < 2    ? 1
+                                             : i < 6  ? 2
+                                             : i < 10 ? 3
+                                                      : 4; }, 0.25);
+  SimplifyParams params;
+  params.tolerance = 1e-9;
+  params.min_stretch = 0.05;
+  params.max_valence = 40;
+  params.sizing.uniform = 2;
+  params.subdivide = false;
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(mesh, params, &result).ok());
+  const size_t steps = result.history.step_count();
+  ASSERT_GT(steps, 100u);
+  Lod lod(result.base, &result.history);
+  for (const size_t step : {size_t{0}, steps / 3, 2 * steps / 3, steps}) {
+    lod.seek(step);
+    const TetMesh level = lod.extract();
+    ElectrostaticsSolution s;
+    ASSERT_TRUE(solve_electrostatics(level, plates_problem(), {}, &s).ok()) << "step " << step;
+    EXPECT_NEAR(s.capacitance, 3.0 / 7.0, 1e-9)
+        << "step " << step << ", " << level.tet_count() << " tets";
+  }
+}
+
+TEST(Electrostatics, RefinementKeepsEveryMaterialVolume) {
+  const TetMesh mesh = layered_plates();
+  const TetMesh refined = refine_uniform(mesh);
+  std::vector<double> before(5, 0.0), after(5, 0.0);
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    before[mesh.materials[t]] += signed_volume6(mesh, mesh.tets[t]) / 6;
+  }
+  for (size_t t = 0; t < refined.tet_count(); ++t) {
+    const double v = signed_volume6(refined, refined.tets[t]) / 6;
+    EXPECT_GT(v, 0);
+    after[refined.materials[t]] += v;
+  }
+  for (int m = 1; m <= 4; ++m) EXPECT_NEAR(after[m], before[m], 1e-14) << "material " << m;
+  // Every input vertex keeps its id and position; 8x the tets.
+  EXPECT_EQ(refined.tet_count(), 8 * mesh.tet_count());
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    EXPECT_EQ(refined.positions[v], mesh.positions[v]);
 }
 
 }  // namespace
