@@ -584,6 +584,14 @@ Status solve_electrostatics(const TetMesh& mesh, const ElectrostaticsProblem& pr
     if (!std::isfinite(solution->relative_residual)) {
       return Status::error("the solver produced a non-finite solution");
     }
+    // CG's updated residual can drift from the true one; a solution whose true
+    // residual is far above the request is not reported as a result.
+    const double accepted = std::max(1e3 * options.tolerance, 1e-8);
+    if (solution->method == SolverMethod::kIterative && solution->relative_residual > accepted) {
+      return Status::error("conjugate gradients stopped with a true relative residual of " +
+                           format_double(solution->relative_residual) + " (asked for " +
+                           format_double(options.tolerance) + ")");
+    }
   }
 
   solution->potential = dirichlet;

@@ -109,9 +109,11 @@ using SolveProgressCallback = std::function<void(const SolveProgress&)>;
 // non-finite potential, no conductor, a conductor node that is also held at another
 // potential (a conductor touching the ground or another conductor), equal potentials
 // everywhere, a free region connected to no Dirichlet node (the potential there is
-// undetermined), and CG that does not converge. `progress` is called from the calling
-// thread; `cancel`, if set, is polled between phases and every CG iteration, and a
-// cancelled solve returns ok with solution->cancelled set.
+// undetermined), and CG that does not converge (or whose recomputed residual is over
+// 1000x the tolerance). `progress` is called from the calling thread; `cancel`, if set,
+// is polled between phases and every CG iteration, and a cancelled solve returns ok
+// with solution->cancelled set. Meant to run in a worker thread: no globals, the mesh
+// and problem are only read.
 Status solve_electrostatics(const TetMesh& mesh, const ElectrostaticsProblem& problem,
                             const SolveOptions& options, ElectrostaticsSolution* solution,
                             const SolveProgressCallback& progress = {},
