@@ -6,7 +6,10 @@
 //       uniform size limit 1 and tolerance 0.01 (the sphere facets stay),
 //   (c) LOD levels of the same dense mesh simplified with a radial size field that
 //       refines near the inner conductor (0.1 + 0.25 r, at most 2), tolerance 0.01,
-//   (d) as (b) with tolerance 0.1, which lets the spheres coarsen: a control series.
+//   (d) as (b) with tolerance 0.1, which lets the spheres coarsen: a control series,
+//   (e) fresh TetGen meshes graded by region (volume bounds in the two shells, 4x larger
+//       in the outer one): the fair fresh-mesh baseline for (c),
+//   (f) as (c) from the finest mesh of (e) instead of the uniform dense mesh.
 // The error of each mesh is split into
 //   geometric      C_geo - C_exact: C_geo is the capacitance of the concentric spheres
 //                  that enclose the same volumes as the mesh's interfaces, checked
@@ -151,6 +154,23 @@ TetMesh fresh_spheres(size_t target_tets) {
   return mesh;
 }
 
+// A fresh TetGen mesh graded by region: volume bound `inner` in the shell r1 < r < r2,
+// 4x that in r2 < r < r3, the global bound 1 elsewhere (conductor and grounded box).
+TetMesh fresh_graded_spheres(double inner) {
+  Plc plc = build_spheres_plc(kDefaultSphereLevel);
+  for (PlcRegion& region : plc.regions) {
+    if (region.material == kSpheresInner) region.max_volume = inner;
+    if (region.material == kSpheresOuter) region.max_volume = 4 * inner;
+  }
+  TetMesh mesh;
+  const Status s = tetrahedralize_plc(plc, {1.0, kDefaultQuality}, &mesh);
+  if (!s) {
+    std::fprintf(stderr, "solve_convergence: %s\n", s.message().c_str());
+    std::exit(1);
+  }
+  return mesh;
+}
+
 // Simplifies `dense` and measures the LOD levels nearest the given counts (and the
 // final level).
 void lod_series(const std::string& series, const TetMesh& dense, const SimplifyParams& params,
@@ -191,6 +211,8 @@ const char* series_colour(const std::string& series) {
   if (series == "a") return "#1f77b4";
   if (series == "b") return "#d62728";
   if (series == "c") return "#2ca02c";
+  if (series == "e") return "#ff7f0e";
+  if (series == "f") return "#17becf";
   return "#9467bd";
 }
 
@@ -198,6 +220,8 @@ const char* series_name(const std::string& series) {
   if (series == "a") return "(a) fresh TetGen meshes";
   if (series == "b") return "(b) LOD levels, uniform size 1, tolerance 0.01";
   if (series == "c") return "(c) LOD levels, size 0.1 + 0.25 r, tolerance 0.01";
+  if (series == "e") return "(e) fresh TetGen meshes, finer volume bounds in the shells";
+  if (series == "f") return "(f) as (c), from the finest mesh of (e)";
   return "(d) LOD levels, uniform size 1, tolerance 0.1 (conductor shrinks)";
 }
 
@@ -263,7 +287,7 @@ void plot_panel(std::string* svg, const std::vector<Row>& rows, double x0, doubl
     *svg += buffer;
   }
   auto clamp_y = [&](double value) { return std::clamp(value, 1e-3, 1e-1); };
-  for (const char* series : {"a", "b", "c", "d"}) {
+  for (const char* series : {"a", "e", "b", "c", "f", "d"}) {
     std::string points;
     for (const Row& r : rows) {
       if (r.series != series) continue;
@@ -298,13 +322,13 @@ void plot_panel(std::string* svg, const std::vector<Row>& rows, double x0, doubl
 
 std::string make_svg(const std::vector<Row>& rows, double c_exact) {
   std::string svg =
-      "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='540' "
-      "font-family='sans-serif'>\n<rect width='1000' height='540' fill='white'/>\n";
+      "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='580' "
+      "font-family='sans-serif'>\n<rect width='1000' height='580' fill='white'/>\n";
   plot_panel(&svg, rows, 0, 500, "discretisation error (C_h - C_geo) / C_exact", true, c_exact);
   plot_panel(&svg, rows, 500, 500, "total error |C_h - C_exact| / C_exact (open: geometric)", false,
              c_exact);
   double y = 470;
-  for (const char* series : {"a", "b", "c", "d"}) {
+  for (const char* series : {"a", "e", "b", "c", "f", "d"}) {
     char buffer[256];
     std::snprintf(buffer, sizeof buffer,
                   "<circle cx='80' cy='%g' r='4' fill='%s'/><text x='90' y='%g' "
@@ -387,6 +411,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "  (a) %zu tets\n", mesh.tet_count());
   }
 
+  const std::vector<double> graded_bounds =
+      quick ? std::vector<double>{0.02}
+            : std::vector<double>{0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625};
+  for (const double bound : graded_bounds) {
+    char label[64];
+    std::snprintf(label, sizeof label, "TetGen, shell volume %g / %g", bound, 4 * bound);
+    const TetMesh mesh = fresh_graded_spheres(bound);
+    rows.push_back(measure("e", label, mesh));
+    std::fprintf(stderr, "  (e) %zu tets\n", mesh.tet_count());
+  }
+
   const TetMesh dense = fresh_spheres(quick ? 40000 : 160000);
   const std::vector<size_t> lod_counts =
       quick ? std::vector<size_t>{20000}
@@ -405,6 +440,10 @@ int main(int argc, char** argv) {
   radial.growth = 0.25;
   graded.sizing.radial.push_back(radial);
   lod_series("c", dense, graded, lod_counts, &rows);
+
+  // As (c) from a dense mesh that is graded already: the fresh graded mesh of (e)
+  // with the finest bound.
+  lod_series("f", fresh_graded_spheres(graded_bounds.back()), graded, lod_counts, &rows);
 
   // As (b) with a tolerance that lets the sphere surfaces coarsen: the conductor
   // shrinks, C_geo drops, and the total error can look small by cancellation.
