@@ -15,6 +15,7 @@
 
 #include "core/electrostatics.h"
 #include "core/generate/model_generator.h"
+#include "core/generate/plc.h"
 #include "core/refine.h"
 
 namespace tetlod {
@@ -102,6 +103,28 @@ TEST(SpheresCapacitor, ConvergesAtTheEnergyRateAndToTheExactValue) {
       "level 3: %.6f %.6f %.6f (C_poly %.6f, %+.3f%%)\n",
       exact(), c2[0], c2[1], c2[2], poly2, 100 * geometric2, c3[0], c3[1], c3[2], poly3,
       100 * geometric3);
+}
+
+TEST(SpheresCapacitor, RegionVolumeBoundsAreHonoured) {
+  // The graded meshes of the convergence study: a volume bound per PLC region.
+  Plc plc = build_spheres_plc(2);
+  for (PlcRegion& region : plc.regions) {
+    if (region.material == kSpheresInner) region.max_volume = 0.02;
+  }
+  TetMesh graded, plain;
+  ASSERT_TRUE(tetrahedralize_plc(plc, {1.0, kDefaultQuality}, &graded).ok());
+  ASSERT_TRUE(tetrahedralize_plc(build_spheres_plc(2), {1.0, kDefaultQuality}, &plain).ok());
+  size_t inner_graded = 0, inner_plain = 0;
+  for (size_t t = 0; t < graded.tet_count(); ++t) {
+    if (graded.materials[t] != kSpheresInner) continue;
+    ++inner_graded;
+    EXPECT_LE(signed_volume6(graded, graded.tets[t]) / 6, 0.02 * (1 + 1e-9)) << "tet " << t;
+  }
+  for (const int32_t m : plain.materials) inner_plain += m == kSpheresInner;
+  EXPECT_GT(inner_graded, inner_plain);
+  // A non-finite bound is an error, not a TetGen crash.
+  plc.regions[0].max_volume = std::nan("");
+  EXPECT_FALSE(tetrahedralize_plc(plc, {1.0, kDefaultQuality}, &graded).ok());
 }
 
 }  // namespace
