@@ -18,6 +18,7 @@ namespace tetlod {
 struct PlcRegion {
   Vec3 seed;
   int32_t material = 0;
+  double max_volume = -1;  // > 0: a volume bound for this region's tets (below the global one)
 };
 
 // The PLC in flat arrays. A facet is a planar set of polygons: the first one is
@@ -63,7 +64,8 @@ struct TetgenParams {
   double quality = 2.0;   // TetGen `q`: bound on circumradius / shortest edge (>= 1.2)
 };
 
-// Meshes `plc` with TetGen switches "pzq<quality>a<max_volume>AQ" and returns the tets
+// Meshes `plc` with TetGen switches "pzq<quality>a<max_volume>AQ" (plus a bare "a" for
+// the regional bounds when a region has max_volume > 0) and returns the tets
 // with their region attribute as material, positively oriented, validated by
 // validate_mesh() without repairs. The PLC's own points come first in mesh->positions,
 // in order (when every point is a facet vertex and no two coincide), followed by the

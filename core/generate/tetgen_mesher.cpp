@@ -112,7 +112,7 @@ void fill_tetgen_input(const Plc& plc, tetgenio* in) {
     in->regionlist[5 * r + 1] = plc.regions[r].seed.y;
     in->regionlist[5 * r + 2] = plc.regions[r].seed.z;
     in->regionlist[5 * r + 3] = plc.regions[r].material;
-    in->regionlist[5 * r + 4] = -1.0;  // no per-region volume bound
+    in->regionlist[5 * r + 4] = plc.regions[r].max_volume;  // -1: no per-region bound
   }
 }
 
@@ -309,6 +309,11 @@ Status check_plc(const Plc& plc) {
   for (const Vec3& p : plc.points) {
     if (!is_finite(p)) return Status::error("a PLC point has a non-finite coordinate");
   }
+  for (const PlcRegion& r : plc.regions) {
+    if (!is_finite(r.seed) || std::isnan(r.max_volume) || std::isinf(r.max_volume)) {
+      return Status::error("a PLC region seed or volume bound is not finite");
+    }
+  }
   return Status();
 }
 
@@ -328,9 +333,14 @@ Status tetrahedralize_plc(const Plc& plc, const TetgenParams& params, TetMesh* m
   // p: PLC, z: 0-based, q: quality, a: volume bound, A: region attributes, Q: quiet.
   std::string switches =
       "pzq" + switch_number(params.quality) + "a" + switch_number(params.max_volume) + "AQ";
+  // A bare `a` makes TetGen apply the regions' own volume bounds too.
+  const bool regional = std::any_of(plc.regions.begin(), plc.regions.end(),
+                                    [](const PlcRegion& r) { return r.max_volume > 0; });
+  if (regional) switches += "a";
   tetgenbehavior behavior;
   if (!behavior.parse_commandline(switches.data()) || behavior.maxvolume != params.max_volume ||
-      behavior.minratio != params.quality || !behavior.plc || !behavior.regionattrib) {
+      behavior.minratio != params.quality || !behavior.plc || !behavior.regionattrib ||
+      (regional && !behavior.varvolume)) {
     return Status::error("TetGen: cannot pass the switches '" + switches + "'");
   }
 

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/io/mesh_io.h"
 #include "core/status.h"
 #include "core/tet_mesh.h"
 
@@ -34,6 +35,8 @@ void write_tetgen_node(const TetMesh& mesh, std::string* out);
 void write_tetgen_ele(const TetMesh& mesh, std::string* out);
 void write_vtk_legacy(const TetMesh& mesh, std::string* out);
 void write_vtu(const TetMesh& mesh, std::string* out);
+// With extra point and cell arrays (sizes and names checked by the caller).
+void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out);
 
 // VTK cell types read as tets (vtk.cpp, vtu.cpp): the quadratic tet gives its corners.
 inline constexpr int64_t kVtkTetra = 10;

@@ -2,6 +2,9 @@
 // io/*.cpp parse and write, validate_mesh() checks every mesh read.
 #include "core/io/mesh_io.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <utility>
 
 #include "core/io/file_access.h"
@@ -201,6 +204,43 @@ Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptio
       io::write_vtu(mesh, &files[0].contents);
       break;
   }
+  return io::write_files_atomically(files);
+}
+
+Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh,
+                             const MeshFields& fields) {
+  if (Status status = check_writable(path, mesh); !status) return status;
+  auto check = [&](const std::vector<ScalarArray>& arrays, size_t count, const char* kind) {
+    for (const ScalarArray& array : arrays) {
+      const bool name_ok =
+          !array.name.empty() && std::all_of(array.name.begin(), array.name.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ' ' ||
+                   c == '|' || c == '-';
+          });
+      if (!name_ok) {
+        return Status::error(path + ": " + kind + " array name \"" + array.name +
+                             "\" is empty or has characters other than letters, digits, "
+                             "'_', ' ', '|', '-'");
+      }
+      if (!array.values || array.values->size() != count) {
+        return Status::error(path + ": " + kind + " array \"" + array.name + "\" has " +
+                             std::to_string(array.values ? array.values->size() : 0) +
+                             " values for " + std::to_string(count) + " " + kind + "s");
+      }
+      for (size_t i = 0; i < count; ++i) {
+        if (!std::isfinite((*array.values)[i])) {
+          return Status::error(path + ": " + kind + " array \"" + array.name + "\" value " +
+                               std::to_string(i) + " is not finite");
+        }
+      }
+    }
+    return Status();
+  };
+  if (Status s = check(fields.point_data, mesh.vertex_count(), "point"); !s) return s;
+  if (Status s = check(fields.cell_data, mesh.tet_count(), "cell"); !s) return s;
+  std::vector<io::OutputFile> files(1);
+  files[0].path = path;
+  io::write_vtu(mesh, fields, &files[0].contents);
   return io::write_files_atomically(files);
 }
 

@@ -55,6 +55,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/status.h"
 #include "core/tet_mesh.h"
@@ -92,5 +93,23 @@ struct WriteOptions {
 // For .node/.ele both files of the pair are written. An invalid mesh or an
 // unwritable path gives an error naming the path, and leaves no file behind.
 Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options = {});
+
+// A named scalar array to write along with a mesh, one value per point or per cell
+// (e.g. a potential and a field magnitude). `values` must outlive the call.
+struct ScalarArray {
+  std::string name;  // shown in ParaView; XML-safe (letters, digits, '_', ' ', '|', '-')
+  const std::vector<double>* values = nullptr;
+};
+struct MeshFields {
+  std::vector<ScalarArray> point_data;  // values->size() == vertex_count()
+  std::vector<ScalarArray> cell_data;   // values->size() == tet_count()
+};
+
+// Writes `mesh` as a .vtu (whatever the extension of `path`) with cell data
+// "material" and "stretch" followed by `fields`, atomically as write_mesh(). The
+// first point array is marked as the active scalars. A size mismatch, a name with
+// other characters or a non-finite value gives an error naming the array.
+Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh,
+                             const MeshFields& fields);
 
 }  // namespace tetlod

@@ -406,6 +406,10 @@ Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out
 }
 
 void write_vtu(const TetMesh& mesh, std::string* out) {
+  write_vtu(mesh, MeshFields(), out);
+}
+
+void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out) {
   const size_t tet_count = mesh.tet_count();
   out->reserve(out->size() + mesh.vertex_count() * 72 + tet_count * 96);
   out->append(
@@ -444,7 +448,25 @@ void write_vtu(const TetMesh& mesh, std::string* out) {
   append_rows<int32_t>(out, tet_count, 32, [](size_t) { return 10; });
   out->append(
       "        </DataArray>\n"
-      "      </Cells>\n"
+      "      </Cells>\n");
+  auto append_arrays = [&](const std::vector<ScalarArray>& arrays) {
+    for (const ScalarArray& array : arrays) {
+      out->append("        <DataArray type=\"Float64\" Name=\"");
+      out->append(array.name);
+      out->append("\" format=\"ascii\">\n");
+      append_rows<double>(out, array.values->size(), 8,
+                          [&](size_t i) { return (*array.values)[i]; });
+      out->append("        </DataArray>\n");
+    }
+  };
+  if (!fields.point_data.empty()) {
+    out->append("      <PointData Scalars=\"");
+    out->append(fields.point_data[0].name);
+    out->append("\">\n");
+    append_arrays(fields.point_data);
+    out->append("      </PointData>\n");
+  }
+  out->append(
       "      <CellData Scalars=\"material\">\n"
       "        <DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n");
   append_rows<int32_t>(out, tet_count, 16, [&](size_t t) { return mesh.materials[t]; });
@@ -453,8 +475,9 @@ void write_vtu(const TetMesh& mesh, std::string* out) {
       "        <DataArray type=\"Float64\" Name=\"stretch\" format=\"ascii\">\n");
   append_rows<double>(out, tet_count, 8,
                       [&](size_t t) { return tet_shape(mesh, mesh.tets[t]).stretch; });
+  out->append("        </DataArray>\n");
+  append_arrays(fields.cell_data);
   out->append(
-      "        </DataArray>\n"
       "      </CellData>\n"
       "    </Piece>\n"
       "  </UnstructuredGrid>\n"

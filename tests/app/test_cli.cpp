@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/io/mesh_io.h"
@@ -132,6 +133,68 @@ TEST(Cli, SimplifyThenLodWritesLevels) {
   const CommandResult junk = run("lod " + out_dir() + "/junk.tlh --step 0 -o " + level);
   EXPECT_EQ(junk.code, 1);
   EXPECT_NE(junk.output.find("junk.tlh"), std::string::npos);
+}
+
+TEST(Cli, SolveSpheresPrintsCapacitanceAndWritesTheField) {
+  const std::string spheres = std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh";
+  const std::string field = out_dir() + "/spheres_field.vtu";
+  fs::remove(field);
+  const CommandResult help = run("solve --help");
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.output.find("usage: tetlod solve"), std::string::npos);
+  const CommandResult r =
+      run("solve " + spheres + " --conductor 1=1 --ground 4 --eps 2=2,3=5 -o " + field);
+  ASSERT_EQ(r.code, 0) << r.output;
+  // The committed asset's value (direct solver); the exact sphere value is 44.36.
+  EXPECT_NE(r.output.find("capacitance  C = 46.9104"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("energy       W = 23.4552"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("time "), std::string::npos);
+  std::ifstream file(field);
+  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("<PointData Scalars=\"potential\">"), std::string::npos);
+  EXPECT_NE(text.find("Name=\"field magnitude\""), std::string::npos);
+  // The field file reads back as a mesh (our reader skips the extra arrays).
+  const CommandResult stats = run("stats --json " + field);
+  EXPECT_EQ(stats.code, 0) << stats.output;
+  EXPECT_NE(stats.output.find("\"elements\": 16088"), std::string::npos);
+  // The iterative solver agrees to many digits.
+  const CommandResult cg =
+      run("solve " + spheres + " --conductor 1=1 --ground 4 --eps 2=2,3=5 --solver cg");
+  ASSERT_EQ(cg.code, 0) << cg.output;
+  EXPECT_NE(cg.output.find("capacitance  C = 46.9104"), std::string::npos) << cg.output;
+  EXPECT_NE(cg.output.find("iterations"), std::string::npos) << cg.output;
+}
+
+TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
+  const std::string path = write_grid("solve.mesh");  // materials 1 (x < 1) and 2
+  const std::string field = out_dir() + "/solve_bad.vtu";
+  fs::remove(field);
+  struct Case {
+    const char* flags;
+    int code;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"--conductor 1=abc --ground boundary", 2, "--conductor '1=abc'"},
+      {"--conductor 1 --ground boundary", 2, "'1' is not MATERIAL=NUMBER"},
+      {"--conductor -3=1 --ground boundary", 2, "'-3=1'"},
+      {"--conductor 1=1 --ground somewhere", 2, "--ground 'somewhere'"},
+      {"--conductor 1=1 --ground boundary --eps 2=nan", 2, "--eps '2=nan'"},
+      {"--conductor 1=1 --ground boundary --solver magic", 2, "--solver 'magic'"},
+      {"--conductor 1=1 --ground boundary --tolerance 2", 2, "--tolerance '2'"},
+      {"--conductor 1=1", 2, "need MESH, --conductor and --ground"},
+      {"--conductor 1=1 --ground boundary -o field.txt", 2, "written as .vtu only"},
+      {"--conductor 7=1 --ground boundary", 1, "conductor material 7 does not exist"},
+      {"--conductor 1=1 --ground 2 --eps 2=0", 1, "permittivity of material 2 is 0"},
+      {"--conductor 1=1 --ground 2", 1, "conductor material 1 (held at 1) touches material 2"},
+      {"--conductor 1=1 --ground boundary", 1, "touches the grounded outer boundary"},
+  };
+  for (const Case& c : cases) {
+    const CommandResult r = run("solve " + path + " " + c.flags + " -o " + field);
+    EXPECT_EQ(r.code, c.code) << c.flags << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.flags << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(field)) << c.flags;
+  }
 }
 
 }  // namespace

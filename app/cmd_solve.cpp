@@ -1,0 +1,231 @@
+// tetlod solve MESH --conductor M=V[,...] --ground boundary|M[,...] [--eps M=E[,...]] [-o F.vtu]
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/cli_util.h"
+#include "app/commands.h"
+#include "core/electrostatics.h"
+
+namespace tetlod::app {
+namespace {
+
+constexpr const char* kSolveUsage =
+    "usage: tetlod solve MESH --conductor M=V[,M=V...] --ground boundary|M[,...]\n"
+    "                    [--eps M=E[,M=E...]] [-o FIELD.vtu] [--solver auto|direct|cg]\n"
+    "                    [--preconditioner jacobi|ic] [--tolerance T]\n"
+    "\n"
+    "Electrostatics with linear finite elements: -div(eps grad u) = 0, every node of a\n"
+    "conductor material M held at potential V, every node of a ground material (or of\n"
+    "the outer boundary, 'boundary') at 0, zero normal flux elsewhere. Prints the energy\n"
+    "W = 1/2 int eps |grad u|^2, the capacitance C = 2 W / V^2 (V: highest minus lowest\n"
+    "potential), the solver's iterations and residual, and the time.\n"
+    "  --conductor M=V,...  conductor materials and their potentials\n"
+    "  --ground G,...       'boundary' and/or material ids held at 0\n"
+    "  --eps M=E,...        permittivity per material, E > 0 (default 1 for the rest)\n"
+    "  -o FIELD.vtu         write the potential (point data) and |E| (cell data) for ParaView\n"
+    "  --solver S           auto (direct up to 2000 unknowns, else cg), direct, cg\n"
+    "  --preconditioner P   for cg: jacobi (default) or ic (incomplete Cholesky)\n"
+    "  --tolerance T        cg stops at relative residual T (default 1e-10)\n"
+    "Example, the bundled two-layer spherical capacitor:\n"
+    "  tetlod solve assets/spheres.mesh --conductor 1=1 --ground 4 --eps 2=2,3=5\n";
+
+bool next_value(const Args& args, size_t* i, std::string* value) {
+  if (*i + 1 >= args.size()) {
+    std::fprintf(stderr, "tetlod solve: %s needs a value\n", args[*i].c_str());
+    return false;
+  }
+  *value = args[++*i];
+  return true;
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true) {
+    const size_t end = text.find(separator, start);
+    parts.push_back(text.substr(start, end - start));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
+  }
+}
+
+std::optional<int32_t> parse_material(const std::string& text) {
+  const auto n = parse_integer(text);
+  if (!n || *n < 0 || *n > 0x7fffffff) return std::nullopt;
+  return static_cast<int32_t>(*n);
+}
+
+// "M=X,M=X": material ids and finite numbers. On error prints a message naming the
+// flag and the item.
+bool parse_pairs(const std::string& flag, const std::string& text,
+                 std::vector<std::pair<int32_t, double>>* pairs) {
+  for (const std::string& item : split(text, ',')) {
+    const size_t equals = item.find('=');
+    const auto material =
+        equals == std::string::npos ? std::nullopt : parse_material(item.substr(0, equals));
+    const auto value =
+        equals == std::string::npos ? std::nullopt : parse_double(item.substr(equals + 1));
+    if (!material || !value) {
+      std::fprintf(stderr,
+                   "tetlod solve: %s '%s': '%s' is not MATERIAL=NUMBER (a material id >= 0 and "
+                   "a finite number)\n",
+                   flag.c_str(), text.c_str(), item.c_str());
+      return false;
+    }
+    pairs->push_back({*material, *value});
+  }
+  return true;
+}
+
+bool parse_ground(const std::string& text, ElectrostaticsProblem* problem) {
+  for (const std::string& item : split(text, ',')) {
+    if (item == "boundary") {
+      problem->ground_boundary = true;
+    } else if (const auto material = parse_material(item)) {
+      problem->ground_materials.push_back(*material);
+    } else {
+      std::fprintf(stderr,
+                   "tetlod solve: --ground '%s': '%s' is neither 'boundary' nor a material id\n",
+                   text.c_str(), item.c_str());
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ends_with(const std::string& text, const std::string& suffix) {
+  if (text.size() < suffix.size()) return false;
+  return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(), [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) == b;
+  });
+}
+
+}  // namespace
+
+int cmd_solve(const Args& args) {
+  if (wants_help(args)) {
+    std::fputs(kSolveUsage, stdout);
+    return kExitOk;
+  }
+  std::string in, out;
+  ElectrostaticsProblem problem;
+  SolveOptions options;
+  bool ground_given = false;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    std::string v;
+    if (a == "-o" || a == "--output") {
+      if (!next_value(args, &i, &out)) return kExitUsage;
+      if (!ends_with(out, ".vtu")) {
+        std::fprintf(stderr, "tetlod solve: -o '%s': the field is written as .vtu only\n",
+                     out.c_str());
+        return kExitUsage;
+      }
+    } else if (a == "--conductor") {
+      if (!next_value(args, &i, &v) || !parse_pairs(a, v, &problem.conductors)) return kExitUsage;
+    } else if (a == "--eps") {
+      if (!next_value(args, &i, &v) || !parse_pairs(a, v, &problem.permittivities)) {
+        return kExitUsage;
+      }
+    } else if (a == "--ground") {
+      if (!next_value(args, &i, &v) || !parse_ground(v, &problem)) return kExitUsage;
+      ground_given = true;
+    } else if (a == "--solver") {
+      if (!next_value(args, &i, &v)) return kExitUsage;
+      if (v == "auto") {
+        options.method = SolverMethod::kAuto;
+      } else if (v == "direct") {
+        options.method = SolverMethod::kDirect;
+      } else if (v == "cg") {
+        options.method = SolverMethod::kIterative;
+      } else {
+        std::fprintf(stderr, "tetlod solve: --solver '%s' is not auto, direct or cg\n", v.c_str());
+        return kExitUsage;
+      }
+    } else if (a == "--preconditioner") {
+      if (!next_value(args, &i, &v)) return kExitUsage;
+      if (v == "jacobi") {
+        options.preconditioner = Preconditioner::kJacobi;
+      } else if (v == "ic") {
+        options.preconditioner = Preconditioner::kIncompleteCholesky;
+      } else {
+        std::fprintf(stderr, "tetlod solve: --preconditioner '%s' is not jacobi or ic\n",
+                     v.c_str());
+        return kExitUsage;
+      }
+    } else if (a == "--tolerance") {
+      if (!next_value(args, &i, &v)) return kExitUsage;
+      const auto d = parse_double(v);
+      if (!d || *d <= 0 || *d >= 1) {
+        std::fprintf(stderr, "tetlod solve: --tolerance '%s' is not a number in (0, 1)\n",
+                     v.c_str());
+        return kExitUsage;
+      }
+      options.tolerance = *d;
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "tetlod solve: unknown option '%s'\n\n%s", a.c_str(), kSolveUsage);
+      return kExitUsage;
+    } else if (in.empty()) {
+      in = a;
+    } else {
+      std::fprintf(stderr, "tetlod solve: more than one mesh given\n\n%s", kSolveUsage);
+      return kExitUsage;
+    }
+  }
+  if (in.empty() || problem.conductors.empty() || !ground_given) {
+    std::fprintf(stderr, "tetlod solve: need MESH, --conductor and --ground\n\n%s", kSolveUsage);
+    return kExitUsage;
+  }
+
+  TetMesh mesh;
+  ReadInfo info;
+  if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
+  const auto start = std::chrono::steady_clock::now();
+  ElectrostaticsSolution solution;
+  const Status status = solve_electrostatics(mesh, problem, options, &solution);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!status) {
+    std::fprintf(stderr, "tetlod solve: %s: %s\n", in.c_str(), status.message().c_str());
+    return kExitBadInput;
+  }
+  std::printf("mesh         %s: %zu nodes, %zu tets\n", in.c_str(), mesh.vertex_count(),
+              mesh.tet_count());
+  std::printf("unknowns     %zu (%zu nodes held), %zu matrix entries\n", solution.free_count,
+              solution.dirichlet_count, solution.nonzeros);
+  std::printf("capacitance  C = %.10g\n", solution.capacitance);
+  std::printf("energy       W = %.10g (V = %.10g)\n", solution.energy, solution.voltage);
+  if (solution.method == SolverMethod::kDirect) {
+    std::printf("solver       direct (LDL^T), relative residual %.3g\n",
+                solution.relative_residual);
+  } else {
+    std::printf("solver       cg + %s, %d iterations, relative residual %.3g\n",
+                options.preconditioner == Preconditioner::kJacobi ? "jacobi" : "ic",
+                solution.iterations, solution.relative_residual);
+  }
+  std::printf(
+      "time         %.3f s (setup %.3f, assemble %.3f, factor %.3f, solve and outputs %.3f)\n",
+      seconds, solution.seconds_setup, solution.seconds_assemble, solution.seconds_factor,
+      solution.seconds_solve);
+  if (!out.empty()) {
+    MeshFields fields;
+    fields.point_data = {{"potential", &solution.potential}};
+    fields.cell_data = {{"field magnitude", &solution.field_magnitude}};
+    const Status s = write_vtu_with_fields(out, mesh, fields);
+    if (!s) {
+      std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+    std::printf("field        %s (point data 'potential', cell data 'field magnitude')\n",
+                out.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace tetlod::app
