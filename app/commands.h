@@ -18,5 +18,6 @@ int cmd_convert(const Args& args);
 int cmd_generate(const Args& args);
 int cmd_simplify(const Args& args);
 int cmd_lod(const Args& args);
+int cmd_render(const Args& args);
 
 }  // namespace tetlod::app

@@ -17,6 +17,7 @@ constexpr const char* kUsage =
     "  generate MODEL -o FILE           make a bundled model (motor, spheres, box2) with TetGen\n"
     "  simplify IN -o OUT --size S ...  subdivide and simplify under the four thresholds\n"
     "  lod HISTORY --elements N -o OUT  write a level of a saved collapse history\n"
+    "  render FILE -o SHOT.png ...      draw a mesh offscreen to a PNG (stretch, cut, ...)\n"
     "\n"
     "Run 'tetlod COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input, 2 bad usage.\n";
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   if (command == "generate") return cmd_generate(args);
   if (command == "simplify") return cmd_simplify(args);
   if (command == "lod") return cmd_lod(args);
+  if (command == "render") return cmd_render(args);
   std::fprintf(stderr, "tetlod: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return kExitUsage;
 }
