@@ -124,3 +124,49 @@ TEST(CliRender, FailuresNameTheProblemAndWriteNothing) {
 
 }  // namespace
 }  // namespace tetlod
+
+namespace tetlod {
+namespace {
+
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
+  const std::string dir = out_dir() + "/report";
+  fs::remove_all(dir);
+  const CommandResult r = run("report " + asset("box2.mesh") +
+                              " --simplify --size 10 --no-subdivide --levels 100,60 --width 96 "
+                              "--height 96 -o " +
+                              dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir + "/report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("#elements"), std::string::npos);
+  EXPECT_NE(html.find("level ~100"), std::string::npos);
+  EXPECT_NE(html.find("level ~60"), std::string::npos);
+  EXPECT_NE(html.find("simplified (step"), std::string::npos);
+  // input, two levels, the final mesh: a picture and a histogram each.
+  EXPECT_EQ(count_of(html, "<img src=\"data:image/png;base64,iVBORw0KGgo"), 8u);
+  EXPECT_EQ(png_size(dir + "/level0.png"), std::make_pair(96, 96));
+  EXPECT_EQ(png_size(dir + "/level3_histogram.png"), std::make_pair(480, 260));
+  EXPECT_EQ(html.rfind("</html>"), html.size() - 8);
+}
+
+TEST(CliReport, ErrorsAreClear) {
+  EXPECT_EQ(run("report --help").code, 0);
+  EXPECT_EQ(run("report " + asset("box2.mesh")).code, 2);                        // no -o
+  EXPECT_EQ(run("report " + asset("box2.mesh") + " --levels 10 -o x").code, 2);  // no size
+  EXPECT_EQ(run("report " + asset("box2.mesh") + " --levels 0 -o x").code, 2);   // bad level
+  // The output directory cannot be made under a regular file.
+  const std::string file = out_dir() + "/plain_file";
+  std::ofstream(file) << "x";
+  const CommandResult r = run("report " + asset("box2.mesh") + " -o " + file + "/dir");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("cannot create the directory"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace tetlod
