@@ -1,0 +1,128 @@
+// Renderer benchmark: full rebuild of the GPU buffers (surface extraction on the CPU
+// + upload) for common views of a mesh, plus one draw, on the offscreen context.
+//
+//   bench_render FILE [--repeat N] [--hide M]
+//
+// "prepare" (face neighbours + stretch per tet) runs once per mesh or topology
+// change; a rebuild (new cut, hidden materials, highlight threshold) is
+// build_surface + upload.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "bench/bench_util.h"
+#include "core/io/mesh_io.h"
+#include "render/gl_context.h"
+#include "render/renderer.h"
+#include "render/snapshot.h"
+
+using tetlod::bench::Clock;
+using tetlod::bench::median;
+using tetlod::bench::seconds_since;
+
+int main(int argc, char** argv) {
+  using namespace tetlod;
+  using namespace tetlod::render;
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: bench_render FILE [--repeat N] [--hide M]\n");
+    return 2;
+  }
+  int repeat = 5;
+  int32_t hide = 1;
+  for (int i = 2; i + 1 < argc; i += 2) {
+    const std::string flag = argv[i];
+    if (flag == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
+    if (flag == "--hide") hide = std::atoi(argv[i + 1]);
+  }
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh(argv[1], &mesh, &info);
+  if (!s) {
+    std::fprintf(stderr, "bench_render: %s\n", s.message().c_str());
+    return 1;
+  }
+  std::string error;
+  auto context = create_offscreen_context(&error);
+  if (!context) {
+    std::fprintf(stderr, "bench_render: %s\n", error.c_str());
+    return 1;
+  }
+  Renderer renderer(context->gl());
+  if (!renderer.init(&error)) {
+    std::fprintf(stderr, "bench_render: %s\n", error.c_str());
+    return 1;
+  }
+  std::printf("%s: %zu vertices, %zu tets; %s\n", argv[1], mesh.vertex_count(), mesh.tet_count(),
+              context->description().c_str());
+
+  std::vector<double> prepare_times;
+  PreparedMesh prepared;
+  for (int r = 0; r < repeat; ++r) {
+    TetMesh copy = mesh;
+    const auto t = Clock::now();
+    prepared = prepare_mesh(std::move(copy));
+    prepare_times.push_back(seconds_since(t));
+  }
+  std::printf("prepare (face neighbours + stretch, once per mesh): %.1f ms\n",
+              1e3 * median(prepare_times));
+
+  Vec3 lo = prepared.mesh.positions[0], hi = lo;
+  for (const Vec3& p : prepared.mesh.positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  struct Case {
+    const char* name;
+    SurfaceFilter filter;
+  };
+  std::vector<Case> cases(4);
+  cases[0].name = "everything shown";
+  cases[1].name = "material hidden";
+  cases[1].filter.hidden_materials = {hide};
+  cases[2].name = "material hidden + cut at the centre";
+  cases[2].filter = cases[1].filter;
+  cases[2].filter.cut = true;
+  cases[2].filter.cut_plane = {{0, 1, 0}, 0.5 * (lo.y + hi.y)};
+  cases[3].name = "... + highlight stretch < 0.2";
+  cases[3].filter = cases[2].filter;
+  cases[3].filter.highlight = true;
+  cases[3].filter.highlight_below = 0.2;
+
+  std::printf("\n%-38s %10s %10s %10s %10s %10s\n", "full rebuild (median)", "triangles",
+              "build ms", "upload ms", "total ms", "Mtets/s");
+  SurfaceBuffers buffers;
+  for (const Case& c : cases) {
+    std::vector<double> build, upload, total;
+    for (int r = 0; r < repeat; ++r) {
+      const auto t0 = Clock::now();
+      build_surface(prepared.surface_input(), c.filter, &buffers);
+      const double b = seconds_since(t0);
+      const auto t1 = Clock::now();
+      renderer.upload(buffers);
+      context->gl().Finish();
+      const double u = seconds_since(t1);
+      build.push_back(b);
+      upload.push_back(u);
+      total.push_back(b + u);
+    }
+    std::printf("%-38s %10zu %10.1f %10.1f %10.1f %10.1f\n", c.name, buffers.triangles.size() / 3,
+                1e3 * median(build), 1e3 * median(upload), 1e3 * median(total),
+                1e-6 * double(prepared.mesh.tet_count()) / median(total));
+  }
+
+  // One frame of the last case at 800 x 800 (llvmpipe, software), for reference.
+  std::vector<double> draw_times;
+  const Camera camera = snapshot_camera(prepared, buffers, {});
+  DrawSettings draw;
+  for (int r = 0; r < repeat; ++r) {
+    const auto t = Clock::now();
+    renderer.draw(draw, camera, 800, 800);
+    context->gl().Finish();
+    draw_times.push_back(seconds_since(t));
+  }
+  std::printf("\ndraw 800x800 + resolve (software rasteriser): %.1f ms\n",
+              1e3 * median(draw_times));
+  return 0;
+}
