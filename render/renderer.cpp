@@ -191,10 +191,47 @@ void Renderer::upload(const SurfaceBuffers& buffers) {
                  static_cast<GLsizeiptr>(buffers.highlight.size() * sizeof(SurfaceVertex)),
                  buffers.highlight.data(), GL_STATIC_DRAW);
   gl_.BindBuffer(GL_ARRAY_BUFFER, 0);
-  triangle_vertices_ = buffers.triangles.size();
-  highlight_vertices_ = buffers.highlight.size();
+  triangle_vertices_ = triangle_capacity_ = buffers.triangles.size();
+  highlight_vertices_ = highlight_capacity_ = buffers.highlight.size();
   highlighted_tets_ = buffers.highlighted_tets;
   visible_materials_ = buffers.visible_materials;
+}
+
+void Renderer::update_buffer(GLuint vbo, size_t* capacity,
+                             const std::vector<SurfaceVertex>& vertices,
+                             const std::vector<DirtyRange>& dirty) {
+  constexpr size_t kVertexBytes = sizeof(SurfaceVertex);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, vbo);
+  if (vertices.size() > *capacity) {
+    // Grow with room to spare, so that a sequence of LOD steps rarely reallocates.
+    *capacity = vertices.size() + vertices.size() / 2 + 3 * 1024;
+    gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(*capacity * kVertexBytes), nullptr,
+                   GL_DYNAMIC_DRAW);
+    gl_.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vertices.size() * kVertexBytes),
+                      vertices.data());
+  } else {
+    for (const DirtyRange& range : dirty) {
+      const size_t end = std::min(range.end, vertices.size());
+      if (range.begin >= end) continue;
+      gl_.BufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(range.begin * kVertexBytes),
+                        static_cast<GLsizeiptr>((end - range.begin) * kVertexBytes),
+                        vertices.data() + range.begin);
+    }
+  }
+  gl_.BindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void Renderer::update_triangles(const std::vector<SurfaceVertex>& vertices,
+                                const std::vector<DirtyRange>& dirty) {
+  update_buffer(surface_vbo_, &triangle_capacity_, vertices, dirty);
+  triangle_vertices_ = vertices.size();
+}
+
+void Renderer::update_highlight(const std::vector<SurfaceVertex>& vertices,
+                                const std::vector<DirtyRange>& dirty, size_t highlighted_tets) {
+  update_buffer(highlight_vbo_, &highlight_capacity_, vertices, dirty);
+  highlight_vertices_ = vertices.size();
+  highlighted_tets_ = highlighted_tets;
 }
 
 void Renderer::release_targets() {

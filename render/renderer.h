@@ -43,6 +43,13 @@ class Renderer {
 
   // Replaces the GPU buffers with `buffers` (a full rebuild).
   void upload(const SurfaceBuffers& buffers);
+  // Incremental updates (LodSurface): `vertices` is the whole current array, `dirty`
+  // the vertex ranges that changed since the last update; only those are sent unless
+  // the array outgrew the GPU buffer.
+  void update_triangles(const std::vector<SurfaceVertex>& vertices,
+                        const std::vector<DirtyRange>& dirty);
+  void update_highlight(const std::vector<SurfaceVertex>& vertices,
+                        const std::vector<DirtyRange>& dirty, size_t highlighted_tets);
 
   // Draws the uploaded surface (and highlight, and legend) at width x height.
   void draw(const DrawSettings& settings, const Camera& camera, int width, int height);
@@ -57,6 +64,9 @@ class Renderer {
   void ensure_targets(int width, int height);
   void release_targets();
   void draw_legend(const DrawSettings& settings, int width, int height);
+  // Writes vertices[dirty] into `vbo`, growing it (and sending everything) if needed.
+  void update_buffer(GLuint vbo, size_t* capacity, const std::vector<SurfaceVertex>& vertices,
+                     const std::vector<DirtyRange>& dirty);
 
   const GlApi& gl_;
   GLuint surface_program_ = 0, overlay_program_ = 0;
@@ -66,6 +76,7 @@ class Renderer {
   GLuint msaa_fbo_ = 0, msaa_color_ = 0, msaa_depth_ = 0, resolve_fbo_ = 0, resolve_color_ = 0;
   int target_width_ = 0, target_height_ = 0;
   size_t triangle_vertices_ = 0, highlight_vertices_ = 0, highlighted_tets_ = 0;
+  size_t triangle_capacity_ = 0, highlight_capacity_ = 0;  // in vertices
   std::vector<int32_t> visible_materials_;
 };
 

@@ -48,6 +48,13 @@ struct SurfaceVertex {
   uint32_t material;  // of the face's tet
 };
 
+// A range of vertices [begin, end) of a buffer that changed since it was last uploaded.
+struct DirtyRange {
+  size_t begin = 0;
+  size_t end = 0;
+  bool empty() const { return begin >= end; }
+};
+
 struct SurfaceBuffers {
   std::vector<SurfaceVertex> triangles;  // 3 per triangle, outward-facing
   std::vector<SurfaceVertex> highlight;  // all 4 faces of every highlighted tet
