@@ -1,7 +1,11 @@
 // Renderer benchmark: full rebuild of the GPU buffers (surface extraction on the CPU
 // + upload) for common views of a mesh, plus one draw, on the offscreen context.
 //
-//   bench_render FILE [--repeat N] [--hide M]
+//   bench_render FILE [--repeat N] [--hide M] [--lod SIZE]
+//
+// With --lod, the mesh is simplified to SIZE (tolerance 0.05) and LodSurface's
+// incremental updates are timed against full rebuilds while moving through the
+// collapse history.
 //
 // "prepare" (face neighbours + stretch per tet) runs once per mesh or topology
 // change; a rebuild (new cut, hidden materials, highlight threshold) is
@@ -14,7 +18,10 @@
 
 #include "bench/bench_util.h"
 #include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/simplify.h"
 #include "render/gl_context.h"
+#include "render/lod_surface.h"
 #include "render/renderer.h"
 #include "render/snapshot.h"
 
@@ -31,10 +38,12 @@ int main(int argc, char** argv) {
   }
   int repeat = 5;
   int32_t hide = 1;
+  double lod_size = 0;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
     if (flag == "--hide") hide = std::atoi(argv[i + 1]);
+    if (flag == "--lod") lod_size = std::atof(argv[i + 1]);
   }
   TetMesh mesh;
   ReadInfo info;
@@ -124,5 +133,65 @@ int main(int argc, char** argv) {
   }
   std::printf("\ndraw 800x800 + resolve (software rasteriser): %.1f ms\n",
               1e3 * median(draw_times));
+  if (lod_size <= 0) return 0;
+
+  // Incremental LOD updates.
+  SimplifyParams params;
+  params.sizing.uniform = lod_size;
+  params.tolerance = 0.05;
+  SimplifyResult result;
+  auto t = Clock::now();
+  const Status simplified = simplify(mesh, params, &result);
+  if (!simplified) {
+    std::fprintf(stderr, "bench_render: %s\n", simplified.message().c_str());
+    return 1;
+  }
+  std::printf("\nLOD: simplified to size %g in %.1f s: %zu steps, %zu -> %zu tets\n", lod_size,
+              seconds_since(t), result.history.step_count(), result.base.tet_count(),
+              result.output.tet_count());
+  Lod lod(result.base, &result.history);
+  const LodState state = lod_state(lod);
+  SurfaceFilter filter;
+  filter.hidden_materials = {hide};
+  LodSurface surface;
+  t = Clock::now();
+  surface.reset(state, filter);
+  renderer.update_triangles(surface.triangles(), surface.take_triangle_dirty());
+  context->gl().Finish();
+  std::printf("LodSurface reset at step 0 (%zu tets, %zu triangles): %.1f ms\n",
+              lod.alive_tet_count(), surface.triangles().size() / 3, 1e3 * seconds_since(t));
+
+  // Single steps and jumps of 1% of the history, coarsening then refining.
+  LodDelta delta;
+  const size_t steps = lod.step_count();
+  for (const size_t stride : {size_t(1), std::max<size_t>(1, steps / 100)}) {
+    std::vector<double> times;
+    size_t touched = 0;
+    const size_t count = std::min<size_t>(2000, steps / stride);
+    for (size_t k = 0; k < count; ++k) {
+      const size_t target = (k + 1) * stride;
+      const auto u = Clock::now();
+      lod.seek(target, &delta);
+      surface.update(state, delta);
+      const std::vector<DirtyRange> dirty = surface.take_triangle_dirty();
+      renderer.update_triangles(surface.triangles(), dirty);
+      context->gl().Finish();
+      times.push_back(seconds_since(u));
+      touched += delta.appeared.size() + delta.vanished.size() + delta.changed.size();
+    }
+    std::printf(
+        "seek + incremental update + upload, %zu step(s) at a time: median %.3f ms (%zu "
+        "seeks, %.0f tets in each delta)\n",
+        stride, 1e3 * median(times), count, double(touched) / double(count));
+  }
+  // The same move done as a full rebuild (extract + prepare + build + upload).
+  t = Clock::now();
+  PreparedMesh level = prepare_mesh(lod.extract());
+  SurfaceBuffers level_buffers;
+  build_surface(level.surface_input(), filter, &level_buffers);
+  renderer.upload(level_buffers);
+  context->gl().Finish();
+  std::printf("full rebuild of one level instead (extract + prepare + build + upload): %.1f ms\n",
+              1e3 * seconds_since(t));
   return 0;
 }

@@ -33,6 +33,74 @@ std::vector<DirtyRange> LodSurface::take_highlight_dirty() {
   return take_ranges(&highlight_dirty_, 12, highlight_.size());
 }
 
+size_t LodSurface::FaceTable::hash(const FaceKey& k) {
+  uint64_t h = k.v[0] * 0x9e3779b97f4a7c15ull;
+  h ^= (h >> 29) + k.v[1] * 0xbf58476d1ce4e5b9ull;
+  h ^= (h >> 31) + k.v[2] * 0x94d049bb133111ebull;
+  return static_cast<size_t>(h ^ (h >> 32));
+}
+
+void LodSurface::FaceTable::clear(size_t expected_faces) {
+  size_t capacity = 64;
+  while (capacity < expected_faces + expected_faces / 2) capacity *= 2;
+  buckets_.assign(capacity, Bucket());
+  mask_ = capacity - 1;
+  size_ = 0;
+}
+
+LodSurface::FaceEntry* LodSurface::FaceTable::find(const FaceKey& key) {
+  for (size_t i = home(key);; i = (i + 1) & mask_) {
+    Bucket& b = buckets_[i];
+    if (b.key == key) return &b.entry;
+    if (b.key.v[0] == kInvalidIndex) return nullptr;
+  }
+}
+
+LodSurface::FaceEntry* LodSurface::FaceTable::insert(const FaceKey& key) {
+  if ((size_ + 1) * 10 > buckets_.size() * 7) grow();
+  for (size_t i = home(key);; i = (i + 1) & mask_) {
+    Bucket& b = buckets_[i];
+    if (b.key == key) return &b.entry;
+    if (b.key.v[0] == kInvalidIndex) {
+      b.key = key;
+      b.entry = FaceEntry();
+      ++size_;
+      return &b.entry;
+    }
+  }
+}
+
+void LodSurface::FaceTable::erase(const FaceKey& key) {
+  size_t i = home(key);
+  while (!(buckets_[i].key == key)) {
+    if (buckets_[i].key.v[0] == kInvalidIndex) return;
+    i = (i + 1) & mask_;
+  }
+  // Backward-shift deletion: pull later entries of the probe run into the hole
+  // unless their home lies cyclically in (hole, their position].
+  for (size_t j = (i + 1) & mask_; buckets_[j].key.v[0] != kInvalidIndex; j = (j + 1) & mask_) {
+    const size_t k = home(buckets_[j].key);
+    const bool stays = i <= j ? (i < k && k <= j) : (i < k || k <= j);
+    if (stays) continue;
+    buckets_[i] = buckets_[j];
+    i = j;
+  }
+  buckets_[i] = Bucket();
+  --size_;
+}
+
+void LodSurface::FaceTable::grow() {
+  std::vector<Bucket> old = std::move(buckets_);
+  buckets_.assign(old.size() * 2, Bucket());
+  mask_ = buckets_.size() - 1;
+  for (const Bucket& b : old) {
+    if (b.key.v[0] == kInvalidIndex) continue;
+    size_t i = home(b.key);
+    while (buckets_[i].key.v[0] != kInvalidIndex) i = (i + 1) & mask_;
+    buckets_[i] = b;
+  }
+}
+
 bool LodSurface::tet_visible(const LodState& state, uint32_t tet) const {
   if (!(*state.alive)[tet]) return false;
   const int32_t material = (*state.materials)[tet];
@@ -85,7 +153,7 @@ void LodSurface::refresh_face(const FaceKey& key, FaceEntry* entry) {
     std::copy_n(triangles_.begin() + std::ptrdiff_t(last) * 3, 3,
                 triangles_.begin() + std::ptrdiff_t(slot) * 3);
     slot_keys_[slot] = slot_keys_[last];
-    faces_.find(slot_keys_[slot])->second.slot = slot;
+    faces_.find(slot_keys_[slot])->slot = slot;
     triangle_dirty_.push_back(slot);
   }
   slot_keys_.pop_back();
@@ -94,20 +162,20 @@ void LodSurface::refresh_face(const FaceKey& key, FaceEntry* entry) {
 }
 
 void LodSurface::add_face(const FaceKey& key, uint32_t owner) {
-  FaceEntry& entry = faces_[key];
+  FaceEntry& entry = *faces_.insert(key);
   // A manifold mesh has at most two tets on a face; removals run before additions.
   (entry.owners[0] == kInvalidIndex ? entry.owners[0] : entry.owners[1]) = owner;
   refresh_face(key, &entry);
 }
 
 void LodSurface::remove_face(const FaceKey& key, uint32_t owner) {
-  const auto it = faces_.find(key);
-  if (it == faces_.end()) return;
-  FaceEntry& entry = it->second;
+  FaceEntry* found = faces_.find(key);
+  if (!found) return;
+  FaceEntry& entry = *found;
   if (entry.owners[0] == owner) entry.owners[0] = kInvalidIndex;
   if (entry.owners[1] == owner) entry.owners[1] = kInvalidIndex;
   refresh_face(key, &entry);
-  if (entry.owners[0] == kInvalidIndex && entry.owners[1] == kInvalidIndex) faces_.erase(it);
+  if (entry.owners[0] == kInvalidIndex && entry.owners[1] == kInvalidIndex) faces_.erase(key);
 }
 
 void LodSurface::add_highlight(uint32_t tet) {
@@ -173,19 +241,39 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
   stretch_.assign(n, 0);
   highlight_slot_.assign(n, kInvalidIndex);
   visible_count_ = 0;
-  faces_.clear();
-  faces_.reserve(2 * n + 16);
+  // About two distinct faces per tet (interior faces are shared); grows if needed.
+  faces_.clear(2 * n + n / 4);
   triangles_.clear();
   slot_keys_.clear();
   highlight_.clear();
   highlight_tets_.clear();
-  for (uint32_t t = 0; t < n; ++t)
-    if (tet_visible(state, t)) add_tet(state, t);
-  // Everything is new: one range each.
-  triangle_dirty_.clear();
+  triangle_dirty_.clear();  // every slot written below is marked again
   highlight_dirty_.clear();
-  for (uint32_t slot = 0; slot < slot_keys_.size(); ++slot) triangle_dirty_.push_back(slot);
-  for (uint32_t slot = 0; slot < highlight_tets_.size(); ++slot) highlight_dirty_.push_back(slot);
+  // Two passes, so that interior faces are never drawn and then removed: count
+  // the owners of every face, then give the faces with one owner their slots.
+  const std::vector<Vec3>& p = *state.positions;
+  for (uint32_t t = 0; t < n; ++t) {
+    if (!tet_visible(state, t)) continue;
+    const Tet& corners = (*state.tets)[t];
+    corners_[t] = corners;
+    stretch_[t] = static_cast<float>(
+        tet_shape(p[corners[0]], p[corners[1]], p[corners[2]], p[corners[3]]).stretch);
+    in_[t] = 1;
+    ++visible_count_;
+    for (int corner = 0; corner < 4; ++corner) {
+      FaceEntry& entry = *faces_.insert(face_key(t, corner));
+      (entry.owners[0] == kInvalidIndex ? entry.owners[0] : entry.owners[1]) = 4 * t + corner;
+    }
+  }
+  for (uint32_t t = 0; t < n; ++t) {
+    if (!in_[t]) continue;
+    for (int corner = 0; corner < 4; ++corner) {
+      const FaceKey key = face_key(t, corner);
+      FaceEntry& entry = *faces_.find(key);
+      if (entry.owners[1] == kInvalidIndex) refresh_face(key, &entry);
+    }
+    if (filter_.highlight && stretch_[t] < filter_.highlight_below) add_highlight(t);
+  }
   state_ = nullptr;
 }
 

@@ -5,14 +5,14 @@
 // A face is drawn when exactly one visible tet has it (the same rule as
 // build_surface(): boundary faces, and faces whose other side is hidden, cut away
 // or retired). Faces are counted in a hash table keyed by their sorted vertex ids
-// (base-mesh ids, stable across LOD steps), so no face-neighbour array is needed.
+// (base-mesh ids, stable across LOD steps), so no face-neighbour array is needed;
+// the table is flat (open addressing, linear probing, backward-shift deletion).
 // Drawn faces occupy dense slots of 3 vertices; a removed face's slot is filled by
 // the last one (swap-remove), so the buffer stays dense.
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "core/lod.h"
@@ -57,17 +57,29 @@ class LodSurface {
       return v[0] == o.v[0] && v[1] == o.v[1] && v[2] == o.v[2];
     }
   };
-  struct FaceKeyHash {
-    size_t operator()(const FaceKey& k) const {
-      uint64_t h = k.v[0] * 0x9e3779b97f4a7c15ull;
-      h ^= (h >> 29) + k.v[1] * 0xbf58476d1ce4e5b9ull;
-      h ^= (h >> 31) + k.v[2] * 0x94d049bb133111ebull;
-      return static_cast<size_t>(h ^ (h >> 32));
-    }
-  };
   struct FaceEntry {
     uint32_t owners[2] = {kInvalidIndex, kInvalidIndex};  // 4 * tet + corner
     uint32_t slot = kInvalidIndex;                        // drawn slot, if drawn
+  };
+  // Face key -> entry. Entry pointers stay valid until the next insert or erase.
+  class FaceTable {
+   public:
+    void clear(size_t expected_faces);
+    FaceEntry* find(const FaceKey& key);
+    FaceEntry* insert(const FaceKey& key);  // finds, or adds an empty entry
+    void erase(const FaceKey& key);
+
+   private:
+    struct Bucket {
+      FaceKey key{{kInvalidIndex, kInvalidIndex, kInvalidIndex}};  // v[0] unset: empty
+      FaceEntry entry;
+    };
+    static size_t hash(const FaceKey& k);
+    size_t home(const FaceKey& k) const { return hash(k) & mask_; }
+    void grow();
+    std::vector<Bucket> buckets_;
+    size_t mask_ = 0;
+    size_t size_ = 0;
   };
 
   bool tet_visible(const LodState& state, uint32_t tet) const;
@@ -97,7 +109,7 @@ class LodSurface {
   std::vector<uint32_t> highlight_slot_;
   size_t visible_count_ = 0;
 
-  std::unordered_map<FaceKey, FaceEntry, FaceKeyHash> faces_;
+  FaceTable faces_;
   std::vector<SurfaceVertex> triangles_;
   std::vector<FaceKey> slot_keys_;                          // the face in each drawn slot
   std::vector<SurfaceVertex> highlight_;                    // 12 vertices per highlighted tet
