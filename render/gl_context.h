@@ -16,15 +16,28 @@ class GlContext {
   virtual ~GlContext() = default;
   // Entry points of this context; valid while the context lives and is current.
   virtual const GlApi& gl() const = 0;
+  // Makes this context current on the calling thread again (after another was).
+  virtual bool make_current() = 0;
   // Human-readable "backend: GL_RENDERER, GL_VERSION".
   virtual std::string description() const = 0;
 };
 
-// An offscreen core-profile context (OSMesa, loaded at run time with dlopen so a
-// missing libOSMesa is an error message, not a start-up failure). The renderer
-// draws into its own framebuffer objects of any size. Null with `error` set if no
-// context can be made.
-std::unique_ptr<GlContext> create_offscreen_context(std::string* error);
+enum class OffscreenBackend {
+  kAuto,    // TETLOD_GL_BACKEND (osmesa or egl) if set, else OSMesa, then EGL
+  kOsMesa,  // OSMesa core profile (Mesa <= 25.0)
+  kEgl,     // EGL, Mesa's surfaceless platform
+};
+
+// An offscreen core-profile context with no display and no GPU needed (both
+// libraries are loaded at run time with dlopen, so a missing one is an error
+// message, not a start-up failure). The renderer draws into its own framebuffer
+// objects of any size. Null with `error` set ("no offscreen OpenGL context: ...",
+// with each backend's reason) if no context can be made.
+std::unique_ptr<GlContext> create_offscreen_context(
+    std::string* error, OffscreenBackend backend = OffscreenBackend::kAuto);
+// The backends themselves; `error` gets the reason on failure.
+std::unique_ptr<GlContext> create_osmesa_context(std::string* error);
+std::unique_ptr<GlContext> create_egl_context(std::string* error);
 
 // A GLFW window with a core-profile context, current on the calling thread.
 class WindowContext : public GlContext {

@@ -25,6 +25,10 @@ class GlfwContext : public WindowContext {
   }
   const GlApi& gl() const override { return gl_; }
   std::string description() const override { return description_; }
+  bool make_current() override {
+    glfwMakeContextCurrent(window_);
+    return true;
+  }
   void* native_window() const override { return window_; }
   bool should_close() const override { return glfwWindowShouldClose(window_); }
   void swap_buffers() override { glfwSwapBuffers(window_); }

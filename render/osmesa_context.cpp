@@ -47,6 +47,10 @@ class OsMesaContext : public GlContext {
   }
   const GlApi& gl() const override { return gl_; }
   std::string description() const override { return description_; }
+  bool make_current() override {
+    return make_current_(context_, buffer_.data(), GL_UNSIGNED_BYTE, kDefaultBufferSize,
+                         kDefaultBufferSize);
+  }
 
   bool init(std::string* error) {
     // TETLOD_OSMESA names the library to use instead of the system's.
@@ -61,19 +65,19 @@ class OsMesaContext : public GlContext {
       }
     }
     if (!library) {
-      *error = "no offscreen OpenGL context: libOSMesa could not be loaded (" +
-               std::string(dlerror()) + "); install libosmesa6";
+      *error = "OSMesa: libOSMesa could not be loaded (" + std::string(dlerror()) +
+               "; install libosmesa6)";
       return false;
     }
     // The library stays loaded for the life of the process: contexts may be made
     // again, and unloading Mesa's driver threads is not safe.
     auto create =
         reinterpret_cast<CreateContextAttribsFn>(dlsym(library, "OSMesaCreateContextAttribs"));
-    auto make_current = reinterpret_cast<MakeCurrentFn>(dlsym(library, "OSMesaMakeCurrent"));
+    make_current_ = reinterpret_cast<MakeCurrentFn>(dlsym(library, "OSMesaMakeCurrent"));
     destroy_ = reinterpret_cast<DestroyContextFn>(dlsym(library, "OSMesaDestroyContext"));
     g_osmesa_get_proc = reinterpret_cast<GetProcFn>(dlsym(library, "OSMesaGetProcAddress"));
-    if (!create || !make_current || !destroy_ || !g_osmesa_get_proc) {
-      *error = "no offscreen OpenGL: libOSMesa lacks OSMesaCreateContextAttribs (Mesa >= 12)";
+    if (!create || !make_current_ || !destroy_ || !g_osmesa_get_proc) {
+      *error = "OSMesa: libOSMesa lacks OSMesaCreateContextAttribs (Mesa >= 12)";
       return false;
     }
     const int attributes[] = {OSMESA_FORMAT,
@@ -89,13 +93,12 @@ class OsMesaContext : public GlContext {
                               0};
     context_ = create(attributes, nullptr);
     if (!context_) {
-      *error = "no offscreen OpenGL: OSMesa could not create a 3.3 core-profile context";
+      *error = "OSMesa: OSMesa could not create a 3.3 core-profile context";
       return false;
     }
     buffer_.assign(kDefaultBufferSize * kDefaultBufferSize * 4, 0);
-    if (!make_current(context_, buffer_.data(), GL_UNSIGNED_BYTE, kDefaultBufferSize,
-                      kDefaultBufferSize)) {
-      *error = "no offscreen OpenGL: OSMesaMakeCurrent failed";
+    if (!make_current()) {
+      *error = "OSMesa: OSMesaMakeCurrent failed";
       return false;
     }
     if (!load_gl_api(&osmesa_get_proc, &gl_, error)) return false;
@@ -107,6 +110,7 @@ class OsMesaContext : public GlContext {
 
  private:
   OSMesaContext context_ = nullptr;
+  MakeCurrentFn make_current_ = nullptr;
   DestroyContextFn destroy_ = nullptr;
   std::vector<unsigned char> buffer_;
   GlApi gl_;
@@ -115,7 +119,7 @@ class OsMesaContext : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> create_offscreen_context(std::string* error) {
+std::unique_ptr<GlContext> create_osmesa_context(std::string* error) {
   auto context = std::make_unique<OsMesaContext>();
   if (!context->init(error)) return nullptr;
   return context;

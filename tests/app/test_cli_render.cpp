@@ -109,9 +109,15 @@ TEST(CliRender, FailuresNameTheProblemAndWriteNothing) {
   EXPECT_NE(r.output.find("material 9 is not in the mesh"), std::string::npos) << r.output;
 
   // No GL available: a clear message, not a crash.
-  r = run("render " + asset("box2.mesh") + " -o " + out, "TETLOD_OSMESA=/nonexistent/libOSMesa.so");
+  r = run("render " + asset("box2.mesh") + " -o " + out,
+          "TETLOD_GL_BACKEND=osmesa TETLOD_OSMESA=/nonexistent/libOSMesa.so");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.output.find("no offscreen OpenGL context"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("libOSMesa"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  r = run("render " + asset("box2.mesh") + " -o " + out, "TETLOD_GL_BACKEND=vulkan");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("is not osmesa or egl"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
 
   // An unwritable output leaves neither the file nor a temporary behind.

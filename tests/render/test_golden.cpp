@@ -33,7 +33,10 @@ class Offscreen {
     static Offscreen instance;
     return instance;
   }
-  Renderer* renderer() { return renderer_.get(); }
+  Renderer* renderer() {
+    if (context_) context_->make_current();
+    return renderer_.get();
+  }
   const std::string& error() const { return error_; }
 
   const PreparedMesh& mesh(const std::string& asset) {
@@ -50,7 +53,8 @@ class Offscreen {
 
  private:
   Offscreen() {
-    context_ = create_offscreen_context(&error_);
+    // The goldens are OSMesa's pictures; the EGL backend is compared with them below.
+    context_ = create_offscreen_context(&error_, OffscreenBackend::kOsMesa);
     if (!context_) return;
     renderer_ = std::make_unique<Renderer>(context_->gl());
     if (!renderer_->init(&error_)) renderer_.reset();
@@ -242,6 +246,30 @@ TEST(GoldenSensitivity, HighlightChangeIsCaught) {
   s.filter.highlight = false;
   const ImageDifference d = difference_from_golden("motor_cut", render_case("motor.mesh", s));
   EXPECT_FALSE(matches(d)) << d.differing_pixels << " pixels differ";
+}
+
+// The EGL surfaceless backend (OSMesa's successor) draws the same pictures.
+TEST(GoldenBackends, EglSurfacelessMatchesTheGoldens) {
+  if (updating_goldens()) {
+    GTEST_SKIP() << "updating goldens";
+  }
+  // Load the meshes (and make the OSMesa context) before the EGL context is made
+  // current, so that nothing switches contexts under the EGL renderer.
+  const PreparedMesh& motor_mesh = Offscreen::get().mesh("motor.mesh");
+  const PreparedMesh& spheres_mesh = Offscreen::get().mesh("spheres.mesh");
+  std::string error;
+  auto egl = create_offscreen_context(&error, OffscreenBackend::kEgl);
+  ASSERT_TRUE(egl) << error;
+  ASSERT_TRUE(egl->make_current());
+  std::printf("%s\n", egl->description().c_str());
+  {
+    Renderer renderer(egl->gl());
+    ASSERT_TRUE(renderer.init(&error)) << error;
+    const Image motor = render_snapshot(&renderer, motor_mesh, motor_stretch());
+    EXPECT_TRUE(matches(difference_from_golden("motor_stretch", motor)));
+    const Image spheres = render_snapshot(&renderer, spheres_mesh, spheres_cut());
+    EXPECT_TRUE(matches(difference_from_golden("spheres_cut", spheres)));
+  }
 }
 
 // Rendering twice gives the same pixels (the goldens can be trusted run to run).
