@@ -90,6 +90,10 @@ int cmd_render(const Args& args) {
       render::render_snapshot(offscreen.renderer.get(), prepared, options.snapshot);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (image.width == 0) {
+    std::fprintf(stderr, "tetlod render: %s\n", offscreen.renderer->last_error().c_str());
+    return kExitBadInput;
+  }
   const Status s = render::write_png(out, image);
   if (!s) {
     std::fprintf(stderr, "tetlod render: %s\n", s.message().c_str());

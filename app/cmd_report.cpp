@@ -241,6 +241,10 @@ int cmd_report(const Args& args) {
     const render::PreparedMesh prepared = render::prepare_mesh(level.mesh);
     const render::Image picture =
         render::render_snapshot(offscreen.renderer.get(), prepared, options.snapshot);
+    if (picture.width == 0) {
+      std::fprintf(stderr, "tetlod report: %s\n", offscreen.renderer->last_error().c_str());
+      return kExitBadInput;
+    }
     const render::Image chart = render::draw_histogram_chart(
         stats.stretch_histogram, options.snapshot.draw.color_map, 480, 260,
         "stretch histogram, " + std::to_string(stats.whole.elements) + " tets");

@@ -9,7 +9,7 @@
 namespace tetlod::app {
 
 const char* const kRenderFlagsHelp =
-    "  --width W --height H   image size in pixels (default 800 x 800)\n"
+    "  --width W --height H   image size in pixels, 16 to 4096 (default 800 x 800)\n"
     "  --color stretch|material   face colour: the tet's stretch (default) or material\n"
     "  --colormap viridis|turbo   colour map for stretch (default viridis)\n"
     "  --range LO,HI          stretch at the ends of the colour map (default 0,1)\n"
@@ -77,7 +77,7 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
   if (a == "--width" || a == "--height") {
     if (!value()) return OptionResult::kError;
     const auto n = parse_integer(v);
-    if (!n || *n < 16 || *n > 8192) return bad_value("a size in pixels from 16 to 8192");
+    if (!n || *n < 16 || *n > 4096) return bad_value("a size in pixels from 16 to 4096");
     (a == "--width" ? s.width : s.height) = static_cast<int>(*n);
   } else if (a == "--color") {
     if (!value()) return OptionResult::kError;

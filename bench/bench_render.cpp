@@ -127,7 +127,10 @@ int main(int argc, char** argv) {
   DrawSettings draw;
   for (int r = 0; r < repeat; ++r) {
     const auto t = Clock::now();
-    renderer.draw(draw, camera, 800, 800);
+    if (!renderer.draw(draw, camera, 800, 800)) {
+      std::fprintf(stderr, "bench_render: %s\n", renderer.last_error().c_str());
+      return 1;
+    }
     context->gl().Finish();
     draw_times.push_back(seconds_since(t));
   }

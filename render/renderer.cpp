@@ -243,9 +243,11 @@ void Renderer::release_targets() {
   target_width_ = target_height_ = 0;
 }
 
-void Renderer::ensure_targets(int width, int height) {
-  if (width == target_width_ && height == target_height_) return;
+bool Renderer::ensure_targets(int width, int height) {
+  if (width == target_width_ && height == target_height_ && msaa_fbo_) return true;
   release_targets();
+  while (gl_.GetError() != GL_NO_ERROR) {
+  }
   gl_.GenRenderbuffers(1, &msaa_color_);
   gl_.BindRenderbuffer(GL_RENDERBUFFER, msaa_color_);
   gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, kSamples, GL_RGBA8, width, height);
@@ -264,13 +266,25 @@ void Renderer::ensure_targets(int width, int height) {
   gl_.BindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_);
   gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                               resolve_color_);
+  const GLenum resolve_status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
+  const GLenum msaa_status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  const GLenum gl_error = gl_.GetError();
+  if (resolve_status != GL_FRAMEBUFFER_COMPLETE || msaa_status != GL_FRAMEBUFFER_COMPLETE ||
+      gl_error != GL_NO_ERROR) {
+    release_targets();
+    last_error_ = "cannot make a " + std::to_string(width) + "x" + std::to_string(height) +
+                  " framebuffer (OpenGL error " + std::to_string(gl_error) + ")";
+    return false;
+  }
   target_width_ = width;
   target_height_ = height;
+  return true;
 }
 
-void Renderer::draw(const DrawSettings& settings, const Camera& camera, int width, int height) {
-  ensure_targets(width, height);
+bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int width, int height) {
+  if (!ensure_targets(width, height)) return false;
   gl_.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
   gl_.Viewport(0, 0, width, height);
   gl_.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1);
@@ -340,6 +354,12 @@ void Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
   gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
   gl_.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  const GLenum error = gl_.GetError();
+  if (error != GL_NO_ERROR) {
+    last_error_ = "OpenGL error " + std::to_string(error) + " while drawing";
+    return false;
+  }
+  return true;
 }
 
 void Renderer::draw_legend(const DrawSettings& settings, int width, int height) {
@@ -394,6 +414,7 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
 }
 
 Image Renderer::read_pixels() {
+  if (!resolve_fbo_) return {};
   Image image(target_width_, target_height_);
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);

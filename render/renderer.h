@@ -51,8 +51,10 @@ class Renderer {
   void update_highlight(const std::vector<SurfaceVertex>& vertices,
                         const std::vector<DirtyRange>& dirty, size_t highlighted_tets);
 
-  // Draws the uploaded surface (and highlight, and legend) at width x height.
-  void draw(const DrawSettings& settings, const Camera& camera, int width, int height);
+  // Draws the uploaded surface (and highlight, and legend) at width x height. False
+  // (see last_error()) if the framebuffer cannot be made or GL reports an error.
+  bool draw(const DrawSettings& settings, const Camera& camera, int width, int height);
+  const std::string& last_error() const { return last_error_; }
   // The last drawn frame, top row first.
   Image read_pixels();
   // Copies the last drawn frame into the default framebuffer (a window).
@@ -61,7 +63,7 @@ class Renderer {
   size_t triangle_count() const { return triangle_vertices_ / 3; }
 
  private:
-  void ensure_targets(int width, int height);
+  bool ensure_targets(int width, int height);
   void release_targets();
   void draw_legend(const DrawSettings& settings, int width, int height);
   // Writes vertices[dirty] into `vbo`, growing it (and sending everything) if needed.
@@ -78,6 +80,7 @@ class Renderer {
   size_t triangle_vertices_ = 0, highlight_vertices_ = 0, highlighted_tets_ = 0;
   size_t triangle_capacity_ = 0, highlight_capacity_ = 0;  // in vertices
   std::vector<int32_t> visible_materials_;
+  std::string last_error_;
 };
 
 }  // namespace tetlod::render

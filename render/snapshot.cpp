@@ -48,7 +48,7 @@ Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
   DrawSettings draw = settings.draw;
   if (settings.filter.highlight) draw.highlight_below = settings.filter.highlight_below;
   const Camera camera = snapshot_camera(mesh, buffers, settings.view);
-  renderer->draw(draw, camera, settings.width, settings.height);
+  if (!renderer->draw(draw, camera, settings.width, settings.height)) return {};
   return renderer->read_pixels();
 }
 

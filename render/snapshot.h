@@ -45,7 +45,8 @@ Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
                        const ViewSpec& view);
 
 // Builds the surface, uploads it, draws it and reads it back. `renderer` must be
-// initialised on the current context.
+// initialised on the current context. An empty image (width 0) if drawing failed:
+// see renderer->last_error().
 Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
                       const SnapshotSettings& settings);
 

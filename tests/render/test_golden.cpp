@@ -272,6 +272,23 @@ TEST(GoldenBackends, EglSurfacelessMatchesTheGoldens) {
   }
 }
 
+// A framebuffer GL cannot make is an error, and the renderer still works after it.
+TEST(GoldenBackends, ImpossibleFramebufferIsAnErrorNotGarbage) {
+  Renderer* renderer = Offscreen::get().renderer();
+  ASSERT_TRUE(renderer) << Offscreen::get().error();
+  SnapshotSettings s = box2_wireframe();
+  s.width = 100000;  // beyond GL_MAX_RENDERBUFFER_SIZE
+  s.height = 16;
+  const Image failed = render_snapshot(renderer, Offscreen::get().mesh("box2.mesh"), s);
+  EXPECT_EQ(failed.width, 0);
+  EXPECT_NE(renderer->last_error().find("cannot make a 100000x16 framebuffer"), std::string::npos)
+      << renderer->last_error();
+  if (updating_goldens()) return;
+  const ImageDifference d =
+      difference_from_golden("box2_wireframe", render_case("box2.mesh", box2_wireframe()));
+  EXPECT_TRUE(matches(d));
+}
+
 // Rendering twice gives the same pixels (the goldens can be trusted run to run).
 TEST(GoldenSensitivity, RenderingIsDeterministic) {
   const Image a = render_case("spheres.mesh", spheres_cut());
