@@ -23,7 +23,7 @@ using GetProcAddress = void* (*)(const char* name);
   X(BindRenderbuffer, BINDRENDERBUFFER)                             \
   X(BindTexture, BINDTEXTURE)                                       \
   X(BindVertexArray, BINDVERTEXARRAY)                               \
-  X(BlendFunc, BLENDFUNC)                                           \
+  X(BlendFuncSeparate, BLENDFUNCSEPARATE)                           \
   X(BlitFramebuffer, BLITFRAMEBUFFER)                               \
   X(BufferData, BUFFERDATA)                                         \
   X(BufferSubData, BUFFERSUBDATA)                                   \

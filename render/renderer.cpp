@@ -337,7 +337,8 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
     gl_.DepthFunc(GL_LEQUAL);
     gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(highlight_vertices_));
     gl_.Enable(GL_BLEND);
-    gl_.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    // Blend colour only: the frame stays opaque (alpha 1) for PNG export.
+    gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     gl_.DepthMask(GL_FALSE);
     gl_.DepthFunc(GL_GREATER);
     gl_.Uniform1f(gl_.GetUniformLocation(p, "u_alpha"), 0.45f);

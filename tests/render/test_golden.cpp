@@ -153,6 +153,11 @@ bool matches(const ImageDifference& d) {
 void check_golden(const std::string& name, const char* asset, const SnapshotSettings& settings) {
   const Image actual = render_case(asset, settings);
   ASSERT_EQ(actual.width, kSize);
+  // Pictures are opaque: blending (the highlight's see-through pass) must not leave
+  // alpha below 1, or viewers would show the page through the PNG.
+  size_t translucent = 0;
+  for (size_t i = 3; i < actual.rgba.size(); i += 4) translucent += actual.rgba[i] != 255;
+  EXPECT_EQ(translucent, 0u) << name;
   if (updating_goldens()) {
     const Status s = write_png(golden_path(name), actual);
     ASSERT_TRUE(s.ok()) << s.message();
