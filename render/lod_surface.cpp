@@ -33,19 +33,20 @@ std::vector<DirtyRange> LodSurface::take_highlight_dirty() {
   return take_ranges(&highlight_dirty_, 12, highlight_.size());
 }
 
-size_t LodSurface::FaceTable::hash(const FaceKey& k) {
-  uint64_t h = k.v[0] * 0x9e3779b97f4a7c15ull;
-  h ^= (h >> 29) + k.v[1] * 0xbf58476d1ce4e5b9ull;
-  h ^= (h >> 31) + k.v[2] * 0x94d049bb133111ebull;
-  return static_cast<size_t>(h ^ (h >> 32));
+size_t LodSurface::FaceTable::home(const FaceKey& k) const {
+  // The smallest vertex picks the region, the other two spread within a few cache
+  // lines of it.
+  const uint64_t spread = (uint64_t(k.v[1]) * 0x9e3779b1u ^ uint64_t(k.v[2]) * 0x85ebca6bu) >> 7;
+  return static_cast<size_t>(((uint64_t(k.v[0]) * scale_) >> 32) + (spread & 15)) & mask_;
 }
 
-void LodSurface::FaceTable::clear(size_t expected_faces) {
+void LodSurface::FaceTable::clear(size_t expected_faces, size_t vertex_count) {
   size_t capacity = 64;
   while (capacity < expected_faces + expected_faces / 2) capacity *= 2;
   buckets_.assign(capacity, Bucket());
   mask_ = capacity - 1;
   size_ = 0;
+  scale_ = (uint64_t(capacity) << 32) / std::max<uint64_t>(vertex_count, 1);
 }
 
 LodSurface::FaceEntry* LodSurface::FaceTable::find(const FaceKey& key) {
@@ -93,6 +94,7 @@ void LodSurface::FaceTable::grow() {
   std::vector<Bucket> old = std::move(buckets_);
   buckets_.assign(old.size() * 2, Bucket());
   mask_ = buckets_.size() - 1;
+  scale_ *= 2;
   for (const Bucket& b : old) {
     if (b.key.v[0] == kInvalidIndex) continue;
     size_t i = home(b.key);
@@ -242,7 +244,7 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
   highlight_slot_.assign(n, kInvalidIndex);
   visible_count_ = 0;
   // About two distinct faces per tet (interior faces are shared); grows if needed.
-  faces_.clear(2 * n + n / 4);
+  faces_.clear(2 * n + n / 4, state.positions->size());
   triangles_.clear();
   slot_keys_.clear();
   highlight_.clear();

@@ -64,7 +64,10 @@ class LodSurface {
   // Face key -> entry. Entry pointers stay valid until the next insert or erase.
   class FaceTable {
    public:
-    void clear(size_t expected_faces);
+    // `vertex_count` bounds the vertex ids: homes follow the smallest vertex id, so
+    // faces of nearby vertices (the simplifier numbers them in Morton order) share
+    // cache lines.
+    void clear(size_t expected_faces, size_t vertex_count);
     FaceEntry* find(const FaceKey& key);
     FaceEntry* insert(const FaceKey& key);  // finds, or adds an empty entry
     void erase(const FaceKey& key);
@@ -74,12 +77,12 @@ class LodSurface {
       FaceKey key{{kInvalidIndex, kInvalidIndex, kInvalidIndex}};  // v[0] unset: empty
       FaceEntry entry;
     };
-    static size_t hash(const FaceKey& k);
-    size_t home(const FaceKey& k) const { return hash(k) & mask_; }
+    size_t home(const FaceKey& k) const;
     void grow();
     std::vector<Bucket> buckets_;
     size_t mask_ = 0;
     size_t size_ = 0;
+    uint64_t scale_ = 0;  // 2^32 * buckets / vertex_count
   };
 
   bool tet_visible(const LodState& state, uint32_t tet) const;
