@@ -19,5 +19,7 @@ int cmd_generate(const Args& args);
 int cmd_simplify(const Args& args);
 int cmd_lod(const Args& args);
 int cmd_solve(const Args& args);
+int cmd_render(const Args& args);
+int cmd_report(const Args& args);
 
 }  // namespace tetlod::app

@@ -18,6 +18,8 @@ constexpr const char* kUsage =
     "  simplify IN -o OUT --size S ...  subdivide and simplify under the four thresholds\n"
     "  lod HISTORY --elements N -o OUT  write a level of a saved collapse history\n"
     "  solve MESH --conductor M=V ...   electrostatic finite-element solve: capacitance, field\n"
+    "  render FILE -o SHOT.png ...      draw a mesh offscreen to a PNG (stretch, cut, ...)\n"
+    "  report IN -o DIR [...]           HTML report: Table I rows, pictures, histograms\n"
     "\n"
     "Run 'tetlod COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input, 2 bad usage.\n";
@@ -42,6 +44,8 @@ int main(int argc, char** argv) {
   if (command == "simplify") return cmd_simplify(args);
   if (command == "lod") return cmd_lod(args);
   if (command == "solve") return cmd_solve(args);
+  if (command == "render") return cmd_render(args);
+  if (command == "report") return cmd_report(args);
   std::fprintf(stderr, "tetlod: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return kExitUsage;
 }

@@ -6,6 +6,10 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libtet1.5-dev libgtest-dev
   libbenchmark-dev)
+# Renderer: GL headers, GLFW (window backend), stb (PNG, text), OSMesa and EGL
+# (offscreen backends, loaded at run time), Xvfb for the window-backend test.
+packages+=(libgl-dev libglfw3-dev libstb-dev libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb
+  xauth)
 # Extra packages a caller needs (scripts/test.sh adds gmsh for the interoperability test).
 read -r -a extra <<<"${TETLOD_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")

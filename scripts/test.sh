@@ -4,6 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # gmsh: the test suite checks that Gmsh itself reads the .msh files TetLOD writes.
+# (setup.sh also installs xvfb + xauth: ctest runs the GLFW window test under
+# xvfb-run; the golden-image tests render offscreen with OSMesa and need no display.)
 TETLOD_EXTRA_PACKAGES="gmsh" bash scripts/setup.sh
 
 jobs=$(nproc)

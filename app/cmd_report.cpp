@@ -1,0 +1,292 @@
+// tetlod report IN -o DIR [view flags] [--simplify flags] [--levels N,...]
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/cli_util.h"
+#include "app/commands.h"
+#include "app/render_options.h"
+#include "core/adjacency.h"
+#include "core/lod.h"
+#include "core/mesh_stats.h"
+#include "render/histogram_chart.h"
+
+namespace tetlod::app {
+namespace {
+
+constexpr const char* kReportUsageHead =
+    "usage: tetlod report IN -o DIR [--simplify --size S ... [--levels N,N,...]] [view flags]\n"
+    "\n"
+    "Writes DIR/report.html, a self-contained page (images embedded): the paper's Table I\n"
+    "row for the input and for each level, a picture of each (like the paper's Fig. 4)\n"
+    "and its stretch histogram. The pictures and charts are also written as PNG files.\n"
+    "  --levels N,...    levels of the collapse history nearest N elements each\n"
+    "  --simplify        simplify with the flags of 'tetlod simplify' (--size, --stretch,\n"
+    "                    --valence, --tolerance, --material-size, --size-field, ...)\n"
+    "View flags, as for 'tetlod render' (default picture 480 x 480):\n";
+
+void print_usage(std::FILE* stream) {
+  std::fputs(kReportUsageHead, stream);
+  std::fputs(kRenderFlagsHelp, stream);
+}
+
+struct Level {
+  std::string label;
+  TetMesh mesh;
+};
+
+std::string base64(const std::vector<uint8_t>& bytes) {
+  static constexpr char kDigits[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const uint32_t b0 = bytes[i];
+    const uint32_t b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
+    const uint32_t b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+    const uint32_t v = b0 << 16 | b1 << 8 | b2;
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[v & 63] : '=';
+  }
+  return out;
+}
+
+std::string html_escape(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string format(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+
+std::string table_row(const std::string& label, const PropertyRow& r) {
+  return "<tr><th>" + html_escape(label) + "</th><td>" + std::to_string(r.nodes) + "</td><td>" +
+         std::to_string(r.edges) + "</td><td>" + std::to_string(r.elements) + "</td><td>" +
+         format("%.4f", r.average_stretch) + "</td><td>" + format("%.4f", r.min_stretch) +
+         "</td><td>" + std::to_string(r.max_valence) + "</td><td>" + format("%.5g", r.max_size) +
+         "</td><td>" + format("%.6g", r.volume) + "</td></tr>\n";
+}
+
+constexpr const char* kTableHead =
+    "<tr><th></th><th>#nodes</th><th>#edges</th><th>#elements</th><th>ave. stretch</th>"
+    "<th>min. stretch</th><th>max. valence</th><th>max. size</th><th>volume</th></tr>\n";
+
+std::string img(const std::vector<uint8_t>& png, const std::string& alt) {
+  return "<img src=\"data:image/png;base64," + base64(png) + "\" alt=\"" + html_escape(alt) + "\">";
+}
+
+Status write_text_atomically(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  if (!file) return Status::error(path + ": cannot write");
+  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  if (std::fclose(file) != 0 || !written) {
+    std::remove(temporary.c_str());
+    return Status::error(path + ": write failed");
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    return Status::error(path + ": cannot replace");
+  }
+  return Status();
+}
+
+std::optional<std::vector<long long>> parse_levels(const std::string& text) {
+  std::vector<long long> levels;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const auto n = parse_integer(text.substr(start, comma - start));
+    if (!n || *n < 1) return std::nullopt;
+    levels.push_back(*n);
+    start = comma + 1;
+  }
+  return levels;
+}
+
+}  // namespace
+
+int cmd_report(const Args& args) {
+  if (wants_help(args)) {
+    print_usage(stdout);
+    return kExitOk;
+  }
+  std::string in, dir;
+  RenderOptions options;
+  options.snapshot.width = options.snapshot.height = 480;
+  std::vector<long long> levels;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    const OptionResult parsed = parse_render_option(args, &i, "report", &options);
+    if (parsed == OptionResult::kError) return kExitUsage;
+    if (parsed == OptionResult::kParsed) continue;
+    std::string v;
+    if (a == "-o" || a == "--output") {
+      if (!parse_option_value(args, &i, "-o", &dir)) return kExitUsage;
+    } else if (a == "--levels") {
+      if (!parse_option_value(args, &i, "--levels", &v)) return kExitUsage;
+      const auto parsed_levels = parse_levels(v);
+      if (!parsed_levels) {
+        std::fprintf(stderr, "tetlod report: --levels '%s' is not a list of element counts >= 1\n",
+                     v.c_str());
+        return kExitUsage;
+      }
+      levels = *parsed_levels;
+      options.simplify = true;
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "tetlod report: unknown option '%s'\n\n", a.c_str());
+      print_usage(stderr);
+      return kExitUsage;
+    } else if (in.empty()) {
+      in = a;
+    } else {
+      std::fputs("tetlod report: more than one input given\n\n", stderr);
+      print_usage(stderr);
+      return kExitUsage;
+    }
+  }
+  if (in.empty() || dir.empty()) {
+    std::fputs("tetlod report: need IN and -o DIR\n\n", stderr);
+    print_usage(stderr);
+    return kExitUsage;
+  }
+  if (options.simplify && !options.simplify_options.size_given) {
+    std::fputs(
+        "tetlod report: --simplify and --levels need a target size (--size, --material-size or "
+        "--size-field)\n",
+        stderr);
+    return kExitUsage;
+  }
+  if (options.simplify_options.elements > 0) levels.push_back(options.simplify_options.elements);
+
+  TetMesh input;
+  ReadInfo info;
+  if (!load_mesh(in, &input, &info)) return kExitBadInput;
+  if (!resolve_materials(input, "report", &options)) return kExitBadInput;
+  OffscreenRenderer offscreen;
+  if (!open_offscreen_renderer("report", &offscreen)) return kExitBadInput;
+
+  std::vector<Level> meshes;
+  std::string thresholds;
+  if (options.simplify) {
+    SimplifyOptions& so = options.simplify_options;
+    finish_simplify_options(input, &so);
+    SimplifyResult result;
+    const Status s = simplify(input, so.params, &result);
+    if (!s) {
+      std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+    thresholds = "size " + format("%g", so.params.sizing.uniform) + ", stretch " +
+                 format("%g", so.params.min_stretch) + ", valence " +
+                 std::to_string(so.params.max_valence) + ", tolerance " +
+                 format("%g", so.params.tolerance) +
+                 (so.params.subdivide ? "" : ", no subdivision");
+    meshes.push_back({"input", input});
+    Lod lod(result.base, &result.history);
+    std::sort(levels.begin(), levels.end(), std::greater<>());
+    for (const long long n : levels) {
+      const size_t step = lod.step_for_elements(static_cast<size_t>(n));
+      lod.seek(step);
+      meshes.push_back(
+          {"level ~" + std::to_string(n) + " (step " + std::to_string(step) + ")", lod.extract()});
+    }
+    meshes.push_back({"simplified (step " + std::to_string(result.history.step_count()) + ")",
+                      std::move(result.output)});
+  } else {
+    meshes.push_back({"input", std::move(input)});
+  }
+
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    std::fprintf(stderr, "tetlod report: %s: cannot create the directory: %s\n", dir.c_str(),
+                 ec.message().c_str());
+    return kExitBadInput;
+  }
+
+  std::string summary, figures;
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    const Level& level = meshes[k];
+    const MeshStats stats = compute_mesh_stats(level.mesh, build_vertex_tets(level.mesh));
+    summary += table_row(level.label, stats.whole);
+
+    const render::PreparedMesh prepared = render::prepare_mesh(level.mesh);
+    const render::Image picture =
+        render::render_snapshot(offscreen.renderer.get(), prepared, options.snapshot);
+    if (picture.width == 0) {
+      std::fprintf(stderr, "tetlod report: %s\n", offscreen.renderer->last_error().c_str());
+      return kExitBadInput;
+    }
+    const render::Image chart = render::draw_histogram_chart(
+        stats.stretch_histogram, options.snapshot.draw.color_map, 480, 260,
+        "stretch histogram, " + std::to_string(stats.whole.elements) + " tets");
+    const std::string stem = "level" + std::to_string(k);
+    for (const auto& [image, name] :
+         {std::pair{&picture, stem + ".png"}, std::pair{&chart, stem + "_histogram.png"}}) {
+      const Status s = render::write_png(dir + "/" + name, *image);
+      if (!s) {
+        std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
+        return kExitBadInput;
+      }
+    }
+    std::string materials = "<table>\n" + std::string(kTableHead);
+    for (const MaterialRow& m : stats.per_material)
+      materials += table_row("material " + std::to_string(m.material), m.row);
+    materials += "</table>\n";
+    figures += "<section><h2>" + html_escape(level.label) + "</h2>\n<div class=\"figs\">" +
+               img(render::encode_png(picture), level.label) +
+               img(render::encode_png(chart), "stretch histogram") + "</div>\n" + materials +
+               "</section>\n";
+  }
+
+  const std::string html =
+      "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>TetLOD report: " +
+      html_escape(in) +
+      "</title>\n<style>body{font-family:sans-serif;margin:2em;color:#222}"
+      "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #ccc;"
+      "padding:2px 8px;text-align:right}th:first-child{text-align:left}"
+      ".figs img{margin-right:1em;vertical-align:top;border:1px solid #ddd}</style>\n"
+      "</head><body>\n<h1>TetLOD report</h1>\n<p>Input: <code>" +
+      html_escape(in) + "</code>" +
+      (thresholds.empty() ? "" : "<br>Thresholds: " + html_escape(thresholds)) +
+      "</p>\n<h2>Properties (Table I)</h2>\n<table>\n" + kTableHead + summary + "</table>\n" +
+      figures + "</body></html>\n";
+  const std::string path = dir + "/report.html";
+  const Status s = write_text_atomically(path, html);
+  if (!s) {
+    std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
+    return kExitBadInput;
+  }
+  std::printf("%s: %zu level(s)\n", path.c_str(), meshes.size());
+  return kExitOk;
+}
+
+}  // namespace tetlod::app

@@ -1,0 +1,245 @@
+#include "app/render_options.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "app/cli_util.h"
+#include "core/lod.h"
+
+namespace tetlod::app {
+
+const char* const kRenderFlagsHelp =
+    "  --width W --height H   image size in pixels, 16 to 4096 (default 800 x 800)\n"
+    "  --color stretch|material   face colour: the tet's stretch (default) or material\n"
+    "  --colormap viridis|turbo   colour map for stretch (default viridis)\n"
+    "  --range LO,HI          stretch at the ends of the colour map (default 0,1)\n"
+    "  --materials 1,2,3      show only these materials\n"
+    "  --hide 1,2             hide these materials (e.g. the air)\n"
+    "  --cut AXIS=VALUE       keep whole tets with centroid AXIS <= VALUE (AXIS x, y or z;\n"
+    "                         -x=V keeps x >= V); the faces the cut exposes are drawn\n"
+    "  --cut-plane NX,NY,NZ,D keep whole tets with centroid c where dot(n, c) <= D\n"
+    "  --view iso|x|y|z       camera direction, framed on the shown materials (default iso)\n"
+    "  --camera EX,EY,EZ,TX,TY,TZ   camera at E looking at T\n"
+    "  --wireframe            draw the edges of the drawn faces\n"
+    "  --highlight-below D    show tets with stretch < D in magenta, also through the surface\n"
+    "  --no-legend            no colour bar or material key\n";
+
+namespace {
+
+std::optional<std::vector<double>> parse_doubles(const std::string& text) {
+  std::vector<double> values;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const auto d = parse_double(text.substr(start, comma - start));
+    if (!d) return std::nullopt;
+    values.push_back(*d);
+    start = comma + 1;
+  }
+  return values;
+}
+
+std::optional<std::vector<int32_t>> parse_materials(const std::string& text) {
+  std::vector<int32_t> ids;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const auto n = parse_integer(text.substr(start, comma - start));
+    if (!n || *n < 0 || *n > 0x7fffffff) return std::nullopt;
+    ids.push_back(static_cast<int32_t>(*n));
+    start = comma + 1;
+  }
+  return ids;
+}
+
+}  // namespace
+
+OptionResult parse_render_option(const Args& args, size_t* i, const char* command,
+                                 RenderOptions* options) {
+  const std::string& a = args[*i];
+  if (a == "--simplify") {
+    options->simplify = true;
+    return OptionResult::kParsed;
+  }
+  const OptionResult simplify_flag =
+      parse_simplify_option(args, i, command, &options->simplify_options);
+  if (simplify_flag != OptionResult::kNotMine) {
+    options->simplify = true;
+    return simplify_flag;
+  }
+  render::SnapshotSettings& s = options->snapshot;
+  std::string v;
+  auto bad_value = [&](const char* what) {
+    std::fprintf(stderr, "tetlod %s: %s '%s' is not %s\n", command, a.c_str(), v.c_str(), what);
+    return OptionResult::kError;
+  };
+  auto value = [&]() { return parse_option_value(args, i, a.c_str(), &v); };
+  if (a == "--width" || a == "--height") {
+    if (!value()) return OptionResult::kError;
+    const auto n = parse_integer(v);
+    if (!n || *n < 16 || *n > 4096) return bad_value("a size in pixels from 16 to 4096");
+    (a == "--width" ? s.width : s.height) = static_cast<int>(*n);
+  } else if (a == "--color") {
+    if (!value()) return OptionResult::kError;
+    if (v == "stretch") {
+      s.draw.color_mode = render::ColorMode::kStretch;
+    } else if (v == "material") {
+      s.draw.color_mode = render::ColorMode::kMaterial;
+    } else {
+      return bad_value("stretch or material");
+    }
+  } else if (a == "--colormap") {
+    if (!value()) return OptionResult::kError;
+    if (v == "viridis") {
+      s.draw.color_map = render::ColorMap::kViridis;
+    } else if (v == "turbo") {
+      s.draw.color_map = render::ColorMap::kTurbo;
+    } else {
+      return bad_value("viridis or turbo");
+    }
+  } else if (a == "--range") {
+    if (!value()) return OptionResult::kError;
+    const auto d = parse_doubles(v);
+    if (!d || d->size() != 2 || (*d)[0] >= (*d)[1]) return bad_value("LO,HI with LO < HI");
+    s.draw.range_min = (*d)[0];
+    s.draw.range_max = (*d)[1];
+  } else if (a == "--materials" || a == "--hide") {
+    if (!value()) return OptionResult::kError;
+    const auto ids = parse_materials(v);
+    if (!ids) return bad_value("a comma-separated list of material ids >= 0");
+    (a == "--materials" ? options->shown_materials : options->hidden_materials) = *ids;
+  } else if (a == "--cut") {
+    if (!value()) return OptionResult::kError;
+    const size_t eq = v.find('=');
+    std::string axis = v.substr(0, std::min(eq, v.size()));
+    double sign = 1;
+    if (!axis.empty() && axis[0] == '-') {
+      sign = -1;
+      axis.erase(0, 1);
+    }
+    const auto offset = eq == std::string::npos ? std::nullopt : parse_double(v.substr(eq + 1));
+    if (!offset || axis.size() != 1 || axis[0] < 'x' || axis[0] > 'z')
+      return bad_value("AXIS=VALUE with AXIS x, y, z, -x, -y or -z");
+    Vec3 normal;
+    normal[axis[0] - 'x'] = sign;
+    s.filter.cut = true;
+    s.filter.cut_plane = {normal, sign * *offset};
+  } else if (a == "--cut-plane") {
+    if (!value()) return OptionResult::kError;
+    const auto d = parse_doubles(v);
+    if (!d || d->size() != 4) return bad_value("NX,NY,NZ,D");
+    const Vec3 normal{(*d)[0], (*d)[1], (*d)[2]};
+    const double l = length(normal);
+    if (l == 0) return bad_value("a plane with a non-zero normal");
+    s.filter.cut = true;
+    s.filter.cut_plane = {normal * (1 / l), (*d)[3] / l};
+  } else if (a == "--view") {
+    if (!value()) return OptionResult::kError;
+    if (v == "iso") {
+      s.view.direction = render::ViewDirection::kIso;
+    } else if (v == "x") {
+      s.view.direction = render::ViewDirection::kX;
+    } else if (v == "y") {
+      s.view.direction = render::ViewDirection::kY;
+    } else if (v == "z") {
+      s.view.direction = render::ViewDirection::kZ;
+    } else {
+      return bad_value("iso, x, y or z");
+    }
+    s.view.custom = false;
+  } else if (a == "--camera") {
+    if (!value()) return OptionResult::kError;
+    const auto d = parse_doubles(v);
+    if (!d || d->size() != 6) return bad_value("EX,EY,EZ,TX,TY,TZ");
+    s.view.custom = true;
+    s.view.eye = {(*d)[0], (*d)[1], (*d)[2]};
+    s.view.target = {(*d)[3], (*d)[4], (*d)[5]};
+    if (s.view.eye == s.view.target) return bad_value("a camera whose eye differs from its target");
+  } else if (a == "--wireframe") {
+    s.draw.wireframe = true;
+  } else if (a == "--no-legend") {
+    s.draw.legend = false;
+  } else if (a == "--highlight-below") {
+    if (!value()) return OptionResult::kError;
+    const auto d = parse_double(v);
+    if (!d || *d <= 0 || *d > 1) return bad_value("a stretch in (0, 1]");
+    s.filter.highlight = true;
+    s.filter.highlight_below = *d;
+  } else {
+    return OptionResult::kNotMine;
+  }
+  return OptionResult::kParsed;
+}
+
+bool resolve_materials(const TetMesh& mesh, const char* command, RenderOptions* options) {
+  std::vector<int32_t> present = mesh.materials;
+  std::sort(present.begin(), present.end());
+  present.erase(std::unique(present.begin(), present.end()), present.end());
+  auto check = [&](const std::vector<int32_t>& ids) {
+    for (const int32_t id : ids) {
+      if (!std::binary_search(present.begin(), present.end(), id)) {
+        std::string list;
+        for (const int32_t m : present) list += " " + std::to_string(m);
+        std::fprintf(stderr, "tetlod %s: material %d is not in the mesh (materials:%s)\n", command,
+                     id, list.c_str());
+        return false;
+      }
+    }
+    return true;
+  };
+  if (!check(options->shown_materials) || !check(options->hidden_materials)) return false;
+  std::vector<int32_t>& hidden = options->snapshot.filter.hidden_materials;
+  hidden = options->hidden_materials;
+  if (!options->shown_materials.empty()) {
+    for (const int32_t m : present)
+      if (std::find(options->shown_materials.begin(), options->shown_materials.end(), m) ==
+          options->shown_materials.end())
+        hidden.push_back(m);
+  }
+  return true;
+}
+
+bool open_offscreen_renderer(const char* command, OffscreenRenderer* out) {
+  std::string error;
+  out->context = render::create_offscreen_context(&error);
+  if (!out->context) {
+    std::fprintf(stderr, "tetlod %s: %s\n", command, error.c_str());
+    return false;
+  }
+  out->renderer = std::make_unique<render::Renderer>(out->context->gl());
+  if (!out->renderer->init(&error)) {
+    std::fprintf(stderr, "tetlod %s: %s\n", command, error.c_str());
+    out->renderer.reset();
+    return false;
+  }
+  return true;
+}
+
+bool simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
+                     TetMesh* out) {
+  SimplifyOptions& so = options->simplify_options;
+  if (!so.size_given) {
+    std::fprintf(stderr,
+                 "tetlod %s: --simplify needs a target size (--size, --material-size or "
+                 "--size-field)\n",
+                 command);
+    return false;
+  }
+  finish_simplify_options(input, &so);
+  SimplifyResult result;
+  const Status status = simplify(input, so.params, &result);
+  if (!status) {
+    std::fprintf(stderr, "tetlod %s: %s\n", command, status.message().c_str());
+    return false;
+  }
+  if (so.elements > 0) {
+    Lod lod(result.base, &result.history);
+    lod.seek(lod.step_for_elements(static_cast<size_t>(so.elements)));
+    *out = lod.extract();
+  } else {
+    *out = std::move(result.output);
+  }
+  return true;
+}
+
+}  // namespace tetlod::app

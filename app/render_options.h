@@ -1,0 +1,48 @@
+// Flags shared by `tetlod render` and `tetlod report`: what to show, how, from
+// where; plus opening the offscreen renderer with clear errors.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+#include "app/simplify_options.h"
+#include "render/gl_context.h"
+#include "render/renderer.h"
+#include "render/snapshot.h"
+
+namespace tetlod::app {
+
+struct RenderOptions {
+  render::SnapshotSettings snapshot;
+  std::vector<int32_t> shown_materials;   // --materials: only these (empty: all)
+  std::vector<int32_t> hidden_materials;  // --hide
+  bool simplify = false;                  // --simplify, or any simplifier flag
+  SimplifyOptions simplify_options;
+};
+
+extern const char* const kRenderFlagsHelp;
+
+// Parses one view flag at args[*i] (see kRenderFlagsHelp) or a simplifier flag.
+OptionResult parse_render_option(const Args& args, size_t* i, const char* command,
+                                 RenderOptions* options);
+
+// Turns --materials / --hide into the filter's hidden list for `mesh`. False with a
+// message if a named material is not in the mesh.
+bool resolve_materials(const TetMesh& mesh, const char* command, RenderOptions* options);
+
+// An offscreen context with an initialised renderer.
+struct OffscreenRenderer {
+  std::unique_ptr<render::GlContext> context;
+  std::unique_ptr<render::Renderer> renderer;
+};
+// False with "tetlod <command>: ..." on stderr if no context can be made.
+bool open_offscreen_renderer(const char* command, OffscreenRenderer* out);
+
+// The mesh `options` asks for: `input` itself or, with --simplify, the simplified
+// mesh (or the level nearest --elements). False with a message on failure.
+bool simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
+                     TetMesh* out);
+
+}  // namespace tetlod::app

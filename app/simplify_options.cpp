@@ -1,0 +1,102 @@
+#include "app/simplify_options.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "app/cli_util.h"
+
+namespace tetlod::app {
+
+const char* const kSimplifyFlagsHelp =
+    "  --size S          tau_SZ: no tet's longest edge above S (model units)\n"
+    "  --stretch D       tau_ST: no tet's stretch below D, 0 < D < 1 (default 0.15)\n"
+    "  --valence V       tau_VL: no node with more than V edge neighbours, V >= 4 (default 25)\n"
+    "  --tolerance T     tau_TL: boundaries and interfaces kept within T (a length; the\n"
+    "                    quadric error, a sum of squared distances, stays <= T^2)\n"
+    "                    (default 0.001 x the bounding-box diagonal)\n"
+    "  --material-size M=S,...   a size per material (the smaller one on an interface)\n"
+    "  --size-field SPEC         region sizes, ';'-separated: radial:cx,cy,cz,s0,growth\n"
+    "                            axis:cx,cy,cz,dx,dy,dz,s0,growth  box:x0,y0,z0,x1,y1,z1,s\n"
+    "                    the size of a tet is the smallest of --size and every rule above\n"
+    "  --no-subdivide    skip the subdivision step\n"
+    "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
+
+bool parse_option_value(const Args& args, size_t* i, const char* name, std::string* value) {
+  if (*i + 1 >= args.size()) {
+    std::fprintf(stderr, "tetlod: %s needs a value\n", name);
+    return false;
+  }
+  *value = args[++*i];
+  return true;
+}
+
+OptionResult parse_simplify_option(const Args& args, size_t* i, const char* command,
+                                   SimplifyOptions* options) {
+  const std::string& a = args[*i];
+  SimplifyParams& params = options->params;
+  std::string v;
+  auto bad_value = [&](const char* what) {
+    std::fprintf(stderr, "tetlod %s: %s '%s' is not %s\n", command, a.c_str(), v.c_str(), what);
+    return OptionResult::kError;
+  };
+  auto value = [&]() { return parse_option_value(args, i, a.c_str(), &v); };
+  if (a == "--size") {
+    if (!value()) return OptionResult::kError;
+    const auto d = parse_double(v);
+    if (!d || *d <= 0) return bad_value("a size > 0");
+    params.sizing.uniform = *d;
+    options->size_given = true;
+  } else if (a == "--stretch") {
+    if (!value()) return OptionResult::kError;
+    const auto d = parse_double(v);
+    if (!d || *d <= 0 || *d >= 1) return bad_value("a stretch strictly between 0 and 1");
+    params.min_stretch = *d;
+  } else if (a == "--valence") {
+    if (!value()) return OptionResult::kError;
+    const auto n = parse_integer(v);
+    if (!n || *n < 4 || *n > 100000) return bad_value("a valence >= 4");
+    params.max_valence = static_cast<uint32_t>(*n);
+  } else if (a == "--tolerance") {
+    if (!value()) return OptionResult::kError;
+    const auto d = parse_double(v);
+    if (!d || *d < 0) return bad_value("a length >= 0");
+    params.tolerance = *d;
+    options->tolerance_given = true;
+  } else if (a == "--crease-angle") {
+    if (!value()) return OptionResult::kError;
+    const auto d = parse_double(v);
+    if (!d || *d <= 0 || *d >= 180) return bad_value("an angle between 0 and 180 degrees");
+    params.crease_angle_degrees = *d;
+  } else if (a == "--no-subdivide") {
+    params.subdivide = false;
+  } else if (a == "--material-size" || a == "--size-field") {
+    if (!value()) return OptionResult::kError;
+    const Status s = a == "--material-size" ? parse_material_sizes(v, &params.sizing)
+                                            : parse_size_field(v, &params.sizing);
+    if (!s) {
+      std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
+      return OptionResult::kError;
+    }
+    options->size_given = true;
+  } else if (a == "--elements") {
+    if (!value()) return OptionResult::kError;
+    const auto n = parse_integer(v);
+    if (!n || *n < 1) return bad_value("a number of elements >= 1");
+    options->elements = *n;
+  } else {
+    return OptionResult::kNotMine;
+  }
+  return OptionResult::kParsed;
+}
+
+void finish_simplify_options(const TetMesh& input, SimplifyOptions* options) {
+  if (options->tolerance_given || input.positions.empty()) return;
+  Vec3 lo = input.positions[0], hi = input.positions[0];
+  for (const Vec3& p : input.positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  options->params.tolerance = 1e-3 * length(hi - lo);
+}
+
+}  // namespace tetlod::app

@@ -1,0 +1,39 @@
+// The simplifier's command-line flags, shared by `simplify`, `render --simplify`
+// and `report`, so every command reads them the same way.
+#pragma once
+
+#include <string>
+
+#include "app/commands.h"
+#include "core/simplify.h"
+
+namespace tetlod::app {
+
+struct SimplifyOptions {
+  SimplifyParams params;
+  bool size_given = false;       // --size, --material-size or --size-field
+  bool tolerance_given = false;  // else 1e-3 x the bounding-box diagonal
+  long long elements = -1;       // --elements N, or -1
+};
+
+// The flag lines of the usage text (the thresholds and sizing, without --elements).
+extern const char* const kSimplifyFlagsHelp;
+
+enum class OptionResult {
+  kNotMine,  // args[*i] is not a simplifier flag
+  kParsed,   // consumed (with its value; *i is left on the last consumed argument)
+  kError,    // a message went to stderr prefixed with "tetlod <command>: "
+};
+
+// Parses one simplifier flag at args[*i] (--size --stretch --valence --tolerance
+// --crease-angle --no-subdivide --material-size --size-field --elements).
+OptionResult parse_simplify_option(const Args& args, size_t* i, const char* command,
+                                   SimplifyOptions* options);
+
+// Reads "--flag VALUE": false with a message if VALUE is missing.
+bool parse_option_value(const Args& args, size_t* i, const char* name, std::string* value);
+
+// Fills in the defaults that depend on the input (the tolerance).
+void finish_simplify_options(const TetMesh& input, SimplifyOptions* options);
+
+}  // namespace tetlod::app

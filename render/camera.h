@@ -1,0 +1,37 @@
+// A perspective camera looking at a target, and framing helpers.
+#pragma once
+
+#include <array>
+
+#include "core/vec3.h"
+
+namespace tetlod::render {
+
+struct Camera {
+  Vec3 eye{0, 0, 1};
+  Vec3 target{0, 0, 0};
+  Vec3 up{0, 1, 0};
+  double fov_y_degrees = 30;
+  // Near and far clip distances; set by frame_camera() from the model's size.
+  double near_distance = 0.01;
+  double far_distance = 100;
+};
+
+enum class ViewDirection { kIso, kX, kY, kZ };
+
+// A camera looking at the box [lo, hi] from `view` (iso: from +x,+y,+z with z up;
+// x: from +x; y: from -y; z: from +z with y up), far enough that the box's bounding
+// sphere fills the smaller image side.
+Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view);
+
+// A camera at `eye` looking at `target` (z up, or y up when looking along z); near
+// and far from the box [lo, hi]. Precondition: eye != target.
+Camera look_at_camera(const Vec3& eye, const Vec3& target, const Vec3& lo, const Vec3& hi);
+
+// Column-major 4x4 matrices for OpenGL.
+using Mat4 = std::array<float, 16>;
+Mat4 view_matrix(const Camera& camera);
+Mat4 projection_matrix(const Camera& camera, double aspect);
+Mat4 multiply(const Mat4& a, const Mat4& b);
+
+}  // namespace tetlod::render

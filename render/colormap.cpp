@@ -1,0 +1,46 @@
+#include "render/colormap.h"
+
+#include <algorithm>
+
+namespace tetlod::render {
+
+Rgb colormap_rgb(ColorMap map, double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  if (map == ColorMap::kTurbo) {
+    const double t2 = t * t, t3 = t2 * t, t4 = t2 * t2, t5 = t4 * t;
+    auto poly = [&](double c0, double c1, double c2, double c3, double c4, double c5) {
+      return static_cast<float>(
+          std::clamp(c0 + c1 * t + c2 * t2 + c3 * t3 + c4 * t4 + c5 * t5, 0.0, 1.0));
+    };
+    return {poly(0.13572138, 4.61539260, -42.66032258, 132.13108234, -152.94239396, 59.28637943),
+            poly(0.09140261, 2.19418839, 4.84296658, -14.18503333, 4.27729857, 2.82956604),
+            poly(0.10667330, 12.64194608, -60.58204836, 110.36276771, -89.90310912, 27.34824973)};
+  }
+  static constexpr double kViridis[7][3] = {
+      {0.2777273272234177, 0.005407344544966578, 0.3340998053353061},
+      {0.1050930431085774, 1.404613529898575, 1.384590162594685},
+      {-0.3308618287255563, 0.214847559468213, 0.09509516302823659},
+      {-4.634230498983486, -5.799100973351585, -19.33244095627987},
+      {6.228269936347081, 14.17993336680509, 56.69055260068105},
+      {4.776384997670288, -13.74514537774601, -65.35303263337234},
+      {-5.435455855934631, 4.645852612178535, 26.3124352495832}};
+  Rgb rgb;
+  for (int c = 0; c < 3; ++c) {
+    double v = kViridis[6][c];
+    for (int k = 5; k >= 0; --k) v = kViridis[k][c] + t * v;
+    rgb[c] = static_cast<float>(std::clamp(v, 0.0, 1.0));
+  }
+  return rgb;
+}
+
+Rgb material_rgb(int32_t material) {
+  static constexpr Rgb kPalette[kPaletteSize] = {
+      {0.306f, 0.475f, 0.655f}, {0.949f, 0.557f, 0.169f}, {0.882f, 0.341f, 0.349f},
+      {0.463f, 0.718f, 0.698f}, {0.349f, 0.631f, 0.310f}, {0.929f, 0.788f, 0.282f},
+      {0.690f, 0.478f, 0.631f}, {1.000f, 0.616f, 0.655f}, {0.612f, 0.459f, 0.373f},
+      {0.729f, 0.690f, 0.675f}};
+  const int32_t index = material < 0 ? 0 : material % kPaletteSize;
+  return kPalette[index];
+}
+
+}  // namespace tetlod::render

@@ -1,0 +1,25 @@
+// Colour maps for per-tet scalars (perceptual, monotone in lightness where the map
+// allows) and the categorical material palette. Values are linear 0..1 RGB.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace tetlod::render {
+
+enum class ColorMap { kViridis, kTurbo };
+
+using Rgb = std::array<float, 3>;
+
+// The map at t in [0, 1] (clamped). Viridis and Turbo from their published
+// polynomial fits (M. Zucker's viridis fit; A. Mikhailov, Google, 2019, for Turbo).
+Rgb colormap_rgb(ColorMap map, double t);
+
+// Colour of a material id (ids >= 0; a 10-colour qualitative palette, cycled).
+inline constexpr int kPaletteSize = 10;
+Rgb material_rgb(int32_t material);
+
+// The colour of highlighted (low-stretch) tets; in neither colour map.
+inline constexpr Rgb kHighlightRgb = {1.0f, 0.1f, 0.75f};
+
+}  // namespace tetlod::render

@@ -1,0 +1,158 @@
+#include "render/image.h"
+
+#include <stb_easy_font.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+#define STB_IMAGE_STATIC
+#define STBI_ONLY_PNG
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
+
+namespace tetlod::render {
+
+Image::Image(int w, int h, uint32_t fill_rgba) : width(w), height(h) {
+  rgba.resize(size_t(w) * size_t(h) * 4);
+  for (size_t i = 0; i < rgba.size(); i += 4) {
+    rgba[i] = uint8_t(fill_rgba >> 24);
+    rgba[i + 1] = uint8_t(fill_rgba >> 16);
+    rgba[i + 2] = uint8_t(fill_rgba >> 8);
+    rgba[i + 3] = uint8_t(fill_rgba);
+  }
+}
+
+std::vector<uint8_t> encode_png(const Image& image) {
+  std::vector<uint8_t> bytes;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<uint8_t>*>(context);
+        const auto* p = static_cast<const uint8_t*>(data);
+        out->insert(out->end(), p, p + size);
+      },
+      &bytes, image.width, image.height, 4, image.rgba.data(), image.width * 4);
+  return bytes;
+}
+
+Status write_png(const std::string& path, const Image& image) {
+  if (image.width <= 0 || image.height <= 0) return Status::error(path + ": empty image");
+  const std::vector<uint8_t> bytes = encode_png(image);
+  if (bytes.empty()) return Status::error(path + ": PNG encoding failed");
+  const std::string temporary = path + ".tmp" + std::to_string(getpid());
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  if (!file) return Status::error(path + ": cannot write: " + std::strerror(errno));
+  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed) {
+    std::remove(temporary.c_str());
+    return Status::error(path + ": write failed");
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temporary.c_str());
+    return Status::error(path + ": cannot replace: " + reason);
+  }
+  return Status();
+}
+
+Status read_png(const std::string& path, Image* image) {
+  int w = 0, h = 0, channels = 0;
+  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
+  if (!data) return Status::error(path + ": cannot read PNG: " + stbi_failure_reason());
+  image->width = w;
+  image->height = h;
+  image->rgba.assign(data, data + size_t(w) * size_t(h) * 4);
+  stbi_image_free(data);
+  return Status();
+}
+
+ImageDifference compare_images(const Image& expected, const Image& actual, int tolerance,
+                               Image* diff) {
+  ImageDifference result;
+  if (expected.width != actual.width || expected.height != actual.height) {
+    result.same_size = false;
+    result.differing_pixels = size_t(std::max(expected.width, actual.width)) *
+                              size_t(std::max(expected.height, actual.height));
+    return result;
+  }
+  if (diff) *diff = Image(expected.width, expected.height);
+  for (int y = 0; y < expected.height; ++y)
+    for (int x = 0; x < expected.width; ++x) {
+      const uint8_t* e = expected.pixel(x, y);
+      const uint8_t* a = actual.pixel(x, y);
+      int worst = 0;
+      for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(int(e[c]) - int(a[c])));
+      result.max_channel_difference = std::max(result.max_channel_difference, worst);
+      const bool differs = worst > tolerance;
+      if (differs) ++result.differing_pixels;
+      if (diff) {
+        uint8_t* d = diff->pixel(x, y);
+        if (differs) {
+          d[0] = 255, d[1] = 0, d[2] = 0;
+        } else {
+          for (int c = 0; c < 3; ++c) d[c] = uint8_t(191 + e[c] / 4);
+        }
+        d[3] = 255;
+      }
+    }
+  return result;
+}
+
+void fill_rect(Image* image, int x0, int y0, int x1, int y1, uint32_t rgba) {
+  x0 = std::max(x0, 0), y0 = std::max(y0, 0);
+  x1 = std::min(x1, image->width), y1 = std::min(y1, image->height);
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      uint8_t* p = image->pixel(x, y);
+      p[0] = uint8_t(rgba >> 24), p[1] = uint8_t(rgba >> 16), p[2] = uint8_t(rgba >> 8);
+      p[3] = uint8_t(rgba);
+    }
+}
+
+namespace {
+
+// stb_easy_font emits quads of 4 vertices {x, y, z, rgba} (16 bytes each).
+struct FontVertex {
+  float x, y, z;
+  uint8_t color[4];
+};
+
+std::vector<FontVertex> font_quads(const std::string& text) {
+  std::vector<FontVertex> vertices(std::max<size_t>(text.size(), 1) * 300 / 4);
+  std::string copy = text;
+  const int quads = stb_easy_font_print(0, 0, copy.data(), nullptr, vertices.data(),
+                                        int(vertices.size() * sizeof(FontVertex)));
+  vertices.resize(size_t(quads) * 4);
+  return vertices;
+}
+
+}  // namespace
+
+void draw_text(Image* image, int x, int y, const std::string& text, uint32_t rgba, int scale) {
+  const std::vector<FontVertex> v = font_quads(text);
+  for (size_t q = 0; q + 3 < v.size(); q += 4) {
+    const float qx0 = std::min(v[q].x, v[q + 2].x), qx1 = std::max(v[q].x, v[q + 2].x);
+    const float qy0 = std::min(v[q].y, v[q + 2].y), qy1 = std::max(v[q].y, v[q + 2].y);
+    fill_rect(image, x + int(qx0 * scale), y + int(qy0 * scale), x + int(qx1 * scale),
+              y + int(qy1 * scale), rgba);
+  }
+}
+
+int text_width(const std::string& text, int scale) {
+  std::string copy = text;
+  return stb_easy_font_width(copy.data()) * scale;
+}
+
+int text_height(const std::string& text, int scale) {
+  std::string copy = text;
+  return stb_easy_font_height(copy.data()) * scale;
+}
+
+}  // namespace tetlod::render

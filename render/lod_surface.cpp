@@ -1,0 +1,296 @@
+#include "render/lod_surface.h"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "core/metrics.h"
+
+namespace tetlod::render {
+
+std::vector<DirtyRange> LodSurface::take_ranges(std::vector<uint32_t>* slots, size_t slot_vertices,
+                                                size_t vertex_count) {
+  std::sort(slots->begin(), slots->end());
+  std::vector<DirtyRange> ranges;
+  for (const uint32_t slot : *slots) {
+    const size_t begin = size_t(slot) * slot_vertices;
+    const size_t end = std::min(begin + slot_vertices, vertex_count);
+    if (begin >= end) continue;
+    if (!ranges.empty() && ranges.back().end >= begin) {
+      ranges.back().end = std::max(ranges.back().end, end);
+    } else {
+      ranges.push_back({begin, end});
+    }
+  }
+  slots->clear();
+  return ranges;
+}
+
+std::vector<DirtyRange> LodSurface::take_triangle_dirty() {
+  return take_ranges(&triangle_dirty_, 3, triangles_.size());
+}
+
+std::vector<DirtyRange> LodSurface::take_highlight_dirty() {
+  return take_ranges(&highlight_dirty_, 12, highlight_.size());
+}
+
+size_t LodSurface::FaceTable::home(const FaceKey& k) const {
+  // The smallest vertex picks the region, the other two spread within a few cache
+  // lines of it.
+  const uint64_t spread = (uint64_t(k.v[1]) * 0x9e3779b1u ^ uint64_t(k.v[2]) * 0x85ebca6bu) >> 7;
+  return static_cast<size_t>(((uint64_t(k.v[0]) * scale_) >> 32) + (spread & 15)) & mask_;
+}
+
+void LodSurface::FaceTable::clear(size_t expected_faces, size_t vertex_count) {
+  size_t capacity = 64;
+  while (capacity < expected_faces + expected_faces / 2) capacity *= 2;
+  buckets_.assign(capacity, Bucket());
+  mask_ = capacity - 1;
+  size_ = 0;
+  scale_ = (uint64_t(capacity) << 32) / std::max<uint64_t>(vertex_count, 1);
+}
+
+LodSurface::FaceEntry* LodSurface::FaceTable::find(const FaceKey& key) {
+  for (size_t i = home(key);; i = (i + 1) & mask_) {
+    Bucket& b = buckets_[i];
+    if (b.key == key) return &b.entry;
+    if (b.key.v[0] == kInvalidIndex) return nullptr;
+  }
+}
+
+LodSurface::FaceEntry* LodSurface::FaceTable::insert(const FaceKey& key) {
+  if ((size_ + 1) * 10 > buckets_.size() * 7) grow();
+  for (size_t i = home(key);; i = (i + 1) & mask_) {
+    Bucket& b = buckets_[i];
+    if (b.key == key) return &b.entry;
+    if (b.key.v[0] == kInvalidIndex) {
+      b.key = key;
+      b.entry = FaceEntry();
+      ++size_;
+      return &b.entry;
+    }
+  }
+}
+
+void LodSurface::FaceTable::erase(const FaceKey& key) {
+  size_t i = home(key);
+  while (!(buckets_[i].key == key)) {
+    if (buckets_[i].key.v[0] == kInvalidIndex) return;
+    i = (i + 1) & mask_;
+  }
+  // Backward-shift deletion: pull later entries of the probe run into the hole
+  // unless their home lies cyclically in (hole, their position].
+  for (size_t j = (i + 1) & mask_; buckets_[j].key.v[0] != kInvalidIndex; j = (j + 1) & mask_) {
+    const size_t k = home(buckets_[j].key);
+    const bool stays = i <= j ? (i < k && k <= j) : (i < k || k <= j);
+    if (stays) continue;
+    buckets_[i] = buckets_[j];
+    i = j;
+  }
+  buckets_[i] = Bucket();
+  --size_;
+}
+
+void LodSurface::FaceTable::grow() {
+  std::vector<Bucket> old = std::move(buckets_);
+  buckets_.assign(old.size() * 2, Bucket());
+  mask_ = buckets_.size() - 1;
+  scale_ *= 2;
+  for (const Bucket& b : old) {
+    if (b.key.v[0] == kInvalidIndex) continue;
+    size_t i = home(b.key);
+    while (buckets_[i].key.v[0] != kInvalidIndex) i = (i + 1) & mask_;
+    buckets_[i] = b;
+  }
+}
+
+bool LodSurface::tet_visible(const LodState& state, uint32_t tet) const {
+  if (!(*state.alive)[tet]) return false;
+  const int32_t material = (*state.materials)[tet];
+  if (material >= 0 && size_t(material) < hidden_.size() && hidden_[size_t(material)]) return false;
+  if (!filter_.cut) return true;
+  const Tet& t = (*state.tets)[tet];
+  const std::vector<Vec3>& p = *state.positions;
+  const Vec3 sum = p[t[0]] + p[t[1]] + p[t[2]] + p[t[3]];
+  return dot(filter_.cut_plane.normal, sum) <= 4 * filter_.cut_plane.offset;
+}
+
+LodSurface::FaceKey LodSurface::face_key(uint32_t tet, int corner) const {
+  const Tet& t = corners_[tet];
+  FaceKey key{{t[kTetFace[corner][0]], t[kTetFace[corner][1]], t[kTetFace[corner][2]]}};
+  std::sort(key.v, key.v + 3);
+  return key;
+}
+
+void LodSurface::write_face_slot(uint32_t slot, uint32_t owner) {
+  const uint32_t tet = owner / 4;
+  const int corner = static_cast<int>(owner % 4);
+  const Tet& t = corners_[tet];
+  const std::vector<Vec3>& positions = *state_->positions;
+  const auto material = static_cast<uint32_t>((*state_->materials)[tet]);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& p = positions[t[kTetFace[corner][k]]];
+    triangles_[size_t(slot) * 3 + size_t(k)] = {
+        {float(p.x), float(p.y), float(p.z)}, stretch_[tet], material};
+  }
+  triangle_dirty_.push_back(slot);
+}
+
+void LodSurface::refresh_face(const FaceKey& key, FaceEntry* entry) {
+  const int owners = (entry->owners[0] != kInvalidIndex) + (entry->owners[1] != kInvalidIndex);
+  if (owners == 1) {
+    if (entry->slot == kInvalidIndex) {
+      entry->slot = static_cast<uint32_t>(slot_keys_.size());
+      slot_keys_.push_back(key);
+      triangles_.resize(triangles_.size() + 3);
+    }
+    write_face_slot(entry->slot,
+                    entry->owners[0] != kInvalidIndex ? entry->owners[0] : entry->owners[1]);
+    return;
+  }
+  if (entry->slot == kInvalidIndex) return;
+  // Swap-remove: the last drawn face moves into this slot.
+  const uint32_t slot = entry->slot;
+  const auto last = static_cast<uint32_t>(slot_keys_.size() - 1);
+  if (slot != last) {
+    std::copy_n(triangles_.begin() + std::ptrdiff_t(last) * 3, 3,
+                triangles_.begin() + std::ptrdiff_t(slot) * 3);
+    slot_keys_[slot] = slot_keys_[last];
+    faces_.find(slot_keys_[slot])->slot = slot;
+    triangle_dirty_.push_back(slot);
+  }
+  slot_keys_.pop_back();
+  triangles_.resize(triangles_.size() - 3);
+  entry->slot = kInvalidIndex;
+}
+
+void LodSurface::add_face(const FaceKey& key, uint32_t owner) {
+  FaceEntry& entry = *faces_.insert(key);
+  // A manifold mesh has at most two tets on a face; removals run before additions.
+  (entry.owners[0] == kInvalidIndex ? entry.owners[0] : entry.owners[1]) = owner;
+  refresh_face(key, &entry);
+}
+
+void LodSurface::remove_face(const FaceKey& key, uint32_t owner) {
+  FaceEntry* found = faces_.find(key);
+  if (!found) return;
+  FaceEntry& entry = *found;
+  if (entry.owners[0] == owner) entry.owners[0] = kInvalidIndex;
+  if (entry.owners[1] == owner) entry.owners[1] = kInvalidIndex;
+  refresh_face(key, &entry);
+  if (entry.owners[0] == kInvalidIndex && entry.owners[1] == kInvalidIndex) faces_.erase(key);
+}
+
+void LodSurface::add_highlight(uint32_t tet) {
+  highlight_slot_[tet] = static_cast<uint32_t>(highlight_tets_.size());
+  highlight_tets_.push_back(tet);
+  const Tet& t = corners_[tet];
+  const std::vector<Vec3>& positions = *state_->positions;
+  const auto material = static_cast<uint32_t>((*state_->materials)[tet]);
+  for (int corner = 0; corner < 4; ++corner)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = positions[t[kTetFace[corner][k]]];
+      highlight_.push_back({{float(p.x), float(p.y), float(p.z)}, stretch_[tet], material});
+    }
+  highlight_dirty_.push_back(highlight_slot_[tet]);
+}
+
+void LodSurface::remove_highlight(uint32_t tet) {
+  const uint32_t slot = highlight_slot_[tet];
+  const auto last = static_cast<uint32_t>(highlight_tets_.size() - 1);
+  if (slot != last) {
+    std::copy_n(highlight_.begin() + std::ptrdiff_t(last) * 12, 12,
+                highlight_.begin() + std::ptrdiff_t(slot) * 12);
+    highlight_tets_[slot] = highlight_tets_[last];
+    highlight_slot_[highlight_tets_[slot]] = slot;
+    highlight_dirty_.push_back(slot);
+  }
+  highlight_tets_.pop_back();
+  highlight_.resize(highlight_.size() - 12);
+  highlight_slot_[tet] = kInvalidIndex;
+}
+
+void LodSurface::add_tet(const LodState& state, uint32_t tet) {
+  const Tet& t = (*state.tets)[tet];
+  const std::vector<Vec3>& p = *state.positions;
+  corners_[tet] = t;
+  stretch_[tet] = static_cast<float>(tet_shape(p[t[0]], p[t[1]], p[t[2]], p[t[3]]).stretch);
+  in_[tet] = 1;
+  ++visible_count_;
+  for (int corner = 0; corner < 4; ++corner) add_face(face_key(tet, corner), 4 * tet + corner);
+  if (filter_.highlight && stretch_[tet] < filter_.highlight_below) add_highlight(tet);
+}
+
+void LodSurface::remove_tet(uint32_t tet) {
+  for (int corner = 0; corner < 4; ++corner)
+    remove_face(face_key(tet, corner), 4 * tet + uint32_t(corner));
+  if (highlight_slot_[tet] != kInvalidIndex) remove_highlight(tet);
+  in_[tet] = 0;
+  --visible_count_;
+}
+
+void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
+  state_ = &state;
+  filter_ = filter;
+  hidden_.clear();
+  for (const int32_t m : filter.hidden_materials) {
+    if (m < 0) continue;
+    if (size_t(m) >= hidden_.size()) hidden_.resize(size_t(m) + 1, 0);
+    hidden_[size_t(m)] = 1;
+  }
+  const size_t n = state.tets->size();
+  in_.assign(n, 0);
+  corners_.resize(n);
+  stretch_.assign(n, 0);
+  highlight_slot_.assign(n, kInvalidIndex);
+  visible_count_ = 0;
+  // About two distinct faces per tet (interior faces are shared); grows if needed.
+  faces_.clear(2 * n + n / 4, state.positions->size());
+  triangles_.clear();
+  slot_keys_.clear();
+  highlight_.clear();
+  highlight_tets_.clear();
+  triangle_dirty_.clear();  // every slot written below is marked again
+  highlight_dirty_.clear();
+  // Two passes, so that interior faces are never drawn and then removed: count
+  // the owners of every face, then give the faces with one owner their slots.
+  const std::vector<Vec3>& p = *state.positions;
+  for (uint32_t t = 0; t < n; ++t) {
+    if (!tet_visible(state, t)) continue;
+    const Tet& corners = (*state.tets)[t];
+    corners_[t] = corners;
+    stretch_[t] = static_cast<float>(
+        tet_shape(p[corners[0]], p[corners[1]], p[corners[2]], p[corners[3]]).stretch);
+    in_[t] = 1;
+    ++visible_count_;
+    for (int corner = 0; corner < 4; ++corner) {
+      FaceEntry& entry = *faces_.insert(face_key(t, corner));
+      (entry.owners[0] == kInvalidIndex ? entry.owners[0] : entry.owners[1]) = 4 * t + corner;
+    }
+  }
+  for (uint32_t t = 0; t < n; ++t) {
+    if (!in_[t]) continue;
+    for (int corner = 0; corner < 4; ++corner) {
+      const FaceKey key = face_key(t, corner);
+      FaceEntry& entry = *faces_.find(key);
+      if (entry.owners[1] == kInvalidIndex) refresh_face(key, &entry);
+    }
+    if (filter_.highlight && stretch_[t] < filter_.highlight_below) add_highlight(t);
+  }
+  state_ = nullptr;
+}
+
+void LodSurface::update(const LodState& state, const LodDelta& delta) {
+  state_ = &state;
+  // Removals first, so that no face ever has more than its two tets.
+  for (const uint32_t t : delta.vanished)
+    if (in_[t]) remove_tet(t);
+  for (const uint32_t t : delta.changed)
+    if (in_[t]) remove_tet(t);
+  for (const uint32_t t : delta.changed)
+    if (tet_visible(state, t)) add_tet(state, t);
+  for (const uint32_t t : delta.appeared)
+    if (tet_visible(state, t)) add_tet(state, t);
+  state_ = nullptr;
+}
+
+}  // namespace tetlod::render

@@ -1,0 +1,441 @@
+#include "render/renderer.h"
+
+#include <stb_easy_font.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdio>
+
+#include "render/embedded_shaders.h"
+
+namespace tetlod::render {
+namespace {
+
+constexpr int kSamples = 4;
+
+bool compile(const GlApi& gl, GLenum type, const char* name, GLuint* shader, std::string* error) {
+  const char* source = embedded_shader(name);
+  if (!source) {
+    *error = std::string("shader ") + name + " is not embedded";
+    return false;
+  }
+  *shader = gl.CreateShader(type);
+  gl.ShaderSource(*shader, 1, &source, nullptr);
+  gl.CompileShader(*shader);
+  GLint ok = 0;
+  gl.GetShaderiv(*shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl.GetShaderInfoLog(*shader, sizeof log, nullptr, log);
+    *error = std::string("shader ") + name + ": " + log;
+    return false;
+  }
+  return true;
+}
+
+bool link(const GlApi& gl, const char* vertex, const char* fragment, GLuint* program,
+          std::string* error) {
+  GLuint vs = 0, fs = 0;
+  const bool compiled = compile(gl, GL_VERTEX_SHADER, vertex, &vs, error) &&
+                        compile(gl, GL_FRAGMENT_SHADER, fragment, &fs, error);
+  if (compiled) {
+    *program = gl.CreateProgram();
+    gl.AttachShader(*program, vs);
+    gl.AttachShader(*program, fs);
+    gl.LinkProgram(*program);
+  }
+  if (vs) gl.DeleteShader(vs);
+  if (fs) gl.DeleteShader(fs);
+  if (!compiled) return false;
+  GLint ok = 0;
+  gl.GetProgramiv(*program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl.GetProgramInfoLog(*program, sizeof log, nullptr, log);
+    *error = std::string("linking ") + vertex + " + " + fragment + ": " + log;
+    return false;
+  }
+  return true;
+}
+
+void setup_surface_vao(const GlApi& gl, GLuint vao, GLuint vbo) {
+  gl.BindVertexArray(vao);
+  gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
+  const auto stride = static_cast<GLsizei>(sizeof(SurfaceVertex));
+  gl.EnableVertexAttribArray(0);
+  gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride,
+                         reinterpret_cast<const void*>(offsetof(SurfaceVertex, position)));
+  gl.EnableVertexAttribArray(1);
+  gl.VertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, stride,
+                         reinterpret_cast<const void*>(offsetof(SurfaceVertex, stretch)));
+  gl.EnableVertexAttribArray(2);
+  gl.VertexAttribIPointer(2, 1, GL_UNSIGNED_INT, stride,
+                          reinterpret_cast<const void*>(offsetof(SurfaceVertex, material)));
+  gl.BindVertexArray(0);
+}
+
+// One overlay vertex: pixel position, colour, colour-map coordinate (or -1).
+struct OverlayVertex {
+  float x, y;
+  float r, g, b, a;
+  float ramp;
+};
+
+void add_rect(std::vector<OverlayVertex>* out, float x0, float y0, float x1, float y1, const Rgb& c,
+              float ramp0 = -1, float ramp1 = -1) {
+  const OverlayVertex v00{x0, y0, c[0], c[1], c[2], 1, ramp0};
+  const OverlayVertex v10{x1, y0, c[0], c[1], c[2], 1, ramp1};
+  const OverlayVertex v01{x0, y1, c[0], c[1], c[2], 1, ramp0};
+  const OverlayVertex v11{x1, y1, c[0], c[1], c[2], 1, ramp1};
+  out->insert(out->end(), {v00, v10, v11, v00, v11, v01});
+}
+
+// Text through stb_easy_font quads, `scale` pixels per font pixel.
+void add_text(std::vector<OverlayVertex>* out, float x, float y, const std::string& text,
+              const Rgb& c, float scale) {
+  struct FontVertex {
+    float x, y, z;
+    unsigned char color[4];
+  };
+  std::vector<FontVertex> quads(text.size() * 300 / 4 + 4);
+  std::string copy = text;
+  const int count = stb_easy_font_print(0, 0, copy.data(), nullptr, quads.data(),
+                                        static_cast<int>(quads.size() * sizeof(FontVertex)));
+  for (int q = 0; q < count; ++q) {
+    const FontVertex* v = &quads[size_t(q) * 4];
+    add_rect(out, x + v[0].x * scale, y + v[0].y * scale, x + v[2].x * scale, y + v[2].y * scale,
+             c);
+  }
+}
+
+float text_pixels(const std::string& text, float scale) {
+  std::string copy = text;
+  return static_cast<float>(stb_easy_font_width(copy.data())) * scale;
+}
+
+std::string format_value(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2f", v);
+  return buffer;
+}
+
+}  // namespace
+
+Renderer::Renderer(const GlApi& gl) : gl_(gl) {}
+
+Renderer::~Renderer() {
+  release_targets();
+  const GLuint buffers[] = {surface_vbo_, highlight_vbo_, overlay_vbo_};
+  gl_.DeleteBuffers(3, buffers);
+  const GLuint arrays[] = {surface_vao_, highlight_vao_, overlay_vao_};
+  gl_.DeleteVertexArrays(3, arrays);
+  gl_.DeleteTextures(2, colormap_textures_);
+  if (surface_program_) gl_.DeleteProgram(surface_program_);
+  if (overlay_program_) gl_.DeleteProgram(overlay_program_);
+}
+
+bool Renderer::init(std::string* error) {
+  if (!link(gl_, "surface.vert", "surface.frag", &surface_program_, error)) return false;
+  if (!link(gl_, "overlay.vert", "overlay.frag", &overlay_program_, error)) return false;
+  gl_.GenVertexArrays(1, &surface_vao_);
+  gl_.GenVertexArrays(1, &highlight_vao_);
+  gl_.GenVertexArrays(1, &overlay_vao_);
+  gl_.GenBuffers(1, &surface_vbo_);
+  gl_.GenBuffers(1, &highlight_vbo_);
+  gl_.GenBuffers(1, &overlay_vbo_);
+  setup_surface_vao(gl_, surface_vao_, surface_vbo_);
+  setup_surface_vao(gl_, highlight_vao_, highlight_vbo_);
+  gl_.BindVertexArray(overlay_vao_);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, overlay_vbo_);
+  const auto stride = static_cast<GLsizei>(sizeof(OverlayVertex));
+  gl_.EnableVertexAttribArray(0);
+  gl_.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, nullptr);
+  gl_.EnableVertexAttribArray(1);
+  gl_.VertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(OverlayVertex, r)));
+  gl_.EnableVertexAttribArray(2);
+  gl_.VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(OverlayVertex, ramp)));
+  gl_.BindVertexArray(0);
+
+  gl_.GenTextures(2, colormap_textures_);
+  for (int m = 0; m < 2; ++m) {
+    uint8_t texels[256 * 3];
+    for (int i = 0; i < 256; ++i) {
+      const Rgb c = colormap_rgb(m == 0 ? ColorMap::kViridis : ColorMap::kTurbo, i / 255.0);
+      for (int k = 0; k < 3; ++k) texels[i * 3 + k] = static_cast<uint8_t>(c[k] * 255 + 0.5f);
+    }
+    gl_.BindTexture(GL_TEXTURE_2D, colormap_textures_[m]);
+    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, 256, 1, 0, GL_RGB, GL_UNSIGNED_BYTE, texels);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  const GLenum status = gl_.GetError();
+  if (status != GL_NO_ERROR) {
+    *error = "OpenGL error " + std::to_string(status) + " while setting up the renderer";
+    return false;
+  }
+  return true;
+}
+
+void Renderer::upload(const SurfaceBuffers& buffers) {
+  gl_.BindBuffer(GL_ARRAY_BUFFER, surface_vbo_);
+  gl_.BufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(buffers.triangles.size() * sizeof(SurfaceVertex)),
+                 buffers.triangles.data(), GL_STATIC_DRAW);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, highlight_vbo_);
+  gl_.BufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(buffers.highlight.size() * sizeof(SurfaceVertex)),
+                 buffers.highlight.data(), GL_STATIC_DRAW);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, 0);
+  triangle_vertices_ = triangle_capacity_ = buffers.triangles.size();
+  highlight_vertices_ = highlight_capacity_ = buffers.highlight.size();
+  highlighted_tets_ = buffers.highlighted_tets;
+  visible_materials_ = buffers.visible_materials;
+}
+
+void Renderer::update_buffer(GLuint vbo, size_t* capacity,
+                             const std::vector<SurfaceVertex>& vertices,
+                             const std::vector<DirtyRange>& dirty) {
+  constexpr size_t kVertexBytes = sizeof(SurfaceVertex);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, vbo);
+  if (vertices.size() > *capacity) {
+    // Grow with room to spare, so that a sequence of LOD steps rarely reallocates.
+    *capacity = vertices.size() + vertices.size() / 2 + 3 * 1024;
+    gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(*capacity * kVertexBytes), nullptr,
+                   GL_DYNAMIC_DRAW);
+    gl_.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vertices.size() * kVertexBytes),
+                      vertices.data());
+  } else {
+    for (const DirtyRange& range : dirty) {
+      const size_t end = std::min(range.end, vertices.size());
+      if (range.begin >= end) continue;
+      gl_.BufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(range.begin * kVertexBytes),
+                        static_cast<GLsizeiptr>((end - range.begin) * kVertexBytes),
+                        vertices.data() + range.begin);
+    }
+  }
+  gl_.BindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void Renderer::update_triangles(const std::vector<SurfaceVertex>& vertices,
+                                const std::vector<DirtyRange>& dirty) {
+  update_buffer(surface_vbo_, &triangle_capacity_, vertices, dirty);
+  triangle_vertices_ = vertices.size();
+}
+
+void Renderer::update_highlight(const std::vector<SurfaceVertex>& vertices,
+                                const std::vector<DirtyRange>& dirty, size_t highlighted_tets) {
+  update_buffer(highlight_vbo_, &highlight_capacity_, vertices, dirty);
+  highlight_vertices_ = vertices.size();
+  highlighted_tets_ = highlighted_tets;
+}
+
+void Renderer::release_targets() {
+  const GLuint framebuffers[] = {msaa_fbo_, resolve_fbo_};
+  gl_.DeleteFramebuffers(2, framebuffers);
+  const GLuint renderbuffers[] = {msaa_color_, msaa_depth_, resolve_color_};
+  gl_.DeleteRenderbuffers(3, renderbuffers);
+  msaa_fbo_ = resolve_fbo_ = msaa_color_ = msaa_depth_ = resolve_color_ = 0;
+  target_width_ = target_height_ = 0;
+}
+
+bool Renderer::ensure_targets(int width, int height) {
+  if (width == target_width_ && height == target_height_ && msaa_fbo_) return true;
+  release_targets();
+  while (gl_.GetError() != GL_NO_ERROR) {
+  }
+  gl_.GenRenderbuffers(1, &msaa_color_);
+  gl_.BindRenderbuffer(GL_RENDERBUFFER, msaa_color_);
+  gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, kSamples, GL_RGBA8, width, height);
+  gl_.GenRenderbuffers(1, &msaa_depth_);
+  gl_.BindRenderbuffer(GL_RENDERBUFFER, msaa_depth_);
+  gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, kSamples, GL_DEPTH_COMPONENT24, width,
+                                     height);
+  gl_.GenFramebuffers(1, &msaa_fbo_);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
+  gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color_);
+  gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_);
+  gl_.GenRenderbuffers(1, &resolve_color_);
+  gl_.BindRenderbuffer(GL_RENDERBUFFER, resolve_color_);
+  gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  gl_.GenFramebuffers(1, &resolve_fbo_);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_);
+  gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              resolve_color_);
+  const GLenum resolve_status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
+  const GLenum msaa_status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  const GLenum gl_error = gl_.GetError();
+  if (resolve_status != GL_FRAMEBUFFER_COMPLETE || msaa_status != GL_FRAMEBUFFER_COMPLETE ||
+      gl_error != GL_NO_ERROR) {
+    release_targets();
+    last_error_ = "cannot make a " + std::to_string(width) + "x" + std::to_string(height) +
+                  " framebuffer (OpenGL error " + std::to_string(gl_error) + ")";
+    return false;
+  }
+  target_width_ = width;
+  target_height_ = height;
+  return true;
+}
+
+bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int width, int height) {
+  if (!ensure_targets(width, height)) return false;
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
+  gl_.Viewport(0, 0, width, height);
+  gl_.ClearColor(settings.background[0], settings.background[1], settings.background[2], 1);
+  gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl_.Enable(GL_DEPTH_TEST);
+  gl_.DepthFunc(GL_LESS);
+  gl_.DepthMask(GL_TRUE);
+  gl_.Disable(GL_BLEND);
+  gl_.Disable(GL_CULL_FACE);
+
+  const Mat4 view = view_matrix(camera);
+  const Mat4 view_projection =
+      multiply(projection_matrix(camera, double(width) / double(height)), view);
+  const GLuint p = surface_program_;
+  gl_.UseProgram(p);
+  gl_.UniformMatrix4fv(gl_.GetUniformLocation(p, "u_view"), 1, GL_FALSE, view.data());
+  gl_.UniformMatrix4fv(gl_.GetUniformLocation(p, "u_view_projection"), 1, GL_FALSE,
+                       view_projection.data());
+  gl_.ActiveTexture(GL_TEXTURE0);
+  gl_.BindTexture(GL_TEXTURE_2D, colormap_textures_[settings.color_map == ColorMap::kTurbo]);
+  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_colormap"), 0);
+  const double span =
+      settings.range_max > settings.range_min ? settings.range_max - settings.range_min : 1e-9;
+  gl_.Uniform2f(gl_.GetUniformLocation(p, "u_range"), float(settings.range_min),
+                float(settings.range_min + span));
+  float palette[kPaletteSize * 3];
+  for (int i = 0; i < kPaletteSize; ++i) {
+    const Rgb c = material_rgb(i);
+    for (int k = 0; k < 3; ++k) palette[i * 3 + k] = c[k];
+  }
+  gl_.Uniform3fv(gl_.GetUniformLocation(p, "u_palette"), kPaletteSize, palette);
+  gl_.Uniform3f(gl_.GetUniformLocation(p, "u_wire_color"), 0.1f, 0.1f, 0.12f);
+
+  // The surface.
+  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_color_mode"),
+                settings.color_mode == ColorMode::kStretch ? 0 : 1);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_alpha"), 1);
+  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_wireframe"), settings.wireframe ? 1 : 0);
+  gl_.BindVertexArray(surface_vao_);
+  gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangle_vertices_));
+
+  // Highlighted tets: opaque where in front, then see-through where hidden behind
+  // the surface, so the worst elements can be found from outside.
+  if (highlight_vertices_ > 0) {
+    gl_.Uniform1i(gl_.GetUniformLocation(p, "u_color_mode"), 2);
+    gl_.Uniform3f(gl_.GetUniformLocation(p, "u_solid_color"), kHighlightRgb[0], kHighlightRgb[1],
+                  kHighlightRgb[2]);
+    gl_.Uniform1i(gl_.GetUniformLocation(p, "u_wireframe"), 1);
+    gl_.BindVertexArray(highlight_vao_);
+    gl_.DepthFunc(GL_LEQUAL);
+    gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(highlight_vertices_));
+    gl_.Enable(GL_BLEND);
+    // Blend colour only: the frame stays opaque (alpha 1) for PNG export.
+    gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    gl_.DepthMask(GL_FALSE);
+    gl_.DepthFunc(GL_GREATER);
+    gl_.Uniform1f(gl_.GetUniformLocation(p, "u_alpha"), 0.45f);
+    gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(highlight_vertices_));
+    gl_.DepthMask(GL_TRUE);
+    gl_.DepthFunc(GL_LESS);
+    gl_.Disable(GL_BLEND);
+  }
+  gl_.BindVertexArray(0);
+
+  if (settings.legend) draw_legend(settings, width, height);
+
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
+  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
+  gl_.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  const GLenum error = gl_.GetError();
+  if (error != GL_NO_ERROR) {
+    last_error_ = "OpenGL error " + std::to_string(error) + " while drawing";
+    return false;
+  }
+  return true;
+}
+
+void Renderer::draw_legend(const DrawSettings& settings, int width, int height) {
+  std::vector<OverlayVertex> v;
+  const float scale = std::max(1.0f, float(std::min(width, height)) / 320.0f);
+  const float margin = 6 * scale;
+  const float line = 11 * scale;
+  const Rgb ink = {0.12f, 0.12f, 0.14f};
+  float y = margin;
+  if (settings.color_mode == ColorMode::kStretch) {
+    // A horizontal colour bar at the bottom with the range at its ends.
+    const float bar_w = 0.5f * float(width), bar_h = 8 * scale;
+    const float x0 = 0.25f * float(width);
+    const float y1 = float(height) - margin - line;
+    const float y0 = y1 - bar_h;
+    add_rect(&v, x0 - 1, y0 - 1, x0 + bar_w + 1, y1 + 1, ink);
+    add_rect(&v, x0, y0, x0 + bar_w, y1, ink, 0, 1);
+    const std::string lo = format_value(settings.range_min);
+    const std::string hi = format_value(settings.range_max);
+    add_text(&v, x0, y1 + 3 * scale, lo, ink, scale);
+    add_text(&v, x0 + bar_w - text_pixels(hi, scale), y1 + 3 * scale, hi, ink, scale);
+    const std::string title = "stretch";
+    add_text(&v, x0 + 0.5f * (bar_w - text_pixels(title, scale)), y1 + 3 * scale, title, ink,
+             scale);
+  } else {
+    for (const int32_t m : visible_materials_) {
+      add_rect(&v, margin, y, margin + 8 * scale, y + 8 * scale, material_rgb(m));
+      add_text(&v, margin + 11 * scale, y + 1 * scale, "material " + std::to_string(m), ink, scale);
+      y += line;
+    }
+  }
+  if (highlight_vertices_ > 0 || settings.highlight_below > 0) {
+    add_rect(&v, margin, y, margin + 8 * scale, y + 8 * scale, kHighlightRgb);
+    add_text(&v, margin + 11 * scale, y + 1 * scale,
+             "stretch < " + format_value(settings.highlight_below) + ": " +
+                 std::to_string(highlighted_tets_) + " tets",
+             ink, scale);
+  }
+  if (v.empty()) return;
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.UseProgram(overlay_program_);
+  gl_.Uniform2f(gl_.GetUniformLocation(overlay_program_, "u_viewport"), float(width),
+                float(height));
+  gl_.Uniform1i(gl_.GetUniformLocation(overlay_program_, "u_colormap"), 0);
+  gl_.BindVertexArray(overlay_vao_);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, overlay_vbo_);
+  gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(OverlayVertex)),
+                 v.data(), GL_STREAM_DRAW);
+  gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(v.size()));
+  gl_.BindVertexArray(0);
+  gl_.Enable(GL_DEPTH_TEST);
+}
+
+Image Renderer::read_pixels() {
+  if (!resolve_fbo_) return {};
+  Image image(target_width_, target_height_);
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  std::vector<uint8_t> bottom_up(image.rgba.size());
+  gl_.ReadPixels(0, 0, target_width_, target_height_, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  const size_t row = size_t(target_width_) * 4;
+  for (int y = 0; y < target_height_; ++y)
+    std::copy_n(bottom_up.data() + size_t(target_height_ - 1 - y) * row, row,
+                image.rgba.data() + size_t(y) * row);
+  return image;
+}
+
+void Renderer::present(int framebuffer_width, int framebuffer_height) {
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
+  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  gl_.BlitFramebuffer(0, 0, target_width_, target_height_, 0, 0, framebuffer_width,
+                      framebuffer_height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace tetlod::render

@@ -1,0 +1,86 @@
+// Draws SurfaceBuffers with OpenGL 3.3 core into a framebuffer object of any size
+// (4x multisampled, resolved), which is read back for PNG export or blitted to a
+// window, so the screen, reports and snapshot tests see the same pixels.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/colormap.h"
+#include "render/gl_api.h"
+#include "render/image.h"
+#include "render/surface_builder.h"
+
+namespace tetlod::render {
+
+enum class ColorMode { kStretch, kMaterial };
+
+// How to draw (no rebuild of the buffers needed to change any of these).
+struct DrawSettings {
+  ColorMode color_mode = ColorMode::kStretch;
+  ColorMap color_map = ColorMap::kViridis;
+  double range_min = 0;  // stretch at the low end of the colour map
+  double range_max = 1;  // and at the high end
+  bool wireframe = false;
+  bool legend = true;
+  Rgb background = {1, 1, 1};
+  double highlight_below = 0;  // only for the legend label; the buffers hold the tets
+};
+
+class Renderer {
+ public:
+  // `gl` must belong to the context current on this thread and outlive the renderer.
+  explicit Renderer(const GlApi& gl);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Compiles the embedded shaders and makes the colour-map textures. False with a
+  // message (a shader log) on failure.
+  bool init(std::string* error);
+
+  // Replaces the GPU buffers with `buffers` (a full rebuild).
+  void upload(const SurfaceBuffers& buffers);
+  // Incremental updates (LodSurface): `vertices` is the whole current array, `dirty`
+  // the vertex ranges that changed since the last update; only those are sent unless
+  // the array outgrew the GPU buffer.
+  void update_triangles(const std::vector<SurfaceVertex>& vertices,
+                        const std::vector<DirtyRange>& dirty);
+  void update_highlight(const std::vector<SurfaceVertex>& vertices,
+                        const std::vector<DirtyRange>& dirty, size_t highlighted_tets);
+
+  // Draws the uploaded surface (and highlight, and legend) at width x height. False
+  // (see last_error()) if the framebuffer cannot be made or GL reports an error.
+  bool draw(const DrawSettings& settings, const Camera& camera, int width, int height);
+  const std::string& last_error() const { return last_error_; }
+  // The last drawn frame, top row first.
+  Image read_pixels();
+  // Copies the last drawn frame into the default framebuffer (a window).
+  void present(int framebuffer_width, int framebuffer_height);
+
+  size_t triangle_count() const { return triangle_vertices_ / 3; }
+
+ private:
+  bool ensure_targets(int width, int height);
+  void release_targets();
+  void draw_legend(const DrawSettings& settings, int width, int height);
+  // Writes vertices[dirty] into `vbo`, growing it (and sending everything) if needed.
+  void update_buffer(GLuint vbo, size_t* capacity, const std::vector<SurfaceVertex>& vertices,
+                     const std::vector<DirtyRange>& dirty);
+
+  const GlApi& gl_;
+  GLuint surface_program_ = 0, overlay_program_ = 0;
+  GLuint surface_vao_ = 0, surface_vbo_ = 0, highlight_vao_ = 0, highlight_vbo_ = 0;
+  GLuint overlay_vao_ = 0, overlay_vbo_ = 0;
+  GLuint colormap_textures_[2] = {0, 0};
+  GLuint msaa_fbo_ = 0, msaa_color_ = 0, msaa_depth_ = 0, resolve_fbo_ = 0, resolve_color_ = 0;
+  int target_width_ = 0, target_height_ = 0;
+  size_t triangle_vertices_ = 0, highlight_vertices_ = 0, highlighted_tets_ = 0;
+  size_t triangle_capacity_ = 0, highlight_capacity_ = 0;  // in vertices
+  std::vector<int32_t> visible_materials_;
+  std::string last_error_;
+};
+
+}  // namespace tetlod::render

@@ -1,0 +1,55 @@
+#include "render/snapshot.h"
+
+#include <algorithm>
+
+#include "core/adjacency.h"
+
+namespace tetlod::render {
+
+SurfaceInput PreparedMesh::surface_input() const {
+  SurfaceInput input;
+  input.positions = mesh.positions.data();
+  input.tets = mesh.tets.data();
+  input.materials = mesh.materials.data();
+  input.neighbors = neighbors.data();
+  input.stretch = stretch.data();
+  input.vertex_count = mesh.vertex_count();
+  input.tet_count = mesh.tet_count();
+  return input;
+}
+
+PreparedMesh prepare_mesh(TetMesh mesh) {
+  PreparedMesh prepared;
+  prepared.mesh = std::move(mesh);
+  build_face_neighbors(prepared.mesh, &prepared.neighbors);
+  prepared.stretch = tet_stretches(prepared.mesh);
+  return prepared;
+}
+
+Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
+                       const ViewSpec& view) {
+  Vec3 lo = buffers.bounds_min, hi = buffers.bounds_max;
+  if (!buffers.has_bounds) {
+    lo = hi = mesh.mesh.positions.empty() ? Vec3{} : mesh.mesh.positions[0];
+    for (const Vec3& p : mesh.mesh.positions) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+  }
+  if (view.custom) return look_at_camera(view.eye, view.target, lo, hi);
+  return frame_camera(lo, hi, view.direction);
+}
+
+Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
+                      const SnapshotSettings& settings) {
+  SurfaceBuffers buffers;
+  build_surface(mesh.surface_input(), settings.filter, &buffers);
+  renderer->upload(buffers);
+  DrawSettings draw = settings.draw;
+  if (settings.filter.highlight) draw.highlight_below = settings.filter.highlight_below;
+  const Camera camera = snapshot_camera(mesh, buffers, settings.view);
+  if (!renderer->draw(draw, camera, settings.width, settings.height)) return {};
+  return renderer->read_pixels();
+}
+
+}  // namespace tetlod::render

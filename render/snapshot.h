@@ -1,0 +1,53 @@
+// One picture of a mesh: what to show, how, from where, at what size. Used by the
+// CLI (`tetlod render`, `tetlod report`) and the golden-image tests, so both go
+// through exactly the same path.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/tet_mesh.h"
+#include "render/camera.h"
+#include "render/renderer.h"
+#include "render/surface_builder.h"
+
+namespace tetlod::render {
+
+// A mesh with what drawing needs derived once: face neighbours and stretches.
+struct PreparedMesh {
+  TetMesh mesh;
+  std::vector<uint32_t> neighbors;  // 4 per tet
+  std::vector<float> stretch;       // per tet
+
+  SurfaceInput surface_input() const;
+};
+
+// Precondition: `mesh` passed validate_mesh() (every reader runs it).
+PreparedMesh prepare_mesh(TetMesh mesh);
+
+struct ViewSpec {
+  bool custom = false;  // use eye/target instead of `direction`
+  ViewDirection direction = ViewDirection::kIso;
+  Vec3 eye, target;
+};
+
+struct SnapshotSettings {
+  int width = 800;
+  int height = 800;
+  SurfaceFilter filter;
+  DrawSettings draw;
+  ViewSpec view;
+};
+
+// The camera `settings.view` gives for `buffers` (framed on the shown materials'
+// bounds, or the whole mesh's if nothing is shown).
+Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
+                       const ViewSpec& view);
+
+// Builds the surface, uploads it, draws it and reads it back. `renderer` must be
+// initialised on the current context. An empty image (width 0) if drawing failed:
+// see renderer->last_error().
+Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
+                      const SnapshotSettings& settings);
+
+}  // namespace tetlod::render

@@ -1,0 +1,108 @@
+#include "render/surface_builder.h"
+
+#include <algorithm>
+
+#include "core/metrics.h"
+
+namespace tetlod::render {
+namespace {
+
+// Per-tet flags of the first pass.
+constexpr uint8_t kShownMaterial = 1;  // alive and of a shown material (ignores the cut)
+constexpr uint8_t kVisible = 2;        // also on the kept side of the cut
+constexpr uint8_t kHighlighted = 4;
+
+void emit_face(const SurfaceInput& input, uint32_t tet, int corner,
+               std::vector<SurfaceVertex>* out) {
+  const Tet& t = input.tets[tet];
+  const float stretch = input.stretch[tet];
+  const auto material = static_cast<uint32_t>(input.materials[tet]);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& p = input.positions[t[kTetFace[corner][k]]];
+    out->push_back({{float(p.x), float(p.y), float(p.z)}, stretch, material});
+  }
+}
+
+}  // namespace
+
+void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, SurfaceBuffers* out) {
+  out->triangles.clear();
+  out->highlight.clear();
+  out->visible_tets = 0;
+  out->highlighted_tets = 0;
+  out->has_bounds = false;
+  out->visible_materials.clear();
+  out->visible.assign(input.tet_count, 0);
+
+  // Hidden materials as a lookup table over the ids that are hidden.
+  int32_t max_hidden = -1;
+  for (const int32_t m : filter.hidden_materials) max_hidden = std::max(max_hidden, m);
+  std::vector<uint8_t> hidden(static_cast<size_t>(max_hidden + 1), 0);
+  for (const int32_t m : filter.hidden_materials)
+    if (m >= 0) hidden[static_cast<size_t>(m)] = 1;
+  // Materials seen, over a table grown on demand (material ids are small in practice).
+  std::vector<uint8_t> seen;
+
+  const Vec3 n = filter.cut_plane.normal;
+  // The cut compares 4 * dot(n, centroid) with 4 * offset: no division per tet.
+  const double offset4 = 4 * filter.cut_plane.offset;
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  uint8_t* visible = out->visible.data();
+  for (size_t i = 0; i < input.tet_count; ++i) {
+    if (input.alive && !input.alive[i]) continue;
+    const int32_t material = input.materials[i];
+    if (material >= 0 && material <= max_hidden && hidden[static_cast<size_t>(material)]) continue;
+    const Tet& t = input.tets[i];
+    const Vec3& a = input.positions[t[0]];
+    const Vec3& b = input.positions[t[1]];
+    const Vec3& c = input.positions[t[2]];
+    const Vec3& d = input.positions[t[3]];
+    for (const Vec3* p : {&a, &b, &c, &d}) {
+      lo = {std::min(lo.x, p->x), std::min(lo.y, p->y), std::min(lo.z, p->z)};
+      hi = {std::max(hi.x, p->x), std::max(hi.y, p->y), std::max(hi.z, p->z)};
+    }
+    uint8_t flags = kShownMaterial;
+    if (!filter.cut || dot(n, a + b + c + d) <= offset4) {
+      flags |= kVisible;
+      ++out->visible_tets;
+      if (filter.highlight && input.stretch[i] < filter.highlight_below) {
+        flags |= kHighlighted;
+        ++out->highlighted_tets;
+      }
+      const auto m = static_cast<size_t>(std::max(material, 0));
+      if (m >= seen.size()) seen.resize(m + 1, 0);
+      seen[m] = 1;
+    }
+    visible[i] = flags;
+  }
+  if (lo.x <= hi.x) {
+    out->has_bounds = true;
+    out->bounds_min = lo;
+    out->bounds_max = hi;
+  }
+  for (size_t m = 0; m < seen.size(); ++m)
+    if (seen[m]) out->visible_materials.push_back(static_cast<int32_t>(m));
+
+  for (size_t i = 0; i < input.tet_count; ++i) {
+    const uint8_t flags = visible[i];
+    if (!(flags & kVisible)) continue;
+    const uint32_t* neighbors = input.neighbors + 4 * i;
+    for (int corner = 0; corner < 4; ++corner) {
+      const uint32_t other = neighbors[corner];
+      if (other != kInvalidIndex && (visible[other] & kVisible)) continue;
+      emit_face(input, static_cast<uint32_t>(i), corner, &out->triangles);
+    }
+    if (flags & kHighlighted)
+      for (int corner = 0; corner < 4; ++corner)
+        emit_face(input, static_cast<uint32_t>(i), corner, &out->highlight);
+  }
+}
+
+std::vector<float> tet_stretches(const TetMesh& mesh) {
+  std::vector<float> stretch(mesh.tet_count());
+  for (size_t i = 0; i < mesh.tet_count(); ++i)
+    stretch[i] = static_cast<float>(tet_shape(mesh, mesh.tets[i]).stretch);
+  return stretch;
+}
+
+}  // namespace tetlod::render

@@ -1,0 +1,80 @@
+// The triangles the renderer draws, built on the CPU in O(tets) over flat arrays:
+// every face of a visible tet whose neighbour across it is missing (the boundary)
+// or not visible (hidden material, cut away, retired by the LOD). Faces between
+// two visible tets are never seen, so they are skipped; interfaces between a shown
+// and a hidden material, and the faces the cut exposes, are drawn. Each triangle
+// carries its tet's stretch and material, so one face shows one element.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/tet_mesh.h"
+
+namespace tetlod::render {
+
+// The plane dot(normal, x) = offset. The cut keeps whole tets whose centroid lies
+// on the side dot(normal, c) <= offset and removes the others.
+struct CutPlane {
+  Vec3 normal{1, 0, 0};
+  double offset = 0;
+};
+
+// Which tets are visible, and which are highlighted.
+struct SurfaceFilter {
+  std::vector<int32_t> hidden_materials;
+  bool cut = false;
+  CutPlane cut_plane;
+  bool highlight = false;
+  double highlight_below = 0;  // visible tets with stretch < this are highlighted
+};
+
+// The arrays of one mesh state. Pointers must stay valid during build_surface().
+struct SurfaceInput {
+  const Vec3* positions = nullptr;
+  const Tet* tets = nullptr;
+  const int32_t* materials = nullptr;
+  const uint8_t* alive = nullptr;       // null: every tet is alive
+  const uint32_t* neighbors = nullptr;  // 4 per tet (core/adjacency.h), of this state
+  const float* stretch = nullptr;       // one per tet (core/metrics.h)
+  size_t vertex_count = 0;
+  size_t tet_count = 0;
+};
+
+// One corner of a drawn triangle (20 bytes; the layout of the vertex buffer).
+struct SurfaceVertex {
+  float position[3];
+  float stretch;      // of the face's tet
+  uint32_t material;  // of the face's tet
+};
+
+// A range of vertices [begin, end) of a buffer that changed since it was last uploaded.
+struct DirtyRange {
+  size_t begin = 0;
+  size_t end = 0;
+  bool empty() const { return begin >= end; }
+};
+
+struct SurfaceBuffers {
+  std::vector<SurfaceVertex> triangles;  // 3 per triangle, outward-facing
+  std::vector<SurfaceVertex> highlight;  // all 4 faces of every highlighted tet
+  size_t visible_tets = 0;
+  size_t highlighted_tets = 0;
+  // Bounds of the tets of shown materials, before the cut (for framing a camera, so
+  // that moving the cut does not move the view). Empty if no tet is shown.
+  bool has_bounds = false;
+  Vec3 bounds_min, bounds_max;
+  // Materials of the visible tets, ascending (for the legend).
+  std::vector<int32_t> visible_materials;
+  // Scratch kept between builds so rebuilding does not allocate.
+  std::vector<uint8_t> visible;
+};
+
+// Rebuilds `out` completely: two passes over the tets, O(tets); `out`'s arrays keep
+// their capacity between builds, so a rebuild does not reallocate them.
+void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, SurfaceBuffers* out);
+
+// Stretch of every tet (paper eq. 2), as floats for the vertex buffer.
+std::vector<float> tet_stretches(const TetMesh& mesh);
+
+}  // namespace tetlod::render

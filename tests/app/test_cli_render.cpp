@@ -1,0 +1,178 @@
+// `tetlod render` through the real binary: a PNG is written, bad values are usage
+// errors, and failures (unreadable input, no GL, unwritable output) leave no file.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace tetlod {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int code = -1;
+  std::string output;  // stdout and stderr
+};
+
+// Runs `environment tetlod arguments`.
+CommandResult run(const std::string& arguments, const std::string& environment = "") {
+  CommandResult r;
+  const std::string command =
+      environment + " " + std::string(TETLOD_BINARY) + " " + arguments + " 2>&1";
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  char buffer[4096];
+  size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string out_dir() {
+  const std::string dir = std::string(TETLOD_TEST_OUTPUT_DIR) + "/cli_render";
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string asset(const char* name) {
+  return std::string(TETLOD_SOURCE_DIR) + "/assets/" + name;
+}
+
+// Width and height from a PNG's IHDR chunk, or {0, 0} if it is not a PNG.
+std::pair<int, int> png_size(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char header[24] = {};
+  in.read(reinterpret_cast<char*>(header), sizeof header);
+  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (!in || !std::equal(signature, signature + 8, header)) return {0, 0};
+  auto be32 = [&](int at) {
+    return (header[at] << 24) | (header[at + 1] << 16) | (header[at + 2] << 8) | header[at + 3];
+  };
+  return {be32(16), be32(20)};
+}
+
+TEST(CliRender, WritesAPngOfTheRequestedSize) {
+  const std::string out = out_dir() + "/motor.png";
+  fs::remove(out);
+  const CommandResult r = run("render " + asset("motor.mesh") +
+                              " --hide 1 --cut y=0 --wireframe --highlight-below 0.2 --width 320 "
+                              "--height 200 -o " +
+                              out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("faces drawn"), std::string::npos) << r.output;
+  EXPECT_EQ(png_size(out), std::make_pair(320, 200));
+}
+
+TEST(CliRender, RendersASimplifiedLevel) {
+  const std::string out = out_dir() + "/box2_level.png";
+  fs::remove(out);
+  const CommandResult r = run("render " + asset("box2.mesh") +
+                              " --simplify --size 10 --no-subdivide --elements 60 --color material "
+                              "--width 64 --height 64 -o " +
+                              out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(png_size(out), std::make_pair(64, 64));
+}
+
+TEST(CliRender, BadValuesAreUsageErrors) {
+  const std::string in = asset("box2.mesh");
+  const std::string out = out_dir() + "/never.png";
+  fs::remove(out);
+  for (const char* flags :
+       {"--width 0", "--width 5000", "--width abc", "--color hue", "--colormap jet", "--cut w=1",
+        "--cut x", "--cut-plane 0,0,0,1", "--cut-plane 1,2", "--view top", "--camera 1,2,3,1,2,3",
+        "--highlight-below 2", "--range 1,0", "--materials a,b", "--bogus", "--simplify",
+        "--size -1"}) {
+    const CommandResult r = run("render " + in + " -o " + out + " " + flags);
+    EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
+    EXPECT_NE(r.output.find("tetlod"), std::string::npos) << flags;
+  }
+  EXPECT_EQ(run("render " + in).code, 2);  // no -o
+  EXPECT_EQ(run("render --help").code, 0);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(CliRender, FailuresNameTheProblemAndWriteNothing) {
+  const std::string out = out_dir() + "/failed.png";
+  fs::remove(out);
+  CommandResult r = run("render " + out_dir() + "/missing.mesh -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("missing.mesh"), std::string::npos) << r.output;
+
+  r = run("render " + asset("box2.mesh") + " --materials 9 -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("material 9 is not in the mesh"), std::string::npos) << r.output;
+
+  // No GL available: a clear message, not a crash.
+  r = run("render " + asset("box2.mesh") + " -o " + out,
+          "TETLOD_GL_BACKEND=osmesa TETLOD_OSMESA=/nonexistent/libOSMesa.so");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("no offscreen OpenGL context"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("libOSMesa"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  r = run("render " + asset("box2.mesh") + " -o " + out, "TETLOD_GL_BACKEND=vulkan");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("is not osmesa or egl"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+
+  // An unwritable output leaves neither the file nor a temporary behind.
+  const std::string blocked = out_dir() + "/no_such_dir/shot.png";
+  r = run("render " + asset("box2.mesh") + " --width 32 --height 32 -o " + blocked);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("cannot write"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out_dir() + "/no_such_dir"));
+}
+
+}  // namespace
+}  // namespace tetlod
+
+namespace tetlod {
+namespace {
+
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
+  const std::string dir = out_dir() + "/report";
+  fs::remove_all(dir);
+  const CommandResult r = run("report " + asset("box2.mesh") +
+                              " --simplify --size 10 --no-subdivide --levels 100,60 --width 96 "
+                              "--height 96 -o " +
+                              dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir + "/report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("#elements"), std::string::npos);
+  EXPECT_NE(html.find("level ~100"), std::string::npos);
+  EXPECT_NE(html.find("level ~60"), std::string::npos);
+  EXPECT_NE(html.find("simplified (step"), std::string::npos);
+  // input, two levels, the final mesh: a picture and a histogram each.
+  EXPECT_EQ(count_of(html, "<img src=\"data:image/png;base64,iVBORw0KGgo"), 8u);
+  EXPECT_EQ(png_size(dir + "/level0.png"), std::make_pair(96, 96));
+  EXPECT_EQ(png_size(dir + "/level3_histogram.png"), std::make_pair(480, 260));
+  EXPECT_EQ(html.rfind("</html>"), html.size() - 8);
+}
+
+TEST(CliReport, ErrorsAreClear) {
+  EXPECT_EQ(run("report --help").code, 0);
+  EXPECT_EQ(run("report " + asset("box2.mesh")).code, 2);                        // no -o
+  EXPECT_EQ(run("report " + asset("box2.mesh") + " --levels 10 -o x").code, 2);  // no size
+  EXPECT_EQ(run("report " + asset("box2.mesh") + " --levels 0 -o x").code, 2);   // bad level
+  // The output directory cannot be made under a regular file.
+  const std::string file = out_dir() + "/plain_file";
+  std::ofstream(file) << "x";
+  const CommandResult r = run("report " + asset("box2.mesh") + " -o " + file + "/dir");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("cannot create the directory"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace tetlod

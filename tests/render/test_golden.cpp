@@ -1,0 +1,306 @@
+// Golden images: the bundled models rendered offscreen (OSMesa, no display) at a
+// fixed camera and size, compared per channel with a tolerance and a cap on the
+// number of differing pixels. On a mismatch the actual and a diff image are written
+// to <build>/tests/out/golden/. TETLOD_UPDATE_GOLDENS=1 rewrites the goldens in
+// tests/golden/ on purpose (look at them before committing).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "core/io/mesh_io.h"
+#include "render/gl_context.h"
+#include "render/renderer.h"
+#include "render/snapshot.h"
+
+namespace tetlod::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kSize = 256;
+// llvmpipe is deterministic on one machine; the tolerance absorbs rounding
+// differences between Mesa builds, the cap a few edge pixels of multisampling.
+constexpr int kChannelTolerance = 8;
+constexpr size_t kMaxDifferingPixels = kSize * kSize / 200;  // 0.5%
+
+class Offscreen {
+ public:
+  static Offscreen& get() {
+    static Offscreen instance;
+    return instance;
+  }
+  Renderer* renderer() {
+    if (context_) context_->make_current();
+    return renderer_.get();
+  }
+  const std::string& error() const { return error_; }
+
+  const PreparedMesh& mesh(const std::string& asset) {
+    auto it = meshes_.find(asset);
+    if (it == meshes_.end()) {
+      TetMesh mesh;
+      ReadInfo info;
+      const Status s = read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/" + asset, &mesh, &info);
+      EXPECT_TRUE(s.ok()) << s.message();
+      it = meshes_.emplace(asset, prepare_mesh(std::move(mesh))).first;
+    }
+    return it->second;
+  }
+
+ private:
+  Offscreen() {
+    // The goldens are OSMesa's pictures; the EGL backend is compared with them below.
+    context_ = create_offscreen_context(&error_, OffscreenBackend::kOsMesa);
+    if (!context_) return;
+    renderer_ = std::make_unique<Renderer>(context_->gl());
+    if (!renderer_->init(&error_)) renderer_.reset();
+  }
+  std::unique_ptr<GlContext> context_;
+  std::unique_ptr<Renderer> renderer_;
+  std::string error_;
+  std::map<std::string, PreparedMesh> meshes_;
+};
+
+struct GoldenCase {
+  const char* name;
+  const char* asset;
+  SnapshotSettings settings;
+};
+
+SnapshotSettings base_settings() {
+  SnapshotSettings s;
+  s.width = s.height = kSize;
+  return s;
+}
+
+// The motor with the air (material 1) hidden, coloured by stretch (viridis).
+SnapshotSettings motor_stretch() {
+  SnapshotSettings s = base_settings();
+  s.filter.hidden_materials = {1};
+  return s;
+}
+
+// The motor by material, cut at y = 0, worst tets highlighted.
+SnapshotSettings motor_cut() {
+  SnapshotSettings s = base_settings();
+  s.filter.hidden_materials = {1};
+  s.filter.cut = true;
+  s.filter.cut_plane = {{0, 1, 0}, 0};
+  s.filter.highlight = true;
+  s.filter.highlight_below = 0.2;
+  s.draw.color_mode = ColorMode::kMaterial;
+  return s;
+}
+
+// The concentric spheres cut in half at x = 0, by stretch (turbo).
+SnapshotSettings spheres_cut() {
+  SnapshotSettings s = base_settings();
+  s.filter.cut = true;
+  s.filter.cut_plane = {{1, 0, 0}, 0};
+  s.draw.color_map = ColorMap::kTurbo;
+  return s;
+}
+
+// The two-material box by material with the wireframe.
+SnapshotSettings box2_wireframe() {
+  SnapshotSettings s = base_settings();
+  s.draw.color_mode = ColorMode::kMaterial;
+  s.draw.wireframe = true;
+  return s;
+}
+
+std::string golden_path(const std::string& name) {
+  return std::string(TETLOD_SOURCE_DIR) + "/tests/golden/" + name + ".png";
+}
+
+std::string output_path(const std::string& name, const char* suffix) {
+  const std::string dir = std::string(TETLOD_TEST_OUTPUT_DIR) + "/golden";
+  fs::create_directories(dir);
+  return dir + "/" + name + suffix;
+}
+
+Image render_case(const char* asset, const SnapshotSettings& settings) {
+  Offscreen& offscreen = Offscreen::get();
+  if (!offscreen.renderer()) {
+    ADD_FAILURE() << "no offscreen renderer: " << offscreen.error();
+    return {};
+  }
+  return render_snapshot(offscreen.renderer(), offscreen.mesh(asset), settings);
+}
+
+bool updating_goldens() {
+  const char* update = std::getenv("TETLOD_UPDATE_GOLDENS");
+  return update && std::string(update) == "1";
+}
+
+// Renders and compares with the golden `golden`; true if it matches.
+ImageDifference difference_from_golden(const std::string& golden, const Image& actual) {
+  Image expected;
+  const Status s = read_png(golden_path(golden), &expected);
+  EXPECT_TRUE(s.ok()) << s.message() << " (run with TETLOD_UPDATE_GOLDENS=1 to create it)";
+  if (!s.ok()) return {0, 0, false};
+  return compare_images(expected, actual, kChannelTolerance, nullptr);
+}
+
+bool matches(const ImageDifference& d) {
+  return d.same_size && d.differing_pixels <= kMaxDifferingPixels;
+}
+
+void check_golden(const std::string& name, const char* asset, const SnapshotSettings& settings) {
+  const Image actual = render_case(asset, settings);
+  ASSERT_EQ(actual.width, kSize);
+  // Pictures are opaque: blending (the highlight's see-through pass) must not leave
+  // alpha below 1, or viewers would show the page through the PNG.
+  size_t translucent = 0;
+  for (size_t i = 3; i < actual.rgba.size(); i += 4) translucent += actual.rgba[i] != 255;
+  EXPECT_EQ(translucent, 0u) << name;
+  if (updating_goldens()) {
+    const Status s = write_png(golden_path(name), actual);
+    ASSERT_TRUE(s.ok()) << s.message();
+    std::printf("updated %s\n", golden_path(name).c_str());
+    return;
+  }
+  Image expected;
+  const Status s = read_png(golden_path(name), &expected);
+  ASSERT_TRUE(s.ok()) << s.message() << " (run with TETLOD_UPDATE_GOLDENS=1 to create it)";
+  Image diff;
+  const ImageDifference d = compare_images(expected, actual, kChannelTolerance, &diff);
+  if (!matches(d)) {
+    const std::string actual_path = output_path(name, ".actual.png");
+    const std::string diff_path = output_path(name, ".diff.png");
+    EXPECT_TRUE(write_png(actual_path, actual).ok());
+    if (d.same_size) {
+      EXPECT_TRUE(write_png(diff_path, diff).ok());
+    }
+    ADD_FAILURE() << name << ": " << d.differing_pixels << " pixels differ by more than "
+                  << kChannelTolerance << " (cap " << kMaxDifferingPixels
+                  << "), largest channel difference " << d.max_channel_difference
+                  << "\n  actual: " << actual_path << "\n  diff:   " << diff_path;
+  }
+}
+
+TEST(Golden, MotorStretchAirHidden) {
+  check_golden("motor_stretch", "motor.mesh", motor_stretch());
+}
+TEST(Golden, MotorCutByMaterialWithHighlight) {
+  check_golden("motor_cut", "motor.mesh", motor_cut());
+}
+TEST(Golden, SpheresCutInHalf) {
+  check_golden("spheres_cut", "spheres.mesh", spheres_cut());
+}
+TEST(Golden, Box2MaterialWireframe) {
+  check_golden("box2_wireframe", "box2.mesh", box2_wireframe());
+}
+
+// The comparison must be able to fail: each change below must NOT match its golden.
+void expect_mismatch(const std::string& golden, const char* asset,
+                     const SnapshotSettings& changed) {
+  if (updating_goldens()) {
+    GTEST_SKIP() << "updating goldens";
+  }
+  const ImageDifference d = difference_from_golden(golden, render_case(asset, changed));
+  EXPECT_FALSE(matches(d)) << "a changed picture matched " << golden << " (" << d.differing_pixels
+                           << " pixels differ)";
+  EXPECT_GT(d.differing_pixels, 4 * kMaxDifferingPixels);
+}
+
+TEST(GoldenSensitivity, ColourMapChangeIsCaught) {
+  SnapshotSettings s = motor_stretch();
+  s.draw.color_map = ColorMap::kTurbo;
+  expect_mismatch("motor_stretch", "motor.mesh", s);
+}
+
+TEST(GoldenSensitivity, ColourModeChangeIsCaught) {
+  SnapshotSettings s = box2_wireframe();
+  s.draw.color_mode = ColorMode::kStretch;
+  expect_mismatch("box2_wireframe", "box2.mesh", s);
+}
+
+TEST(GoldenSensitivity, CutChangeIsCaught) {
+  SnapshotSettings s = spheres_cut();
+  s.filter.cut_plane.offset = 1.0;
+  expect_mismatch("spheres_cut", "spheres.mesh", s);
+  s = spheres_cut();
+  s.filter.cut_plane = {{0, 1, 0}, 0};
+  expect_mismatch("spheres_cut", "spheres.mesh", s);
+}
+
+TEST(GoldenSensitivity, CameraChangeIsCaught) {
+  SnapshotSettings s = motor_stretch();
+  s.view.direction = ViewDirection::kX;
+  expect_mismatch("motor_stretch", "motor.mesh", s);
+  s = motor_cut();
+  s.view.custom = true;
+  s.view.eye = {200, 150, 180};
+  s.view.target = {5, 0, 0};
+  expect_mismatch("motor_cut", "motor.mesh", s);
+}
+
+TEST(GoldenSensitivity, HiddenMaterialChangeIsCaught) {
+  SnapshotSettings s = motor_stretch();
+  s.filter.hidden_materials = {1, 6};
+  expect_mismatch("motor_stretch", "motor.mesh", s);
+}
+
+TEST(GoldenSensitivity, HighlightChangeIsCaught) {
+  SnapshotSettings s = motor_cut();
+  s.filter.highlight = false;
+  const ImageDifference d = difference_from_golden("motor_cut", render_case("motor.mesh", s));
+  EXPECT_FALSE(matches(d)) << d.differing_pixels << " pixels differ";
+}
+
+// The EGL surfaceless backend (OSMesa's successor) draws the same pictures.
+TEST(GoldenBackends, EglSurfacelessMatchesTheGoldens) {
+  if (updating_goldens()) {
+    GTEST_SKIP() << "updating goldens";
+  }
+  // Load the meshes (and make the OSMesa context) before the EGL context is made
+  // current, so that nothing switches contexts under the EGL renderer.
+  const PreparedMesh& motor_mesh = Offscreen::get().mesh("motor.mesh");
+  const PreparedMesh& spheres_mesh = Offscreen::get().mesh("spheres.mesh");
+  std::string error;
+  auto egl = create_offscreen_context(&error, OffscreenBackend::kEgl);
+  ASSERT_TRUE(egl) << error;
+  ASSERT_TRUE(egl->make_current());
+  std::printf("%s\n", egl->description().c_str());
+  {
+    Renderer renderer(egl->gl());
+    ASSERT_TRUE(renderer.init(&error)) << error;
+    const Image motor = render_snapshot(&renderer, motor_mesh, motor_stretch());
+    EXPECT_TRUE(matches(difference_from_golden("motor_stretch", motor)));
+    const Image spheres = render_snapshot(&renderer, spheres_mesh, spheres_cut());
+    EXPECT_TRUE(matches(difference_from_golden("spheres_cut", spheres)));
+  }
+}
+
+// A framebuffer GL cannot make is an error, and the renderer still works after it.
+TEST(GoldenBackends, ImpossibleFramebufferIsAnErrorNotGarbage) {
+  Renderer* renderer = Offscreen::get().renderer();
+  ASSERT_TRUE(renderer) << Offscreen::get().error();
+  SnapshotSettings s = box2_wireframe();
+  s.width = 100000;  // beyond GL_MAX_RENDERBUFFER_SIZE
+  s.height = 16;
+  const Image failed = render_snapshot(renderer, Offscreen::get().mesh("box2.mesh"), s);
+  EXPECT_EQ(failed.width, 0);
+  EXPECT_NE(renderer->last_error().find("cannot make a 100000x16 framebuffer"), std::string::npos)
+      << renderer->last_error();
+  if (updating_goldens()) return;
+  const ImageDifference d =
+      difference_from_golden("box2_wireframe", render_case("box2.mesh", box2_wireframe()));
+  EXPECT_TRUE(matches(d));
+}
+
+// Rendering twice gives the same pixels (the goldens can be trusted run to run).
+TEST(GoldenSensitivity, RenderingIsDeterministic) {
+  const Image a = render_case("spheres.mesh", spheres_cut());
+  const Image b = render_case("spheres.mesh", spheres_cut());
+  const ImageDifference d = compare_images(a, b, 0, nullptr);
+  EXPECT_EQ(d.differing_pixels, 0u);
+}
+
+}  // namespace
+}  // namespace tetlod::render

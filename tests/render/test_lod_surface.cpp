@@ -1,0 +1,152 @@
+// The incremental LOD surface equals a full rebuild at every step it is moved to.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/simplify.h"
+#include "render/lod_surface.h"
+#include "render/snapshot.h"
+
+namespace tetlod::render {
+namespace {
+
+// A triangle as comparable values: its corners rotated so the smallest comes
+// first (keeping the orientation), its stretch and material.
+using CanonicalTriangle = std::tuple<std::array<float, 9>, float, uint32_t>;
+
+std::vector<CanonicalTriangle> canonical(const std::vector<SurfaceVertex>& vertices) {
+  std::vector<CanonicalTriangle> out;
+  for (size_t t = 0; t + 2 < vertices.size(); t += 3) {
+    std::array<std::array<float, 3>, 3> p;
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) p[k][c] = vertices[t + k].position[c];
+    const int first = int(std::min_element(p.begin(), p.end()) - p.begin());
+    std::array<float, 9> corners;
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) corners[k * 3 + c] = p[(first + k) % 3][c];
+    out.emplace_back(corners, vertices[t].stretch, vertices[t].material);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Highlighted tets as sorted sets of their 4 canonical faces.
+std::vector<std::vector<CanonicalTriangle>> canonical_tets(
+    const std::vector<SurfaceVertex>& vertices) {
+  std::vector<std::vector<CanonicalTriangle>> out;
+  for (size_t t = 0; t + 11 < vertices.size(); t += 12)
+    out.push_back(
+        canonical({vertices.begin() + ptrdiff_t(t), vertices.begin() + ptrdiff_t(t + 12)}));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+const SimplifyResult& simplified_box2() {
+  static const SimplifyResult result = [] {
+    TetMesh mesh;
+    ReadInfo info;
+    EXPECT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &mesh, &info).ok());
+    SimplifyParams params;
+    params.sizing.uniform = 0.6;
+    params.tolerance = 0.01;
+    SimplifyResult r;
+    const Status s = simplify(mesh, params, &r);
+    EXPECT_TRUE(s.ok()) << s.message();
+    return r;
+  }();
+  return result;
+}
+
+void expect_same_as_full_build(const Lod& lod, const LodSurface& surface,
+                               const SurfaceFilter& filter, const std::string& where) {
+  const PreparedMesh level = prepare_mesh(lod.extract());
+  SurfaceBuffers full;
+  build_surface(level.surface_input(), filter, &full);
+  ASSERT_EQ(surface.triangles().size(), full.triangles.size()) << where;
+  EXPECT_TRUE(canonical(surface.triangles()) == canonical(full.triangles)) << where;
+  EXPECT_EQ(surface.visible_tets(), full.visible_tets) << where;
+  EXPECT_EQ(surface.highlighted_tets(), full.highlighted_tets) << where;
+  EXPECT_TRUE(canonical_tets(surface.highlight()) == canonical_tets(full.highlight)) << where;
+}
+
+void walk_history(const SurfaceFilter& filter) {
+  const SimplifyResult& r = simplified_box2();
+  ASSERT_GT(r.history.step_count(), 50u);
+  Lod lod(r.base, &r.history);
+  LodSurface surface;
+  const LodState state = lod_state(lod);
+  surface.reset(state, filter);
+  expect_same_as_full_build(lod, surface, filter, "step 0");
+  std::mt19937 random(7);
+  LodDelta delta;
+  std::vector<size_t> targets = {lod.step_count(), 0, lod.step_count() / 2, lod.step_count()};
+  for (int i = 0; i < 12; ++i) targets.push_back(random() % (lod.step_count() + 1));
+  for (int i = 0; i < 10; ++i) targets.push_back(std::min(lod.step_count(), lod.step() + 1 + i));
+  for (const size_t target : targets) {
+    lod.seek(target, &delta);
+    surface.update(state, delta);
+    expect_same_as_full_build(lod, surface, filter, "step " + std::to_string(target));
+    if (::testing::Test::HasFailure()) return;
+  }
+}
+
+TEST(LodSurface, MatchesAFullRebuildAtEveryStep) {
+  walk_history({});
+}
+
+TEST(LodSurface, MatchesWithAHiddenMaterialCutAndHighlight) {
+  SurfaceFilter filter;
+  filter.hidden_materials = {2};
+  filter.cut = true;
+  filter.cut_plane = {{0, 0.6, 0.8}, 0.5};
+  filter.highlight = true;
+  filter.highlight_below = 0.35;
+  walk_history(filter);
+}
+
+size_t vertex_count(const std::vector<DirtyRange>& ranges) {
+  size_t n = 0;
+  for (const DirtyRange& r : ranges) n += r.end - r.begin;
+  return n;
+}
+
+TEST(LodSurface, DirtyRangesCoverOnlyWhatChanged) {
+  const SimplifyResult& r = simplified_box2();
+  Lod lod(r.base, &r.history);
+  LodSurface surface;
+  const LodState state = lod_state(lod);
+  surface.reset(state, {});
+  const std::vector<DirtyRange> all = surface.take_triangle_dirty();
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].begin, 0u);
+  EXPECT_EQ(all[0].end, surface.triangles().size());
+  EXPECT_TRUE(surface.take_triangle_dirty().empty());
+  // A collapse touches a handful of faces, not the whole buffer; applying the dirty
+  // ranges to a copy of the old array reproduces the new one.
+  std::vector<SurfaceVertex> mirror = surface.triangles();
+  LodDelta delta;
+  size_t touched = 0;
+  const size_t steps = std::min<size_t>(40, lod.step_count());
+  for (size_t s = 1; s <= steps; ++s) {
+    lod.seek(s, &delta);
+    surface.update(state, delta);
+    const std::vector<DirtyRange> dirty = surface.take_triangle_dirty();
+    touched += vertex_count(dirty);
+    mirror.resize(surface.triangles().size());
+    for (const DirtyRange& d : dirty)
+      std::copy(surface.triangles().begin() + std::ptrdiff_t(d.begin),
+                surface.triangles().begin() + std::ptrdiff_t(d.end),
+                mirror.begin() + std::ptrdiff_t(d.begin));
+    EXPECT_TRUE(canonical(mirror) == canonical(surface.triangles())) << "step " << s;
+  }
+  EXPECT_LT(touched / steps, 60u) << "vertices sent per step, of " << surface.triangles().size();
+}
+
+}  // namespace
+}  // namespace tetlod::render
