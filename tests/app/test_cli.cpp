@@ -1,6 +1,5 @@
 // The real `tetlod` binary: exit codes, messages, and the simplify -> lod flow.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +7,7 @@
 #include <iterator>
 #include <string>
 
+#include "app/cli_runner.h"
 #include "core/io/mesh_io.h"
 #include "core/test_meshes.h"
 
@@ -16,28 +16,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
+using test::CommandResult;
 
-CommandResult run(const std::string& arguments) {
-  CommandResult r;
-  const std::string command = std::string(TETLOD_BINARY) + " " + arguments + " 2>&1";
-  std::FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+CommandResult run(const std::string& arguments, const std::string& environment = "") {
+  return test::run_tetlod(arguments, environment);
 }
 
 std::string out_dir() {
-  const std::string dir = std::string(TETLOD_TEST_OUTPUT_DIR) + "/cli";
-  fs::create_directories(dir);
-  return dir;
+  return test::cli_output_dir("cli");
 }
 
 std::string write_grid(const std::string& name) {

@@ -1,42 +1,27 @@
 // `tetlod render` through the real binary: a PNG is written, bad values are usage
 // errors, and failures (unreadable input, no GL, unwritable output) leave no file.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "app/cli_runner.h"
+
 namespace tetlod {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
+using test::CommandResult;
 
-// Runs `environment tetlod arguments`.
 CommandResult run(const std::string& arguments, const std::string& environment = "") {
-  CommandResult r;
-  const std::string command =
-      environment + " " + std::string(TETLOD_BINARY) + " " + arguments + " 2>&1";
-  std::FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return test::run_tetlod(arguments, environment);
 }
 
 std::string out_dir() {
-  const std::string dir = std::string(TETLOD_TEST_OUTPUT_DIR) + "/cli_render";
-  fs::create_directories(dir);
-  return dir;
+  return test::cli_output_dir("cli_render");
 }
 
 std::string asset(const char* name) {
