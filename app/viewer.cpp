@@ -178,7 +178,9 @@ std::filesystem::path recent_files_path() {
 struct FrameRecord {
   double frame_ms = 0;  // since the previous frame started
   double scrub_ms = 0;  // seek + surface update + upload
-  double draw_ms = 0;   // 3D view draw (with glFinish-free timing: CPU side)
+  double draw_ms = 0;   // 3D view draw + present (CPU side: the driver may defer work)
+  double ui_ms = 0;     // ImGui frame + its draw
+  double swap_ms = 0;   // swap buffers
   size_t step = 0;
 };
 
@@ -206,7 +208,11 @@ class Viewer {
   void apply_view_changes();
   void follow_scrubber();
   void update_stats();
-  void draw_scene(int width, int height);
+  struct ViewPixels {
+    int x = 0, y = 0, width = 1, height = 1;  // origin bottom left
+  };
+  ViewPixels view_pixels(int fb_width, int fb_height) const;
+  void draw_scene(int fb_width, int fb_height);
   Status screenshot(const std::string& path, int width, int height);
   Status save_level(const std::string& path);
   void fill_status();
@@ -394,8 +400,10 @@ void Viewer::frame() {
   const Clock::time_point draw_start = Clock::now();
   if (width > 0 && height > 0) draw_scene(width, height);
   current_.draw_ms = 1e3 * seconds_between(draw_start, Clock::now());
+  const Clock::time_point ui_start = Clock::now();
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  current_.ui_ms = 1e3 * seconds_between(ui_start, Clock::now());
 
   if (ui_capture_countdown_ == 0) {
     const render::GlApi& gl = window_->gl();
@@ -420,7 +428,9 @@ void Viewer::frame() {
     }
   }
   if (ui_capture_countdown_ >= 0) --ui_capture_countdown_;
+  const Clock::time_point swap_start = Clock::now();
   window_->swap_buffers();
+  current_.swap_ms = 1e3 * seconds_between(swap_start, Clock::now());
   if (scene_) current_.step = scene_->lod->step();
 
   // Frame-time readout (smoothed over about ten frames).
@@ -574,6 +584,11 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
 }
 
 void Viewer::upload_all() {
+  std::vector<int32_t> shown;
+  for (const int32_t m : scene_->materials)
+    if (!std::binary_search(view_.hidden_materials.begin(), view_.hidden_materials.end(), m))
+      shown.push_back(m);
+  renderer_->set_legend_materials(std::move(shown));
   renderer_->update_triangles(scene_->surface.triangles(), scene_->surface.take_triangle_dirty());
   renderer_->update_highlight(scene_->surface.highlight(), scene_->surface.take_highlight_dirty(),
                               scene_->surface.highlighted_tets());
@@ -655,7 +670,7 @@ void Viewer::handle_camera_input() {
     const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
     if (dx != 0 || dy != 0) {
       if (pan) {
-        camera_.pan(dx, dy, std::max(1, static_cast<int>(io.DisplaySize.y)));
+        camera_.pan(dx, dy, view_pixels(width, height).height);
       } else if (io.MouseDown[0]) {
         camera_.orbit(dx, dy);
       }
@@ -688,8 +703,8 @@ void Viewer::follow_scrubber() {
   if (lod.step() == target) return;
   // Move towards the target in chunks until the frame's budget is spent, so a long
   // drag keeps the window responsive and the display catches up over a few frames.
-  constexpr double kBudgetSeconds = 0.012;
-  constexpr size_t kChunk = 128;
+  constexpr double kBudgetSeconds = 0.008;
+  constexpr size_t kChunk = 48;
   const Clock::time_point start = Clock::now();
   const render::LodState state = render::lod_state(lod);
   LodDelta delta;
@@ -733,38 +748,57 @@ void Viewer::update_stats() {
   });
 }
 
-void Viewer::draw_scene(int width, int height) {
+Viewer::ViewPixels Viewer::view_pixels(int fb_width, int fb_height) const {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float display_width = io.DisplaySize.x > 0 ? io.DisplaySize.x : float(fb_width);
+  const float display_height = io.DisplaySize.y > 0 ? io.DisplaySize.y : float(fb_height);
+  const ui::ViewRect rect = ui::scene_rect(display_width, display_height, panel_.show_stats);
+  const double sx = fb_width / double(display_width), sy = fb_height / double(display_height);
+  ViewPixels v;
+  v.x = static_cast<int>(std::lround(rect.x * sx));
+  v.width = std::max(1, static_cast<int>(std::lround(rect.width * sx)));
+  v.height = std::max(1, static_cast<int>(std::lround(rect.height * sy)));
+  v.y = fb_height - static_cast<int>(std::lround((rect.y + rect.height) * sy));
+  return v;
+}
+
+void Viewer::draw_scene(int fb_width, int fb_height) {
   const render::GlApi& gl = window_->gl();
-  if (!scene_) {
-    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    gl.Viewport(0, 0, width, height);
-    gl.ClearColor(0.92f, 0.92f, 0.92f, 1);
-    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    return;
-  }
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.Viewport(0, 0, fb_width, fb_height);
+  gl.ClearColor(1, 1, 1, 1);  // the renderer's background, behind the panels
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (!scene_) return;
+  const ViewPixels view = view_pixels(fb_width, fb_height);
   const render::DrawSettings draw = make_draw_settings(view_);
   const render::Camera camera = camera_.camera();
   const bool camera_moved = !same_camera(camera, drawn_camera_);
   if (camera_moved) interacting_ = true;
   const double scale = interacting_ ? options_.interactive_scale : 1.0;
-  if (needs_redraw_ || camera_moved || scale != drawn_scale_ || width != drawn_width_ ||
-      height != drawn_height_ || !same_draw(draw, drawn_settings_)) {
-    const int w = std::max(1, static_cast<int>(std::lround(width * scale)));
-    const int h = std::max(1, static_cast<int>(std::lround(height * scale)));
+  if (needs_redraw_ || camera_moved || scale != drawn_scale_ || view.width != drawn_width_ ||
+      view.height != drawn_height_ || !same_draw(draw, drawn_settings_)) {
+    const int w = std::max(1, static_cast<int>(std::lround(view.width * scale)));
+    const int h = std::max(1, static_cast<int>(std::lround(view.height * scale)));
     renderer_->draw(draw, camera, w, h);
     drawn_scale_ = scale;
-    drawn_width_ = width;
-    drawn_height_ = height;
+    drawn_width_ = view.width;
+    drawn_height_ = view.height;
     drawn_settings_ = draw;
     drawn_camera_ = camera;
     needs_redraw_ = false;
   }
-  renderer_->present(width, height);
+  renderer_->present_into(view.x, view.y, view.width, view.height);
 }
 
 Status Viewer::screenshot(const std::string& path, int width, int height) {
   if (!scene_) return Status::error("nothing to take a screenshot of: no mesh loaded");
-  if (width <= 0 || height <= 0) window_->framebuffer_size(&width, &height);
+  if (width <= 0 || height <= 0) {  // the size of the 3D view in the window
+    int fb_width = 0, fb_height = 0;
+    window_->framebuffer_size(&fb_width, &fb_height);
+    const ViewPixels view = view_pixels(fb_width, fb_height);
+    width = view.width;
+    height = view.height;
+  }
   renderer_->draw(make_draw_settings(view_), camera_.camera(), width, height);
   const render::Image image = renderer_->read_pixels();
   needs_redraw_ = true;  // the targets now have the screenshot's size
@@ -1026,11 +1060,13 @@ void Viewer::bench_frame() {
   bench_.active = false;
   std::vector<FrameRecord>& r = bench_.records;
   if (!r.empty()) r.erase(r.begin());  // the frame before the first move
-  std::vector<double> frame_ms, scrub_ms, draw_ms;
+  std::vector<double> frame_ms, scrub_ms, draw_ms, ui_ms, swap_ms;
   for (const FrameRecord& f : r) {
     frame_ms.push_back(f.frame_ms);
     scrub_ms.push_back(f.scrub_ms);
     draw_ms.push_back(f.draw_ms);
+    ui_ms.push_back(f.ui_ms);
+    swap_ms.push_back(f.swap_ms);
   }
   const auto quantile = [](std::vector<double> v, double q) {
     if (v.empty()) return 0.0;
@@ -1046,19 +1082,19 @@ void Viewer::bench_frame() {
       "drawn, window %dx%d, 3D view at %.0f%% while moving\n"
       "bench-scrub: frame ms: median %.1f, p95 %.1f, max %.1f; mean %.1f fps\n"
       "bench-scrub: of which seek + update + upload ms: median %.2f, p95 %.2f, max %.2f; "
-      "3D draw ms: median %.1f, max %.1f\n",
+      "3D draw ms: median %.1f, max %.1f; UI ms: median %.1f; swap ms: median %.1f\n",
       lod.step_count(), lod.tet_count_at(0), lod.tet_count_at(lod.step_count()), bench_.frames,
       frame_ms.size(), width, height, 100 * options_.interactive_scale, quantile(frame_ms, 0.5),
       quantile(frame_ms, 0.95), quantile(frame_ms, 1.0),
       total > 0 ? 1e3 * double(frame_ms.size()) / total : 0, quantile(scrub_ms, 0.5),
       quantile(scrub_ms, 0.95), quantile(scrub_ms, 1.0), quantile(draw_ms, 0.5),
-      quantile(draw_ms, 1.0));
+      quantile(draw_ms, 1.0), quantile(ui_ms, 0.5), quantile(swap_ms, 0.5));
   if (!bench_.out.empty()) {
     std::ofstream out(bench_.out, std::ios::trunc);
-    out << "frame,frame_ms,scrub_ms,draw_ms,step\n";
+    out << "frame,frame_ms,scrub_ms,draw_ms,ui_ms,swap_ms,step\n";
     for (size_t i = 0; i < r.size(); ++i)
       out << i << ',' << r[i].frame_ms << ',' << r[i].scrub_ms << ',' << r[i].draw_ms << ','
-          << r[i].step << '\n';
+          << r[i].ui_ms << ',' << r[i].swap_ms << ',' << r[i].step << '\n';
     if (!out) fail_script(bench_.line, "cannot write " + bench_.out);
   }
 }

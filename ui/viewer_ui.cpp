@@ -10,7 +10,9 @@
 namespace tetlod::ui {
 namespace {
 
-constexpr float kPanelWidth = 380;
+constexpr float kPanelWidth = 380;   // the side panel
+constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
+constexpr float kMargin = 6;
 
 void copy_path(const std::string& from, char* to, size_t capacity) {
   std::snprintf(to, capacity, "%s", from.c_str());
@@ -245,10 +247,17 @@ void row_cells(const PropertyRow& r) {
 void stats_window(const ViewerStatus& status, PanelState* panel) {
   if (!panel->show_stats) return;
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(ImVec2(viewport->WorkSize.x - 8, viewport->WorkSize.y - 8),
-                          ImGuiCond_Always, ImVec2(1, 1));
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (!ImGui::Begin("Statistics", &panel->show_stats, ImGuiWindowFlags_AlwaysAutoResize)) {
+  const float x = viewport->WorkPos.x + kPanelWidth + 2 * kMargin;
+  ImGui::SetNextWindowPos(
+      ImVec2(x, viewport->WorkPos.y + viewport->WorkSize.y - kStatsHeight - kMargin),
+      ImGuiCond_Always);
+  ImGui::SetNextWindowSize(
+      ImVec2(std::max(200.0f, viewport->WorkSize.x - kPanelWidth - 3 * kMargin), kStatsHeight),
+      ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  const ImGuiWindowFlags window_flags =
+      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
+  if (!ImGui::Begin("Statistics of the displayed level", &panel->show_stats, window_flags)) {
     ImGui::End();
     return;
   }
@@ -257,12 +266,19 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
     ImGui::End();
     return;
   }
-  ImGui::Text("Level at step %zu%s (Table I)", status.stats_step,
-              status.stats_step == status.step ? "" : ", updating...");
-  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg;
-  if (ImGui::BeginTable("table1", 8, flags)) {
-    for (const char* h : {"", "#nodes", "#edges", "#elements", "avg stretch", "min stretch",
-                          "max valence", "max size"})
+  constexpr float kChartWidth = 250;
+  const float table_width = std::max(200.0f, ImGui::GetContentRegionAvail().x - kChartWidth - 8);
+  ImGui::BeginGroup();
+  ImGui::Text("Table I at step %zu%s", status.stats_step,
+              status.stats_step == status.step ? "" : " (updating...)");
+  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                                ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY |
+                                ImGuiTableFlags_SizingFixedFit;
+  if (ImGui::BeginTable("table1", 8, flags,
+                        ImVec2(table_width, ImGui::GetContentRegionAvail().y - 24))) {
+    ImGui::TableSetupScrollFreeze(0, 1);
+    for (const char* h :
+         {"", "nodes", "edges", "elements", "avg str", "min str", "max val", "max size"})
       ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
     ImGui::TableNextRow();
@@ -272,22 +288,27 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
     for (const MaterialRow& m : status.stats.per_material) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::Text("material %d", m.material);
+      ImGui::Text("mat %d", m.material);
       row_cells(m.row);
     }
     ImGui::EndTable();
   }
+  ImGui::EndGroup();
+  ImGui::SameLine();
   std::vector<float> bins(status.stats.stretch_histogram.begin(),
                           status.stats.stretch_histogram.end());
   float top = 0;
   for (const float b : bins) top = std::max(top, b);
-  ImGui::PlotHistogram("##hist", bins.data(), static_cast<int>(bins.size()), 0,
-                       "stretch histogram, bins of 0.1 over [0, 1]", 0, top * 1.15f,
-                       ImVec2(560, 110));
+  ImGui::BeginGroup();
+  ImGui::Text("Stretch histogram (0 .. 1)");
+  ImGui::PlotHistogram("##hist", bins.data(), static_cast<int>(bins.size()), 0, nullptr, 0,
+                       top * 1.1f, ImVec2(kChartWidth, ImGui::GetContentRegionAvail().y - 46));
+  ImGui::TextDisabled("0.0            0.5            1.0");
+  ImGui::EndGroup();
   if (status.has_result) {
     const RejectionCounts& r = status.rejections;
-    ImGui::Text("Rejections of the last run: tolerance %" PRIu64 ", stretch %" PRIu64
-                ", size %" PRIu64 ", valence %" PRIu64 ", topology %" PRIu64,
+    ImGui::Text("Rejections (last run): tolerance %" PRIu64 ", stretch %" PRIu64 ", size %" PRIu64
+                ", valence %" PRIu64 ", topology %" PRIu64,
                 r.tolerance, r.stretch, r.size, r.valence, r.topology);
   }
   ImGui::End();
@@ -332,15 +353,25 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
   return true;
 }
 
+ViewRect scene_rect(float display_width, float display_height, bool show_stats) {
+  ViewRect r;
+  r.x = kPanelWidth + 2 * kMargin;
+  r.y = 0;
+  r.width = std::max(1.0f, display_width - r.x);
+  r.height = std::max(1.0f, display_height - (show_stats ? kStatsHeight + 2 * kMargin : 0.0f));
+  return r;
+}
+
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
                         ThresholdSettings* thresholds, PanelState* panel,
                         std::vector<Command>* commands) {
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + 6, viewport->WorkPos.y + 6),
-                          ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, viewport->WorkSize.y - 12), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.9f);
-  ImGui::Begin("TetLOD");
+  ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + kMargin, viewport->WorkPos.y + kMargin),
+                          ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, viewport->WorkSize.y - 2 * kMargin),
+                           ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.95f);
+  ImGui::Begin("TetLOD", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   ImGui::Text("%.1f FPS, %.2f ms/frame", status.fps, status.frame_ms);
   if (status.scene_scale < 1) {
     ImGui::SameLine();

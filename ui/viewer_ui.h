@@ -132,6 +132,13 @@ struct ViewerStatus {
   double scene_scale = 1;  // resolution factor of the 3D view this frame
 };
 
+// The part of the window left for the 3D view beside the side panel and above the
+// statistics strip, in ImGui's coordinates (pixels from the top left).
+struct ViewRect {
+  float x = 0, y = 0, width = 0, height = 0;
+};
+ViewRect scene_rect(float display_width, float display_height, bool show_stats);
+
 // Draws every panel. `commands` receives what the user asked for this frame.
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
                         ThresholdSettings* thresholds, PanelState* panel,

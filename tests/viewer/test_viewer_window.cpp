@@ -1,0 +1,146 @@
+// The scripted viewer run in a real window (GLFW + Dear ImGui), under xvfb-run:
+// tests/viewer/scripted_run.script loads the motor, simplifies, scrubs, cuts and
+// takes screenshots with and without the UI, and saves levels. Every file it
+// writes is checked: the PNGs' sizes and content (not blank, the panels there when
+// asked for) and the saved meshes' element counts against the level the simplifier
+// itself gives for the same thresholds.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/simplify.h"
+#include "render/image.h"
+
+namespace tetlod {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSource = TETLOD_SOURCE_DIR;
+
+struct ViewerRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+ViewerRun run_viewer(const fs::path& dir, const std::string& arguments) {
+  fs::create_directories(dir);
+  const std::string log = (dir / "log.txt").string();
+  const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " view " +
+                              arguments + " >'" + log + "' 2>&1";
+  const int status = std::system(command.c_str());
+  ViewerRun run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  std::ostringstream text;
+  text << in.rdbuf();
+  run.output = text.str();
+  return run;
+}
+
+bool is_white(const uint8_t* p) {
+  return p[0] > 245 && p[1] > 245 && p[2] > 245;
+}
+
+// Fraction of the pixels in [x0, x1) x [y0, y1) that differ from the white background.
+double non_background(const render::Image& image, int x0, int y0, int x1, int y1) {
+  size_t count = 0, total = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x, ++total) count += is_white(image.pixel(x, y)) ? 0 : 1;
+  return total ? double(count) / double(total) : 0;
+}
+
+// Fraction of dark pixels (the ImGui panels' background) in a region.
+double dark(const render::Image& image, int x0, int y0, int x1, int y1) {
+  size_t count = 0, total = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x, ++total) {
+      const uint8_t* p = image.pixel(x, y);
+      count += (p[0] + p[1] + p[2]) < 3 * 70 ? 1 : 0;
+    }
+  return total ? double(count) / double(total) : 0;
+}
+
+render::Image load_png(const fs::path& path) {
+  render::Image image;
+  const Status s = render::read_png(path.string(), &image);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return image;
+}
+
+TEST(ViewerWindow, ScriptedRun) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_scripted_run";
+  fs::remove_all(dir);
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 960x640 " +
+                          "--script '" + kSource + "/tests/viewer/scripted_run.script'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  // Without the UI, at the asked size: the model on a white background.
+  const render::Image input = load_png(dir / "input.png");
+  const render::Image level = load_png(dir / "level.png");
+  for (const render::Image* image : {&input, &level}) {
+    EXPECT_EQ(image->width, 320);
+    EXPECT_EQ(image->height, 240);
+    const double covered = non_background(*image, 0, 0, image->width, image->height);
+    EXPECT_GT(covered, 0.15);
+    EXPECT_LT(covered, 0.9);
+  }
+  // The simplified level looks different from the input.
+  const render::ImageDifference d = render::compare_images(input, level, 24, nullptr);
+  EXPECT_GT(d.differing_pixels, 320u * 240u / 50u);
+
+  // With the UI, at the window size: the panel on the left is dark, the statistics
+  // window too, and the model is drawn in the rest.
+  const render::Image ui = load_png(dir / "cut_ui.png");
+  EXPECT_EQ(ui.width, 960);
+  EXPECT_EQ(ui.height, 640);
+  if (ui.width == 960 && ui.height == 640) {
+    EXPECT_GT(dark(ui, 20, 60, 360, 600), 0.6) << "the side panel is missing";
+    EXPECT_GT(non_background(ui, 400, 0, 960, 640), 0.1) << "the model is missing";
+    EXPECT_GT(non_background(ui, 400, 0, 960, 640), 0.1) << "the model is missing";
+  }
+
+  // The saved levels: the one nearest 20000 elements, and the coarsest.
+  TetMesh input_mesh;
+  ASSERT_TRUE(read_mesh(kSource + "/assets/motor.mesh", &input_mesh).ok());
+  SimplifyParams params;  // as the script's thresholds line
+  params.sizing.uniform = 25;
+  params.min_stretch = 0.15;
+  params.max_valence = 25;
+  params.tolerance = 0.05;
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(input_mesh, params, &result).ok());
+  Lod lod(result.base, &result.history);
+  const size_t expected = lod.tet_count_at(lod.step_for_elements(20000));
+  ASSERT_LT(expected, result.base.tet_count());  // the scrub really moved
+
+  TetMesh saved, coarsest;
+  const Status s1 = read_mesh((dir / "level.mesh").string(), &saved);
+  ASSERT_TRUE(s1.ok()) << s1.message();
+  EXPECT_EQ(saved.tet_count(), expected);
+  const Status s2 = read_mesh((dir / "coarsest.vtu").string(), &coarsest);
+  ASSERT_TRUE(s2.ok()) << s2.message();
+  EXPECT_EQ(coarsest.tet_count(), result.output.tet_count());
+}
+
+TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_load";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
+  std::ofstream(dir / "load.script") << "open bad.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script load.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("load.script:1: bad.mesh"), std::string::npos) << run.output;
+}
+
+}  // namespace
+}  // namespace tetlod
