@@ -267,6 +267,8 @@ class Viewer {
   int ui_capture_line_ = 0;
 
   // Timing.
+  int busy_frames_ = 3;  // frames to draw before waiting for events when idle
+  bool last_slept_ = false;
   Clock::time_point last_frame_start_ = Clock::now();
   double frame_ms_ = 0, fps_ = 0;
   FrameRecord current_;
@@ -275,6 +277,7 @@ class Viewer {
   size_t script_index_ = 0;
   int wait_frames_ = 0;
   int pending_job_line_ = 0;  // the open/simplify line whose job must succeed
+  bool wait_for_job_ = true;  // the script waits for a running job to finish
   bool quit_ = false;
   int exit_code_ = kExitOk;
   struct Bench {
@@ -362,12 +365,26 @@ int Viewer::run() {
 
 void Viewer::frame() {
   const Clock::time_point start = Clock::now();
-  current_.frame_ms = 1e3 * seconds_between(last_frame_start_, start);
+  const double interval_ms = 1e3 * seconds_between(last_frame_start_, start);
+  current_.frame_ms = interval_ms;
   last_frame_start_ = start;
   if (bench_.active) bench_.records.push_back(current_);
   current_ = {};
 
-  window_->poll_events();
+  // Idle (nothing moving, no work in flight, no script): sleep until an event or a
+  // quarter second passes, so an idle viewer leaves the cores to others.
+  const bool idle = !job_ && !interacting_ && !needs_redraw_ && !options_.has_script &&
+                    !stats_future_.valid() && !save_future_.valid() && ui_capture_countdown_ < 0 &&
+                    (!scene_ || scene_->lod->step() == static_cast<size_t>(panel_.target_step));
+  busy_frames_ = idle ? busy_frames_ - 1 : 3;
+  const bool slept = last_slept_;
+  last_slept_ = busy_frames_ < 0;
+  if (busy_frames_ < 0) {
+    glfwWaitEventsTimeout(0.25);
+    busy_frames_ = 3;  // a few frames for ImGui to follow the event
+  } else {
+    window_->poll_events();
+  }
   for (const std::string& path : dropped_) start_load(path);
   dropped_.clear();
   poll_job();
@@ -433,9 +450,9 @@ void Viewer::frame() {
   current_.swap_ms = 1e3 * seconds_between(swap_start, Clock::now());
   if (scene_) current_.step = scene_->lod->step();
 
-  // Frame-time readout (smoothed over about ten frames).
-  const double ms = 1e3 * seconds_between(start, Clock::now());
-  const double total = current_.frame_ms > 0 ? current_.frame_ms : ms;
+  // Frame-time readout (smoothed over about ten frames): the time between frame
+  // starts, except after sleeping for events, where it is this frame's own time.
+  const double total = slept ? 1e3 * seconds_between(start, Clock::now()) : interval_ms;
   frame_ms_ = frame_ms_ == 0 ? total : 0.9 * frame_ms_ + 0.1 * total;
   fps_ = frame_ms_ > 0 ? 1e3 / frame_ms_ : 0;
 }
@@ -873,7 +890,8 @@ void Viewer::fail_script(int line, const std::string& message) {
 }
 
 bool Viewer::settled() const {
-  if (job_ || save_future_.valid() || stats_future_.valid() || ui_capture_countdown_ >= 0)
+  if ((job_ && wait_for_job_) || save_future_.valid() || stats_future_.valid() ||
+      ui_capture_countdown_ >= 0)
     return false;
   if (!scene_) return true;
   if (scene_->lod->step() != static_cast<size_t>(panel_.target_step)) return false;
@@ -912,7 +930,7 @@ void Viewer::run_script() {
     fail_script(action.line, s.message());
     return;
   }
-  wait_frames_ = 1;  // let one frame show the result before the next action
+  wait_frames_ = std::max(wait_frames_, 1);  // one frame shows the result before the next action
 }
 
 Status Viewer::run_action(const ScriptAction& a) {
@@ -923,6 +941,7 @@ Status Viewer::run_action(const ScriptAction& a) {
   switch (a.kind) {
     case Kind::kOpen:
       last_job_error_.clear();
+      wait_for_job_ = true;
       start_load(a.path);
       pending_job_line_ = a.line;
       break;
@@ -947,9 +966,16 @@ Status Viewer::run_action(const ScriptAction& a) {
       break;
     case Kind::kSimplify:
       last_job_error_.clear();
+      if (job_) return Status::error("a simplification or load is already running");
       start_simplify();
       if (!last_job_error_.empty()) return Status::error(last_job_error_);
-      pending_job_line_ = a.line;
+      wait_for_job_ = a.flag;
+      pending_job_line_ = a.flag ? a.line : 0;
+      break;
+    case Kind::kCancel:
+      if (!job_ || job_->is_load) return Status::error("no simplification is running");
+      job_->cancel = true;
+      wait_for_job_ = true;
       break;
     case Kind::kScrubStep:
       panel_.target_step =

@@ -117,6 +117,16 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     return parse_thresholds(p, a);
   } else if (command == "simplify") {
     a->kind = Kind::kSimplify;
+    a->flag = true;
+    if (Status s = p.arg_count(0, 1); !s) return s;
+    if (w.size() == 2) {
+      std::string key, value;
+      if (!LineParser::key_value(w[1], &key, &value) || key != "wait")
+        return p.error("'simplify' takes wait=0|1, got '" + w[1] + "'");
+      return p.on_off(key, value, &a->flag);
+    }
+  } else if (command == "cancel") {
+    a->kind = Kind::kCancel;
     return p.arg_count(0, 0);
   } else if (command == "scrub") {
     if (Status s = p.arg_count(1, 1); !s) return s;

@@ -6,7 +6,10 @@
 //   open PATH                        load a mesh (waits)
 //   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h)
-//   simplify                         run the simplifier with the thresholds (waits)
+//   simplify [wait=0]                run the simplifier with the thresholds (waits,
+//                                    unless wait=0: then the next actions run meanwhile)
+//   cancel                           cancel a running simplification (waits until the
+//                                    worker has stopped; the previous result stays)
 //   scrub step=K | elements=N | end  move the LOD to a step / nearest level (waits)
 //   cut x|y|z=VALUE [flip] | cut off
 //   hide M | show M                  material visibility
@@ -36,6 +39,7 @@ struct ScriptAction {
     kOpen,
     kThresholds,
     kSimplify,
+    kCancel,
     kScrubStep,
     kScrubElements,
     kScrubEnd,

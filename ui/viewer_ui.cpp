@@ -379,6 +379,15 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   }
   ImGui::Text("%zu visible tets, %zu triangles", status.visible_tets, status.drawn_triangles);
   ImGui::Checkbox("Statistics window", &panel->show_stats);
+  if (status.running) {  // always in sight, whatever the panel's scroll position
+    if (ImGui::Button("Cancel##top")) commands->push_back({CommandKind::kCancel});
+    ImGui::SameLine();
+    char overlay[96];
+    std::snprintf(overlay, sizeof(overlay), "simplifying: %s %.0f%%, %zu collapses",
+                  status.phase.c_str(), 100 * status.phase_fraction, status.collapses);
+    ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
+  }
+  if (status.loading) ImGui::Text("Loading %s ...", status.loading_path.c_str());
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
   if (ImGui::CollapsingHeader("File")) file_section(status, panel, commands);
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);

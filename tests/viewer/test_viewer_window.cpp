@@ -6,6 +6,7 @@
 // itself gives for the same thresholds.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -140,6 +141,41 @@ TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
       run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script load.script");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_NE(run.output.find("load.script:1: bad.mesh"), std::string::npos) << run.output;
+}
+
+// A long simplification, cancelled from the script: the UI keeps drawing while it
+// runs (a screenshot with its progress bar), the cancelled run leaves the display as
+// it was, and quitting while another run is under way cancels and joins the worker.
+TEST(ViewerWindow, CancelAndQuitDuringARun) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_cancel";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "cancel.script") << "screenshot before.png width=320 height=240\n"
+                                          "thresholds size=5 tolerance=0.05\n"
+                                          "simplify wait=0\n"
+                                          "wait frames=10\n"
+                                          "screenshot running_ui.png ui=1\n"
+                                          "cancel\n"
+                                          "screenshot after.png width=320 height=240\n"
+                                          "simplify wait=0\n"
+                                          "wait frames=5\n"
+                                          "quit\n";
+  const auto start = std::chrono::steady_clock::now();
+  const ViewerRun run = run_viewer(dir, "'" + kSource +
+                                            "/assets/motor.mesh' --hide 1 --size 960x640 "
+                                            "--script cancel.script");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_LT(seconds, 60);
+  const render::Image before = load_png(dir / "before.png");
+  const render::Image after = load_png(dir / "after.png");
+  const render::ImageDifference d = render::compare_images(before, after, 0, nullptr);
+  EXPECT_TRUE(d.same_size);
+  EXPECT_EQ(d.differing_pixels, 0u) << "the cancelled run changed the display";
+  const render::Image running = load_png(dir / "running_ui.png");
+  EXPECT_EQ(running.width, 960);
+  EXPECT_EQ(running.height, 640);
 }
 
 }  // namespace
