@@ -284,6 +284,7 @@ class Viewer {
     bool active = false;
     long long frames = 0, frame = 0;
     bool backward = false;
+    bool scrub = true;  // drag the scrubber; else just time frames
     std::string out;
     int line = 0;
     std::vector<FrameRecord> records;
@@ -1050,14 +1051,16 @@ Status Viewer::run_action(const ScriptAction& a) {
       wait_frames_ = static_cast<int>(a.count);
       break;
     case Kind::kBenchScrub:
-      if (scene_->lod->step_count() == 0)
+    case Kind::kBenchFrames:
+      if (a.kind == Kind::kBenchScrub && scene_->lod->step_count() == 0)
         return Status::error("no collapse history: simplify first");
       bench_ = {};
       bench_.active = true;
+      bench_.scrub = a.kind == Kind::kBenchScrub;
       bench_.frames = a.count;
       bench_.out = a.path;
       bench_.line = a.line;
-      panel_.target_step = 0;
+      if (bench_.scrub) panel_.target_step = 0;
       break;
     case Kind::kQuit:
       quit_ = true;
@@ -1071,14 +1074,16 @@ Status Viewer::run_action(const ScriptAction& a) {
 void Viewer::bench_frame() {
   Lod& lod = *scene_->lod;
   const long long last = static_cast<long long>(lod.step_count());
-  if (bench_.frame < bench_.frames) {
+  if (!bench_.scrub) {
+    if (++bench_.frame <= bench_.frames) return;
+  } else if (bench_.frame < bench_.frames) {
     ++bench_.frame;
     const long long along = last * bench_.frame / bench_.frames;
     panel_.target_step = bench_.backward ? last - along : along;
     return;
   }
-  if (lod.step() != static_cast<size_t>(panel_.target_step)) return;  // catching up
-  if (!bench_.backward) {
+  if (bench_.scrub && lod.step() != static_cast<size_t>(panel_.target_step)) return;
+  if (bench_.scrub && !bench_.backward) {
     bench_.backward = true;
     bench_.frame = 0;
     return;
@@ -1103,16 +1108,18 @@ void Viewer::bench_frame() {
   for (const double f : frame_ms) total += f;
   int width = 0, height = 0;
   window_->framebuffer_size(&width, &height);
+  const char* name = bench_.scrub ? "bench-scrub" : "bench-frames";
   std::printf(
-      "bench-scrub: %zu steps (%zu -> %zu tets), %lld frames asked each way, %zu frames "
-      "drawn, window %dx%d, 3D view at %.0f%% while moving\n"
-      "bench-scrub: frame ms: median %.1f, p95 %.1f, max %.1f; mean %.1f fps\n"
-      "bench-scrub: of which seek + update + upload ms: median %.2f, p95 %.2f, max %.2f; "
+      "%s: %zu steps (%zu -> %zu tets), %lld frames asked%s, %zu frames "
+      "drawn, window %dx%d, 3D view at %.0f%% while moving%s\n"
+      "%s: frame ms: median %.1f, p95 %.1f, max %.1f; mean %.1f fps\n"
+      "%s: of which seek + update + upload ms: median %.2f, p95 %.2f, max %.2f; "
       "3D draw ms: median %.1f, max %.1f; UI ms: median %.1f; swap ms: median %.1f\n",
-      lod.step_count(), lod.tet_count_at(0), lod.tet_count_at(lod.step_count()), bench_.frames,
-      frame_ms.size(), width, height, 100 * options_.interactive_scale, quantile(frame_ms, 0.5),
-      quantile(frame_ms, 0.95), quantile(frame_ms, 1.0),
-      total > 0 ? 1e3 * double(frame_ms.size()) / total : 0, quantile(scrub_ms, 0.5),
+      name, lod.step_count(), lod.tet_count_at(0), lod.tet_count_at(lod.step_count()),
+      bench_.frames, bench_.scrub ? " each way" : "", frame_ms.size(), width, height,
+      100 * options_.interactive_scale, job_ ? ", a simplification running" : "", name,
+      quantile(frame_ms, 0.5), quantile(frame_ms, 0.95), quantile(frame_ms, 1.0),
+      total > 0 ? 1e3 * double(frame_ms.size()) / total : 0, name, quantile(scrub_ms, 0.5),
       quantile(scrub_ms, 0.95), quantile(scrub_ms, 1.0), quantile(draw_ms, 0.5),
       quantile(draw_ms, 1.0), quantile(ui_ms, 0.5), quantile(swap_ms, 0.5));
   if (!bench_.out.empty()) {

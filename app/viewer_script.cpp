@@ -231,8 +231,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
       return p.error("'wait' takes frames=N");
     if (Status s = p.integer(key, value, &a->count); !s) return s;
     if (a->count < 0) return p.error("frames must be >= 0");
-  } else if (command == "bench-scrub") {
-    a->kind = Kind::kBenchScrub;
+  } else if (command == "bench-scrub" || command == "bench-frames") {
+    a->kind = command == "bench-scrub" ? Kind::kBenchScrub : Kind::kBenchFrames;
     a->count = 120;
     if (Status s = p.arg_count(0, 2); !s) return s;
     for (size_t i = 1; i < w.size(); ++i) {
@@ -245,7 +245,7 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
       } else if (key == "out") {
         a->path = value;
       } else {
-        return p.error("unknown bench-scrub option '" + key + "' (frames, out)");
+        return p.error("unknown " + command + " option '" + key + "' (frames, out)");
       }
     }
   } else if (command == "quit") {

@@ -21,6 +21,8 @@
 //   wait frames=N
 //   bench-scrub [frames=N] [out=CSV] drag the scrubber end to end and back over N
 //                                    frames each way; prints frame times
+//   bench-frames [frames=N] [out=CSV] times the next N frames as they are (e.g. while
+//                                    a 'simplify wait=0' runs)
 //   quit
 //
 // Relative paths are relative to the working directory.
@@ -58,6 +60,7 @@ struct ScriptAction {
     kSave,
     kWait,
     kBenchScrub,
+    kBenchFrames,
     kQuit,
   };
   Kind kind = Kind::kQuit;
