@@ -255,6 +255,11 @@ class Viewer {
   std::future<Status> save_future_;
   std::string save_path_;
 
+  // A surface being rebuilt for a new filter (see apply_view_changes()).
+  std::future<std::unique_ptr<render::LodSurface>> surface_future_;
+  size_t surface_step_ = 0, surface_generation_ = 0;
+  render::SurfaceFilter surface_filter_;
+
   // Drawing.
   bool needs_redraw_ = true;
   bool interacting_ = false;  // the scene changed this frame (camera, scrub, filter)
@@ -343,6 +348,7 @@ void Viewer::shutdown() {
   }
   if (stats_future_.valid()) stats_future_.wait();
   if (save_future_.valid()) save_future_.wait();
+  if (surface_future_.valid()) surface_future_.wait();
   if (imgui_gl_) ImGui_ImplOpenGL3_Shutdown();
   if (imgui_glfw_) ImGui_ImplGlfw_Shutdown();
   if (ImGui::GetCurrentContext()) ImGui::DestroyContext();
@@ -375,7 +381,8 @@ void Viewer::frame() {
   // Idle (nothing moving, no work in flight, no script): sleep until an event or a
   // quarter second passes, so an idle viewer leaves the cores to others.
   const bool idle = !job_ && !interacting_ && !needs_redraw_ && !options_.has_script &&
-                    !stats_future_.valid() && !save_future_.valid() && ui_capture_countdown_ < 0 &&
+                    !stats_future_.valid() && !save_future_.valid() && !surface_future_.valid() &&
+                    ui_capture_countdown_ < 0 &&
                     (!scene_ || scene_->lod->step() == static_cast<size_t>(panel_.target_step));
   busy_frames_ = idle ? busy_frames_ - 1 : 3;
   const bool slept = last_slept_;
@@ -702,15 +709,50 @@ void Viewer::handle_camera_input() {
   }
 }
 
+// A new filter (cut, hidden materials, highlight) needs LodSurface::reset(), O(tets):
+// done in a task on a copy of the current step's arrays, while the old surface stays
+// on screen. When it is ready, the LOD has possibly moved on: the new surface is
+// brought to the current step by the delta between the two steps.
 void Viewer::apply_view_changes() {
   if (!scene_) return;
+  if (surface_future_.valid()) {
+    if (surface_future_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    std::unique_ptr<render::LodSurface> surface = surface_future_.get();
+    if (surface_generation_ == scene_generation_ &&
+        same_filter(surface_filter_, make_filter(view_))) {
+      Lod& lod = *scene_->lod;
+      const size_t now = lod.step();
+      if (now != surface_step_) {
+        lod.seek(surface_step_);
+        LodDelta delta;
+        lod.seek(now, &delta);
+        surface->update(render::lod_state(lod), delta);
+      }
+      scene_->surface = std::move(*surface);
+      scene_->filter = surface_filter_;
+      upload_all();
+      interacting_ = true;
+      return;
+    }
+  }
   const render::SurfaceFilter filter = make_filter(view_);
   if (same_filter(filter, scene_->filter)) return;
-  // A rebuild of the surface of the current step: O(alive tets).
-  scene_->filter = filter;
-  scene_->surface.reset(render::lod_state(*scene_->lod), filter);
-  upload_all();
-  interacting_ = true;
+  const Lod& lod = *scene_->lod;
+  auto arrays = std::make_shared<TetMesh>();
+  arrays->positions = lod.positions();
+  arrays->tets = lod.tets();
+  arrays->materials = lod.materials();
+  auto alive = std::make_shared<std::vector<uint8_t>>(lod.alive());
+  surface_step_ = lod.step();
+  surface_generation_ = scene_generation_;
+  surface_filter_ = filter;
+  surface_future_ = std::async(std::launch::async, [arrays, alive, filter] {
+    auto surface = std::make_unique<render::LodSurface>();
+    const render::LodState state{&arrays->positions, &arrays->tets, &arrays->materials,
+                                 alive.get()};
+    surface->reset(state, filter);
+    return surface;
+  });
 }
 
 void Viewer::follow_scrubber() {
@@ -891,8 +933,8 @@ void Viewer::fail_script(int line, const std::string& message) {
 }
 
 bool Viewer::settled() const {
-  if ((job_ && wait_for_job_) || save_future_.valid() || stats_future_.valid() ||
-      ui_capture_countdown_ >= 0)
+  if ((job_ && wait_for_job_) || save_future_.valid() || surface_future_.valid() ||
+      stats_future_.valid() || ui_capture_countdown_ >= 0)
     return false;
   if (!scene_) return true;
   if (scene_->lod->step() != static_cast<size_t>(panel_.target_step)) return false;
