@@ -1079,6 +1079,18 @@ Status Viewer::run_action(const ScriptAction& a) {
         if (a.word == names[k]) execute({ui::CommandKind::kAxisView, "", k});
       break;
     }
+    case Kind::kOrbit:
+      camera_.orbit(a.value, a.value2);
+      break;
+    case Kind::kPan: {
+      int fb_width = 0, fb_height = 0;
+      window_->framebuffer_size(&fb_width, &fb_height);
+      camera_.pan(a.value, a.value2, view_pixels(fb_width, fb_height).height);
+      break;
+    }
+    case Kind::kZoom:
+      camera_.zoom(a.value);
+      break;
     case Kind::kScreenshot:
       if (a.flag) {
         ui_capture_path_ = a.path;

@@ -197,6 +197,15 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     if (w[1] != "iso" && w[1] != "x" && w[1] != "y" && w[1] != "z" && w[1] != "fit")
       return p.error("'view' takes iso, x, y, z or fit, got '" + w[1] + "'");
     a->word = w[1];
+  } else if (command == "orbit" || command == "pan") {
+    a->kind = command == "orbit" ? Kind::kOrbit : Kind::kPan;
+    if (Status s = p.arg_count(2, 2); !s) return s;
+    if (Status s = p.number("dx", w[1], &a->value); !s) return s;
+    if (Status s = p.number("dy", w[2], &a->value2); !s) return s;
+  } else if (command == "zoom") {
+    a->kind = Kind::kZoom;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (Status s = p.number("clicks", w[1], &a->value); !s) return s;
   } else if (command == "screenshot") {
     a->kind = Kind::kScreenshot;
     if (Status s = p.arg_count(1, 4); !s) return s;

@@ -16,6 +16,8 @@
 //   color stretch|material           range MIN MAX          colormap viridis|turbo
 //   wireframe on|off                 highlight D | highlight off
 //   view iso|x|y|z|fit
+//   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
+//   zoom CLICKS                      as by the mouse wheel (positive: closer)
 //   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
 //   save PATH                        the displayed level, format from the extension
 //   wait frames=N
@@ -56,6 +58,9 @@ struct ScriptAction {
     kHighlight,
     kHighlightOff,
     kView,
+    kOrbit,
+    kPan,
+    kZoom,
     kScreenshot,
     kSave,
     kWait,

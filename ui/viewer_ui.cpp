@@ -38,7 +38,6 @@ void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Com
     ImGui::EndCombo();
   }
   ImGui::TextDisabled("(or drop a mesh file onto the window)");
-  if (status.loading) ImGui::Text("Loading %s ...", status.loading_path.c_str());
   if (!status.load_error.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
     ImGui::TextWrapped("Error: %s", status.load_error.c_str());
@@ -387,7 +386,9 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
                   status.phase.c_str(), 100 * status.phase_fraction, status.collapses);
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
   }
-  if (status.loading) ImGui::Text("Loading %s ...", status.loading_path.c_str());
+  if (status.loading)
+    ImGui::TextWrapped("Loading %s: %s, %.1f s", status.loading_path.c_str(), status.phase.c_str(),
+                       status.elapsed_seconds);
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
   if (ImGui::CollapsingHeader("File")) file_section(status, panel, commands);
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);

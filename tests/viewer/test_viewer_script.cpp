@@ -102,6 +102,19 @@ TEST(ViewerScript, ParsesEveryCommand) {
   EXPECT_EQ(a[22].kind, Kind::kQuit);
 }
 
+TEST(ViewerScript, CameraMoves) {
+  const auto a = parse_ok("orbit 40 -10\npan 5 6\nzoom -2.5\n");
+  ASSERT_EQ(a.size(), 3u);
+  EXPECT_EQ(a[0].kind, Kind::kOrbit);
+  EXPECT_EQ(a[0].value, 40);
+  EXPECT_EQ(a[0].value2, -10);
+  EXPECT_EQ(a[1].kind, Kind::kPan);
+  EXPECT_EQ(a[2].kind, Kind::kZoom);
+  EXPECT_EQ(a[2].value, -2.5);
+  EXPECT_EQ(parse_error("orbit 1\n"), "t.script:1: 'orbit' takes 2 argument(s), got 1");
+  EXPECT_EQ(parse_error("zoom in\n"), "t.script:1: 'clicks' needs a number, got 'in'");
+}
+
 TEST(ViewerScript, MaterialSizesAndRegions) {
   const auto a = parse_ok("thresholds material-sizes=1=40,2=10 region=radial:0,0,0,1,0.5\n");
   ASSERT_EQ(a.size(), 1u);

@@ -108,6 +108,12 @@ TEST(ViewerWindow, ScriptedRun) {
     EXPECT_GT(non_background(ui, 400, 0, 960, 640), 0.1) << "the model is missing";
   }
 
+  // Orbiting and zooming in moved the camera: other pixels, more of them covered.
+  const render::Image cut = load_png(dir / "cut.png");
+  const render::Image orbit = load_png(dir / "orbit.png");
+  EXPECT_GT(render::compare_images(cut, orbit, 24, nullptr).differing_pixels, 320u * 240u / 20u);
+  EXPECT_GT(non_background(orbit, 0, 0, 320, 240), non_background(cut, 0, 0, 320, 240));
+
   // The saved levels: the one nearest 20000 elements, and the coarsest.
   TetMesh input_mesh;
   ASSERT_TRUE(read_mesh(kSource + "/assets/motor.mesh", &input_mesh).ok());
