@@ -254,6 +254,7 @@ class Viewer {
 
   std::future<Status> save_future_;
   std::string save_path_;
+  int save_line_ = 0;  // the script line that asked, if any
 
   // A surface being rebuilt for a new filter (see apply_view_changes()).
   std::future<std::unique_ptr<render::LodSurface>> surface_future_;
@@ -402,9 +403,12 @@ void Viewer::frame() {
     const Status s = save_future_.get();
     if (s) {
       status_.message = "saved " + save_path_;
+    } else if (save_line_ > 0) {
+      fail_script(save_line_, s.message());
     } else {
       status_.load_error = s.message();
     }
+    save_line_ = 0;
   }
 
   ImGui_ImplOpenGL3_NewFrame();
@@ -561,6 +565,7 @@ void Viewer::poll_job() {
   std::unique_ptr<Job> job = std::move(job_);
   if (!job->error.empty()) {
     status_.load_error = job->error;  // the current mesh stays as it was
+    status_.message.clear();
     last_job_error_ = job->error;
     return;
   }
@@ -572,10 +577,9 @@ void Viewer::poll_job() {
   last_job_error_.clear();
   status_.load_error.clear();
   swap_in(std::move(job->scene), job->is_load);
-  status_.message =
-      job->is_load
-          ? "loaded " + job->path
-          : "simplified in " + std::to_string(seconds_between(job->start, Clock::now())) + " s";
+  char seconds[32];
+  std::snprintf(seconds, sizeof(seconds), "%.2f s", seconds_between(job->start, Clock::now()));
+  status_.message = (job->is_load ? "loaded " + job->path + " in " : "simplified in ") + seconds;
 }
 
 void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
@@ -986,7 +990,7 @@ Status Viewer::run_action(const ScriptAction& a) {
       last_job_error_.clear();
       wait_for_job_ = true;
       start_load(a.path);
-      pending_job_line_ = a.line;
+      pending_job_line_ = a.flag ? 0 : a.line;
       break;
     case Kind::kThresholds:
       if (a.size) thresholds_.size = static_cast<float>(*a.size);
@@ -1100,6 +1104,7 @@ Status Viewer::run_action(const ScriptAction& a) {
       }
       return screenshot(a.path, a.width, a.height);
     case Kind::kSave:
+      save_line_ = a.line;
       return save_level(a.path);
     case Kind::kWait:
       wait_frames_ = static_cast<int>(a.count);

@@ -110,8 +110,12 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
   const std::vector<std::string>& w = p.words;
   if (command == "open") {
     a->kind = Kind::kOpen;
-    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (Status s = p.arg_count(1, 2); !s) return s;
     a->path = w[1];
+    if (w.size() == 3) {
+      if (w[2] != "may-fail") return p.error("expected 'may-fail', got '" + w[2] + "'");
+      a->flag = true;
+    }
   } else if (command == "thresholds") {
     a->kind = Kind::kThresholds;
     return parse_thresholds(p, a);

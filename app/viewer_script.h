@@ -3,7 +3,8 @@
 // previous one has finished (a simplification, a scrub, a statistics update).
 //
 //   # comment                        blank lines and comments are skipped
-//   open PATH                        load a mesh (waits)
+//   open PATH [may-fail]             load a mesh (waits); with may-fail a bad file is
+//                                    not a script error: it shows in the UI as for a user
 //   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h)
 //   simplify [wait=0]                run the simplifier with the thresholds (waits,

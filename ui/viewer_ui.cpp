@@ -125,7 +125,9 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   ImGui::TextDisabled("ctrl-click a slider to type a value");
   ImGui::SliderFloat("tolerance (TL)", &t->tolerance, 0.0f, 5.0f, "%.4g",
                      ImGuiSliderFlags_Logarithmic);
-  ImGui::SliderFloat("size (SZ)", &t->size, 0.1f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
+  if (t->sizing_mode != SizingMode::kPerMaterial)
+    ImGui::SliderFloat(t->sizing_mode == SizingMode::kRegion ? "size cap (SZ)" : "size (SZ)",
+                       &t->size, 0.1f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
   ImGui::SliderFloat("stretch (ST)", &t->stretch, 0.01f, 0.9f, "%.3f");
   ImGui::SliderInt("valence (VL)", &t->valence, 4, 200);
   int mode = static_cast<int>(t->sizing_mode);
@@ -306,9 +308,9 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   ImGui::EndGroup();
   if (status.has_result) {
     const RejectionCounts& r = status.rejections;
-    ImGui::Text("Rejections (last run): tolerance %" PRIu64 ", stretch %" PRIu64 ", size %" PRIu64
-                ", valence %" PRIu64 ", topology %" PRIu64,
-                r.tolerance, r.stretch, r.size, r.valence, r.topology);
+    ImGui::TextWrapped("Rejections (last run): tolerance %" PRIu64 ", stretch %" PRIu64
+                       ", size %" PRIu64 ", valence %" PRIu64 ", topology %" PRIu64,
+                       r.tolerance, r.stretch, r.size, r.valence, r.topology);
   }
   ImGui::End();
 }
@@ -326,7 +328,9 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
     *error = "size must be > 0";
     return false;
   }
-  p.sizing.uniform = settings.size;
+  // Uniform: the size everywhere; region: the cap besides the rules; per material:
+  // only the materials' sizes.
+  if (settings.sizing_mode != SizingMode::kPerMaterial) p.sizing.uniform = settings.size;
   if (settings.sizing_mode == SizingMode::kRegion) {
     const Status s = parse_size_field(settings.region_spec, &p.sizing);
     if (!s) {

@@ -6,6 +6,7 @@
 // itself gives for the same thresholds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -158,6 +159,54 @@ TEST(ViewerWindow, OrderOfActionsDoesNotMatter) {
       render::compare_images(load_png(other), load_png(dir / "cut_first.png"), 0, nullptr);
   EXPECT_TRUE(d.same_size);
   EXPECT_EQ(d.differing_pixels, 0u);
+}
+
+TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_save";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "save.script") << "save level.mesh\nsave /nonexistent-dir/level.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script save.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("save.script:2: "), std::string::npos) << run.output;
+  TetMesh saved, input;
+  ASSERT_TRUE(read_mesh((dir / "level.mesh").string(), &saved).ok());
+  ASSERT_TRUE(read_mesh(kSource + "/assets/box2.mesh", &input).ok());
+  EXPECT_EQ(saved.tet_count(), input.tet_count());  // no simplification: the input itself
+}
+
+// As for a user: a file that fails to load shows its error in the panel (red text)
+// and the mesh on screen stays as it was.
+TEST(ViewerWindow, FailedLoadShowsTheErrorAndKeepsTheMesh) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_load_ui";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
+  std::ofstream(dir / "load.script") << "screenshot before.png width=200 height=200\n"
+                                        "screenshot before_ui.png ui=1\n"
+                                        "open bad.mesh may-fail\n"
+                                        "screenshot after.png width=200 height=200\n"
+                                        "screenshot after_ui.png ui=1\n"
+                                        "quit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 800x600 --script load.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const render::ImageDifference same =
+      render::compare_images(load_png(dir / "before.png"), load_png(dir / "after.png"), 0, nullptr);
+  EXPECT_EQ(same.differing_pixels, 0u) << "the failed load changed the displayed mesh";
+  const auto reddish = [](const render::Image& image) {
+    size_t count = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < std::min(image.width, 390); ++x) {
+        const uint8_t* p = image.pixel(x, y);
+        count += (p[0] > 150 && p[1] < 120 && p[2] < 120) ? 1 : 0;
+      }
+    return count;
+  };
+  const render::Image before_ui = load_png(dir / "before_ui.png");
+  const render::Image after_ui = load_png(dir / "after_ui.png");
+  EXPECT_GT(reddish(after_ui), reddish(before_ui) + 50) << "no error text in the panel";
 }
 
 TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
