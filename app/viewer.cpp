@@ -282,6 +282,7 @@ class Viewer {
   // Script.
   size_t script_index_ = 0;
   int wait_frames_ = 0;
+  Clock::time_point wait_until_;
   int pending_job_line_ = 0;  // the open/simplify line whose job must succeed
   bool wait_for_job_ = true;  // the script waits for a running job to finish
   bool quit_ = false;
@@ -955,6 +956,7 @@ void Viewer::run_script() {
     --wait_frames_;
     return;
   }
+  if (Clock::now() < wait_until_) return;
   if (!settled()) return;
   if (pending_job_line_ != 0) {
     if (!last_job_error_.empty()) {
@@ -1108,6 +1110,8 @@ Status Viewer::run_action(const ScriptAction& a) {
       return save_level(a.path);
     case Kind::kWait:
       wait_frames_ = static_cast<int>(a.count);
+      wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                       std::chrono::duration<double>(a.value));
       break;
     case Kind::kBenchScrub:
     case Kind::kBenchFrames:

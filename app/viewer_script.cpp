@@ -240,10 +240,15 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     a->kind = Kind::kWait;
     if (Status s = p.arg_count(1, 1); !s) return s;
     std::string key, value;
-    if (!LineParser::key_value(w[1], &key, &value) || key != "frames")
-      return p.error("'wait' takes frames=N");
-    if (Status s = p.integer(key, value, &a->count); !s) return s;
-    if (a->count < 0) return p.error("frames must be >= 0");
+    if (!LineParser::key_value(w[1], &key, &value) || (key != "frames" && key != "seconds"))
+      return p.error("'wait' takes frames=N or seconds=S");
+    if (key == "frames") {
+      if (Status s = p.integer(key, value, &a->count); !s) return s;
+      if (a->count < 0) return p.error("frames must be >= 0");
+    } else {
+      if (Status s = p.number(key, value, &a->value); !s) return s;
+      if (!(a->value >= 0 && a->value <= 3600)) return p.error("seconds must be in [0, 3600]");
+    }
   } else if (command == "bench-scrub" || command == "bench-frames") {
     a->kind = command == "bench-scrub" ? Kind::kBenchScrub : Kind::kBenchFrames;
     a->count = 120;

@@ -21,7 +21,7 @@
 //   zoom CLICKS                      as by the mouse wheel (positive: closer)
 //   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
 //   save PATH                        the displayed level, format from the extension
-//   wait frames=N
+//   wait frames=N | seconds=S        keep drawing (and taking input) meanwhile
 //   bench-scrub [frames=N] [out=CSV] drag the scrubber end to end and back over N
 //                                    frames each way; prints frame times
 //   bench-frames [frames=N] [out=CSV] times the next N frames as they are (e.g. while

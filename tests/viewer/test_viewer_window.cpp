@@ -161,6 +161,39 @@ TEST(ViewerWindow, OrderOfActionsDoesNotMatter) {
   EXPECT_EQ(d.differing_pixels, 0u);
 }
 
+// Simplifying again with other thresholds starts from the loaded input, not from
+// the result on screen.
+TEST(ViewerWindow, SimplifyingAgainStartsFromTheInput) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_resimplify";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "again.script")
+      << "thresholds size=25 stretch=0.15 valence=25 tolerance=0.05\nsimplify\n"
+         "thresholds size=40\nsimplify\nsave again.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script again.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  TetMesh input;
+  ASSERT_TRUE(read_mesh(kSource + "/assets/motor.mesh", &input).ok());
+  SimplifyParams first;
+  first.sizing.uniform = 25;
+  first.min_stretch = 0.15;
+  first.max_valence = 25;
+  first.tolerance = 0.05;
+  SimplifyParams second = first;
+  second.sizing.uniform = 40;
+  SimplifyResult from_input, from_first, chained;
+  ASSERT_TRUE(simplify(input, second, &from_input).ok());
+  ASSERT_TRUE(simplify(input, first, &from_first).ok());
+  ASSERT_TRUE(simplify(from_first.output, second, &chained).ok());
+  ASSERT_NE(from_input.output.tet_count(), chained.output.tet_count());  // tells them apart
+
+  TetMesh saved;
+  ASSERT_TRUE(read_mesh((dir / "again.mesh").string(), &saved).ok());
+  EXPECT_EQ(saved.tet_count(), from_input.output.tet_count());
+}
+
 TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
   const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_save";
   fs::remove_all(dir);
