@@ -243,6 +243,8 @@ void row_cells(const PropertyRow& r) {
   ImGui::Text("%u", r.max_valence);
   ImGui::TableNextColumn();
   ImGui::Text("%.3g", r.max_size);
+  ImGui::TableNextColumn();
+  ImGui::Text("%.4g", r.volume);
 }
 
 void stats_window(const ViewerStatus& status, PanelState* panel) {
@@ -275,11 +277,11 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                 ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY |
                                 ImGuiTableFlags_SizingFixedFit;
-  if (ImGui::BeginTable("table1", 8, flags,
+  if (ImGui::BeginTable("table1", 9, flags,
                         ImVec2(table_width, ImGui::GetContentRegionAvail().y - 24))) {
     ImGui::TableSetupScrollFreeze(0, 1);
     for (const char* h :
-         {"", "nodes", "edges", "elements", "avg str", "min str", "max val", "max size"})
+         {"", "nodes", "edges", "elements", "avg str", "min str", "max val", "max size", "volume"})
       ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
     ImGui::TableNextRow();
