@@ -315,7 +315,9 @@ bool Viewer::init() {
     return false;
   }
   auto* glfw_window = static_cast<GLFWwindow*>(window_->native_window());
-  glfwSwapInterval(0);  // the frame-time readout shows the real cost of a frame
+  // Interactive: in step with the display. Scripted (tests, benchmarks): as fast as
+  // frames can be made, so the frame times measure their cost.
+  glfwSwapInterval(options_.has_script ? 0 : 1);
   glfwSetWindowUserPointer(glfw_window, this);
   glfwSetDropCallback(glfw_window, drop_callback);
   renderer_ = std::make_unique<render::Renderer>(window_->gl());

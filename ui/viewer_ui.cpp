@@ -216,15 +216,15 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::SameLine();
   if (ImGui::Button("Screenshot")) {
     Command c{CommandKind::kScreenshot, panel->screenshot_path};
-    c.width = panel->screenshot_width;
-    c.height = panel->screenshot_height;
+    c.width = std::clamp(panel->screenshot_size[0], 0, 8192);
+    c.height = std::clamp(panel->screenshot_size[1], 0, 8192);
     c.with_ui = panel->screenshot_ui;
     commands->push_back(c);
   }
   ImGui::Checkbox("with UI (window size)", &panel->screenshot_ui);
   if (!panel->screenshot_ui) {
     ImGui::SetNextItemWidth(160);
-    ImGui::InputInt2("size (0: window)", &panel->screenshot_width);
+    ImGui::InputInt2("size (0: view)", panel->screenshot_size);
   }
 }
 

@@ -86,7 +86,7 @@ struct PanelState {
   int jump_elements = 0;
   char save_path[1024] = "level.mesh";
   char screenshot_path[1024] = "screenshot.png";
-  int screenshot_width = 0, screenshot_height = 0;  // 0: window size
+  int screenshot_size[2] = {0, 0};  // width, height; 0: the 3D view's size
   bool screenshot_ui = false;
   bool show_stats = true;
 };
