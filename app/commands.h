@@ -21,5 +21,6 @@ int cmd_lod(const Args& args);
 int cmd_solve(const Args& args);
 int cmd_render(const Args& args);
 int cmd_report(const Args& args);
+int cmd_view(const Args& args);  // the interactive viewer (app/viewer.h)
 
 }  // namespace tetlod::app

@@ -20,6 +20,7 @@ constexpr const char* kUsage =
     "  solve MESH --conductor M=V ...   electrostatic finite-element solve: capacitance, field\n"
     "  render FILE -o SHOT.png ...      draw a mesh offscreen to a PNG (stretch, cut, ...)\n"
     "  report IN -o DIR [...]           HTML report: Table I rows, pictures, histograms\n"
+    "  view [FILE] [--script S]         the interactive viewer (a window; needs a display)\n"
     "\n"
     "Run 'tetlod COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input, 2 bad usage.\n";
@@ -46,6 +47,7 @@ int main(int argc, char** argv) {
   if (command == "solve") return cmd_solve(args);
   if (command == "render") return cmd_render(args);
   if (command == "report") return cmd_report(args);
+  if (command == "view") return cmd_view(args);
   std::fprintf(stderr, "tetlod: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return kExitUsage;
 }

@@ -438,4 +438,12 @@ void Renderer::present(int framebuffer_width, int framebuffer_height) {
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+void Renderer::present_into(int x, int y, int width, int height) {
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
+  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  gl_.BlitFramebuffer(0, 0, target_width_, target_height_, x, y, x + width, y + height,
+                      GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 }  // namespace tetlod::render

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/camera.h"
@@ -51,6 +52,12 @@ class Renderer {
   void update_highlight(const std::vector<SurfaceVertex>& vertices,
                         const std::vector<DirtyRange>& dirty, size_t highlighted_tets);
 
+  // The materials the legend lists in material mode. upload() sets them from its
+  // buffers; after incremental updates (LodSurface) the caller sets them.
+  void set_legend_materials(std::vector<int32_t> materials) {
+    visible_materials_ = std::move(materials);
+  }
+
   // Draws the uploaded surface (and highlight, and legend) at width x height. False
   // (see last_error()) if the framebuffer cannot be made or GL reports an error.
   bool draw(const DrawSettings& settings, const Camera& camera, int width, int height);
@@ -59,6 +66,10 @@ class Renderer {
   Image read_pixels();
   // Copies the last drawn frame into the default framebuffer (a window).
   void present(int framebuffer_width, int framebuffer_height);
+  // Copies it, scaled, into the rectangle [x, x + width) x [y, y + height) of the
+  // default framebuffer (pixels, origin bottom left): the viewer's 3D view beside
+  // its panels.
+  void present_into(int x, int y, int width, int height);
 
   size_t triangle_count() const { return triangle_vertices_ / 3; }
 

@@ -10,6 +10,9 @@ packages=(build-essential cmake pkg-config libeigen3-dev libtet1.5-dev libgtest-
 # (offscreen backends, loaded at run time), Xvfb for the window-backend test.
 packages+=(libgl-dev libglfw3-dev libstb-dev libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb
   xauth)
+# Viewer: Dear ImGui with its GLFW and OpenGL 3 backends; XTest for the tests that
+# drag the mouse over the window under Xvfb.
+packages+=(libimgui-dev libxtst-dev)
 # Extra packages a caller needs (scripts/test.sh adds gmsh for the interoperability test).
 read -r -a extra <<<"${TETLOD_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")

@@ -1,0 +1,110 @@
+// tetlod view [FILE] [--script SCRIPT] [--size WxH] [--hide M,...]
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "app/cli_util.h"
+#include "app/commands.h"
+#include "app/simplify_options.h"
+#include "app/viewer.h"
+
+namespace tetlod::app {
+namespace {
+
+constexpr const char* kViewUsage =
+    "usage: tetlod view [FILE] [--script SCRIPT] [--size WxH] [--hide M,M,...]\n"
+    "                   [--interactive-scale F]\n"
+    "\n"
+    "Opens the interactive viewer (a window: needs a display) on FILE, or on the bundled\n"
+    "motor model when none is given: threshold sliders, simplification in the background,\n"
+    "a level-of-detail scrubber, statistics, save and screenshots.\n"
+    "  --script SCRIPT        run the actions in SCRIPT in the window (see app/viewer_script.h:\n"
+    "                         thresholds, simplify, scrub, cut, hide, color, screenshot, save,\n"
+    "                         bench-scrub, quit); a bad line is an error naming SCRIPT:LINE\n"
+    "  --size WxH             window size (default 1280x800)\n"
+    "  --hide M,M,...         materials hidden at start (e.g. the motor's air: --hide 1)\n"
+    "  --interactive-scale F  resolution of the 3D view while it moves, in (0, 1] (0.5)\n"
+    "Mouse: left drag orbits, right/middle or shift-left drag pans, the wheel zooms;\n"
+    "keys F (fit), 0 (iso), 1/2/3 (x/y/z views).\n";
+
+std::string default_model() {
+  // The bundled motor, found next to the source tree the binary was built from, or
+  // relative to the working directory.
+  for (const std::string& candidate :
+       {std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh", std::string("assets/motor.mesh")}) {
+    std::error_code ec;
+    if (std::filesystem::exists(candidate, ec)) return candidate;
+  }
+  return "assets/motor.mesh";
+}
+
+}  // namespace
+
+int cmd_view(const Args& args) {
+  if (wants_help(args)) {
+    std::fputs(kViewUsage, stdout);
+    return kExitOk;
+  }
+  ViewerOptions options;
+  std::vector<int32_t> hidden;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    std::string value;
+    if (a == "--script") {
+      if (!parse_option_value(args, &i, "--script", &value)) return kExitUsage;
+      const Status s = parse_script(value, &options.script);
+      if (!s) {
+        std::fprintf(stderr, "tetlod view: %s\n", s.message().c_str());
+        return kExitBadInput;
+      }
+      options.script_name = value;
+      options.has_script = true;
+      options.remember_recent = false;
+    } else if (a == "--size") {
+      if (!parse_option_value(args, &i, "--size", &value)) return kExitUsage;
+      const size_t x = value.find('x');
+      const auto w = parse_integer(value.substr(0, x));
+      const auto h = x == std::string::npos ? std::nullopt : parse_integer(value.substr(x + 1));
+      if (!w || !h || *w < 64 || *h < 64 || *w > 8192 || *h > 8192) {
+        std::fprintf(stderr, "tetlod view: --size needs WxH (64..8192), got '%s'\n", value.c_str());
+        return kExitUsage;
+      }
+      options.width = static_cast<int>(*w);
+      options.height = static_cast<int>(*h);
+    } else if (a == "--hide") {
+      if (!parse_option_value(args, &i, "--hide", &value)) return kExitUsage;
+      size_t begin = 0;
+      while (begin <= value.size()) {
+        const size_t comma = std::min(value.find(',', begin), value.size());
+        const auto m = parse_integer(value.substr(begin, comma - begin));
+        if (!m || *m < 0 || *m > INT32_MAX) {
+          std::fprintf(stderr, "tetlod view: --hide needs material ids, got '%s'\n", value.c_str());
+          return kExitUsage;
+        }
+        hidden.push_back(static_cast<int32_t>(*m));
+        begin = comma + 1;
+      }
+    } else if (a == "--interactive-scale") {
+      if (!parse_option_value(args, &i, "--interactive-scale", &value)) return kExitUsage;
+      const auto f = parse_double(value);
+      if (!f || !(*f > 0 && *f <= 1)) {
+        std::fprintf(stderr, "tetlod view: --interactive-scale needs a number in (0, 1]\n");
+        return kExitUsage;
+      }
+      options.interactive_scale = *f;
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "tetlod view: unknown option '%s'\n\n%s", a.c_str(), kViewUsage);
+      return kExitUsage;
+    } else if (options.mesh_path.empty()) {
+      options.mesh_path = a;
+    } else {
+      std::fprintf(stderr, "tetlod view: more than one FILE given\n\n%s", kViewUsage);
+      return kExitUsage;
+    }
+  }
+  if (options.mesh_path.empty() && !options.has_script) options.mesh_path = default_model();
+  options.hidden_materials = hidden;
+  return run_viewer(options);
+}
+
+}  // namespace tetlod::app

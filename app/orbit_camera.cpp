@@ -1,0 +1,64 @@
+#include "app/orbit_camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tetlod::app {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMaxPitch = 89.0 * kPi / 180.0;  // keeps z-up well defined
+
+Vec3 unit(const Vec3& v) {
+  const double l = length(v);
+  return l > 0 ? v * (1.0 / l) : Vec3{1, 0, 0};
+}
+
+}  // namespace
+
+void OrbitCamera::fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view) {
+  lo_ = lo;
+  hi_ = hi;
+  const render::Camera framed = render::frame_camera(lo, hi, view);
+  target_ = framed.target;
+  fov_y_degrees_ = framed.fov_y_degrees;
+  const Vec3 d = framed.eye - framed.target;
+  distance_ = std::max(length(d), 1e-9);
+  pitch_ = std::clamp(std::asin(std::clamp(d.z / distance_, -1.0, 1.0)), -kMaxPitch, kMaxPitch);
+  // Looking down z the framed camera has y up: keep the eye slightly on -y.
+  yaw_ = (std::abs(d.x) + std::abs(d.y) > 1e-9 * distance_) ? std::atan2(d.y, d.x) : -kPi / 2;
+}
+
+void OrbitCamera::orbit(double dx, double dy) {
+  yaw_ -= dx * 0.008;
+  pitch_ = std::clamp(pitch_ + dy * 0.008, -kMaxPitch, kMaxPitch);
+}
+
+void OrbitCamera::pan(double dx, double dy, int viewport_height) {
+  const render::Camera c = camera();
+  const Vec3 forward = unit(c.target - c.eye);
+  const Vec3 right = unit(cross(forward, c.up));
+  const Vec3 up = cross(right, forward);
+  const double units_per_pixel =
+      2 * distance_ * std::tan(fov_y_degrees_ * kPi / 360.0) / std::max(1, viewport_height);
+  target_ = target_ - right * (dx * units_per_pixel) + up * (dy * units_per_pixel);
+}
+
+void OrbitCamera::zoom(double clicks) {
+  distance_ = std::max(distance_ * std::pow(0.88, clicks), 1e-6);
+}
+
+render::Camera OrbitCamera::camera() const {
+  const Vec3 direction{std::cos(pitch_) * std::cos(yaw_), std::cos(pitch_) * std::sin(yaw_),
+                       std::sin(pitch_)};
+  const Vec3 eye = target_ + direction * distance_;
+  // look_at_camera sets near and far from the box, enlarged so that a camera inside
+  // it (zoomed in) still sees the model.
+  render::Camera c = render::look_at_camera(eye, target_, lo_, hi_);
+  c.fov_y_degrees = fov_y_degrees_;
+  c.up = {0, 0, 1};  // pitch stays below 90 degrees
+  c.near_distance = std::max(c.near_distance, 1e-3 * distance_);
+  return c;
+}
+
+}  // namespace tetlod::app

@@ -1,0 +1,31 @@
+// The viewer's camera: orbits a target point (z up), pans in the view plane, zooms
+// by distance. Framing and axis views come from render::frame_camera, so the window
+// and `tetlod render --view` agree.
+#pragma once
+
+#include "core/vec3.h"
+#include "render/camera.h"
+
+namespace tetlod::app {
+
+class OrbitCamera {
+ public:
+  // Frames the box [lo, hi] from `view` (and remembers the box for near/far).
+  void fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view);
+  // Mouse drags in pixels; `viewport_height` in pixels scales the pan.
+  void orbit(double dx, double dy);
+  void pan(double dx, double dy, int viewport_height);
+  // Wheel clicks: positive zooms in.
+  void zoom(double clicks);
+
+  render::Camera camera() const;
+
+ private:
+  Vec3 lo_{-1, -1, -1}, hi_{1, 1, 1};
+  Vec3 target_{0, 0, 0};
+  double distance_ = 5;
+  double yaw_ = 0, pitch_ = 0;  // radians; eye direction from the target
+  double fov_y_degrees_ = 30;
+};
+
+}  // namespace tetlod::app

@@ -1,0 +1,1207 @@
+// The viewer's frame loop, in the order of imgui's example_glfw_opengl3: window and
+// context, renderer, ImGui (context, GLFW backend, OpenGL3 backend); each frame:
+// events, finished background work, ImGui frame, camera input (only when ImGui does
+// not want the mouse), the scripted action if any, the panels, their commands, the
+// scrubber, then draw the scene, the panels, swap. Shut down in reverse, cancelling
+// and joining the worker first.
+//
+// Threads: the UI thread owns the window, the GL context, the Lod and its
+// LodSurface. One worker at a time loads a file or simplifies (core's simplify()
+// with a progress callback and a cancel flag) and also builds the next Scene (Lod
+// at its first displayed step + LodSurface), so swapping a result in costs one
+// upload. Statistics of a level and saving a level run in std::async tasks on a
+// compacted copy of it.
+#include "app/viewer.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "app/commands.h"
+#include "app/orbit_camera.h"
+#include "core/adjacency.h"
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/mesh_stats.h"
+#include "core/simplify.h"
+#include "render/gl_context.h"
+#include "render/image.h"
+#include "render/lod_surface.h"
+#include "render/renderer.h"
+#include "ui/viewer_ui.h"
+
+namespace tetlod::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+// A loaded mesh and what is displayed of it: the LOD over the last simplification
+// result, or over the input alone (an empty history) before any.
+struct Scene {
+  std::string path;
+  std::shared_ptr<const TetMesh> input;
+  std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
+  CollapseHistory empty_history;
+  std::unique_ptr<Lod> lod;
+  render::LodSurface surface;
+  render::SurfaceFilter filter;  // the surface was built with this
+  Vec3 lo, hi;                   // bounds of the input
+  std::vector<int32_t> materials;
+};
+
+void mesh_bounds(const TetMesh& mesh, Vec3* lo, Vec3* hi) {
+  *lo = *hi = mesh.positions.empty() ? Vec3{} : mesh.positions[0];
+  for (const Vec3& p : mesh.positions) {
+    *lo = {std::min(lo->x, p.x), std::min(lo->y, p.y), std::min(lo->z, p.z)};
+    *hi = {std::max(hi->x, p.x), std::max(hi->y, p.y), std::max(hi->z, p.z)};
+  }
+}
+
+render::SurfaceFilter make_filter(const ui::ViewSettings& view) {
+  render::SurfaceFilter filter;
+  filter.hidden_materials = view.hidden_materials;
+  filter.cut = view.cut;
+  const double sign = view.cut_flip ? -1 : 1;
+  Vec3 normal{0, 0, 0};
+  (view.cut_axis == ui::CutAxis::kX   ? normal.x
+   : view.cut_axis == ui::CutAxis::kY ? normal.y
+                                      : normal.z) = sign;
+  filter.cut_plane.normal = normal;
+  filter.cut_plane.offset = sign * view.cut_offset;
+  filter.highlight = view.highlight;
+  filter.highlight_below = view.highlight_below;
+  return filter;
+}
+
+bool same_filter(const render::SurfaceFilter& a, const render::SurfaceFilter& b) {
+  return a.hidden_materials == b.hidden_materials && a.cut == b.cut &&
+         (!a.cut || (a.cut_plane.normal.x == b.cut_plane.normal.x &&
+                     a.cut_plane.normal.y == b.cut_plane.normal.y &&
+                     a.cut_plane.normal.z == b.cut_plane.normal.z &&
+                     a.cut_plane.offset == b.cut_plane.offset)) &&
+         a.highlight == b.highlight && (!a.highlight || a.highlight_below == b.highlight_below);
+}
+
+render::DrawSettings make_draw_settings(const ui::ViewSettings& view) {
+  render::DrawSettings draw;
+  draw.color_mode = view.color_mode;
+  draw.color_map = view.color_map;
+  draw.range_min = view.range_min;
+  draw.range_max = std::max(view.range_max, view.range_min + 1e-6f);
+  draw.wireframe = view.wireframe;
+  draw.legend = view.legend;
+  draw.highlight_below = view.highlight ? view.highlight_below : 0;
+  return draw;
+}
+
+bool same_draw(const render::DrawSettings& a, const render::DrawSettings& b) {
+  return a.color_mode == b.color_mode && a.color_map == b.color_map && a.range_min == b.range_min &&
+         a.range_max == b.range_max && a.wireframe == b.wireframe && a.legend == b.legend &&
+         a.highlight_below == b.highlight_below;
+}
+
+bool same_camera(const render::Camera& a, const render::Camera& b) {
+  return a.eye.x == b.eye.x && a.eye.y == b.eye.y && a.eye.z == b.eye.z &&
+         a.target.x == b.target.x && a.target.y == b.target.y && a.target.z == b.target.z &&
+         a.fov_y_degrees == b.fov_y_degrees;
+}
+
+// Builds a scene (on a worker thread): the Lod at its first or last step and the
+// surface for `view`.
+std::unique_ptr<Scene> make_scene(const std::string& path, std::shared_ptr<const TetMesh> input,
+                                  std::shared_ptr<const SimplifyResult> result,
+                                  const ui::ViewSettings& view) {
+  auto scene = std::make_unique<Scene>();
+  scene->path = path;
+  scene->input = std::move(input);
+  scene->result = std::move(result);
+  mesh_bounds(*scene->input, &scene->lo, &scene->hi);
+  scene->materials = scene->input->materials;
+  std::sort(scene->materials.begin(), scene->materials.end());
+  scene->materials.erase(std::unique(scene->materials.begin(), scene->materials.end()),
+                         scene->materials.end());
+  if (scene->result) {
+    scene->lod = std::make_unique<Lod>(scene->result->base, &scene->result->history);
+    scene->lod->seek(scene->lod->step_count());  // show the result first
+  } else {
+    scene->lod = std::make_unique<Lod>(*scene->input, &scene->empty_history);
+  }
+  scene->filter = make_filter(view);
+  scene->surface.reset(render::lod_state(*scene->lod), scene->filter);
+  return scene;
+}
+
+// One background job: a load or a simplification, then make_scene().
+struct Job {
+  bool is_load = false;
+  std::string path;
+  std::thread thread;
+  std::atomic<bool> cancel{false};
+  std::atomic<bool> done{false};
+  Clock::time_point start = Clock::now();
+  std::mutex mutex;  // guards the fields below
+  std::string phase = "starting";
+  double fraction = 0;
+  size_t collapses = 0;
+  std::unique_ptr<Scene> scene;
+  std::string error;
+  bool cancelled = false;
+};
+
+std::filesystem::path recent_files_path() {
+  const char* config = std::getenv("XDG_CONFIG_HOME");
+  const char* home = std::getenv("HOME");
+  if (config && *config) return std::filesystem::path(config) / "tetlod" / "recent.txt";
+  if (home && *home) return std::filesystem::path(home) / ".config" / "tetlod" / "recent.txt";
+  return {};
+}
+
+struct FrameRecord {
+  double frame_ms = 0;  // since the previous frame started
+  double scrub_ms = 0;  // seek + surface update + upload
+  double draw_ms = 0;   // 3D view draw + present (CPU side: the driver may defer work)
+  double ui_ms = 0;     // ImGui frame + its draw
+  double swap_ms = 0;   // swap buffers
+  size_t step = 0;
+};
+
+class Viewer {
+ public:
+  explicit Viewer(const ViewerOptions& options) : options_(options) {
+    view_.hidden_materials = options.hidden_materials;
+    std::sort(view_.hidden_materials.begin(), view_.hidden_materials.end());
+  }
+  int run();
+
+  void on_drop(const char* path) { dropped_.push_back(path); }
+
+ private:
+  bool init();
+  void shutdown();
+  void frame();
+
+  void start_load(const std::string& path);
+  void start_simplify();
+  void poll_job();
+  void swap_in(std::unique_ptr<Scene> scene, bool is_load);
+  void execute(const ui::Command& command);
+  void handle_camera_input();
+  void apply_view_changes();
+  void follow_scrubber();
+  void update_stats();
+  struct ViewPixels {
+    int x = 0, y = 0, width = 1, height = 1;  // origin bottom left
+  };
+  ViewPixels view_pixels(int fb_width, int fb_height) const;
+  void draw_scene(int fb_width, int fb_height);
+  Status screenshot(const std::string& path, int width, int height);
+  Status save_level(const std::string& path);
+  void fill_status();
+  void add_recent(const std::string& path);
+  void upload_all();
+
+  // Script.
+  bool settled() const;
+  void run_script();
+  Status run_action(const ScriptAction& action);
+  void bench_frame();
+  void fail_script(int line, const std::string& message);
+
+  ViewerOptions options_;
+  std::unique_ptr<render::WindowContext> window_;
+  std::unique_ptr<render::Renderer> renderer_;
+  bool imgui_glfw_ = false, imgui_gl_ = false;
+
+  OrbitCamera camera_;
+  ui::ViewSettings view_;
+  ui::ThresholdSettings thresholds_;
+  ui::PanelState panel_;
+  ui::ViewerStatus status_;
+  std::vector<ui::Command> commands_;
+  std::vector<std::string> dropped_;
+
+  std::unique_ptr<Scene> scene_;
+  size_t scene_generation_ = 0;
+  std::unique_ptr<Job> job_;
+  std::string last_job_error_;
+
+  // Statistics of the displayed level (computed in a task on a compacted copy).
+  std::future<MeshStats> stats_future_;
+  size_t stats_future_step_ = 0, stats_future_generation_ = 0;
+  bool has_stats_ = false;
+  MeshStats stats_;
+  size_t stats_step_ = 0, stats_generation_ = 0;
+  Clock::time_point last_lod_move_ = Clock::now();
+
+  std::future<Status> save_future_;
+  std::string save_path_;
+  int save_line_ = 0;  // the script line that asked, if any
+
+  // A surface being rebuilt for a new filter (see apply_view_changes()).
+  std::future<std::unique_ptr<render::LodSurface>> surface_future_;
+  size_t surface_step_ = 0, surface_generation_ = 0;
+  render::SurfaceFilter surface_filter_;
+
+  // Drawing.
+  bool needs_redraw_ = true;
+  bool interacting_ = false;  // the scene changed this frame (camera, scrub, filter)
+  double drawn_scale_ = 0;
+  int drawn_width_ = 0, drawn_height_ = 0;
+  render::DrawSettings drawn_settings_;
+  render::Camera drawn_camera_;
+  std::string ui_capture_path_;
+  int ui_capture_countdown_ = -1;
+  int ui_capture_line_ = 0;
+
+  // Timing.
+  int busy_frames_ = 3;  // frames to draw before waiting for events when idle
+  bool last_slept_ = false;
+  Clock::time_point last_frame_start_ = Clock::now();
+  double frame_ms_ = 0, fps_ = 0;
+  FrameRecord current_;
+
+  // Script.
+  size_t script_index_ = 0;
+  int wait_frames_ = 0;
+  Clock::time_point wait_until_;
+  int pending_job_line_ = 0;  // the open/simplify line whose job must succeed
+  bool wait_for_job_ = true;  // the script waits for a running job to finish
+  bool quit_ = false;
+  int exit_code_ = kExitOk;
+  struct Bench {
+    bool active = false;
+    long long frames = 0, frame = 0;
+    bool backward = false;
+    bool scrub = true;  // drag the scrubber; else just time frames
+    std::string out;
+    int line = 0;
+    std::vector<FrameRecord> records;
+  } bench_;
+};
+
+void drop_callback(GLFWwindow* window, int count, const char** paths) {
+  auto* viewer = static_cast<Viewer*>(glfwGetWindowUserPointer(window));
+  if (viewer && count > 0) viewer->on_drop(paths[0]);
+}
+
+bool Viewer::init() {
+  std::string error;
+  window_ = render::WindowContext::create(options_.width, options_.height, "TetLOD", true, &error);
+  if (!window_) {
+    std::fprintf(stderr,
+                 "tetlod view: %s\n"
+                 "tetlod view: the viewer needs a display; without one use 'tetlod report' or "
+                 "'tetlod render' (or run it under xvfb-run)\n",
+                 error.c_str());
+    return false;
+  }
+  auto* glfw_window = static_cast<GLFWwindow*>(window_->native_window());
+  // Interactive: in step with the display. Scripted (tests, benchmarks): as fast as
+  // frames can be made, so the frame times measure their cost.
+  glfwSwapInterval(options_.has_script ? 0 : 1);
+  glfwSetWindowUserPointer(glfw_window, this);
+  glfwSetDropCallback(glfw_window, drop_callback);
+  renderer_ = std::make_unique<render::Renderer>(window_->gl());
+  if (!renderer_->init(&error)) {
+    std::fprintf(stderr, "tetlod view: %s\n", error.c_str());
+    return false;
+  }
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
+  ImGui::StyleColorsDark();
+  imgui_glfw_ = ImGui_ImplGlfw_InitForOpenGL(glfw_window, true);
+  imgui_gl_ = imgui_glfw_ && ImGui_ImplOpenGL3_Init("#version 330");
+  if (!imgui_gl_) {
+    std::fputs("tetlod view: Dear ImGui could not start its OpenGL 3 backend\n", stderr);
+    return false;
+  }
+  if (options_.remember_recent) {
+    std::ifstream in(recent_files_path());
+    for (std::string line; std::getline(in, line) && panel_.recent_files.size() < 10;)
+      if (!line.empty()) panel_.recent_files.push_back(line);
+  }
+  std::printf("tetlod view: %s\n", window_->description().c_str());
+  return true;
+}
+
+void Viewer::shutdown() {
+  if (job_) {
+    job_->cancel = true;
+    if (job_->thread.joinable()) job_->thread.join();
+    job_.reset();
+  }
+  if (stats_future_.valid()) stats_future_.wait();
+  if (save_future_.valid()) save_future_.wait();
+  if (surface_future_.valid()) surface_future_.wait();
+  if (imgui_gl_) ImGui_ImplOpenGL3_Shutdown();
+  if (imgui_glfw_) ImGui_ImplGlfw_Shutdown();
+  if (ImGui::GetCurrentContext()) ImGui::DestroyContext();
+  renderer_.reset();
+  window_.reset();
+}
+
+int Viewer::run() {
+  if (!init()) {
+    shutdown();
+    return kExitBadInput;
+  }
+  if (!options_.mesh_path.empty()) {
+    start_load(options_.mesh_path);
+    pending_job_line_ = options_.has_script ? -1 : 0;
+  }
+  while (!quit_ && !window_->should_close()) frame();
+  shutdown();
+  return exit_code_;
+}
+
+void Viewer::frame() {
+  const Clock::time_point start = Clock::now();
+  const double interval_ms = 1e3 * seconds_between(last_frame_start_, start);
+  current_.frame_ms = interval_ms;
+  last_frame_start_ = start;
+  if (bench_.active) bench_.records.push_back(current_);
+  current_ = {};
+
+  // Idle (nothing moving, no work in flight, no script): sleep until an event or a
+  // quarter second passes, so an idle viewer leaves the cores to others.
+  const bool idle = !job_ && !interacting_ && !needs_redraw_ && !options_.has_script &&
+                    !stats_future_.valid() && !save_future_.valid() && !surface_future_.valid() &&
+                    ui_capture_countdown_ < 0 &&
+                    (!scene_ || scene_->lod->step() == static_cast<size_t>(panel_.target_step));
+  busy_frames_ = idle ? busy_frames_ - 1 : 3;
+  const bool slept = last_slept_;
+  last_slept_ = busy_frames_ < 0;
+  if (busy_frames_ < 0) {
+    glfwWaitEventsTimeout(0.25);
+    busy_frames_ = 3;  // a few frames for ImGui to follow the event
+  } else {
+    window_->poll_events();
+  }
+  for (const std::string& path : dropped_) start_load(path);
+  dropped_.clear();
+  poll_job();
+  update_stats();
+  if (save_future_.valid() &&
+      save_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    const Status s = save_future_.get();
+    if (s) {
+      status_.message = "saved " + save_path_;
+    } else if (save_line_ > 0) {
+      fail_script(save_line_, s.message());
+    } else {
+      status_.load_error = s.message();
+    }
+    save_line_ = 0;
+  }
+
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  interacting_ = false;
+  handle_camera_input();
+  run_script();
+  fill_status();
+  commands_.clear();
+  ui::draw_viewer_panels(status_, &view_, &thresholds_, &panel_, &commands_);
+  for (const ui::Command& command : commands_) execute(command);
+  apply_view_changes();
+  follow_scrubber();
+
+  int width = 0, height = 0;
+  window_->framebuffer_size(&width, &height);
+  const Clock::time_point draw_start = Clock::now();
+  if (width > 0 && height > 0) draw_scene(width, height);
+  current_.draw_ms = 1e3 * seconds_between(draw_start, Clock::now());
+  const Clock::time_point ui_start = Clock::now();
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  current_.ui_ms = 1e3 * seconds_between(ui_start, Clock::now());
+
+  if (ui_capture_countdown_ == 0) {
+    const render::GlApi& gl = window_->gl();
+    render::Image image(width, height);
+    std::vector<uint8_t> bottom_up(image.rgba.size());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.ReadBuffer(GL_BACK);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+    const size_t row = size_t(width) * 4;
+    for (int y = 0; y < height; ++y)
+      std::copy_n(bottom_up.data() + size_t(height - 1 - y) * row, row,
+                  image.rgba.data() + size_t(y) * row);
+    for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
+    const Status s = render::write_png(ui_capture_path_, image);
+    if (s) {
+      status_.message = "screenshot " + ui_capture_path_;
+    } else if (ui_capture_line_ > 0) {
+      fail_script(ui_capture_line_, s.message());
+    } else {
+      status_.load_error = s.message();
+    }
+  }
+  if (ui_capture_countdown_ >= 0) --ui_capture_countdown_;
+  const Clock::time_point swap_start = Clock::now();
+  window_->swap_buffers();
+  current_.swap_ms = 1e3 * seconds_between(swap_start, Clock::now());
+  if (scene_) current_.step = scene_->lod->step();
+
+  // Frame-time readout (smoothed over about ten frames): the time between frame
+  // starts, except after sleeping for events, where it is this frame's own time.
+  const double total = slept ? 1e3 * seconds_between(start, Clock::now()) : interval_ms;
+  frame_ms_ = frame_ms_ == 0 ? total : 0.9 * frame_ms_ + 0.1 * total;
+  fps_ = frame_ms_ > 0 ? 1e3 / frame_ms_ : 0;
+}
+
+void Viewer::start_load(const std::string& path) {
+  if (job_ && job_->is_load) {
+    status_.load_error = "still loading " + job_->path;
+    return;
+  }
+  if (job_) {  // a simplification of the old mesh is no longer wanted
+    job_->cancel = true;
+    job_->thread.join();
+    job_.reset();
+  }
+  job_ = std::make_unique<Job>();
+  job_->is_load = true;
+  job_->path = path;
+  Job* job = job_.get();
+  const ui::ViewSettings view = view_;
+  job->thread = std::thread([job, view] {
+    auto mesh = std::make_shared<TetMesh>();
+    ReadInfo info;
+    {
+      std::lock_guard<std::mutex> lock(job->mutex);
+      job->phase = "reading";
+    }
+    const Status s = read_mesh(job->path, mesh.get(), &info);
+    if (!s) {
+      std::lock_guard<std::mutex> lock(job->mutex);
+      job->error = s.message();
+    } else {
+      {
+        std::lock_guard<std::mutex> lock(job->mutex);
+        job->phase = "preparing the surface";
+      }
+      ui::ViewSettings v = view;
+      v.cut = false;  // the cut position belongs to the old model
+      auto scene = make_scene(job->path, std::move(mesh), nullptr, v);
+      std::lock_guard<std::mutex> lock(job->mutex);
+      job->scene = std::move(scene);
+    }
+    job->done = true;
+  });
+}
+
+void Viewer::start_simplify() {
+  if (!scene_) return;
+  if (job_) {
+    status_.load_error = job_->is_load ? "wait for the load to finish" : "already simplifying";
+    return;
+  }
+  SimplifyParams params;
+  std::string error;
+  if (!ui::to_simplify_params(thresholds_, &params, &error)) {
+    status_.load_error = "thresholds: " + error;
+    last_job_error_ = status_.load_error;
+    return;
+  }
+  job_ = std::make_unique<Job>();
+  job_->path = scene_->path;
+  Job* job = job_.get();
+  std::shared_ptr<const TetMesh> input = scene_->input;  // always the loaded input
+  const ui::ViewSettings view = view_;
+  job->thread = std::thread([job, input, params, view] {
+    auto result = std::make_shared<SimplifyResult>();
+    const Status s = simplify(
+        *input, params, result.get(),
+        [job](const SimplifyProgress& p) {
+          std::lock_guard<std::mutex> lock(job->mutex);
+          job->phase = p.phase;
+          job->fraction = p.fraction;
+          job->collapses = p.collapses;
+        },
+        &job->cancel);
+    if (!s) {
+      std::lock_guard<std::mutex> lock(job->mutex);
+      job->error = s.message();
+    } else if (result->cancelled) {
+      std::lock_guard<std::mutex> lock(job->mutex);
+      job->cancelled = true;
+    } else {
+      {
+        std::lock_guard<std::mutex> lock(job->mutex);
+        job->phase = "preparing the levels";
+        job->fraction = 1;
+      }
+      auto scene = make_scene(job->path, input, std::move(result), view);
+      std::lock_guard<std::mutex> lock(job->mutex);
+      job->scene = std::move(scene);
+    }
+    job->done = true;
+  });
+}
+
+void Viewer::poll_job() {
+  if (!job_ || !job_->done) return;
+  job_->thread.join();
+  std::unique_ptr<Job> job = std::move(job_);
+  if (!job->error.empty()) {
+    status_.load_error = job->error;  // the current mesh stays as it was
+    status_.message.clear();
+    last_job_error_ = job->error;
+    return;
+  }
+  if (job->cancelled) {
+    status_.message = "simplification cancelled; the previous result stays";
+    last_job_error_ = "cancelled";
+    return;
+  }
+  last_job_error_.clear();
+  status_.load_error.clear();
+  swap_in(std::move(job->scene), job->is_load);
+  char seconds[32];
+  std::snprintf(seconds, sizeof(seconds), "%.2f s", seconds_between(job->start, Clock::now()));
+  status_.message = (job->is_load ? "loaded " + job->path + " in " : "simplified in ") + seconds;
+}
+
+void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
+  scene_ = std::move(scene);
+  ++scene_generation_;
+  has_stats_ = false;
+  panel_.target_step = static_cast<long long>(scene_->lod->step());
+  if (is_load) {
+    // Keep the hidden materials that this mesh has; centre the cut; frame the model.
+    auto& hidden = view_.hidden_materials;
+    hidden.erase(std::remove_if(hidden.begin(), hidden.end(),
+                                [&](int32_t m) {
+                                  return !std::binary_search(scene_->materials.begin(),
+                                                             scene_->materials.end(), m);
+                                }),
+                 hidden.end());
+    const Vec3 center = 0.5 * (scene_->lo + scene_->hi);
+    view_.cut_offset = static_cast<float>(view_.cut_axis == ui::CutAxis::kX   ? center.x
+                                          : view_.cut_axis == ui::CutAxis::kY ? center.y
+                                                                              : center.z);
+    const double diagonal = length(scene_->hi - scene_->lo);
+    thresholds_.tolerance = static_cast<float>(1e-3 * diagonal);
+    thresholds_.size = static_cast<float>(diagonal / 25);
+    thresholds_.material_sizes.clear();
+    camera_.fit(scene_->lo, scene_->hi, render::ViewDirection::kIso);
+    add_recent(scene_->path);
+    std::snprintf(panel_.open_path, sizeof(panel_.open_path), "%s", scene_->path.c_str());
+  }
+  // apply_view_changes() rebuilds the surface if the view changed meanwhile.
+  upload_all();
+}
+
+void Viewer::upload_all() {
+  std::vector<int32_t> shown;
+  for (const int32_t m : scene_->materials)
+    if (!std::binary_search(view_.hidden_materials.begin(), view_.hidden_materials.end(), m))
+      shown.push_back(m);
+  renderer_->set_legend_materials(std::move(shown));
+  renderer_->update_triangles(scene_->surface.triangles(), scene_->surface.take_triangle_dirty());
+  renderer_->update_highlight(scene_->surface.highlight(), scene_->surface.take_highlight_dirty(),
+                              scene_->surface.highlighted_tets());
+  needs_redraw_ = true;
+}
+
+void Viewer::add_recent(const std::string& path) {
+  std::error_code ec;
+  const std::string absolute = std::filesystem::absolute(path, ec).lexically_normal().string();
+  const std::string entry = ec ? path : absolute;
+  auto& recent = panel_.recent_files;
+  recent.erase(std::remove(recent.begin(), recent.end(), entry), recent.end());
+  recent.insert(recent.begin(), entry);
+  if (recent.size() > 10) recent.resize(10);
+  if (!options_.remember_recent) return;
+  const std::filesystem::path file = recent_files_path();
+  if (file.empty()) return;
+  std::filesystem::create_directories(file.parent_path(), ec);
+  std::ofstream out(file, std::ios::trunc);
+  for (const std::string& r : recent) out << r << '\n';
+}
+
+void Viewer::execute(const ui::Command& command) {
+  switch (command.kind) {
+    case ui::CommandKind::kOpen:
+      start_load(command.path);
+      break;
+    case ui::CommandKind::kSimplify:
+      start_simplify();
+      break;
+    case ui::CommandKind::kCancel:
+      if (job_ && !job_->is_load) job_->cancel = true;
+      break;
+    case ui::CommandKind::kJumpElements:
+      if (scene_)
+        panel_.target_step = static_cast<long long>(
+            scene_->lod->step_for_elements(static_cast<size_t>(std::max(0LL, command.value))));
+      break;
+    case ui::CommandKind::kFit:
+      if (scene_) camera_.fit(scene_->lo, scene_->hi, render::ViewDirection::kIso);
+      break;
+    case ui::CommandKind::kAxisView:
+      if (scene_) {
+        const render::ViewDirection views[] = {render::ViewDirection::kIso,
+                                               render::ViewDirection::kX, render::ViewDirection::kY,
+                                               render::ViewDirection::kZ};
+        camera_.fit(scene_->lo, scene_->hi, views[std::clamp<long long>(command.value, 0, 3)]);
+      }
+      break;
+    case ui::CommandKind::kSave: {
+      const Status s = save_level(command.path);
+      if (!s) status_.load_error = s.message();
+      break;
+    }
+    case ui::CommandKind::kScreenshot:
+      if (command.with_ui) {
+        ui_capture_path_ = command.path;
+        ui_capture_countdown_ = 1;  // the next frame, whose UI no longer shows the click
+        ui_capture_line_ = 0;
+      } else {
+        const Status s = screenshot(command.path, command.width, command.height);
+        if (s) {
+          status_.message = "screenshot " + command.path;
+        } else {
+          status_.load_error = s.message();
+        }
+      }
+      break;
+  }
+}
+
+void Viewer::handle_camera_input() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!scene_) return;
+  int width = 0, height = 0;
+  window_->framebuffer_size(&width, &height);
+  if (!io.WantCaptureMouse && ImGui::IsMousePosValid()) {
+    const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;
+    const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
+    if (dx != 0 || dy != 0) {
+      if (pan) {
+        camera_.pan(dx, dy, view_pixels(width, height).height);
+      } else if (io.MouseDown[0]) {
+        camera_.orbit(dx, dy);
+      }
+    }
+    if (io.MouseWheel != 0) camera_.zoom(io.MouseWheel);
+  }
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_F)) execute({ui::CommandKind::kFit});
+    for (int k = 0; k < 4; ++k)
+      if (ImGui::IsKeyPressed(GLFW_KEY_0 + k)) execute({ui::CommandKind::kAxisView, "", k});
+  }
+}
+
+// A new filter (cut, hidden materials, highlight) needs LodSurface::reset(), O(tets):
+// done in a task on a copy of the current step's arrays, while the old surface stays
+// on screen. When it is ready, the LOD has possibly moved on: the new surface is
+// brought to the current step by the delta between the two steps.
+void Viewer::apply_view_changes() {
+  if (!scene_) return;
+  if (surface_future_.valid()) {
+    if (surface_future_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    std::unique_ptr<render::LodSurface> surface = surface_future_.get();
+    if (surface_generation_ == scene_generation_ &&
+        same_filter(surface_filter_, make_filter(view_))) {
+      Lod& lod = *scene_->lod;
+      const size_t now = lod.step();
+      if (now != surface_step_) {
+        lod.seek(surface_step_);
+        LodDelta delta;
+        lod.seek(now, &delta);
+        surface->update(render::lod_state(lod), delta);
+      }
+      scene_->surface = std::move(*surface);
+      scene_->filter = surface_filter_;
+      upload_all();
+      interacting_ = true;
+      return;
+    }
+  }
+  const render::SurfaceFilter filter = make_filter(view_);
+  if (same_filter(filter, scene_->filter)) return;
+  const Lod& lod = *scene_->lod;
+  auto arrays = std::make_shared<TetMesh>();
+  arrays->positions = lod.positions();
+  arrays->tets = lod.tets();
+  arrays->materials = lod.materials();
+  auto alive = std::make_shared<std::vector<uint8_t>>(lod.alive());
+  surface_step_ = lod.step();
+  surface_generation_ = scene_generation_;
+  surface_filter_ = filter;
+  surface_future_ = std::async(std::launch::async, [arrays, alive, filter] {
+    auto surface = std::make_unique<render::LodSurface>();
+    const render::LodState state{&arrays->positions, &arrays->tets, &arrays->materials,
+                                 alive.get()};
+    surface->reset(state, filter);
+    return surface;
+  });
+}
+
+void Viewer::follow_scrubber() {
+  if (!scene_) return;
+  Lod& lod = *scene_->lod;
+  const size_t target = static_cast<size_t>(
+      std::clamp<long long>(panel_.target_step, 0, static_cast<long long>(lod.step_count())));
+  if (lod.step() == target) return;
+  // Move towards the target in chunks until the frame's budget is spent, so a long
+  // drag keeps the window responsive and the display catches up over a few frames.
+  constexpr double kBudgetSeconds = 0.008;
+  constexpr size_t kChunk = 48;
+  const Clock::time_point start = Clock::now();
+  const render::LodState state = render::lod_state(lod);
+  LodDelta delta;
+  while (lod.step() != target) {
+    const size_t step = lod.step();
+    const size_t next = target > step ? std::min(target, step + kChunk)
+                                      : (step - target > kChunk ? step - kChunk : target);
+    lod.seek(next, &delta);
+    scene_->surface.update(state, delta);
+    if (seconds_between(start, Clock::now()) > kBudgetSeconds) break;
+  }
+  renderer_->update_triangles(scene_->surface.triangles(), scene_->surface.take_triangle_dirty());
+  renderer_->update_highlight(scene_->surface.highlight(), scene_->surface.take_highlight_dirty(),
+                              scene_->surface.highlighted_tets());
+  current_.scrub_ms = 1e3 * seconds_between(start, Clock::now());
+  needs_redraw_ = true;
+  interacting_ = true;
+  last_lod_move_ = Clock::now();
+}
+
+void Viewer::update_stats() {
+  if (stats_future_.valid() &&
+      stats_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    MeshStats stats = stats_future_.get();
+    if (stats_future_generation_ == scene_generation_) {
+      stats_ = std::move(stats);
+      stats_step_ = stats_future_step_;
+      stats_generation_ = stats_future_generation_;
+      has_stats_ = true;
+    }
+  }
+  if (!scene_ || stats_future_.valid()) return;
+  const Lod& lod = *scene_->lod;
+  if (has_stats_ && stats_step_ == lod.step() && stats_generation_ == scene_generation_) return;
+  if (lod.step() != static_cast<size_t>(panel_.target_step)) return;  // still moving
+  if (seconds_between(last_lod_move_, Clock::now()) < 0.15 && !options_.has_script) return;
+  stats_future_step_ = lod.step();
+  stats_future_generation_ = scene_generation_;
+  stats_future_ = std::async(std::launch::async, [mesh = lod.extract()] {
+    return compute_mesh_stats(mesh, build_vertex_tets(mesh));
+  });
+}
+
+Viewer::ViewPixels Viewer::view_pixels(int fb_width, int fb_height) const {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float display_width = io.DisplaySize.x > 0 ? io.DisplaySize.x : float(fb_width);
+  const float display_height = io.DisplaySize.y > 0 ? io.DisplaySize.y : float(fb_height);
+  const ui::ViewRect rect = ui::scene_rect(display_width, display_height, panel_.show_stats);
+  const double sx = fb_width / double(display_width), sy = fb_height / double(display_height);
+  ViewPixels v;
+  v.x = static_cast<int>(std::lround(rect.x * sx));
+  v.width = std::max(1, static_cast<int>(std::lround(rect.width * sx)));
+  v.height = std::max(1, static_cast<int>(std::lround(rect.height * sy)));
+  v.y = fb_height - static_cast<int>(std::lround((rect.y + rect.height) * sy));
+  return v;
+}
+
+void Viewer::draw_scene(int fb_width, int fb_height) {
+  const render::GlApi& gl = window_->gl();
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.Viewport(0, 0, fb_width, fb_height);
+  gl.ClearColor(1, 1, 1, 1);  // the renderer's background, behind the panels
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (!scene_) return;
+  const ViewPixels view = view_pixels(fb_width, fb_height);
+  const render::DrawSettings draw = make_draw_settings(view_);
+  const render::Camera camera = camera_.camera();
+  const bool camera_moved = !same_camera(camera, drawn_camera_);
+  if (camera_moved) interacting_ = true;
+  const double scale = interacting_ ? options_.interactive_scale : 1.0;
+  if (needs_redraw_ || camera_moved || scale != drawn_scale_ || view.width != drawn_width_ ||
+      view.height != drawn_height_ || !same_draw(draw, drawn_settings_)) {
+    const int w = std::max(1, static_cast<int>(std::lround(view.width * scale)));
+    const int h = std::max(1, static_cast<int>(std::lround(view.height * scale)));
+    renderer_->draw(draw, camera, w, h);
+    drawn_scale_ = scale;
+    drawn_width_ = view.width;
+    drawn_height_ = view.height;
+    drawn_settings_ = draw;
+    drawn_camera_ = camera;
+    needs_redraw_ = false;
+  }
+  renderer_->present_into(view.x, view.y, view.width, view.height);
+}
+
+Status Viewer::screenshot(const std::string& path, int width, int height) {
+  if (!scene_) return Status::error("nothing to take a screenshot of: no mesh loaded");
+  if (width <= 0 || height <= 0) {  // the size of the 3D view in the window
+    int fb_width = 0, fb_height = 0;
+    window_->framebuffer_size(&fb_width, &fb_height);
+    const ViewPixels view = view_pixels(fb_width, fb_height);
+    width = view.width;
+    height = view.height;
+  }
+  renderer_->draw(make_draw_settings(view_), camera_.camera(), width, height);
+  const render::Image image = renderer_->read_pixels();
+  needs_redraw_ = true;  // the targets now have the screenshot's size
+  return render::write_png(path, image);
+}
+
+Status Viewer::save_level(const std::string& path) {
+  if (!scene_) return Status::error("nothing to save: no mesh loaded");
+  if (save_future_.valid()) return Status::error("still saving " + save_path_);
+  save_path_ = path;
+  save_future_ = std::async(
+      std::launch::async, [path, mesh = scene_->lod->extract()] { return write_mesh(path, mesh); });
+  return Status();
+}
+
+void Viewer::fill_status() {
+  ui::ViewerStatus& s = status_;
+  s.fps = fps_;
+  s.frame_ms = frame_ms_;
+  s.scene_scale = drawn_scale_ > 0 ? drawn_scale_ : 1;
+  s.loading = job_ && job_->is_load;
+  s.loading_path = s.loading ? job_->path : "";
+  s.running = job_ && !job_->is_load;
+  if (job_) {
+    std::lock_guard<std::mutex> lock(job_->mutex);
+    s.phase = job_->phase;
+    s.phase_fraction = job_->fraction;
+    s.collapses = job_->collapses;
+    s.elapsed_seconds = seconds_between(job_->start, Clock::now());
+    s.collapses_per_second = s.elapsed_seconds > 0 ? double(s.collapses) / s.elapsed_seconds : 0;
+  }
+  if (!scene_) return;
+  const Scene& scene = *scene_;
+  s.mesh_name = scene.path;
+  s.input_tets = scene.input->tet_count();
+  s.input_vertices = scene.input->vertex_count();
+  s.materials = scene.materials;
+  for (int k = 0; k < 3; ++k) {
+    s.bounds_min[k] = static_cast<float>(k == 0 ? scene.lo.x : k == 1 ? scene.lo.y : scene.lo.z);
+    s.bounds_max[k] = static_cast<float>(k == 0 ? scene.hi.x : k == 1 ? scene.hi.y : scene.hi.z);
+  }
+  s.has_result = scene.result != nullptr;
+  if (scene.result) {
+    s.rejections = scene.result->rejections;
+    s.splits = scene.result->splits;
+    s.simplify_seconds = scene.result->seconds_classify + scene.result->seconds_subdivide +
+                         scene.result->seconds_simplify;
+    s.result_cancelled = scene.result->cancelled;
+  }
+  const Lod& lod = *scene.lod;
+  s.step = lod.step();
+  s.step_count = lod.step_count();
+  s.elements = lod.alive_tet_count();
+  s.elements_at_target = lod.tet_count_at(static_cast<size_t>(
+      std::clamp<long long>(panel_.target_step, 0, static_cast<long long>(lod.step_count()))));
+  s.elements_at_end = lod.tet_count_at(lod.step_count());
+  s.visible_tets = scene.surface.visible_tets();
+  s.drawn_triangles = scene.surface.triangles().size() / 3;
+  s.has_stats = has_stats_ && stats_generation_ == scene_generation_;
+  if (s.has_stats) {
+    s.stats_step = stats_step_;
+    s.stats = stats_;
+  }
+}
+
+// --- Scripted runs ---------------------------------------------------------------
+
+void Viewer::fail_script(int line, const std::string& message) {
+  std::fprintf(stderr, "%s:%d: %s\n", options_.script_name.c_str(), line, message.c_str());
+  exit_code_ = kExitBadInput;
+  quit_ = true;
+}
+
+bool Viewer::settled() const {
+  if ((job_ && wait_for_job_) || save_future_.valid() || surface_future_.valid() ||
+      stats_future_.valid() || ui_capture_countdown_ >= 0)
+    return false;
+  if (!scene_) return true;
+  if (scene_->lod->step() != static_cast<size_t>(panel_.target_step)) return false;
+  return has_stats_ && stats_generation_ == scene_generation_ && stats_step_ == scene_->lod->step();
+}
+
+void Viewer::run_script() {
+  if (!options_.has_script || quit_) return;
+  if (bench_.active) {
+    bench_frame();
+    return;
+  }
+  if (wait_frames_ > 0) {
+    --wait_frames_;
+    return;
+  }
+  if (Clock::now() < wait_until_) return;
+  if (!settled()) return;
+  if (pending_job_line_ != 0) {
+    if (!last_job_error_.empty()) {
+      const int line = pending_job_line_ > 0 ? pending_job_line_ : 0;
+      if (line > 0) {
+        fail_script(line, last_job_error_);
+      } else {
+        std::fprintf(stderr, "tetlod view: %s\n", last_job_error_.c_str());
+        exit_code_ = kExitBadInput;
+        quit_ = true;
+      }
+      return;
+    }
+    pending_job_line_ = 0;
+  }
+  if (script_index_ >= options_.script.size()) return;  // done: the window stays open
+  const ScriptAction& action = options_.script[script_index_++];
+  const Status s = run_action(action);
+  if (!s) {
+    fail_script(action.line, s.message());
+    return;
+  }
+  wait_frames_ = std::max(wait_frames_, 1);  // one frame shows the result before the next action
+}
+
+Status Viewer::run_action(const ScriptAction& a) {
+  using Kind = ScriptAction::Kind;
+  const bool needs_scene = a.kind != Kind::kOpen && a.kind != Kind::kThresholds &&
+                           a.kind != Kind::kQuit && a.kind != Kind::kWait;
+  if (needs_scene && !scene_) return Status::error("no mesh loaded (give FILE or 'open PATH')");
+  switch (a.kind) {
+    case Kind::kOpen:
+      last_job_error_.clear();
+      wait_for_job_ = true;
+      start_load(a.path);
+      pending_job_line_ = a.flag ? 0 : a.line;
+      break;
+    case Kind::kThresholds:
+      if (a.size) thresholds_.size = static_cast<float>(*a.size);
+      if (a.stretch) thresholds_.stretch = static_cast<float>(*a.stretch);
+      if (a.tolerance) thresholds_.tolerance = static_cast<float>(*a.tolerance);
+      if (a.valence) thresholds_.valence = static_cast<int>(*a.valence);
+      if (a.subdivide) thresholds_.subdivide = *a.subdivide;
+      if (a.region) {
+        thresholds_.sizing_mode = ui::SizingMode::kRegion;
+        thresholds_.region_spec = *a.region;
+      }
+      if (a.material_sizes) {
+        SizingField field;
+        if (Status s = parse_material_sizes(*a.material_sizes, &field); !s) return s;
+        thresholds_.sizing_mode = ui::SizingMode::kPerMaterial;
+        thresholds_.material_sizes.clear();
+        for (const auto& [m, size] : field.material_sizes)
+          thresholds_.material_sizes.push_back({m, static_cast<float>(size)});
+      }
+      break;
+    case Kind::kSimplify:
+      last_job_error_.clear();
+      if (job_) return Status::error("a simplification or load is already running");
+      start_simplify();
+      if (!last_job_error_.empty()) return Status::error(last_job_error_);
+      wait_for_job_ = a.flag;
+      pending_job_line_ = a.flag ? a.line : 0;
+      break;
+    case Kind::kCancel:
+      if (!job_ || job_->is_load) return Status::error("no simplification is running");
+      job_->cancel = true;
+      wait_for_job_ = true;
+      break;
+    case Kind::kScrubStep:
+      panel_.target_step =
+          std::min<long long>(a.count, static_cast<long long>(scene_->lod->step_count()));
+      break;
+    case Kind::kScrubElements:
+      panel_.target_step =
+          static_cast<long long>(scene_->lod->step_for_elements(static_cast<size_t>(a.count)));
+      break;
+    case Kind::kScrubEnd:
+      panel_.target_step = static_cast<long long>(scene_->lod->step_count());
+      break;
+    case Kind::kCut:
+      view_.cut = true;
+      view_.cut_axis = static_cast<ui::CutAxis>(a.axis);
+      view_.cut_offset = static_cast<float>(a.value);
+      view_.cut_flip = a.flag;
+      break;
+    case Kind::kCutOff:
+      view_.cut = false;
+      break;
+    case Kind::kHide:
+    case Kind::kShow: {
+      const int32_t m = static_cast<int32_t>(a.count);
+      if (!std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
+        return Status::error("material " + std::to_string(a.count) + " is not in the mesh");
+      auto& hidden = view_.hidden_materials;
+      hidden.erase(std::remove(hidden.begin(), hidden.end(), m), hidden.end());
+      if (a.kind == Kind::kHide)
+        hidden.insert(std::lower_bound(hidden.begin(), hidden.end(), m), m);
+      break;
+    }
+    case Kind::kColor:
+      view_.color_mode =
+          a.word == "material" ? render::ColorMode::kMaterial : render::ColorMode::kStretch;
+      break;
+    case Kind::kColormap:
+      view_.color_map = a.word == "turbo" ? render::ColorMap::kTurbo : render::ColorMap::kViridis;
+      break;
+    case Kind::kRange:
+      view_.range_min = static_cast<float>(a.value);
+      view_.range_max = static_cast<float>(a.value2);
+      break;
+    case Kind::kWireframe:
+      view_.wireframe = a.flag;
+      break;
+    case Kind::kHighlight:
+      view_.highlight = true;
+      view_.highlight_below = static_cast<float>(a.value);
+      break;
+    case Kind::kHighlightOff:
+      view_.highlight = false;
+      break;
+    case Kind::kView: {
+      const char* names[] = {"iso", "x", "y", "z"};
+      if (a.word == "fit") execute({ui::CommandKind::kFit});
+      for (int k = 0; k < 4; ++k)
+        if (a.word == names[k]) execute({ui::CommandKind::kAxisView, "", k});
+      break;
+    }
+    case Kind::kOrbit:
+      camera_.orbit(a.value, a.value2);
+      break;
+    case Kind::kPan: {
+      int fb_width = 0, fb_height = 0;
+      window_->framebuffer_size(&fb_width, &fb_height);
+      camera_.pan(a.value, a.value2, view_pixels(fb_width, fb_height).height);
+      break;
+    }
+    case Kind::kZoom:
+      camera_.zoom(a.value);
+      break;
+    case Kind::kScreenshot:
+      if (a.flag) {
+        ui_capture_path_ = a.path;
+        ui_capture_countdown_ = 2;  // after the panels have laid themselves out
+        ui_capture_line_ = a.line;
+        return Status();
+      }
+      return screenshot(a.path, a.width, a.height);
+    case Kind::kSave:
+      save_line_ = a.line;
+      return save_level(a.path);
+    case Kind::kWait:
+      wait_frames_ = static_cast<int>(a.count);
+      wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                       std::chrono::duration<double>(a.value));
+      break;
+    case Kind::kBenchScrub:
+    case Kind::kBenchFrames:
+      if (a.kind == Kind::kBenchScrub && scene_->lod->step_count() == 0)
+        return Status::error("no collapse history: simplify first");
+      bench_ = {};
+      bench_.active = true;
+      bench_.scrub = a.kind == Kind::kBenchScrub;
+      bench_.frames = a.count;
+      bench_.out = a.path;
+      bench_.line = a.line;
+      if (bench_.scrub) panel_.target_step = 0;
+      break;
+    case Kind::kQuit:
+      quit_ = true;
+      break;
+  }
+  return Status();
+}
+
+// Drags the scrubber from step 0 to the end over `frames` frames, then back, like
+// a hand on the slider; the records hold each frame's time.
+void Viewer::bench_frame() {
+  Lod& lod = *scene_->lod;
+  const long long last = static_cast<long long>(lod.step_count());
+  if (!bench_.scrub) {
+    if (++bench_.frame <= bench_.frames) return;
+  } else if (bench_.frame < bench_.frames) {
+    ++bench_.frame;
+    const long long along = last * bench_.frame / bench_.frames;
+    panel_.target_step = bench_.backward ? last - along : along;
+    return;
+  }
+  if (bench_.scrub && lod.step() != static_cast<size_t>(panel_.target_step)) return;
+  if (bench_.scrub && !bench_.backward) {
+    bench_.backward = true;
+    bench_.frame = 0;
+    return;
+  }
+  bench_.active = false;
+  std::vector<FrameRecord>& r = bench_.records;
+  if (!r.empty()) r.erase(r.begin());  // the frame before the first move
+  std::vector<double> frame_ms, scrub_ms, draw_ms, ui_ms, swap_ms;
+  for (const FrameRecord& f : r) {
+    frame_ms.push_back(f.frame_ms);
+    scrub_ms.push_back(f.scrub_ms);
+    draw_ms.push_back(f.draw_ms);
+    ui_ms.push_back(f.ui_ms);
+    swap_ms.push_back(f.swap_ms);
+  }
+  const auto quantile = [](std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, static_cast<size_t>(q * double(v.size())))];
+  };
+  double total = 0;
+  for (const double f : frame_ms) total += f;
+  int width = 0, height = 0;
+  window_->framebuffer_size(&width, &height);
+  const char* name = bench_.scrub ? "bench-scrub" : "bench-frames";
+  std::printf(
+      "%s: %zu steps (%zu -> %zu tets), %lld frames asked%s, %zu frames "
+      "drawn, window %dx%d, 3D view at %.0f%% while moving%s\n"
+      "%s: frame ms: median %.1f, p95 %.1f, max %.1f; mean %.1f fps\n"
+      "%s: of which seek + update + upload ms: median %.2f, p95 %.2f, max %.2f; "
+      "3D draw ms: median %.1f, max %.1f; UI ms: median %.1f; swap ms: median %.1f\n",
+      name, lod.step_count(), lod.tet_count_at(0), lod.tet_count_at(lod.step_count()),
+      bench_.frames, bench_.scrub ? " each way" : "", frame_ms.size(), width, height,
+      100 * options_.interactive_scale, job_ ? ", a simplification running" : "", name,
+      quantile(frame_ms, 0.5), quantile(frame_ms, 0.95), quantile(frame_ms, 1.0),
+      total > 0 ? 1e3 * double(frame_ms.size()) / total : 0, name, quantile(scrub_ms, 0.5),
+      quantile(scrub_ms, 0.95), quantile(scrub_ms, 1.0), quantile(draw_ms, 0.5),
+      quantile(draw_ms, 1.0), quantile(ui_ms, 0.5), quantile(swap_ms, 0.5));
+  if (!bench_.out.empty()) {
+    std::ofstream out(bench_.out, std::ios::trunc);
+    out << "frame,frame_ms,scrub_ms,draw_ms,ui_ms,swap_ms,step\n";
+    for (size_t i = 0; i < r.size(); ++i)
+      out << i << ',' << r[i].frame_ms << ',' << r[i].scrub_ms << ',' << r[i].draw_ms << ','
+          << r[i].ui_ms << ',' << r[i].swap_ms << ',' << r[i].step << '\n';
+    if (!out) fail_script(bench_.line, "cannot write " + bench_.out);
+  }
+}
+
+}  // namespace
+
+int run_viewer(const ViewerOptions& options) {
+  Viewer viewer(options);
+  return viewer.run();
+}
+
+}  // namespace tetlod::app

@@ -1,0 +1,312 @@
+#include "app/viewer_script.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "app/cli_util.h"
+#include "core/sizing.h"
+
+namespace tetlod::app {
+namespace {
+
+using Kind = ScriptAction::Kind;
+
+struct LineParser {
+  std::string name;
+  int line = 0;
+  std::vector<std::string> words;
+
+  Status error(const std::string& what) const {
+    return Status::error(name + ":" + std::to_string(line) + ": " + what);
+  }
+  // Splits "key=value"; false if there is no '='.
+  static bool key_value(const std::string& word, std::string* key, std::string* value) {
+    const size_t eq = word.find('=');
+    if (eq == std::string::npos) return false;
+    *key = word.substr(0, eq);
+    *value = word.substr(eq + 1);
+    return true;
+  }
+  Status number(const std::string& key, const std::string& text, double* out) const {
+    const std::optional<double> v = parse_double(text);
+    if (!v) return error("'" + key + "' needs a number, got '" + text + "'");
+    *out = *v;
+    return Status();
+  }
+  Status integer(const std::string& key, const std::string& text, long long* out) const {
+    const std::optional<long long> v = parse_integer(text);
+    if (!v) return error("'" + key + "' needs a whole number, got '" + text + "'");
+    *out = *v;
+    return Status();
+  }
+  Status on_off(const std::string& key, const std::string& text, bool* out) const {
+    if (text == "1" || text == "on" || text == "true") {
+      *out = true;
+    } else if (text == "0" || text == "off" || text == "false") {
+      *out = false;
+    } else {
+      return error("'" + key + "' needs on/off (or 1/0), got '" + text + "'");
+    }
+    return Status();
+  }
+  Status arg_count(size_t low, size_t high) const {
+    const size_t n = words.size() - 1;
+    if (n < low || n > high) {
+      return error("'" + words[0] + "' takes " +
+                   (low == high ? std::to_string(low)
+                                : std::to_string(low) + " to " + std::to_string(high)) +
+                   " argument(s), got " + std::to_string(n));
+    }
+    return Status();
+  }
+};
+
+Status parse_thresholds(const LineParser& p, ScriptAction* a) {
+  if (p.words.size() < 2) return p.error("'thresholds' needs at least one key=value");
+  for (size_t i = 1; i < p.words.size(); ++i) {
+    std::string key, value;
+    if (!LineParser::key_value(p.words[i], &key, &value))
+      return p.error("expected key=value, got '" + p.words[i] + "'");
+    double number = 0;
+    if (key == "size" || key == "stretch" || key == "tolerance") {
+      if (Status s = p.number(key, value, &number); !s) return s;
+      if (key == "size") {
+        if (!(number > 0)) return p.error("size must be > 0");
+        a->size = number;
+      } else if (key == "stretch") {
+        if (!(number > 0 && number < 1)) return p.error("stretch must be in (0, 1)");
+        a->stretch = number;
+      } else {
+        if (!(number >= 0)) return p.error("tolerance must be >= 0");
+        a->tolerance = number;
+      }
+    } else if (key == "valence") {
+      long long v = 0;
+      if (Status s = p.integer(key, value, &v); !s) return s;
+      if (v < 4 || v > 100000) return p.error("valence must be in [4, 100000]");
+      a->valence = v;
+    } else if (key == "subdivide") {
+      bool on = false;
+      if (Status s = p.on_off(key, value, &on); !s) return s;
+      a->subdivide = on;
+    } else if (key == "material-sizes") {
+      SizingField field;
+      if (Status s = parse_material_sizes(value, &field); !s) return p.error(s.message());
+      a->material_sizes = value;
+    } else if (key == "region") {
+      SizingField field;
+      if (Status s = parse_size_field(value, &field); !s) return p.error(s.message());
+      a->region = value;
+    } else {
+      return p.error("unknown threshold '" + key +
+                     "' (size, stretch, valence, tolerance, subdivide, material-sizes, region)");
+    }
+  }
+  return Status();
+}
+
+Status parse_line(const LineParser& p, ScriptAction* a) {
+  const std::string& command = p.words[0];
+  const std::vector<std::string>& w = p.words;
+  if (command == "open") {
+    a->kind = Kind::kOpen;
+    if (Status s = p.arg_count(1, 2); !s) return s;
+    a->path = w[1];
+    if (w.size() == 3) {
+      if (w[2] != "may-fail") return p.error("expected 'may-fail', got '" + w[2] + "'");
+      a->flag = true;
+    }
+  } else if (command == "thresholds") {
+    a->kind = Kind::kThresholds;
+    return parse_thresholds(p, a);
+  } else if (command == "simplify") {
+    a->kind = Kind::kSimplify;
+    a->flag = true;
+    if (Status s = p.arg_count(0, 1); !s) return s;
+    if (w.size() == 2) {
+      std::string key, value;
+      if (!LineParser::key_value(w[1], &key, &value) || key != "wait")
+        return p.error("'simplify' takes wait=0|1, got '" + w[1] + "'");
+      return p.on_off(key, value, &a->flag);
+    }
+  } else if (command == "cancel") {
+    a->kind = Kind::kCancel;
+    return p.arg_count(0, 0);
+  } else if (command == "scrub") {
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    std::string key, value;
+    if (w[1] == "end") {
+      a->kind = Kind::kScrubEnd;
+    } else if (LineParser::key_value(w[1], &key, &value) && (key == "step" || key == "elements")) {
+      a->kind = key == "step" ? Kind::kScrubStep : Kind::kScrubElements;
+      if (Status s = p.integer(key, value, &a->count); !s) return s;
+      if (a->count < 0) return p.error("'" + key + "' must be >= 0");
+    } else {
+      return p.error("'scrub' takes step=K, elements=N or end, got '" + w[1] + "'");
+    }
+  } else if (command == "cut") {
+    if (Status s = p.arg_count(1, 2); !s) return s;
+    if (w[1] == "off") {
+      a->kind = Kind::kCutOff;
+      return p.arg_count(1, 1);
+    }
+    a->kind = Kind::kCut;
+    std::string key, value;
+    if (!LineParser::key_value(w[1], &key, &value) || key.size() != 1 || key[0] < 'x' ||
+        key[0] > 'z')
+      return p.error("'cut' takes x=V, y=V or z=V (or off), got '" + w[1] + "'");
+    a->axis = key[0] - 'x';
+    if (Status s = p.number(key, value, &a->value); !s) return s;
+    if (w.size() == 3) {
+      if (w[2] != "flip") return p.error("expected 'flip', got '" + w[2] + "'");
+      a->flag = true;
+    }
+  } else if (command == "hide" || command == "show") {
+    a->kind = command == "hide" ? Kind::kHide : Kind::kShow;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (Status s = p.integer("material", w[1], &a->count); !s) return s;
+  } else if (command == "color") {
+    a->kind = Kind::kColor;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (w[1] != "stretch" && w[1] != "material")
+      return p.error("'color' takes stretch or material, got '" + w[1] + "'");
+    a->word = w[1];
+  } else if (command == "colormap") {
+    a->kind = Kind::kColormap;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (w[1] != "viridis" && w[1] != "turbo")
+      return p.error("'colormap' takes viridis or turbo, got '" + w[1] + "'");
+    a->word = w[1];
+  } else if (command == "range") {
+    a->kind = Kind::kRange;
+    if (Status s = p.arg_count(2, 2); !s) return s;
+    if (Status s = p.number("min", w[1], &a->value); !s) return s;
+    if (Status s = p.number("max", w[2], &a->value2); !s) return s;
+    if (!(a->value < a->value2)) return p.error("range needs MIN < MAX");
+  } else if (command == "wireframe") {
+    a->kind = Kind::kWireframe;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    return p.on_off("wireframe", w[1], &a->flag);
+  } else if (command == "highlight") {
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (w[1] == "off") {
+      a->kind = Kind::kHighlightOff;
+    } else {
+      a->kind = Kind::kHighlight;
+      if (Status s = p.number("highlight", w[1], &a->value); !s) return s;
+    }
+  } else if (command == "view") {
+    a->kind = Kind::kView;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (w[1] != "iso" && w[1] != "x" && w[1] != "y" && w[1] != "z" && w[1] != "fit")
+      return p.error("'view' takes iso, x, y, z or fit, got '" + w[1] + "'");
+    a->word = w[1];
+  } else if (command == "orbit" || command == "pan") {
+    a->kind = command == "orbit" ? Kind::kOrbit : Kind::kPan;
+    if (Status s = p.arg_count(2, 2); !s) return s;
+    if (Status s = p.number("dx", w[1], &a->value); !s) return s;
+    if (Status s = p.number("dy", w[2], &a->value2); !s) return s;
+  } else if (command == "zoom") {
+    a->kind = Kind::kZoom;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (Status s = p.number("clicks", w[1], &a->value); !s) return s;
+  } else if (command == "screenshot") {
+    a->kind = Kind::kScreenshot;
+    if (Status s = p.arg_count(1, 4); !s) return s;
+    a->path = w[1];
+    for (size_t i = 2; i < w.size(); ++i) {
+      std::string key, value;
+      long long v = 0;
+      if (!LineParser::key_value(w[i], &key, &value))
+        return p.error("expected key=value, got '" + w[i] + "'");
+      if (key == "ui") {
+        if (Status s = p.on_off(key, value, &a->flag); !s) return s;
+      } else if (key == "width" || key == "height") {
+        if (Status s = p.integer(key, value, &v); !s) return s;
+        if (v < 16 || v > 8192) return p.error("'" + key + "' must be in [16, 8192]");
+        (key == "width" ? a->width : a->height) = static_cast<int>(v);
+      } else {
+        return p.error("unknown screenshot option '" + key + "' (ui, width, height)");
+      }
+    }
+    if ((a->width == 0) != (a->height == 0)) return p.error("give both width and height");
+    if (a->flag && a->width != 0)
+      return p.error("a screenshot with the UI is taken at the window size (--size WxH)");
+  } else if (command == "save") {
+    a->kind = Kind::kSave;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    a->path = w[1];
+  } else if (command == "wait") {
+    a->kind = Kind::kWait;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    std::string key, value;
+    if (!LineParser::key_value(w[1], &key, &value) || (key != "frames" && key != "seconds"))
+      return p.error("'wait' takes frames=N or seconds=S");
+    if (key == "frames") {
+      if (Status s = p.integer(key, value, &a->count); !s) return s;
+      if (a->count < 0) return p.error("frames must be >= 0");
+    } else {
+      if (Status s = p.number(key, value, &a->value); !s) return s;
+      if (!(a->value >= 0 && a->value <= 3600)) return p.error("seconds must be in [0, 3600]");
+    }
+  } else if (command == "bench-scrub" || command == "bench-frames") {
+    a->kind = command == "bench-scrub" ? Kind::kBenchScrub : Kind::kBenchFrames;
+    a->count = 120;
+    if (Status s = p.arg_count(0, 2); !s) return s;
+    for (size_t i = 1; i < w.size(); ++i) {
+      std::string key, value;
+      if (!LineParser::key_value(w[i], &key, &value))
+        return p.error("expected key=value, got '" + w[i] + "'");
+      if (key == "frames") {
+        if (Status s = p.integer(key, value, &a->count); !s) return s;
+        if (a->count < 1) return p.error("frames must be >= 1");
+      } else if (key == "out") {
+        a->path = value;
+      } else {
+        return p.error("unknown " + command + " option '" + key + "' (frames, out)");
+      }
+    }
+  } else if (command == "quit") {
+    a->kind = Kind::kQuit;
+    return p.arg_count(0, 0);
+  } else {
+    return p.error("unknown command '" + command + "'");
+  }
+  return Status();
+}
+
+}  // namespace
+
+Status parse_script_text(const std::string& text, const std::string& name,
+                         std::vector<ScriptAction>* actions) {
+  std::vector<ScriptAction> out;
+  std::istringstream lines(text);
+  std::string line;
+  LineParser p;
+  p.name = name;
+  while (std::getline(lines, line)) {
+    ++p.line;
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    p.words.clear();
+    for (std::string word; words >> word;) p.words.push_back(word);
+    if (p.words.empty()) continue;
+    ScriptAction a;
+    a.line = p.line;
+    if (Status s = parse_line(p, &a); !s) return s;
+    out.push_back(std::move(a));
+  }
+  *actions = std::move(out);
+  return Status();
+}
+
+Status parse_script(const std::string& path, std::vector<ScriptAction>* actions) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status::error(path + ": cannot open the script");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_script_text(text.str(), path, actions);
+}
+
+}  // namespace tetlod::app

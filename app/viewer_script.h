@@ -1,0 +1,95 @@
+// Scripted viewer runs (`tetlod view FILE --script SCRIPT`): a line-based list of
+// actions done in the real window, one after the other, each waiting until the
+// previous one has finished (a simplification, a scrub, a statistics update).
+//
+//   # comment                        blank lines and comments are skipped
+//   open PATH [may-fail]             load a mesh (waits); with may-fail a bad file is
+//                                    not a script error: it shows in the UI as for a user
+//   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1
+//              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h)
+//   simplify [wait=0]                run the simplifier with the thresholds (waits,
+//                                    unless wait=0: then the next actions run meanwhile)
+//   cancel                           cancel a running simplification (waits until the
+//                                    worker has stopped; the previous result stays)
+//   scrub step=K | elements=N | end  move the LOD to a step / nearest level (waits)
+//   cut x|y|z=VALUE [flip] | cut off
+//   hide M | show M                  material visibility
+//   color stretch|material           range MIN MAX          colormap viridis|turbo
+//   wireframe on|off                 highlight D | highlight off
+//   view iso|x|y|z|fit
+//   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
+//   zoom CLICKS                      as by the mouse wheel (positive: closer)
+//   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
+//   save PATH                        the displayed level, format from the extension
+//   wait frames=N | seconds=S        keep drawing (and taking input) meanwhile
+//   bench-scrub [frames=N] [out=CSV] drag the scrubber end to end and back over N
+//                                    frames each way; prints frame times
+//   bench-frames [frames=N] [out=CSV] times the next N frames as they are (e.g. while
+//                                    a 'simplify wait=0' runs)
+//   quit
+//
+// Relative paths are relative to the working directory.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+
+namespace tetlod::app {
+
+struct ScriptAction {
+  enum class Kind {
+    kOpen,
+    kThresholds,
+    kSimplify,
+    kCancel,
+    kScrubStep,
+    kScrubElements,
+    kScrubEnd,
+    kCut,
+    kCutOff,
+    kHide,
+    kShow,
+    kColor,
+    kRange,
+    kColormap,
+    kWireframe,
+    kHighlight,
+    kHighlightOff,
+    kView,
+    kOrbit,
+    kPan,
+    kZoom,
+    kScreenshot,
+    kSave,
+    kWait,
+    kBenchScrub,
+    kBenchFrames,
+    kQuit,
+  };
+  Kind kind = Kind::kQuit;
+  int line = 0;
+  std::string path;     // open, screenshot, save, bench-scrub out
+  std::string word;     // color, colormap, view
+  long long count = 0;  // step, elements, material, frames
+  double value = 0;     // cut offset, highlight, range min
+  double value2 = 0;    // range max
+  int axis = 0;         // cut: 0 x, 1 y, 2 z
+  bool flag = false;    // cut flip, wireframe on, screenshot ui
+  int width = 0, height = 0;
+  // thresholds
+  std::optional<double> size, stretch, tolerance;
+  std::optional<long long> valence;
+  std::optional<bool> subdivide;
+  std::optional<std::string> material_sizes, region;
+};
+
+// Reads and checks the whole script before anything runs. Errors read
+// "SCRIPT:LINE: what is wrong".
+Status parse_script(const std::string& path, std::vector<ScriptAction>* actions);
+Status parse_script_text(const std::string& text, const std::string& name,
+                         std::vector<ScriptAction>* actions);
+
+}  // namespace tetlod::app

@@ -1,0 +1,82 @@
+// The viewer's orbit camera: framing agrees with render::frame_camera, and orbit,
+// pan and zoom move it as a mouse would, reversibly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "app/orbit_camera.h"
+
+namespace tetlod::app {
+namespace {
+
+const Vec3 kLo{-1, -2, -0.5}, kHi{3, 2, 1.5};
+
+void expect_near(const Vec3& a, const Vec3& b, double tolerance) {
+  EXPECT_NEAR(a.x, b.x, tolerance);
+  EXPECT_NEAR(a.y, b.y, tolerance);
+  EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+TEST(OrbitCamera, FitMatchesTheRenderersFraming) {
+  for (const render::ViewDirection view :
+       {render::ViewDirection::kIso, render::ViewDirection::kX, render::ViewDirection::kY}) {
+    OrbitCamera camera;
+    camera.fit(kLo, kHi, view);
+    const render::Camera framed = render::frame_camera(kLo, kHi, view);
+    const render::Camera c = camera.camera();
+    expect_near(c.eye, framed.eye, 1e-9);
+    expect_near(c.target, framed.target, 1e-12);
+    EXPECT_EQ(c.fov_y_degrees, framed.fov_y_degrees);
+    EXPECT_GT(c.near_distance, 0);
+    EXPECT_GT(c.far_distance, c.near_distance);
+  }
+}
+
+TEST(OrbitCamera, TopViewIsWellDefined) {
+  OrbitCamera camera;
+  camera.fit(kLo, kHi, render::ViewDirection::kZ);
+  const render::Camera c = camera.camera();
+  const Vec3 d = c.eye - c.target;
+  EXPECT_GT(d.z, 0.99 * length(d));  // looking down
+  EXPECT_LT(d.y, 0);                 // from slightly -y, so +y is up on screen
+  for (const float v : render::view_matrix(c)) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(OrbitCamera, MovesAreReversible) {
+  OrbitCamera camera;
+  camera.fit(kLo, kHi, render::ViewDirection::kIso);
+  const render::Camera start = camera.camera();
+
+  camera.orbit(37, -12);
+  const render::Camera orbited = camera.camera();
+  EXPECT_GT(length(orbited.eye - start.eye), 0.1);
+  expect_near(orbited.target, start.target, 1e-12);
+  EXPECT_NEAR(length(orbited.eye - orbited.target), length(start.eye - start.target), 1e-9);
+  camera.orbit(-37, 12);
+  expect_near(camera.camera().eye, start.eye, 1e-9);
+
+  camera.zoom(2);
+  EXPECT_LT(length(camera.camera().eye - start.target), length(start.eye - start.target));
+  camera.zoom(-2);
+  expect_near(camera.camera().eye, start.eye, 1e-9);
+
+  camera.pan(10, 0, 500);
+  const render::Camera panned = camera.camera();
+  EXPECT_GT(length(panned.target - start.target), 0);
+  expect_near(panned.eye - panned.target, start.eye - start.target, 1e-9);  // same direction
+  camera.pan(-10, 0, 500);
+  expect_near(camera.camera().target, start.target, 1e-9);
+}
+
+TEST(OrbitCamera, PitchIsClampedBelowTheVertical) {
+  OrbitCamera camera;
+  camera.fit(kLo, kHi, render::ViewDirection::kIso);
+  camera.orbit(0, 1e6);
+  const render::Camera c = camera.camera();
+  const Vec3 d = c.eye - c.target;
+  EXPECT_LT(d.z, length(d));
+  for (const float v : render::view_matrix(c)) EXPECT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
+}  // namespace tetlod::app

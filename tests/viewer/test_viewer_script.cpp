@@ -1,0 +1,233 @@
+// The viewer's script parser (no display needed) and the `tetlod view` command
+// line: every bad script line is an error naming the script and the line, before
+// any window opens.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "app/viewer_script.h"
+
+namespace tetlod::app {
+namespace {
+
+using Kind = ScriptAction::Kind;
+
+std::vector<ScriptAction> parse_ok(const std::string& text) {
+  std::vector<ScriptAction> actions;
+  const Status s = parse_script_text(text, "t.script", &actions);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return actions;
+}
+
+std::string parse_error(const std::string& text) {
+  std::vector<ScriptAction> actions;
+  const Status s = parse_script_text(text, "t.script", &actions);
+  EXPECT_FALSE(s.ok()) << text;
+  return s.message();
+}
+
+TEST(ViewerScript, ParsesEveryCommand) {
+  const auto a = parse_ok(
+      "# comment\n"
+      "\n"
+      "open m.mesh\n"
+      "thresholds size=12 stretch=0.15 valence=25 tolerance=0.05 subdivide=0\n"
+      "simplify  # trailing comment\n"
+      "scrub elements=5000\n"
+      "scrub step=100\n"
+      "scrub end\n"
+      "cut z=-1.5 flip\n"
+      "cut off\n"
+      "hide 1\n"
+      "show 1\n"
+      "color material\n"
+      "range 0.1 0.9\n"
+      "colormap turbo\n"
+      "wireframe on\n"
+      "highlight 0.2\n"
+      "highlight off\n"
+      "view x\n"
+      "screenshot a.png ui=1\n"
+      "screenshot b.png width=640 height=480\n"
+      "save out.vtu\n"
+      "wait frames=3\n"
+      "bench-scrub frames=50 out=b.csv\n"
+      "quit\n");
+  ASSERT_EQ(a.size(), 23u);
+  EXPECT_EQ(a[0].kind, Kind::kOpen);
+  EXPECT_EQ(a[0].line, 3);
+  EXPECT_EQ(a[0].path, "m.mesh");
+  EXPECT_EQ(a[1].kind, Kind::kThresholds);
+  EXPECT_EQ(*a[1].size, 12);
+  EXPECT_EQ(*a[1].stretch, 0.15);
+  EXPECT_EQ(*a[1].valence, 25);
+  EXPECT_EQ(*a[1].tolerance, 0.05);
+  EXPECT_FALSE(*a[1].subdivide);
+  EXPECT_EQ(a[2].kind, Kind::kSimplify);
+  EXPECT_EQ(a[3].kind, Kind::kScrubElements);
+  EXPECT_EQ(a[3].count, 5000);
+  EXPECT_EQ(a[4].kind, Kind::kScrubStep);
+  EXPECT_EQ(a[4].count, 100);
+  EXPECT_EQ(a[5].kind, Kind::kScrubEnd);
+  EXPECT_EQ(a[6].kind, Kind::kCut);
+  EXPECT_EQ(a[6].axis, 2);
+  EXPECT_EQ(a[6].value, -1.5);
+  EXPECT_TRUE(a[6].flag);
+  EXPECT_EQ(a[7].kind, Kind::kCutOff);
+  EXPECT_EQ(a[8].kind, Kind::kHide);
+  EXPECT_EQ(a[8].count, 1);
+  EXPECT_EQ(a[9].kind, Kind::kShow);
+  EXPECT_EQ(a[10].word, "material");
+  EXPECT_EQ(a[11].value, 0.1);
+  EXPECT_EQ(a[11].value2, 0.9);
+  EXPECT_EQ(a[12].word, "turbo");
+  EXPECT_TRUE(a[13].flag);
+  EXPECT_EQ(a[14].value, 0.2);
+  EXPECT_EQ(a[15].kind, Kind::kHighlightOff);
+  EXPECT_EQ(a[16].word, "x");
+  EXPECT_TRUE(a[17].flag);
+  EXPECT_EQ(a[17].width, 0);
+  EXPECT_FALSE(a[18].flag);
+  EXPECT_EQ(a[18].width, 640);
+  EXPECT_EQ(a[18].height, 480);
+  EXPECT_EQ(a[19].path, "out.vtu");
+  EXPECT_EQ(a[20].count, 3);
+  EXPECT_EQ(a[21].count, 50);
+  EXPECT_EQ(a[21].path, "b.csv");
+  EXPECT_EQ(a[22].kind, Kind::kQuit);
+}
+
+TEST(ViewerScript, CameraMoves) {
+  const auto a = parse_ok("orbit 40 -10\npan 5 6\nzoom -2.5\n");
+  ASSERT_EQ(a.size(), 3u);
+  EXPECT_EQ(a[0].kind, Kind::kOrbit);
+  EXPECT_EQ(a[0].value, 40);
+  EXPECT_EQ(a[0].value2, -10);
+  EXPECT_EQ(a[1].kind, Kind::kPan);
+  EXPECT_EQ(a[2].kind, Kind::kZoom);
+  EXPECT_EQ(a[2].value, -2.5);
+  EXPECT_EQ(parse_error("orbit 1\n"), "t.script:1: 'orbit' takes 2 argument(s), got 1");
+  EXPECT_EQ(parse_error("zoom in\n"), "t.script:1: 'clicks' needs a number, got 'in'");
+}
+
+TEST(ViewerScript, MaterialSizesAndRegions) {
+  const auto a = parse_ok("thresholds material-sizes=1=40,2=10 region=radial:0,0,0,1,0.5\n");
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_EQ(*a[0].material_sizes, "1=40,2=10");
+  EXPECT_EQ(*a[0].region, "radial:0,0,0,1,0.5");
+}
+
+TEST(ViewerScript, ErrorsNameTheFileAndLine) {
+  EXPECT_EQ(parse_error("quit\nfrobnicate\n"), "t.script:2: unknown command 'frobnicate'");
+  EXPECT_EQ(parse_error("\n\nthresholds size=abc\n"),
+            "t.script:3: 'size' needs a number, got 'abc'");
+}
+
+TEST(ViewerScript, RejectsBadValues) {
+  for (const char* bad : {
+           "thresholds\n",
+           "thresholds size=0\n",
+           "thresholds size=-1\n",
+           "thresholds stretch=1\n",
+           "thresholds stretch=0\n",
+           "thresholds valence=3\n",
+           "thresholds valence=2.5\n",
+           "thresholds tolerance=-1\n",
+           "thresholds tolerance=nan\n",
+           "thresholds subdivide=maybe\n",
+           "thresholds colour=1\n",
+           "thresholds size\n",
+           "thresholds material-sizes=1=0\n",
+           "thresholds region=sphere:1\n",
+           "simplify now\n",
+           "scrub\n",
+           "scrub elements=-3\n",
+           "scrub elements=many\n",
+           "scrub frame=3\n",
+           "cut w=0\n",
+           "cut z=abc\n",
+           "cut z=0 flop\n",
+           "cut off now\n",
+           "hide\n",
+           "hide one\n",
+           "color blue\n",
+           "colormap jet\n",
+           "range 1 0\n",
+           "range 0\n",
+           "wireframe maybe\n",
+           "highlight lots\n",
+           "view top\n",
+           "screenshot\n",
+           "screenshot a.png ui=2\n",
+           "screenshot a.png width=100\n",
+           "screenshot a.png width=10 height=10\n",
+           "screenshot a.png ui=1 width=100 height=100\n",
+           "screenshot a.png dpi=3\n",
+           "save\n",
+           "save a b\n",
+           "wait\n",
+           "wait frames=-1\n",
+           "wait seconds=-1\n",
+           "wait minutes=1\n",
+           "bench-scrub frames=0\n",
+           "bench-scrub speed=2\n",
+           "quit now\n",
+       }) {
+    const std::string message = parse_error(bad);
+    EXPECT_EQ(message.rfind("t.script:1: ", 0), 0u) << bad << " -> " << message;
+  }
+}
+
+// The command line: a bad script is reported before any window opens, so this
+// needs no display.
+int run(const std::string& arguments, std::string* output, const std::string& prefix = "") {
+  const std::filesystem::path dir = std::filesystem::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_cli";
+  std::filesystem::create_directories(dir);
+  const std::string log = (dir / "out.txt").string();
+  const int status =
+      std::system((prefix + TETLOD_BINARY + " " + arguments + " >" + log + " 2>&1").c_str());
+  std::ifstream in(log);
+  std::ostringstream text;
+  text << in.rdbuf();
+  *output = text.str();
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(ViewerCli, BadScriptIsAnErrorNamingTheLine) {
+  const std::filesystem::path dir = std::filesystem::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_cli";
+  std::filesystem::create_directories(dir);
+  const std::string script = (dir / "bad.script").string();
+  std::ofstream(script) << "thresholds size=10\nscrub elements=lots\nquit\n";
+  std::string output;
+  EXPECT_EQ(run("view --script " + script, &output), 1);
+  EXPECT_NE(output.find(script + ":2: 'elements' needs a whole number"), std::string::npos)
+      << output;
+  EXPECT_EQ(run("view --script /nonexistent/x.script", &output), 1);
+  EXPECT_NE(output.find("cannot open the script"), std::string::npos) << output;
+}
+
+TEST(ViewerCli, BadOptionsAreUsageErrors) {
+  std::string output;
+  EXPECT_EQ(run("view --size 12", &output), 2);
+  EXPECT_EQ(run("view --frobnicate", &output), 2);
+  EXPECT_EQ(run("view a.mesh b.mesh", &output), 2);
+  EXPECT_EQ(run("view --interactive-scale 2", &output), 2);
+  EXPECT_EQ(run("view --help", &output), 0);
+  EXPECT_NE(output.find("--script"), std::string::npos);
+}
+
+TEST(ViewerCli, NoDisplayIsAMessage) {
+  std::string output;
+  EXPECT_EQ(run("view " + std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh --script /dev/null",
+                &output, "env -u DISPLAY -u WAYLAND_DISPLAY "),
+            1);
+  EXPECT_NE(output.find("the viewer needs a display"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace tetlod::app

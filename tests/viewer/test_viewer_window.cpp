@@ -1,0 +1,293 @@
+// The scripted viewer run in a real window (GLFW + Dear ImGui), under xvfb-run:
+// tests/viewer/scripted_run.script loads the motor, simplifies, scrubs, cuts and
+// takes screenshots with and without the UI, and saves levels. Every file it
+// writes is checked: the PNGs' sizes and content (not blank, the panels there when
+// asked for) and the saved meshes' element counts against the level the simplifier
+// itself gives for the same thresholds.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/simplify.h"
+#include "render/image.h"
+
+namespace tetlod {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSource = TETLOD_SOURCE_DIR;
+
+struct ViewerRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+ViewerRun run_viewer(const fs::path& dir, const std::string& arguments) {
+  fs::create_directories(dir);
+  const std::string log = (dir / "log.txt").string();
+  const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " view " +
+                              arguments + " >'" + log + "' 2>&1";
+  const int status = std::system(command.c_str());
+  ViewerRun run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  std::ostringstream text;
+  text << in.rdbuf();
+  run.output = text.str();
+  return run;
+}
+
+bool is_white(const uint8_t* p) {
+  return p[0] > 245 && p[1] > 245 && p[2] > 245;
+}
+
+// Fraction of the pixels in [x0, x1) x [y0, y1) that differ from the white background.
+double non_background(const render::Image& image, int x0, int y0, int x1, int y1) {
+  size_t count = 0, total = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x, ++total) count += is_white(image.pixel(x, y)) ? 0 : 1;
+  return total ? double(count) / double(total) : 0;
+}
+
+// Fraction of dark pixels (the ImGui panels' background) in a region.
+double dark(const render::Image& image, int x0, int y0, int x1, int y1) {
+  size_t count = 0, total = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x, ++total) {
+      const uint8_t* p = image.pixel(x, y);
+      count += (p[0] + p[1] + p[2]) < 3 * 70 ? 1 : 0;
+    }
+  return total ? double(count) / double(total) : 0;
+}
+
+render::Image load_png(const fs::path& path) {
+  render::Image image;
+  const Status s = render::read_png(path.string(), &image);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return image;
+}
+
+TEST(ViewerWindow, ScriptedRun) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_scripted_run";
+  fs::remove_all(dir);
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 960x640 " +
+                          "--script '" + kSource + "/tests/viewer/scripted_run.script'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  // Without the UI, at the asked size: the model on a white background.
+  const render::Image input = load_png(dir / "input.png");
+  const render::Image level = load_png(dir / "level.png");
+  for (const render::Image* image : {&input, &level}) {
+    EXPECT_EQ(image->width, 320);
+    EXPECT_EQ(image->height, 240);
+    const double covered = non_background(*image, 0, 0, image->width, image->height);
+    EXPECT_GT(covered, 0.15);
+    EXPECT_LT(covered, 0.9);
+  }
+  // The simplified level looks different from the input.
+  const render::ImageDifference d = render::compare_images(input, level, 24, nullptr);
+  EXPECT_GT(d.differing_pixels, 320u * 240u / 50u);
+
+  // With the UI, at the window size: the panel on the left is dark, the statistics
+  // window too, and the model is drawn in the rest.
+  const render::Image ui = load_png(dir / "cut_ui.png");
+  EXPECT_EQ(ui.width, 960);
+  EXPECT_EQ(ui.height, 640);
+  if (ui.width == 960 && ui.height == 640) {
+    EXPECT_GT(dark(ui, 20, 60, 360, 600), 0.6) << "the side panel is missing";
+    EXPECT_GT(non_background(ui, 400, 0, 960, 640), 0.1) << "the model is missing";
+    EXPECT_GT(non_background(ui, 400, 0, 960, 640), 0.1) << "the model is missing";
+  }
+
+  // Orbiting and zooming in moved the camera: other pixels, more of them covered.
+  const render::Image cut = load_png(dir / "cut.png");
+  const render::Image orbit = load_png(dir / "orbit.png");
+  EXPECT_GT(render::compare_images(cut, orbit, 24, nullptr).differing_pixels, 320u * 240u / 20u);
+  EXPECT_GT(non_background(orbit, 0, 0, 320, 240), non_background(cut, 0, 0, 320, 240));
+
+  // The saved levels: the one nearest 20000 elements, and the coarsest.
+  TetMesh input_mesh;
+  ASSERT_TRUE(read_mesh(kSource + "/assets/motor.mesh", &input_mesh).ok());
+  SimplifyParams params;  // as the script's thresholds line
+  params.sizing.uniform = 25;
+  params.min_stretch = 0.15;
+  params.max_valence = 25;
+  params.tolerance = 0.05;
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(input_mesh, params, &result).ok());
+  Lod lod(result.base, &result.history);
+  const size_t expected = lod.tet_count_at(lod.step_for_elements(20000));
+  ASSERT_LT(expected, result.base.tet_count());  // the scrub really moved
+
+  TetMesh saved, coarsest;
+  const Status s1 = read_mesh((dir / "level.mesh").string(), &saved);
+  ASSERT_TRUE(s1.ok()) << s1.message();
+  EXPECT_EQ(saved.tet_count(), expected);
+  const Status s2 = read_mesh((dir / "coarsest.vtu").string(), &coarsest);
+  ASSERT_TRUE(s2.ok()) << s2.message();
+  EXPECT_EQ(coarsest.tet_count(), result.output.tet_count());
+}
+
+// The same view reached in another order (cut and colour set before simplifying, so
+// the surface is built with the filter by the worker instead of rebuilt after a
+// filter change) gives the same pixels.
+TEST(ViewerWindow, OrderOfActionsDoesNotMatter) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_order";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "order.script")
+      << "cut z=0\ncolor material\nview iso\n"
+         "thresholds size=25 stretch=0.15 valence=25 tolerance=0.05 subdivide=1\n"
+         "simplify\nscrub elements=20000\nscreenshot cut_first.png width=320 height=240\nquit\n";
+  const ViewerRun run = run_viewer(dir, "'" + kSource +
+                                            "/assets/motor.mesh' --hide 1 --size 960x640 "
+                                            "--script order.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const fs::path other = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_scripted_run" / "cut.png";
+  if (!fs::exists(other)) GTEST_SKIP() << "needs ViewerWindow.ScriptedRun first";
+  const render::ImageDifference d =
+      render::compare_images(load_png(other), load_png(dir / "cut_first.png"), 0, nullptr);
+  EXPECT_TRUE(d.same_size);
+  EXPECT_EQ(d.differing_pixels, 0u);
+}
+
+// Simplifying again with other thresholds starts from the loaded input, not from
+// the result on screen.
+TEST(ViewerWindow, SimplifyingAgainStartsFromTheInput) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_resimplify";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "again.script")
+      << "thresholds size=25 stretch=0.15 valence=25 tolerance=0.05\nsimplify\n"
+         "thresholds size=40\nsimplify\nsave again.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script again.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  TetMesh input;
+  ASSERT_TRUE(read_mesh(kSource + "/assets/motor.mesh", &input).ok());
+  SimplifyParams first;
+  first.sizing.uniform = 25;
+  first.min_stretch = 0.15;
+  first.max_valence = 25;
+  first.tolerance = 0.05;
+  SimplifyParams second = first;
+  second.sizing.uniform = 40;
+  SimplifyResult from_input, from_first, chained;
+  ASSERT_TRUE(simplify(input, second, &from_input).ok());
+  ASSERT_TRUE(simplify(input, first, &from_first).ok());
+  ASSERT_TRUE(simplify(from_first.output, second, &chained).ok());
+  ASSERT_NE(from_input.output.tet_count(), chained.output.tet_count());  // tells them apart
+
+  TetMesh saved;
+  ASSERT_TRUE(read_mesh((dir / "again.mesh").string(), &saved).ok());
+  EXPECT_EQ(saved.tet_count(), from_input.output.tet_count());
+}
+
+TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_save";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "save.script") << "save level.mesh\nsave /nonexistent-dir/level.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script save.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("save.script:2: "), std::string::npos) << run.output;
+  TetMesh saved, input;
+  ASSERT_TRUE(read_mesh((dir / "level.mesh").string(), &saved).ok());
+  ASSERT_TRUE(read_mesh(kSource + "/assets/box2.mesh", &input).ok());
+  EXPECT_EQ(saved.tet_count(), input.tet_count());  // no simplification: the input itself
+}
+
+// As for a user: a file that fails to load shows its error in the panel (red text)
+// and the mesh on screen stays as it was.
+TEST(ViewerWindow, FailedLoadShowsTheErrorAndKeepsTheMesh) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_load_ui";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
+  std::ofstream(dir / "load.script") << "screenshot before.png width=200 height=200\n"
+                                        "screenshot before_ui.png ui=1\n"
+                                        "open bad.mesh may-fail\n"
+                                        "screenshot after.png width=200 height=200\n"
+                                        "screenshot after_ui.png ui=1\n"
+                                        "quit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 800x600 --script load.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const render::ImageDifference same =
+      render::compare_images(load_png(dir / "before.png"), load_png(dir / "after.png"), 0, nullptr);
+  EXPECT_EQ(same.differing_pixels, 0u) << "the failed load changed the displayed mesh";
+  const auto reddish = [](const render::Image& image) {
+    size_t count = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < std::min(image.width, 390); ++x) {
+        const uint8_t* p = image.pixel(x, y);
+        count += (p[0] > 150 && p[1] < 120 && p[2] < 120) ? 1 : 0;
+      }
+    return count;
+  };
+  const render::Image before_ui = load_png(dir / "before_ui.png");
+  const render::Image after_ui = load_png(dir / "after_ui.png");
+  EXPECT_GT(reddish(after_ui), reddish(before_ui) + 50) << "no error text in the panel";
+}
+
+TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_load";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
+  std::ofstream(dir / "load.script") << "open bad.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script load.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("load.script:1: bad.mesh"), std::string::npos) << run.output;
+}
+
+// A long simplification, cancelled from the script: the UI keeps drawing while it
+// runs (a screenshot with its progress bar), the cancelled run leaves the display as
+// it was, and quitting while another run is under way cancels and joins the worker.
+TEST(ViewerWindow, CancelAndQuitDuringARun) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_cancel";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "cancel.script") << "screenshot before.png width=320 height=240\n"
+                                          "thresholds size=5 tolerance=0.05\n"
+                                          "simplify wait=0\n"
+                                          "wait frames=10\n"
+                                          "screenshot running_ui.png ui=1\n"
+                                          "cancel\n"
+                                          "screenshot after.png width=320 height=240\n"
+                                          "simplify wait=0\n"
+                                          "wait frames=5\n"
+                                          "quit\n";
+  const auto start = std::chrono::steady_clock::now();
+  const ViewerRun run = run_viewer(dir, "'" + kSource +
+                                            "/assets/motor.mesh' --hide 1 --size 960x640 "
+                                            "--script cancel.script");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_LT(seconds, 60);
+  const render::Image before = load_png(dir / "before.png");
+  const render::Image after = load_png(dir / "after.png");
+  const render::ImageDifference d = render::compare_images(before, after, 0, nullptr);
+  EXPECT_TRUE(d.same_size);
+  EXPECT_EQ(d.differing_pixels, 0u) << "the cancelled run changed the display";
+  const render::Image running = load_png(dir / "running_ui.png");
+  EXPECT_EQ(running.width, 960);
+  EXPECT_EQ(running.height, 640);
+}
+
+}  // namespace
+}  // namespace tetlod

@@ -1,0 +1,411 @@
+#include "ui/viewer_ui.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+
+namespace tetlod::ui {
+namespace {
+
+constexpr float kPanelWidth = 380;   // the side panel
+constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
+constexpr float kMargin = 6;
+
+void copy_path(const std::string& from, char* to, size_t capacity) {
+  std::snprintf(to, capacity, "%s", from.c_str());
+}
+
+void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Command>* commands) {
+  ImGui::TextWrapped("Mesh: %s", status.mesh_name.empty() ? "(none)" : status.mesh_name.c_str());
+  if (!status.mesh_name.empty())
+    ImGui::Text("%zu tets, %zu vertices", status.input_tets, status.input_vertices);
+  ImGui::SetNextItemWidth(-70);
+  const bool enter = ImGui::InputText("##path", panel->open_path, sizeof(panel->open_path),
+                                      ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if ((ImGui::Button("Open") || enter) && panel->open_path[0] != '\0')
+    commands->push_back({CommandKind::kOpen, panel->open_path});
+  if (!panel->recent_files.empty() && ImGui::BeginCombo("Recent", "choose a recent file")) {
+    for (const std::string& path : panel->recent_files) {
+      if (ImGui::Selectable(path.c_str())) {
+        copy_path(path, panel->open_path, sizeof(panel->open_path));
+        commands->push_back({CommandKind::kOpen, path});
+      }
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::TextDisabled("(or drop a mesh file onto the window)");
+  if (!status.load_error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+    ImGui::TextWrapped("Error: %s", status.load_error.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!status.message.empty()) ImGui::TextWrapped("%s", status.message.c_str());
+}
+
+void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Command>* commands) {
+  int mode = view->color_mode == render::ColorMode::kStretch ? 0 : 1;
+  ImGui::Text("Colour by");
+  ImGui::SameLine();
+  ImGui::RadioButton("stretch", &mode, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("material", &mode, 1);
+  view->color_mode = mode == 0 ? render::ColorMode::kStretch : render::ColorMode::kMaterial;
+  if (view->color_mode == render::ColorMode::kStretch) {
+    int map = view->color_map == render::ColorMap::kViridis ? 0 : 1;
+    ImGui::Combo("Colour map", &map, "viridis\0turbo\0");
+    view->color_map = map == 0 ? render::ColorMap::kViridis : render::ColorMap::kTurbo;
+    ImGui::DragFloatRange2("Range", &view->range_min, &view->range_max, 0.005f, 0.0f, 1.0f, "%.3f",
+                           "%.3f", ImGuiSliderFlags_AlwaysClamp);
+  }
+  ImGui::Checkbox("Wireframe", &view->wireframe);
+  ImGui::SameLine();
+  ImGui::Checkbox("Legend", &view->legend);
+
+  ImGui::Checkbox("Cut", &view->cut);
+  if (view->cut) {
+    int axis = static_cast<int>(view->cut_axis);
+    ImGui::SameLine();
+    ImGui::RadioButton("x", &axis, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("y", &axis, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("z", &axis, 2);
+    ImGui::SameLine();
+    ImGui::Checkbox("flip", &view->cut_flip);
+    view->cut_axis = static_cast<CutAxis>(axis);
+    const int a = static_cast<int>(view->cut_axis);
+    ImGui::SliderFloat("Offset", &view->cut_offset, status.bounds_min[a], status.bounds_max[a],
+                       "%.4g");
+  }
+  ImGui::Checkbox("Highlight stretch below", &view->highlight);
+  if (view->highlight) ImGui::SliderFloat("##below", &view->highlight_below, 0.0f, 1.0f, "%.3f");
+
+  if (!status.materials.empty()) {
+    ImGui::Text("Materials shown:");
+    for (const int32_t m : status.materials) {
+      const bool was_hidden =
+          std::binary_search(view->hidden_materials.begin(), view->hidden_materials.end(), m);
+      bool shown = !was_hidden;
+      const render::Rgb c = render::material_rgb(m);
+      ImGui::SameLine();
+      ImGui::PushStyleColor(ImGuiCol_CheckMark, ImVec4(c[0], c[1], c[2], 1));
+      char label[32];
+      std::snprintf(label, sizeof(label), "%d", m);
+      ImGui::Checkbox(label, &shown);
+      ImGui::PopStyleColor();
+      if (shown == was_hidden) {
+        auto& hidden = view->hidden_materials;
+        if (shown)
+          hidden.erase(std::find(hidden.begin(), hidden.end(), m));
+        else
+          hidden.insert(std::lower_bound(hidden.begin(), hidden.end(), m), m);
+      }
+    }
+  }
+  ImGui::Text("Camera:");
+  const char* names[] = {"Fit", "Iso", "X", "Y", "Z"};
+  for (int i = 0; i < 5; ++i) {
+    ImGui::SameLine();
+    if (ImGui::Button(names[i])) {
+      if (i == 0)
+        commands->push_back({CommandKind::kFit});
+      else
+        commands->push_back({CommandKind::kAxisView, "", i - 1});
+    }
+  }
+  ImGui::TextDisabled("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
+}
+
+void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
+                        std::vector<Command>* commands) {
+  ImGui::TextDisabled("ctrl-click a slider to type a value");
+  ImGui::SliderFloat("tolerance (TL)", &t->tolerance, 0.0f, 5.0f, "%.4g",
+                     ImGuiSliderFlags_Logarithmic);
+  if (t->sizing_mode != SizingMode::kPerMaterial)
+    ImGui::SliderFloat(t->sizing_mode == SizingMode::kRegion ? "size cap (SZ)" : "size (SZ)",
+                       &t->size, 0.1f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("stretch (ST)", &t->stretch, 0.01f, 0.9f, "%.3f");
+  ImGui::SliderInt("valence (VL)", &t->valence, 4, 200);
+  int mode = static_cast<int>(t->sizing_mode);
+  ImGui::Combo("Sizing", &mode, "uniform\0region\0per material\0");
+  t->sizing_mode = static_cast<SizingMode>(mode);
+  if (t->sizing_mode == SizingMode::kRegion) {
+    char buffer[512];
+    copy_path(t->region_spec, buffer, sizeof(buffer));
+    if (ImGui::InputText("rules", buffer, sizeof(buffer))) t->region_spec = buffer;
+    ImGui::TextDisabled("radial:cx,cy,cz,s0,g; axis:...; box:x0,y0,z0,x1,y1,z1,s");
+  } else if (t->sizing_mode == SizingMode::kPerMaterial) {
+    for (const int32_t m : status.materials) {
+      auto it = std::find_if(t->material_sizes.begin(), t->material_sizes.end(),
+                             [m](const auto& p) { return p.first == m; });
+      if (it == t->material_sizes.end()) {
+        t->material_sizes.push_back({m, t->size});
+        std::sort(t->material_sizes.begin(), t->material_sizes.end());
+        it = std::find_if(t->material_sizes.begin(), t->material_sizes.end(),
+                          [m](const auto& p) { return p.first == m; });
+      }
+      char label[48];
+      std::snprintf(label, sizeof(label), "size of material %d", m);
+      ImGui::SliderFloat(label, &it->second, 0.1f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
+    }
+  }
+  ImGui::Checkbox("Subdivide first", &t->subdivide);
+
+  if (!status.running) {
+    if (ImGui::Button("Simplify") && !status.mesh_name.empty())
+      commands->push_back({CommandKind::kSimplify});
+  } else {
+    if (ImGui::Button("Cancel")) commands->push_back({CommandKind::kCancel});
+    ImGui::SameLine();
+    char overlay[96];
+    std::snprintf(overlay, sizeof(overlay), "%s %.0f%%", status.phase.c_str(),
+                  100 * status.phase_fraction);
+    ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
+    ImGui::Text("%zu collapses, %.0f /s, %.1f s", status.collapses, status.collapses_per_second,
+                status.elapsed_seconds);
+  }
+  if (status.has_result) {
+    ImGui::Text("Last run: %.2f s, %zu splits%s", status.simplify_seconds, status.splits,
+                status.result_cancelled ? " (cancelled)" : "");
+  }
+}
+
+void lod_section(const ViewerStatus& status, PanelState* panel, std::vector<Command>* commands) {
+  if (status.step_count == 0) {
+    ImGui::TextDisabled("Simplify to get a collapse history.");
+    ImGui::Text("Elements: %zu", status.elements);
+    return;
+  }
+  const long long last = static_cast<long long>(status.step_count);
+  int step = static_cast<int>(panel->target_step);
+  char format[64];
+  std::snprintf(format, sizeof(format), "step %%d: %zu elements", status.elements_at_target);
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::SliderInt("##step", &step, 0, static_cast<int>(last), format,
+                       ImGuiSliderFlags_AlwaysClamp))
+    panel->target_step = step;
+  if (ImGui::ArrowButton("##back", ImGuiDir_Left)) panel->target_step -= 1;
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##forward", ImGuiDir_Right)) panel->target_step += 1;
+  ImGui::SameLine();
+  if (ImGui::Button("Finest")) panel->target_step = 0;
+  ImGui::SameLine();
+  if (ImGui::Button("Coarsest")) panel->target_step = last;
+  panel->target_step = std::clamp(panel->target_step, 0LL, last);
+  ImGui::SetNextItemWidth(140);
+  ImGui::InputInt("##elements", &panel->jump_elements, 100, 1000);
+  ImGui::SameLine();
+  if (ImGui::Button("Jump to #elements"))
+    commands->push_back({CommandKind::kJumpElements, "", panel->jump_elements});
+  ImGui::Text("Shown: step %zu of %zu, %zu elements (%zu at the end)", status.step,
+              status.step_count, status.elements, status.elements_at_end);
+}
+
+void output_section(PanelState* panel, std::vector<Command>* commands) {
+  ImGui::SetNextItemWidth(-110);
+  ImGui::InputText("##save", panel->save_path, sizeof(panel->save_path));
+  ImGui::SameLine();
+  if (ImGui::Button("Save level")) commands->push_back({CommandKind::kSave, panel->save_path});
+  ImGui::TextDisabled(".mesh .msh .node .vtk .vtu");
+  ImGui::SetNextItemWidth(-110);
+  ImGui::InputText("##shot", panel->screenshot_path, sizeof(panel->screenshot_path));
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot")) {
+    Command c{CommandKind::kScreenshot, panel->screenshot_path};
+    c.width = std::clamp(panel->screenshot_size[0], 0, 8192);
+    c.height = std::clamp(panel->screenshot_size[1], 0, 8192);
+    c.with_ui = panel->screenshot_ui;
+    commands->push_back(c);
+  }
+  ImGui::Checkbox("with UI (window size)", &panel->screenshot_ui);
+  if (!panel->screenshot_ui) {
+    ImGui::SetNextItemWidth(160);
+    ImGui::InputInt2("size (0: view)", panel->screenshot_size);
+  }
+}
+
+void row_cells(const PropertyRow& r) {
+  ImGui::TableNextColumn();
+  ImGui::Text("%zu", r.nodes);
+  ImGui::TableNextColumn();
+  ImGui::Text("%zu", r.edges);
+  ImGui::TableNextColumn();
+  ImGui::Text("%zu", r.elements);
+  ImGui::TableNextColumn();
+  ImGui::Text("%.3f", r.average_stretch);
+  ImGui::TableNextColumn();
+  ImGui::Text("%.3f", r.min_stretch);
+  ImGui::TableNextColumn();
+  ImGui::Text("%u", r.max_valence);
+  ImGui::TableNextColumn();
+  ImGui::Text("%.3g", r.max_size);
+  ImGui::TableNextColumn();
+  ImGui::Text("%.4g", r.volume);
+}
+
+void stats_window(const ViewerStatus& status, PanelState* panel) {
+  if (!panel->show_stats) return;
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  const float x = viewport->WorkPos.x + kPanelWidth + 2 * kMargin;
+  ImGui::SetNextWindowPos(
+      ImVec2(x, viewport->WorkPos.y + viewport->WorkSize.y - kStatsHeight - kMargin),
+      ImGuiCond_Always);
+  ImGui::SetNextWindowSize(
+      ImVec2(std::max(200.0f, viewport->WorkSize.x - kPanelWidth - 3 * kMargin), kStatsHeight),
+      ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  const ImGuiWindowFlags window_flags =
+      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
+  if (!ImGui::Begin("Statistics of the displayed level", &panel->show_stats, window_flags)) {
+    ImGui::End();
+    return;
+  }
+  if (!status.has_stats) {
+    ImGui::TextDisabled("computing...");
+    ImGui::End();
+    return;
+  }
+  constexpr float kChartWidth = 250;
+  const float table_width = std::max(200.0f, ImGui::GetContentRegionAvail().x - kChartWidth - 8);
+  ImGui::BeginGroup();
+  ImGui::Text("Table I at step %zu%s", status.stats_step,
+              status.stats_step == status.step ? "" : " (updating...)");
+  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                                ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY |
+                                ImGuiTableFlags_SizingFixedFit;
+  if (ImGui::BeginTable("table1", 9, flags,
+                        ImVec2(table_width, ImGui::GetContentRegionAvail().y - 24))) {
+    ImGui::TableSetupScrollFreeze(0, 1);
+    for (const char* h :
+         {"", "nodes", "edges", "elements", "avg str", "min str", "max val", "max size", "volume"})
+      ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::Text("whole");
+    row_cells(status.stats.whole);
+    for (const MaterialRow& m : status.stats.per_material) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("mat %d", m.material);
+      row_cells(m.row);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::EndGroup();
+  ImGui::SameLine();
+  std::vector<float> bins(status.stats.stretch_histogram.begin(),
+                          status.stats.stretch_histogram.end());
+  float top = 0;
+  for (const float b : bins) top = std::max(top, b);
+  ImGui::BeginGroup();
+  ImGui::Text("Stretch histogram (0 .. 1)");
+  ImGui::PlotHistogram("##hist", bins.data(), static_cast<int>(bins.size()), 0, nullptr, 0,
+                       top * 1.1f, ImVec2(kChartWidth, ImGui::GetContentRegionAvail().y - 46));
+  ImGui::TextDisabled("0.0            0.5            1.0");
+  ImGui::EndGroup();
+  if (status.has_result) {
+    const RejectionCounts& r = status.rejections;
+    ImGui::TextWrapped("Rejections (last run): tolerance %" PRIu64 ", stretch %" PRIu64
+                       ", size %" PRIu64 ", valence %" PRIu64 ", topology %" PRIu64,
+                       r.tolerance, r.stretch, r.size, r.valence, r.topology);
+  }
+  ImGui::End();
+}
+
+}  // namespace
+
+bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
+                        std::string* error) {
+  SimplifyParams p;
+  p.tolerance = settings.tolerance;
+  p.min_stretch = settings.stretch;
+  p.max_valence = static_cast<uint32_t>(std::max(0, settings.valence));
+  p.subdivide = settings.subdivide;
+  if (!(settings.size > 0)) {
+    *error = "size must be > 0";
+    return false;
+  }
+  // Uniform: the size everywhere; region: the cap besides the rules; per material:
+  // only the materials' sizes.
+  if (settings.sizing_mode != SizingMode::kPerMaterial) p.sizing.uniform = settings.size;
+  if (settings.sizing_mode == SizingMode::kRegion) {
+    const Status s = parse_size_field(settings.region_spec, &p.sizing);
+    if (!s) {
+      *error = s.message();
+      return false;
+    }
+  } else if (settings.sizing_mode == SizingMode::kPerMaterial) {
+    for (const auto& [material, size] : settings.material_sizes) {
+      if (!(size > 0)) {
+        *error = "size of material " + std::to_string(material) + " must be > 0";
+        return false;
+      }
+      p.sizing.material_sizes.push_back({material, size});
+    }
+    std::sort(p.sizing.material_sizes.begin(), p.sizing.material_sizes.end());
+  }
+  const Status s = check_params(p);
+  if (!s) {
+    *error = s.message();
+    return false;
+  }
+  *params = std::move(p);
+  return true;
+}
+
+ViewRect scene_rect(float display_width, float display_height, bool show_stats) {
+  ViewRect r;
+  r.x = kPanelWidth + 2 * kMargin;
+  r.y = 0;
+  r.width = std::max(1.0f, display_width - r.x);
+  r.height = std::max(1.0f, display_height - (show_stats ? kStatsHeight + 2 * kMargin : 0.0f));
+  return r;
+}
+
+void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
+                        ThresholdSettings* thresholds, PanelState* panel,
+                        std::vector<Command>* commands) {
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + kMargin, viewport->WorkPos.y + kMargin),
+                          ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, viewport->WorkSize.y - 2 * kMargin),
+                           ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.95f);
+  ImGui::Begin("TetLOD", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+  ImGui::Text("%.1f FPS, %.2f ms/frame", status.fps, status.frame_ms);
+  if (status.scene_scale < 1) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("(3D view at %.0f%%)", 100 * status.scene_scale);
+  }
+  ImGui::Text("%zu visible tets, %zu triangles", status.visible_tets, status.drawn_triangles);
+  ImGui::Checkbox("Statistics window", &panel->show_stats);
+  if (status.running) {  // always in sight, whatever the panel's scroll position
+    if (ImGui::Button("Cancel##top")) commands->push_back({CommandKind::kCancel});
+    ImGui::SameLine();
+    char overlay[96];
+    std::snprintf(overlay, sizeof(overlay), "simplifying: %s %.0f%%, %zu collapses",
+                  status.phase.c_str(), 100 * status.phase_fraction, status.collapses);
+    ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
+  }
+  if (status.loading)
+    ImGui::TextWrapped("Loading %s: %s, %.1f s", status.loading_path.c_str(), status.phase.c_str(),
+                       status.elapsed_seconds);
+  ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
+  if (ImGui::CollapsingHeader("File")) file_section(status, panel, commands);
+  ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
+  if (ImGui::CollapsingHeader("View")) view_section(status, view, commands);
+  ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
+  if (ImGui::CollapsingHeader("Thresholds")) thresholds_section(status, thresholds, commands);
+  ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
+  if (ImGui::CollapsingHeader("Level of detail")) lod_section(status, panel, commands);
+  if (ImGui::CollapsingHeader("Output")) output_section(panel, commands);
+  ImGui::End();
+  stats_window(status, panel);
+}
+
+}  // namespace tetlod::ui

@@ -1,0 +1,147 @@
+// The viewer's Dear ImGui panels (issue 5). Panels read a ViewerStatus the app fills
+// in each frame, edit plain settings structs, and emit Commands; they make no GL
+// calls and own no model state, so UI state and model state never need syncing
+// (the pattern of imgui's example_glfw_opengl3).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/mesh_stats.h"
+#include "core/simplify.h"
+#include "render/colormap.h"
+#include "render/renderer.h"
+
+namespace tetlod::ui {
+
+enum class CutAxis { kX = 0, kY = 1, kZ = 2 };
+
+// How the displayed level is shown. The app turns it into a render::SurfaceFilter
+// (which needs a surface rebuild when it changes) and render::DrawSettings (which
+// does not).
+struct ViewSettings {
+  render::ColorMode color_mode = render::ColorMode::kStretch;
+  render::ColorMap color_map = render::ColorMap::kViridis;
+  float range_min = 0, range_max = 1;  // stretch at the ends of the colour map
+  bool wireframe = false;
+  bool legend = true;
+  bool cut = false;
+  CutAxis cut_axis = CutAxis::kX;
+  float cut_offset = 0;                   // position along the axis, model units
+  bool cut_flip = false;                  // keep the other side
+  std::vector<int32_t> hidden_materials;  // sorted
+  bool highlight = false;
+  float highlight_below = 0.2f;  // tets with stretch below this are highlighted
+};
+
+enum class SizingMode { kUniform = 0, kRegion = 1, kPerMaterial = 2 };
+
+// The four thresholds of the paper (tau_TL, tau_SZ, tau_ST, tau_VL) and the sizing.
+struct ThresholdSettings {
+  float tolerance = 0.05f;  // tau_TL, model units
+  float size = 10.0f;       // tau_SZ, uniform mode (and the cap in the other modes)
+  float stretch = 0.15f;    // tau_ST
+  int valence = 25;         // tau_VL
+  SizingMode sizing_mode = SizingMode::kUniform;
+  std::string region_spec;  // kRegion: the syntax of core/sizing.h parse_size_field()
+  std::vector<std::pair<int32_t, float>> material_sizes;  // kPerMaterial
+  bool subdivide = true;
+};
+
+// Turns the settings into core parameters. False with a message naming the bad
+// value (a region spec that does not parse, a size <= 0, ...).
+bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
+                        std::string* error);
+
+enum class CommandKind {
+  kOpen,          // path
+  kSimplify,      // with the current ThresholdSettings
+  kCancel,        // the running simplification
+  kJumpElements,  // value: target number of elements
+  kFit,           // fit the camera to the model
+  kAxisView,      // value: 0 iso, 1 x, 2 y, 3 z
+  kSave,          // path: the displayed level
+  kScreenshot,    // path, width, height (0: window size), with_ui
+};
+
+struct Command {
+  Command() = default;
+  Command(CommandKind kind_in, std::string path_in = {}, long long value_in = 0)
+      : kind(kind_in), path(std::move(path_in)), value(value_in) {}
+
+  CommandKind kind = CommandKind::kFit;
+  std::string path;
+  long long value = 0;
+  int width = 0, height = 0;
+  bool with_ui = false;
+};
+
+// Editable state of the panels themselves (text fields, the scrubber target).
+struct PanelState {
+  char open_path[1024] = "";
+  std::vector<std::string> recent_files;  // most recent first
+  long long target_step = 0;              // the LOD scrubber; the app follows it
+  int jump_elements = 0;
+  char save_path[1024] = "level.mesh";
+  char screenshot_path[1024] = "screenshot.png";
+  int screenshot_size[2] = {0, 0};  // width, height; 0: the 3D view's size
+  bool screenshot_ui = false;
+  bool show_stats = true;
+};
+
+// What the panels show, filled in by the app each frame.
+struct ViewerStatus {
+  std::string mesh_name;  // path of the loaded mesh ("" if none)
+  size_t input_tets = 0, input_vertices = 0;
+  std::vector<int32_t> materials;                              // ids present in the input
+  float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {1, 1, 1};  // of the input
+  std::string load_error;  // last failed load or action, shown until replaced
+  std::string message;     // last success message (saved, screenshot, ...)
+  bool loading = false;
+  std::string loading_path;
+
+  // Simplification: running state and the last result.
+  bool running = false;
+  std::string phase;
+  double phase_fraction = 0;
+  size_t collapses = 0;
+  double collapses_per_second = 0;
+  double elapsed_seconds = 0;
+  bool has_result = false;
+  bool result_cancelled = false;
+  RejectionCounts rejections;
+  size_t splits = 0;
+  double simplify_seconds = 0;
+
+  // The displayed level.
+  size_t step = 0, step_count = 0;
+  size_t elements = 0;            // tets alive at `step`
+  size_t elements_at_target = 0;  // at the scrubber's target
+  size_t elements_at_end = 0;     // after the last collapse
+  size_t visible_tets = 0, drawn_triangles = 0;
+
+  // Statistics of a level (possibly an older one while a new one is computed).
+  bool has_stats = false;
+  size_t stats_step = 0;
+  MeshStats stats;
+
+  // Frame time, smoothed.
+  double fps = 0, frame_ms = 0;
+  double scene_scale = 1;  // resolution factor of the 3D view this frame
+};
+
+// The part of the window left for the 3D view beside the side panel and above the
+// statistics strip, in ImGui's coordinates (pixels from the top left).
+struct ViewRect {
+  float x = 0, y = 0, width = 0, height = 0;
+};
+ViewRect scene_rect(float display_width, float display_height, bool show_stats);
+
+// Draws every panel. `commands` receives what the user asked for this frame.
+void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
+                        ThresholdSettings* thresholds, PanelState* panel,
+                        std::vector<Command>* commands);
+
+}  // namespace tetlod::ui
