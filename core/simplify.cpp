@@ -16,6 +16,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "core/adjacency.h"
 #include "core/classify.h"
@@ -24,13 +25,23 @@
 
 namespace tetlod {
 
+namespace {
+
+// A threshold as the user would write it (std::to_string prints 1e-300 as 0.000000).
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+}  // namespace
+
 Status check_params(const SimplifyParams& p) {
   if (!(std::isfinite(p.tolerance) && p.tolerance >= 0)) {
-    return Status::error("tolerance " + std::to_string(p.tolerance) +
-                         " must be a finite length >= 0");
+    return Status::error("tolerance " + number(p.tolerance) + " must be a finite length >= 0");
   }
   if (!(std::isfinite(p.min_stretch) && p.min_stretch > 0 && p.min_stretch < 1)) {
-    return Status::error("stretch " + std::to_string(p.min_stretch) +
+    return Status::error("stretch " + number(p.min_stretch) +
                          " must lie strictly between 0 and 1 (1 is a regular tet)");
   }
   if (p.max_valence < 4) {
@@ -385,9 +396,11 @@ class Engine {
       if (ratio > 1) predicted += ratio * ratio * ratio;
     }
     if (predicted + tet_.size() > static_cast<double>(kMaxTets)) {
-      return Status::error("size " + std::to_string(params_.sizing.smallest_size()) +
-                           " would subdivide the mesh into about " +
-                           std::to_string(static_cast<long long>(predicted)) + " tets (limit " +
+      const std::string count = predicted < 1e15
+                                    ? "about " + std::to_string(static_cast<long long>(predicted))
+                                    : "more than 10^15";
+      return Status::error("size " + number(params_.sizing.smallest_size()) +
+                           " would subdivide the mesh into " + count + " tets (limit " +
                            std::to_string(kMaxTets) + "); choose a larger size or --no-subdivide");
     }
     std::vector<uint32_t> valence_now(pos_.size());

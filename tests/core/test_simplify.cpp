@@ -59,6 +59,16 @@ TEST(Simplify, RejectsAbsurdThresholds) {
   p = loose_params(1e-6);
   p.subdivide = true;
   EXPECT_NE(simplify(mesh, p, &r).message().find("subdivide"), std::string::npos);
+  // Values are printed as given, and an astronomically small size does not overflow the
+  // predicted count.
+  p = loose_params(1e-300);
+  p.subdivide = true;
+  const std::string message = simplify(mesh, p, &r).message();
+  EXPECT_NE(message.find("size 1e-300 "), std::string::npos) << message;
+  EXPECT_NE(message.find("more than 10^15 tets"), std::string::npos) << message;
+  p = loose_params(1);
+  p.tolerance = -1e-9;
+  EXPECT_NE(simplify(mesh, p, &r).message().find("tolerance -1e-09 "), std::string::npos);
 }
 
 TEST(Simplify, CoarsensTheTwoMaterialBoxKeepingItsShape) {
