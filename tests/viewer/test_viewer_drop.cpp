@@ -5,15 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <thread>
 
 #include "core/io/mesh_io.h"
-#include "render/image.h"
+#include "viewer/background_viewer.h"
 
 // Last, and their macros that clash with C++ names removed.
 #include <X11/Xatom.h>
@@ -25,19 +22,9 @@
 namespace tetlod {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
 constexpr ::Window kNoWindow = 0;
-
-bool wait_for_file(const fs::path& path, std::chrono::seconds limit) {
-  const auto end = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < end) {
-    if (fs::exists(path)) return true;
-    std::this_thread::sleep_for(50ms);
-  }
-  return false;
-}
 
 ::Window find_window(Display* display, ::Window window, const char* title) {
   char* name = nullptr;
@@ -135,36 +122,21 @@ bool drop_files(const std::string& title, const std::string& uri_list) {
 }
 
 TEST(ViewerDrop, DroppedFileReplacesTheMesh) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_drop";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / "s.script") << "screenshot a.png width=200 height=200\n"
-                                     "wait seconds=3\n"
-                                     "screenshot b.png width=200 height=200\n"
-                                     "save b.mesh\n"
-                                     "quit\n";
   const std::string source = TETLOD_SOURCE_DIR;
-  const std::string command = "cd '" + dir.string() + "' && (" + TETLOD_BINARY + " view '" +
-                              source +
-                              "/assets/box2.mesh' --size 800x600 --script s.script "
-                              ">log.txt 2>&1; echo $? >rc.txt) &";
-  ASSERT_EQ(std::system(command.c_str()), 0);
-  ASSERT_TRUE(wait_for_file(dir / "a.png", std::chrono::seconds(60)));
+  test::BackgroundViewer viewer;
+  ASSERT_TRUE(viewer.start("viewer_drop", source + "/assets/box2.mesh",
+                           "screenshot a.png width=200 height=200\n"
+                           "wait seconds=3\n"
+                           "screenshot b.png width=200 height=200\n"
+                           "save b.mesh\n"
+                           "quit\n"));
+  ASSERT_TRUE(viewer.wait_for("a.png"));
   EXPECT_TRUE(drop_files("TetLOD", "file://" + source + "/assets/spheres.mesh\r\n"));
-  ASSERT_TRUE(wait_for_file(dir / "rc.txt", std::chrono::seconds(60)));
-  std::this_thread::sleep_for(100ms);
-  std::ifstream rc(dir / "rc.txt");
-  int exit_code = -1;
-  rc >> exit_code;
-  EXPECT_EQ(exit_code, 0);
-
-  render::Image a, b;
-  ASSERT_TRUE(render::read_png((dir / "a.png").string(), &a).ok());
-  ASSERT_TRUE(render::read_png((dir / "b.png").string(), &b).ok());
-  EXPECT_GT(render::compare_images(a, b, 8, nullptr).differing_pixels, 200u * 200u / 50u);
+  EXPECT_EQ(viewer.finish(), 0);
+  EXPECT_GT(viewer.differing_pixels("a.png", "b.png"), 200u * 200u / 50u);
   // The saved level is the dropped mesh (no simplification yet: the input itself).
   TetMesh saved, spheres;
-  ASSERT_TRUE(read_mesh((dir / "b.mesh").string(), &saved).ok());
+  ASSERT_TRUE(read_mesh((viewer.dir() / "b.mesh").string(), &saved).ok());
   ASSERT_TRUE(read_mesh(source + "/assets/spheres.mesh", &spheres).ok());
   EXPECT_EQ(saved.tet_count(), spheres.tet_count());
   EXPECT_EQ(saved.materials, spheres.materials);

@@ -6,13 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <thread>
 
-#include "render/image.h"
+#include "viewer/background_viewer.h"
 
 // Last, and their macros that clash with C++ names removed.
 #include <X11/Xlib.h>
@@ -24,17 +21,7 @@
 namespace tetlod {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-
-bool wait_for_file(const fs::path& path, std::chrono::seconds limit) {
-  const auto end = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < end) {
-    if (fs::exists(path)) return true;
-    std::this_thread::sleep_for(50ms);
-  }
-  return false;
-}
 
 void drag(Display* display, int x0, int y0, int x1, int y1) {
   XTestFakeMotionEvent(display, -1, x0, y0, CurrentTime);
@@ -56,19 +43,13 @@ void drag(Display* display, int x0, int y0, int x1, int y1) {
 // Runs the viewer on box2 in the background, drags once it has taken a.png, and
 // returns how many pixels of b.png (taken after the drag) differ from a.png.
 size_t pixels_moved_by_drag(const std::string& name, int x0, int y0, int x1, int y1) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / "s.script") << "screenshot a.png width=200 height=200\n"
-                                     "wait seconds=3\n"
-                                     "screenshot b.png width=200 height=200\n"
-                                     "quit\n";
-  const std::string command = "cd '" + dir.string() + "' && (" + TETLOD_BINARY + " view '" +
-                              TETLOD_SOURCE_DIR +
-                              "/assets/box2.mesh' --size 800x600 --script s.script "
-                              ">log.txt 2>&1; echo $? >rc.txt) &";
-  EXPECT_EQ(std::system(command.c_str()), 0);
-  EXPECT_TRUE(wait_for_file(dir / "a.png", std::chrono::seconds(60)));
+  test::BackgroundViewer viewer;
+  EXPECT_TRUE(viewer.start(name, std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh",
+                           "screenshot a.png width=200 height=200\n"
+                           "wait seconds=3\n"
+                           "screenshot b.png width=200 height=200\n"
+                           "quit\n"));
+  EXPECT_TRUE(viewer.wait_for("a.png"));
   std::this_thread::sleep_for(200ms);
   Display* display = XOpenDisplay(nullptr);
   EXPECT_NE(display, nullptr);
@@ -76,16 +57,8 @@ size_t pixels_moved_by_drag(const std::string& name, int x0, int y0, int x1, int
     drag(display, x0, y0, x1, y1);
     XCloseDisplay(display);
   }
-  EXPECT_TRUE(wait_for_file(dir / "rc.txt", std::chrono::seconds(60)));
-  std::this_thread::sleep_for(100ms);
-  std::ifstream rc(dir / "rc.txt");
-  int exit_code = -1;
-  rc >> exit_code;
-  EXPECT_EQ(exit_code, 0);
-  render::Image a, b;
-  EXPECT_TRUE(render::read_png((dir / "a.png").string(), &a).ok());
-  EXPECT_TRUE(render::read_png((dir / "b.png").string(), &b).ok());
-  return render::compare_images(a, b, 8, nullptr).differing_pixels;
+  EXPECT_EQ(viewer.finish(), 0);
+  return viewer.differing_pixels("a.png", "b.png");
 }
 
 TEST(ViewerMouse, DragOverTheViewOrbits) {
