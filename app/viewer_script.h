@@ -14,7 +14,9 @@
 //   scrub step=K | elements=N | end  move the LOD to a step / nearest level (waits)
 //   cut x|y|z=VALUE [flip] | cut off
 //   hide M | show M                  material visibility
-//   color stretch|material           range MIN MAX          colormap viridis|turbo
+//   color stretch|material|field     range MIN MAX          colormap viridis|turbo
+//                                    (field: |E| of the last solve while it matches the
+//                                    displayed level; stretch otherwise)
 //   wireframe on|off                 highlight D | highlight off
 //   view iso|x|y|z|fit
 //   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
@@ -26,6 +28,16 @@
 //                                    frames each way; prints frame times
 //   bench-frames [frames=N] [out=CSV] times the next N frames as they are (e.g. while
 //                                    a 'simplify wait=0' runs)
+//   analysis conductor=M:V[,M:V...] ground=boundary|M[,...] [eps=M:E[,M:E...]]
+//                                    set up the Analysis panel (replaces the previous
+//                                    set-up; unlisted materials: dielectric, eps 1). Only
+//                                    the syntax is checked here; a bad set-up (conductor
+//                                    = ground, eps <= 0, ...) fails at 'solve'
+//   solve [may-fail]                 solve the displayed level (and the finest level,
+//                                    once, for the difference) and wait; the solver's
+//                                    error fails the script at this line (with may-fail
+//                                    it only shows in the Analysis panel, as for a user)
+//   report-analysis PATH             write the last solve's figures as 'key value' lines
 //   quit
 //
 // Relative paths are relative to the working directory.
@@ -35,6 +47,7 @@
 #include <string>
 #include <vector>
 
+#include "core/electrostatics.h"
 #include "core/status.h"
 
 namespace tetlod::app {
@@ -67,11 +80,14 @@ struct ScriptAction {
     kWait,
     kBenchScrub,
     kBenchFrames,
+    kAnalysis,
+    kSolve,
+    kReportAnalysis,
     kQuit,
   };
   Kind kind = Kind::kQuit;
   int line = 0;
-  std::string path;     // open, screenshot, save, bench-scrub out
+  std::string path;     // open, screenshot, save, bench-scrub out, report-analysis
   std::string word;     // color, colormap, view
   long long count = 0;  // step, elements, material, frames
   double value = 0;     // cut offset, highlight, range min
@@ -84,6 +100,8 @@ struct ScriptAction {
   std::optional<long long> valence;
   std::optional<bool> subdivide;
   std::optional<std::string> material_sizes, region;
+  // analysis
+  ElectrostaticsProblem problem;
 };
 
 // Reads and checks the whole script before anything runs. Errors read
