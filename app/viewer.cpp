@@ -356,8 +356,9 @@ class Viewer {
   size_t script_index_ = 0;
   int wait_frames_ = 0;
   Clock::time_point wait_until_;
-  int pending_job_line_ = 0;  // the open/simplify line whose job must succeed
-  bool wait_for_job_ = true;  // the script waits for a running job to finish
+  int pending_job_line_ = 0;    // the open/simplify line whose job must succeed
+  bool wait_for_job_ = true;    // the script waits for a running job to finish
+  bool wait_for_solve_ = true;  // and for a running solve
   bool quit_ = false;
   int exit_code_ = kExitOk;
   struct Bench {
@@ -1047,7 +1048,10 @@ void Viewer::poll_solve() {
   };
   if (job->generation != scene_generation_) return fail("the mesh changed during the solve");
   if (!job->status) return fail(job->status.message());
-  if (job->solution.cancelled) return fail("cancelled");
+  if (job->solution.cancelled) {  // asked for: not a script error; the last result stays
+    analysis_error_ = "cancelled";
+    return;
+  }
   auto result = std::make_unique<AnalysisResult>();
   result->generation = job->generation;
   result->step = job->step;
@@ -1168,6 +1172,7 @@ void Viewer::fill_status() {
     const AnalysisResult& r = *analysis_result_;
     const ElectrostaticsSolution& sol = r.solution;
     a.stale = !field_shown();
+    a.setup_changed = !same_problem(r.problem, ui::to_electrostatics_problem(analysis_));
     a.solved_step = r.step;
     a.solved_tets = r.tets;
     a.unknowns = sol.free_count;
@@ -1228,8 +1233,8 @@ void Viewer::fail_script(int line, const std::string& message) {
 }
 
 bool Viewer::settled() const {
-  if ((job_ && wait_for_job_) || solve_job_ || save_future_.valid() || surface_future_.valid() ||
-      stats_future_.valid() || ui_capture_countdown_ >= 0)
+  if ((job_ && wait_for_job_) || (solve_job_ && wait_for_solve_) || save_future_.valid() ||
+      surface_future_.valid() || stats_future_.valid() || ui_capture_countdown_ >= 0)
     return false;
   if (!scene_) return true;
   if (scene_->lod->step() != static_cast<size_t>(panel_.target_step)) return false;
@@ -1313,9 +1318,16 @@ Status Viewer::run_action(const ScriptAction& a) {
       pending_job_line_ = a.flag ? a.line : 0;
       break;
     case Kind::kCancel:
-      if (!job_ || job_->is_load) return Status::error("no simplification is running");
-      job_->cancel = true;
-      wait_for_job_ = true;
+      if ((!job_ || job_->is_load) && !solve_job_)
+        return Status::error("no simplification or solve is running");
+      if (job_ && !job_->is_load) {
+        job_->cancel = true;
+        wait_for_job_ = true;
+      }
+      if (solve_job_) {
+        solve_job_->cancel = true;
+        wait_for_solve_ = true;
+      }
       break;
     case Kind::kScrubStep:
       panel_.target_step =
@@ -1353,15 +1365,22 @@ Status Viewer::run_action(const ScriptAction& a) {
                          : a.word == "field"  ? render::ColorMode::kField
                                               : render::ColorMode::kStretch;
       break;
-    case Kind::kAnalysis:
+    case Kind::kAnalysis: {
+      std::vector<int32_t> named = a.problem.ground_materials;
+      for (const auto& [m, v] : a.problem.conductors) named.push_back(m);
+      for (const auto& [m, eps] : a.problem.permittivities) named.push_back(m);
+      for (const int32_t m : named)
+        if (!std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
+          return Status::error("material " + std::to_string(m) + " is not in the mesh");
       analysis_ = ui::analysis_settings_from(a.problem, scene_->materials);
       break;
-    case Kind::kSolve:
-      if (a.flag) {
-        if (Status s = start_solve(0); !s) analysis_error_ = s.message();
-        return Status();
-      }
-      return start_solve(a.line);
+    }
+    case Kind::kSolve: {
+      wait_for_solve_ = a.count != 0;
+      const Status s = start_solve(a.flag ? 0 : a.line);
+      if (a.flag && !s) analysis_error_ = s.message();
+      return a.flag ? Status() : s;
+    }
     case Kind::kReportAnalysis:
       return report_analysis(a.path);
     case Kind::kColormap:

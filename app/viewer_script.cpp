@@ -337,10 +337,19 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     return parse_analysis(p, a);
   } else if (command == "solve") {
     a->kind = Kind::kSolve;
-    if (Status s = p.arg_count(0, 1); !s) return s;
-    if (w.size() == 2) {
-      if (w[1] != "may-fail") return p.error("expected 'may-fail', got '" + w[1] + "'");
-      a->flag = true;
+    a->count = 1;  // wait
+    if (Status s = p.arg_count(0, 2); !s) return s;
+    for (size_t i = 1; i < w.size(); ++i) {
+      std::string key, value;
+      if (w[i] == "may-fail") {
+        a->flag = true;
+      } else if (LineParser::key_value(w[i], &key, &value) && key == "wait") {
+        bool wait = true;
+        if (Status s = p.on_off(key, value, &wait); !s) return s;
+        a->count = wait ? 1 : 0;
+      } else {
+        return p.error("'solve' takes may-fail and wait=0|1, got '" + w[i] + "'");
+      }
     }
   } else if (command == "report-analysis") {
     a->kind = Kind::kReportAnalysis;

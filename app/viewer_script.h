@@ -9,8 +9,9 @@
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h)
 //   simplify [wait=0]                run the simplifier with the thresholds (waits,
 //                                    unless wait=0: then the next actions run meanwhile)
-//   cancel                           cancel a running simplification (waits until the
-//                                    worker has stopped; the previous result stays)
+//   cancel                           cancel a running simplification and/or solve (waits
+//                                    until the workers have stopped; the previous result
+//                                    stays)
 //   scrub step=K | elements=N | end  move the LOD to a step / nearest level (waits)
 //   cut x|y|z=VALUE [flip] | cut off
 //   hide M | show M                  material visibility
@@ -30,13 +31,15 @@
 //                                    a 'simplify wait=0' runs)
 //   analysis conductor=M:V[,M:V...] ground=boundary|M[,...] [eps=M:E[,M:E...]]
 //                                    set up the Analysis panel (replaces the previous
-//                                    set-up; unlisted materials: dielectric, eps 1). Only
-//                                    the syntax is checked here; a bad set-up (conductor
-//                                    = ground, eps <= 0, ...) fails at 'solve'
-//   solve [may-fail]                 solve the displayed level (and the finest level,
-//                                    once, for the difference) and wait; the solver's
-//                                    error fails the script at this line (with may-fail
-//                                    it only shows in the Analysis panel, as for a user)
+//                                    set-up; unlisted materials: dielectric, eps 1). The
+//                                    syntax is checked here, the material ids when it
+//                                    runs; a bad set-up (a conductor touching the ground,
+//                                    eps <= 0, ...) fails at 'solve'
+//   solve [may-fail] [wait=0]        solve the displayed level (and the finest level,
+//                                    once, for the difference) and wait (wait=0: go on
+//                                    meanwhile); the solver's error fails the script at
+//                                    this line (with may-fail it only shows in the
+//                                    Analysis panel, as for a user)
 //   report-analysis PATH             write the last solve's figures as 'key value' lines
 //   quit
 //
@@ -89,7 +92,7 @@ struct ScriptAction {
   int line = 0;
   std::string path;     // open, screenshot, save, bench-scrub out, report-analysis
   std::string word;     // color, colormap, view
-  long long count = 0;  // step, elements, material, frames
+  long long count = 0;  // step, elements, material, frames, solve: wait (1) or not (0)
   double value = 0;     // cut offset, highlight, range min
   double value2 = 0;    // range max
   int axis = 0;         // cut: 0 x, 1 y, 2 z

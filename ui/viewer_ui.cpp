@@ -254,6 +254,14 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
                       std::vector<Command>* commands) {
   const ViewerStatus::Analysis& a = status.analysis;
   auto& materials = settings->materials;
+  // The materials of the loaded mesh: a role kept for a material of another mesh would
+  // make the solver fail on an id that is not there.
+  materials.erase(std::remove_if(materials.begin(), materials.end(),
+                                 [&](const MaterialAnalysis& x) {
+                                   return !std::binary_search(status.materials.begin(),
+                                                              status.materials.end(), x.material);
+                                 }),
+                  materials.end());
   for (const int32_t m : status.materials) {
     const auto it =
         std::lower_bound(materials.begin(), materials.end(), m,
@@ -263,8 +271,6 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
   ImGui::TextDisabled("-div(eps grad u) = 0, linear elements (tetlod solve)");
   if (ImGui::BeginTable("analysis_materials", 3, ImGuiTableFlags_SizingStretchProp)) {
     for (MaterialAnalysis& m : materials) {
-      if (!std::binary_search(status.materials.begin(), status.materials.end(), m.material))
-        continue;
       ImGui::PushID(m.material);
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
@@ -310,6 +316,7 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
   if (!a.has_solution) return;
   ImGui::Text("Solved: step %zu, %zu tets, %zu unknowns%s", a.solved_step, a.solved_tets,
               a.unknowns, a.stale ? " (not displayed)" : "");
+  if (a.setup_changed) ImGui::TextDisabled("(the set-up above changed since: solve again)");
   ImGui::Text("C = %.10g", a.capacitance);
   ImGui::Text("W = %.10g (V = %.4g)", a.energy, a.voltage);
   if (a.direct)

@@ -70,7 +70,7 @@ struct MaterialAnalysis {
   double permittivity = 1;  // kDielectric (conductors and ground hold every node fixed)
 };
 struct AnalysisSettings {
-  std::vector<MaterialAnalysis> materials;  // sorted by id; the panel adds missing ones
+  std::vector<MaterialAnalysis> materials;  // sorted by id; the panel keeps them those of the mesh
   bool ground_boundary = false;             // hold the outer boundary at 0 too
 };
 
@@ -167,7 +167,8 @@ struct ViewerStatus {
     double elapsed_seconds = 0;
     std::string error;  // of the last solve, shown until the next one
     bool has_solution = false;
-    bool stale = false;  // the displayed level (or mesh) is not the solved one
+    bool stale = false;          // the displayed level (or mesh) is not the solved one
+    bool setup_changed = false;  // the panel's set-up is not the solved one
     size_t solved_step = 0, solved_tets = 0, unknowns = 0;
     double capacitance = 0, energy = 0, voltage = 0;
     bool direct = false;

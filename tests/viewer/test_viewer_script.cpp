@@ -173,13 +173,20 @@ TEST(ViewerScript, AnalysisSolveAndReport) {
             "finite number)");
   EXPECT_EQ(parse_error("analysis conductor=1:1 ground=4 mu=2:1\n"),
             "t.script:1: unknown analysis key 'mu' (conductor, ground, eps)");
-  EXPECT_EQ(parse_error("solve now\n"), "t.script:1: expected 'may-fail', got 'now'");
-  EXPECT_EQ(parse_error("solve may-fail x\n"),
-            "t.script:1: 'solve' takes 0 to 1 argument(s), got 2");
-  const auto may_fail = parse_ok("solve may-fail\n");
-  ASSERT_EQ(may_fail.size(), 1u);
-  EXPECT_TRUE(may_fail[0].flag);
+  EXPECT_EQ(parse_error("solve now\n"),
+            "t.script:1: 'solve' takes may-fail and wait=0|1, got 'now'");
+  EXPECT_EQ(parse_error("solve wait=maybe\n"),
+            "t.script:1: 'wait' needs on/off (or 1/0), got 'maybe'");
+  EXPECT_EQ(parse_error("solve may-fail wait=0 x\n"),
+            "t.script:1: 'solve' takes 0 to 2 argument(s), got 3");
+  const auto options = parse_ok("solve may-fail\nsolve wait=0\n");
+  ASSERT_EQ(options.size(), 2u);
+  EXPECT_TRUE(options[0].flag);
+  EXPECT_EQ(options[0].count, 1);
+  EXPECT_FALSE(options[1].flag);
+  EXPECT_EQ(options[1].count, 0);
   EXPECT_FALSE(a[2].flag);
+  EXPECT_EQ(a[2].count, 1);
   EXPECT_EQ(parse_error("report-analysis\n"),
             "t.script:1: 'report-analysis' takes 1 argument(s), got 0");
   EXPECT_EQ(parse_error("color e\n"),

@@ -357,6 +357,13 @@ TEST(ViewerWindow, AnalysisOnTheSphericalCapacitor) {
          "report-analysis level.txt\n"
          "screenshot level_field.png width=480 height=360\n"
          "screenshot level_ui.png ui=1\n"
+         "scrub step=0\n"
+         "scrub elements=11500\n"
+         "screenshot back_field.png width=480 height=360\n"
+         "cut x=0\n"
+         "screenshot cut_field.png width=480 height=360\n"
+         "color stretch\n"
+         "screenshot cut_stretch.png width=480 height=360\n"
          "quit\n";
   const std::string spheres = kSource + "/assets/spheres.mesh";
   const ViewerRun run =
@@ -428,6 +435,16 @@ TEST(ViewerWindow, AnalysisOnTheSphericalCapacitor) {
   EXPECT_GT(render::compare_images(level_stretch, load_png(dir / "level_field.png"), 24, nullptr)
                 .differing_pixels,
             480u * 360u / 10u);
+  // Back at the solved level the field shows again, the same pixels; after a new cut
+  // (a rebuilt surface) it is still there.
+  EXPECT_EQ(render::compare_images(load_png(dir / "level_field.png"),
+                                   load_png(dir / "back_field.png"), 0, nullptr)
+                .differing_pixels,
+            0u);
+  EXPECT_GT(render::compare_images(load_png(dir / "cut_stretch.png"),
+                                   load_png(dir / "cut_field.png"), 24, nullptr)
+                .differing_pixels,
+            480u * 360u / 10u);
 }
 
 // Bad set-ups give the solver's message, naming the script line; with may-fail they
@@ -450,6 +467,12 @@ TEST(ViewerWindow, AnalysisErrorsNameTheLineOrShowInThePanel) {
   const ViewerRun touch = run_viewer(dir, spheres + "touch.script");
   EXPECT_EQ(touch.exit_code, 1) << touch.output;
   EXPECT_NE(touch.output.find("touch.script:2: solve: "), std::string::npos) << touch.output;
+
+  std::ofstream(dir / "absent.script") << "analysis conductor=1:1 ground=9\nquit\n";
+  const ViewerRun absent = run_viewer(dir, spheres + "absent.script");
+  EXPECT_EQ(absent.exit_code, 1) << absent.output;
+  EXPECT_NE(absent.output.find("absent.script:1: material 9 is not in the mesh"), std::string::npos)
+      << absent.output;
 
   std::ofstream(dir / "panel.script") << "screenshot before_ui.png ui=1\n"
                                          "analysis conductor=1:1 ground=4 eps=2:-1\n"
