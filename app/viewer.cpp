@@ -1365,6 +1365,9 @@ Status Viewer::run_action(const ScriptAction& a) {
                          : a.word == "field"  ? render::ColorMode::kField
                                               : render::ColorMode::kStretch;
       break;
+    case Kind::kFieldRange:
+      view_.field_percentile = static_cast<float>(a.value);
+      break;
     case Kind::kAnalysis: {
       std::vector<int32_t> named = a.problem.ground_materials;
       for (const auto& [m, v] : a.problem.conductors) named.push_back(m);

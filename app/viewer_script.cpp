@@ -332,6 +332,15 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
         return p.error("unknown " + command + " option '" + key + "' (frames, out)");
       }
     }
+  } else if (command == "field-range") {
+    a->kind = Kind::kFieldRange;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    a->value = 100;
+    if (w[1] != "max") {
+      if (Status s = p.number("percentile", w[1], &a->value); !s) return s;
+      if (!(a->value > 0 && a->value <= 100))
+        return p.error("the percentile must be in (0, 100], got '" + w[1] + "'");
+    }
   } else if (command == "analysis") {
     a->kind = Kind::kAnalysis;
     return parse_analysis(p, a);

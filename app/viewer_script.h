@@ -18,6 +18,8 @@
 //   color stretch|material|field     range MIN MAX          colormap viridis|turbo
 //                                    (field: |E| of the last solve while it matches the
 //                                    displayed level; stretch otherwise)
+//   field-range max | P              |E| colour map over [0, max] or [0, percentile P of
+//                                    the solved tets' |E|], 0 < P <= 100
 //   wireframe on|off                 highlight D | highlight off
 //   view iso|x|y|z|fit
 //   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
@@ -83,6 +85,7 @@ struct ScriptAction {
     kWait,
     kBenchScrub,
     kBenchFrames,
+    kFieldRange,
     kAnalysis,
     kSolve,
     kReportAnalysis,
@@ -93,7 +96,7 @@ struct ScriptAction {
   std::string path;     // open, screenshot, save, bench-scrub out, report-analysis
   std::string word;     // color, colormap, view
   long long count = 0;  // step, elements, material, frames, solve: wait (1) or not (0)
-  double value = 0;     // cut offset, highlight, range min
+  double value = 0;     // cut offset, highlight, range min, field-range percentile
   double value2 = 0;    // range max
   int axis = 0;         // cut: 0 x, 1 y, 2 z
   bool flag = false;    // cut flip, wireframe on, screenshot ui

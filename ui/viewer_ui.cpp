@@ -77,7 +77,7 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
     ImGui::PopStyleColor();
   }
   if (field_shown) {
-    ImGui::SliderFloat("|E| legend percentile", &view->field_percentile, 50.0f, 100.0f, "%.1f");
+    ImGui::SliderFloat("|E| top (%ile)", &view->field_percentile, 50.0f, 100.0f, "%.1f");
     ImGui::Text("|E| range [0, %.4g] (max %.4g)", analysis.field_range_max, analysis.field_max);
   } else if (view->color_mode != render::ColorMode::kMaterial) {
     ImGui::DragFloatRange2("Range", &view->range_min, &view->range_max, 0.005f, 0.0f, 1.0f, "%.3f",

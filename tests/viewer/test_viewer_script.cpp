@@ -189,6 +189,16 @@ TEST(ViewerScript, AnalysisSolveAndReport) {
   EXPECT_EQ(a[2].count, 1);
   EXPECT_EQ(parse_error("report-analysis\n"),
             "t.script:1: 'report-analysis' takes 1 argument(s), got 0");
+  const auto range = parse_ok("field-range max\nfield-range 99.5\n");
+  ASSERT_EQ(range.size(), 2u);
+  EXPECT_EQ(range[0].kind, Kind::kFieldRange);
+  EXPECT_EQ(range[0].value, 100);
+  EXPECT_EQ(range[1].value, 99.5);
+  EXPECT_EQ(parse_error("field-range 0\n"),
+            "t.script:1: the percentile must be in (0, 100], got '0'");
+  EXPECT_EQ(parse_error("field-range 101\n"),
+            "t.script:1: the percentile must be in (0, 100], got '101'");
+  EXPECT_EQ(parse_error("field-range\n"), "t.script:1: 'field-range' takes 1 argument(s), got 0");
   EXPECT_EQ(parse_error("color e\n"),
             "t.script:1: 'color' takes stretch, material or field, got 'e'");
 }

@@ -344,6 +344,9 @@ TEST(ViewerWindow, AnalysisOnTheSphericalCapacitor) {
          "screenshot field.png width=480 height=360\n"
          "view z\n"
          "screenshot field_top.png width=400 height=400\n"
+         "field-range 90\n"
+         "screenshot field_p90.png width=400 height=400\n"
+         "field-range max\n"
          "view iso\n"
          "thresholds size=3 stretch=0.15 valence=25 tolerance=0.05 subdivide=0\n"
          "simplify\n"
@@ -409,6 +412,13 @@ TEST(ViewerWindow, AnalysisOnTheSphericalCapacitor) {
   EXPECT_GT(non_background(field, 0, 0, field.width, field.height), 0.15);
   EXPECT_GT(render::compare_images(stretch, field, 24, nullptr).differing_pixels,
             480u * 360u / 10u);
+
+  // A legend up to the 90th percentile brightens the picture (more tets high on the
+  // map): more pixels change than the legend's numbers alone.
+  const render::Image top_p90 = load_png(dir / "field_p90.png");
+  EXPECT_GT(render::compare_images(load_png(dir / "field_top.png"), top_p90, 24, nullptr)
+                .differing_pixels,
+            400u * 400u / 50u);
 
   // Seen from the top of the cut, the bright (high |E|) pixels surround the centre:
   // the strongest field is around the inner sphere, not out at the box.
