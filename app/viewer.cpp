@@ -671,6 +671,7 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   ++scene_generation_;
   has_stats_ = false;
   surface_has_field_ = false;
+  if (solve_job_) solve_job_->cancel = true;  // its level is gone; poll_solve() says so
   panel_.target_step = static_cast<long long>(scene_->lod->step());
   if (is_load) {
     // Keep the hidden materials that this mesh has; centre the cut; frame the model.

@@ -70,7 +70,7 @@ struct MaterialAnalysis {
   double permittivity = 1;  // kDielectric (conductors and ground hold every node fixed)
 };
 struct AnalysisSettings {
-  std::vector<MaterialAnalysis> materials;  // sorted by id; the panel keeps them those of the mesh
+  std::vector<MaterialAnalysis> materials;  // by id, one per material of the loaded mesh
   bool ground_boundary = false;             // hold the outer boundary at 0 too
 };
 
