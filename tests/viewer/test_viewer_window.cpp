@@ -506,6 +506,16 @@ TEST(ViewerWindow, AnalysisErrorsNameTheLineOrShowInThePanel) {
   EXPECT_GT(reddish(load_png(dir / "after_ui.png")), reddish(load_png(dir / "before_ui.png")) + 50)
       << "no solver error in the panel";
   EXPECT_NEAR(read_report(dir / "ok.txt")["capacitance"], 46.9104, 5e-5);
+
+  // Quitting (as closing the window) right after a solve started: the worker is
+  // cancelled and joined, the viewer exits cleanly. (The bundled mesh solves in a few
+  // frames, so this does not prove the solve was still running; cancelling and
+  // quitting were checked by hand on a 580k-tet mesh whose solve takes 0.2 s.)
+  std::ofstream(dir / "quit.script") << "analysis conductor=1:1 ground=4 eps=2:2,3:5\n"
+                                        "solve wait=0\n"
+                                        "quit\n";
+  const ViewerRun quit = run_viewer(dir, spheres + "quit.script");
+  EXPECT_EQ(quit.exit_code, 0) << quit.output;
 }
 
 }  // namespace
