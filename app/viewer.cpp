@@ -10,7 +10,10 @@
 // with a progress callback and a cancel flag) and also builds the next Scene (Lod
 // at its first displayed step + LodSurface), so swapping a result in costs one
 // upload. Statistics of a level and saving a level run in std::async tasks on a
-// compacted copy of it.
+// compacted copy of it. The Analysis panel's electrostatic solves run in their own
+// worker (SolveJob), on a compacted copy of the displayed level, and then (once per
+// mesh and set-up) on the finest level; the field |E| comes back per tet id of the
+// Lod and colours the surface while the displayed level is the solved one.
 #include "app/viewer.h"
 
 #define GLFW_INCLUDE_NONE
@@ -30,11 +33,13 @@
 #include <future>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "app/commands.h"
 #include "app/orbit_camera.h"
 #include "core/adjacency.h"
+#include "core/electrostatics.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
@@ -101,12 +106,22 @@ bool same_filter(const render::SurfaceFilter& a, const render::SurfaceFilter& b)
          a.highlight == b.highlight && (!a.highlight || a.highlight_below == b.highlight_below);
 }
 
-render::DrawSettings make_draw_settings(const ui::ViewSettings& view) {
+// `field_max` > 0: the field |E| is on the surface, drawn over [0, field_max]; else a
+// field colour mode falls back to stretch (nothing solved, or a stale solve).
+render::DrawSettings make_draw_settings(const ui::ViewSettings& view, double field_max) {
   render::DrawSettings draw;
   draw.color_mode = view.color_mode;
   draw.color_map = view.color_map;
   draw.range_min = view.range_min;
   draw.range_max = std::max(view.range_max, view.range_min + 1e-6f);
+  if (view.color_mode == render::ColorMode::kField) {
+    if (field_max > 0) {
+      draw.range_min = 0;
+      draw.range_max = field_max;
+    } else {
+      draw.color_mode = render::ColorMode::kStretch;
+    }
+  }
   draw.wireframe = view.wireframe;
   draw.legend = view.legend;
   draw.highlight_below = view.highlight ? view.highlight_below : 0;
@@ -167,6 +182,44 @@ struct Job {
   bool cancelled = false;
 };
 
+bool same_problem(const ElectrostaticsProblem& a, const ElectrostaticsProblem& b) {
+  return a.conductors == b.conductors && a.ground_materials == b.ground_materials &&
+         a.ground_boundary == b.ground_boundary && a.permittivities == b.permittivities &&
+         a.default_permittivity == b.default_permittivity;
+}
+
+// One electrostatic solve of the displayed level, then (if asked) of the finest.
+struct SolveJob {
+  size_t generation = 0, step = 0;
+  ElectrostaticsProblem problem;
+  std::thread thread;
+  std::atomic<bool> cancel{false};
+  std::atomic<bool> done{false};
+  Clock::time_point start = Clock::now();
+  int line = 0;      // the script line that asked, if any
+  std::mutex mutex;  // guards `what` and `progress`
+  std::string what = "displayed level";
+  SolveProgress progress;
+  // Results, read after `done`.
+  Status status;
+  ElectrostaticsSolution solution;  // potential and field cleared: only the figures
+  size_t tets = 0;
+  std::vector<float> tet_values;    // |E| per tet id of the Lod (0 for retired tets)
+  std::vector<float> sorted_field;  // |E| of the solved tets, ascending
+  bool solve_finest = false;
+  Status finest_status;
+  bool has_finest = false;
+  double finest_capacitance = 0;
+};
+
+// The last finished solve of the displayed level.
+struct AnalysisResult {
+  size_t generation = 0, step = 0, tets = 0;
+  ElectrostaticsProblem problem;
+  ElectrostaticsSolution solution;
+  std::vector<float> tet_values, sorted_field;
+};
+
 std::filesystem::path recent_files_path() {
   const char* config = std::getenv("XDG_CONFIG_HOME");
   const char* home = std::getenv("HOME");
@@ -208,6 +261,13 @@ class Viewer {
   void apply_view_changes();
   void follow_scrubber();
   void update_stats();
+  // Analysis.
+  Status start_solve(int line);
+  void poll_solve();
+  bool field_shown() const;  // the last solve is of the displayed level
+  double field_range_max() const;
+  void sync_field_colors();
+  Status report_analysis(const std::string& path) const;
   struct ViewPixels {
     int x = 0, y = 0, width = 1, height = 1;  // origin bottom left
   };
@@ -234,6 +294,7 @@ class Viewer {
   OrbitCamera camera_;
   ui::ViewSettings view_;
   ui::ThresholdSettings thresholds_;
+  ui::AnalysisSettings analysis_;
   ui::PanelState panel_;
   ui::ViewerStatus status_;
   std::vector<ui::Command> commands_;
@@ -251,6 +312,18 @@ class Viewer {
   MeshStats stats_;
   size_t stats_step_ = 0, stats_generation_ = 0;
   Clock::time_point last_lod_move_ = Clock::now();
+
+  // Analysis: the running solve, the last result, the finest level's C per set-up.
+  std::unique_ptr<SolveJob> solve_job_;
+  std::unique_ptr<AnalysisResult> analysis_result_;
+  std::string analysis_error_;
+  struct Finest {
+    size_t generation = 0;
+    ElectrostaticsProblem problem;
+    double capacitance = 0;
+  };
+  std::optional<Finest> finest_;
+  bool surface_has_field_ = false;  // the surface carries analysis_result_'s |E|
 
   std::future<Status> save_future_;
   std::string save_path_;
@@ -283,8 +356,9 @@ class Viewer {
   size_t script_index_ = 0;
   int wait_frames_ = 0;
   Clock::time_point wait_until_;
-  int pending_job_line_ = 0;  // the open/simplify line whose job must succeed
-  bool wait_for_job_ = true;  // the script waits for a running job to finish
+  int pending_job_line_ = 0;    // the open/simplify line whose job must succeed
+  bool wait_for_job_ = true;    // the script waits for a running job to finish
+  bool wait_for_solve_ = true;  // and for a running solve
   bool quit_ = false;
   int exit_code_ = kExitOk;
   struct Bench {
@@ -350,6 +424,11 @@ void Viewer::shutdown() {
     if (job_->thread.joinable()) job_->thread.join();
     job_.reset();
   }
+  if (solve_job_) {
+    solve_job_->cancel = true;
+    if (solve_job_->thread.joinable()) solve_job_->thread.join();
+    solve_job_.reset();
+  }
   if (stats_future_.valid()) stats_future_.wait();
   if (save_future_.valid()) save_future_.wait();
   if (surface_future_.valid()) surface_future_.wait();
@@ -384,9 +463,9 @@ void Viewer::frame() {
 
   // Idle (nothing moving, no work in flight, no script): sleep until an event or a
   // quarter second passes, so an idle viewer leaves the cores to others.
-  const bool idle = !job_ && !interacting_ && !needs_redraw_ && !options_.has_script &&
-                    !stats_future_.valid() && !save_future_.valid() && !surface_future_.valid() &&
-                    ui_capture_countdown_ < 0 &&
+  const bool idle = !job_ && !solve_job_ && !interacting_ && !needs_redraw_ &&
+                    !options_.has_script && !stats_future_.valid() && !save_future_.valid() &&
+                    !surface_future_.valid() && ui_capture_countdown_ < 0 &&
                     (!scene_ || scene_->lod->step() == static_cast<size_t>(panel_.target_step));
   busy_frames_ = idle ? busy_frames_ - 1 : 3;
   const bool slept = last_slept_;
@@ -400,6 +479,7 @@ void Viewer::frame() {
   for (const std::string& path : dropped_) start_load(path);
   dropped_.clear();
   poll_job();
+  poll_solve();
   update_stats();
   if (save_future_.valid() &&
       save_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
@@ -422,10 +502,11 @@ void Viewer::frame() {
   run_script();
   fill_status();
   commands_.clear();
-  ui::draw_viewer_panels(status_, &view_, &thresholds_, &panel_, &commands_);
+  ui::draw_viewer_panels(status_, &view_, &thresholds_, &analysis_, &panel_, &commands_);
   for (const ui::Command& command : commands_) execute(command);
   apply_view_changes();
   follow_scrubber();
+  sync_field_colors();
 
   int width = 0, height = 0;
   window_->framebuffer_size(&width, &height);
@@ -589,6 +670,8 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   scene_ = std::move(scene);
   ++scene_generation_;
   has_stats_ = false;
+  surface_has_field_ = false;
+  if (solve_job_) solve_job_->cancel = true;  // its level is gone; poll_solve() says so
   panel_.target_step = static_cast<long long>(scene_->lod->step());
   if (is_load) {
     // Keep the hidden materials that this mesh has; centre the cut; frame the model.
@@ -675,6 +758,14 @@ void Viewer::execute(const ui::Command& command) {
       if (!s) status_.load_error = s.message();
       break;
     }
+    case ui::CommandKind::kSolve: {
+      const Status s = start_solve(0);
+      if (!s) analysis_error_ = s.message();
+      break;
+    }
+    case ui::CommandKind::kCancelSolve:
+      if (solve_job_) solve_job_->cancel = true;
+      break;
     case ui::CommandKind::kScreenshot:
       if (command.with_ui) {
         ui_capture_path_ = command.path;
@@ -737,6 +828,7 @@ void Viewer::apply_view_changes() {
       }
       scene_->surface = std::move(*surface);
       scene_->filter = surface_filter_;
+      surface_has_field_ = false;
       upload_all();
       interacting_ = true;
       return;
@@ -775,6 +867,7 @@ void Viewer::follow_scrubber() {
   const Clock::time_point start = Clock::now();
   const render::LodState state = render::lod_state(lod);
   LodDelta delta;
+  surface_has_field_ = false;  // LodSurface::update() drops the |E| values
   while (lod.step() != target) {
     const size_t step = lod.step();
     const size_t next = target > step ? std::min(target, step + kChunk)
@@ -837,7 +930,7 @@ void Viewer::draw_scene(int fb_width, int fb_height) {
   gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (!scene_) return;
   const ViewPixels view = view_pixels(fb_width, fb_height);
-  const render::DrawSettings draw = make_draw_settings(view_);
+  const render::DrawSettings draw = make_draw_settings(view_, field_range_max());
   const render::Camera camera = camera_.camera();
   const bool camera_moved = !same_camera(camera, drawn_camera_);
   if (camera_moved) interacting_ = true;
@@ -859,6 +952,7 @@ void Viewer::draw_scene(int fb_width, int fb_height) {
 
 Status Viewer::screenshot(const std::string& path, int width, int height) {
   if (!scene_) return Status::error("nothing to take a screenshot of: no mesh loaded");
+  sync_field_colors();              // a solve may have finished earlier this frame
   if (width <= 0 || height <= 0) {  // the size of the 3D view in the window
     int fb_width = 0, fb_height = 0;
     window_->framebuffer_size(&fb_width, &fb_height);
@@ -866,7 +960,7 @@ Status Viewer::screenshot(const std::string& path, int width, int height) {
     width = view.width;
     height = view.height;
   }
-  renderer_->draw(make_draw_settings(view_), camera_.camera(), width, height);
+  renderer_->draw(make_draw_settings(view_, field_range_max()), camera_.camera(), width, height);
   const render::Image image = renderer_->read_pixels();
   needs_redraw_ = true;  // the targets now have the screenshot's size
   return render::write_png(path, image);
@@ -878,6 +972,172 @@ Status Viewer::save_level(const std::string& path) {
   save_path_ = path;
   save_future_ = std::async(
       std::launch::async, [path, mesh = scene_->lod->extract()] { return write_mesh(path, mesh); });
+  return Status();
+}
+
+// --- Analysis ----------------------------------------------------------------------
+
+Status Viewer::start_solve(int line) {
+  if (!scene_) return Status::error("nothing to solve: no mesh loaded");
+  if (solve_job_) return Status::error("a solve is already running");
+  analysis_error_.clear();
+  auto job = std::make_unique<SolveJob>();
+  job->generation = scene_generation_;
+  job->step = scene_->lod->step();
+  job->problem = ui::to_electrostatics_problem(analysis_);
+  job->line = line;
+  // The finest level: step 0 of the history (the input itself when nothing was
+  // simplified, where step 0 is the only one). Solved once per mesh and set-up.
+  const bool finest_cached = finest_ && finest_->generation == scene_generation_ &&
+                             same_problem(finest_->problem, job->problem);
+  job->solve_finest = job->step != 0 && !finest_cached;
+  auto mesh = std::make_shared<const TetMesh>(scene_->lod->extract());
+  auto alive = std::make_shared<const std::vector<uint8_t>>(scene_->lod->alive());
+  std::shared_ptr<const TetMesh> finest;
+  if (job->solve_finest)
+    finest = scene_->result ? std::shared_ptr<const TetMesh>(scene_->result, &scene_->result->base)
+                            : scene_->input;
+  SolveJob* j = job.get();
+  j->thread = std::thread([j, mesh, alive, finest] {
+    const SolveOptions options;
+    const auto progress = [j](const SolveProgress& p) {
+      std::lock_guard<std::mutex> lock(j->mutex);
+      j->progress = p;
+    };
+    j->status =
+        solve_electrostatics(*mesh, j->problem, options, &j->solution, progress, &j->cancel);
+    if (j->status && !j->solution.cancelled) {
+      // Extract() keeps the alive tets in id order: the k-th solved tet is the k-th
+      // alive one.
+      const std::vector<double>& field = j->solution.field_magnitude;
+      j->tets = mesh->tet_count();
+      j->tet_values.assign(alive->size(), 0.0f);
+      for (size_t t = 0, k = 0; t < alive->size(); ++t)
+        if ((*alive)[t]) j->tet_values[t] = static_cast<float>(field[k++]);
+      j->sorted_field.assign(field.begin(), field.end());
+      std::sort(j->sorted_field.begin(), j->sorted_field.end());
+      j->solution.potential = {};
+      j->solution.field_magnitude = {};
+      if (finest && !j->cancel) {
+        {
+          std::lock_guard<std::mutex> lock(j->mutex);
+          j->what = "finest level";
+          j->progress = {};
+        }
+        const TetMesh fine = extract_alive(finest->positions, finest->tets, finest->materials,
+                                           std::vector<uint8_t>(finest->tet_count(), 1));
+        ElectrostaticsSolution fine_solution;
+        j->finest_status =
+            solve_electrostatics(fine, j->problem, options, &fine_solution, progress, &j->cancel);
+        j->has_finest = j->finest_status && !fine_solution.cancelled;
+        j->finest_capacitance = fine_solution.capacitance;
+      }
+    }
+    j->done = true;
+  });
+  solve_job_ = std::move(job);
+  return Status();
+}
+
+void Viewer::poll_solve() {
+  if (!solve_job_ || !solve_job_->done) return;
+  solve_job_->thread.join();
+  const std::unique_ptr<SolveJob> job = std::move(solve_job_);
+  const auto fail = [&](const std::string& message) {
+    analysis_error_ = message;
+    if (job->line > 0) fail_script(job->line, "solve: " + message);
+  };
+  if (job->generation != scene_generation_) return fail("the mesh changed during the solve");
+  if (!job->status) return fail(job->status.message());
+  if (job->solution.cancelled) {  // asked for: not a script error; the last result stays
+    analysis_error_ = "cancelled";
+    return;
+  }
+  auto result = std::make_unique<AnalysisResult>();
+  result->generation = job->generation;
+  result->step = job->step;
+  result->tets = job->tets;
+  result->problem = job->problem;
+  result->solution = job->solution;
+  result->tet_values = std::move(job->tet_values);
+  result->sorted_field = std::move(job->sorted_field);
+  analysis_result_ = std::move(result);
+  if (job->step == 0) {
+    finest_ = Finest{job->generation, job->problem, job->solution.capacitance};
+  } else if (job->has_finest) {
+    finest_ = Finest{job->generation, job->problem, job->finest_capacitance};
+  } else if (job->solve_finest && !job->finest_status) {
+    analysis_error_ = "finest level: " + job->finest_status.message();
+  }
+  surface_has_field_ = false;  // new values for the surface
+  needs_redraw_ = true;
+}
+
+bool Viewer::field_shown() const {
+  return scene_ && analysis_result_ && analysis_result_->generation == scene_generation_ &&
+         analysis_result_->step == scene_->lod->step();
+}
+
+double Viewer::field_range_max() const {
+  if (!surface_has_field_ || analysis_result_->sorted_field.empty()) return 0;
+  const std::vector<float>& sorted = analysis_result_->sorted_field;
+  const double q = std::clamp(double(view_.field_percentile), 0.0, 100.0) / 100.0;
+  const auto index = static_cast<size_t>(std::lround(q * double(sorted.size() - 1)));
+  const double top = sorted[std::min(index, sorted.size() - 1)];
+  return top > 0 ? top : 1;  // a zero field: any range shows it
+}
+
+// Puts the |E| values on the surface while the field colour mode is on and the
+// displayed level is the solved one; takes them off otherwise.
+void Viewer::sync_field_colors() {
+  if (!scene_) return;
+  const bool want = view_.color_mode == render::ColorMode::kField && field_shown();
+  if (want == surface_has_field_ && want == scene_->surface.has_tet_values()) return;
+  if (want) {
+    scene_->surface.set_tet_values(analysis_result_->tet_values);
+  } else {
+    scene_->surface.clear_tet_values();
+  }
+  surface_has_field_ = want;
+  renderer_->update_triangles(scene_->surface.triangles(), scene_->surface.take_triangle_dirty());
+  needs_redraw_ = true;
+}
+
+Status Viewer::report_analysis(const std::string& path) const {
+  if (!analysis_result_) return Status::error("no solve to report: 'solve' first");
+  const AnalysisResult& r = *analysis_result_;
+  const ElectrostaticsSolution& s = r.solution;
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::trunc);
+    char line[256];
+    const auto put = [&](const char* key, const char* format, auto value) {
+      std::snprintf(line, sizeof(line), format, value);
+      out << key << ' ' << line << '\n';
+    };
+    put("step", "%zu", r.step);
+    put("tets", "%zu", r.tets);
+    put("unknowns", "%zu", s.free_count);
+    put("capacitance", "%.17g", s.capacitance);
+    put("energy", "%.17g", s.energy);
+    put("voltage", "%.17g", s.voltage);
+    put("solver", "%s", s.method == SolverMethod::kDirect ? "direct" : "cg");
+    put("iterations", "%d", s.iterations);
+    put("relative_residual", "%.3g", s.relative_residual);
+    put("seconds", "%.4f",
+        s.seconds_setup + s.seconds_assemble + s.seconds_factor + s.seconds_solve);
+    put("field_max", "%.17g", r.sorted_field.empty() ? 0.0 : double(r.sorted_field.back()));
+    if (finest_ && finest_->generation == r.generation &&
+        same_problem(finest_->problem, r.problem)) {
+      put("finest_capacitance", "%.17g", finest_->capacitance);
+      put("difference_percent", "%.17g",
+          100 * (s.capacitance - finest_->capacitance) / finest_->capacitance);
+    }
+    if (!out) return Status::error("cannot write " + temporary);
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) return Status::error("cannot rename " + temporary + " to " + path + ": " + ec.message());
   return Status();
 }
 
@@ -896,6 +1156,40 @@ void Viewer::fill_status() {
     s.collapses = job_->collapses;
     s.elapsed_seconds = seconds_between(job_->start, Clock::now());
     s.collapses_per_second = s.elapsed_seconds > 0 ? double(s.collapses) / s.elapsed_seconds : 0;
+  }
+  ui::ViewerStatus::Analysis& a = s.analysis;
+  a.solving = solve_job_ != nullptr;
+  if (solve_job_) {
+    std::lock_guard<std::mutex> lock(solve_job_->mutex);
+    a.solving_what = solve_job_->what;
+    a.phase = solve_job_->progress.phase;
+    a.fraction = solve_job_->progress.fraction;
+    a.iteration = solve_job_->progress.iteration;
+    a.elapsed_seconds = seconds_between(solve_job_->start, Clock::now());
+  }
+  a.error = analysis_error_;
+  a.has_solution = analysis_result_ && scene_ && analysis_result_->generation == scene_generation_;
+  if (a.has_solution) {
+    const AnalysisResult& r = *analysis_result_;
+    const ElectrostaticsSolution& sol = r.solution;
+    a.stale = !field_shown();
+    a.setup_changed = !same_problem(r.problem, ui::to_electrostatics_problem(analysis_));
+    a.solved_step = r.step;
+    a.solved_tets = r.tets;
+    a.unknowns = sol.free_count;
+    a.capacitance = sol.capacitance;
+    a.energy = sol.energy;
+    a.voltage = sol.voltage;
+    a.direct = sol.method == SolverMethod::kDirect;
+    a.iterations = sol.iterations;
+    a.residual = sol.relative_residual;
+    a.seconds = sol.seconds_setup + sol.seconds_assemble + sol.seconds_factor + sol.seconds_solve;
+    a.field_max = r.sorted_field.empty() ? 0 : r.sorted_field.back();
+    a.field_range_max = static_cast<float>(field_range_max());
+    a.finest_is_displayed = r.step == 0;
+    a.has_finest =
+        finest_ && finest_->generation == r.generation && same_problem(finest_->problem, r.problem);
+    if (a.has_finest) a.finest_capacitance = finest_->capacitance;
   }
   if (!scene_) return;
   const Scene& scene = *scene_;
@@ -940,8 +1234,8 @@ void Viewer::fail_script(int line, const std::string& message) {
 }
 
 bool Viewer::settled() const {
-  if ((job_ && wait_for_job_) || save_future_.valid() || surface_future_.valid() ||
-      stats_future_.valid() || ui_capture_countdown_ >= 0)
+  if ((job_ && wait_for_job_) || (solve_job_ && wait_for_solve_) || save_future_.valid() ||
+      surface_future_.valid() || stats_future_.valid() || ui_capture_countdown_ >= 0)
     return false;
   if (!scene_) return true;
   if (scene_->lod->step() != static_cast<size_t>(panel_.target_step)) return false;
@@ -987,7 +1281,8 @@ void Viewer::run_script() {
 Status Viewer::run_action(const ScriptAction& a) {
   using Kind = ScriptAction::Kind;
   const bool needs_scene = a.kind != Kind::kOpen && a.kind != Kind::kThresholds &&
-                           a.kind != Kind::kQuit && a.kind != Kind::kWait;
+                           a.kind != Kind::kQuit && a.kind != Kind::kWait &&
+                           a.kind != Kind::kReportAnalysis;
   if (needs_scene && !scene_) return Status::error("no mesh loaded (give FILE or 'open PATH')");
   switch (a.kind) {
     case Kind::kOpen:
@@ -1024,9 +1319,16 @@ Status Viewer::run_action(const ScriptAction& a) {
       pending_job_line_ = a.flag ? a.line : 0;
       break;
     case Kind::kCancel:
-      if (!job_ || job_->is_load) return Status::error("no simplification is running");
-      job_->cancel = true;
-      wait_for_job_ = true;
+      if ((!job_ || job_->is_load) && !solve_job_)
+        return Status::error("no simplification or solve is running");
+      if (job_ && !job_->is_load) {
+        job_->cancel = true;
+        wait_for_job_ = true;
+      }
+      if (solve_job_) {
+        solve_job_->cancel = true;
+        wait_for_solve_ = true;
+      }
       break;
     case Kind::kScrubStep:
       panel_.target_step =
@@ -1060,9 +1362,31 @@ Status Viewer::run_action(const ScriptAction& a) {
       break;
     }
     case Kind::kColor:
-      view_.color_mode =
-          a.word == "material" ? render::ColorMode::kMaterial : render::ColorMode::kStretch;
+      view_.color_mode = a.word == "material" ? render::ColorMode::kMaterial
+                         : a.word == "field"  ? render::ColorMode::kField
+                                              : render::ColorMode::kStretch;
       break;
+    case Kind::kFieldRange:
+      view_.field_percentile = static_cast<float>(a.value);
+      break;
+    case Kind::kAnalysis: {
+      std::vector<int32_t> named = a.problem.ground_materials;
+      for (const auto& [m, v] : a.problem.conductors) named.push_back(m);
+      for (const auto& [m, eps] : a.problem.permittivities) named.push_back(m);
+      for (const int32_t m : named)
+        if (!std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
+          return Status::error("material " + std::to_string(m) + " is not in the mesh");
+      analysis_ = ui::analysis_settings_from(a.problem, scene_->materials);
+      break;
+    }
+    case Kind::kSolve: {
+      wait_for_solve_ = a.count != 0;
+      const Status s = start_solve(a.flag ? 0 : a.line);
+      if (a.flag && !s) analysis_error_ = s.message();
+      return a.flag ? Status() : s;
+    }
+    case Kind::kReportAnalysis:
+      return report_analysis(a.path);
     case Kind::kColormap:
       view_.color_map = a.word == "turbo" ? render::ColorMap::kTurbo : render::ColorMap::kViridis;
       break;

@@ -1,6 +1,7 @@
 #include "app/viewer_script.h"
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "app/cli_util.h"
@@ -105,6 +106,71 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
   return Status();
 }
 
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true) {
+    const size_t end = text.find(',', start);
+    parts.push_back(text.substr(start, end - start));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
+  }
+}
+
+std::optional<int32_t> material_id(const std::string& text) {
+  const std::optional<long long> n = parse_integer(text);
+  if (!n || *n < 0 || *n > 0x7fffffff) return std::nullopt;
+  return static_cast<int32_t>(*n);
+}
+
+// "M:X,M:X": material ids and finite numbers.
+Status parse_material_values(const LineParser& p, const std::string& key, const std::string& text,
+                             std::vector<std::pair<int32_t, double>>* out) {
+  for (const std::string& item : split_list(text)) {
+    const size_t colon = item.find(':');
+    const auto material =
+        colon == std::string::npos ? std::nullopt : material_id(item.substr(0, colon));
+    const auto value =
+        colon == std::string::npos ? std::nullopt : parse_double(item.substr(colon + 1));
+    if (!material || !value)
+      return p.error("'" + key + "': '" + item +
+                     "' is not MATERIAL:NUMBER (a material id >= 0 and a finite number)");
+    out->push_back({*material, *value});
+  }
+  return Status();
+}
+
+Status parse_analysis(const LineParser& p, ScriptAction* a) {
+  if (p.words.size() < 2) return p.error("'analysis' needs conductor=M:V and ground=...");
+  bool has_ground = false;
+  for (size_t i = 1; i < p.words.size(); ++i) {
+    std::string key, value;
+    if (!LineParser::key_value(p.words[i], &key, &value))
+      return p.error("expected key=value, got '" + p.words[i] + "'");
+    if (key == "conductor") {
+      if (Status s = parse_material_values(p, key, value, &a->problem.conductors); !s) return s;
+    } else if (key == "eps") {
+      if (Status s = parse_material_values(p, key, value, &a->problem.permittivities); !s) return s;
+    } else if (key == "ground") {
+      has_ground = true;
+      for (const std::string& item : split_list(value)) {
+        if (item == "boundary") {
+          a->problem.ground_boundary = true;
+        } else if (const auto m = material_id(item)) {
+          a->problem.ground_materials.push_back(*m);
+        } else {
+          return p.error("'ground': '" + item + "' is neither 'boundary' nor a material id");
+        }
+      }
+    } else {
+      return p.error("unknown analysis key '" + key + "' (conductor, ground, eps)");
+    }
+  }
+  if (a->problem.conductors.empty()) return p.error("'analysis' needs conductor=M:V");
+  if (!has_ground) return p.error("'analysis' needs ground=boundary|M[,...]");
+  return Status();
+}
+
 Status parse_line(const LineParser& p, ScriptAction* a) {
   const std::string& command = p.words[0];
   const std::vector<std::string>& w = p.words;
@@ -168,8 +234,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
   } else if (command == "color") {
     a->kind = Kind::kColor;
     if (Status s = p.arg_count(1, 1); !s) return s;
-    if (w[1] != "stretch" && w[1] != "material")
-      return p.error("'color' takes stretch or material, got '" + w[1] + "'");
+    if (w[1] != "stretch" && w[1] != "material" && w[1] != "field")
+      return p.error("'color' takes stretch, material or field, got '" + w[1] + "'");
     a->word = w[1];
   } else if (command == "colormap") {
     a->kind = Kind::kColormap;
@@ -266,6 +332,38 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
         return p.error("unknown " + command + " option '" + key + "' (frames, out)");
       }
     }
+  } else if (command == "field-range") {
+    a->kind = Kind::kFieldRange;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    a->value = 100;
+    if (w[1] != "max") {
+      if (Status s = p.number("percentile", w[1], &a->value); !s) return s;
+      if (!(a->value > 0 && a->value <= 100))
+        return p.error("the percentile must be in (0, 100], got '" + w[1] + "'");
+    }
+  } else if (command == "analysis") {
+    a->kind = Kind::kAnalysis;
+    return parse_analysis(p, a);
+  } else if (command == "solve") {
+    a->kind = Kind::kSolve;
+    a->count = 1;  // wait
+    if (Status s = p.arg_count(0, 2); !s) return s;
+    for (size_t i = 1; i < w.size(); ++i) {
+      std::string key, value;
+      if (w[i] == "may-fail") {
+        a->flag = true;
+      } else if (LineParser::key_value(w[i], &key, &value) && key == "wait") {
+        bool wait = true;
+        if (Status s = p.on_off(key, value, &wait); !s) return s;
+        a->count = wait ? 1 : 0;
+      } else {
+        return p.error("'solve' takes may-fail and wait=0|1, got '" + w[i] + "'");
+      }
+    }
+  } else if (command == "report-analysis") {
+    a->kind = Kind::kReportAnalysis;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    a->path = w[1];
   } else if (command == "quit") {
     a->kind = Kind::kQuit;
     return p.arg_count(0, 0);

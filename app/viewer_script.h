@@ -9,12 +9,17 @@
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h)
 //   simplify [wait=0]                run the simplifier with the thresholds (waits,
 //                                    unless wait=0: then the next actions run meanwhile)
-//   cancel                           cancel a running simplification (waits until the
-//                                    worker has stopped; the previous result stays)
+//   cancel                           cancel a running simplification and/or solve (waits
+//                                    until the workers have stopped; the previous result
+//                                    stays)
 //   scrub step=K | elements=N | end  move the LOD to a step / nearest level (waits)
 //   cut x|y|z=VALUE [flip] | cut off
 //   hide M | show M                  material visibility
-//   color stretch|material           range MIN MAX          colormap viridis|turbo
+//   color stretch|material|field     range MIN MAX          colormap viridis|turbo
+//                                    (field: |E| of the last solve while it matches the
+//                                    displayed level; stretch otherwise)
+//   field-range max | P              |E| colour map over [0, max] or [0, percentile P of
+//                                    the solved tets' |E|], 0 < P <= 100
 //   wireframe on|off                 highlight D | highlight off
 //   view iso|x|y|z|fit
 //   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
@@ -26,6 +31,18 @@
 //                                    frames each way; prints frame times
 //   bench-frames [frames=N] [out=CSV] times the next N frames as they are (e.g. while
 //                                    a 'simplify wait=0' runs)
+//   analysis conductor=M:V[,M:V...] ground=boundary|M[,...] [eps=M:E[,M:E...]]
+//                                    set up the Analysis panel (replaces the previous
+//                                    set-up; unlisted materials: dielectric, eps 1). The
+//                                    syntax is checked here, the material ids when it
+//                                    runs; a bad set-up (a conductor touching the ground,
+//                                    eps <= 0, ...) fails at 'solve'
+//   solve [may-fail] [wait=0]        solve the displayed level (and the finest level,
+//                                    once, for the difference) and wait (wait=0: go on
+//                                    meanwhile); the solver's error fails the script at
+//                                    this line (with may-fail it only shows in the
+//                                    Analysis panel, as for a user)
+//   report-analysis PATH             write the last solve's figures as 'key value' lines
 //   quit
 //
 // Relative paths are relative to the working directory.
@@ -35,6 +52,7 @@
 #include <string>
 #include <vector>
 
+#include "core/electrostatics.h"
 #include "core/status.h"
 
 namespace tetlod::app {
@@ -67,14 +85,18 @@ struct ScriptAction {
     kWait,
     kBenchScrub,
     kBenchFrames,
+    kFieldRange,
+    kAnalysis,
+    kSolve,
+    kReportAnalysis,
     kQuit,
   };
   Kind kind = Kind::kQuit;
   int line = 0;
-  std::string path;     // open, screenshot, save, bench-scrub out
+  std::string path;     // open, screenshot, save, bench-scrub out, report-analysis
   std::string word;     // color, colormap, view
-  long long count = 0;  // step, elements, material, frames
-  double value = 0;     // cut offset, highlight, range min
+  long long count = 0;  // step, elements, material, frames, solve: wait (1) or not (0)
+  double value = 0;     // cut offset, highlight, range min, field-range percentile
   double value2 = 0;    // range max
   int axis = 0;         // cut: 0 x, 1 y, 2 z
   bool flag = false;    // cut flip, wireframe on, screenshot ui
@@ -84,6 +106,8 @@ struct ScriptAction {
   std::optional<long long> valence;
   std::optional<bool> subdivide;
   std::optional<std::string> material_sizes, region;
+  // analysis
+  ElectrostaticsProblem problem;
 };
 
 // Reads and checks the whole script before anything runs. Errors read

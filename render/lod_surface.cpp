@@ -1,6 +1,7 @@
 #include "render/lod_surface.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cstddef>
 
 #include "core/metrics.h"
@@ -130,9 +131,31 @@ void LodSurface::write_face_slot(uint32_t slot, uint32_t owner) {
   for (int k = 0; k < 3; ++k) {
     const Vec3& p = positions[t[kTetFace[corner][k]]];
     triangles_[size_t(slot) * 3 + size_t(k)] = {
-        {float(p.x), float(p.y), float(p.z)}, stretch_[tet], material};
+        {float(p.x), float(p.y), float(p.z)}, scalar(tet), material};
   }
   triangle_dirty_.push_back(slot);
+}
+
+void LodSurface::rewrite_scalars() {
+  for (uint32_t slot = 0; slot < slot_keys_.size(); ++slot) {
+    const FaceEntry& entry = *faces_.find(slot_keys_[slot]);
+    const uint32_t owner = entry.owners[0] != kInvalidIndex ? entry.owners[0] : entry.owners[1];
+    const float value = scalar(owner / 4);
+    for (size_t k = 0; k < 3; ++k) triangles_[size_t(slot) * 3 + k].stretch = value;
+    triangle_dirty_.push_back(slot);
+  }
+}
+
+void LodSurface::set_tet_values(std::vector<float> values) {
+  assert(values.size() == in_.size());
+  values_ = std::move(values);
+  rewrite_scalars();
+}
+
+void LodSurface::clear_tet_values() {
+  if (values_.empty()) return;
+  values_.clear();
+  rewrite_scalars();
 }
 
 void LodSurface::refresh_face(const FaceKey& key, FaceEntry* entry) {
@@ -231,6 +254,7 @@ void LodSurface::remove_tet(uint32_t tet) {
 void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
   state_ = &state;
   filter_ = filter;
+  values_.clear();
   hidden_.clear();
   for (const int32_t m : filter.hidden_materials) {
     if (m < 0) continue;
@@ -280,6 +304,7 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
 }
 
 void LodSurface::update(const LodState& state, const LodDelta& delta) {
+  clear_tet_values();
   state_ = &state;
   // Removals first, so that no face ever has more than its two tets.
   for (const uint32_t t : delta.vanished)

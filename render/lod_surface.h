@@ -45,6 +45,16 @@ class LodSurface {
   size_t highlighted_tets() const { return highlight_.size() / 12; }
   size_t visible_tets() const { return visible_count_; }
 
+  // Colours the drawn faces by `values` (one per tet id of the state last given,
+  // e.g. |E| of an electrostatic solve of that state) instead of by stretch: every
+  // drawn slot is rewritten and marked dirty. The values belong to that state, so
+  // update() and reset() drop them (back to stretch) before they change anything;
+  // clear_tet_values() does so at once. Highlighting keeps following stretch.
+  // Precondition: values.size() is the state's tet count.
+  void set_tet_values(std::vector<float> values);
+  void clear_tet_values();
+  bool has_tet_values() const { return !values_.empty(); }
+
   // The vertex ranges written since the last call, sorted and merged (the arrays may
   // also have shrunk; ranges are clamped to the current size). reset() marks all.
   std::vector<DirtyRange> take_triangle_dirty();
@@ -93,6 +103,9 @@ class LodSurface {
   // Makes the face's drawn slot match its owner count.
   void refresh_face(const FaceKey& key, FaceEntry* entry);
   void write_face_slot(uint32_t slot, uint32_t owner);
+  // Rewrites the scalar of every drawn slot from values_ (or stretch_ if empty).
+  void rewrite_scalars();
+  float scalar(uint32_t tet) const { return values_.empty() ? stretch_[tet] : values_[tet]; }
   void add_highlight(uint32_t tet);
   void remove_highlight(uint32_t tet);
   FaceKey face_key(uint32_t tet, int corner) const;
@@ -109,6 +122,7 @@ class LodSurface {
   std::vector<uint8_t> in_;
   std::vector<Tet> corners_;
   std::vector<float> stretch_;
+  std::vector<float> values_;  // set_tet_values(); empty: colour by stretch_
   std::vector<uint32_t> highlight_slot_;
   size_t visible_count_ = 0;
 

@@ -320,7 +320,7 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
 
   // The surface.
   gl_.Uniform1i(gl_.GetUniformLocation(p, "u_color_mode"),
-                settings.color_mode == ColorMode::kStretch ? 0 : 1);
+                settings.color_mode == ColorMode::kMaterial ? 1 : 0);
   gl_.Uniform1f(gl_.GetUniformLocation(p, "u_alpha"), 1);
   gl_.Uniform1i(gl_.GetUniformLocation(p, "u_wireframe"), settings.wireframe ? 1 : 0);
   gl_.BindVertexArray(surface_vao_);
@@ -370,7 +370,7 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
   const float line = 11 * scale;
   const Rgb ink = {0.12f, 0.12f, 0.14f};
   float y = margin;
-  if (settings.color_mode == ColorMode::kStretch) {
+  if (settings.color_mode != ColorMode::kMaterial) {
     // A horizontal colour bar at the bottom with the range at its ends.
     const float bar_w = 0.5f * float(width), bar_h = 8 * scale;
     const float x0 = 0.25f * float(width);
@@ -382,7 +382,7 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     const std::string hi = format_value(settings.range_max);
     add_text(&v, x0, y1 + 3 * scale, lo, ink, scale);
     add_text(&v, x0 + bar_w - text_pixels(hi, scale), y1 + 3 * scale, hi, ink, scale);
-    const std::string title = "stretch";
+    const std::string title = settings.color_mode == ColorMode::kField ? "|E|" : "stretch";
     add_text(&v, x0 + 0.5f * (bar_w - text_pixels(title, scale)), y1 + 3 * scale, title, ink,
              scale);
   } else {

@@ -16,13 +16,16 @@
 
 namespace tetlod::render {
 
-enum class ColorMode { kStretch, kMaterial };
+// kStretch and kField both map the per-vertex scalar through the colour map between
+// range_min and range_max; they differ in the legend's title ("stretch" or "|E|", the
+// field magnitude of an electrostatic solve, core/electrostatics.h).
+enum class ColorMode { kStretch, kMaterial, kField };
 
 // How to draw (no rebuild of the buffers needed to change any of these).
 struct DrawSettings {
   ColorMode color_mode = ColorMode::kStretch;
   ColorMap color_map = ColorMap::kViridis;
-  double range_min = 0;  // stretch at the low end of the colour map
+  double range_min = 0;  // scalar (stretch or |E|) at the low end of the colour map
   double range_max = 1;  // and at the high end
   bool wireframe = false;
   bool legend = true;

@@ -47,17 +47,39 @@ void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Com
 }
 
 void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Command>* commands) {
-  int mode = view->color_mode == render::ColorMode::kStretch ? 0 : 1;
+  int mode = view->color_mode == render::ColorMode::kStretch    ? 0
+             : view->color_mode == render::ColorMode::kMaterial ? 1
+                                                                : 2;
   ImGui::Text("Colour by");
   ImGui::SameLine();
   ImGui::RadioButton("stretch", &mode, 0);
   ImGui::SameLine();
   ImGui::RadioButton("material", &mode, 1);
-  view->color_mode = mode == 0 ? render::ColorMode::kStretch : render::ColorMode::kMaterial;
-  if (view->color_mode == render::ColorMode::kStretch) {
+  ImGui::SameLine();
+  ImGui::RadioButton("field |E|", &mode, 2);
+  view->color_mode = mode == 0   ? render::ColorMode::kStretch
+                     : mode == 1 ? render::ColorMode::kMaterial
+                                 : render::ColorMode::kField;
+  if (view->color_mode != render::ColorMode::kMaterial) {
     int map = view->color_map == render::ColorMap::kViridis ? 0 : 1;
     ImGui::Combo("Colour map", &map, "viridis\0turbo\0");
     view->color_map = map == 0 ? render::ColorMap::kViridis : render::ColorMap::kTurbo;
+  }
+  const ViewerStatus::Analysis& analysis = status.analysis;
+  const bool field_shown =
+      view->color_mode == render::ColorMode::kField && analysis.has_solution && !analysis.stale;
+  if (view->color_mode == render::ColorMode::kField && !field_shown) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+    ImGui::TextWrapped(analysis.has_solution
+                           ? "|E| is stale (the displayed level changed): showing "
+                             "stretch. Solve again in Analysis."
+                           : "No field yet: showing stretch. Solve in Analysis.");
+    ImGui::PopStyleColor();
+  }
+  if (field_shown) {
+    ImGui::SliderFloat("|E| top (%ile)", &view->field_percentile, 50.0f, 100.0f, "%.1f");
+    ImGui::Text("|E| range [0, %.4g] (max %.4g)", analysis.field_range_max, analysis.field_max);
+  } else if (view->color_mode != render::ColorMode::kMaterial) {
     ImGui::DragFloatRange2("Range", &view->range_min, &view->range_max, 0.005f, 0.0f, 1.0f, "%.3f",
                            "%.3f", ImGuiSliderFlags_AlwaysClamp);
   }
@@ -228,6 +250,90 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   }
 }
 
+void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
+                      std::vector<Command>* commands) {
+  const ViewerStatus::Analysis& a = status.analysis;
+  auto& materials = settings->materials;
+  // The materials of the loaded mesh: a role kept for a material of another mesh would
+  // make the solver fail on an id that is not there.
+  materials.erase(std::remove_if(materials.begin(), materials.end(),
+                                 [&](const MaterialAnalysis& x) {
+                                   return !std::binary_search(status.materials.begin(),
+                                                              status.materials.end(), x.material);
+                                 }),
+                  materials.end());
+  for (const int32_t m : status.materials) {
+    const auto it =
+        std::lower_bound(materials.begin(), materials.end(), m,
+                         [](const MaterialAnalysis& x, int32_t id) { return x.material < id; });
+    if (it == materials.end() || it->material != m) materials.insert(it, MaterialAnalysis{m});
+  }
+  ImGui::TextDisabled("-div(eps grad u) = 0, linear elements (tetlod solve)");
+  if (ImGui::BeginTable("analysis_materials", 3, ImGuiTableFlags_SizingStretchProp)) {
+    for (MaterialAnalysis& m : materials) {
+      ImGui::PushID(m.material);
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      const render::Rgb c = render::material_rgb(m.material);
+      ImGui::TextColored(ImVec4(c[0], c[1], c[2], 1), "mat %d", m.material);
+      ImGui::TableNextColumn();
+      int role = static_cast<int>(m.role);
+      ImGui::SetNextItemWidth(-1);
+      ImGui::Combo("##role", &role, "dielectric\0conductor\0ground\0");
+      m.role = static_cast<MaterialRole>(role);
+      ImGui::TableNextColumn();
+      ImGui::SetNextItemWidth(-1);
+      if (m.role == MaterialRole::kConductor) {
+        ImGui::InputDouble("##v", &m.potential, 0, 0, "V = %.4g");
+      } else if (m.role == MaterialRole::kDielectric) {
+        ImGui::InputDouble("##eps", &m.permittivity, 0, 0, "eps = %.4g");
+      } else {
+        ImGui::TextDisabled("V = 0");
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Checkbox("Ground the outer boundary", &settings->ground_boundary);
+
+  if (!a.solving) {
+    if (ImGui::Button("Solve displayed level") && !status.mesh_name.empty())
+      commands->push_back({CommandKind::kSolve});
+  } else {
+    if (ImGui::Button("Cancel##solve")) commands->push_back({CommandKind::kCancelSolve});
+    ImGui::SameLine();
+    char overlay[128];
+    std::snprintf(overlay, sizeof(overlay), "%s: %s %.0f%% (it %d)", a.solving_what.c_str(),
+                  a.phase.c_str(), 100 * a.fraction, a.iteration);
+    ImGui::ProgressBar(static_cast<float>(a.fraction), ImVec2(-1, 0), overlay);
+    ImGui::Text("%.1f s", a.elapsed_seconds);
+  }
+  if (!a.error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+    ImGui::TextWrapped("Solver: %s", a.error.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!a.has_solution) return;
+  ImGui::Text("Solved: step %zu, %zu tets, %zu unknowns%s", a.solved_step, a.solved_tets,
+              a.unknowns, a.stale ? " (not displayed)" : "");
+  if (a.setup_changed) ImGui::TextDisabled("(the set-up above changed since: solve again)");
+  ImGui::Text("C = %.10g", a.capacitance);
+  ImGui::Text("W = %.10g (V = %.4g)", a.energy, a.voltage);
+  if (a.direct)
+    ImGui::Text("direct LDL^T, residual %.2g, %.3f s", a.residual, a.seconds);
+  else
+    ImGui::Text("CG: %d iterations, residual %.2g, %.3f s", a.iterations, a.residual, a.seconds);
+  if (a.finest_is_displayed) {
+    ImGui::Text("This is the finest level.");
+  } else if (a.has_finest) {
+    const double diff = 100 * (a.capacitance - a.finest_capacitance) / a.finest_capacitance;
+    ImGui::Text("Finest level: C = %.10g", a.finest_capacitance);
+    ImGui::Text("Difference from finest: %+.4f %%", diff);
+  } else {
+    ImGui::TextDisabled("Finest level: not solved yet");
+  }
+}
+
 void row_cells(const PropertyRow& r) {
   ImGui::TableNextColumn();
   ImGui::Text("%zu", r.nodes);
@@ -358,6 +464,43 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
   return true;
 }
 
+ElectrostaticsProblem to_electrostatics_problem(const AnalysisSettings& settings) {
+  ElectrostaticsProblem problem;
+  problem.ground_boundary = settings.ground_boundary;
+  for (const MaterialAnalysis& m : settings.materials) {
+    if (m.role == MaterialRole::kConductor) {
+      problem.conductors.push_back({m.material, m.potential});
+    } else if (m.role == MaterialRole::kGround) {
+      problem.ground_materials.push_back(m.material);
+    } else if (m.permittivity != 1) {
+      problem.permittivities.push_back({m.material, m.permittivity});
+    }
+  }
+  return problem;
+}
+
+AnalysisSettings analysis_settings_from(const ElectrostaticsProblem& problem,
+                                        const std::vector<int32_t>& materials) {
+  AnalysisSettings settings;
+  settings.ground_boundary = problem.ground_boundary;
+  const auto entry = [&](int32_t id) -> MaterialAnalysis& {
+    auto it = std::lower_bound(
+        settings.materials.begin(), settings.materials.end(), id,
+        [](const MaterialAnalysis& x, int32_t material) { return x.material < material; });
+    if (it == settings.materials.end() || it->material != id)
+      it = settings.materials.insert(it, MaterialAnalysis{id});
+    return *it;
+  };
+  for (const int32_t m : materials) entry(m);
+  for (const auto& [m, eps] : problem.permittivities) entry(m).permittivity = eps;
+  for (const int32_t m : problem.ground_materials) entry(m).role = MaterialRole::kGround;
+  for (const auto& [m, v] : problem.conductors) {
+    entry(m).role = MaterialRole::kConductor;
+    entry(m).potential = v;
+  }
+  return settings;
+}
+
 ViewRect scene_rect(float display_width, float display_height, bool show_stats) {
   ViewRect r;
   r.x = kPanelWidth + 2 * kMargin;
@@ -368,8 +511,8 @@ ViewRect scene_rect(float display_width, float display_height, bool show_stats) 
 }
 
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
-                        ThresholdSettings* thresholds, PanelState* panel,
-                        std::vector<Command>* commands) {
+                        ThresholdSettings* thresholds, AnalysisSettings* analysis,
+                        PanelState* panel, std::vector<Command>* commands) {
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + kMargin, viewport->WorkPos.y + kMargin),
                           ImGuiCond_Always);
@@ -392,6 +535,15 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
                   status.phase.c_str(), 100 * status.phase_fraction, status.collapses);
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
   }
+  if (status.analysis.solving) {  // also always in sight
+    const ViewerStatus::Analysis& a = status.analysis;
+    if (ImGui::Button("Cancel##solvetop")) commands->push_back({CommandKind::kCancelSolve});
+    ImGui::SameLine();
+    char overlay[128];
+    std::snprintf(overlay, sizeof(overlay), "solving the %s: %s %.0f%%", a.solving_what.c_str(),
+                  a.phase.c_str(), 100 * a.fraction);
+    ImGui::ProgressBar(static_cast<float>(a.fraction), ImVec2(-1, 0), overlay);
+  }
   if (status.loading)
     ImGui::TextWrapped("Loading %s: %s, %.1f s", status.loading_path.c_str(), status.phase.c_str(),
                        status.elapsed_seconds);
@@ -403,6 +555,8 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   if (ImGui::CollapsingHeader("Thresholds")) thresholds_section(status, thresholds, commands);
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
   if (ImGui::CollapsingHeader("Level of detail")) lod_section(status, panel, commands);
+  ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
+  if (ImGui::CollapsingHeader("Analysis")) analysis_section(status, analysis, commands);
   if (ImGui::CollapsingHeader("Output")) output_section(panel, commands);
   ImGui::End();
   stats_window(status, panel);

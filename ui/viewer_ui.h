@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/electrostatics.h"
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
 #include "render/colormap.h"
@@ -25,6 +26,10 @@ struct ViewSettings {
   render::ColorMode color_mode = render::ColorMode::kStretch;
   render::ColorMap color_map = render::ColorMap::kViridis;
   float range_min = 0, range_max = 1;  // stretch at the ends of the colour map
+  // Field mode: the colour map spans [0, this percentile of |E| over the solved tets]
+  // (100: the maximum; lower values keep a few singular tets at conductor edges from
+  // washing out the rest).
+  float field_percentile = 100;
   bool wireframe = false;
   bool legend = true;
   bool cut = false;
@@ -55,6 +60,29 @@ struct ThresholdSettings {
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
                         std::string* error);
 
+// The Analysis panel's set-up (issue 6): an electrostatic problem over the materials
+// of the loaded mesh (core/electrostatics.h).
+enum class MaterialRole { kDielectric = 0, kConductor = 1, kGround = 2 };
+struct MaterialAnalysis {
+  int32_t material = 0;
+  MaterialRole role = MaterialRole::kDielectric;
+  double potential = 1;     // kConductor
+  double permittivity = 1;  // kDielectric (conductors and ground hold every node fixed)
+};
+struct AnalysisSettings {
+  std::vector<MaterialAnalysis> materials;  // by id, one per material of the loaded mesh
+  bool ground_boundary = false;             // hold the outer boundary at 0 too
+};
+
+// The problem the settings describe. It is not checked here: the solver's own checks
+// give the messages the panel shows (no conductor, a conductor touching the ground,
+// eps <= 0, ...).
+ElectrostaticsProblem to_electrostatics_problem(const AnalysisSettings& settings);
+// The settings of a problem (the script's 'analysis' line): materials in `materials`
+// that the problem does not name become dielectrics of permittivity 1.
+AnalysisSettings analysis_settings_from(const ElectrostaticsProblem& problem,
+                                        const std::vector<int32_t>& materials);
+
 enum class CommandKind {
   kOpen,          // path
   kSimplify,      // with the current ThresholdSettings
@@ -64,6 +92,8 @@ enum class CommandKind {
   kAxisView,      // value: 0 iso, 1 x, 2 y, 3 z
   kSave,          // path: the displayed level
   kScreenshot,    // path, width, height (0: window size), with_ui
+  kSolve,         // the displayed level, with the current AnalysisSettings
+  kCancelSolve,
 };
 
 struct Command {
@@ -127,6 +157,29 @@ struct ViewerStatus {
   size_t stats_step = 0;
   MeshStats stats;
 
+  // The Analysis panel.
+  struct Analysis {
+    bool solving = false;
+    std::string solving_what;  // "displayed level" or "finest level"
+    std::string phase;
+    double fraction = 0;
+    int iteration = 0;
+    double elapsed_seconds = 0;
+    std::string error;  // of the last solve, shown until the next one
+    bool has_solution = false;
+    bool stale = false;          // the displayed level (or mesh) is not the solved one
+    bool setup_changed = false;  // the panel's set-up is not the solved one
+    size_t solved_step = 0, solved_tets = 0, unknowns = 0;
+    double capacitance = 0, energy = 0, voltage = 0;
+    bool direct = false;
+    int iterations = 0;
+    double residual = 0, seconds = 0;
+    float field_max = 0, field_range_max = 0;  // |E|: the maximum, the legend's top
+    bool has_finest = false;
+    double finest_capacitance = 0;
+    bool finest_is_displayed = false;  // the solved level is the finest one
+  } analysis;
+
   // Frame time, smoothed.
   double fps = 0, frame_ms = 0;
   double scene_scale = 1;  // resolution factor of the 3D view this frame
@@ -141,7 +194,7 @@ ViewRect scene_rect(float display_width, float display_height, bool show_stats);
 
 // Draws every panel. `commands` receives what the user asked for this frame.
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
-                        ThresholdSettings* thresholds, PanelState* panel,
-                        std::vector<Command>* commands);
+                        ThresholdSettings* thresholds, AnalysisSettings* analysis,
+                        PanelState* panel, std::vector<Command>* commands);
 
 }  // namespace tetlod::ui

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <string>
 #include <tuple>
@@ -146,6 +147,54 @@ TEST(LodSurface, DirtyRangesCoverOnlyWhatChanged) {
     EXPECT_TRUE(canonical(mirror) == canonical(surface.triangles())) << "step " << s;
   }
   EXPECT_LT(touched / steps, 60u) << "vertices sent per step, of " << surface.triangles().size();
+}
+
+// Per-tet values (|E| in the viewer) replace the stretch of exactly the faces of
+// their tets, are dropped by the next update (they belong to one state), and
+// clearing them restores the stretch-coloured buffer bit for bit.
+TEST(LodSurface, TetValuesRecolourTheDrawnFacesUntilTheLevelChanges) {
+  const SimplifyResult& r = simplified_box2();
+  Lod lod(r.base, &r.history);
+  lod.seek(lod.step_count() / 2);
+  LodSurface surface;
+  const LodState state = lod_state(lod);
+  surface.reset(state, {});
+  const std::vector<SurfaceVertex> by_stretch = surface.triangles();
+  (void)surface.take_triangle_dirty();
+
+  // Value of tet t: 1000 + t, so every face tells which tet it came from.
+  std::vector<float> values(lod.tets().size());
+  for (size_t t = 0; t < values.size(); ++t) values[t] = 1000.0f + float(t);
+  surface.set_tet_values(values);
+  EXPECT_TRUE(surface.has_tet_values());
+  const std::vector<DirtyRange> dirty = surface.take_triangle_dirty();
+  ASSERT_EQ(dirty.size(), 1u);
+  EXPECT_EQ(dirty[0].end - dirty[0].begin, surface.triangles().size());
+  ASSERT_EQ(surface.triangles().size(), by_stretch.size());
+  for (size_t i = 0; i < by_stretch.size(); ++i) {
+    const SurfaceVertex& v = surface.triangles()[i];
+    const float tet = v.stretch - 1000.0f;
+    ASSERT_GE(tet, 0.0f);
+    ASSERT_LT(tet, float(values.size()));
+    EXPECT_TRUE(lod.alive()[size_t(tet)]);
+    EXPECT_EQ(lod.materials()[size_t(tet)], int32_t(v.material));
+    EXPECT_EQ(std::memcmp(v.position, by_stretch[i].position, sizeof(v.position)), 0);
+  }
+
+  surface.clear_tet_values();
+  EXPECT_FALSE(surface.has_tet_values());
+  EXPECT_EQ(std::memcmp(surface.triangles().data(), by_stretch.data(),
+                        by_stretch.size() * sizeof(SurfaceVertex)),
+            0);
+
+  // An update drops the values before it changes anything: the result is the same
+  // as a full rebuild (stretch-coloured).
+  surface.set_tet_values(values);
+  LodDelta delta;
+  lod.seek(lod.step() + 5, &delta);
+  surface.update(state, delta);
+  EXPECT_FALSE(surface.has_tet_values());
+  expect_same_as_full_build(lod, surface, {}, "after an update with values set");
 }
 
 }  // namespace

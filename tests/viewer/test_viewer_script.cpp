@@ -122,6 +122,87 @@ TEST(ViewerScript, MaterialSizesAndRegions) {
   EXPECT_EQ(*a[0].region, "radial:0,0,0,1,0.5");
 }
 
+TEST(ViewerScript, AnalysisSolveAndReport) {
+  const auto a = parse_ok(
+      "analysis conductor=1:1 ground=4 eps=2:2,3:5\n"
+      "analysis conductor=1:1.5,2:-0.5 ground=boundary,3\n"
+      "solve\n"
+      "color field\n"
+      "report-analysis c.txt\n");
+  ASSERT_EQ(a.size(), 5u);
+  EXPECT_EQ(a[0].kind, Kind::kAnalysis);
+  const ElectrostaticsProblem& p = a[0].problem;
+  ASSERT_EQ(p.conductors.size(), 1u);
+  EXPECT_EQ(p.conductors[0], (std::pair<int32_t, double>{1, 1.0}));
+  EXPECT_EQ(p.ground_materials, std::vector<int32_t>{4});
+  EXPECT_FALSE(p.ground_boundary);
+  ASSERT_EQ(p.permittivities.size(), 2u);
+  EXPECT_EQ(p.permittivities[0], (std::pair<int32_t, double>{2, 2.0}));
+  EXPECT_EQ(p.permittivities[1], (std::pair<int32_t, double>{3, 5.0}));
+  const ElectrostaticsProblem& q = a[1].problem;
+  ASSERT_EQ(q.conductors.size(), 2u);
+  EXPECT_EQ(q.conductors[1], (std::pair<int32_t, double>{2, -0.5}));
+  EXPECT_TRUE(q.ground_boundary);
+  EXPECT_EQ(q.ground_materials, std::vector<int32_t>{3});
+  EXPECT_TRUE(q.permittivities.empty());
+  EXPECT_EQ(a[2].kind, Kind::kSolve);
+  EXPECT_EQ(a[3].kind, Kind::kColor);
+  EXPECT_EQ(a[3].word, "field");
+  EXPECT_EQ(a[4].kind, Kind::kReportAnalysis);
+  EXPECT_EQ(a[4].path, "c.txt");
+
+  // Only the syntax is the parser's: a physically bad set-up (eps <= 0, a conductor
+  // that is also ground) parses, and fails at 'solve' with the solver's message.
+  const auto bad = parse_ok("analysis conductor=1:1 ground=1 eps=2:-3\n");
+  ASSERT_EQ(bad.size(), 1u);
+  EXPECT_EQ(bad[0].problem.permittivities[0].second, -3.0);
+
+  EXPECT_EQ(parse_error("quit\nanalysis ground=4\n"), "t.script:2: 'analysis' needs conductor=M:V");
+  EXPECT_EQ(parse_error("analysis conductor=1:1\n"),
+            "t.script:1: 'analysis' needs ground=boundary|M[,...]");
+  EXPECT_EQ(parse_error("analysis conductor=1=1 ground=4\n"),
+            "t.script:1: 'conductor': '1=1' is not MATERIAL:NUMBER (a material id >= 0 and a "
+            "finite number)");
+  EXPECT_EQ(parse_error("analysis conductor=1:1 ground=outside\n"),
+            "t.script:1: 'ground': 'outside' is neither 'boundary' nor a material id");
+  EXPECT_EQ(parse_error("analysis conductor=1:1 ground=4 eps=2:nan\n"),
+            "t.script:1: 'eps': '2:nan' is not MATERIAL:NUMBER (a material id >= 0 and a finite "
+            "number)");
+  EXPECT_EQ(parse_error("analysis conductor=-1:1 ground=4\n"),
+            "t.script:1: 'conductor': '-1:1' is not MATERIAL:NUMBER (a material id >= 0 and a "
+            "finite number)");
+  EXPECT_EQ(parse_error("analysis conductor=1:1 ground=4 mu=2:1\n"),
+            "t.script:1: unknown analysis key 'mu' (conductor, ground, eps)");
+  EXPECT_EQ(parse_error("solve now\n"),
+            "t.script:1: 'solve' takes may-fail and wait=0|1, got 'now'");
+  EXPECT_EQ(parse_error("solve wait=maybe\n"),
+            "t.script:1: 'wait' needs on/off (or 1/0), got 'maybe'");
+  EXPECT_EQ(parse_error("solve may-fail wait=0 x\n"),
+            "t.script:1: 'solve' takes 0 to 2 argument(s), got 3");
+  const auto options = parse_ok("solve may-fail\nsolve wait=0\n");
+  ASSERT_EQ(options.size(), 2u);
+  EXPECT_TRUE(options[0].flag);
+  EXPECT_EQ(options[0].count, 1);
+  EXPECT_FALSE(options[1].flag);
+  EXPECT_EQ(options[1].count, 0);
+  EXPECT_FALSE(a[2].flag);
+  EXPECT_EQ(a[2].count, 1);
+  EXPECT_EQ(parse_error("report-analysis\n"),
+            "t.script:1: 'report-analysis' takes 1 argument(s), got 0");
+  const auto range = parse_ok("field-range max\nfield-range 99.5\n");
+  ASSERT_EQ(range.size(), 2u);
+  EXPECT_EQ(range[0].kind, Kind::kFieldRange);
+  EXPECT_EQ(range[0].value, 100);
+  EXPECT_EQ(range[1].value, 99.5);
+  EXPECT_EQ(parse_error("field-range 0\n"),
+            "t.script:1: the percentile must be in (0, 100], got '0'");
+  EXPECT_EQ(parse_error("field-range 101\n"),
+            "t.script:1: the percentile must be in (0, 100], got '101'");
+  EXPECT_EQ(parse_error("field-range\n"), "t.script:1: 'field-range' takes 1 argument(s), got 0");
+  EXPECT_EQ(parse_error("color e\n"),
+            "t.script:1: 'color' takes stretch, material or field, got 'e'");
+}
+
 TEST(ViewerScript, ErrorsNameTheFileAndLine) {
   EXPECT_EQ(parse_error("quit\nfrobnicate\n"), "t.script:2: unknown command 'frobnicate'");
   EXPECT_EQ(parse_error("\n\nthresholds size=abc\n"),
