@@ -269,7 +269,10 @@ TEST(ViewerScript, RejectsBadValues) {
 int run(const std::string& arguments, std::string* output, const std::string& prefix = "") {
   const std::filesystem::path dir = std::filesystem::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_cli";
   std::filesystem::create_directories(dir);
-  const std::string log = (dir / "out.txt").string();
+  // One log per test: ctest runs the tests of this file in parallel processes.
+  const std::string log =
+      (dir / (std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + ".txt"))
+          .string();
   const int status =
       std::system((prefix + TETLOD_BINARY + " " + arguments + " >" + log + " 2>&1").c_str());
   std::ifstream in(log);
