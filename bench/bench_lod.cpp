@@ -1,7 +1,7 @@
 // LOD replay benchmark: simplifies a mesh once, then times moving through the whole
 // collapse history (coarsest <-> finest) and reports collapse steps per second.
 //
-//   bench_lod FILE --size S [--tolerance T] [--repeat N]
+//   bench_lod FILE --size S [--tolerance T] [--stretch D] [--valence V] [--repeat N]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -20,17 +20,13 @@ using tetlod::bench::seconds_since;
 
 int main(int argc, char** argv) {
   using namespace tetlod;
-  if (argc < 4 || std::string(argv[2]) != "--size") {
-    std::fprintf(stderr, "usage: bench_lod FILE --size S [--tolerance T] [--repeat N]\n");
-    return 2;
-  }
   SimplifyParams params;
-  params.sizing.uniform = std::atof(argv[3]);
   int repeat = 5;
-  for (int i = 4; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    if (flag == "--tolerance") params.tolerance = std::atof(argv[i + 1]);
-    if (flag == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
+  if (!bench::parse_simplify_flags(argc, argv, &params, &repeat)) {
+    std::fprintf(stderr,
+                 "usage: bench_lod FILE --size S [--tolerance T] [--stretch D] [--valence V] "
+                 "[--repeat N]\n");
+    return 2;
   }
   TetMesh mesh;
   ReadInfo info;

@@ -21,21 +21,13 @@ using tetlod::bench::seconds_since;
 
 int main(int argc, char** argv) {
   using namespace tetlod;
-  if (argc < 4 || std::string(argv[2]) != "--size") {
+  SimplifyParams params;
+  int repeat = 5;
+  if (!bench::parse_simplify_flags(argc, argv, &params, &repeat)) {
     std::fprintf(stderr,
                  "usage: bench_simplify FILE --size S [--tolerance T] [--stretch D] "
                  "[--valence V] [--repeat N]\n");
     return 2;
-  }
-  SimplifyParams params;
-  params.sizing.uniform = std::atof(argv[3]);
-  int repeat = 5;
-  for (int i = 4; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    if (flag == "--tolerance") params.tolerance = std::atof(argv[i + 1]);
-    if (flag == "--stretch") params.min_stretch = std::atof(argv[i + 1]);
-    if (flag == "--valence") params.max_valence = static_cast<uint32_t>(std::atoi(argv[i + 1]));
-    if (flag == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
   }
   TetMesh mesh;
   ReadInfo info;

@@ -79,6 +79,18 @@ render::Image load_png(const fs::path& path) {
   return image;
 }
 
+// Red pixels over the side panel (the left 390 pixels of a window screenshot): error
+// text is drawn in red there.
+size_t red_panel_pixels(const render::Image& image) {
+  size_t count = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < std::min(image.width, 390); ++x) {
+      const uint8_t* p = image.pixel(x, y);
+      count += (p[0] > 150 && p[1] < 120 && p[2] < 120) ? 1 : 0;
+    }
+  return count;
+}
+
 TEST(ViewerWindow, ScriptedRun) {
   const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_scripted_run";
   fs::remove_all(dir);
@@ -231,18 +243,10 @@ TEST(ViewerWindow, FailedLoadShowsTheErrorAndKeepsTheMesh) {
   const render::ImageDifference same =
       render::compare_images(load_png(dir / "before.png"), load_png(dir / "after.png"), 0, nullptr);
   EXPECT_EQ(same.differing_pixels, 0u) << "the failed load changed the displayed mesh";
-  const auto reddish = [](const render::Image& image) {
-    size_t count = 0;
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 0; x < std::min(image.width, 390); ++x) {
-        const uint8_t* p = image.pixel(x, y);
-        count += (p[0] > 150 && p[1] < 120 && p[2] < 120) ? 1 : 0;
-      }
-    return count;
-  };
   const render::Image before_ui = load_png(dir / "before_ui.png");
   const render::Image after_ui = load_png(dir / "after_ui.png");
-  EXPECT_GT(reddish(after_ui), reddish(before_ui) + 50) << "no error text in the panel";
+  EXPECT_GT(red_panel_pixels(after_ui), red_panel_pixels(before_ui) + 50)
+      << "no error text in the panel";
 }
 
 TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
@@ -494,16 +498,8 @@ TEST(ViewerWindow, AnalysisErrorsNameTheLineOrShowInThePanel) {
                                          "quit\n";
   const ViewerRun panel = run_viewer(dir, spheres + "panel.script");
   ASSERT_EQ(panel.exit_code, 0) << panel.output;
-  const auto reddish = [](const render::Image& image) {
-    size_t count = 0;
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 0; x < std::min(image.width, 390); ++x) {
-        const uint8_t* p = image.pixel(x, y);
-        count += (p[0] > 150 && p[1] < 120 && p[2] < 120) ? 1 : 0;
-      }
-    return count;
-  };
-  EXPECT_GT(reddish(load_png(dir / "after_ui.png")), reddish(load_png(dir / "before_ui.png")) + 50)
+  EXPECT_GT(red_panel_pixels(load_png(dir / "after_ui.png")),
+            red_panel_pixels(load_png(dir / "before_ui.png")) + 50)
       << "no solver error in the panel";
   EXPECT_NEAR(read_report(dir / "ok.txt")["capacitance"], 46.9104, 5e-5);
 
