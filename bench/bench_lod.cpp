@@ -20,24 +20,14 @@ using tetlod::bench::seconds_since;
 
 int main(int argc, char** argv) {
   using namespace tetlod;
+  TetMesh mesh;
   SimplifyParams params;
   int repeat = 5;
-  if (!bench::parse_simplify_flags(argc, argv, &params, &repeat)) {
-    std::fprintf(stderr,
-                 "usage: bench_lod FILE --size S [--tolerance T] [--stretch D] [--valence V] "
-                 "[--repeat N]\n");
-    return 2;
-  }
-  TetMesh mesh;
-  ReadInfo info;
-  Status s = read_mesh(argv[1], &mesh, &info);
-  if (!s) {
-    std::fprintf(stderr, "bench_lod: %s\n", s.message().c_str());
-    return 1;
-  }
+  if (const int code = bench::load_simplify_bench("bench_lod", argc, argv, &mesh, &params, &repeat))
+    return code;
   const auto start = Clock::now();
   SimplifyResult result;
-  s = simplify(mesh, params, &result);
+  Status s = simplify(mesh, params, &result);
   if (!s) {
     std::fprintf(stderr, "bench_lod: %s\n", s.message().c_str());
     return 1;

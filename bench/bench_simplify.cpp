@@ -21,27 +21,18 @@ using tetlod::bench::seconds_since;
 
 int main(int argc, char** argv) {
   using namespace tetlod;
+  TetMesh mesh;
   SimplifyParams params;
   int repeat = 5;
-  if (!bench::parse_simplify_flags(argc, argv, &params, &repeat)) {
-    std::fprintf(stderr,
-                 "usage: bench_simplify FILE --size S [--tolerance T] [--stretch D] "
-                 "[--valence V] [--repeat N]\n");
-    return 2;
-  }
-  TetMesh mesh;
-  ReadInfo info;
-  Status s = read_mesh(argv[1], &mesh, &info);
-  if (!s) {
-    std::fprintf(stderr, "bench_simplify: %s\n", s.message().c_str());
-    return 1;
-  }
+  if (const int code =
+          bench::load_simplify_bench("bench_simplify", argc, argv, &mesh, &params, &repeat))
+    return code;
   std::vector<double> total, subdivide, classify, collapse;
   size_t collapses = 0, output_tets = 0;
   for (int r = 0; r < repeat; ++r) {
     SimplifyResult result;
     const auto start = Clock::now();
-    s = simplify(mesh, params, &result);
+    const Status s = simplify(mesh, params, &result);
     total.push_back(seconds_since(start));
     if (!s) {
       std::fprintf(stderr, "bench_simplify: %s\n", s.message().c_str());

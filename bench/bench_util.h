@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "core/io/mesh_io.h"
 #include "core/simplify.h"
 
 namespace tetlod::bench {
@@ -22,10 +24,18 @@ inline double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// The simplifier benchmarks' command line: FILE --size S [--tolerance T] [--stretch D]
-// [--valence V] [--repeat N]. False if it does not start with FILE --size S.
-inline bool parse_simplify_flags(int argc, char** argv, SimplifyParams* params, int* repeat) {
-  if (argc < 4 || std::string(argv[2]) != "--size") return false;
+// The simplifier benchmarks' command line, FILE --size S [--tolerance T] [--stretch D]
+// [--valence V] [--repeat N], and the mesh FILE. Returns 0, or the exit code after
+// printing the usage (2) or the read error (1) prefixed with `name`.
+inline int load_simplify_bench(const char* name, int argc, char** argv, TetMesh* mesh,
+                               SimplifyParams* params, int* repeat) {
+  if (argc < 4 || std::string(argv[2]) != "--size") {
+    std::fprintf(stderr,
+                 "usage: %s FILE --size S [--tolerance T] [--stretch D] [--valence V] "
+                 "[--repeat N]\n",
+                 name);
+    return 2;
+  }
   params->sizing.uniform = std::atof(argv[3]);
   for (int i = 4; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
@@ -34,7 +44,13 @@ inline bool parse_simplify_flags(int argc, char** argv, SimplifyParams* params, 
     if (flag == "--valence") params->max_valence = static_cast<uint32_t>(std::atoi(argv[i + 1]));
     if (flag == "--repeat") *repeat = std::max(1, std::atoi(argv[i + 1]));
   }
-  return true;
+  ReadInfo info;
+  const Status s = read_mesh(argv[1], mesh, &info);
+  if (!s) {
+    std::fprintf(stderr, "%s: %s\n", name, s.message().c_str());
+    return 1;
+  }
+  return 0;
 }
 
 }  // namespace tetlod::bench
