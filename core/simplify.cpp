@@ -205,6 +205,112 @@ struct TetRecord {
 };
 static_assert(sizeof(TetRecord) == 32, "one tet, one half cache line");
 
+// The tets around a collapse that survive it, reduced to what their shape with the
+// moving corner at a candidate position k needs (the fixed face, its normal and
+// lengths), in blocks of kLanes tets stored by field, so that the candidate test
+// runs over a block several tets per instruction.
+constexpr int kLanes = 8;
+struct alignas(64) TetBlock {
+  double f0x[kLanes], f0y[kLanes], f0z[kLanes];  // the fixed corners
+  double f1x[kLanes], f1y[kLanes], f1z[kLanes];
+  double f2x[kLanes], f2y[kLanes], f2z[kLanes];
+  double nx[kLanes], ny[kLanes], nz[kLanes];  // (f1 - f0) x (f2 - f0), away from k
+  double fixed_max2[kLanes];                  // longest squared edge of the fixed face
+  double fixed_normal2[kLanes];               // |n|^2 = (2 x fixed area)^2
+  double side[kLanes];                        // 0: a tet of the first end, 1: the second
+  double steady[kLanes];                      // 1: meets every threshold now (allowance 0)
+  double stretch_now[kLanes];                 // its stretch now
+  double limit[kLanes];                       // tau_SZ of the tet with k in place
+  // Of the candidate: 6 V, s^2, (2 x area of k's three faces)^2, the first pass's
+  // verdict (0 passed, 1 stretch, 2 size), then the exact size and stretch.
+  double volume6[kLanes], size2[kLanes], face0[kLanes], face1[kLanes], face2[kLanes];
+  double code[kLanes];
+  double size[kLanes], stretch[kLanes];
+  int32_t material[kLanes];
+};
+
+// The kernels below are compiled twice, for AVX2 and for the baseline, and picked at
+// run time; both do the same IEEE operations in the same order (no fused
+// multiply-add), so the result does not depend on the machine.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(__SANITIZE_ADDRESS__)
+#define TETLOD_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define TETLOD_VECTOR_CLONES
+#endif
+
+// The normal and squared lengths of the fixed faces of a block.
+TETLOD_VECTOR_CLONES
+void fixed_faces(TetBlock& b) {
+  for (int n = 0; n < kLanes; ++n) {
+    const double ax = b.f1x[n] - b.f0x[n], ay = b.f1y[n] - b.f0y[n], az = b.f1z[n] - b.f0z[n];
+    const double bx = b.f2x[n] - b.f0x[n], by = b.f2y[n] - b.f0y[n], bz = b.f2z[n] - b.f0z[n];
+    const double cx = b.f2x[n] - b.f1x[n], cy = b.f2y[n] - b.f1y[n], cz = b.f2z[n] - b.f1z[n];
+    const double px = ay * bz - az * by, py = az * bx - ax * bz, pz = ax * by - ay * bx;
+    b.nx[n] = px;
+    b.ny[n] = py;
+    b.nz[n] = pz;
+    b.fixed_normal2[n] = px * px + py * py + pz * pz;
+    const double a2 = ax * ax + ay * ay + az * az, b2 = bx * bx + by * by + bz * bz,
+                 c2 = cx * cx + cy * cy + cz * cz;
+    const double ab = a2 < b2 ? b2 : a2;  // as std::max({a2, b2, c2})
+    b.fixed_max2[n] = ab < c2 ? c2 : ab;
+  }
+}
+
+// First pass for candidate k over a block: volume, size and the stretch bound,
+// without square roots. Tets of end `unmoved` (0, 1; -1: neither) that meet every
+// threshold keep their shape and pass.
+TETLOD_VECTOR_CLONES
+void first_pass(TetBlock& b, double kx, double ky, double kz, double unmoved, double floor2) {
+  for (int n = 0; n < kLanes; ++n) {
+    const double d0x = b.f0x[n] - kx, d0y = b.f0y[n] - ky, d0z = b.f0z[n] - kz;
+    const double d1x = b.f1x[n] - kx, d1y = b.f1y[n] - ky, d1z = b.f1z[n] - kz;
+    const double d2x = b.f2x[n] - kx, d2y = b.f2y[n] - ky, d2z = b.f2z[n] - kz;
+    const double l0 = d0x * d0x + d0y * d0y + d0z * d0z;
+    const double l1 = d1x * d1x + d1y * d1y + d1z * d1z;
+    const double l2 = d2x * d2x + d2y * d2y + d2z * d2z;
+    double s2 = b.fixed_max2[n];  // as std::max({fixed, l0, l1, l2})
+    s2 = s2 < l0 ? l0 : s2;
+    s2 = s2 < l1 ? l1 : s2;
+    s2 = s2 < l2 ? l2 : s2;
+    const double v6 = b.nx[n] * d0x + b.ny[n] * d0y + b.nz[n] * d0z;  // 6 V with k in place
+    const double c01x = d0y * d1z - d0z * d1y, c01y = d0z * d1x - d0x * d1z,
+                 c01z = d0x * d1y - d0y * d1x;
+    const double c12x = d1y * d2z - d1z * d2y, c12y = d1z * d2x - d1x * d2z,
+                 c12z = d1x * d2y - d1y * d2x;
+    const double c20x = d2y * d0z - d2z * d0y, c20y = d2z * d0x - d2x * d0z,
+                 c20z = d2x * d0y - d2y * d0x;
+    const double f0 = c01x * c01x + c01y * c01y + c01z * c01z;
+    const double f1 = c12x * c12x + c12y * c12y + c12z * c12z;
+    const double f2 = c20x * c20x + c20y * c20y + c20z * c20z;
+    const double area_squares = 0.25 * b.fixed_normal2[n] + 0.25 * (f0 + f1 + f2);
+    b.volume6[n] = v6;
+    b.size2[n] = s2;
+    b.face0[n] = f0;
+    b.face1[n] = f1;
+    b.face2[n] = f2;
+    const double thin = 6 * v6 * v6 < floor2 * s2 * area_squares ? 1.0 : 0.0;
+    const double verdict = v6 > 0 ? (s2 > b.limit[n] * b.limit[n] ? 2.0 : thin) : 1.0;
+    b.code[n] = (b.side[n] == unmoved) & (b.steady[n] != 0) ? 0.0 : verdict;
+  }
+}
+
+// Exact size and stretch of eq. (2) over a block, from the first pass:
+// d_t = 6 sqrt(6) V_t / (s_t A_t), with 6 V_t = volume6.
+TETLOD_VECTOR_CLONES
+void exact_pass(TetBlock& b) {
+  const double root6 = std::sqrt(6.0);
+  for (int n = 0; n < kLanes; ++n) {
+    const double s = std::sqrt(b.size2[n]);
+    const double area =
+        0.5 * std::sqrt(b.fixed_normal2[n]) +
+        0.5 * (std::sqrt(b.face0[n]) + std::sqrt(b.face1[n]) + std::sqrt(b.face2[n]));
+    b.size[n] = s;
+    b.stretch[n] = root6 * b.volume6[n] / (s * area);
+  }
+}
+
 class Engine {
  public:
   Engine(const TetMesh& input, const SimplifyParams& params, const ProgressCallback& progress,
@@ -790,19 +896,6 @@ class Engine {
     return false;
   }
 
-  // A tet of t*(i) U t*(j) that survives the collapse, reduced to what its shape
-  // with the moving corner at k needs: the fixed face and its fixed lengths.
-  struct MovingTet {
-    Vec3 f0, f1, f2;    // the three corners that stay
-    Vec3 inward;        // (f1 - f0) x (f2 - f0) oriented towards the moving corner
-    double fixed_area;  // area of the fixed face
-    double fixed_max2;  // longest squared edge among the fixed corners
-    double stretch;     // its stretch now
-    uint32_t owner;     // the end of the edge the tet holds
-    int32_t material;
-    uint8_t allowance;  // TetRecord::allowance
-  };
-
   // |f*(a,b)|: the distinct vertices x of the triangles (a, b, x) around edge (a, b).
   uint32_t edge_triangle_count(uint32_t a, uint32_t b) {
     const uint32_t s = next_stamp();
@@ -817,10 +910,9 @@ class Engine {
   }
 
   // Lists the tets of t*(a) U t*(b) without edge (a, b) in moving_source_, and sets
-  // *old_mean to the mean stretch of t*(a) U t*(b). Their MovingTet records are made
-  // on demand by moving_tet(), as most candidates are rejected after a few tets.
+  // *old_mean to the mean stretch of t*(a) U t*(b). Their columns are filled on
+  // demand, a block at a time, as most candidates are rejected after a few tets.
   void gather_moving(uint32_t a, uint32_t b, double* old_mean) {
-    moving_.clear();
     moving_source_.clear();
     double sum = 0;
     size_t count = 0;
@@ -838,93 +930,101 @@ class Engine {
       }
     }
     *old_mean = sum / static_cast<double>(count);
-    candidate_.resize(moving_source_.size());
+    moving_count_ = moving_source_.size();
+    moving_built_ = 0;
+    moving_first_end_ = a;
+    if (moving_.size() * kLanes < moving_count_) moving_.resize(moving_count_ / kLanes + 1);
   }
 
-  // The record of moving_source_[n]; made when first asked for (in order).
-  const MovingTet& moving_tet(size_t n) {
-    if (n < moving_.size()) return moving_[n];
-    const auto [t, v] = moving_source_[n];
-    const TetRecord& r = tet_[t];
-    int slot = 0;
-    while (r.v[slot] != v) ++slot;
-    const int* f = kTetFace[slot];  // outward: its normal points away from slot
-    MovingTet& m = moving_.emplace_back();
-    m.f0 = pos_[r.v[f[0]]];
-    m.f1 = pos_[r.v[f[1]]];
-    m.f2 = pos_[r.v[f[2]]];
-    const Vec3 outward = cross(m.f1 - m.f0, m.f2 - m.f0);
-    m.inward = outward * -1.0;
-    m.fixed_area = 0.5 * length(outward);
-    m.fixed_max2 = std::max(
-        {squared_length(m.f1 - m.f0), squared_length(m.f2 - m.f0), squared_length(m.f2 - m.f1)});
-    m.stretch = r.stretch;
-    m.owner = v;
-    m.material = r.material;
-    m.allowance = r.allowance;
-    return m;
+  // Fills the blocks of the moving tets up to `end` (rounded up to a block).
+  void build_moving(size_t end) {
+    end = std::min(moving_count_, (end + kLanes - 1) / kLanes * kLanes);
+    for (size_t n = moving_built_; n < end; ++n) {
+      const auto [t, v] = moving_source_[n];
+      const TetRecord& r = tet_[t];
+      int slot = 0;
+      while (r.v[slot] != v) ++slot;
+      const int* f = kTetFace[slot];  // outward: its normal points away from slot
+      TetBlock& b = moving_[n / kLanes];
+      const int l = static_cast<int>(n % kLanes);
+      const Vec3 &p0 = pos_[r.v[f[0]]], &p1 = pos_[r.v[f[1]]], &p2 = pos_[r.v[f[2]]];
+      b.f0x[l] = p0.x, b.f0y[l] = p0.y, b.f0z[l] = p0.z;
+      b.f1x[l] = p1.x, b.f1y[l] = p1.y, b.f1z[l] = p1.z;
+      b.f2x[l] = p2.x, b.f2y[l] = p2.y, b.f2z[l] = p2.z;
+      b.side[l] = v == moving_first_end_ ? 0 : 1;
+      b.steady[l] = r.allowance == 0 ? 1 : 0;
+      b.material[l] = r.material;
+      b.stretch_now[l] = r.stretch;
+    }
+    // Lanes past the last tet: a harmless copy of the block's first tet.
+    if (end % kLanes != 0) {
+      TetBlock& b = moving_[end / kLanes];
+      for (size_t l = end % kLanes; l < kLanes; ++l) copy_lane(b, 0, static_cast<int>(l));
+    }
+    for (size_t k = moving_built_ / kLanes; k * kLanes < end; ++k) fixed_faces(moving_[k]);
+    moving_built_ = end;
+  }
+
+  static void copy_lane(TetBlock& b, int from, int to) {
+    for (double* field : {b.f0x, b.f0y, b.f0z, b.f1x, b.f1y, b.f1z, b.f2x, b.f2y, b.f2z, b.side,
+                          b.steady, b.stretch_now})
+      field[to] = field[from];
+    b.material[to] = b.material[from];
   }
 
   // Geometry of candidate position k for collapse (i, j): tolerance, stretch and
-  // size of every tet around k (moving_ must hold them). On success sets *priority
-  // (eq. 3). Cheapest first: a pass without square roots rejects inverted, oversized
-  // and clearly flat tets (a bound on the stretch), then a pass computes the exact
-  // stretch of eq. (2) only when every tet passed the first. If k is the position of
-  // end `unmoved` (else kInvalidIndex), the tets of that end keep their shape: one
-  // that meets every threshold (allowance 0) needs only its size, for eq. (3).
-  Reject check_position(uint32_t i, uint32_t j, const Vec3& k, uint32_t unmoved,
-                        double old_stretch_mean, double* priority) {
+  // size of every tet around k (gather_moving() must have listed them). On success
+  // sets *priority (eq. 3). Cheapest first: a pass without square roots rejects
+  // inverted, oversized and clearly flat tets (a bound on the stretch), a block of
+  // tets at a time, then a pass computes the exact stretch of eq. (2) only when every
+  // tet passed the first. If k is the position of end `unmoved` (0: i, 1: j, else
+  // none), the tets of that end keep their shape: one that meets every threshold
+  // needs only its size, for eq. (3).
+  Reject check_position(uint32_t i, uint32_t j, const Vec3& k, int unmoved, double old_stretch_mean,
+                        double* priority) {
     Quadric q = quadric_[i];
     q.add(quadric_[j]);
     if (q.error(k) > tolerance2_ + q.rounding(k)) return Reject::kTolerance;
-    if (moving_source_.empty()) return Reject::kTopology;
-    const double uniform = params_.sizing.uniform;
+    if (moving_count_ == 0) return Reject::kTopology;
     // The bound: with a_1..a_4 the face areas, (sum a)^2 >= sum a^2, so
     // d_t^2 = 6 (6V)^2 / (s^2 A^2) <= 6 (6V)^2 / (s^2 sum a^2); a tet whose bound is
     // below tau_ST^2 (with a margin far above the rounding) fails the exact test too.
     const double floor2 = params_.min_stretch * params_.min_stretch * (1 - 1e-9);
-    for (size_t n = 0; n < moving_source_.size(); ++n) {
-      const MovingTet& m = moving_tet(n);
-      const Vec3 d0 = m.f0 - k, d1 = m.f1 - k, d2 = m.f2 - k;
-      const double size2 =
-          std::max({m.fixed_max2, squared_length(d0), squared_length(d1), squared_length(d2)});
-      const double limit = uniform_sizing_ ? uniform : size_limit(m.f0, m.f1, m.f2, k, m.material);
-      if (m.owner == unmoved && m.allowance == 0) {
-        candidate_[n] = {-1, size2, 0, 0, 0, limit};  // volume6 < 0: unchanged
-        continue;
+    const size_t blocks = (moving_count_ + kLanes - 1) / kLanes;
+    for (size_t k_block = 0; k_block < blocks; ++k_block) {
+      const size_t begin = k_block * kLanes, end = std::min(moving_count_, begin + kLanes);
+      if (end > moving_built_) build_moving(end);
+      TetBlock& b = moving_[k_block];
+      for (int l = 0; l < kLanes; ++l) {
+        b.limit[l] = uniform_sizing_ ? params_.sizing.uniform
+                                     : size_limit({b.f0x[l], b.f0y[l], b.f0z[l]},
+                                                  {b.f1x[l], b.f1y[l], b.f1z[l]},
+                                                  {b.f2x[l], b.f2y[l], b.f2z[l]}, k, b.material[l]);
       }
-      const double volume6 = -dot(m.inward, d0);  // = 6 V of the tet with k in place
-      if (!(volume6 > 0)) return Reject::kStretch;
-      if (size2 > limit * limit) return Reject::kSize;
-      const double face0 = squared_length(cross(d0, d1)), face1 = squared_length(cross(d1, d2)),
-                   face2 = squared_length(cross(d2, d0));
-      const double area_squares = m.fixed_area * m.fixed_area + 0.25 * (face0 + face1 + face2);
-      if (6 * volume6 * volume6 < floor2 * size2 * area_squares) return Reject::kStretch;
-      candidate_[n] = {volume6, size2, face0, face1, face2, limit};
+      first_pass(b, k.x, k.y, k.z, unmoved, floor2);
+      for (size_t n = 0; n < end - begin; ++n)
+        if (b.code[n] != 0) return b.code[n] == 2 ? Reject::kSize : Reject::kStretch;
     }
     double stretch_sum = 0, size_sum = 0, limit_sum = 0;
-    for (size_t n = 0; n < moving_.size(); ++n) {
-      const CandidateTet& c = candidate_[n];
-      const double size = std::sqrt(c.size2);
-      if (c.volume6 < 0) {
-        stretch_sum += moving_[n].stretch;
-        size_sum += size;
-        limit_sum += c.limit;
-        continue;
+    for (size_t k_block = 0; k_block < blocks; ++k_block) {
+      TetBlock& b = moving_[k_block];
+      exact_pass(b);
+      const size_t lanes = std::min<size_t>(kLanes, moving_count_ - k_block * kLanes);
+      for (size_t l = 0; l < lanes; ++l) {
+        if (b.side[l] == unmoved && b.steady[l] != 0) {
+          stretch_sum += b.stretch_now[l];
+        } else {
+          if (!(b.stretch[l] >= params_.min_stretch)) return Reject::kStretch;
+          stretch_sum += b.stretch[l];
+        }
+        size_sum += b.size[l];
+        limit_sum += b.limit[l];
       }
-      const double area = moving_[n].fixed_area +
-                          0.5 * (std::sqrt(c.face0) + std::sqrt(c.face1) + std::sqrt(c.face2));
-      // Paper eq. (2): d_t = 6 sqrt(6) V_t / (s_t A_t), with 6 V_t = volume6.
-      const double stretch = std::sqrt(6.0) * c.volume6 / (size * area);
-      if (!(stretch >= params_.min_stretch)) return Reject::kStretch;
-      stretch_sum += stretch;
-      size_sum += size;
-      limit_sum += c.limit;
     }
     // Delta s = tau_SZ / mean size of t*(k); Delta d = mean stretch of t*(k) over the mean
     // stretch of t*(i) U t*(j). With a size field, tau_SZ is averaged over t*(k).
     const double delta_s = limit_sum / size_sum;
-    const double delta_d = (stretch_sum / static_cast<double>(moving_.size())) / old_stretch_mean;
+    const double delta_d = (stretch_sum / static_cast<double>(moving_count_)) / old_stretch_mean;
     *priority = delta_s * delta_d;
     return Reject::kNone;
   }
@@ -954,21 +1054,25 @@ class Engine {
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
     // and then each end.
-    uint32_t kept_options[3], unmoved[3];
+    uint32_t kept_options[3];
+    int unmoved[3];  // the end that stays: 0 (a), 1 (b) or -1 (neither)
     Vec3 positions[3];
     int options = 0;
     if (ka != kb) {
       const uint32_t keep = ka < kb ? a : b;
-      kept_options[0] = unmoved[0] = keep;
+      kept_options[0] = keep;
+      unmoved[0] = keep == a ? 0 : 1;
       positions[0] = pos_[keep];
       options = 1;
     } else {
       kept_options[0] = std::min(a, b);
-      unmoved[0] = kInvalidIndex;
+      unmoved[0] = -1;
       positions[0] = (pos_[a] + pos_[b]) * 0.5;
-      kept_options[1] = unmoved[1] = a;
+      kept_options[1] = a;
+      unmoved[1] = 0;
       positions[1] = pos_[a];
-      kept_options[2] = unmoved[2] = b;
+      kept_options[2] = b;
+      unmoved[2] = 1;
       positions[2] = pos_[b];
       options = 3;
     }
@@ -1255,16 +1359,13 @@ class Engine {
   std::vector<int32_t> edge_materials_;
   std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
   std::vector<uint32_t> ring_, around_, ring_others_;
-  std::vector<MovingTet> moving_;
+  // The tets of t*(a) U t*(b) without edge (a, b), as blocks made on demand.
+  std::vector<TetBlock> moving_;
+  size_t moving_count_ = 0, moving_built_ = 0;
+  uint32_t moving_first_end_ = 0;
   std::vector<std::pair<uint32_t, uint32_t>> moving_source_;  // (tet, its end of the edge)
   std::vector<uint32_t> valence_;  // per vertex, kept up to date by apply()
-  // What the first pass of check_position() found of each moving tet, for the second.
-  struct CandidateTet {
-    double volume6, size2, face0, face1, face2;  // squared doubled areas of k's faces
-    double limit;                                // tau_SZ of the tet
-  };
-  std::vector<CandidateTet> candidate_;
-  bool uniform_sizing_ = false;  // only the uniform size is set: no per-tet field lookups
+  bool uniform_sizing_ = false;    // only the uniform size is set: no per-tet field lookups
 };
 
 }  // namespace
