@@ -148,7 +148,7 @@ struct StarFace {
 };
 
 inline bool tet_has(const Tet& t, uint32_t v) {
-  return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
+  return (t[0] == v) | (t[1] == v) | (t[2] == v) | (t[3] == v);  // no branches to mispredict
 }
 
 inline uint64_t edge_key(uint32_t a, uint32_t b) {
@@ -875,18 +875,18 @@ class Engine {
   // shared by two of them; the edge lies on a surface if the ring is open (a face on
   // the boundary) or holds two materials (a face between them).
   bool is_surface_edge(uint32_t i, uint32_t j) {
+    ring_tets_.clear();
+    for (uint32_t t : star_[i])
+      if (tet_has(tet_[t].v, j)) ring_tets_.push_back(t);
+    return ring_is_surface(i, j);
+  }
+
+  // is_surface_edge() for the ring of tets around (i, j) listed in ring_tets_.
+  bool ring_is_surface(uint32_t i, uint32_t j) {
     ring_others_.clear();
-    int32_t material = 0;
-    bool first = true;
-    for (uint32_t t : star_[i]) {
+    for (uint32_t t : ring_tets_) {
       const TetRecord& r = tet_[t];
-      if (!tet_has(r.v, j)) continue;
-      if (first) {
-        material = r.material;
-        first = false;
-      } else if (r.material != material) {
-        return true;
-      }
+      if (r.material != tet_[ring_tets_[0]].material) return true;
       for (uint32_t x : r.v)
         if (x != i && x != j) ring_others_.push_back(x);
     }
@@ -894,6 +894,16 @@ class Engine {
     for (size_t k = 0; k < ring_others_.size(); k += 2)
       if (k + 1 == ring_others_.size() || ring_others_[k] != ring_others_[k + 1]) return true;
     return false;
+  }
+
+  // |f*(a,b)| for the ring of tets around (a, b) listed in ring_tets_.
+  uint32_t ring_triangle_count(uint32_t a, uint32_t b) {
+    const uint32_t s = next_stamp();
+    uint32_t n = 0;
+    for (uint32_t t : ring_tets_)
+      for (uint32_t w : tet_[t].v)
+        if (w != a && w != b && mark_[w] != s) mark_[w] = s, ++n;
+    return n;
   }
 
   // |f*(a,b)|: the distinct vertices x of the triangles (a, b, x) around edge (a, b).
@@ -909,31 +919,41 @@ class Engine {
     return n;
   }
 
-  // Lists the tets of t*(a) U t*(b) without edge (a, b) in moving_source_, and sets
-  // *old_mean to the mean stretch of t*(a) U t*(b). Their columns are filled on
-  // demand, a block at a time, as most candidates are rejected after a few tets.
-  void gather_moving(uint32_t a, uint32_t b, double* old_mean) {
+  // The tets of t*(a) U t*(b) without edge (a, b) go to moving_source_, those of the
+  // ring around the edge to ring_tets_, and their stretches to the mean of t*(a) U
+  // t*(b). Their blocks are filled on demand (build_moving()), as most candidates are
+  // rejected after a few tets. One walk per star: first a's, for the ring, ...
+  void gather_first_end(uint32_t a, uint32_t b) {
+    ring_tets_.clear();
     moving_source_.clear();
-    double sum = 0;
-    size_t count = 0;
-    for (uint32_t v : {a, b}) {
-      const uint32_t other = v == a ? b : a;
-      for (uint32_t t : star_[v]) {
-        const TetRecord& r = tet_[t];
-        if (tet_has(r.v, other)) {
-          if (v == a) sum += r.stretch, ++count;  // a ring tet, counted once
-          continue;
-        }
-        sum += r.stretch;
-        ++count;
-        moving_source_.push_back({t, v});
-      }
+    gather_sum_ = 0;
+    gather_count_ = 0;
+    for (uint32_t t : star_[a]) {
+      const TetRecord& r = tet_[t];
+      gather_sum_ += r.stretch;
+      ++gather_count_;
+      if (tet_has(r.v, b))
+        ring_tets_.push_back(t);
+      else
+        moving_source_.push_back({t, a});
     }
-    *old_mean = sum / static_cast<double>(count);
+  }
+
+  // ... then b's, once the ring passed the topology and valence rules. Returns the
+  // mean stretch of t*(a) U t*(b).
+  double gather_second_end(uint32_t a, uint32_t b) {
+    for (uint32_t t : star_[b]) {
+      const TetRecord& r = tet_[t];
+      if (tet_has(r.v, a)) continue;
+      gather_sum_ += r.stretch;
+      ++gather_count_;
+      moving_source_.push_back({t, b});
+    }
     moving_count_ = moving_source_.size();
     moving_built_ = 0;
     moving_first_end_ = a;
     if (moving_.size() * kLanes < moving_count_) moving_.resize(moving_count_ / kLanes + 1);
+    return gather_sum_ / static_cast<double>(gather_count_);
   }
 
   // Fills the blocks of the moving tets up to `end` (rounded up to a block).
@@ -972,18 +992,17 @@ class Engine {
     b.material[to] = b.material[from];
   }
 
-  // Geometry of candidate position k for collapse (i, j): tolerance, stretch and
-  // size of every tet around k (gather_moving() must have listed them). On success
+  // Geometry of candidate position k for collapse (i, j), with q the sum of their
+  // quadrics: tolerance, stretch and size of every tet around k (gather_*() must
+  // have listed them). On success
   // sets *priority (eq. 3). Cheapest first: a pass without square roots rejects
   // inverted, oversized and clearly flat tets (a bound on the stretch), a block of
   // tets at a time, then a pass computes the exact stretch of eq. (2) only when every
   // tet passed the first. If k is the position of end `unmoved` (0: i, 1: j, else
   // none), the tets of that end keep their shape: one that meets every threshold
   // needs only its size, for eq. (3).
-  Reject check_position(uint32_t i, uint32_t j, const Vec3& k, int unmoved, double old_stretch_mean,
+  Reject check_position(const Quadric& q, const Vec3& k, int unmoved, double old_stretch_mean,
                         double* priority) {
-    Quadric q = quadric_[i];
-    q.add(quadric_[j]);
     if (q.error(k) > tolerance2_ + q.rounding(k)) return Reject::kTolerance;
     if (moving_count_ == 0) return Reject::kTopology;
     // The bound: with a_1..a_4 the face areas, (sum a)^2 >= sum a^2, so
@@ -1034,10 +1053,12 @@ class Engine {
     const FeatureKind ka = kind_[a], kb = kind_[b];
     const bool a_on = ka != FeatureKind::kInterior, b_on = kb != FeatureKind::kInterior;
     bool surface_edge = false;
+    if (a_on && b_on && ka == FeatureKind::kCorner && kb == FeatureKind::kCorner)
+      return Reject::kTopology;
+    gather_first_end(a, b);
     if (a_on && b_on) {
-      if (ka == FeatureKind::kCorner && kb == FeatureKind::kCorner) return Reject::kTopology;
       // The paper's rule: an interior edge joining two surface nodes is never collapsed.
-      surface_edge = is_surface_edge(a, b);
+      surface_edge = ring_is_surface(a, b);
       if (!surface_edge) return Reject::kTopology;
       // Two curve/corner nodes may only merge along their curve.
       if (ka <= FeatureKind::kCurve && kb <= FeatureKind::kCurve && !is_feature_edge(a, b))
@@ -1047,10 +1068,9 @@ class Engine {
     // The paper's valence of the new node, |v*(i)| + |v*(j)| - (|f*(i,j)| + 2), with
     // f*(i,j) the triangles (i, j, x) around the edge. It is the exact valence when
     // the link condition holds and an overestimate otherwise, so never too low.
-    if (valence_[a] + valence_[b] - edge_triangle_count(a, b) - 2 > params_.max_valence)
+    if (valence_[a] + valence_[b] - ring_triangle_count(a, b) - 2 > params_.max_valence)
       return Reject::kValence;
-    double old_mean = 0;
-    gather_moving(a, b, &old_mean);
+    const double old_mean = gather_second_end(a, b);
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
     // and then each end.
@@ -1076,10 +1096,12 @@ class Engine {
       positions[2] = pos_[b];
       options = 3;
     }
+    Quadric quadric = quadric_[a];
+    quadric.add(quadric_[b]);
     Reject first = Reject::kNone;
     for (int c = 0; c < options; ++c) {
       double priority = 0;
-      const Reject r = check_position(a, b, positions[c], unmoved[c], old_mean, &priority);
+      const Reject r = check_position(quadric, positions[c], unmoved[c], old_mean, &priority);
       if (r == Reject::kNone) {
         // The link conditions do not depend on the position or the priority: they are
         // checked when the collapse reaches the top of the queue (see simplify()).
@@ -1362,6 +1384,9 @@ class Engine {
   // The tets of t*(a) U t*(b) without edge (a, b), as blocks made on demand.
   std::vector<TetBlock> moving_;
   size_t moving_count_ = 0, moving_built_ = 0;
+  std::vector<uint32_t> ring_tets_;  // the tets around the edge evaluated
+  double gather_sum_ = 0;            // stretches of t*(a) U t*(b), for their mean
+  size_t gather_count_ = 0;
   uint32_t moving_first_end_ = 0;
   std::vector<std::pair<uint32_t, uint32_t>> moving_source_;  // (tet, its end of the edge)
   std::vector<uint32_t> valence_;  // per vertex, kept up to date by apply()
