@@ -219,6 +219,7 @@ struct alignas(64) TetBlock {
   double fixed_normal2[kLanes];               // |n|^2 = (2 x fixed area)^2
   double side[kLanes];                        // 0: a tet of the first end, 1: the second
   double steady[kLanes];                      // 1: meets every threshold now (allowance 0)
+  double skip[kLanes];                        // 1: not a tet of t*(k) (ring, padding)
   double stretch_now[kLanes];                 // its stretch now
   double limit[kLanes];                       // tau_SZ of the tet with k in place
   // Of the candidate: 6 V, s^2, (2 x area of k's three faces)^2, the first pass's
@@ -292,7 +293,8 @@ void first_pass(TetBlock& b, double kx, double ky, double kz, double unmoved, do
     b.face2[n] = f2;
     const double thin = 6 * v6 * v6 < floor2 * s2 * area_squares ? 1.0 : 0.0;
     const double verdict = v6 > 0 ? (s2 > b.limit[n] * b.limit[n] ? 2.0 : thin) : 1.0;
-    b.code[n] = (b.side[n] == unmoved) & (b.steady[n] != 0) ? 0.0 : verdict;
+    const bool keeps = (b.side[n] == unmoved) & (b.steady[n] != 0);
+    b.code[n] = keeps | (b.skip[n] != 0) ? 0.0 : verdict;
   }
 }
 
@@ -919,70 +921,90 @@ class Engine {
     return n;
   }
 
-  // The tets of t*(a) U t*(b) without edge (a, b) go to moving_source_, those of the
-  // ring around the edge to ring_tets_, and their stretches to the mean of t*(a) U
-  // t*(b). Their blocks are filled on demand (build_moving()), as most candidates are
-  // rejected after a few tets. One walk per star: first a's, for the ring, ...
+  // The tets of t*(a) U t*(b) that survive the collapse, in blocks of kLanes: first
+  // the whole star of a in star order, the lanes of the ring around the edge skipped,
+  // then the tets of b off the ring. The blocks of a stay valid, with their faces
+  // opposite a, until the mesh changes (refresh_around()), so the edges of one vertex
+  // evaluated in a row (after a collapse, in a sweep, at the start) share them.
+  // gather_first_end() lists the ring in ring_tets_; the stretches of t*(a) U t*(b)
+  // go to their mean.
   void gather_first_end(uint32_t a, uint32_t b) {
+    const auto& star = star_[a];
+    if (first_end_ != a) {
+      first_end_ = a;
+      first_blocks_ = (star.size() + kLanes - 1) / kLanes;
+      reserve_blocks(first_blocks_);
+      std::fill(block_built_.begin(), block_built_.begin() + first_blocks_, 0);
+      first_sum_ = 0;
+      for (uint32_t t : star) first_sum_ += tet_[t].stretch;
+    }
     ring_tets_.clear();
-    moving_source_.clear();
-    gather_sum_ = 0;
-    gather_count_ = 0;
-    for (uint32_t t : star_[a]) {
-      const TetRecord& r = tet_[t];
-      gather_sum_ += r.stretch;
-      ++gather_count_;
-      if (tet_has(r.v, b))
-        ring_tets_.push_back(t);
-      else
-        moving_source_.push_back({t, a});
+    for (size_t n = 0; n < first_blocks_ * kLanes; ++n) {
+      const bool ring = n >= star.size() || tet_has(tet_[star[n]].v, b);
+      if (ring && n < star.size()) ring_tets_.push_back(star[n]);
+      moving_[n / kLanes].skip[n % kLanes] = ring ? 1 : 0;
     }
   }
 
   // ... then b's, once the ring passed the topology and valence rules. Returns the
   // mean stretch of t*(a) U t*(b).
   double gather_second_end(uint32_t a, uint32_t b) {
+    double sum = first_sum_;
+    size_t count = star_[a].size();
+    second_tets_.clear();
     for (uint32_t t : star_[b]) {
       const TetRecord& r = tet_[t];
       if (tet_has(r.v, a)) continue;
-      gather_sum_ += r.stretch;
-      ++gather_count_;
-      moving_source_.push_back({t, b});
+      sum += r.stretch;
+      ++count;
+      second_tets_.push_back(t);
     }
-    moving_count_ = moving_source_.size();
-    moving_built_ = 0;
-    moving_first_end_ = a;
-    if (moving_.size() * kLanes < moving_count_) moving_.resize(moving_count_ / kLanes + 1);
-    return gather_sum_ / static_cast<double>(gather_count_);
+    moving_count_ = star_[a].size() - ring_tets_.size() + second_tets_.size();
+    moving_blocks_ = first_blocks_ + (second_tets_.size() + kLanes - 1) / kLanes;
+    reserve_blocks(moving_blocks_);
+    for (size_t k = first_blocks_; k < moving_blocks_; ++k) block_built_[k] = 0;
+    return sum / static_cast<double>(count);
   }
 
-  // Fills the blocks of the moving tets up to `end` (rounded up to a block).
-  void build_moving(size_t end) {
-    end = std::min(moving_count_, (end + kLanes - 1) / kLanes * kLanes);
-    for (size_t n = moving_built_; n < end; ++n) {
-      const auto [t, v] = moving_source_[n];
-      const TetRecord& r = tet_[t];
+  void reserve_blocks(size_t n) {
+    if (moving_.size() < n) {
+      moving_.resize(n);
+      block_built_.resize(n, 0);
+    }
+  }
+
+  // Fills block k of the moving tets (see gather_first_end()).
+  void build_block(size_t k) {
+    TetBlock& b = moving_[k];
+    const bool first = k < first_blocks_;
+    const auto& tets = first ? star_[first_end_] : second_tets_;
+    const size_t begin = (first ? k : k - first_blocks_) * kLanes;
+    const uint32_t v = first ? first_end_ : second_end_;
+    int lanes = 0;
+    for (size_t n = begin; n < std::min(tets.size(), begin + kLanes); ++n, ++lanes) {
+      const TetRecord& r = tet_[tets[n]];
       int slot = 0;
       while (r.v[slot] != v) ++slot;
       const int* f = kTetFace[slot];  // outward: its normal points away from slot
-      TetBlock& b = moving_[n / kLanes];
-      const int l = static_cast<int>(n % kLanes);
       const Vec3 &p0 = pos_[r.v[f[0]]], &p1 = pos_[r.v[f[1]]], &p2 = pos_[r.v[f[2]]];
+      const int l = lanes;
       b.f0x[l] = p0.x, b.f0y[l] = p0.y, b.f0z[l] = p0.z;
       b.f1x[l] = p1.x, b.f1y[l] = p1.y, b.f1z[l] = p1.z;
       b.f2x[l] = p2.x, b.f2y[l] = p2.y, b.f2z[l] = p2.z;
-      b.side[l] = v == moving_first_end_ ? 0 : 1;
+      b.side[l] = first ? 0 : 1;
       b.steady[l] = r.allowance == 0 ? 1 : 0;
       b.material[l] = r.material;
       b.stretch_now[l] = r.stretch;
     }
-    // Lanes past the last tet: a harmless copy of the block's first tet.
-    if (end % kLanes != 0) {
-      TetBlock& b = moving_[end / kLanes];
-      for (size_t l = end % kLanes; l < kLanes; ++l) copy_lane(b, 0, static_cast<int>(l));
+    // Lanes past the last tet (skipped): a harmless copy of the first.
+    for (int l = lanes; l < kLanes; ++l) {
+      copy_lane(b, 0, l);
+      if (!first) b.skip[l] = 1;
     }
-    for (size_t k = moving_built_ / kLanes; k * kLanes < end; ++k) fixed_faces(moving_[k]);
-    moving_built_ = end;
+    if (!first)
+      for (int l = 0; l < lanes; ++l) b.skip[l] = 0;
+    fixed_faces(b);
+    block_built_[k] = 1;
   }
 
   static void copy_lane(TetBlock& b, int from, int to) {
@@ -992,15 +1014,14 @@ class Engine {
     b.material[to] = b.material[from];
   }
 
-  // Geometry of candidate position k for collapse (i, j), with q the sum of their
+  // Geometry of candidate position k for collapse (a, b), with q the sum of their
   // quadrics: tolerance, stretch and size of every tet around k (gather_*() must
-  // have listed them). On success
-  // sets *priority (eq. 3). Cheapest first: a pass without square roots rejects
-  // inverted, oversized and clearly flat tets (a bound on the stretch), a block of
-  // tets at a time, then a pass computes the exact stretch of eq. (2) only when every
-  // tet passed the first. If k is the position of end `unmoved` (0: i, 1: j, else
-  // none), the tets of that end keep their shape: one that meets every threshold
-  // needs only its size, for eq. (3).
+  // have listed them). On success sets *priority (eq. 3). Cheapest first: a pass
+  // without square roots rejects inverted, oversized and clearly flat tets (a bound
+  // on the stretch), a block of tets at a time, then a pass computes the exact
+  // stretch of eq. (2) only when every tet passed the first. If k is the position of
+  // end `unmoved` (0: a, 1: b, else none), the tets of that end keep their shape:
+  // one that meets every threshold needs only its size, for eq. (3).
   Reject check_position(const Quadric& q, const Vec3& k, int unmoved, double old_stretch_mean,
                         double* priority) {
     if (q.error(k) > tolerance2_ + q.rounding(k)) return Reject::kTolerance;
@@ -1009,10 +1030,8 @@ class Engine {
     // d_t^2 = 6 (6V)^2 / (s^2 A^2) <= 6 (6V)^2 / (s^2 sum a^2); a tet whose bound is
     // below tau_ST^2 (with a margin far above the rounding) fails the exact test too.
     const double floor2 = params_.min_stretch * params_.min_stretch * (1 - 1e-9);
-    const size_t blocks = (moving_count_ + kLanes - 1) / kLanes;
-    for (size_t k_block = 0; k_block < blocks; ++k_block) {
-      const size_t begin = k_block * kLanes, end = std::min(moving_count_, begin + kLanes);
-      if (end > moving_built_) build_moving(end);
+    for (size_t k_block = 0; k_block < moving_blocks_; ++k_block) {
+      if (!block_built_[k_block]) build_block(k_block);
       TetBlock& b = moving_[k_block];
       for (int l = 0; l < kLanes; ++l) {
         b.limit[l] = uniform_sizing_ ? params_.sizing.uniform
@@ -1021,15 +1040,15 @@ class Engine {
                                                   {b.f2x[l], b.f2y[l], b.f2z[l]}, k, b.material[l]);
       }
       first_pass(b, k.x, k.y, k.z, unmoved, floor2);
-      for (size_t n = 0; n < end - begin; ++n)
-        if (b.code[n] != 0) return b.code[n] == 2 ? Reject::kSize : Reject::kStretch;
+      for (int l = 0; l < kLanes; ++l)
+        if (b.code[l] != 0) return b.code[l] == 2 ? Reject::kSize : Reject::kStretch;
     }
     double stretch_sum = 0, size_sum = 0, limit_sum = 0;
-    for (size_t k_block = 0; k_block < blocks; ++k_block) {
+    for (size_t k_block = 0; k_block < moving_blocks_; ++k_block) {
       TetBlock& b = moving_[k_block];
       exact_pass(b);
-      const size_t lanes = std::min<size_t>(kLanes, moving_count_ - k_block * kLanes);
-      for (size_t l = 0; l < lanes; ++l) {
+      for (int l = 0; l < kLanes; ++l) {
+        if (b.skip[l]) continue;
         if (b.side[l] == unmoved && b.steady[l] != 0) {
           stretch_sum += b.stretch_now[l];
         } else {
@@ -1070,6 +1089,7 @@ class Engine {
     // the link condition holds and an overestimate otherwise, so never too low.
     if (valence_[a] + valence_[b] - ring_triangle_count(a, b) - 2 > params_.max_valence)
       return Reject::kValence;
+    second_end_ = b;
     const double old_mean = gather_second_end(a, b);
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
@@ -1222,6 +1242,7 @@ class Engine {
   // edges are re-evaluated when popped (their version no longer matches) and all
   // their edges, valid or not before, are re-evaluated by the next sweep.
   void refresh_around(uint32_t k) {
+    first_end_ = kInvalidIndex;  // the mesh changed: the cached star blocks are gone
     neighbors(k, &ring_);
     ring_.push_back(k);
     for (uint32_t v : ring_) {
@@ -1381,16 +1402,16 @@ class Engine {
   std::vector<int32_t> edge_materials_;
   std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
   std::vector<uint32_t> ring_, around_, ring_others_;
-  // The tets of t*(a) U t*(b) without edge (a, b), as blocks made on demand.
+  // The tets of t*(a) U t*(b) that survive the collapse (see gather_first_end()).
   std::vector<TetBlock> moving_;
-  size_t moving_count_ = 0, moving_built_ = 0;
-  std::vector<uint32_t> ring_tets_;  // the tets around the edge evaluated
-  double gather_sum_ = 0;            // stretches of t*(a) U t*(b), for their mean
-  size_t gather_count_ = 0;
-  uint32_t moving_first_end_ = 0;
-  std::vector<std::pair<uint32_t, uint32_t>> moving_source_;  // (tet, its end of the edge)
-  std::vector<uint32_t> valence_;  // per vertex, kept up to date by apply()
-  bool uniform_sizing_ = false;    // only the uniform size is set: no per-tet field lookups
+  std::vector<uint8_t> block_built_;
+  size_t first_blocks_ = 0, moving_blocks_ = 0, moving_count_ = 0;
+  uint32_t first_end_ = kInvalidIndex, second_end_ = kInvalidIndex;
+  double first_sum_ = 0;               // stretches of the star of first_end_
+  std::vector<uint32_t> second_tets_;  // the tets of b off the ring
+  std::vector<uint32_t> ring_tets_;    // the tets around the edge evaluated
+  std::vector<uint32_t> valence_;      // per vertex, kept up to date by apply()
+  bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
 };
 
 }  // namespace
