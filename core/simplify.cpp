@@ -325,16 +325,23 @@ class Engine {
     for (uint32_t t = 0; t < tet_.size(); ++t) {
       tet_[t].v = input.tets[t];
       tet_[t].material = input.materials[t];
-      tet_[t].allowance = own_violations(t);
     }
     vertex_alive_.assign(pos_.size(), 1);
     star_.resize(pos_.size());
-    for (uint32_t t = 0; t < tet_.size(); ++t)
-      for (uint32_t v : tet_[t].v) star_[v].push_back(t);
     mark_.assign(pos_.size(), 0);
+    reorder_for_locality();  // builds the stars
+    // Each tet's shape once: its stretch is kept up to date from here on.
+    for (uint32_t t = 0; t < tet_.size(); ++t) {
+      const TetShape s = shape(t);
+      const double limit = size_limit(t);
+      tet_[t].stretch = s.stretch;
+      tet_[t].allowance = static_cast<uint8_t>((s.stretch < params_.min_stretch ? kMayBeThin : 0) |
+                                               (s.size > limit ? kMayBeBig : 0));
+      const double ratio = 2 * s.size / limit;  // for the size check of subdivide()
+      if (ratio > 1) predicted_splits_ += ratio * ratio * ratio;
+    }
     input_valence_.resize(pos_.size());
     for (uint32_t v = 0; v < pos_.size(); ++v) input_valence_[v] = valence(v);
-    reorder_for_locality();
   }
 
   Status run(SimplifyResult* result) {
@@ -410,11 +417,6 @@ class Engine {
     const Tet& q = tet_[t].v;
     return size_limit(pos_[q[0]], pos_[q[1]], pos_[q[2]], pos_[q[3]], tet_[t].material);
   }
-  uint8_t own_violations(uint32_t t) const {
-    const TetShape s = shape(t);
-    return static_cast<uint8_t>((s.stretch < params_.min_stretch ? kMayBeThin : 0) |
-                                (s.size > size_limit(t) ? kMayBeBig : 0));
-  }
   TetShape shape(uint32_t t) const {
     const Tet& q = tet_[t].v;
     return tet_shape(pos_[q[0]], pos_[q[1]], pos_[q[2]], pos_[q[3]]);
@@ -452,9 +454,10 @@ class Engine {
     for (uint32_t k = 0; k < vertex_count; ++k) new_id[order[k].second] = k;
     std::vector<Vec3> positions(vertex_count);
     std::vector<uint32_t> valences(vertex_count);
+    const bool has_valences = input_valence_.size() == vertex_count;
     for (uint32_t v = 0; v < vertex_count; ++v) {
       positions[new_id[v]] = pos_[v];
-      valences[new_id[v]] = input_valence_[v];
+      if (has_valences) valences[new_id[v]] = input_valence_[v];
     }
     pos_.swap(positions);
     input_valence_.swap(valences);
@@ -470,7 +473,13 @@ class Engine {
     std::vector<TetRecord> tets(tet_count);
     for (uint32_t k = 0; k < tet_count; ++k) tets[k] = tet_[tet_order[k].second];
     tet_.swap(tets);
-    for (auto& star : star_) star.clear();
+    std::vector<uint32_t> star_size(vertex_count, 0);
+    for (const TetRecord& t : tet_)
+      for (uint32_t v : t.v) ++star_size[v];
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+      star_[v].clear();
+      star_[v].reserve(star_size[v]);
+    }
     for (uint32_t t = 0; t < tet_count; ++t)
       for (uint32_t v : tet_[t].v) star_[v].push_back(t);
   }
@@ -481,6 +490,7 @@ class Engine {
   // skipped, and counted, if a child would fall below min(tau_ST, its parent's
   // stretch) or a node would exceed tau_VL.
   double edge_size_limit(uint32_t a, uint32_t b) const {
+    if (uniform_sizing_) return params_.sizing.uniform;
     double limit = std::numeric_limits<double>::infinity();
     for (uint32_t t : star_[a])
       if (tet_has(tet_[t].v, b)) limit = std::min(limit, size_limit(t));
@@ -498,11 +508,7 @@ class Engine {
 
   Status subdivide(SimplifyResult* result) {
     // Refuse sizes that would explode the mesh before doing any work.
-    double predicted = 0;
-    for (uint32_t t = 0; t < tet_.size(); ++t) {
-      const double ratio = 2 * shape(t).size / size_limit(t);
-      if (ratio > 1) predicted += ratio * ratio * ratio;
-    }
+    const double predicted = predicted_splits_;
     if (predicted + tet_.size() > static_cast<double>(kMaxTets)) {
       const std::string count = predicted < 1e15
                                     ? "about " + std::to_string(static_cast<long long>(predicted))
@@ -523,6 +529,7 @@ class Engine {
     }
     const size_t initial = std::max<size_t>(1, heap.size());
     std::vector<uint32_t> ring, opposite;
+    std::vector<double> piece_stretch;  // of the two pieces of each ring tet
     size_t iterations = 0;
     while (!heap.empty()) {
       if ((++iterations & 4095) == 0) {
@@ -540,13 +547,14 @@ class Engine {
       const Vec3 m = (pos_[e.a] + pos_[e.b]) * 0.5;
       bool ok = true;
       opposite.clear();
+      piece_stretch.clear();
       for (uint32_t t : ring) {
-        const double parent = shape(t).stretch;
-        const double floor = std::min(params_.min_stretch, parent);
+        const double floor = std::min(params_.min_stretch, tet_[t].stretch);
         for (uint32_t replaced : {e.a, e.b}) {
           Vec3 p[4];
           for (int c = 0; c < 4; ++c) p[c] = tet_[t].v[c] == replaced ? m : pos_[tet_[t].v[c]];
           const TetShape child = tet_shape(p[0], p[1], p[2], p[3]);
+          piece_stretch.push_back(child.stretch);
           if (child.stretch < floor) ok = false;
           // A piece may only be above its own size limit if its parent already was
           // above its own (with a size field the limits of parent and piece differ).
@@ -578,15 +586,18 @@ class Engine {
       input_valence_.push_back(0);
       valence_now.push_back(static_cast<uint32_t>(opposite.size() + 2));
       for (uint32_t w : opposite) ++valence_now[w];
-      for (uint32_t t : ring) {
+      for (size_t n = 0; n < ring.size(); ++n) {
+        const uint32_t t = ring[n];
         const uint32_t child = static_cast<uint32_t>(tet_.size());
         // The upper piece copies t's material and allowance: a piece of t may break
         // what t broke.
         TetRecord upper = tet_[t];
         for (uint32_t& v : upper.v)
           if (v == e.a) v = mid;
+        upper.stretch = piece_stretch[2 * n];
         for (uint32_t& v : tet_[t].v)
           if (v == e.b) v = mid;
+        tet_[t].stretch = piece_stretch[2 * n + 1];
         tet_.push_back(upper);
         // Stars: t keeps a and loses b; the child has b instead of a.
         auto& sb = star_[e.b];
@@ -601,7 +612,8 @@ class Engine {
       push_if_long(heap, mid, e.b);
       for (uint32_t w : opposite) push_if_long(heap, mid, w);
     }
-    for (auto& s : star_) std::sort(s.begin(), s.end());
+    // The stars are no longer sorted: run() renumbers (reorder_for_locality()) after
+    // any split, which rebuilds them.
     report("subdivide", 1);
     return Status();
   }
@@ -639,7 +651,6 @@ class Engine {
     sort_unique(material_ids_);
     material_tets_.assign(material_ids_.size(), 0);
     for (int32_t m : mesh.materials) ++material_tets_[material_index(m)];
-    for (uint32_t t = 0; t < tet_.size(); ++t) tet_[t].stretch = shape(t).stretch;
   }
 
   // ------------------------------------------------------------ evaluation
@@ -1412,6 +1423,7 @@ class Engine {
   std::vector<uint32_t> ring_tets_;    // the tets around the edge evaluated
   std::vector<uint32_t> valence_;      // per vertex, kept up to date by apply()
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
+  double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
 };
 
 }  // namespace
