@@ -117,11 +117,23 @@ struct Collapse {
   uint32_t version_kept = 0, version_removed = 0;
   Vec3 position;
   bool surface_edge = false;
+  bool midpoint = false;  // position is the midpoint (else the kept end's position)
 };
+
+// What the queue keeps of a valid collapse, in 32 bytes (the queue holds a few hundred
+// thousand and is walked at random): the position is restored when it is popped.
+struct QueuedCollapse {
+  double priority = 0;
+  uint32_t kept = 0, removed = 0;
+  uint32_t version_kept = 0, version_removed = 0;
+  bool surface_edge = false;
+  bool midpoint = false;
+};
+static_assert(sizeof(QueuedCollapse) == 32, "four per cache line pair");
 
 // Max-heap order: larger priority first, then the smaller vertex pair.
 struct CollapseLess {
-  bool operator()(const Collapse& x, const Collapse& y) const {
+  bool operator()(const QueuedCollapse& x, const QueuedCollapse& y) const {
     if (x.priority != y.priority) return x.priority < y.priority;
     const uint64_t kx = (uint64_t{std::min(x.kept, x.removed)} << 32) | std::max(x.kept, x.removed);
     const uint64_t ky = (uint64_t{std::min(y.kept, y.removed)} << 32) | std::max(y.kept, y.removed);
@@ -1141,6 +1153,7 @@ class Engine {
         out->kept = kept_options[c];
         out->removed = out->kept == a ? b : a;
         out->position = positions[c];
+        out->midpoint = unmoved[c] == -1;
         out->version_kept = version_[out->kept];
         out->version_removed = version_[out->removed];
         return Reject::kNone;
@@ -1179,7 +1192,8 @@ class Engine {
       count(r);
       return;
     }
-    heap_.push_back(c);
+    heap_.push_back({c.priority, c.kept, c.removed, c.version_kept, c.version_removed,
+                     c.surface_edge, c.midpoint});
     std::push_heap(heap_.begin(), heap_.end(), CollapseLess());
   }
 
@@ -1314,14 +1328,24 @@ class Engine {
         report("simplify", 1.0 - double(alive_tets_) / double(initial_tets));
       }
       std::pop_heap(heap_.begin(), heap_.end(), CollapseLess());
-      const Collapse c = heap_.back();
+      const QueuedCollapse q = heap_.back();
       heap_.pop_back();
-      if (!vertex_alive_[c.kept] || !vertex_alive_[c.removed]) continue;
-      if (c.version_kept != version_[c.kept] || c.version_removed != version_[c.removed]) {
+      if (!vertex_alive_[q.kept] || !vertex_alive_[q.removed]) continue;
+      if (q.version_kept != version_[q.kept] || q.version_removed != version_[q.removed]) {
         // Stale: evaluate again now unless a sweep already did.
-        if (dirty_[c.kept] || dirty_[c.removed]) evaluate_and_push(c.kept, c.removed);
+        if (dirty_[q.kept] || dirty_[q.removed]) evaluate_and_push(q.kept, q.removed);
         continue;
       }
+      // Current: neither end moved since the evaluation.
+      Collapse c;
+      c.priority = q.priority;
+      c.kept = q.kept;
+      c.removed = q.removed;
+      c.version_kept = q.version_kept;
+      c.version_removed = q.version_removed;
+      c.surface_edge = q.surface_edge;
+      c.midpoint = q.midpoint;
+      c.position = q.midpoint ? (pos_[q.kept] + pos_[q.removed]) * 0.5 : pos_[q.kept];
       if (!topology_ok(c.kept, c.removed, c.surface_edge)) {
         count(Reject::kTopology);
         continue;
@@ -1392,7 +1416,7 @@ class Engine {
   std::vector<std::vector<uint32_t>> feature_neighbors_;
   std::vector<Quadric> quadric_;
 
-  std::vector<Collapse> heap_;
+  std::vector<QueuedCollapse> heap_;
   std::vector<uint32_t> version_;
   std::vector<uint8_t> dirty_;
   std::vector<uint32_t> dirty_list_;
