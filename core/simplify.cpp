@@ -476,14 +476,12 @@ class Engine {
     for (TetRecord& t : tet_)
       for (uint32_t& v : t.v) v = new_id[v];
 
-    std::vector<std::pair<uint64_t, uint32_t>> tet_order(tet_count);
-    for (uint32_t t = 0; t < tet_count; ++t) {
-      const Tet& q = tet_[t].v;
-      tet_order[t] = {(uint64_t{std::min({q[0], q[1], q[2], q[3]})} << 32) | t, t};
-    }
-    std::sort(tet_order.begin(), tet_order.end());
+    // Tets by smallest vertex, ties in their old order: a counting sort.
+    std::vector<uint32_t> first(vertex_count + 1, 0);
+    for (const TetRecord& t : tet_) ++first[std::min({t.v[0], t.v[1], t.v[2], t.v[3]}) + 1];
+    for (size_t v = 0; v < vertex_count; ++v) first[v + 1] += first[v];
     std::vector<TetRecord> tets(tet_count);
-    for (uint32_t k = 0; k < tet_count; ++k) tets[k] = tet_[tet_order[k].second];
+    for (const TetRecord& t : tet_) tets[first[std::min({t.v[0], t.v[1], t.v[2], t.v[3]})]++] = t;
     tet_.swap(tets);
     std::vector<uint32_t> star_size(vertex_count, 0);
     for (const TetRecord& t : tet_)
