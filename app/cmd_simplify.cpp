@@ -135,8 +135,9 @@ int cmd_simplify(const Args& args) {
       "final mesh, breaking a threshold: %zu tets below the stretch, %zu above the size, "
       "%zu nodes above the valence (%zu of them made by TetLOD)\n",
       v.below_stretch, v.above_size, v.above_valence, v.created);
-  std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s\n",
-              result.seconds_subdivide, result.seconds_classify, result.seconds_simplify);
+  std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)\n",
+              result.seconds_subdivide, result.seconds_classify, result.seconds_simplify,
+              result.kernels);
 
   Status s = write_mesh(out, output);
   if (!s) {

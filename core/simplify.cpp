@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/adjacency.h"
 #include "core/classify.h"
@@ -242,19 +243,19 @@ struct alignas(64) TetBlock {
   int32_t material[kLanes];
 };
 
-// The kernels below are compiled twice, for AVX2 and for the baseline, and picked at
-// run time; both do the same IEEE operations in the same order (no fused
-// multiply-add), so the result does not depend on the machine.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
-    !defined(__SANITIZE_ADDRESS__)
-#define TETLOD_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+// The kernels below are compiled twice, for AVX2 and for the baseline instruction
+// set, and picked at run time (vector_kernels()); both do the same IEEE operations in
+// the same order (no fused multiply-add, no reassociation), so the result does not
+// depend on the machine. A test runs both and compares.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define TETLOD_X86_DISPATCH 1
 #else
-#define TETLOD_VECTOR_CLONES
+#define TETLOD_X86_DISPATCH 0
 #endif
+#define TETLOD_KERNEL inline __attribute__((always_inline))
 
 // The normal and squared lengths of the fixed faces of a block.
-TETLOD_VECTOR_CLONES
-void fixed_faces(TetBlock& b) {
+TETLOD_KERNEL void fixed_faces(TetBlock& b) {
   for (int n = 0; n < kLanes; ++n) {
     const double ax = b.f1x[n] - b.f0x[n], ay = b.f1y[n] - b.f0y[n], az = b.f1z[n] - b.f0z[n];
     const double bx = b.f2x[n] - b.f0x[n], by = b.f2y[n] - b.f0y[n], bz = b.f2z[n] - b.f0z[n];
@@ -274,8 +275,8 @@ void fixed_faces(TetBlock& b) {
 // First pass for candidate k over a block: volume, size and the stretch bound,
 // without square roots. Tets of end `unmoved` (0, 1; -1: neither) that meet every
 // threshold keep their shape and pass.
-TETLOD_VECTOR_CLONES
-void first_pass(TetBlock& b, double kx, double ky, double kz, double unmoved, double floor2) {
+TETLOD_KERNEL void first_pass(TetBlock& b, double kx, double ky, double kz, double unmoved,
+                              double floor2) {
   for (int n = 0; n < kLanes; ++n) {
     const double d0x = b.f0x[n] - kx, d0y = b.f0y[n] - ky, d0z = b.f0z[n] - kz;
     const double d1x = b.f1x[n] - kx, d1y = b.f1y[n] - ky, d1z = b.f1z[n] - kz;
@@ -312,8 +313,7 @@ void first_pass(TetBlock& b, double kx, double ky, double kz, double unmoved, do
 
 // Exact size and stretch of eq. (2) over a block, from the first pass:
 // d_t = 6 sqrt(6) V_t / (s_t A_t), with 6 V_t = volume6.
-TETLOD_VECTOR_CLONES
-void exact_pass(TetBlock& b) {
+TETLOD_KERNEL void exact_pass(TetBlock& b) {
   const double root6 = std::sqrt(6.0);
   for (int n = 0; n < kLanes; ++n) {
     const double s = std::sqrt(b.size2[n]);
@@ -323,6 +323,52 @@ void exact_pass(TetBlock& b) {
     b.size[n] = s;
     b.stretch[n] = root6 * b.volume6[n] / (s * area);
   }
+}
+
+struct VectorKernels {
+  const char* name;
+  void (*fixed_faces)(TetBlock&);
+  void (*first_pass)(TetBlock&, double, double, double, double, double);
+  void (*exact_pass)(TetBlock&);
+};
+
+void fixed_faces_baseline(TetBlock& b) {
+  fixed_faces(b);
+}
+void first_pass_baseline(TetBlock& b, double x, double y, double z, double unmoved, double f) {
+  first_pass(b, x, y, z, unmoved, f);
+}
+void exact_pass_baseline(TetBlock& b) {
+  exact_pass(b);
+}
+
+#if TETLOD_X86_DISPATCH
+__attribute__((target("avx2"))) void fixed_faces_avx2(TetBlock& b) {
+  fixed_faces(b);
+}
+__attribute__((target("avx2"))) void first_pass_avx2(TetBlock& b, double x, double y, double z,
+                                                     double unmoved, double f) {
+  first_pass(b, x, y, z, unmoved, f);
+}
+__attribute__((target("avx2"))) void exact_pass_avx2(TetBlock& b) {
+  exact_pass(b);
+}
+#endif
+
+// AVX2 where the processor has it, unless the environment sets TETLOD_NO_AVX2 (to a
+// value other than 0): then the baseline kernels, as on a machine without AVX2.
+const VectorKernels& vector_kernels() {
+  static const VectorKernels chosen = [] {
+#if TETLOD_X86_DISPATCH
+    const char* off = std::getenv("TETLOD_NO_AVX2");
+    const bool disabled = off != nullptr && *off != '\0' && std::string(off) != "0";
+    if (!disabled && __builtin_cpu_supports("avx2"))
+      return VectorKernels{"avx2", fixed_faces_avx2, first_pass_avx2, exact_pass_avx2};
+#endif
+    return VectorKernels{"baseline", fixed_faces_baseline, first_pass_baseline,
+                         exact_pass_baseline};
+  }();
+  return chosen;
 }
 
 class Engine {
@@ -381,6 +427,7 @@ class Engine {
     simplify(result);
     result->seconds_simplify = seconds_since(start);
     result->rejections = rejections_;
+    result->kernels = kernels_.name;
     result->output = compact();
     count_violations(&result->violations);
     return Status();
@@ -1024,7 +1071,7 @@ class Engine {
     }
     if (!first)
       for (int l = 0; l < lanes; ++l) b.skip[l] = 0;
-    fixed_faces(b);
+    kernels_.fixed_faces(b);
     block_built_[k] = 1;
   }
 
@@ -1060,14 +1107,14 @@ class Engine {
                                                   {b.f1x[l], b.f1y[l], b.f1z[l]},
                                                   {b.f2x[l], b.f2y[l], b.f2z[l]}, k, b.material[l]);
       }
-      first_pass(b, k.x, k.y, k.z, unmoved, floor2);
+      kernels_.first_pass(b, k.x, k.y, k.z, unmoved, floor2);
       for (int l = 0; l < kLanes; ++l)
         if (b.code[l] != 0) return b.code[l] == 2 ? Reject::kSize : Reject::kStretch;
     }
     double stretch_sum = 0, size_sum = 0, limit_sum = 0;
     for (size_t k_block = 0; k_block < moving_blocks_; ++k_block) {
       TetBlock& b = moving_[k_block];
-      exact_pass(b);
+      kernels_.exact_pass(b);
       for (int l = 0; l < kLanes; ++l) {
         if (b.skip[l]) continue;
         if (b.side[l] == unmoved && b.steady[l] != 0) {
@@ -1446,6 +1493,7 @@ class Engine {
   std::vector<uint32_t> valence_;      // per vertex, kept up to date by apply()
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
+  const VectorKernels& kernels_ = vector_kernels();
 };
 
 }  // namespace

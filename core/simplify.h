@@ -65,6 +65,9 @@ struct SimplifyResult {
   size_t splits = 0;          // subdivision splits done
   size_t splits_skipped = 0;  // long edges left unsplit because a split would break a threshold
   bool cancelled = false;
+  // The candidate tests' kernels: "avx2" or "baseline" (also where the environment
+  // sets TETLOD_NO_AVX2). Both give the same result, bit for bit.
+  const char* kernels = "";
   double seconds_classify = 0, seconds_subdivide = 0, seconds_simplify = 0;
 };
 

@@ -121,6 +121,42 @@ TEST(Cli, SimplifyThenLodWritesLevels) {
   EXPECT_NE(junk.output.find("junk.tlh"), std::string::npos);
 }
 
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The simplifier's candidate kernels run on AVX2 where the processor has it, else on
+// the baseline instruction set (forced by TETLOD_NO_AVX2): the two must agree bit for
+// bit (same output mesh, same history), with a uniform size and with a size field.
+TEST(Cli, SimplifyKernelsAgreeBitForBit) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const char* settings[] = {"--size 12 --tolerance 0.05",
+                            "--size 12 --tolerance 0.05 --size-field axis:0,0,0,0,0,1,3,0.3"};
+  int n = 0;
+  for (const char* flags : settings) {
+    std::string out[2], history[2];
+    for (int forced = 0; forced < 2; ++forced) {
+      const std::string name =
+          out_dir() + "/kernels_" + std::to_string(n) + "_" + std::to_string(forced);
+      out[forced] = name + ".mesh";
+      history[forced] = name + ".tlh";
+      const CommandResult r = run("simplify " + motor + " -o " + out[forced] + " --history " +
+                                      history[forced] + " " + flags,
+                                  forced ? "TETLOD_NO_AVX2=1" : "");
+      ASSERT_EQ(r.code, 0) << r.output;
+      if (forced) {
+        EXPECT_NE(r.output.find("(baseline kernels)"), std::string::npos) << r.output;
+      }
+    }
+    const std::string mesh = file_bytes(out[0]);
+    EXPECT_GT(mesh.size(), 1000u);
+    EXPECT_TRUE(mesh == file_bytes(out[1])) << flags;
+    EXPECT_TRUE(file_bytes(history[0]) == file_bytes(history[1])) << flags;
+    ++n;
+  }
+}
+
 TEST(Cli, SolveSpheresPrintsCapacitanceAndWritesTheField) {
   const std::string spheres = std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh";
   const std::string field = out_dir() + "/spheres_field.vtu";
