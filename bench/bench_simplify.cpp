@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
     return code;
   std::vector<double> total, subdivide, classify, collapse;
   size_t collapses = 0, output_tets = 0;
+  const char* kernels = "";
   for (int r = 0; r < repeat; ++r) {
     SimplifyResult result;
     const auto start = Clock::now();
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
     classify.push_back(result.seconds_classify);
     collapse.push_back(result.seconds_simplify);
     collapses = result.history.step_count();
+    kernels = result.kernels;
     output_tets = result.output.tet_count();
   }
   rusage usage{};
@@ -49,7 +51,8 @@ int main(int argc, char** argv) {
   const double peak_bytes = static_cast<double>(usage.ru_maxrss) * 1024.0;
   std::printf("input: %zu tets; size %g, stretch %g, valence %u, tolerance %g\n", mesh.tet_count(),
               params.sizing.uniform, params.min_stretch, params.max_valence, params.tolerance);
-  std::printf("output: %zu tets after %zu collapses\n", output_tets, collapses);
+  std::printf("output: %zu tets after %zu collapses (%s kernels)\n", output_tets, collapses,
+              kernels);
   std::printf(
       "median of %d: pipeline %.3f s (subdivide %.3f, classify %.3f, simplify %.3f); "
       "%.0f collapses/s\n",
