@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -140,11 +141,12 @@ struct SplitLess {
   }
 };
 
-// A face (v, a, b) of a tet in the star of v, with the tet on the other side.
-struct StarFace {
-  uint32_t a, b;   // a < b
-  uint32_t tet;    // the tet of the star holding the face
-  uint32_t other;  // the tet across, or kInvalidIndex on the boundary
+// kOtherCorners[s][c]: the two corners of a tet other than s and c (s != c).
+constexpr int kOtherCorners[4][4][2] = {
+    {{0, 0}, {2, 3}, {1, 3}, {1, 2}},
+    {{2, 3}, {0, 0}, {0, 3}, {0, 2}},
+    {{1, 3}, {0, 3}, {0, 0}, {0, 1}},
+    {{1, 2}, {0, 2}, {0, 1}, {0, 0}},
 };
 
 inline bool tet_has(const Tet& t, uint32_t v) {
@@ -155,40 +157,10 @@ inline uint64_t edge_key(uint32_t a, uint32_t b) {
   return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
 }
 
-using Triangle = std::array<uint32_t, 3>;
-
-inline Triangle sorted_triangle(uint32_t a, uint32_t b, uint32_t c) {
-  Triangle t{a, b, c};
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 template <class T>
 void sort_unique(std::vector<T>& v) {
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
-}
-
-// True if every element of the sorted range `x` that is also in sorted `y` is in sorted `z`.
-template <class T>
-bool intersection_within(const std::vector<T>& x, const std::vector<T>& y,
-                         const std::vector<T>& z) {
-  auto iy = y.begin();
-  for (const T& e : x) {
-    while (iy != y.end() && *iy < e) ++iy;
-    if (iy != y.end() && *iy == e && !std::binary_search(z.begin(), z.end(), e)) return false;
-  }
-  return true;
-}
-
-template <class T>
-bool disjoint(const std::vector<T>& x, const std::vector<T>& y) {
-  auto iy = y.begin();
-  for (const T& e : x) {
-    while (iy != y.end() && *iy < e) ++iy;
-    if (iy != y.end() && *iy == e) return false;
-  }
-  return true;
 }
 
 // Everything the evaluation of a collapse reads of a tet, in one 32-byte record, so
@@ -502,7 +474,9 @@ class Engine {
   void classify() {
     const TetMesh mesh = mesh_now();
     std::vector<uint32_t> neighbors_of_tets;
-    build_face_neighbors(mesh, &neighbors_of_tets);
+    const FaceProblem problem = build_face_neighbors(mesh, &neighbors_of_tets);
+    assert(problem.kind == FaceProblem::Kind::kNone);  // the input was validated
+    (void)problem;
     const std::vector<SurfaceTriangle> surface = extract_surface(mesh, neighbors_of_tets);
     ClassifyOptions options;
     options.crease_angle_degrees = params_.crease_angle_degrees;
@@ -515,6 +489,7 @@ class Engine {
     }
     outer_.assign(pos_.size(), 0);
     ring_mark_.assign(pos_.size(), 0);
+    ring_slot_.assign(pos_.size(), 0);
     quadric_.assign(pos_.size(), Quadric());
     for (const SurfaceTriangle& s : surface) {
       if (s.outer == kOutsideMaterial)
@@ -532,40 +507,26 @@ class Engine {
     material_tets_.assign(material_ids_.size(), 0);
     for (int32_t m : mesh.materials) ++material_tets_[material_index(m)];
     for (uint32_t t = 0; t < tet_.size(); ++t) tet_[t].stretch = shape(t).stretch;
+    across_ = std::move(neighbors_of_tets);
   }
 
   // ------------------------------------------------------------ evaluation
-  // The faces (v, a, b) of v's star with the tet across each.
-  void star_faces(uint32_t v, std::vector<StarFace>* faces) {
-    faces->clear();
-    for (uint32_t t : star_[v]) {
-      const Tet& q = tet_[t].v;
-      for (int c = 0; c < 4; ++c) {
-        if (q[c] == v) continue;
-        uint32_t a = kInvalidIndex, b = kInvalidIndex;
-        for (int k = 0; k < 4; ++k) {
-          if (k == c || q[k] == v) continue;
-          (a == kInvalidIndex ? a : b) = q[k];
-        }
-        faces->push_back({std::min(a, b), std::max(a, b), t, kInvalidIndex});
-      }
-    }
-    std::sort(faces->begin(), faces->end(), [](const StarFace& x, const StarFace& y) {
-      return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.tet < y.tet);
-    });
-    for (size_t k = 0; k + 1 < faces->size(); ++k) {
-      StarFace& x = (*faces)[k];
-      StarFace& y = (*faces)[k + 1];
-      if (x.a == y.a && x.b == y.b) {
-        x.other = y.tet;
-        y.other = x.tet;
-      }
+  // Calls face(x, y, across) for each face (v, x, y) of tet t, which holds v, with
+  // the tet across that face or kInvalidIndex on the boundary.
+  template <class Face>
+  void for_faces_at(uint32_t t, uint32_t v, Face face) const {
+    const Tet& q = tet_[t].v;
+    int s = 0;
+    while (q[s] != v) ++s;
+    for (int c = 0; c < 4; ++c) {
+      if (c == s) continue;
+      face(q[kOtherCorners[s][c][0]], q[kOtherCorners[s][c][1]], across_[4 * t + c]);
     }
   }
 
   // A surface face separates a tet from the outside or from another material.
-  bool is_surface_face(const StarFace& f) const {
-    return f.other == kInvalidIndex || tet_[f.other].material != tet_[f.tet].material;
+  bool is_surface_face(uint32_t tet, uint32_t across) const {
+    return across == kInvalidIndex || tet_[across].material != tet_[tet].material;
   }
 
   // The link condition Lk(i) n Lk(j) = Lk(ij) (Dey et al.) in the sub-complex of the
@@ -576,106 +537,125 @@ class Engine {
   // conditions only look at the faces of the two stars whose vertices all lie in R.
   // boundary_i / boundary_j: whether i / j lies on the boundary of the sub-complex
   // (omega is in its link).
+  // R's vertices get slots 0..r-1 (ring_slot_, valid where ring_mark_ holds this
+  // call's stamp); what Lk(i) holds on R is flagged per slot and per pair of slots,
+  // then each simplex of Lk(j) on R is looked up there: no list is sorted.
   template <class Filter>
   bool link_condition(uint32_t i, uint32_t j, Filter in, bool boundary_i, bool boundary_j) {
-    ring_vertices_.clear();
-    ring_edges_.clear();
+    // R from the ring tets (i, j, x, y), with the ring edges (x, y) of Lk(ij). A ring
+    // vertex x seen once closes a face (i, j, x) on the boundary, so (x, omega) is in
+    // Lk(ij): its slot stays kOpen.
+    const uint32_t in_ring = next_ring_stamp();
+    slot_flags_.clear();
+    ring_pairs_.clear();
+    auto slot_of = [&](uint32_t x) {
+      if (ring_mark_[x] != in_ring) {
+        ring_mark_[x] = in_ring;
+        ring_slot_[x] = static_cast<uint32_t>(slot_flags_.size());
+        slot_flags_.push_back(kOpen);
+      } else {
+        slot_flags_[ring_slot_[x]] &= static_cast<uint8_t>(~kOpen);
+      }
+      return ring_slot_[x];
+    };
     for (uint32_t t : star_[i]) {
       const Tet& q = tet_[t].v;
       if (!in(t) || !tet_has(q, j)) continue;
       uint32_t o[2], n = 0;
       for (uint32_t w : q)
         if (w != i && w != j) o[n++] = w;
-      ring_vertices_.insert(ring_vertices_.end(), {o[0], o[1]});
-      ring_edges_.push_back(edge_key(o[0], o[1]));
+      ring_pairs_.push_back({slot_of(o[0]), slot_of(o[1])});
     }
-    std::sort(ring_vertices_.begin(), ring_vertices_.end());
-    std::sort(ring_edges_.begin(), ring_edges_.end());
-    // R, marked in ring_mark_; a ring vertex x seen once closes a face (i, j, x) on the
-    // boundary, so (x, omega) is in Lk(ij).
-    const uint32_t in_ring = next_ring_stamp();
-    ring_open_.clear();
-    for (size_t k = 0; k < ring_vertices_.size();) {
-      const uint32_t x = ring_vertices_[k];
-      size_t seen = 0;
-      while (k < ring_vertices_.size() && ring_vertices_[k] == x) ++k, ++seen;
-      ring_mark_[x] = in_ring;
-      if (seen == 1) ring_open_.push_back(x);
-    }
-    // Vertices: omega is common unless the edge lies on the boundary; every real common
-    // neighbour must be in R.
-    if (boundary_i && boundary_j && ring_open_.empty()) return false;
+    const size_t r = slot_flags_.size();
+    bool open = false;
+    for (uint8_t f : slot_flags_) open = open || (f & kOpen);
+    // Vertices: omega is common unless the edge lies on the boundary (then a face
+    // (i, j, x) is); every real common neighbour must be in R (checked on j's side).
+    if (boundary_i && boundary_j && !open) return false;
+    pair_flags_.assign(r * r, 0);
+    auto pair = [&](uint32_t a, uint32_t b) -> uint8_t& { return pair_flags_[a * r + b]; };
+    for (const auto& [a, b] : ring_pairs_) pair(a, b) = pair(b, a) = kRingEdge;
+    auto in_r = [&](uint32_t x) { return ring_mark_[x] == in_ring; };
+    // Cone simplices (only when both ends lie on the boundary): (x, omega) for x on a
+    // boundary face (v, x, y) of each star, which must be in Lk(ij), and (x, y, omega),
+    // never common. A face of an accepted tet is on the boundary if the tet across is
+    // missing or not accepted.
+    const bool cone = boundary_i && boundary_j;
+    // Lk(i) on R: the vertices of i's star (for the vertex condition); the edges
+    // (x, y) and triangles (x, y, z) of the tets (i, x, y, z) outside the ring; the
+    // cone simplices.
     const uint32_t near_i = next_stamp();
-    for (uint32_t t : star_[i])
-      if (in(t))
-        for (uint32_t w : tet_[t].v) mark_[w] = near_i;
+    ring_triples_.clear();
+    for (uint32_t t : star_[i]) {
+      if (!in(t)) continue;
+      const Tet& q = tet_[t].v;
+      for (uint32_t w : q) mark_[w] = near_i;
+      if (cone) {
+        for_faces_at(t, i, [&](uint32_t x, uint32_t y, uint32_t across) {
+          if (across != kInvalidIndex && in(across)) return;
+          const bool rx = in_r(x), ry = in_r(y);
+          if (rx) slot_flags_[ring_slot_[x]] |= kConeOfI;
+          if (ry) slot_flags_[ring_slot_[y]] |= kConeOfI;
+          if (rx && ry) pair(ring_slot_[x], ring_slot_[y]) |= kConeOfI;
+        });
+      }
+      if (tet_has(q, j)) continue;
+      uint32_t o[3], n = 0;
+      for (uint32_t w : q)
+        if (w != i) o[n++] = w;
+      const bool r0 = in_r(o[0]), r1 = in_r(o[1]), r2 = in_r(o[2]);
+      const uint32_t s0 = ring_slot_[o[0]], s1 = ring_slot_[o[1]], s2 = ring_slot_[o[2]];
+      if (r0 && r1) pair(s0, s1) |= kEdgeOfI, pair(s1, s0) |= kEdgeOfI;
+      if (r0 && r2) pair(s0, s2) |= kEdgeOfI, pair(s2, s0) |= kEdgeOfI;
+      if (r1 && r2) pair(s1, s2) |= kEdgeOfI, pair(s2, s1) |= kEdgeOfI;
+      if (r0 && r1 && r2) ring_triples_.push_back(triple_key(s0, s1, s2));
+    }
+    // Lk(j) on R, each simplex checked against Lk(i): a common real neighbour must be
+    // in R, a common edge must be a ring edge, no triangle may be common, and of the
+    // cone simplices only (x, omega) with x open.
     for (uint32_t t : star_[j]) {
       if (!in(t)) continue;
-      for (uint32_t w : tet_[t].v)
-        if (w != i && w != j && mark_[w] == near_i && ring_mark_[w] != in_ring) return false;
-    }
-    // Real edges and triangles: the faces (v, x, y) and tets (v, x, y, z) of each star,
-    // outside the ring, with x, y (, z) in R.
-    for (int side = 0; side < 2; ++side) {
-      const uint32_t v = side == 0 ? i : j, other = side == 0 ? j : i;
-      auto& pairs = side == 0 ? pairs_i_ : pairs_j_;
-      auto& triples = side == 0 ? triples_i_ : triples_j_;
-      pairs.clear();
-      triples.clear();
-      for (uint32_t t : star_[v]) {
-        const Tet& q = tet_[t].v;
-        if (!in(t) || tet_has(q, other)) continue;
-        uint32_t o[3], n = 0;
-        for (uint32_t w : q)
-          if (w != v) o[n++] = w;
-        const bool r0 = ring_mark_[o[0]] == in_ring, r1 = ring_mark_[o[1]] == in_ring,
-                   r2 = ring_mark_[o[2]] == in_ring;
-        if (r0 && r1) pairs.push_back(edge_key(o[0], o[1]));
-        if (r0 && r2) pairs.push_back(edge_key(o[0], o[2]));
-        if (r1 && r2) pairs.push_back(edge_key(o[1], o[2]));
-        if (r0 && r1 && r2) triples.push_back(sorted_triangle(o[0], o[1], o[2]));
+      const Tet& q = tet_[t].v;
+      for (uint32_t w : q)
+        if (w != i && w != j && mark_[w] == near_i && !in_r(w)) return false;
+      if (cone) {
+        bool common = false;
+        for_faces_at(t, j, [&](uint32_t x, uint32_t y, uint32_t across) {
+          if (across != kInvalidIndex && in(across)) return;
+          const bool rx = in_r(x), ry = in_r(y);
+          if (rx && (slot_flags_[ring_slot_[x]] & (kConeOfI | kOpen)) == kConeOfI) common = true;
+          if (ry && (slot_flags_[ring_slot_[y]] & (kConeOfI | kOpen)) == kConeOfI) common = true;
+          if (rx && ry && (pair(ring_slot_[x], ring_slot_[y]) & kConeOfI)) common = true;
+        });
+        if (common) return false;
       }
-      sort_unique(pairs);
-      std::sort(triples.begin(), triples.end());
-    }
-    if (!intersection_within(pairs_i_, pairs_j_, ring_edges_)) return false;
-    if (!disjoint(triples_i_, triples_j_)) return false;
-    if (!(boundary_i && boundary_j)) return true;
-    // Cone simplices: (x, omega) for x on a boundary face (v, x, y) of each star, which
-    // must be in Lk(ij), and (x, y, omega), never common.
-    for (int side = 0; side < 2; ++side) {
-      const uint32_t v = side == 0 ? i : j;
-      auto& vertices = side == 0 ? cone_vertices_i_ : cone_vertices_j_;
-      auto& pairs = side == 0 ? cone_pairs_i_ : cone_pairs_j_;
-      vertices.clear();
-      pairs.clear();
-      face_keys_.clear();
-      for (uint32_t t : star_[v]) {
-        if (!in(t)) continue;
-        uint32_t o[3], n = 0;
-        for (uint32_t w : tet_[t].v)
-          if (w != v) o[n++] = w;
-        face_keys_.insert(face_keys_.end(),
-                          {edge_key(o[0], o[1]), edge_key(o[0], o[2]), edge_key(o[1], o[2])});
+      if (tet_has(q, i)) continue;
+      uint32_t o[3], n = 0;
+      for (uint32_t w : q)
+        if (w != j) o[n++] = w;
+      const bool r0 = in_r(o[0]), r1 = in_r(o[1]), r2 = in_r(o[2]);
+      const uint32_t s0 = ring_slot_[o[0]], s1 = ring_slot_[o[1]], s2 = ring_slot_[o[2]];
+      auto common_edge = [&](uint32_t a, uint32_t b) {
+        return (pair(a, b) & (kEdgeOfI | kRingEdge)) == kEdgeOfI;
+      };
+      if (r0 && r1 && common_edge(s0, s1)) return false;
+      if (r0 && r2 && common_edge(s0, s2)) return false;
+      if (r1 && r2 && common_edge(s1, s2)) return false;
+      if (r0 && r1 && r2) {
+        const uint64_t key = triple_key(s0, s1, s2);
+        for (uint64_t k : ring_triples_)
+          if (k == key) return false;
       }
-      std::sort(face_keys_.begin(), face_keys_.end());
-      for (size_t k = 0; k < face_keys_.size();) {
-        const uint64_t key = face_keys_[k];
-        size_t seen = 0;
-        while (k < face_keys_.size() && face_keys_[k] == key) ++k, ++seen;
-        if (seen != 1) continue;  // a face (v, x, y) shared by two tets
-        const uint32_t x = static_cast<uint32_t>(key >> 32), y = static_cast<uint32_t>(key);
-        const bool rx = ring_mark_[x] == in_ring, ry = ring_mark_[y] == in_ring;
-        if (rx) vertices.push_back(x);
-        if (ry) vertices.push_back(y);
-        if (rx && ry) pairs.push_back(key);
-      }
-      sort_unique(vertices);
-      std::sort(pairs.begin(), pairs.end());
     }
-    std::sort(ring_open_.begin(), ring_open_.end());
-    return intersection_within(cone_vertices_i_, cone_vertices_j_, ring_open_) &&
-           disjoint(cone_pairs_i_, cone_pairs_j_);
+    return true;
+  }
+
+  // A triangle of three slots of R, in any order, as one number.
+  static uint64_t triple_key(uint64_t a, uint64_t b, uint64_t c) {
+    if (a > b) std::swap(a, b);
+    if (b > c) std::swap(b, c);
+    if (a > b) std::swap(a, b);
+    return a << 42 | b << 21 | c;
   }
 
   uint32_t next_ring_stamp() {
@@ -723,27 +703,27 @@ class Engine {
       if (removed >= material_tets_[material_index(m)]) return false;
     }
     if (surface_edge) {
-      star_faces(i, &faces_i_);
-      star_faces(j, &faces_j_);
-      // Surface complex: common surface neighbours must span a surface triangle with ij.
-      surface_i_.clear();
-      surface_j_.clear();
-      surface_ij_.clear();
-      for (const StarFace& f : faces_i_) {
-        if (!is_surface_face(f) || (f.other != kInvalidIndex && f.other < f.tet)) continue;
-        surface_i_.insert(surface_i_.end(), {f.a, f.b});
-        if (f.a == j) surface_ij_.push_back(f.b);
-        if (f.b == j) surface_ij_.push_back(f.a);
+      // Surface complex: common surface neighbours must span a surface triangle with
+      // ij. The surface neighbours x of i are marked in mark_, those with a surface
+      // triangle (i, j, x) in ring_mark_.
+      const uint32_t near_i = next_stamp(), with_j = next_ring_stamp();
+      for (uint32_t t : star_[i]) {
+        for_faces_at(t, i, [&](uint32_t x, uint32_t y, uint32_t across) {
+          if (!is_surface_face(t, across)) return;
+          mark_[x] = mark_[y] = near_i;
+          if (x == j) ring_mark_[y] = with_j;
+          if (y == j) ring_mark_[x] = with_j;
+        });
       }
-      for (const StarFace& f : faces_j_) {
-        if (!is_surface_face(f) || (f.other != kInvalidIndex && f.other < f.tet)) continue;
-        surface_j_.insert(surface_j_.end(), {f.a, f.b});
+      bool common = false;
+      for (uint32_t t : star_[j]) {
+        for_faces_at(t, j, [&](uint32_t x, uint32_t y, uint32_t across) {
+          if (!is_surface_face(t, across)) return;
+          for (uint32_t w : {x, y})
+            if (mark_[w] == near_i && ring_mark_[w] != with_j) common = true;
+        });
       }
-      sort_unique(surface_i_);
-      sort_unique(surface_j_);
-      sort_unique(surface_ij_);
-      surface_i_.erase(std::remove(surface_i_.begin(), surface_i_.end(), j), surface_i_.end());
-      if (!intersection_within(surface_i_, surface_j_, surface_ij_)) return false;
+      if (common) return false;
     }
     // Curves: two curve vertices joined by a feature edge share no other feature neighbour.
     for (uint32_t x : feature_neighbors_[i]) {
@@ -1027,6 +1007,15 @@ class Engine {
   }
 
   // --------------------------------------------------------------- collapse
+  // In tet `tet` (if any), the neighbour `from` becomes `to`.
+  void replace_across(uint32_t tet, uint32_t from, uint32_t to) {
+    if (tet == kInvalidIndex) return;
+    uint32_t* across = &across_[4 * size_t{tet}];
+    int c = 0;
+    while (across[c] != from) ++c;
+    across[c] = to;
+  }
+
   void apply(const Collapse& c, CollapseHistory* history) {
     const uint32_t i = c.kept, j = c.removed;
     history->begin_step(i, j, pos_[i], c.position);
@@ -1048,6 +1037,13 @@ class Engine {
         auto& s = star_[w];
         s.erase(std::find(s.begin(), s.end(), t));
       }
+      // Its faces (i, x, y) and (j, x, y) become one: glue the tets across them.
+      int corner_i = 0, corner_j = 0;
+      while (tet_[t].v[corner_i] != i) ++corner_i;
+      while (tet_[t].v[corner_j] != j) ++corner_j;
+      const uint32_t across_ixy = across_[4 * t + corner_j], across_jxy = across_[4 * t + corner_i];
+      replace_across(across_ixy, t, across_jxy);
+      replace_across(across_jxy, t, across_ixy);
     }
     auto& si = star_[i];
     si.erase(std::remove_if(si.begin(), si.end(), [&](uint32_t t) { return !tet_[t].alive; }),
@@ -1245,15 +1241,10 @@ class Engine {
   // Scratch, reused to keep the hot loop free of allocation.
   std::vector<uint32_t> mark_;
   uint32_t stamp_ = 0;
-  std::vector<StarFace> faces_i_, faces_j_;
-  std::vector<uint32_t> ring_vertices_, ring_open_, ring_mark_;
+  std::vector<uint32_t> ring_mark_;
   uint32_t ring_stamp_ = 0;
-  std::vector<uint64_t> ring_edges_, pairs_i_, pairs_j_, face_keys_, cone_pairs_i_, cone_pairs_j_;
-  std::vector<Triangle> triples_i_, triples_j_;
-  std::vector<uint32_t> cone_vertices_i_, cone_vertices_j_;
   std::vector<uint8_t> outer_;  // on the boundary of the whole mesh
   std::vector<int32_t> edge_materials_;
-  std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
   std::vector<uint32_t> ring_, around_, ring_others_;
   std::vector<MovingTet> moving_;
   std::vector<std::pair<uint32_t, uint32_t>> moving_source_;  // (tet, its end of the edge)
@@ -1265,6 +1256,17 @@ class Engine {
   };
   std::vector<CandidateTet> candidate_;
   bool uniform_sizing_ = false;  // only the uniform size is set: no per-tet field lookups
+  // The tet across each face: across_[4 * t + c] is across the face of t opposite
+  // corner c, or kInvalidIndex on the boundary (build_face_neighbors); kept up to date
+  // by apply() for the alive tets.
+  std::vector<uint32_t> across_;
+  // link_condition(): the slot of each vertex of R, and flags per slot and per pair of
+  // slots (r x r).
+  static constexpr uint8_t kOpen = 1, kConeOfI = 2, kEdgeOfI = 4, kRingEdge = 8;
+  std::vector<uint32_t> ring_slot_;
+  std::vector<uint8_t> slot_flags_, pair_flags_;
+  std::vector<std::pair<uint32_t, uint32_t>> ring_pairs_;  // the ring edges, as slots
+  std::vector<uint64_t> ring_triples_;                     // triple_key()s of Lk(i) on R
 };
 
 }  // namespace
