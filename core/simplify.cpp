@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "core/adjacency.h"
 #include "core/classify.h"
@@ -1019,56 +1020,80 @@ class Engine {
   void apply(const Collapse& c, CollapseHistory* history) {
     const uint32_t i = c.kept, j = c.removed;
     history->begin_step(i, j, pos_[i], c.position);
+    // The tets around the edge, in star order. The stars and valences of their other
+    // vertices change below: start loading them now.
+    ring_tets_.clear();
+    for (uint32_t t : star_[i]) {
+      const Tet& q = tet_[t].v;
+      if (!tet_has(q, j)) continue;
+      ring_tets_.push_back(t);
+      for (uint32_t x : q) {
+        __builtin_prefetch(&star_[x]);
+        __builtin_prefetch(&valence_[x]);
+      }
+    }
     // Valences: i gets the neighbours of both ends (the paper's formula, exact under the
     // link condition); each vertex x of a triangle (i, j, x) loses one (j).
     const uint32_t triangles = edge_triangle_count(i, j);
     valence_[i] = valence_[i] + valence_[j] - triangles - 2;
     const uint32_t around_edge = stamp_;  // edge_triangle_count() marked the x's
+    // Rewire j's other tets to i (in star order, as star_[j] is sorted).
+    rewired_tets_.clear();
+    for (uint32_t t : star_[j]) {
+      Tet& q = tet_[t].v;
+      if (tet_has(q, i)) continue;
+      for (int corner = 0; corner < 4; ++corner) {
+        if (q[corner] == j) {
+          q[corner] = i;
+          history->rewired.push_back(4 * t + corner);
+        }
+      }
+      tet_[t].allowance = 0;
+      rewired_tets_.push_back(t);
+    }
     // Retire the tets around the edge.
-    for (uint32_t t : star_[i]) {
-      if (!tet_has(tet_[t].v, j)) continue;
-      for (uint32_t x : tet_[t].v)
+    for (uint32_t t : ring_tets_) {
+      const Tet& q = tet_[t].v;
+      for (uint32_t x : q)
         if (mark_[x] == around_edge) mark_[x] = 0, --valence_[x];
       history->removed_tets.push_back(t);
       tet_[t].alive = 0;
       --material_tets_[material_index(tet_[t].material)];
-      for (uint32_t w : tet_[t].v) {
+      for (uint32_t w : q) {
         if (w == i || w == j) continue;
         auto& s = star_[w];
         s.erase(std::find(s.begin(), s.end(), t));
       }
       // Its faces (i, x, y) and (j, x, y) become one: glue the tets across them.
       int corner_i = 0, corner_j = 0;
-      while (tet_[t].v[corner_i] != i) ++corner_i;
-      while (tet_[t].v[corner_j] != j) ++corner_j;
+      while (q[corner_i] != i) ++corner_i;
+      while (q[corner_j] != j) ++corner_j;
       const uint32_t across_ixy = across_[4 * t + corner_j], across_jxy = across_[4 * t + corner_i];
       replace_across(across_ixy, t, across_jxy);
       replace_across(across_jxy, t, across_ixy);
     }
+    // i's star: its own tets but the ring, then j's rewired ones, merged in order.
+    // Where i stays in place, its own tets keep their shape (and stretch).
+    const bool i_moves = std::memcmp(&pos_[i], &c.position, sizeof(Vec3)) != 0;
+    pos_[i] = c.position;
     auto& si = star_[i];
-    si.erase(std::remove_if(si.begin(), si.end(), [&](uint32_t t) { return !tet_[t].alive; }),
-             si.end());
+    merged_star_.clear();
+    auto rewired = rewired_tets_.begin();
     for (uint32_t t : si) {
+      if (!tet_[t].alive) continue;
       history->moved.push_back(t);
       tet_[t].allowance = 0;
+      if (i_moves) tet_[t].stretch = shape(t).stretch;
+      for (; rewired != rewired_tets_.end() && *rewired < t; ++rewired)
+        merged_star_.push_back(*rewired);
+      merged_star_.push_back(t);
     }
-    // Rewire j's other tets to i.
-    for (uint32_t t : star_[j]) {
-      if (!tet_[t].alive) continue;
-      for (int corner = 0; corner < 4; ++corner) {
-        if (tet_[t].v[corner] == j) {
-          tet_[t].v[corner] = i;
-          history->rewired.push_back(4 * t + corner);
-        }
-      }
-      tet_[t].allowance = 0;
-      si.push_back(t);
-    }
-    std::sort(si.begin(), si.end());
+    merged_star_.insert(merged_star_.end(), rewired, rewired_tets_.end());
+    si.swap(merged_star_);
+    for (uint32_t t : rewired_tets_) tet_[t].stretch = shape(t).stretch;
     star_[j].clear();
     star_[j].shrink_to_fit();
     vertex_alive_[j] = 0;
-    pos_[i] = c.position;
     quadric_[i].add(quadric_[j]);
     outer_[i] |= outer_[j];
     // Curves: j's feature neighbours become i's.
@@ -1081,7 +1106,6 @@ class Engine {
     auto& fi = feature_neighbors_[i];
     fi.erase(std::remove(fi.begin(), fi.end(), j), fi.end());
     feature_neighbors_[j].clear();
-    for (uint32_t t : si) tet_[t].stretch = shape(t).stretch;
     alive_tets_ -=
         history->removed_end(history->step_count() - 1) - history->steps.back().removed_begin;
     ++collapses_;
@@ -1265,8 +1289,9 @@ class Engine {
   static constexpr uint8_t kOpen = 1, kConeOfI = 2, kEdgeOfI = 4, kRingEdge = 8;
   std::vector<uint32_t> ring_slot_;
   std::vector<uint8_t> slot_flags_, pair_flags_;
-  std::vector<std::pair<uint32_t, uint32_t>> ring_pairs_;  // the ring edges, as slots
-  std::vector<uint64_t> ring_triples_;                     // triple_key()s of Lk(i) on R
+  std::vector<std::pair<uint32_t, uint32_t>> ring_pairs_;         // the ring edges, as slots
+  std::vector<uint64_t> ring_triples_;                            // triple_key()s of Lk(i) on R
+  std::vector<uint32_t> ring_tets_, rewired_tets_, merged_star_;  // apply()
 };
 
 }  // namespace
