@@ -677,6 +677,13 @@ class Engine {
   // Topology: the link condition for the whole complex and for every material's
   // region around the edge, and for the surface complex when the edge lies on it.
   bool topology_ok(uint32_t i, uint32_t j, bool surface_edge) {
+    // The stars were last read when the collapse was queued: load them in parallel.
+    for (uint32_t v : {i, j}) {
+      for (uint32_t t : star_[v]) {
+        __builtin_prefetch(&tet_[t]);
+        __builtin_prefetch(&across_[4 * size_t{t}]);
+      }
+    }
     if (!link_condition(
             i, j, [](uint32_t) { return true; }, outer_[i], outer_[j]))
       return false;
@@ -1037,6 +1044,17 @@ class Engine {
     const uint32_t triangles = edge_triangle_count(i, j);
     valence_[i] = valence_[i] + valence_[j] - triangles - 2;
     const uint32_t around_edge = stamp_;  // edge_triangle_count() marked the x's
+    for (uint32_t t : ring_tets_) {
+      const Tet& q = tet_[t].v;
+      for (int corner = 0; corner < 4; ++corner) {
+        const uint32_t x = q[corner], across = across_[4 * t + corner];
+        if (x != i && x != j) {
+          __builtin_prefetch(star_[x].data());
+        } else if (across != kInvalidIndex) {
+          __builtin_prefetch(&across_[4 * size_t{across}]);
+        }
+      }
+    }
     // Rewire j's other tets to i (in star order, as star_[j] is sorted).
     rewired_tets_.clear();
     for (uint32_t t : star_[j]) {
