@@ -573,10 +573,21 @@ class Engine {
     // Vertices: omega is common unless the edge lies on the boundary (then a face
     // (i, j, x) is); every real common neighbour must be in R (checked on j's side).
     if (boundary_i && boundary_j && !open) return false;
-    pair_flags_.assign(r * r, 0);
-    auto pair = [&](uint32_t a, uint32_t b) -> uint8_t& { return pair_flags_[a * r + b]; };
+    // Slot r is a dummy for every vertex outside R: the flags written there are never
+    // read back, as each lookup is masked by membership of R. This keeps the loops
+    // below free of branches that depend on the ring.
+    const uint32_t dummy = static_cast<uint32_t>(r), stride = dummy + 1;
+    slot_flags_.push_back(0);
+    pair_flags_.assign(size_t{stride} * stride, 0);
+    auto pair = [&](uint32_t a, uint32_t b) -> uint8_t& { return pair_flags_[a * stride + b]; };
     for (const auto& [a, b] : ring_pairs_) pair(a, b) = pair(b, a) = kRingEdge;
-    auto in_r = [&](uint32_t x) { return ring_mark_[x] == in_ring; };
+    auto slot = [&](uint32_t x) { return ring_mark_[x] == in_ring ? ring_slot_[x] : dummy; };
+    // The three vertices of tet t other than v.
+    auto others = [&](const Tet& q, uint32_t v, uint32_t* o) {
+      int c = 0;
+      while (q[c] != v) ++c;
+      o[0] = q[(c + 1) & 3], o[1] = q[(c + 2) & 3], o[2] = q[(c + 3) & 3];
+    };
     // Cone simplices (only when both ends lie on the boundary): (x, omega) for x on a
     // boundary face (v, x, y) of each star, which must be in Lk(ij), and (x, y, omega),
     // never common. A face of an accepted tet is on the boundary if the tet across is
@@ -594,22 +605,22 @@ class Engine {
       if (cone) {
         for_faces_at(t, i, [&](uint32_t x, uint32_t y, uint32_t across) {
           if (across != kInvalidIndex && in(across)) return;
-          const bool rx = in_r(x), ry = in_r(y);
-          if (rx) slot_flags_[ring_slot_[x]] |= kConeOfI;
-          if (ry) slot_flags_[ring_slot_[y]] |= kConeOfI;
-          if (rx && ry) pair(ring_slot_[x], ring_slot_[y]) |= kConeOfI;
+          const uint32_t sx = slot(x), sy = slot(y);
+          slot_flags_[sx] |= kConeOfI;
+          slot_flags_[sy] |= kConeOfI;
+          pair(sx, sy) |= kConeOfI;
+          pair(sy, sx) |= kConeOfI;
         });
       }
       if (tet_has(q, j)) continue;
-      uint32_t o[3], n = 0;
-      for (uint32_t w : q)
-        if (w != i) o[n++] = w;
-      const bool r0 = in_r(o[0]), r1 = in_r(o[1]), r2 = in_r(o[2]);
-      const uint32_t s0 = ring_slot_[o[0]], s1 = ring_slot_[o[1]], s2 = ring_slot_[o[2]];
-      if (r0 && r1) pair(s0, s1) |= kEdgeOfI, pair(s1, s0) |= kEdgeOfI;
-      if (r0 && r2) pair(s0, s2) |= kEdgeOfI, pair(s2, s0) |= kEdgeOfI;
-      if (r1 && r2) pair(s1, s2) |= kEdgeOfI, pair(s2, s1) |= kEdgeOfI;
-      if (r0 && r1 && r2) ring_triples_.push_back(triple_key(s0, s1, s2));
+      uint32_t o[3];
+      others(q, i, o);
+      const uint32_t s0 = slot(o[0]), s1 = slot(o[1]), s2 = slot(o[2]);
+      pair(s0, s1) |= kEdgeOfI, pair(s1, s0) |= kEdgeOfI;
+      pair(s0, s2) |= kEdgeOfI, pair(s2, s0) |= kEdgeOfI;
+      pair(s1, s2) |= kEdgeOfI, pair(s2, s1) |= kEdgeOfI;
+      if ((s0 != dummy) & (s1 != dummy) & (s2 != dummy))
+        ring_triples_.push_back(triple_key(s0, s1, s2));
     }
     // Lk(j) on R, each simplex checked against Lk(i): a common real neighbour must be
     // in R, a common edge must be a ring edge, no triangle may be common, and of the
@@ -617,36 +628,36 @@ class Engine {
     for (uint32_t t : star_[j]) {
       if (!in(t)) continue;
       const Tet& q = tet_[t].v;
+      bool common = false;
       for (uint32_t w : q)
-        if (w != i && w != j && mark_[w] == near_i && !in_r(w)) return false;
+        common |= (w != i) & (w != j) & (mark_[w] == near_i) & (ring_mark_[w] != in_ring);
       if (cone) {
-        bool common = false;
         for_faces_at(t, j, [&](uint32_t x, uint32_t y, uint32_t across) {
           if (across != kInvalidIndex && in(across)) return;
-          const bool rx = in_r(x), ry = in_r(y);
-          if (rx && (slot_flags_[ring_slot_[x]] & (kConeOfI | kOpen)) == kConeOfI) common = true;
-          if (ry && (slot_flags_[ring_slot_[y]] & (kConeOfI | kOpen)) == kConeOfI) common = true;
-          if (rx && ry && (pair(ring_slot_[x], ring_slot_[y]) & kConeOfI)) common = true;
+          const uint32_t sx = slot(x), sy = slot(y);
+          const bool rx = sx != dummy, ry = sy != dummy;
+          common |= rx & ((slot_flags_[sx] & (kConeOfI | kOpen)) == kConeOfI);
+          common |= ry & ((slot_flags_[sy] & (kConeOfI | kOpen)) == kConeOfI);
+          common |= rx & ry & ((pair(sx, sy) & kConeOfI) != 0);
         });
-        if (common) return false;
       }
-      if (tet_has(q, i)) continue;
-      uint32_t o[3], n = 0;
-      for (uint32_t w : q)
-        if (w != j) o[n++] = w;
-      const bool r0 = in_r(o[0]), r1 = in_r(o[1]), r2 = in_r(o[2]);
-      const uint32_t s0 = ring_slot_[o[0]], s1 = ring_slot_[o[1]], s2 = ring_slot_[o[2]];
-      auto common_edge = [&](uint32_t a, uint32_t b) {
-        return (pair(a, b) & (kEdgeOfI | kRingEdge)) == kEdgeOfI;
-      };
-      if (r0 && r1 && common_edge(s0, s1)) return false;
-      if (r0 && r2 && common_edge(s0, s2)) return false;
-      if (r1 && r2 && common_edge(s1, s2)) return false;
-      if (r0 && r1 && r2) {
-        const uint64_t key = triple_key(s0, s1, s2);
-        for (uint64_t k : ring_triples_)
-          if (k == key) return false;
+      if (!tet_has(q, i)) {
+        uint32_t o[3];
+        others(q, j, o);
+        const uint32_t s0 = slot(o[0]), s1 = slot(o[1]), s2 = slot(o[2]);
+        const bool r0 = s0 != dummy, r1 = s1 != dummy, r2 = s2 != dummy;
+        auto edge = [&](uint32_t a, uint32_t b) {
+          return (pair(a, b) & (kEdgeOfI | kRingEdge)) == kEdgeOfI;
+        };
+        common |= r0 & r1 & edge(s0, s1);
+        common |= r0 & r2 & edge(s0, s2);
+        common |= r1 & r2 & edge(s1, s2);
+        if (r0 & r1 & r2) {
+          const uint64_t key = triple_key(s0, s1, s2);
+          for (uint64_t k : ring_triples_) common |= k == key;
+        }
       }
+      if (common) return false;
     }
     return true;
   }
