@@ -1046,6 +1046,7 @@ class Engine {
       if (!tet_has(q, j)) continue;
       ring_tets_.push_back(t);
       for (uint32_t x : q) {
+        if (x == i || x == j) continue;  // loaded by topology_ok()
         __builtin_prefetch(&star_[x]);
         __builtin_prefetch(&valence_[x]);
       }
