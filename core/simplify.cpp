@@ -678,13 +678,6 @@ class Engine {
     return ring_stamp_;
   }
 
-  // Whether v has a tet of another material than m (then it lies on m's boundary).
-  bool touches_other_material(uint32_t v, int32_t m) const {
-    for (uint32_t t : star_[v])
-      if (tet_[t].material != m) return true;
-    return false;
-  }
-
   // Topology: the link condition for the whole complex and for every material's
   // region around the edge, and for the surface complex when the edge lies on it.
   bool topology_ok(uint32_t i, uint32_t j, bool surface_edge) {
@@ -698,27 +691,40 @@ class Engine {
     if (!link_condition(
             i, j, [](uint32_t) { return true; }, outer_[i], outer_[j]))
       return false;
+    // The materials of the ring, one entry per ring tet; and whether each end has
+    // tets of a single material (then which).
     edge_materials_.clear();
-    for (uint32_t t : star_[i])
-      if (tet_has(tet_[t].v, j)) edge_materials_.push_back(tet_[t].material);
-    sort_unique(edge_materials_);
+    int32_t material_of[2] = {0, 0};
+    bool single[2] = {true, true};
+    for (int side = 0; side < 2; ++side) {
+      const uint32_t v = side == 0 ? i : j;
+      material_of[side] = tet_[star_[v][0]].material;
+      for (uint32_t t : star_[v]) {
+        const TetRecord& r = tet_[t];
+        single[side] = single[side] && r.material == material_of[side];
+        if (side == 0 && tet_has(r.v, j)) edge_materials_.push_back(r.material);
+      }
+    }
+    std::sort(edge_materials_.begin(), edge_materials_.end());
+    // Whether v has a tet of another material than m (then it lies on m's boundary).
+    auto touches_other = [&](int side, int32_t m) {
+      return !single[side] || material_of[side] != m;
+    };
     // If every tet around i and j has one material, that material's complex is the
     // whole complex there, already checked.
-    bool one_material = true;
-    for (uint32_t v : {i, j})
-      for (uint32_t t : star_[v])
-        one_material = one_material && tet_[t].material == edge_materials_[0];
-    for (int32_t m : edge_materials_) {
+    const bool one_material =
+        !touches_other(0, edge_materials_[0]) && !touches_other(1, edge_materials_[0]);
+    for (size_t k = 0; k < edge_materials_.size();) {
+      const int32_t m = edge_materials_[k];
+      size_t removed = 0;  // ring tets of m
+      while (k < edge_materials_.size() && edge_materials_[k] == m) ++k, ++removed;
       if (!one_material) {
         auto in_m = [&](uint32_t t) { return tet_[t].material == m; };
-        if (!link_condition(i, j, in_m, outer_[i] || touches_other_material(i, m),
-                            outer_[j] || touches_other_material(j, m)))
+        if (!link_condition(i, j, in_m, outer_[i] || touches_other(0, m),
+                            outer_[j] || touches_other(1, m)))
           return false;
       }
       // No region may vanish: keep at least one tet of every material.
-      size_t removed = 0;
-      for (uint32_t t : star_[i])
-        if (tet_[t].material == m && tet_has(tet_[t].v, j)) ++removed;
       if (removed >= material_tets_[material_index(m)]) return false;
     }
     if (surface_edge) {
