@@ -154,10 +154,6 @@ inline bool tet_has(const Tet& t, uint32_t v) {
   return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
 }
 
-inline uint64_t edge_key(uint32_t a, uint32_t b) {
-  return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
-}
-
 template <class T>
 void sort_unique(std::vector<T>& v) {
   std::sort(v.begin(), v.end());
@@ -1062,6 +1058,8 @@ class Engine {
     const uint32_t triangles = edge_triangle_count(i, j);
     valence_[i] = valence_[i] + valence_[j] - triangles - 2;
     const uint32_t around_edge = stamp_;  // edge_triangle_count() marked the x's
+    // Then what those point to: the ring vertices' stars, and the neighbours of the
+    // ring's faces (i, x, y) and (j, x, y), glued below.
     for (uint32_t t : ring_tets_) {
       const Tet& q = tet_[t].v;
       for (int corner = 0; corner < 4; ++corner) {
