@@ -1042,11 +1042,11 @@ class Engine {
     history->begin_step(i, j, pos_[i], c.position);
     // The tets around the edge, in star order. The stars and valences of their other
     // vertices change below: start loading them now.
-    ring_tets_.clear();
+    retired_tets_.clear();
     for (uint32_t t : star_[i]) {
       const Tet& q = tet_[t].v;
       if (!tet_has(q, j)) continue;
-      ring_tets_.push_back(t);
+      retired_tets_.push_back(t);
       for (uint32_t x : q) {
         if (x == i || x == j) continue;  // loaded by topology_ok()
         __builtin_prefetch(&star_[x]);
@@ -1060,7 +1060,7 @@ class Engine {
     const uint32_t around_edge = stamp_;  // edge_triangle_count() marked the x's
     // Then what those point to: the ring vertices' stars, and the neighbours of the
     // ring's faces (i, x, y) and (j, x, y), glued below.
-    for (uint32_t t : ring_tets_) {
+    for (uint32_t t : retired_tets_) {
       const Tet& q = tet_[t].v;
       for (int corner = 0; corner < 4; ++corner) {
         const uint32_t x = q[corner], across = across_[4 * t + corner];
@@ -1086,7 +1086,7 @@ class Engine {
       rewired_tets_.push_back(t);
     }
     // Retire the tets around the edge.
-    for (uint32_t t : ring_tets_) {
+    for (uint32_t t : retired_tets_) {
       const Tet& q = tet_[t].v;
       for (uint32_t x : q)
         if (mark_[x] == around_edge) mark_[x] = 0, --valence_[x];
@@ -1323,9 +1323,9 @@ class Engine {
   static constexpr uint8_t kOpen = 1, kConeOfI = 2, kEdgeOfI = 4, kRingEdge = 8;
   std::vector<uint32_t> ring_slot_;
   std::vector<uint8_t> slot_flags_, pair_flags_;
-  std::vector<std::pair<uint32_t, uint32_t>> ring_pairs_;         // the ring edges, as slots
-  std::vector<uint64_t> ring_triples_;                            // triple_key()s of Lk(i) on R
-  std::vector<uint32_t> ring_tets_, rewired_tets_, merged_star_;  // apply()
+  std::vector<std::pair<uint32_t, uint32_t>> ring_pairs_;            // the ring edges, as slots
+  std::vector<uint64_t> ring_triples_;                               // triple_key()s of Lk(i) on R
+  std::vector<uint32_t> retired_tets_, rewired_tets_, merged_star_;  // apply()
 };
 
 }  // namespace
