@@ -14,10 +14,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include "core/adjacency.h"
 #include "core/classify.h"
@@ -153,55 +155,22 @@ struct SplitLess {
   }
 };
 
-// A face (v, a, b) of a tet in the star of v, with the tet on the other side.
-struct StarFace {
-  uint32_t a, b;   // a < b
-  uint32_t tet;    // the tet of the star holding the face
-  uint32_t other;  // the tet across, or kInvalidIndex on the boundary
+// kOtherCorners[s][c]: the two corners of a tet other than s and c (s != c).
+constexpr int kOtherCorners[4][4][2] = {
+    {{0, 0}, {2, 3}, {1, 3}, {1, 2}},
+    {{2, 3}, {0, 0}, {0, 3}, {0, 2}},
+    {{1, 3}, {0, 3}, {0, 0}, {0, 1}},
+    {{1, 2}, {0, 2}, {0, 1}, {0, 0}},
 };
 
 inline bool tet_has(const Tet& t, uint32_t v) {
   return (t[0] == v) | (t[1] == v) | (t[2] == v) | (t[3] == v);  // no branches to mispredict
 }
 
-inline uint64_t edge_key(uint32_t a, uint32_t b) {
-  return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
-}
-
-using Triangle = std::array<uint32_t, 3>;
-
-inline Triangle sorted_triangle(uint32_t a, uint32_t b, uint32_t c) {
-  Triangle t{a, b, c};
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 template <class T>
 void sort_unique(std::vector<T>& v) {
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
-}
-
-// True if every element of the sorted range `x` that is also in sorted `y` is in sorted `z`.
-template <class T>
-bool intersection_within(const std::vector<T>& x, const std::vector<T>& y,
-                         const std::vector<T>& z) {
-  auto iy = y.begin();
-  for (const T& e : x) {
-    while (iy != y.end() && *iy < e) ++iy;
-    if (iy != y.end() && *iy == e && !std::binary_search(z.begin(), z.end(), e)) return false;
-  }
-  return true;
-}
-
-template <class T>
-bool disjoint(const std::vector<T>& x, const std::vector<T>& y) {
-  auto iy = y.begin();
-  for (const T& e : x) {
-    while (iy != y.end() && *iy < e) ++iy;
-    if (iy != y.end() && *iy == e) return false;
-  }
-  return true;
 }
 
 // Everything the evaluation of a collapse reads of a tet, in one 32-byte record, so
@@ -679,7 +648,9 @@ class Engine {
   void classify() {
     const TetMesh mesh = mesh_now();
     std::vector<uint32_t> neighbors_of_tets;
-    build_face_neighbors(mesh, &neighbors_of_tets);
+    const FaceProblem problem = build_face_neighbors(mesh, &neighbors_of_tets);
+    assert(problem.kind == FaceProblem::Kind::kNone);  // the input was validated
+    (void)problem;
     const std::vector<SurfaceTriangle> surface = extract_surface(mesh, neighbors_of_tets);
     ClassifyOptions options;
     options.crease_angle_degrees = params_.crease_angle_degrees;
@@ -692,6 +663,7 @@ class Engine {
     }
     outer_.assign(pos_.size(), 0);
     ring_mark_.assign(pos_.size(), 0);
+    ring_slot_.assign(pos_.size(), 0);
     quadric_.assign(pos_.size(), Quadric());
     for (const SurfaceTriangle& s : surface) {
       if (s.outer == kOutsideMaterial)
@@ -708,40 +680,26 @@ class Engine {
     sort_unique(material_ids_);
     material_tets_.assign(material_ids_.size(), 0);
     for (int32_t m : mesh.materials) ++material_tets_[material_index(m)];
+    across_ = std::move(neighbors_of_tets);
   }
 
   // ------------------------------------------------------------ evaluation
-  // The faces (v, a, b) of v's star with the tet across each.
-  void star_faces(uint32_t v, std::vector<StarFace>* faces) {
-    faces->clear();
-    for (uint32_t t : star_[v]) {
-      const Tet& q = tet_[t].v;
-      for (int c = 0; c < 4; ++c) {
-        if (q[c] == v) continue;
-        uint32_t a = kInvalidIndex, b = kInvalidIndex;
-        for (int k = 0; k < 4; ++k) {
-          if (k == c || q[k] == v) continue;
-          (a == kInvalidIndex ? a : b) = q[k];
-        }
-        faces->push_back({std::min(a, b), std::max(a, b), t, kInvalidIndex});
-      }
-    }
-    std::sort(faces->begin(), faces->end(), [](const StarFace& x, const StarFace& y) {
-      return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.tet < y.tet);
-    });
-    for (size_t k = 0; k + 1 < faces->size(); ++k) {
-      StarFace& x = (*faces)[k];
-      StarFace& y = (*faces)[k + 1];
-      if (x.a == y.a && x.b == y.b) {
-        x.other = y.tet;
-        y.other = x.tet;
-      }
+  // Calls face(x, y, across) for each face (v, x, y) of tet t, which holds v, with
+  // the tet across that face or kInvalidIndex on the boundary.
+  template <class Face>
+  void for_faces_at(uint32_t t, uint32_t v, Face face) const {
+    const Tet& q = tet_[t].v;
+    int s = 0;
+    while (q[s] != v) ++s;
+    for (int c = 0; c < 4; ++c) {
+      if (c == s) continue;
+      face(q[kOtherCorners[s][c][0]], q[kOtherCorners[s][c][1]], across_[4 * t + c]);
     }
   }
 
   // A surface face separates a tet from the outside or from another material.
-  bool is_surface_face(const StarFace& f) const {
-    return f.other == kInvalidIndex || tet_[f.other].material != tet_[f.tet].material;
+  bool is_surface_face(uint32_t tet, uint32_t across) const {
+    return across == kInvalidIndex || tet_[across].material != tet_[tet].material;
   }
 
   // The link condition Lk(i) n Lk(j) = Lk(ij) (Dey et al.) in the sub-complex of the
@@ -752,106 +710,136 @@ class Engine {
   // conditions only look at the faces of the two stars whose vertices all lie in R.
   // boundary_i / boundary_j: whether i / j lies on the boundary of the sub-complex
   // (omega is in its link).
+  // R's vertices get slots 0..r-1 (ring_slot_, valid where ring_mark_ holds this
+  // call's stamp); what Lk(i) holds on R is flagged per slot and per pair of slots,
+  // then each simplex of Lk(j) on R is looked up there: no list is sorted.
   template <class Filter>
   bool link_condition(uint32_t i, uint32_t j, Filter in, bool boundary_i, bool boundary_j) {
-    ring_vertices_.clear();
-    ring_edges_.clear();
+    // R from the ring tets (i, j, x, y), with the ring edges (x, y) of Lk(ij). A ring
+    // vertex x seen once closes a face (i, j, x) on the boundary, so (x, omega) is in
+    // Lk(ij): its slot stays kOpen.
+    const uint32_t in_ring = next_ring_stamp();
+    slot_flags_.clear();
+    ring_pairs_.clear();
+    auto slot_of = [&](uint32_t x) {
+      if (ring_mark_[x] != in_ring) {
+        ring_mark_[x] = in_ring;
+        ring_slot_[x] = static_cast<uint32_t>(slot_flags_.size());
+        slot_flags_.push_back(kOpen);
+      } else {
+        slot_flags_[ring_slot_[x]] &= static_cast<uint8_t>(~kOpen);
+      }
+      return ring_slot_[x];
+    };
     for (uint32_t t : star_[i]) {
       const Tet& q = tet_[t].v;
       if (!in(t) || !tet_has(q, j)) continue;
       uint32_t o[2], n = 0;
       for (uint32_t w : q)
         if (w != i && w != j) o[n++] = w;
-      ring_vertices_.insert(ring_vertices_.end(), {o[0], o[1]});
-      ring_edges_.push_back(edge_key(o[0], o[1]));
+      ring_pairs_.push_back({slot_of(o[0]), slot_of(o[1])});
     }
-    std::sort(ring_vertices_.begin(), ring_vertices_.end());
-    std::sort(ring_edges_.begin(), ring_edges_.end());
-    // R, marked in ring_mark_; a ring vertex x seen once closes a face (i, j, x) on the
-    // boundary, so (x, omega) is in Lk(ij).
-    const uint32_t in_ring = next_ring_stamp();
-    ring_open_.clear();
-    for (size_t k = 0; k < ring_vertices_.size();) {
-      const uint32_t x = ring_vertices_[k];
-      size_t seen = 0;
-      while (k < ring_vertices_.size() && ring_vertices_[k] == x) ++k, ++seen;
-      ring_mark_[x] = in_ring;
-      if (seen == 1) ring_open_.push_back(x);
-    }
-    // Vertices: omega is common unless the edge lies on the boundary; every real common
-    // neighbour must be in R.
-    if (boundary_i && boundary_j && ring_open_.empty()) return false;
+    const size_t r = slot_flags_.size();
+    bool open = false;
+    for (uint8_t f : slot_flags_) open = open || (f & kOpen);
+    // Vertices: omega is common unless the edge lies on the boundary (then a face
+    // (i, j, x) is); every real common neighbour must be in R (checked on j's side).
+    if (boundary_i && boundary_j && !open) return false;
+    // Slot r is a dummy for every vertex outside R: the flags written there are never
+    // read back, as each lookup is masked by membership of R. This keeps the loops
+    // below free of branches that depend on the ring.
+    const uint32_t dummy = static_cast<uint32_t>(r), stride = dummy + 1;
+    slot_flags_.push_back(0);
+    pair_flags_.assign(size_t{stride} * stride, 0);
+    auto pair = [&](uint32_t a, uint32_t b) -> uint8_t& { return pair_flags_[a * stride + b]; };
+    for (const auto& [a, b] : ring_pairs_) pair(a, b) = pair(b, a) = kRingEdge;
+    auto slot = [&](uint32_t x) { return ring_mark_[x] == in_ring ? ring_slot_[x] : dummy; };
+    // The three vertices of tet t other than v.
+    auto others = [&](const Tet& q, uint32_t v, uint32_t* o) {
+      int c = 0;
+      while (q[c] != v) ++c;
+      o[0] = q[(c + 1) & 3], o[1] = q[(c + 2) & 3], o[2] = q[(c + 3) & 3];
+    };
+    // Cone simplices (only when both ends lie on the boundary): (x, omega) for x on a
+    // boundary face (v, x, y) of each star, which must be in Lk(ij), and (x, y, omega),
+    // never common. A face of an accepted tet is on the boundary if the tet across is
+    // missing or not accepted.
+    const bool cone = boundary_i && boundary_j;
+    // Lk(i) on R: the vertices of i's star (for the vertex condition); the edges
+    // (x, y) and triangles (x, y, z) of the tets (i, x, y, z) outside the ring; the
+    // cone simplices.
     const uint32_t near_i = next_stamp();
-    for (uint32_t t : star_[i])
-      if (in(t))
-        for (uint32_t w : tet_[t].v) mark_[w] = near_i;
+    ring_triples_.clear();
+    for (uint32_t t : star_[i]) {
+      if (!in(t)) continue;
+      const Tet& q = tet_[t].v;
+      for (uint32_t w : q) mark_[w] = near_i;
+      if (cone) {
+        for_faces_at(t, i, [&](uint32_t x, uint32_t y, uint32_t across) {
+          if (across != kInvalidIndex && in(across)) return;
+          const uint32_t sx = slot(x), sy = slot(y);
+          slot_flags_[sx] |= kConeOfI;
+          slot_flags_[sy] |= kConeOfI;
+          pair(sx, sy) |= kConeOfI;
+          pair(sy, sx) |= kConeOfI;
+        });
+      }
+      if (tet_has(q, j)) continue;
+      uint32_t o[3];
+      others(q, i, o);
+      const uint32_t s0 = slot(o[0]), s1 = slot(o[1]), s2 = slot(o[2]);
+      pair(s0, s1) |= kEdgeOfI, pair(s1, s0) |= kEdgeOfI;
+      pair(s0, s2) |= kEdgeOfI, pair(s2, s0) |= kEdgeOfI;
+      pair(s1, s2) |= kEdgeOfI, pair(s2, s1) |= kEdgeOfI;
+      if ((s0 != dummy) & (s1 != dummy) & (s2 != dummy))
+        ring_triples_.push_back(triple_key(s0, s1, s2));
+    }
+    // Lk(j) on R, each simplex checked against Lk(i): a common real neighbour must be
+    // in R, a common edge must be a ring edge, no triangle may be common, and of the
+    // cone simplices only (x, omega) with x open.
     for (uint32_t t : star_[j]) {
       if (!in(t)) continue;
-      for (uint32_t w : tet_[t].v)
-        if (w != i && w != j && mark_[w] == near_i && ring_mark_[w] != in_ring) return false;
-    }
-    // Real edges and triangles: the faces (v, x, y) and tets (v, x, y, z) of each star,
-    // outside the ring, with x, y (, z) in R.
-    for (int side = 0; side < 2; ++side) {
-      const uint32_t v = side == 0 ? i : j, other = side == 0 ? j : i;
-      auto& pairs = side == 0 ? pairs_i_ : pairs_j_;
-      auto& triples = side == 0 ? triples_i_ : triples_j_;
-      pairs.clear();
-      triples.clear();
-      for (uint32_t t : star_[v]) {
-        const Tet& q = tet_[t].v;
-        if (!in(t) || tet_has(q, other)) continue;
-        uint32_t o[3], n = 0;
-        for (uint32_t w : q)
-          if (w != v) o[n++] = w;
-        const bool r0 = ring_mark_[o[0]] == in_ring, r1 = ring_mark_[o[1]] == in_ring,
-                   r2 = ring_mark_[o[2]] == in_ring;
-        if (r0 && r1) pairs.push_back(edge_key(o[0], o[1]));
-        if (r0 && r2) pairs.push_back(edge_key(o[0], o[2]));
-        if (r1 && r2) pairs.push_back(edge_key(o[1], o[2]));
-        if (r0 && r1 && r2) triples.push_back(sorted_triangle(o[0], o[1], o[2]));
+      const Tet& q = tet_[t].v;
+      bool common = false;
+      for (uint32_t w : q)
+        common |= (w != i) & (w != j) & (mark_[w] == near_i) & (ring_mark_[w] != in_ring);
+      if (cone) {
+        for_faces_at(t, j, [&](uint32_t x, uint32_t y, uint32_t across) {
+          if (across != kInvalidIndex && in(across)) return;
+          const uint32_t sx = slot(x), sy = slot(y);
+          const bool rx = sx != dummy, ry = sy != dummy;
+          common |= rx & ((slot_flags_[sx] & (kConeOfI | kOpen)) == kConeOfI);
+          common |= ry & ((slot_flags_[sy] & (kConeOfI | kOpen)) == kConeOfI);
+          common |= rx & ry & ((pair(sx, sy) & kConeOfI) != 0);
+        });
       }
-      sort_unique(pairs);
-      std::sort(triples.begin(), triples.end());
-    }
-    if (!intersection_within(pairs_i_, pairs_j_, ring_edges_)) return false;
-    if (!disjoint(triples_i_, triples_j_)) return false;
-    if (!(boundary_i && boundary_j)) return true;
-    // Cone simplices: (x, omega) for x on a boundary face (v, x, y) of each star, which
-    // must be in Lk(ij), and (x, y, omega), never common.
-    for (int side = 0; side < 2; ++side) {
-      const uint32_t v = side == 0 ? i : j;
-      auto& vertices = side == 0 ? cone_vertices_i_ : cone_vertices_j_;
-      auto& pairs = side == 0 ? cone_pairs_i_ : cone_pairs_j_;
-      vertices.clear();
-      pairs.clear();
-      face_keys_.clear();
-      for (uint32_t t : star_[v]) {
-        if (!in(t)) continue;
-        uint32_t o[3], n = 0;
-        for (uint32_t w : tet_[t].v)
-          if (w != v) o[n++] = w;
-        face_keys_.insert(face_keys_.end(),
-                          {edge_key(o[0], o[1]), edge_key(o[0], o[2]), edge_key(o[1], o[2])});
+      if (!tet_has(q, i)) {
+        uint32_t o[3];
+        others(q, j, o);
+        const uint32_t s0 = slot(o[0]), s1 = slot(o[1]), s2 = slot(o[2]);
+        const bool r0 = s0 != dummy, r1 = s1 != dummy, r2 = s2 != dummy;
+        auto edge = [&](uint32_t a, uint32_t b) {
+          return (pair(a, b) & (kEdgeOfI | kRingEdge)) == kEdgeOfI;
+        };
+        common |= r0 & r1 & edge(s0, s1);
+        common |= r0 & r2 & edge(s0, s2);
+        common |= r1 & r2 & edge(s1, s2);
+        if (r0 & r1 & r2) {
+          const uint64_t key = triple_key(s0, s1, s2);
+          for (uint64_t k : ring_triples_) common |= k == key;
+        }
       }
-      std::sort(face_keys_.begin(), face_keys_.end());
-      for (size_t k = 0; k < face_keys_.size();) {
-        const uint64_t key = face_keys_[k];
-        size_t seen = 0;
-        while (k < face_keys_.size() && face_keys_[k] == key) ++k, ++seen;
-        if (seen != 1) continue;  // a face (v, x, y) shared by two tets
-        const uint32_t x = static_cast<uint32_t>(key >> 32), y = static_cast<uint32_t>(key);
-        const bool rx = ring_mark_[x] == in_ring, ry = ring_mark_[y] == in_ring;
-        if (rx) vertices.push_back(x);
-        if (ry) vertices.push_back(y);
-        if (rx && ry) pairs.push_back(key);
-      }
-      sort_unique(vertices);
-      std::sort(pairs.begin(), pairs.end());
+      if (common) return false;
     }
-    std::sort(ring_open_.begin(), ring_open_.end());
-    return intersection_within(cone_vertices_i_, cone_vertices_j_, ring_open_) &&
-           disjoint(cone_pairs_i_, cone_pairs_j_);
+    return true;
+  }
+
+  // A triangle of three slots of R, in any order, as one number.
+  static uint64_t triple_key(uint64_t a, uint64_t b, uint64_t c) {
+    if (a > b) std::swap(a, b);
+    if (b > c) std::swap(b, c);
+    if (a > b) std::swap(a, b);
+    return a << 42 | b << 21 | c;
   }
 
   uint32_t next_ring_stamp() {
@@ -862,64 +850,77 @@ class Engine {
     return ring_stamp_;
   }
 
-  // Whether v has a tet of another material than m (then it lies on m's boundary).
-  bool touches_other_material(uint32_t v, int32_t m) const {
-    for (uint32_t t : star_[v])
-      if (tet_[t].material != m) return true;
-    return false;
-  }
-
   // Topology: the link condition for the whole complex and for every material's
   // region around the edge, and for the surface complex when the edge lies on it.
   bool topology_ok(uint32_t i, uint32_t j, bool surface_edge) {
+    // The stars were last read when the collapse was queued: load them in parallel.
+    for (uint32_t v : {i, j}) {
+      for (uint32_t t : star_[v]) {
+        __builtin_prefetch(&tet_[t]);
+        __builtin_prefetch(&across_[4 * size_t{t}]);
+      }
+    }
     if (!link_condition(
             i, j, [](uint32_t) { return true; }, outer_[i], outer_[j]))
       return false;
+    // The materials of the ring, one entry per ring tet; and whether each end has
+    // tets of a single material (then which).
     edge_materials_.clear();
-    for (uint32_t t : star_[i])
-      if (tet_has(tet_[t].v, j)) edge_materials_.push_back(tet_[t].material);
-    sort_unique(edge_materials_);
+    int32_t material_of[2] = {0, 0};
+    bool single[2] = {true, true};
+    for (int side = 0; side < 2; ++side) {
+      const uint32_t v = side == 0 ? i : j;
+      material_of[side] = tet_[star_[v][0]].material;
+      for (uint32_t t : star_[v]) {
+        const TetRecord& r = tet_[t];
+        single[side] = single[side] && r.material == material_of[side];
+        if (side == 0 && tet_has(r.v, j)) edge_materials_.push_back(r.material);
+      }
+    }
+    std::sort(edge_materials_.begin(), edge_materials_.end());
+    // Whether v has a tet of another material than m (then it lies on m's boundary).
+    auto touches_other = [&](int side, int32_t m) {
+      return !single[side] || material_of[side] != m;
+    };
     // If every tet around i and j has one material, that material's complex is the
     // whole complex there, already checked.
-    bool one_material = true;
-    for (uint32_t v : {i, j})
-      for (uint32_t t : star_[v])
-        one_material = one_material && tet_[t].material == edge_materials_[0];
-    for (int32_t m : edge_materials_) {
+    const bool one_material =
+        !touches_other(0, edge_materials_[0]) && !touches_other(1, edge_materials_[0]);
+    for (size_t k = 0; k < edge_materials_.size();) {
+      const int32_t m = edge_materials_[k];
+      size_t removed = 0;  // ring tets of m
+      while (k < edge_materials_.size() && edge_materials_[k] == m) ++k, ++removed;
       if (!one_material) {
         auto in_m = [&](uint32_t t) { return tet_[t].material == m; };
-        if (!link_condition(i, j, in_m, outer_[i] || touches_other_material(i, m),
-                            outer_[j] || touches_other_material(j, m)))
+        if (!link_condition(i, j, in_m, outer_[i] || touches_other(0, m),
+                            outer_[j] || touches_other(1, m)))
           return false;
       }
       // No region may vanish: keep at least one tet of every material.
-      size_t removed = 0;
-      for (uint32_t t : star_[i])
-        if (tet_[t].material == m && tet_has(tet_[t].v, j)) ++removed;
       if (removed >= material_tets_[material_index(m)]) return false;
     }
     if (surface_edge) {
-      star_faces(i, &faces_i_);
-      star_faces(j, &faces_j_);
-      // Surface complex: common surface neighbours must span a surface triangle with ij.
-      surface_i_.clear();
-      surface_j_.clear();
-      surface_ij_.clear();
-      for (const StarFace& f : faces_i_) {
-        if (!is_surface_face(f) || (f.other != kInvalidIndex && f.other < f.tet)) continue;
-        surface_i_.insert(surface_i_.end(), {f.a, f.b});
-        if (f.a == j) surface_ij_.push_back(f.b);
-        if (f.b == j) surface_ij_.push_back(f.a);
+      // Surface complex: common surface neighbours must span a surface triangle with
+      // ij. The surface neighbours x of i are marked in mark_, those with a surface
+      // triangle (i, j, x) in ring_mark_.
+      const uint32_t near_i = next_stamp(), with_j = next_ring_stamp();
+      for (uint32_t t : star_[i]) {
+        for_faces_at(t, i, [&](uint32_t x, uint32_t y, uint32_t across) {
+          if (!is_surface_face(t, across)) return;
+          mark_[x] = mark_[y] = near_i;
+          if (x == j) ring_mark_[y] = with_j;
+          if (y == j) ring_mark_[x] = with_j;
+        });
       }
-      for (const StarFace& f : faces_j_) {
-        if (!is_surface_face(f) || (f.other != kInvalidIndex && f.other < f.tet)) continue;
-        surface_j_.insert(surface_j_.end(), {f.a, f.b});
+      bool common = false;
+      for (uint32_t t : star_[j]) {
+        for_faces_at(t, j, [&](uint32_t x, uint32_t y, uint32_t across) {
+          if (!is_surface_face(t, across)) return;
+          for (uint32_t w : {x, y})
+            if (mark_[w] == near_i && ring_mark_[w] != with_j) common = true;
+        });
       }
-      sort_unique(surface_i_);
-      sort_unique(surface_j_);
-      sort_unique(surface_ij_);
-      surface_i_.erase(std::remove(surface_i_.begin(), surface_i_.end(), j), surface_i_.end());
-      if (!intersection_within(surface_i_, surface_j_, surface_ij_)) return false;
+      if (common) return false;
     }
     // Curves: two curve vertices joined by a feature edge share no other feature neighbour.
     for (uint32_t x : feature_neighbors_[i]) {
@@ -1243,52 +1244,106 @@ class Engine {
   }
 
   // --------------------------------------------------------------- collapse
+  // In tet `tet` (if any), the neighbour `from` becomes `to`.
+  void replace_across(uint32_t tet, uint32_t from, uint32_t to) {
+    if (tet == kInvalidIndex) return;
+    uint32_t* across = &across_[4 * size_t{tet}];
+    int c = 0;
+    while (across[c] != from) ++c;
+    across[c] = to;
+  }
+
   void apply(const Collapse& c, CollapseHistory* history) {
     const uint32_t i = c.kept, j = c.removed;
     history->begin_step(i, j, pos_[i], c.position);
+    // The tets around the edge, in star order. The stars and valences of their other
+    // vertices change below: start loading them now.
+    retired_tets_.clear();
+    for (uint32_t t : star_[i]) {
+      const Tet& q = tet_[t].v;
+      if (!tet_has(q, j)) continue;
+      retired_tets_.push_back(t);
+      for (uint32_t x : q) {
+        if (x == i || x == j) continue;  // loaded by topology_ok()
+        __builtin_prefetch(&star_[x]);
+        __builtin_prefetch(&valence_[x]);
+      }
+    }
     // Valences: i gets the neighbours of both ends (the paper's formula, exact under the
     // link condition); each vertex x of a triangle (i, j, x) loses one (j).
     const uint32_t triangles = edge_triangle_count(i, j);
     valence_[i] = valence_[i] + valence_[j] - triangles - 2;
     const uint32_t around_edge = stamp_;  // edge_triangle_count() marked the x's
-    // Retire the tets around the edge.
-    for (uint32_t t : star_[i]) {
-      if (!tet_has(tet_[t].v, j)) continue;
-      for (uint32_t x : tet_[t].v)
-        if (mark_[x] == around_edge) mark_[x] = 0, --valence_[x];
-      history->removed_tets.push_back(t);
-      tet_[t].alive = 0;
-      --material_tets_[material_index(tet_[t].material)];
-      for (uint32_t w : tet_[t].v) {
-        if (w == i || w == j) continue;
-        auto& s = star_[w];
-        s.erase(std::find(s.begin(), s.end(), t));
+    // Then what those point to: the ring vertices' stars, and the neighbours of the
+    // ring's faces (i, x, y) and (j, x, y), glued below.
+    for (uint32_t t : retired_tets_) {
+      const Tet& q = tet_[t].v;
+      for (int corner = 0; corner < 4; ++corner) {
+        const uint32_t x = q[corner], across = across_[4 * t + corner];
+        if (x != i && x != j) {
+          __builtin_prefetch(star_[x].data());
+        } else if (across != kInvalidIndex) {
+          __builtin_prefetch(&across_[4 * size_t{across}]);
+        }
       }
     }
-    auto& si = star_[i];
-    si.erase(std::remove_if(si.begin(), si.end(), [&](uint32_t t) { return !tet_[t].alive; }),
-             si.end());
-    for (uint32_t t : si) {
-      history->moved.push_back(t);
-      tet_[t].allowance = 0;
-    }
-    // Rewire j's other tets to i.
+    // Rewire j's other tets to i (in star order, as star_[j] is sorted).
+    rewired_tets_.clear();
     for (uint32_t t : star_[j]) {
-      if (!tet_[t].alive) continue;
+      Tet& q = tet_[t].v;
+      if (tet_has(q, i)) continue;
       for (int corner = 0; corner < 4; ++corner) {
-        if (tet_[t].v[corner] == j) {
-          tet_[t].v[corner] = i;
+        if (q[corner] == j) {
+          q[corner] = i;
           history->rewired.push_back(4 * t + corner);
         }
       }
       tet_[t].allowance = 0;
-      si.push_back(t);
+      rewired_tets_.push_back(t);
     }
-    std::sort(si.begin(), si.end());
+    // Retire the tets around the edge.
+    for (uint32_t t : retired_tets_) {
+      const Tet& q = tet_[t].v;
+      for (uint32_t x : q)
+        if (mark_[x] == around_edge) mark_[x] = 0, --valence_[x];
+      history->removed_tets.push_back(t);
+      tet_[t].alive = 0;
+      --material_tets_[material_index(tet_[t].material)];
+      for (uint32_t w : q) {
+        if (w == i || w == j) continue;
+        auto& s = star_[w];
+        s.erase(std::find(s.begin(), s.end(), t));
+      }
+      // Its faces (i, x, y) and (j, x, y) become one: glue the tets across them.
+      int corner_i = 0, corner_j = 0;
+      while (q[corner_i] != i) ++corner_i;
+      while (q[corner_j] != j) ++corner_j;
+      const uint32_t across_ixy = across_[4 * t + corner_j], across_jxy = across_[4 * t + corner_i];
+      replace_across(across_ixy, t, across_jxy);
+      replace_across(across_jxy, t, across_ixy);
+    }
+    // i's star: its own tets but the ring, then j's rewired ones, merged in order.
+    // Where i stays in place, its own tets keep their shape (and stretch).
+    const bool i_moves = std::memcmp(&pos_[i], &c.position, sizeof(Vec3)) != 0;
+    pos_[i] = c.position;
+    auto& si = star_[i];
+    merged_star_.clear();
+    auto rewired = rewired_tets_.begin();
+    for (uint32_t t : si) {
+      if (!tet_[t].alive) continue;
+      history->moved.push_back(t);
+      tet_[t].allowance = 0;
+      if (i_moves) tet_[t].stretch = shape(t).stretch;
+      for (; rewired != rewired_tets_.end() && *rewired < t; ++rewired)
+        merged_star_.push_back(*rewired);
+      merged_star_.push_back(t);
+    }
+    merged_star_.insert(merged_star_.end(), rewired, rewired_tets_.end());
+    si.swap(merged_star_);
+    for (uint32_t t : rewired_tets_) tet_[t].stretch = shape(t).stretch;
     star_[j].clear();
     star_[j].shrink_to_fit();
     vertex_alive_[j] = 0;
-    pos_[i] = c.position;
     quadric_[i].add(quadric_[j]);
     outer_[i] |= outer_[j];
     // Curves: j's feature neighbours become i's.
@@ -1301,7 +1356,6 @@ class Engine {
     auto& fi = feature_neighbors_[i];
     fi.erase(std::remove(fi.begin(), fi.end(), j), fi.end());
     feature_neighbors_[j].clear();
-    for (uint32_t t : si) tet_[t].stretch = shape(t).stretch;
     alive_tets_ -=
         history->removed_end(history->step_count() - 1) - history->steps.back().removed_begin;
     ++collapses_;
@@ -1472,15 +1526,10 @@ class Engine {
   // Scratch, reused to keep the hot loop free of allocation.
   std::vector<uint32_t> mark_;
   uint32_t stamp_ = 0;
-  std::vector<StarFace> faces_i_, faces_j_;
-  std::vector<uint32_t> ring_vertices_, ring_open_, ring_mark_;
+  std::vector<uint32_t> ring_mark_;
   uint32_t ring_stamp_ = 0;
-  std::vector<uint64_t> ring_edges_, pairs_i_, pairs_j_, face_keys_, cone_pairs_i_, cone_pairs_j_;
-  std::vector<Triangle> triples_i_, triples_j_;
-  std::vector<uint32_t> cone_vertices_i_, cone_vertices_j_;
   std::vector<uint8_t> outer_;  // on the boundary of the whole mesh
   std::vector<int32_t> edge_materials_;
-  std::vector<uint32_t> surface_i_, surface_j_, surface_ij_;
   std::vector<uint32_t> ring_, around_, ring_others_;
   // The tets of t*(a) U t*(b) that survive the collapse (see gather_first_end()).
   std::vector<TetBlock> moving_;
@@ -1494,6 +1543,18 @@ class Engine {
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
   const VectorKernels& kernels_ = vector_kernels();
+  // The tet across each face: across_[4 * t + c] is across the face of t opposite
+  // corner c, or kInvalidIndex on the boundary (build_face_neighbors); kept up to date
+  // by apply() for the alive tets.
+  std::vector<uint32_t> across_;
+  // link_condition(): the slot of each vertex of R, and flags per slot and per pair of
+  // slots (r x r).
+  static constexpr uint8_t kOpen = 1, kConeOfI = 2, kEdgeOfI = 4, kRingEdge = 8;
+  std::vector<uint32_t> ring_slot_;
+  std::vector<uint8_t> slot_flags_, pair_flags_;
+  std::vector<std::pair<uint32_t, uint32_t>> ring_pairs_;            // the ring edges, as slots
+  std::vector<uint64_t> ring_triples_;                               // triple_key()s of Lk(i) on R
+  std::vector<uint32_t> retired_tets_, rewired_tets_, merged_star_;  // apply()
 };
 
 }  // namespace
