@@ -114,15 +114,6 @@ struct Quadric {
 
 enum class Reject : uint8_t { kNone, kTolerance, kStretch, kSize, kValence, kTopology };
 
-struct Collapse {
-  double priority = 0;
-  uint32_t kept = 0, removed = 0;
-  uint32_t version_kept = 0, version_removed = 0;
-  Vec3 position;
-  bool surface_edge = false;
-  bool midpoint = false;  // position is the midpoint (else the kept end's position)
-};
-
 // What the queue keeps of a valid collapse, in 32 bytes (the queue holds a few hundred
 // thousand and is walked at random): the position is restored when it is popped.
 struct QueuedCollapse {
@@ -130,9 +121,13 @@ struct QueuedCollapse {
   uint32_t kept = 0, removed = 0;
   uint32_t version_kept = 0, version_removed = 0;
   bool surface_edge = false;
-  bool midpoint = false;
+  bool midpoint = false;  // the new position is the midpoint (else the kept end's)
 };
-static_assert(sizeof(QueuedCollapse) == 32, "four per cache line pair");
+static_assert(sizeof(QueuedCollapse) == 32, "two per cache line");
+
+struct Collapse : QueuedCollapse {
+  Vec3 position;
+};
 
 // Max-heap order: larger priority first, then the smaller vertex pair.
 struct CollapseLess {
@@ -1238,8 +1233,7 @@ class Engine {
       count(r);
       return;
     }
-    heap_.push_back({c.priority, c.kept, c.removed, c.version_kept, c.version_removed,
-                     c.surface_edge, c.midpoint});
+    heap_.push_back(c);  // without the position
     std::push_heap(heap_.begin(), heap_.end(), CollapseLess());
   }
 
@@ -1437,13 +1431,7 @@ class Engine {
       }
       // Current: neither end moved since the evaluation.
       Collapse c;
-      c.priority = q.priority;
-      c.kept = q.kept;
-      c.removed = q.removed;
-      c.version_kept = q.version_kept;
-      c.version_removed = q.version_removed;
-      c.surface_edge = q.surface_edge;
-      c.midpoint = q.midpoint;
+      static_cast<QueuedCollapse&>(c) = q;
       c.position = q.midpoint ? (pos_[q.kept] + pos_[q.removed]) * 0.5 : pos_[q.kept];
       if (!topology_ok(c.kept, c.removed, c.surface_edge)) {
         count(Reject::kTopology);
