@@ -936,18 +936,11 @@ class Engine {
     return std::find(f.begin(), f.end(), j) != f.end();
   }
 
-  // Whether edge (i, j) lies on a boundary or interface triangle. The tets around an
-  // edge inside one material form a closed ring, in which every face (i, j, x) is
-  // shared by two of them; the edge lies on a surface if the ring is open (a face on
-  // the boundary) or holds two materials (a face between them).
-  bool is_surface_edge(uint32_t i, uint32_t j) {
-    ring_tets_.clear();
-    for (uint32_t t : star_[i])
-      if (tet_has(tet_[t].v, j)) ring_tets_.push_back(t);
-    return ring_is_surface(i, j);
-  }
-
-  // is_surface_edge() for the ring of tets around (i, j) listed in ring_tets_.
+  // Whether edge (i, j), with the ring of tets around it listed in ring_tets_, lies on
+  // a boundary or interface triangle. The tets around an edge inside one material form
+  // a closed ring, in which every face (i, j, x) is shared by two of them; the edge lies
+  // on a surface if the ring is open (a face on the boundary) or holds two materials (a
+  // face between them).
   bool ring_is_surface(uint32_t i, uint32_t j) {
     ring_others_.clear();
     for (uint32_t t : ring_tets_) {
@@ -962,26 +955,14 @@ class Engine {
     return false;
   }
 
-  // |f*(a,b)| for the ring of tets around (a, b) listed in ring_tets_.
-  uint32_t ring_triangle_count(uint32_t a, uint32_t b) {
+  // |f*(a,b)|: the distinct vertices x of the triangles (a, b, x) around edge (a, b),
+  // from the ring of tets around it; they are left marked with the current stamp.
+  uint32_t triangle_count(const std::vector<uint32_t>& ring, uint32_t a, uint32_t b) {
     const uint32_t s = next_stamp();
     uint32_t n = 0;
-    for (uint32_t t : ring_tets_)
+    for (uint32_t t : ring)
       for (uint32_t w : tet_[t].v)
         if (w != a && w != b && mark_[w] != s) mark_[w] = s, ++n;
-    return n;
-  }
-
-  // |f*(a,b)|: the distinct vertices x of the triangles (a, b, x) around edge (a, b).
-  uint32_t edge_triangle_count(uint32_t a, uint32_t b) {
-    const uint32_t s = next_stamp();
-    uint32_t n = 0;
-    for (uint32_t t : star_[a]) {
-      const Tet& q = tet_[t].v;
-      if (!tet_has(q, b)) continue;
-      for (uint32_t w : q)
-        if (w != a && w != b && mark_[w] != s) mark_[w] = s, ++n;
-    }
     return n;
   }
 
@@ -1015,6 +996,7 @@ class Engine {
   double gather_second_end(uint32_t a, uint32_t b) {
     double sum = first_sum_;
     size_t count = star_[a].size();
+    second_end_ = b;
     second_tets_.clear();
     for (uint32_t t : star_[b]) {
       const TetRecord& r = tet_[t];
@@ -1151,9 +1133,8 @@ class Engine {
     // The paper's valence of the new node, |v*(i)| + |v*(j)| - (|f*(i,j)| + 2), with
     // f*(i,j) the triangles (i, j, x) around the edge. It is the exact valence when
     // the link condition holds and an overestimate otherwise, so never too low.
-    if (valence_[a] + valence_[b] - ring_triangle_count(a, b) - 2 > params_.max_valence)
+    if (valence_[a] + valence_[b] - triangle_count(ring_tets_, a, b) - 2 > params_.max_valence)
       return Reject::kValence;
-    second_end_ = b;
     const double old_mean = gather_second_end(a, b);
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
@@ -1265,9 +1246,9 @@ class Engine {
     }
     // Valences: i gets the neighbours of both ends (the paper's formula, exact under the
     // link condition); each vertex x of a triangle (i, j, x) loses one (j).
-    const uint32_t triangles = edge_triangle_count(i, j);
+    const uint32_t triangles = triangle_count(retired_tets_, i, j);
     valence_[i] = valence_[i] + valence_[j] - triangles - 2;
-    const uint32_t around_edge = stamp_;  // edge_triangle_count() marked the x's
+    const uint32_t around_edge = stamp_;  // triangle_count() marked the x's
     // Then what those point to: the ring vertices' stars, and the neighbours of the
     // ring's faces (i, x, y) and (j, x, y), glued below.
     for (uint32_t t : retired_tets_) {
