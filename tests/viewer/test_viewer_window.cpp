@@ -29,6 +29,14 @@ namespace fs = std::filesystem;
 
 const std::string kSource = TETLOD_SOURCE_DIR;
 
+// An empty directory for one test's files.
+fs::path fresh_output_dir(const std::string& name) {
+  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
 struct ViewerRun {
   int exit_code = -1;
   std::string output;
@@ -92,8 +100,7 @@ size_t red_panel_pixels(const render::Image& image) {
 }
 
 TEST(ViewerWindow, ScriptedRun) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_scripted_run";
-  fs::remove_all(dir);
+  const fs::path dir = fresh_output_dir("viewer_scripted_run");
   const ViewerRun run =
       run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 960x640 " +
                           "--script '" + kSource + "/tests/viewer/scripted_run.script'");
@@ -157,9 +164,7 @@ TEST(ViewerWindow, ScriptedRun) {
 // the surface is built with the filter by the worker instead of rebuilt after a
 // filter change) gives the same pixels.
 TEST(ViewerWindow, OrderOfActionsDoesNotMatter) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_order";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_output_dir("viewer_order");
   std::ofstream(dir / "order.script")
       << "cut z=0\ncolor material\nview iso\n"
          "thresholds size=25 stretch=0.15 valence=25 tolerance=0.05 subdivide=1\n"
@@ -179,9 +184,7 @@ TEST(ViewerWindow, OrderOfActionsDoesNotMatter) {
 // Simplifying again with other thresholds starts from the loaded input, not from
 // the result on screen.
 TEST(ViewerWindow, SimplifyingAgainStartsFromTheInput) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_resimplify";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_output_dir("viewer_resimplify");
   std::ofstream(dir / "again.script")
       << "thresholds size=25 stretch=0.15 valence=25 tolerance=0.05\nsimplify\n"
          "thresholds size=40\nsimplify\nsave again.mesh\nquit\n";
@@ -210,9 +213,7 @@ TEST(ViewerWindow, SimplifyingAgainStartsFromTheInput) {
 }
 
 TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_save";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_output_dir("viewer_failed_save");
   std::ofstream(dir / "save.script") << "save level.mesh\nsave /nonexistent-dir/level.mesh\nquit\n";
   const ViewerRun run =
       run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script save.script");
@@ -227,9 +228,7 @@ TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
 // As for a user: a file that fails to load shows its error in the panel (red text)
 // and the mesh on screen stays as it was.
 TEST(ViewerWindow, FailedLoadShowsTheErrorAndKeepsTheMesh) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_load_ui";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_output_dir("viewer_failed_load_ui");
   std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
   std::ofstream(dir / "load.script") << "screenshot before.png width=200 height=200\n"
                                         "screenshot before_ui.png ui=1\n"
@@ -250,9 +249,7 @@ TEST(ViewerWindow, FailedLoadShowsTheErrorAndKeepsTheMesh) {
 }
 
 TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_failed_load";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_output_dir("viewer_failed_load");
   std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
   std::ofstream(dir / "load.script") << "open bad.mesh\nquit\n";
   const ViewerRun run =
@@ -265,9 +262,7 @@ TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
 // runs (a screenshot with its progress bar), the cancelled run leaves the display as
 // it was, and quitting while another run is under way cancels and joins the worker.
 TEST(ViewerWindow, CancelAndQuitDuringARun) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_cancel";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_output_dir("viewer_cancel");
   std::ofstream(dir / "cancel.script") << "screenshot before.png width=320 height=240\n"
                                           "thresholds size=5 tolerance=0.05\n"
                                           "simplify wait=0\n"
@@ -334,9 +329,7 @@ bool same_relative(double a, double b, double tolerance) {
 // inner sphere, and falls back to stretch while the displayed level is not the
 // solved one.
 TEST(ViewerWindow, AnalysisOnTheSphericalCapacitor) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_analysis";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_output_dir("viewer_analysis");
   std::ofstream(dir / "analysis.script")
       << "analysis conductor=1:1 ground=4 eps=2:2,3:5\n"
          "solve\n"
@@ -464,9 +457,7 @@ TEST(ViewerWindow, AnalysisOnTheSphericalCapacitor) {
 // Bad set-ups give the solver's message, naming the script line; with may-fail they
 // only show in the panel (red) and the viewer carries on.
 TEST(ViewerWindow, AnalysisErrorsNameTheLineOrShowInThePanel) {
-  const fs::path dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "viewer_analysis_errors";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_output_dir("viewer_analysis_errors");
   // Tall enough for the Analysis section to be in sight without scrolling.
   const std::string spheres = "'" + kSource + "/assets/spheres.mesh' --size 1280x1000 --script ";
 
