@@ -383,7 +383,7 @@ class Engine {
 
     start = Clock::now();
     report("classify", 0);
-    classify();
+    classify(result->base);
     report("classify", 1);
     result->seconds_classify = seconds_since(start);
 
@@ -640,8 +640,8 @@ class Engine {
   }
 
   // --------------------------------------------------------- classification
-  void classify() {
-    const TetMesh mesh = mesh_now();
+  // `mesh` holds the current arrays: result->base, taken after subdivision.
+  void classify(const TetMesh& mesh) {
     std::vector<uint32_t> neighbors_of_tets;
     const FaceProblem problem = build_face_neighbors(mesh, &neighbors_of_tets);
     assert(problem.kind == FaceProblem::Kind::kNone);  // the input was validated
