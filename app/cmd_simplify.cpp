@@ -130,6 +130,13 @@ int cmd_simplify(const Args& args) {
       static_cast<unsigned long long>(r.tolerance), static_cast<unsigned long long>(r.stretch),
       static_cast<unsigned long long>(r.size), static_cast<unsigned long long>(r.valence),
       static_cast<unsigned long long>(r.topology));
+  const EvaluationCounts& e = result.evaluations;
+  std::printf(
+      "evaluations: %llu of every edge at the start, %llu of new nodes' edges, %llu of stale "
+      "queue entries, %llu in %llu sweeps (%llu in all)\n",
+      static_cast<unsigned long long>(e.initial), static_cast<unsigned long long>(e.new_node),
+      static_cast<unsigned long long>(e.stale), static_cast<unsigned long long>(e.sweep),
+      static_cast<unsigned long long>(e.sweeps), static_cast<unsigned long long>(e.total()));
   const ThresholdViolations& v = result.violations;
   std::printf(
       "final mesh, breaking a threshold: %zu tets below the stretch, %zu above the size, "

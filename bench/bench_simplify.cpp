@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   std::vector<double> total, subdivide, classify, collapse;
   size_t collapses = 0, output_tets = 0;
   const char* kernels = "";
+  tetlod::EvaluationCounts evaluations;
   for (int r = 0; r < repeat; ++r) {
     SimplifyResult result;
     const auto start = Clock::now();
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
     collapse.push_back(result.seconds_simplify);
     collapses = result.history.step_count();
     kernels = result.kernels;
+    evaluations = result.evaluations;
     output_tets = result.output.tet_count();
   }
   rusage usage{};
@@ -53,6 +55,14 @@ int main(int argc, char** argv) {
               params.sizing.uniform, params.min_stretch, params.max_valence, params.tolerance);
   std::printf("output: %zu tets after %zu collapses (%s kernels)\n", output_tets, collapses,
               kernels);
+  std::printf(
+      "evaluations: %llu at the start, %llu of new nodes' edges, %llu stale, %llu in sweeps "
+      "(%llu in all)\n",
+      static_cast<unsigned long long>(evaluations.initial),
+      static_cast<unsigned long long>(evaluations.new_node),
+      static_cast<unsigned long long>(evaluations.stale),
+      static_cast<unsigned long long>(evaluations.sweep),
+      static_cast<unsigned long long>(evaluations.total()));
   std::printf(
       "median of %d: pipeline %.3f s (subdivide %.3f, classify %.3f, simplify %.3f); "
       "%.0f collapses/s\n",

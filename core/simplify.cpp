@@ -391,6 +391,7 @@ class Engine {
     simplify(result);
     result->seconds_simplify = seconds_since(start);
     result->rejections = rejections_;
+    result->evaluations = evaluations_;
     result->kernels = kernels_.name;
     result->output = compact();
     count_violations(&result->violations);
@@ -1207,7 +1208,9 @@ class Engine {
     }
   }
 
-  void evaluate_and_push(uint32_t a, uint32_t b) {
+  // Evaluates collapse (a, b), counted in *evaluations, and queues it if valid.
+  void evaluate_and_push(uint32_t a, uint32_t b, uint64_t* evaluations) {
+    ++*evaluations;
     Collapse c;
     const Reject r = evaluate(a, b, &c);
     if (r != Reject::kNone) {
@@ -1352,7 +1355,7 @@ class Engine {
       }
     }
     ring_.pop_back();
-    for (uint32_t w : ring_) evaluate_and_push(k, w);
+    for (uint32_t w : ring_) evaluate_and_push(k, w, &evaluations_.new_node);
   }
 
   // Starts loading what popping `next` will read: its ends and their stars. Most
@@ -1380,7 +1383,7 @@ class Engine {
       std::sort(around_.begin(), around_.end());
       for (uint32_t w : around_) {
         if (w < v && dirty_[w]) continue;  // done from w's side
-        evaluate_and_push(v, w);
+        evaluate_and_push(v, w, &evaluations_.sweep);
       }
     }
     for (uint32_t v : list) dirty_[v] = 0;
@@ -1398,13 +1401,14 @@ class Engine {
     for (uint32_t v = 0; v < pos_.size(); ++v) {
       neighbors(v, &nb);
       for (uint32_t w : nb)
-        if (w > v) evaluate_and_push(v, w);
+        if (w > v) evaluate_and_push(v, w, &evaluations_.initial);
     }
     size_t pops = 0;
     while (true) {
       if (params_.target_elements > 0 && alive_tets_ <= params_.target_elements) break;
       if (heap_.empty()) {
         if (dirty_list_.empty()) break;
+        ++evaluations_.sweeps;
         sweep();
         continue;
       }
@@ -1422,7 +1426,8 @@ class Engine {
       if (!vertex_alive_[q.kept] || !vertex_alive_[q.removed]) continue;
       if (q.version_kept != version_[q.kept] || q.version_removed != version_[q.removed]) {
         // Stale: evaluate again now unless a sweep already did.
-        if (dirty_[q.kept] || dirty_[q.removed]) evaluate_and_push(q.kept, q.removed);
+        if (dirty_[q.kept] || dirty_[q.removed])
+          evaluate_and_push(q.kept, q.removed, &evaluations_.stale);
         continue;
       }
       // Current: neither end moved since the evaluation.
@@ -1504,6 +1509,7 @@ class Engine {
   std::vector<uint8_t> dirty_;
   std::vector<uint32_t> dirty_list_;
   RejectionCounts rejections_;
+  EvaluationCounts evaluations_;
   size_t collapses_ = 0;
   size_t alive_tets_ = 0;
 

@@ -44,6 +44,17 @@ struct RejectionCounts {
   uint64_t topology = 0;  // feature rules and link conditions
 };
 
+// How many collapse evaluations each part of the run made, valid or rejected (an
+// evaluation walks the stars of both ends: the bulk of the simplify phase's time).
+struct EvaluationCounts {
+  uint64_t initial = 0;   // every edge of the subdivided mesh, once, at the start
+  uint64_t new_node = 0;  // the edges of the node each collapse made, right after it
+  uint64_t stale = 0;     // queued collapses popped after a neighbouring collapse
+  uint64_t sweep = 0;     // the edges of the nodes collapses touched, when the queue ran dry
+  uint64_t sweeps = 0;    // how many times the queue ran dry with such nodes left
+  uint64_t total() const { return initial + new_node + stale + sweep; }
+};
+
 // Output tets and nodes that break a threshold. Only what the input already broke
 // can: an input tet no valid collapse could remove, or a piece that subdivision cut
 // from such a tet (a piece never has a lower stretch than its parent, and is
@@ -61,6 +72,7 @@ struct SimplifyResult {
   CollapseHistory history;  // every collapse, in order
   TetMesh output;           // the mesh after the last collapse, compacted
   RejectionCounts rejections;
+  EvaluationCounts evaluations;
   ThresholdViolations violations;
   size_t splits = 0;          // subdivision splits done
   size_t splits_skipped = 0;  // long edges left unsplit because a split would break a threshold

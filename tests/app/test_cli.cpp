@@ -110,6 +110,7 @@ TEST(Cli, SimplifyThenLodWritesLevels) {
                               history);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("rejected evaluations"), std::string::npos);
+  EXPECT_NE(r.output.find("evaluations: "), std::string::npos);
   EXPECT_NE(r.output.find("0 of them made by TetLOD"), std::string::npos) << r.output;
   const std::string level = out_dir() + "/simp_level.vtu";
   const CommandResult l = run("lod " + history + " --step 0 -o " + level);

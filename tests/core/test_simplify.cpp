@@ -116,6 +116,34 @@ TEST(Simplify, NothingCollapsesWhenEveryThresholdForbidsIt) {
   EXPECT_GT(r.rejections.valence, 0u);
 }
 
+// Each edge is evaluated once at the start; without collapses nothing else is; with
+// them the new nodes' edges are, and every collapse and every rejection but the
+// link conditions checked at the top of the queue comes from an evaluation.
+TEST(Simplify, CountsEvaluationsByWhereTheyHappen) {
+  const TetMesh mesh = two_material_box(2);
+  std::set<std::pair<uint32_t, uint32_t>> edges;
+  for (const Tet& t : mesh.tets)
+    for (int c = 0; c < 4; ++c)
+      for (int d = c + 1; d < 4; ++d) edges.insert(std::minmax(t[c], t[d]));
+
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(mesh, loose_params(std::sqrt(3.0) / 2 + 1e-9), &r));
+  ASSERT_EQ(r.history.step_count(), 0u);
+  EXPECT_EQ(r.evaluations.initial, edges.size());
+  EXPECT_EQ(r.evaluations.new_node + r.evaluations.stale + r.evaluations.sweep, 0u);
+  EXPECT_EQ(r.evaluations.sweeps, 0u);
+
+  ASSERT_TRUE(simplify(mesh, loose_params(10), &r));
+  ASSERT_GT(r.history.step_count(), 0u);
+  EXPECT_EQ(r.evaluations.initial, edges.size());
+  EXPECT_GT(r.evaluations.new_node, 0u);
+  const RejectionCounts& x = r.rejections;
+  EXPECT_GE(r.evaluations.total(),
+            r.history.step_count() + x.tolerance + x.stretch + x.size + x.valence);
+  EXPECT_EQ(r.evaluations.total(), r.evaluations.initial + r.evaluations.new_node +
+                                       r.evaluations.stale + r.evaluations.sweep);
+}
+
 TEST(Lod, ApplyThenUndoIsBitIdentical) {
   const TetMesh mesh = two_material_box(3);
   SimplifyResult r;
