@@ -1358,20 +1358,6 @@ class Engine {
     for (uint32_t w : ring_) evaluate_and_push(k, w, &evaluations_.new_node);
   }
 
-  // Starts loading what popping `next` will read: its ends and their stars. Most
-  // popped entries are stale and re-evaluated, in a part of the mesh last touched long
-  // ago; this overlaps those cache misses with the work on the entry popped before.
-  void prefetch_entry(const QueuedCollapse& next) const {
-    for (uint32_t v : {next.kept, next.removed}) {
-      __builtin_prefetch(&pos_[v]);
-      __builtin_prefetch(&quadric_[v]);
-      __builtin_prefetch(&valence_[v]);
-      __builtin_prefetch(&version_[v]);
-      const auto& star = star_[v];
-      for (uint32_t t : star) __builtin_prefetch(&tet_[t]);
-    }
-  }
-
   // Re-evaluates every edge with a dirty end, once.
   void sweep() {
     std::vector<uint32_t> list;
@@ -1422,7 +1408,6 @@ class Engine {
       std::pop_heap(heap_.begin(), heap_.end(), CollapseLess());
       const QueuedCollapse q = heap_.back();
       heap_.pop_back();
-      if (!heap_.empty()) prefetch_entry(heap_[0]);
       if (!vertex_alive_[q.kept] || !vertex_alive_[q.removed]) continue;
       if (q.version_kept != version_[q.kept] || q.version_removed != version_[q.removed]) {
         // Stale: evaluate again now unless a sweep already did.
