@@ -1360,6 +1360,7 @@ class Engine {
 
   // Re-evaluates every edge with a dirty end, once.
   void sweep() {
+    ++evaluations_.sweeps;
     std::vector<uint32_t> list;
     list.swap(dirty_list_);
     std::sort(list.begin(), list.end());
@@ -1394,7 +1395,6 @@ class Engine {
       if (params_.target_elements > 0 && alive_tets_ <= params_.target_elements) break;
       if (heap_.empty()) {
         if (dirty_list_.empty()) break;
-        ++evaluations_.sweeps;
         sweep();
         continue;
       }

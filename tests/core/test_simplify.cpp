@@ -117,8 +117,9 @@ TEST(Simplify, NothingCollapsesWhenEveryThresholdForbidsIt) {
 }
 
 // Each edge is evaluated once at the start; without collapses nothing else is; with
-// them the new nodes' edges are, and every collapse and every rejection but the
-// link conditions checked at the top of the queue comes from an evaluation.
+// them the new nodes' edges are, and their neighbourhoods are swept; every collapse
+// and every rejection but the link conditions checked at the top of the queue comes
+// from an evaluation.
 TEST(Simplify, CountsEvaluationsByWhereTheyHappen) {
   const TetMesh mesh = two_material_box(2);
   std::set<std::pair<uint32_t, uint32_t>> edges;
@@ -140,8 +141,9 @@ TEST(Simplify, CountsEvaluationsByWhereTheyHappen) {
   const RejectionCounts& x = r.rejections;
   EXPECT_GE(r.evaluations.total(),
             r.history.step_count() + x.tolerance + x.stretch + x.size + x.valence);
-  EXPECT_EQ(r.evaluations.total(), r.evaluations.initial + r.evaluations.new_node +
-                                       r.evaluations.stale + r.evaluations.sweep);
+  // The last collapse leaves its nodes to sweep once the queue runs dry.
+  EXPECT_GE(r.evaluations.sweeps, 1u);
+  EXPECT_GT(r.evaluations.sweep, 0u);
 }
 
 TEST(Lod, ApplyThenUndoIsBitIdentical) {
