@@ -149,6 +149,10 @@ TEST(Cli, SimplifyKernelsAgreeBitForBit) {
       if (forced) {
         EXPECT_NE(r.output.find("(baseline kernels)"), std::string::npos) << r.output;
       }
+      // The threshold line says whether a size field lowers the uniform size.
+      const std::string size_line =
+          n == 0 ? "thresholds: size 12, stretch" : "thresholds: size 12, less where the local";
+      EXPECT_NE(r.output.find(size_line), std::string::npos) << r.output;
     }
     const std::string mesh = file_bytes(out[0]);
     EXPECT_GT(mesh.size(), 1000u);
