@@ -127,10 +127,12 @@ int cmd_simplify(const Args& args) {
   print_property_table(stats_of(output));
   const RejectionCounts& r = result.rejections;
   std::printf(
-      "\nsubdivision: %zu splits (%zu long edges left unsplit to keep the thresholds), %zu tets\n"
+      "\nsubdivision: %zu splits (%zu long edges left unsplit to keep the thresholds: %zu for "
+      "a piece's stretch or size, %zu for a node's valence), %zu tets\n"
       "collapses: %zu\nrejected evaluations: tolerance %llu, stretch %llu, size %llu, valence "
       "%llu, topology %llu\n",
-      result.splits, result.splits_skipped, result.base.tet_count(), result.history.step_count(),
+      result.splits, result.splits_skipped, result.splits_skipped - result.splits_skipped_valence,
+      result.splits_skipped_valence, result.base.tet_count(), result.history.step_count(),
       static_cast<unsigned long long>(r.tolerance), static_cast<unsigned long long>(r.stretch),
       static_cast<unsigned long long>(r.size), static_cast<unsigned long long>(r.valence),
       static_cast<unsigned long long>(r.topology));
@@ -146,6 +148,7 @@ int cmd_simplify(const Args& args) {
       "final mesh, breaking a threshold: %zu tets below the stretch, %zu above the size, "
       "%zu nodes above the valence (%zu of them made by TetLOD)\n",
       v.below_stretch, v.above_size, v.above_valence, v.created);
+  if (v.above_size > 0) std::printf("why: %s\n", above_size_reason(params, result).c_str());
   std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)\n",
               result.seconds_subdivide, result.seconds_classify, result.seconds_simplify,
               result.kernels);

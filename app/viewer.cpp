@@ -65,6 +65,7 @@ struct Scene {
   std::string path;
   std::shared_ptr<const TetMesh> input;
   std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
+  std::string above_size_reason;                 // of the result ("" if nothing is above)
   CollapseHistory empty_history;
   std::unique_ptr<Lod> lod;
   render::LodSurface surface;
@@ -635,7 +636,10 @@ void Viewer::start_simplify() {
         job->phase = "preparing the levels";
         job->fraction = 1;
       }
+      const std::string reason =
+          result->violations.above_size > 0 ? above_size_reason(params, *result) : "";
       auto scene = make_scene(job->path, input, std::move(result), view);
+      scene->above_size_reason = reason;
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
     }
@@ -1205,6 +1209,8 @@ void Viewer::fill_status() {
   if (scene.result) {
     s.rejections = scene.result->rejections;
     s.splits = scene.result->splits;
+    s.violations = scene.result->violations;
+    s.above_size_reason = scene.above_size_reason;
     s.simplify_seconds = scene.result->seconds_classify + scene.result->seconds_subdivide +
                          scene.result->seconds_simplify;
     s.result_cancelled = scene.result->cancelled;

@@ -587,12 +587,17 @@ class Engine {
         for (uint32_t w : tet_[t].v)
           if (w != e.a && w != e.b) opposite.push_back(w);
       }
+      if (!ok) {
+        ++result->splits_skipped;
+        continue;
+      }
       sort_unique(opposite);
       if (opposite.size() + 2 > params_.max_valence) ok = false;
       for (uint32_t w : opposite)
         if (valence_now[w] + 1 > params_.max_valence) ok = false;
       if (!ok) {
         ++result->splits_skipped;
+        ++result->splits_skipped_valence;
         continue;
       }
       if (tet_.size() + ring.size() > kMaxTets) {
@@ -1541,6 +1546,36 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   *result = SimplifyResult{};
   Engine engine(input, params, progress, cancel);
   return engine.run(result);
+}
+
+// A tet above the size has an edge longer than the size, so longer than half of it:
+// collapses never make one, so subdivision did not split it (it was off, stopped, or
+// refused the split).
+std::string above_size_reason(const SimplifyParams& params, const SimplifyResult& result) {
+  if (!params.subdivide)
+    return "subdivision was off, so the input's tets larger than the size stay unless a valid "
+           "collapse removes them";
+  if (result.cancelled && result.history.step_count() == 0)
+    return "the run was cancelled before any collapse: subdivision may not have split every "
+           "long edge";
+  const size_t valence = result.splits_skipped_valence;
+  const size_t shape = result.splits_skipped - valence;
+  const bool both = shape > 0 && valence > 0;
+  std::string why = "these tets hold long edges that subdivision left unsplit (" +
+                    std::to_string(result.splits_skipped) + "): splitting ";
+  if (shape > 0)
+    why += (both ? std::to_string(shape) + " of them" : std::string("them")) +
+           " would have made a piece flatter than the stretch threshold (or than its parent) "
+           "or larger than its own size";
+  if (both) why += ", and ";
+  if (valence > 0)
+    why += (both ? std::to_string(valence) : std::string("them")) +
+           " would have raised a node's valence above the valence threshold";
+  why += ". A finer input mesh";
+  if (shape > 0)
+    why += valence > 0 ? ", a lower stretch threshold" : " or a lower stretch threshold";
+  if (valence > 0) why += " or a higher valence threshold";
+  return why + " leaves fewer";
 }
 
 }  // namespace tetlod

@@ -75,7 +75,9 @@ struct SimplifyResult {
   EvaluationCounts evaluations;
   ThresholdViolations violations;
   size_t splits = 0;          // subdivision splits done
-  size_t splits_skipped = 0;  // long edges left unsplit because a split would break a threshold
+  size_t splits_skipped = 0;  // long edges left unsplit because a split would break a threshold:
+  size_t splits_skipped_valence = 0;  // of them, those only a node's valence stopped (the
+                                      // others: a piece's stretch or size)
   bool cancelled = false;
   // The candidate tests' kernels: "avx2" or "baseline" (also where the environment
   // sets TETLOD_NO_AVX2). Both give the same result, bit for bit.
@@ -96,5 +98,9 @@ using ProgressCallback = std::function<void(const SimplifyProgress&)>;
 // give the same result, byte for byte. No globals: runs may proceed in parallel.
 Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
                 const ProgressCallback& progress = {}, const std::atomic<bool>* cancel = nullptr);
+
+// Why a result's final mesh still has tets above the size (violations.above_size > 0),
+// for the user: what stopped subdivision and what would let it reach the size.
+std::string above_size_reason(const SimplifyParams& params, const SimplifyResult& result);
 
 }  // namespace tetlod

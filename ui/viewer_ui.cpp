@@ -193,6 +193,21 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   if (status.has_result) {
     ImGui::Text("Last run: %.2f s, %zu splits%s", status.simplify_seconds, status.splits,
                 status.result_cancelled ? " (cancelled)" : "");
+    // The guarantee, and where it could not reach: what the final mesh still breaks.
+    const ThresholdViolations& v = status.violations;
+    if (v.below_stretch + v.above_size + v.above_valence == 0) {
+      ImGui::TextWrapped("Final mesh: every tet and node within the thresholds.");
+    } else {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+      ImGui::TextWrapped(
+          "Final mesh: %zu tets below the stretch, %zu above the size, %zu nodes above the "
+          "valence; %s.",
+          v.below_stretch, v.above_size, v.above_valence,
+          v.created == 0 ? "all from the input, none made by TetLOD" : "some made by TetLOD");
+      ImGui::PopStyleColor();
+      if (!status.above_size_reason.empty())
+        ImGui::TextWrapped("Above the size: %s.", status.above_size_reason.c_str());
+    }
   }
 }
 

@@ -144,6 +144,8 @@ struct ViewerStatus {
   RejectionCounts rejections;
   size_t splits = 0;
   double simplify_seconds = 0;
+  ThresholdViolations violations;  // of the last run's final mesh
+  std::string above_size_reason;   // why it has tets above the size ("" if none)
 
   // The displayed level.
   size_t step = 0, step_count = 0;

@@ -146,6 +146,54 @@ TEST(Simplify, CountsEvaluationsByWhereTheyHappen) {
   EXPECT_GT(r.evaluations.sweep, 0u);
 }
 
+// Subdivision counts the long edges it leaves unsplit by what stopped it, and the
+// final mesh's tets above the size are explained by them.
+TEST(Simplify, CountsUnsplitEdgesByReasonAndExplainsTetsAboveTheSize) {
+  const TetMesh mesh = two_material_box(2);  // edges 0.5, 0.71 and 0.87 long
+  SimplifyParams p = loose_params(0.6);      // every edge is longer than half the size
+  p.subdivide = true;
+  // Valence 4: every new node would have more neighbours; the pieces are fine.
+  p.max_valence = 4;
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(mesh, p, &r));
+  EXPECT_EQ(r.splits, 0u);
+  EXPECT_GT(r.splits_skipped, 0u);
+  EXPECT_EQ(r.splits_skipped_valence, r.splits_skipped);
+  ASSERT_GT(r.violations.above_size, 0u);
+  EXPECT_EQ(r.violations.created, 0u);
+  std::string why = above_size_reason(p, r);
+  EXPECT_NE(why.find("(" + std::to_string(r.splits_skipped) + ")"), std::string::npos) << why;
+  EXPECT_NE(why.find("valence"), std::string::npos) << why;
+  EXPECT_EQ(why.find("flatter"), std::string::npos) << why;
+
+  // A stretch threshold above what bisecting these tets gives: no split for the shape.
+  p.max_valence = 100;
+  p.min_stretch = 0.7;
+  ASSERT_TRUE(simplify(mesh, p, &r));
+  EXPECT_EQ(r.splits, 0u);
+  EXPECT_GT(r.splits_skipped, 0u);
+  EXPECT_EQ(r.splits_skipped_valence, 0u);
+  ASSERT_GT(r.violations.above_size, 0u);
+  why = above_size_reason(p, r);
+  EXPECT_NE(why.find("flatter"), std::string::npos) << why;
+  EXPECT_EQ(why.find("valence threshold ("), std::string::npos) << why;
+  EXPECT_NE(why.find("lower stretch threshold"), std::string::npos) << why;
+  EXPECT_EQ(why.find("higher valence"), std::string::npos) << why;
+
+  // Loose thresholds: every long edge is split and nothing is above the size.
+  p.min_stretch = 0.05;
+  ASSERT_TRUE(simplify(mesh, p, &r));
+  EXPECT_GT(r.splits, 0u);
+  EXPECT_EQ(r.splits_skipped, 0u);
+  EXPECT_EQ(r.violations.above_size, 0u);
+
+  // Without subdivision the input's own tets are the reason.
+  p.subdivide = false;
+  ASSERT_TRUE(simplify(mesh, p, &r));
+  ASSERT_GT(r.violations.above_size, 0u);
+  EXPECT_NE(above_size_reason(p, r).find("subdivision was off"), std::string::npos);
+}
+
 TEST(Lod, ApplyThenUndoIsBitIdentical) {
   const TetMesh mesh = two_material_box(3);
   SimplifyResult r;

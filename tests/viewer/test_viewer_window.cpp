@@ -248,6 +248,36 @@ TEST(ViewerWindow, FailedLoadShowsTheErrorAndKeepsTheMesh) {
       << "no error text in the panel";
 }
 
+// Orange pixels over the side panel: the warning that the final mesh still breaks a
+// threshold is drawn in orange there.
+size_t orange_panel_pixels(const render::Image& image) {
+  size_t count = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < std::min(image.width, 390); ++x) {
+      const uint8_t* p = image.pixel(x, y);
+      count += (p[0] > 200 && p[1] > 150 && p[1] < 215 && p[2] < 110) ? 1 : 0;
+    }
+  return count;
+}
+
+// After a run, the panel says what the final mesh still breaks and why: the bundled
+// motor is too coarse for subdivision to reach size 12 within stretch 0.15 and
+// valence 25 everywhere, but not within 0.05 and 200.
+TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
+  const fs::path dir = fresh_output_dir("viewer_violations");
+  std::ofstream(dir / "run.script")
+      << "thresholds size=12 stretch=0.15 valence=25 tolerance=0.05 subdivide=1\nsimplify\n"
+         "screenshot broken_ui.png ui=1\n"
+         "thresholds stretch=0.05 valence=200\nsimplify\nscreenshot clean_ui.png ui=1\nquit\n";
+  const ViewerRun run = run_viewer(
+      dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 1280x800 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const size_t broken = orange_panel_pixels(load_png(dir / "broken_ui.png"));
+  const size_t clean = orange_panel_pixels(load_png(dir / "clean_ui.png"));
+  EXPECT_GT(broken, clean + 300) << "no warning in the panel (" << broken << " against " << clean
+                                 << " orange pixels)";
+}
+
 TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
   const fs::path dir = fresh_output_dir("viewer_failed_load");
   std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
