@@ -87,16 +87,19 @@ render::Image load_png(const fs::path& path) {
   return image;
 }
 
-// Red pixels over the side panel (the left 390 pixels of a window screenshot): error
-// text is drawn in red there.
-size_t red_panel_pixels(const render::Image& image) {
+// Pixels over the side panel (the left 390 pixels of a window screenshot) that match.
+template <typename Match>
+size_t panel_pixels(const render::Image& image, Match match) {
   size_t count = 0;
   for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < std::min(image.width, 390); ++x) {
-      const uint8_t* p = image.pixel(x, y);
-      count += (p[0] > 150 && p[1] < 120 && p[2] < 120) ? 1 : 0;
-    }
+    for (int x = 0; x < std::min(image.width, 390); ++x) count += match(image.pixel(x, y)) ? 1 : 0;
   return count;
+}
+
+// Error text is drawn in red in the panel.
+size_t red_panel_pixels(const render::Image& image) {
+  return panel_pixels(image,
+                      [](const uint8_t* p) { return p[0] > 150 && p[1] < 120 && p[2] < 120; });
 }
 
 TEST(ViewerWindow, ScriptedRun) {
@@ -248,16 +251,10 @@ TEST(ViewerWindow, FailedLoadShowsTheErrorAndKeepsTheMesh) {
       << "no error text in the panel";
 }
 
-// Orange pixels over the side panel: the warning that the final mesh still breaks a
-// threshold is drawn in orange there.
+// The warning that the final mesh still breaks a threshold is drawn in orange.
 size_t orange_panel_pixels(const render::Image& image) {
-  size_t count = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < std::min(image.width, 390); ++x) {
-      const uint8_t* p = image.pixel(x, y);
-      count += (p[0] > 200 && p[1] > 150 && p[1] < 215 && p[2] < 110) ? 1 : 0;
-    }
-  return count;
+  return panel_pixels(
+      image, [](const uint8_t* p) { return p[0] > 200 && p[1] > 150 && p[1] < 215 && p[2] < 110; });
 }
 
 // After a run, the panel says what the final mesh still breaks and why: the bundled
