@@ -64,6 +64,7 @@ std::map<int32_t, double> surface_area_per_material(const TetMesh& mesh) {
 }
 
 struct Case {
+  const char* name;
   const char* asset;
   double size;
   double stretch;
@@ -164,11 +165,13 @@ TEST_P(SimplifyProperties, HoldAfterEveryCollapse) {
 
 INSTANTIATE_TEST_SUITE_P(
     Bundled, SimplifyProperties,
-    ::testing::Values(Case{"motor.mesh", 12.0, 0.15, 25, 0.05},
-                      Case{"spheres.mesh", 1.2, 0.15, 25, 0.02}),
-    [](const ::testing::TestParamInfo<Case>& param) {
-      return std::string(param.param.asset).substr(0, std::string(param.param.asset).find('.'));
-    });
+    ::testing::Values(Case{"motor", "motor.mesh", 12.0, 0.15, 25, 0.05},
+                      Case{"spheres", "spheres.mesh", 1.2, 0.15, 25, 0.02},
+                      // Tight: many input tets and nodes already break these.
+                      Case{"spheres_tight", "spheres.mesh", 1.5, 0.3, 18, 0.006},
+                      // Loose: large collapses, surfaces free to move.
+                      Case{"motor_loose", "motor.mesh", 30.0, 0.05, 40, 0.5}),
+    [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
 TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
   TetMesh input;
