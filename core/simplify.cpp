@@ -1558,6 +1558,8 @@ std::string above_size_reason(const SimplifyParams& params, const SimplifyResult
   if (result.cancelled && result.history.step_count() == 0)
     return "the run was cancelled before any collapse: subdivision may not have split every "
            "long edge";
+  if (result.splits_skipped == 0)  // not expected: every long edge was split
+    return "subdivision split every long edge it found";
   const size_t valence = result.splits_skipped_valence;
   const size_t shape = result.splits_skipped - valence;
   const bool both = shape > 0 && valence > 0;
