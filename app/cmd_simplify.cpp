@@ -96,14 +96,12 @@ int cmd_simplify(const Args& args) {
   std::printf("input %s\n", in.c_str());
   print_property_table(stats_of(input));
   // The size: the uniform one, the local sizing, or the smaller of the two (sizing.h).
-  const bool local = !params.sizing.material_sizes.empty() || !params.sizing.radial.empty() ||
-                     !params.sizing.boxes.empty();
   char size_text[64];
   if (!std::isfinite(params.sizing.uniform))
     std::snprintf(size_text, sizeof size_text, "from the local sizing");
   else
     std::snprintf(size_text, sizeof size_text, "%g%s", params.sizing.uniform,
-                  local ? ", less where the local sizing asks" : "");
+                  params.sizing.has_local_rules() ? ", less where the local sizing asks" : "");
   std::printf("\nthresholds: size %s, stretch %g, valence %u, tolerance %g%s\n", size_text,
               params.min_stretch, params.max_valence, params.tolerance,
               params.subdivide ? "" : ", no subdivision");

@@ -341,8 +341,7 @@ class Engine {
          const std::atomic<bool>* cancel)
       : params_(params), progress_(progress), cancel_(cancel), pos_(input.positions) {
     tolerance2_ = params.tolerance * params.tolerance;
-    uniform_sizing_ = params.sizing.material_sizes.empty() && params.sizing.radial.empty() &&
-                      params.sizing.boxes.empty();
+    uniform_sizing_ = !params.sizing.has_local_rules();
     tet_.resize(input.tets.size());
     for (uint32_t t = 0; t < tet_.size(); ++t) {
       tet_[t].v = input.tets[t];

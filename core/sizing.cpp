@@ -36,8 +36,12 @@ double SizingField::smallest_size() const {
   return size;
 }
 
+bool SizingField::has_local_rules() const {
+  return !material_sizes.empty() || !radial.empty() || !boxes.empty();
+}
+
 bool SizingField::unlimited() const {
-  return std::isinf(uniform) && material_sizes.empty() && radial.empty() && boxes.empty();
+  return std::isinf(uniform) && !has_local_rules();
 }
 
 namespace {

@@ -42,6 +42,8 @@ struct SizingField {
   double size_at(const Vec3& p, int32_t material) const;
   // The smallest size any rule can give (a lower bound of size_at), for diagnostics.
   double smallest_size() const;
+  // True if any material, radial or box rule is set (besides the uniform size).
+  bool has_local_rules() const;
   // True if no rule is set.
   bool unlimited() const;
 };
