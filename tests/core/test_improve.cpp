@@ -1,0 +1,312 @@
+// Shape improvement (core/improve.h): exact flips on bipyramids, the thresholds and
+// materials that forbid them, vertex moves on a jittered grid, and the guarantees on
+// the simplified bundled models (thresholds, surfaces, volumes, topology, determinism).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/adjacency.h"
+#include "core/improve.h"
+#include "core/io/mesh_io.h"
+#include "core/metrics.h"
+#include "core/rule_meshes.h"
+#include "core/simplify.h"
+#include "core/surface.h"
+#include "core/topology_checks.h"
+#include "core/validate.h"
+
+namespace tetlod {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Apexes (0, 0, +-h) over the equilateral triangle of circumradius 1 in z = 0.
+// three_around_axis: the three tets around the edge between the apexes; else the two
+// tets on the triangle. (h = 1.41: two tets are nearly regular, three are not;
+// h = 0.3: three tets, min stretch 0.456, beat two, 0.392.)
+TetMesh make_bipyramid(double h, bool three_around_axis, int32_t odd_material = 1) {
+  TetMesh mesh;
+  for (int k = 0; k < 3; ++k)
+    mesh.positions.push_back({std::cos(2 * kPi * k / 3), std::sin(2 * kPi * k / 3), 0});
+  mesh.positions.push_back({0, 0, h});   // 3
+  mesh.positions.push_back({0, 0, -h});  // 4
+  if (three_around_axis) {
+    for (uint32_t k = 0; k < 3; ++k) {
+      mesh.tets.push_back({3, 4, k, (k + 1) % 3});
+      mesh.materials.push_back(k == 2 ? odd_material : 1);
+    }
+  } else {
+    mesh.tets = {{0, 1, 2, 3}, {0, 1, 2, 4}};
+    mesh.materials = {1, odd_material};
+  }
+  test::orient_positively(&mesh);
+  return mesh;
+}
+
+SimplifyParams loose() {
+  SimplifyParams p;
+  p.sizing.uniform = 100;
+  p.min_stretch = 0.05;
+  p.max_valence = 40;
+  return p;
+}
+
+double min_stretch(const TetMesh& mesh) {
+  double low = 1;
+  for (const Tet& t : mesh.tets) low = std::min(low, tet_shape(mesh, t).stretch);
+  return low;
+}
+
+std::map<int32_t, double> volume_per_material(const TetMesh& mesh) {
+  std::map<int32_t, double> volume;
+  for (size_t t = 0; t < mesh.tet_count(); ++t)
+    volume[mesh.materials[t]] += signed_volume6(mesh, mesh.tets[t]) / 6;
+  return volume;
+}
+
+// Boundary and interface triangles as (material pair, sorted vertex ids).
+std::set<std::pair<std::pair<int32_t, int32_t>, std::array<uint32_t, 3>>> surface_set(
+    const TetMesh& mesh) {
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(mesh, &neighbors);
+  std::set<std::pair<std::pair<int32_t, int32_t>, std::array<uint32_t, 3>>> out;
+  for (const SurfaceTriangle& s : extract_surface(mesh, neighbors)) {
+    std::array<uint32_t, 3> v = s.v;
+    std::sort(v.begin(), v.end());
+    out.insert({{s.inner, s.outer}, v});
+  }
+  return out;
+}
+
+std::set<std::array<uint32_t, 4>> tet_set(const TetMesh& mesh) {
+  std::set<std::array<uint32_t, 4>> out;
+  for (Tet t : mesh.tets) {
+    std::sort(t.begin(), t.end());
+    out.insert(t);
+  }
+  return out;
+}
+
+std::vector<uint32_t> valences(const TetMesh& mesh) {
+  std::vector<std::set<uint32_t>> nb(mesh.vertex_count());
+  for (const Tet& t : mesh.tets)
+    for (uint32_t a : t)
+      for (uint32_t b : t)
+        if (a != b) nb[a].insert(b);
+  std::vector<uint32_t> out;
+  for (const auto& s : nb) out.push_back(static_cast<uint32_t>(s.size()));
+  return out;
+}
+
+TEST(Improve, FlipsThreeTetsAroundAnEdgeIntoTwo) {
+  TetMesh mesh = make_bipyramid(1.41, true);
+  const auto volume = volume_per_material(mesh);
+  const ImproveResult r = improve_mesh(&mesh, loose());
+  EXPECT_EQ(r.flips_32, 1u);
+  EXPECT_EQ(r.flips_23, 0u);
+  ASSERT_EQ(mesh.tet_count(), 2u);
+  EXPECT_GT(min_stretch(mesh), 0.99);
+  EXPECT_NEAR(volume_per_material(mesh).at(1), volume.at(1), 1e-12);
+  EXPECT_EQ(tet_set(mesh), tet_set(make_bipyramid(1.41, false)));
+  EXPECT_NEAR(r.min_stretch_after, min_stretch(mesh), 1e-15);
+}
+
+TEST(Improve, FlipsTwoTetsIntoThreeAroundANewEdge) {
+  TetMesh mesh = make_bipyramid(0.3, false);
+  const ImproveResult r = improve_mesh(&mesh, loose());
+  EXPECT_EQ(r.flips_23, 1u);
+  EXPECT_EQ(r.flips_32, 0u);
+  ASSERT_EQ(mesh.tet_count(), 3u);
+  EXPECT_EQ(tet_set(mesh), tet_set(make_bipyramid(0.3, true)));
+  EXPECT_NEAR(min_stretch(mesh), 0.456, 1e-3);
+}
+
+TEST(Improve, LeavesTheBetterConfigurationAsItIs) {
+  for (const bool three : {false, true}) {
+    TetMesh mesh = make_bipyramid(three ? 0.3 : 1.41, three);
+    const auto before = tet_set(mesh);
+    const ImproveResult r = improve_mesh(&mesh, loose());
+    EXPECT_EQ(r.flips_32 + r.flips_23 + r.moves, 0u) << three;
+    EXPECT_EQ(tet_set(mesh), before) << three;
+  }
+}
+
+TEST(Improve, NoFlipMakesATetBelowTheStretchOrAboveTheSize) {
+  // The three tets the 2-3 flip would make have stretch 0.456.
+  TetMesh mesh = make_bipyramid(0.3, false);
+  SimplifyParams p = loose();
+  p.min_stretch = 0.46;
+  EXPECT_EQ(improve_mesh(&mesh, p).flips_23, 0u);
+  EXPECT_EQ(mesh.tet_count(), 2u);
+  p.min_stretch = 0.45;
+  EXPECT_EQ(improve_mesh(&mesh, p).flips_23, 1u);
+  // The two tets the 3-2 flip would make have edges of sqrt(3) = 1.732.
+  mesh = make_bipyramid(1.41, true);
+  p = loose();
+  p.sizing.uniform = 1.73;
+  EXPECT_EQ(improve_mesh(&mesh, p).flips_32, 0u);
+  EXPECT_EQ(mesh.tet_count(), 3u);
+  p.sizing.uniform = 1.74;
+  EXPECT_EQ(improve_mesh(&mesh, p).flips_32, 1u);
+}
+
+TEST(Improve, NeverFlipsAcrossMaterials) {
+  for (const bool three : {false, true}) {
+    TetMesh mesh = make_bipyramid(three ? 1.41 : 0.3, three, /*odd_material=*/2);
+    const auto before = tet_set(mesh);
+    const ImproveResult r = improve_mesh(&mesh, loose());
+    EXPECT_EQ(r.flips_32 + r.flips_23, 0u) << three;
+    EXPECT_EQ(tet_set(mesh), before) << three;
+  }
+}
+
+// A jittered grid of cubes: interior vertices move freely, vertices inside the
+// box's faces within their face, edge and corner vertices not at all.
+TEST(Improve, MovesVerticesInsideAndAlongFlatFacesOnly) {
+  TetMesh mesh = test::make_jittered_grid(4, 0.3);
+  const TetMesh input = mesh;
+  SimplifyParams p = loose();
+  p.min_stretch = 0.01;
+  const ImproveResult r = improve_mesh(&mesh, p);
+  EXPECT_GT(r.moves, 0u);
+  EXPECT_GT(r.mean_stretch_after, r.mean_stretch_before + 0.01);
+  EXPECT_GE(r.min_stretch_after, r.min_stretch_before);
+  ASSERT_EQ(mesh.vertex_count(), input.vertex_count());
+  size_t face_moves = 0;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Vec3 &a = input.positions[v], &b = mesh.positions[v];
+    const double on[3] = {a.x, a.y, a.z}, now[3] = {b.x, b.y, b.z};
+    int on_faces = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (on[k] != 0 && on[k] != 4) continue;
+      ++on_faces;
+      EXPECT_NEAR(now[k], on[k], 1e-12) << "vertex " << v << " left its face";
+    }
+    if (on_faces >= 2) {
+      EXPECT_EQ(a, b) << "an edge or corner vertex moved: " << v;
+    }
+    if (on_faces == 1 && a != b) ++face_moves;
+  }
+  EXPECT_GT(face_moves, 0u);
+  EXPECT_NEAR(volume_per_material(mesh).at(1), 64, 1e-9);
+}
+
+struct Case {
+  const char* name;
+  const char* file;
+  double size, stretch;
+  uint32_t valence;
+  double tolerance;
+};
+
+class ImproveOnModels : public ::testing::TestWithParam<Case> {};
+
+// The guarantees on a simplified bundled model: a valid mesh; every tet the
+// improvement made meets tau_ST and tau_SZ; no node that was within tau_VL passes it;
+// the same boundary and interface triangles, their vertices where they were (or moved
+// within their plane); each material's volume, regions and interface Euler
+// characteristics unchanged; better shapes; identical on a second run.
+TEST_P(ImproveOnModels, KeepsEveryGuarantee) {
+  const Case c = GetParam();
+  TetMesh input;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/" + c.file, &input));
+  SimplifyParams p;
+  p.sizing.uniform = c.size;
+  p.min_stretch = c.stretch;
+  p.max_valence = c.valence;
+  p.tolerance = c.tolerance;
+  SimplifyResult simplified;
+  ASSERT_TRUE(simplify(input, p, &simplified));
+  const TetMesh before = simplified.output;
+  TetMesh after = before;
+  const ImproveResult r = improve_mesh(&after, p);
+  EXPECT_GT(r.flips_32 + r.flips_23, 0u);
+  EXPECT_GT(r.moves, 0u);
+  EXPECT_GT(r.mean_stretch_after, r.mean_stretch_before);
+  EXPECT_GE(r.min_stretch_after, r.min_stretch_before);
+  EXPECT_LE(r.breaks_after.below_stretch, r.breaks_before.below_stretch);
+  EXPECT_LE(r.breaks_after.above_size, r.breaks_before.above_size);
+  EXPECT_LE(r.breaks_after.above_valence, r.breaks_before.above_valence);
+
+  TetMesh checked = after;
+  ValidationReport report;
+  ASSERT_TRUE(validate_mesh(&checked, "improved", {}, &report));
+  EXPECT_EQ(report.reoriented_tets, 0u);
+  EXPECT_EQ(report.removed_unused_vertices, 0u);
+
+  // Thresholds: tets not in the input (made or reshaped) meet tau_ST and tau_SZ.
+  const auto old_tets = tet_set(before);
+  for (size_t t = 0; t < after.tet_count(); ++t) {
+    std::array<uint32_t, 4> key = after.tets[t];
+    std::sort(key.begin(), key.end());
+    bool reshaped = !old_tets.count(key);
+    for (uint32_t v : after.tets[t]) reshaped |= after.positions[v] != before.positions[v];
+    if (!reshaped) continue;
+    const TetShape s = tet_shape(after, after.tets[t]);
+    EXPECT_GE(s.stretch, c.stretch) << "tet " << t;
+    EXPECT_LE(s.size, c.size) << "tet " << t;
+  }
+  const auto valence_before = valences(before), valence_after = valences(after);
+  for (size_t v = 0; v < valence_after.size(); ++v)
+    if (valence_after[v] > c.valence) {
+      EXPECT_LE(valence_after[v], valence_before[v]) << v;
+    }
+
+  // Surfaces: the same triangles; vertices on them fixed or moved within their plane.
+  const auto surface = surface_set(before);
+  EXPECT_EQ(surface_set(after), surface);
+  std::map<uint32_t, std::vector<Vec3>> normals;
+  for (const auto& [pair, v] : surface) {
+    const Vec3 n = cross(before.positions[v[1]] - before.positions[v[0]],
+                         before.positions[v[2]] - before.positions[v[0]]);
+    for (uint32_t w : v) normals[w].push_back(n * (1 / length(n)));
+  }
+  size_t surface_moves = 0;
+  for (const auto& [v, ns] : normals) {
+    const Vec3 d = after.positions[v] - before.positions[v];
+    if (d == Vec3{0, 0, 0}) continue;
+    ++surface_moves;
+    for (const Vec3& n : ns) EXPECT_NEAR(dot(d, n), 0, 1e-9) << "vertex " << v;
+  }
+  EXPECT_GT(surface_moves, 0u);
+
+  const auto volume_before = volume_per_material(before), volume_after = volume_per_material(after);
+  for (const auto& [m, vol] : volume_before) EXPECT_NEAR(volume_after.at(m), vol, 1e-9 * vol);
+  int regions_before = 0, regions_after = 0;
+  test::region_labels(before, &regions_before);
+  test::region_labels(after, &regions_after);
+  EXPECT_EQ(regions_after, regions_before);
+  EXPECT_EQ(test::interface_euler(after), test::interface_euler(before));
+
+  TetMesh again = before;
+  improve_mesh(&again, p);
+  EXPECT_EQ(again.tets, after.tets);
+  EXPECT_EQ(again.materials, after.materials);
+  EXPECT_TRUE(again.positions == after.positions);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, ImproveOnModels,
+                         ::testing::Values(Case{"motor", "motor.mesh", 12.0, 0.15, 25, 0.05},
+                                           Case{"spheres", "spheres.mesh", 1.2, 0.15, 25, 0.02}),
+                         [](const ::testing::TestParamInfo<Case>& param_info) {
+                           return std::string(param_info.param.name);
+                         });
+
+TEST(Improve, StopsWhenCancelledAndLeavesAValidMesh) {
+  TetMesh mesh = test::make_jittered_grid(4, 0.3);
+  const TetMesh input = mesh;
+  std::atomic<bool> cancel{true};
+  const ImproveResult r = improve_mesh(&mesh, loose(), 4, &cancel);
+  EXPECT_EQ(r.rounds, 0);
+  EXPECT_EQ(mesh.tets, input.tets);
+  EXPECT_TRUE(mesh.positions == input.positions);
+}
+
+}  // namespace
+}  // namespace tetlod
