@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -120,6 +121,32 @@ TEST(Cli, SimplifyThenLodWritesLevels) {
   const CommandResult junk = run("lod " + out_dir() + "/junk.tlh --step 0 -o " + level);
   EXPECT_EQ(junk.code, 1);
   EXPECT_NE(junk.output.find("junk.tlh"), std::string::npos);
+}
+
+// --improve reshapes the level written (flips, vertex moves) within the thresholds and
+// says what it did; the file holds the improved mesh.
+TEST(Cli, SimplifyImproveWritesTheImprovedLevel) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const std::string out = out_dir() + "/improved.mesh";
+  for (const char* level : {"", " --elements 20000"}) {
+    const CommandResult r =
+        run("simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05 --improve" + level);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const size_t at = r.output.find("improve (the level written): ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const size_t mean_at = r.output.find("stretch mean ", at);
+    ASSERT_NE(mean_at, std::string::npos) << r.output;
+    double before = 0, after = 0;
+    ASSERT_EQ(std::sscanf(r.output.c_str() + mean_at, "stretch mean %lf -> %lf", &before, &after),
+              2)
+        << r.output;
+    EXPECT_GT(after, before + 0.005) << level;
+    const CommandResult s = run("stats --json " + out);
+    ASSERT_EQ(s.code, 0) << s.output;
+    const size_t key = s.output.find("\"average_stretch\": ");
+    ASSERT_NE(key, std::string::npos);
+    EXPECT_NEAR(std::atof(s.output.c_str() + key + 19), after, 1e-4) << level;
+  }
 }
 
 std::string file_bytes(const std::string& path) {
