@@ -40,6 +40,7 @@
 #include "app/orbit_camera.h"
 #include "core/adjacency.h"
 #include "core/electrostatics.h"
+#include "core/improve.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
@@ -66,6 +67,7 @@ struct Scene {
   std::shared_ptr<const TetMesh> input;
   std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
   std::string above_size_reason;                 // of the result ("" if nothing is above)
+  SimplifyParams params;                         // of the result's run
   CollapseHistory empty_history;
   std::unique_ptr<Lod> lod;
   render::LodSurface surface;
@@ -275,7 +277,7 @@ class Viewer {
   ViewPixels view_pixels(int fb_width, int fb_height) const;
   void draw_scene(int fb_width, int fb_height);
   Status screenshot(const std::string& path, int width, int height);
-  Status save_level(const std::string& path);
+  Status save_level(const std::string& path, bool improve);
   void fill_status();
   void add_recent(const std::string& path);
   void upload_all();
@@ -326,7 +328,11 @@ class Viewer {
   std::optional<Finest> finest_;
   bool surface_has_field_ = false;  // the surface carries analysis_result_'s |E|
 
-  std::future<Status> save_future_;
+  struct Saved {
+    Status status;
+    std::string note;  // what --improve did, for the message
+  };
+  std::future<Saved> save_future_;
   std::string save_path_;
   int save_line_ = 0;  // the script line that asked, if any
 
@@ -484,9 +490,10 @@ void Viewer::frame() {
   update_stats();
   if (save_future_.valid() &&
       save_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
-    const Status s = save_future_.get();
+    const Saved saved = save_future_.get();
+    const Status& s = saved.status;
     if (s) {
-      status_.message = "saved " + save_path_;
+      status_.message = "saved " + save_path_ + saved.note;
     } else if (save_line_ > 0) {
       fail_script(save_line_, s.message());
     } else {
@@ -640,6 +647,7 @@ void Viewer::start_simplify() {
           result->violations.above_size > 0 ? above_size_reason(params, *result) : "";
       auto scene = make_scene(job->path, input, std::move(result), view);
       scene->above_size_reason = reason;
+      scene->params = params;
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
     }
@@ -758,7 +766,7 @@ void Viewer::execute(const ui::Command& command) {
       }
       break;
     case ui::CommandKind::kSave: {
-      const Status s = save_level(command.path);
+      const Status s = save_level(command.path, command.value != 0);
       if (!s) status_.load_error = s.message();
       break;
     }
@@ -970,12 +978,32 @@ Status Viewer::screenshot(const std::string& path, int width, int height) {
   return render::write_png(path, image);
 }
 
-Status Viewer::save_level(const std::string& path) {
+Status Viewer::save_level(const std::string& path, bool improve) {
   if (!scene_) return Status::error("nothing to save: no mesh loaded");
   if (save_future_.valid()) return Status::error("still saving " + save_path_);
+  // Improving uses the thresholds of the run that made the levels, or the panel's
+  // when nothing was simplified yet.
+  SimplifyParams params = scene_->params;
+  if (improve && !scene_->result) {
+    std::string error;
+    if (!ui::to_simplify_params(thresholds_, &params, &error))
+      return Status::error("improve: thresholds: " + error);
+  }
   save_path_ = path;
-  save_future_ = std::async(
-      std::launch::async, [path, mesh = scene_->lod->extract()] { return write_mesh(path, mesh); });
+  save_future_ = std::async(std::launch::async, [path, improve, params,
+                                                 mesh = scene_->lod->extract()]() mutable {
+    Saved saved;
+    if (improve) {
+      const ImproveResult r = improve_mesh(&mesh, params);
+      char note[160];
+      std::snprintf(note, sizeof note, " (improved: mean stretch %.3f -> %.3f, min %.3f -> %.3f)",
+                    r.mean_stretch_before, r.mean_stretch_after, r.min_stretch_before,
+                    r.min_stretch_after);
+      saved.note = note;
+    }
+    saved.status = write_mesh(path, mesh);
+    return saved;
+  });
   return Status();
 }
 
@@ -1439,7 +1467,7 @@ Status Viewer::run_action(const ScriptAction& a) {
       return screenshot(a.path, a.width, a.height);
     case Kind::kSave:
       save_line_ = a.line;
-      return save_level(a.path);
+      return save_level(a.path, a.flag);
     case Kind::kWait:
       wait_frames_ = static_cast<int>(a.count);
       wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(

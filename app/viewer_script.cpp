@@ -300,8 +300,12 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
       return p.error("a screenshot with the UI is taken at the window size (--size WxH)");
   } else if (command == "save") {
     a->kind = Kind::kSave;
-    if (Status s = p.arg_count(1, 1); !s) return s;
+    if (Status s = p.arg_count(1, 2); !s) return s;
     a->path = w[1];
+    if (w.size() == 3) {
+      if (w[2] != "improve") return p.error("'save' takes PATH [improve]");
+      a->flag = true;
+    }
   } else if (command == "wait") {
     a->kind = Kind::kWait;
     if (Status s = p.arg_count(1, 1); !s) return s;

@@ -25,7 +25,8 @@
 //   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
 //   zoom CLICKS                      as by the mouse wheel (positive: closer)
 //   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
-//   save PATH                        the displayed level, format from the extension
+//   save PATH [improve]              the displayed level, format from the extension;
+//                                    improve: its shapes improved first (improve.h)
 //   wait frames=N | seconds=S        keep drawing (and taking input) meanwhile
 //   bench-scrub [frames=N] [out=CSV] drag the scrubber end to end and back over N
 //                                    frames each way; prints frame times
@@ -99,7 +100,7 @@ struct ScriptAction {
   double value = 0;     // cut offset, highlight, range min, field-range percentile
   double value2 = 0;    // range max
   int axis = 0;         // cut: 0 x, 1 y, 2 z
-  bool flag = false;    // cut flip, wireframe on, screenshot ui
+  bool flag = false;    // cut flip, wireframe on, screenshot ui, save improve
   int width = 0, height = 0;
   // thresholds
   std::optional<double> size, stretch, tolerance;

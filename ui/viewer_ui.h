@@ -90,7 +90,7 @@ enum class CommandKind {
   kJumpElements,  // value: target number of elements
   kFit,           // fit the camera to the model
   kAxisView,      // value: 0 iso, 1 x, 2 y, 3 z
-  kSave,          // path: the displayed level
+  kSave,          // path: the displayed level; value 1: improved first (improve.h)
   kScreenshot,    // path, width, height (0: window size), with_ui
   kSolve,         // the displayed level, with the current AnalysisSettings
   kCancelSolve,
@@ -115,6 +115,7 @@ struct PanelState {
   long long target_step = 0;              // the LOD scrubber; the app follows it
   int jump_elements = 0;
   char save_path[1024] = "level.mesh";
+  bool save_improved = false;  // improve the level's shapes before saving (improve.h)
   char screenshot_path[1024] = "screenshot.png";
   int screenshot_size[2] = {0, 0};  // width, height; 0: the 3D view's size
   bool screenshot_ui = false;

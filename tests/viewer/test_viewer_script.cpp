@@ -57,8 +57,9 @@ TEST(ViewerScript, ParsesEveryCommand) {
       "save out.vtu\n"
       "wait frames=3\n"
       "bench-scrub frames=50 out=b.csv\n"
+      "save better.mesh improve\n"
       "quit\n");
-  ASSERT_EQ(a.size(), 23u);
+  ASSERT_EQ(a.size(), 24u);
   EXPECT_EQ(a[0].kind, Kind::kOpen);
   EXPECT_EQ(a[0].line, 3);
   EXPECT_EQ(a[0].path, "m.mesh");
@@ -99,7 +100,12 @@ TEST(ViewerScript, ParsesEveryCommand) {
   EXPECT_EQ(a[20].count, 3);
   EXPECT_EQ(a[21].count, 50);
   EXPECT_EQ(a[21].path, "b.csv");
-  EXPECT_EQ(a[22].kind, Kind::kQuit);
+  EXPECT_EQ(a[19].kind, Kind::kSave);
+  EXPECT_FALSE(a[19].flag);
+  EXPECT_EQ(a[22].kind, Kind::kSave);
+  EXPECT_EQ(a[22].path, "better.mesh");
+  EXPECT_TRUE(a[22].flag);
+  EXPECT_EQ(a[23].kind, Kind::kQuit);
 }
 
 TEST(ViewerScript, CameraMoves) {
@@ -251,6 +257,7 @@ TEST(ViewerScript, RejectsBadValues) {
            "screenshot a.png dpi=3\n",
            "save\n",
            "save a b\n",
+           "save a improve now\n",
            "wait\n",
            "wait frames=-1\n",
            "wait seconds=-1\n",

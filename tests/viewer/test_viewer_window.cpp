@@ -16,9 +16,12 @@
 #include <sstream>
 #include <string>
 
+#include "core/adjacency.h"
 #include "core/electrostatics.h"
+#include "core/improve.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
+#include "core/mesh_stats.h"
 #include "core/simplify.h"
 #include "render/image.h"
 
@@ -158,6 +161,20 @@ TEST(ViewerWindow, ScriptedRun) {
   const Status s1 = read_mesh((dir / "level.mesh").string(), &saved);
   ASSERT_TRUE(s1.ok()) << s1.message();
   EXPECT_EQ(saved.tet_count(), expected);
+  // The same level saved with its shapes improved, under the run's thresholds: what
+  // improve_mesh() makes of the level, so better shapes, the same volumes.
+  TetMesh improved;
+  const Status s3 = read_mesh((dir / "level_improved.mesh").string(), &improved);
+  ASSERT_TRUE(s3.ok()) << s3.message();
+  TetMesh expected_improved = saved;
+  const ImproveResult r = improve_mesh(&expected_improved, params);
+  EXPECT_GT(r.mean_stretch_after, r.mean_stretch_before);
+  EXPECT_EQ(improved.tets, expected_improved.tets);
+  EXPECT_EQ(improved.materials, expected_improved.materials);
+  const MeshStats before = compute_mesh_stats(saved, build_vertex_tets(saved));
+  const MeshStats after = compute_mesh_stats(improved, build_vertex_tets(improved));
+  EXPECT_GT(after.whole.average_stretch, before.whole.average_stretch);
+  EXPECT_NEAR(after.whole.volume, before.whole.volume, 1e-9 * before.whole.volume);
   const Status s2 = read_mesh((dir / "coarsest.vtu").string(), &coarsest);
   ASSERT_TRUE(s2.ok()) << s2.message();
   EXPECT_EQ(coarsest.tet_count(), result.output.tet_count());
