@@ -7,7 +7,7 @@
 # 25, tolerance 0.05), CGAL at target edge length 6.5 (about as many tets as TetLOD's
 # output). Installs libcgal-dev and tetgen (Debian packages) if missing; neither is a
 # TetLOD dependency. One run of each tool: the times differ by far more than the noise.
-# Times: TetLOD's pipeline (subdivide + classify + simplify) and CGAL's remeshing as the
+# Times: TetLOD's pipeline (subdivide + classify + simplify, + improve) and CGAL's remeshing as the
 # tools report them, without reading and writing; TetGen's whole run (it only runs whole).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -45,6 +45,13 @@ log=$out/tetlod.log
   --valence 25 --tolerance 0.05 > "$log"
 seconds=$(awk '/^time:/ { printf "%.2f", $3 + $6 + $9 }' "$log")
 rows+=("tetlod size $size=$out/tetlod.mesh@$seconds")
+# The same, then --improve (flips and vertex moves within the thresholds).
+log=$out/tetlod_improve.log
+./build/app/tetlod simplify "$mesh" -o "$out/tetlod_improve.mesh" --size "$size" --stretch 0.15 \
+  --valence 25 --tolerance 0.05 --improve > "$log"
+seconds=$(awk '/^time:/ { t = $3 + $6 + $9 } /^improve/ { i = $(NF - 1) }
+  END { printf "%.2f", t + i }' "$log")
+rows+=("tetlod size $size --improve=$out/tetlod_improve.mesh@$seconds")
 
 # CGAL: its defaults; with the input's sharp edges (40 degrees, as TetLOD's crease angle)
 # given as constraints, 1 and 3 iterations; and with every boundary frozen.
@@ -79,8 +86,8 @@ echo
 
 # Pictures of the air gap (material 2) and the magnets (5) from above, as in
 # docs/RESULTS.md ("TetLOD against CGAL and TetGen").
-for name in tetlod cgal_default_3 cgal_sharp40_3; do
+for name in tetlod tetlod_improve cgal_default_3 cgal_sharp40_3; do
   ./build/app/tetlod render "$out/$name.mesh" -o "$out/$name.png" --materials 2,5 \
     --color material --view z --wireframe --width 420 --height 420 > /dev/null
 done
-echo "pictures: $out/{tetlod,cgal_default_3,cgal_sharp40_3}.png"
+echo "pictures: $out/{tetlod,tetlod_improve,cgal_default_3,cgal_sharp40_3}.png"
