@@ -28,8 +28,8 @@ constexpr const char* kSimplifyUsageTail =
     "  --elements N      write the level of the history nearest N elements\n"
     "  --history FILE    save the collapse history (see 'tetlod lod')\n"
     "  --improve         then improve the shapes of the level written, within the same\n"
-    "                    thresholds: flips inside one material and moves of interior\n"
-    "                    vertices; boundaries and interfaces stay exactly as they are\n"
+    "                    thresholds: edge removals and flips inside one material, and\n"
+    "                    vertex moves; boundaries and interfaces stay where they are\n"
     "                    (beyond the paper; the history is not changed)\n"
     "Prints the Table I rows before and after, the rejection counts and the phase times.\n";
 
@@ -167,11 +167,11 @@ int cmd_simplify(const Args& args) {
     const ThresholdCounts& b0 = improved.breaks_before;
     const ThresholdCounts& b1 = improved.breaks_after;
     std::printf(
-        "improve (the level written): %d rounds, %zu 3-2 flips, %zu 2-3 flips, %zu vertex "
+        "improve (the level written): %d rounds, %zu edge removals, %zu 2-3 flips, %zu vertex "
         "moves; stretch mean %.4f -> %.4f, min %.4f -> %.4f; breaking a threshold: %zu -> %zu "
         "tets below the stretch, %zu -> %zu above the size, %zu -> %zu nodes above the "
         "valence; %.3f s\n",
-        improved.rounds, improved.flips_32, improved.flips_23, improved.moves,
+        improved.rounds, improved.edge_removals, improved.flips_23, improved.moves,
         improved.mean_stretch_before, improved.mean_stretch_after, improved.min_stretch_before,
         improved.min_stretch_after, b0.below_stretch, b1.below_stretch, b0.above_size,
         b1.above_size, b0.above_valence, b1.above_valence, seconds_improve);

@@ -18,6 +18,43 @@ inline bool tet_has(const Tet& t, uint32_t v) {
   return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
 }
 
+// Edge removal looks at rings of up to this many tets (42 triangulations at 7).
+constexpr int kMaxRing = 7;
+
+// Every triangulation of a convex polygon with corners 0 .. n-1, as triangles (i, j, k)
+// with i < j < k.
+using Triangulations = std::vector<std::vector<std::array<uint8_t, 3>>>;
+
+void triangulate(int first, int last, Triangulations* out) {
+  out->clear();
+  if (last - first < 2) {
+    out->push_back({});  // an edge: nothing to add
+    return;
+  }
+  Triangulations left, right;
+  for (int apex = first + 1; apex < last; ++apex) {
+    triangulate(first, apex, &left);
+    triangulate(apex, last, &right);
+    for (const auto& l : left)
+      for (const auto& rt : right) {
+        std::vector<std::array<uint8_t, 3>> t = l;
+        t.insert(t.end(), rt.begin(), rt.end());
+        t.push_back(
+            {static_cast<uint8_t>(first), static_cast<uint8_t>(apex), static_cast<uint8_t>(last)});
+        out->push_back(std::move(t));
+      }
+  }
+}
+
+const Triangulations& polygon_triangulations(int n) {
+  static const std::array<Triangulations, kMaxRing + 1> table = [] {
+    std::array<Triangulations, kMaxRing + 1> t;
+    for (int k = 3; k <= kMaxRing; ++k) triangulate(0, k - 1, &t[k]);
+    return t;
+  }();
+  return table[n];
+}
+
 class Improver {
  public:
   Improver(TetMesh* mesh, const SimplifyParams& params, const std::atomic<bool>* cancel)
@@ -75,13 +112,13 @@ class Improver {
     summarize(&r.mean_stretch_before, &r.min_stretch_before, &r.breaks_before);
     while (r.rounds < max_rounds && !cancelled()) {
       ++r.rounds;
-      const size_t flips_32 = flip_32_pass();
+      const size_t removals = edge_removal_pass();
       const size_t flips_23 = flip_23_pass();
       const size_t moves = move_pass();
-      r.flips_32 += flips_32;
+      r.edge_removals += removals;
       r.flips_23 += flips_23;
       r.moves += moves;
-      if (flips_32 + flips_23 + moves == 0) break;
+      if (removals + flips_23 + moves == 0) break;
     }
     compact();
     summarize(&r.mean_stretch_after, &r.min_stretch_after, &r.breaks_after);
@@ -139,11 +176,13 @@ class Improver {
     for (uint32_t v : tet) star_[v].push_back(t);
   }
 
-  // Edges (a, b) with exactly three tets around them, all of one material, in a closed
-  // ring (so the edge is inside that material): the bipyramid over the ring triangle
-  // r0 r1 r2 is cut into the two tets (r0 r1 r2 a) and (r0 r1 r2 b) instead.
-  size_t flip_32_pass() {
-    size_t flips = 0;
+  // Edge removal (the 3-2 flip is its smallest case): an edge (a, b) with n tets around
+  // it (3 <= n <= kMaxRing), all of one material, in a closed ring (so the edge is inside
+  // that material). The ring vertices r_0 .. r_{n-1}, in order around the edge, bound a
+  // polygon; each triangulation of it gives the 2(n-2) tets of its triangles with a and
+  // with b, filling the same space without the edge. The best triangulation is taken.
+  size_t edge_removal_pass() {
+    size_t removals = 0;
     std::vector<uint32_t> others;
     for (uint32_t a = 0; a < mesh_.vertex_count(); ++a) {
       if (cancelled()) break;
@@ -155,48 +194,100 @@ class Improver {
           if (mark_[w] != s) mark_[w] = s, others.push_back(w);
       std::sort(others.begin(), others.end());
       for (uint32_t b : others)
-        if (b > a && try_flip_32(a, b)) ++flips;
+        if (b > a && try_edge_removal(a, b)) ++removals;
     }
-    return flips;
+    return removals;
   }
 
-  bool try_flip_32(uint32_t a, uint32_t b) {
-    uint32_t ring[3];
+  bool try_edge_removal(uint32_t a, uint32_t b) {
+    uint32_t ring[kMaxRing];
     int n = 0;
     for (uint32_t t : star_[a])
       if (tet_has(mesh_.tets[t], b)) {
-        if (n == 3) return false;
+        if (n == kMaxRing) return false;
         ring[n++] = t;
       }
-    if (n != 3) return false;
+    if (n < 3) return false;
     const int32_t material = mesh_.materials[ring[0]];
-    if (mesh_.materials[ring[1]] != material || mesh_.materials[ring[2]] != material) return false;
-    uint32_t r[3];
-    int rn = 0;
-    for (uint32_t t : ring)
-      for (uint32_t w : mesh_.tets[t]) {
-        if (w == a || w == b || std::find(r, r + rn, w) != r + rn) continue;
-        if (rn == 3) return false;  // four ring vertices: an open fan, a boundary edge
-        r[rn++] = w;
-      }
-    if (rn != 3) return false;
-    // The ring winds once around the line ab, so the line crosses the triangle r;
-    // the segment does if a and b lie on opposite sides of it.
+    for (int k = 1; k < n; ++k)
+      if (mesh_.materials[ring[k]] != material) return false;
+    // Each ring tet (a, b, x, y) links x to y, in the direction that makes the tet
+    // positive: following the links goes once around a closed ring.
     const auto& p = mesh_.positions;
-    const double side_a = signed_volume6(p[r[0]], p[r[1]], p[r[2]], p[a]);
-    const double side_b = signed_volume6(p[r[0]], p[r[1]], p[r[2]], p[b]);
-    if (!((side_a > 0 && side_b < 0) || (side_a < 0 && side_b > 0))) return false;
-    if (side_a < 0) std::swap(r[1], r[2]);
-    const Tet new_a = {r[0], r[1], r[2], a}, new_b = {r[0], r[2], r[1], b};
+    uint32_t from[kMaxRing], to[kMaxRing];
+    for (int k = 0; k < n; ++k) {
+      uint32_t xy[2], m = 0;
+      for (uint32_t w : mesh_.tets[ring[k]])
+        if (w != a && w != b) xy[m++] = w;
+      const bool forward = signed_volume6(p[a], p[b], p[xy[0]], p[xy[1]]) > 0;
+      from[k] = forward ? xy[0] : xy[1];
+      to[k] = forward ? xy[1] : xy[0];
+    }
+    uint32_t r[kMaxRing];
+    r[0] = from[0];
+    for (int k = 1; k <= n; ++k) {
+      const uint32_t* link = std::find(from, from + n, r[k - 1]);
+      if (link == from + n) return false;  // an open fan: a boundary edge
+      const uint32_t next = to[link - from];
+      if (k == n) {
+        if (next != r[0]) return false;
+        break;
+      }
+      if (std::find(r, r + k, next) != r + k) return false;  // closes early
+      r[k] = next;
+    }
     double old_min = 1;
-    for (uint32_t t : ring) old_min = std::min(old_min, stretch_[t]);
-    double da = 0, db = 0;
-    if (!meets_thresholds(new_a, material, &da) || !meets_thresholds(new_b, material, &db))
-      return false;
-    if (std::min(da, db) <= old_min) return false;
-    for (uint32_t t : ring) remove_tet(t);
-    add_tet(new_a, material, da);
-    add_tet(new_b, material, db);
+    for (int k = 0; k < n; ++k) old_min = std::min(old_min, stretch_[ring[k]]);
+    // New edges between ring vertices: they must not exist yet, and raise valences.
+    int gain[kMaxRing] = {};
+    const Triangulations& all = polygon_triangulations(n);
+    Tet best[2 * (kMaxRing - 2)];
+    double best_d[2 * (kMaxRing - 2)];
+    double best_min = old_min;
+    int best_index = -1;
+    for (size_t i = 0; i < all.size(); ++i) {
+      const std::vector<std::array<uint8_t, 3>>& triangles = all[i];
+      Tet made[2 * (kMaxRing - 2)];
+      double d[2 * (kMaxRing - 2)];
+      double low = 1;
+      bool ok = true;
+      for (size_t k = 0; k < triangles.size() && ok; ++k) {
+        const uint32_t x = r[triangles[k][0]], y = r[triangles[k][1]], z = r[triangles[k][2]];
+        // Positive for a below the triangle and b above: the ring's direction.
+        if (!(signed_volume6(p[x], p[y], p[z], p[a]) < 0 &&
+              signed_volume6(p[x], p[y], p[z], p[b]) > 0)) {
+          ok = false;
+          break;
+        }
+        made[2 * k] = {x, z, y, a};
+        made[2 * k + 1] = {x, y, z, b};
+        for (int h = 0; h < 2 && ok; ++h) {
+          ok = meets_thresholds(made[2 * k + h], material, &d[2 * k + h]);
+          low = std::min(low, d[2 * k + h]);
+        }
+      }
+      if (!ok || !(low > best_min)) continue;
+      best_min = low;
+      best_index = static_cast<int>(i);
+      std::copy(made, made + 2 * triangles.size(), best);
+      std::copy(d, d + 2 * triangles.size(), best_d);
+    }
+    if (best_index < 0) return false;
+    const auto& triangles = all[best_index];
+    for (const auto& tri : triangles)
+      for (int e = 0; e < 3; ++e) {
+        const int i = tri[e], j = tri[(e + 1) % 3];
+        if ((i + 1) % n == j || (j + 1) % n == i) continue;  // a side of the polygon
+        if (i > j) continue;  // each diagonal once (it is in two triangles)
+        for (uint32_t t : star_[r[i]])
+          if (tet_has(mesh_.tets[t], r[j])) return false;  // already an edge elsewhere
+        ++gain[i];
+        ++gain[j];
+      }
+    for (int k = 0; k < n; ++k)
+      if (gain[k] > 0 && valence(r[k]) + gain[k] > params_.max_valence) return false;
+    for (int k = 0; k < n; ++k) remove_tet(ring[k]);
+    for (size_t k = 0; k < 2 * triangles.size(); ++k) add_tet(best[k], material, best_d[k]);
     return true;
   }
 

@@ -1,5 +1,6 @@
 // Shape improvement of a finished mesh within the four thresholds (beyond the paper,
-// whose method only collapses): 3-2 and 2-3 flips inside one material, and moves of
+// whose method only collapses): edge removals (3-2 flips and their generalisation to
+// rings of up to 7 tets) and 2-3 flips inside one material, and moves of
 // vertices towards the centroid of their neighbours: interior vertices freely, vertices
 // inside a flat patch of a boundary or interface within its plane.
 //
@@ -8,10 +9,14 @@
 //    local transformations", SIAM J. Sci. Comput. 1995: 2-3 and 3-2 flips.
 //  - L. Freitag, C. Ollivier-Gooch, "Tetrahedral mesh improvement using swapping and
 //    smoothing", IJNME 1997: flips accepted when the worst tet improves; smoothing.
+//  - J. Shewchuk, "Two discrete optimization algorithms for the topological improvement
+//    of tetrahedral meshes", 2002: edge removal (here by trying every triangulation of
+//    rings of up to 7 tets).
 //
 // The guarantee (each change is checked on the tets it would make before it is done):
 //  - every tet a change makes has stretch >= tau_ST and size <= its tau_SZ, and a
-//    2-3 flip, the only change that adds an edge, never takes a node above tau_VL;
+//    change that adds edges (a 2-3 flip, an edge removal on a ring of 4 or more tets)
+//    never takes a node above tau_VL;
 //  - a flip raises the lowest stretch of the tets it replaces; a move raises the lowest
 //    stretch of the vertex's star, or keeps it and raises the star's total;
 //  - the boundary and interface triangles stay the same triangles (flips only replace
@@ -21,8 +26,8 @@
 //    all lie in one plane) moves within that plane (up to rounding); no other moves.
 //    So every region, interface, junction curve and corner keeps its place and shape,
 //    and every material its volume (up to rounding);
-//  - no vertex is added or removed; tets may change in number (a 3-2 flip removes one,
-//    a 2-3 flip adds one).
+//  - no vertex is added or removed; tets may change in number (an edge removal on a
+//    ring of n tets makes 2(n-2) of them, a 2-3 flip adds one).
 // Deterministic: the same mesh and parameters give the same result, byte for byte.
 #pragma once
 
@@ -42,10 +47,10 @@ struct ThresholdCounts {
 };
 
 struct ImproveResult {
-  size_t flips_32 = 0;  // edges with three tets around them replaced by a triangle
-  size_t flips_23 = 0;  // triangles replaced by an edge with three tets around it
-  size_t moves = 0;     // vertex moves
-  int rounds = 0;       // rounds run (a round: 3-2 flips, 2-3 flips, moves)
+  size_t edge_removals = 0;  // edges inside one material removed (3-2 flips and larger)
+  size_t flips_23 = 0;       // triangles replaced by an edge with three tets around it
+  size_t moves = 0;          // vertex moves
+  int rounds = 0;            // rounds run (a round: edge removals, 2-3 flips, moves)
   // Over the whole mesh, before and after.
   double mean_stretch_before = 0, mean_stretch_after = 0;
   double min_stretch_before = 0, min_stretch_after = 0;

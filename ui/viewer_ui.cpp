@@ -249,10 +249,10 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   if (ImGui::Button("Save level"))
     commands->push_back({CommandKind::kSave, panel->save_path, panel->save_improved ? 1 : 0});
   ImGui::TextDisabled(".mesh .msh .node .vtk .vtu");
-  ImGui::Checkbox("improve shapes first (flips, moves)", &panel->save_improved);
+  ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
-        "Before saving, flips inside one material and vertex moves that raise the worst\n"
+        "Before saving, edge removals, flips and vertex moves that raise the worst\n"
         "stretch, within the run's thresholds; boundaries and interfaces stay where they\n"
         "are. The levels on screen do not change.");
   ImGui::SetNextItemWidth(-110);

@@ -57,6 +57,10 @@ SimplifyParams loose() {
   return p;
 }
 
+bool tet_has(const Tet& t, uint32_t v) {
+  return std::find(t.begin(), t.end(), v) != t.end();
+}
+
 double min_stretch(const TetMesh& mesh) {
   double low = 1;
   for (const Tet& t : mesh.tets) low = std::min(low, tet_shape(mesh, t).stretch);
@@ -108,7 +112,7 @@ TEST(Improve, FlipsThreeTetsAroundAnEdgeIntoTwo) {
   TetMesh mesh = make_bipyramid(1.41, true);
   const auto volume = volume_per_material(mesh);
   const ImproveResult r = improve_mesh(&mesh, loose());
-  EXPECT_EQ(r.flips_32, 1u);
+  EXPECT_EQ(r.edge_removals, 1u);
   EXPECT_EQ(r.flips_23, 0u);
   ASSERT_EQ(mesh.tet_count(), 2u);
   EXPECT_GT(min_stretch(mesh), 0.99);
@@ -117,11 +121,39 @@ TEST(Improve, FlipsThreeTetsAroundAnEdgeIntoTwo) {
   EXPECT_NEAR(r.min_stretch_after, min_stretch(mesh), 1e-15);
 }
 
+// Four tets around the axis of a tall octahedron (apexes (0, 0, +-1.5) over the unit
+// square's diagonal corners): removing the axis leaves four tets on one of the
+// square's diagonals, better shaped.
+TEST(Improve, RemovesAnEdgeWithFourTetsAroundIt) {
+  TetMesh mesh;
+  mesh.positions = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, 1.5}, {0, 0, -1.5}};
+  for (uint32_t k = 0; k < 4; ++k) {
+    mesh.tets.push_back({4, 5, k, (k + 1) % 4});
+    mesh.materials.push_back(1);
+  }
+  test::orient_positively(&mesh);
+  const double before = min_stretch(mesh);
+  const ImproveResult r = improve_mesh(&mesh, loose());
+  EXPECT_EQ(r.edge_removals, 1u);
+  ASSERT_EQ(mesh.tet_count(), 4u);
+  EXPECT_GT(min_stretch(mesh), before);
+  bool axis = false, diagonal_02 = false, diagonal_13 = false;
+  for (const Tet& t : mesh.tets) {
+    EXPECT_GT(signed_volume6(mesh, t), 0);
+    axis |= tet_has(t, 4) && tet_has(t, 5);
+    diagonal_02 |= tet_has(t, 0) && tet_has(t, 2);
+    diagonal_13 |= tet_has(t, 1) && tet_has(t, 3);
+  }
+  EXPECT_FALSE(axis);
+  EXPECT_NE(diagonal_02, diagonal_13);  // exactly one diagonal
+  EXPECT_NEAR(volume_per_material(mesh).at(1), 4 * 1.5 / 3, 1e-12);
+}
+
 TEST(Improve, FlipsTwoTetsIntoThreeAroundANewEdge) {
   TetMesh mesh = make_bipyramid(0.3, false);
   const ImproveResult r = improve_mesh(&mesh, loose());
   EXPECT_EQ(r.flips_23, 1u);
-  EXPECT_EQ(r.flips_32, 0u);
+  EXPECT_EQ(r.edge_removals, 0u);
   ASSERT_EQ(mesh.tet_count(), 3u);
   EXPECT_EQ(tet_set(mesh), tet_set(make_bipyramid(0.3, true)));
   EXPECT_NEAR(min_stretch(mesh), 0.456, 1e-3);
@@ -132,7 +164,7 @@ TEST(Improve, LeavesTheBetterConfigurationAsItIs) {
     TetMesh mesh = make_bipyramid(three ? 0.3 : 1.41, three);
     const auto before = tet_set(mesh);
     const ImproveResult r = improve_mesh(&mesh, loose());
-    EXPECT_EQ(r.flips_32 + r.flips_23 + r.moves, 0u) << three;
+    EXPECT_EQ(r.edge_removals + r.flips_23 + r.moves, 0u) << three;
     EXPECT_EQ(tet_set(mesh), before) << three;
   }
 }
@@ -150,10 +182,10 @@ TEST(Improve, NoFlipMakesATetBelowTheStretchOrAboveTheSize) {
   mesh = make_bipyramid(1.41, true);
   p = loose();
   p.sizing.uniform = 1.73;
-  EXPECT_EQ(improve_mesh(&mesh, p).flips_32, 0u);
+  EXPECT_EQ(improve_mesh(&mesh, p).edge_removals, 0u);
   EXPECT_EQ(mesh.tet_count(), 3u);
   p.sizing.uniform = 1.74;
-  EXPECT_EQ(improve_mesh(&mesh, p).flips_32, 1u);
+  EXPECT_EQ(improve_mesh(&mesh, p).edge_removals, 1u);
 }
 
 TEST(Improve, NeverFlipsAcrossMaterials) {
@@ -161,16 +193,20 @@ TEST(Improve, NeverFlipsAcrossMaterials) {
     TetMesh mesh = make_bipyramid(three ? 1.41 : 0.3, three, /*odd_material=*/2);
     const auto before = tet_set(mesh);
     const ImproveResult r = improve_mesh(&mesh, loose());
-    EXPECT_EQ(r.flips_32 + r.flips_23, 0u) << three;
+    EXPECT_EQ(r.edge_removals + r.flips_23, 0u) << three;
     EXPECT_EQ(tet_set(mesh), before) << three;
   }
 }
 
 // A jittered grid of cubes: interior vertices move freely, vertices inside the
-// box's faces within their face, edge and corner vertices not at all.
+// box's faces within their face, edge and corner vertices not at all; the volume stays.
 TEST(Improve, MovesVerticesInsideAndAlongFlatFacesOnly) {
-  TetMesh mesh = test::make_jittered_grid(4, 0.3);
+  TetMesh mesh = test::make_jittered_grid(4, 0.2);  // 0.3 would invert tets
   const TetMesh input = mesh;
+  TetMesh checked = mesh;
+  ValidationReport report;
+  ASSERT_TRUE(validate_mesh(&checked, "grid", {}, &report));
+  ASSERT_NEAR(volume_per_material(mesh).at(1), 64, 1e-9);
   SimplifyParams p = loose();
   p.min_stretch = 0.01;
   const ImproveResult r = improve_mesh(&mesh, p);
@@ -226,7 +262,7 @@ TEST_P(ImproveOnModels, KeepsEveryGuarantee) {
   const TetMesh before = simplified.output;
   TetMesh after = before;
   const ImproveResult r = improve_mesh(&after, p);
-  EXPECT_GT(r.flips_32 + r.flips_23, 0u);
+  EXPECT_GT(r.edge_removals + r.flips_23, 0u);
   EXPECT_GT(r.moves, 0u);
   EXPECT_GT(r.mean_stretch_after, r.mean_stretch_before);
   EXPECT_GE(r.min_stretch_after, r.min_stretch_before);
@@ -299,7 +335,7 @@ INSTANTIATE_TEST_SUITE_P(Models, ImproveOnModels,
                          });
 
 TEST(Improve, StopsWhenCancelledAndLeavesAValidMesh) {
-  TetMesh mesh = test::make_jittered_grid(4, 0.3);
+  TetMesh mesh = test::make_jittered_grid(4, 0.2);
   const TetMesh input = mesh;
   std::atomic<bool> cancel{true};
   const ImproveResult r = improve_mesh(&mesh, loose(), 4, &cancel);
