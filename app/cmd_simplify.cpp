@@ -41,9 +41,35 @@ void print_simplify_usage(std::FILE* stream) {
 
 constexpr const char* kLodUsage =
     "usage: tetlod lod HISTORY (--elements N | --step K) -o OUT\n"
+    "                  [--improve --size S [--stretch D] [--valence V] [--material-size ...]\n"
+    "                   [--size-field ...] [--crease-angle DEG]]\n"
     "\n"
     "Writes a level of a saved collapse history (tetlod simplify --history) without\n"
-    "simplifying again: the step nearest N elements, or step K (0 = the subdivided input).\n";
+    "simplifying again: the step nearest N elements, or step K (0 = the subdivided input).\n"
+    "  --improve         improve the level's shapes first, as 'tetlod simplify --improve',\n"
+    "                    within the thresholds given (a history does not keep them; give\n"
+    "                    the ones it was made with)\n";
+
+// Runs improve_mesh() on `mesh`, timed.
+ImproveResult improve_timed(TetMesh* mesh, const SimplifyParams& params, double* seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  const ImproveResult r = improve_mesh(mesh, params);
+  *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+void print_improve(const ImproveResult& r, double seconds) {
+  const ThresholdCounts& b0 = r.breaks_before;
+  const ThresholdCounts& b1 = r.breaks_after;
+  std::printf(
+      "improve (the level written): %d rounds, %zu edge removals, %zu 2-3 flips, %zu vertex "
+      "moves; stretch mean %.4f -> %.4f, min %.4f -> %.4f; breaking a threshold: %zu -> %zu "
+      "tets below the stretch, %zu -> %zu above the size, %zu -> %zu nodes above the "
+      "valence; %.3f s\n",
+      r.rounds, r.edge_removals, r.flips_23, r.moves, r.mean_stretch_before, r.mean_stretch_after,
+      r.min_stretch_before, r.min_stretch_after, b0.below_stretch, b1.below_stretch, b0.above_size,
+      b1.above_size, b0.above_valence, b1.above_valence, seconds);
+}
 
 MeshStats stats_of(const TetMesh& mesh) {
   return compute_mesh_stats(mesh, build_vertex_tets(mesh));
@@ -131,12 +157,7 @@ int cmd_simplify(const Args& args) {
   }
   ImproveResult improved;
   double seconds_improve = 0;
-  if (improve) {
-    const auto start = std::chrono::steady_clock::now();
-    improved = improve_mesh(&output, params);
-    seconds_improve =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
+  if (improve) improved = improve_timed(&output, params, &seconds_improve);
   std::printf("\noutput %s (step %zu of %zu)\n", out.c_str(), step, result.history.step_count());
   print_property_table(stats_of(output));
   const RejectionCounts& r = result.rejections;
@@ -163,19 +184,7 @@ int cmd_simplify(const Args& args) {
       "%zu nodes above the valence (%zu of them made by TetLOD)\n",
       v.below_stretch, v.above_size, v.above_valence, v.created);
   if (v.above_size > 0) std::printf("why: %s\n", above_size_reason(params, result).c_str());
-  if (improve) {
-    const ThresholdCounts& b0 = improved.breaks_before;
-    const ThresholdCounts& b1 = improved.breaks_after;
-    std::printf(
-        "improve (the level written): %d rounds, %zu edge removals, %zu 2-3 flips, %zu vertex "
-        "moves; stretch mean %.4f -> %.4f, min %.4f -> %.4f; breaking a threshold: %zu -> %zu "
-        "tets below the stretch, %zu -> %zu above the size, %zu -> %zu nodes above the "
-        "valence; %.3f s\n",
-        improved.rounds, improved.edge_removals, improved.flips_23, improved.moves,
-        improved.mean_stretch_before, improved.mean_stretch_after, improved.min_stretch_before,
-        improved.min_stretch_after, b0.below_stretch, b1.below_stretch, b0.above_size,
-        b1.above_size, b0.above_valence, b1.above_valence, seconds_improve);
-  }
+  if (improve) print_improve(improved, seconds_improve);
   std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)\n",
               result.seconds_subdivide, result.seconds_classify, result.seconds_simplify,
               result.kernels);
@@ -203,10 +212,24 @@ int cmd_lod(const Args& args) {
   }
   std::string history_path, out;
   long long elements = -1, step = -1;
+  bool improve = false, thresholds_given = false;
+  SimplifyOptions options;  // the thresholds for --improve
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     std::string v;
-    if (a == "-o" || a == "--output") {
+    // The thresholds (not --elements, which here may be 0, nor the simplifier's own
+    // --tolerance and --no-subdivide, which a level does not use).
+    if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide") {
+      const OptionResult parsed = parse_simplify_option(args, &i, "lod", &options);
+      if (parsed == OptionResult::kError) return kExitUsage;
+      if (parsed == OptionResult::kParsed) {
+        thresholds_given = true;
+        continue;
+      }
+    }
+    if (a == "--improve") {
+      improve = true;
+    } else if (a == "-o" || a == "--output") {
       if (!parse_option_value(args, &i, "-o", &out)) return kExitUsage;
     } else if (a == "--elements" || a == "--step") {
       if (!parse_option_value(args, &i, a.c_str(), &v)) return kExitUsage;
@@ -232,6 +255,22 @@ int cmd_lod(const Args& args) {
                  kLodUsage);
     return kExitUsage;
   }
+  if (thresholds_given && !improve) {
+    std::fprintf(stderr, "tetlod lod: thresholds are only used with --improve\n\n%s", kLodUsage);
+    return kExitUsage;
+  }
+  if (improve) {
+    if (!options.size_given) {
+      std::fprintf(stderr,
+                   "tetlod lod: --improve needs the size the history was made with (--size, "
+                   "--material-size or --size-field)\n");
+      return kExitUsage;
+    }
+    if (const Status p = check_params(options.params); !p) {
+      std::fprintf(stderr, "tetlod lod: %s\n", p.message().c_str());
+      return kExitUsage;
+    }
+  }
   TetMesh base;
   CollapseHistory history;
   Status s = read_history(history_path, &base, &history);
@@ -246,7 +285,10 @@ int cmd_lod(const Args& args) {
   lod.seek(target);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const TetMesh level = lod.extract();
+  TetMesh level = lod.extract();
+  ImproveResult improved;
+  double seconds_improve = 0;
+  if (improve) improved = improve_timed(&level, options.params, &seconds_improve);
   s = write_mesh(out, level);
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
@@ -254,6 +296,7 @@ int cmd_lod(const Args& args) {
   }
   std::printf("%s: step %zu of %zu, %zu elements, %zu nodes (moved there in %.4f s)\n", out.c_str(),
               target, lod.step_count(), level.tet_count(), level.vertex_count(), seconds);
+  if (improve) print_improve(improved, seconds_improve);
   return kExitOk;
 }
 

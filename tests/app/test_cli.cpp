@@ -154,6 +154,33 @@ std::string file_bytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// `lod --improve` with the thresholds the history was made with writes what
+// `simplify --elements N --improve` writes; thresholds without --improve, or --improve
+// without a size, are usage errors.
+TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const std::string history = out_dir() + "/improve.tlh";
+  const std::string direct = out_dir() + "/improve_direct.mesh";
+  const std::string later = out_dir() + "/improve_later.mesh";
+  const CommandResult r =
+      run("simplify " + motor + " -o " + direct +
+          " --size 12 --tolerance 0.05 --elements 20000 --improve --history " + history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const CommandResult l =
+      run("lod " + history + " --elements 20000 -o " + later + " --improve --size 12");
+  ASSERT_EQ(l.code, 0) << l.output;
+  EXPECT_NE(l.output.find("improve (the level written): "), std::string::npos) << l.output;
+  EXPECT_EQ(file_bytes(later), file_bytes(direct));
+  const std::string plain = out_dir() + "/improve_plain.mesh";
+  ASSERT_EQ(run("lod " + history + " --elements 20000 -o " + plain).code, 0);
+  EXPECT_NE(file_bytes(plain), file_bytes(direct));
+  for (const char* flags : {" --size 12", " --improve", " --improve --size 12 --stretch 1",
+                            " --improve --size 12 --tolerance 0.05"}) {
+    const CommandResult bad = run("lod " + history + " --step 0 -o " + plain + flags);
+    EXPECT_EQ(bad.code, 2) << flags << "\n" << bad.output;
+  }
+}
+
 // The simplifier's candidate kernels run on AVX2 where the processor has it, else on
 // the baseline instruction set (forced by TETLOD_NO_AVX2): the two must agree bit for
 // bit (same output mesh, same history), with a uniform size and with a size field.
