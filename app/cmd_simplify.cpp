@@ -180,9 +180,10 @@ int cmd_simplify(const Args& args) {
       static_cast<unsigned long long>(e.sweeps), static_cast<unsigned long long>(e.total()));
   const ThresholdViolations& v = result.violations;
   std::printf(
-      "final mesh, breaking a threshold: %zu tets below the stretch, %zu above the size, "
+      "final mesh%s, breaking a threshold: %zu tets below the stretch, %zu above the size, "
       "%zu nodes above the valence (%zu of them made by TetLOD)\n",
-      v.below_stretch, v.above_size, v.above_valence, v.created);
+      improve ? " (before --improve)" : "", v.below_stretch, v.above_size, v.above_valence,
+      v.created);
   if (v.above_size > 0) std::printf("why: %s\n", above_size_reason(params, result).c_str());
   if (improve) print_improve(improved, seconds_improve);
   std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)\n",

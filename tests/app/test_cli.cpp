@@ -132,6 +132,9 @@ TEST(Cli, SimplifyImproveWritesTheImprovedLevel) {
     const CommandResult r =
         run("simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05 --improve" + level);
     ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("final mesh (before --improve), breaking a threshold"),
+              std::string::npos)
+        << r.output;
     const size_t at = r.output.find("improve (the level written): ");
     ASSERT_NE(at, std::string::npos) << r.output;
     const size_t mean_at = r.output.find("stretch mean ", at);
