@@ -158,6 +158,13 @@ class Improver {
     return s.volume > 0 && s.stretch >= params_.min_stretch && s.size <= size_limit(t, material);
   }
 
+  // True if live tet t is above its tau_SZ (an input tet the simplifier could not
+  // remove): a change that replaces it by tets within every threshold is taken even if
+  // the worst stretch does not rise.
+  bool above_size(uint32_t t) const {
+    return tet_shape(mesh_, mesh_.tets[t]).size > size_limit(mesh_.tets[t], mesh_.materials[t]);
+  }
+
   void remove_tet(uint32_t t) {
     alive_[t] = 0;
     for (uint32_t v : mesh_.tets[t]) {
@@ -237,13 +244,17 @@ class Improver {
       r[k] = next;
     }
     double old_min = 1;
-    for (int k = 0; k < n; ++k) old_min = std::min(old_min, stretch_[ring[k]]);
+    bool fixes_size = false;
+    for (int k = 0; k < n; ++k) {
+      old_min = std::min(old_min, stretch_[ring[k]]);
+      fixes_size |= above_size(ring[k]);
+    }
     // New edges between ring vertices: they must not exist yet, and raise valences.
     int gain[kMaxRing] = {};
     const Triangulations& all = polygon_triangulations(n);
     Tet best[2 * (kMaxRing - 2)];
     double best_d[2 * (kMaxRing - 2)];
-    double best_min = old_min;
+    double best_min = fixes_size ? -1 : old_min;
     int best_index = -1;
     for (size_t i = 0; i < all.size(); ++i) {
       const std::vector<std::array<uint8_t, 3>>& triangles = all[i];
@@ -355,7 +366,9 @@ class Improver {
       Vec3 centroid{0, 0, 0};
       int count = 0;
       double old_min = 1, old_sum = 0;
+      bool fixes_size = false;
       for (uint32_t t : star_[v]) {
+        fixes_size |= above_size(t);
         old_min = std::min(old_min, stretch_[t]);
         old_sum += stretch_[t];
         for (uint32_t w : mesh_.tets[t])
@@ -382,7 +395,7 @@ class Improver {
           new_min = std::min(new_min, d);
           new_sum += d;
         }
-        if (ok && (new_min > old_min || (new_min == old_min && new_sum > old_sum))) {
+        if (ok && (fixes_size || new_min > old_min || (new_min == old_min && new_sum > old_sum))) {
           for (size_t k = 0; k < trial.size(); ++k) stretch_[star_[v][k]] = trial[k];
           ++moves;
           break;

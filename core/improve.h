@@ -18,7 +18,10 @@
 //    change that adds edges (a 2-3 flip, an edge removal on a ring of 4 or more tets)
 //    never takes a node above tau_VL;
 //  - a flip raises the lowest stretch of the tets it replaces; a move raises the lowest
-//    stretch of the vertex's star, or keeps it and raises the star's total;
+//    stretch of the vertex's star, or keeps it and raises the star's total; except that
+//    an edge removal or a move that replaces tets above their tau_SZ (input tets the
+//    simplifier could not remove) by tets within every threshold is done even if the
+//    lowest stretch falls (it stays >= tau_ST), so tets above the size only ever go;
 //  - the boundary and interface triangles stay the same triangles (flips only replace
 //    tets of one material by tets of the same material filling the same space), and
 //    they stay where they were: only interior vertices move freely; a vertex inside a

@@ -149,6 +149,37 @@ TEST(Improve, RemovesAnEdgeWithFourTetsAroundIt) {
   EXPECT_NEAR(volume_per_material(mesh).at(1), 4 * 1.5 / 3, 1e-12);
 }
 
+// Four tets around a long axis (length 3.76) whose removal lowers the worst stretch
+// (0.181 to 0.171 at best) but leaves no edge longer than 2.41: done only when the
+// axis is above the size, as a fix of tets above the size.
+TEST(Improve, RemovesAnEdgeAboveTheSizeEvenIfTheWorstStretchFalls) {
+  auto make = [] {
+    TetMesh mesh;
+    mesh.positions = {{0.55, 0.594, -0.184}, {-1.358, -0.074, 0.101}, {0.005, -0.616, -0.199},
+                      {0.367, -0.41, 0.176}, {0, 0, 1.882},           {0, 0, -1.882}};
+    for (uint32_t k = 0; k < 4; ++k) {
+      mesh.tets.push_back({4, 5, k, (k + 1) % 4});
+      mesh.materials.push_back(1);
+    }
+    test::orient_positively(&mesh);
+    return mesh;
+  };
+  SimplifyParams p = loose();
+  p.min_stretch = 0.15;
+  p.sizing.uniform = 5;  // the axis is within the size: nothing to fix, nothing gained
+  TetMesh mesh = make();
+  EXPECT_EQ(improve_mesh(&mesh, p).edge_removals, 0u);
+  EXPECT_EQ(mesh.tet_count(), 4u);
+  p.sizing.uniform = 3;  // the axis is above it
+  mesh = make();
+  const ImproveResult r = improve_mesh(&mesh, p);
+  EXPECT_EQ(r.edge_removals, 1u);
+  EXPECT_EQ(r.breaks_before.above_size, 4u);
+  EXPECT_EQ(r.breaks_after.above_size, 0u);
+  EXPECT_LT(r.min_stretch_after, r.min_stretch_before);
+  EXPECT_GE(r.min_stretch_after, 0.15);
+}
+
 TEST(Improve, FlipsTwoTetsIntoThreeAroundANewEdge) {
   TetMesh mesh = make_bipyramid(0.3, false);
   const ImproveResult r = improve_mesh(&mesh, loose());
