@@ -2,6 +2,7 @@
 #include "core/improve.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
