@@ -63,10 +63,13 @@ class Improver {
     const size_t tet_count = mesh_.tet_count();
     alive_.assign(tet_count, 1);
     stretch_.resize(tet_count);
+    big_.resize(tet_count);
     star_.resize(mesh_.vertex_count());
     mark_.assign(mesh_.vertex_count(), 0);
     for (uint32_t t = 0; t < tet_count; ++t) {
-      stretch_[t] = tet_shape(mesh_, mesh_.tets[t]).stretch;
+      const TetShape shape = tet_shape(mesh_, mesh_.tets[t]);
+      stretch_[t] = shape.stretch;
+      big_[t] = shape.size > size_limit(mesh_.tets[t], mesh_.materials[t]);
       for (uint32_t v : mesh_.tets[t]) star_[v].push_back(t);
     }
     // Which vertices may move, and within what: a vertex on no boundary or interface
@@ -159,13 +162,6 @@ class Improver {
     return s.volume > 0 && s.stretch >= params_.min_stretch && s.size <= size_limit(t, material);
   }
 
-  // True if live tet t is above its tau_SZ (an input tet the simplifier could not
-  // remove): a change that replaces it by tets within every threshold is taken even if
-  // the worst stretch does not rise.
-  bool above_size(uint32_t t) const {
-    return tet_shape(mesh_, mesh_.tets[t]).size > size_limit(mesh_.tets[t], mesh_.materials[t]);
-  }
-
   void remove_tet(uint32_t t) {
     alive_[t] = 0;
     for (uint32_t v : mesh_.tets[t]) {
@@ -181,6 +177,7 @@ class Improver {
     mesh_.materials.push_back(material);
     alive_.push_back(1);
     stretch_.push_back(stretch);
+    big_.push_back(0);  // made within every threshold
     for (uint32_t v : tet) star_[v].push_back(t);
   }
 
@@ -248,7 +245,7 @@ class Improver {
     bool fixes_size = false;
     for (int k = 0; k < n; ++k) {
       old_min = std::min(old_min, stretch_[ring[k]]);
-      fixes_size |= above_size(ring[k]);
+      fixes_size |= big_[ring[k]] != 0;
     }
     // New edges between ring vertices: they must not exist yet, and raise valences.
     int gain[kMaxRing] = {};
@@ -369,7 +366,7 @@ class Improver {
       double old_min = 1, old_sum = 0;
       bool fixes_size = false;
       for (uint32_t t : star_[v]) {
-        fixes_size |= above_size(t);
+        fixes_size |= big_[t] != 0;
         old_min = std::min(old_min, stretch_[t]);
         old_sum += stretch_[t];
         for (uint32_t w : mesh_.tets[t])
@@ -397,7 +394,10 @@ class Improver {
           new_sum += d;
         }
         if (ok && (fixes_size || new_min > old_min || (new_min == old_min && new_sum > old_sum))) {
-          for (size_t k = 0; k < trial.size(); ++k) stretch_[star_[v][k]] = trial[k];
+          for (size_t k = 0; k < trial.size(); ++k) {
+            stretch_[star_[v][k]] = trial[k];
+            big_[star_[v][k]] = 0;  // every tet of the star now meets the thresholds
+          }
           ++moves;
           break;
         }
@@ -414,30 +414,31 @@ class Improver {
       mesh_.tets[kept] = mesh_.tets[t];
       mesh_.materials[kept] = mesh_.materials[t];
       stretch_[kept] = stretch_[t];
+      big_[kept] = big_[t];
       ++kept;
     }
     mesh_.tets.resize(kept);
     mesh_.materials.resize(kept);
     stretch_.resize(kept);
+    big_.resize(kept);
     alive_.assign(kept, 1);
     for (auto& s : star_) s.clear();
     for (uint32_t t = 0; t < kept; ++t)
       for (uint32_t v : mesh_.tets[t]) star_[v].push_back(t);
   }
 
-  // Over the live tets (call after compact()).
+  // Over the live tets, from the cached stretch and size flags.
   void summarize(double* mean, double* min, ThresholdCounts* breaks) {
     double sum = 0, low = 1;
     *breaks = {};
     size_t n = 0;
     for (size_t t = 0; t < mesh_.tets.size(); ++t) {
       if (!alive_[t]) continue;
-      const TetShape s = tet_shape(mesh_, mesh_.tets[t]);
-      sum += s.stretch;
-      low = std::min(low, s.stretch);
+      sum += stretch_[t];
+      low = std::min(low, stretch_[t]);
       ++n;
-      breaks->below_stretch += s.stretch < params_.min_stretch;
-      breaks->above_size += s.size > size_limit(mesh_.tets[t], mesh_.materials[t]);
+      breaks->below_stretch += stretch_[t] < params_.min_stretch;
+      breaks->above_size += big_[t];
     }
     for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
       breaks->above_valence += valence(v) > params_.max_valence;
@@ -449,7 +450,12 @@ class Improver {
   const SimplifyParams& params_;
   const std::atomic<bool>* cancel_;
   std::vector<uint8_t> alive_;
-  std::vector<double> stretch_;
+  std::vector<double> stretch_;  // of each tet, kept up to date
+  // Per tet: above its tau_SZ (an input tet the simplifier could not remove). A change
+  // that replaces such tets by tets within every threshold is taken even if the worst
+  // stretch does not rise. Only input tets can be; a tet a change makes or reshapes
+  // meets the thresholds, so the flag only ever clears.
+  std::vector<uint8_t> big_;
   std::vector<std::vector<uint32_t>> star_;
   enum Freedom : uint8_t { kFixed, kInPlane, kFree };
   std::vector<uint8_t> freedom_;
