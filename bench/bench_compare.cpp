@@ -143,8 +143,8 @@ class TriangleGrid {
 
 using Pair = std::pair<int32_t, int32_t>;  // (inner, outer) material; outer -1: boundary
 
-std::map<Pair, std::vector<Triangle>> interface_triangles(const TetMesh& mesh) {
-  const MeshAdjacency adjacency = build_adjacency(mesh);
+std::map<Pair, std::vector<Triangle>> interface_triangles(const TetMesh& mesh,
+                                                          const MeshAdjacency& adjacency) {
   std::map<Pair, std::vector<Triangle>> out;
   for (const SurfaceTriangle& s : extract_surface(mesh, adjacency.tet_neighbors)) {
     Triangle t;
@@ -183,7 +183,8 @@ struct Reference {
 
 void print_row(const std::string& name, const std::string& seconds, const TetMesh& mesh,
                const Reference& in, double size, double stretch, uint32_t valence) {
-  const VertexTets vt = build_vertex_tets(mesh);
+  const MeshAdjacency adjacency = build_adjacency(mesh);
+  const VertexTets& vt = adjacency.vertex_tets;
   const MeshStats st = compute_mesh_stats(mesh, vt);
   size_t thin = 0, big = 0, crowded = 0;
   for (const Tet& t : mesh.tets) {
@@ -212,7 +213,7 @@ void print_row(const std::string& name, const std::string& seconds, const TetMes
       worst_volume = change, worst_volume_material = r.material;
   }
   // Interface deviation, both ways, per material pair.
-  const auto out_surfaces = interface_triangles(mesh);
+  const auto out_surfaces = interface_triangles(mesh, adjacency);
   double worst_distance = 0;
   std::string worst_pair = "-", lost;
   for (const auto& [pair, tris] : in.surfaces) {
@@ -263,8 +264,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_compare: %s\n", s.message().c_str());
     return 1;
   }
-  in.stats = compute_mesh_stats(in.mesh, build_vertex_tets(in.mesh));
-  in.surfaces = interface_triangles(in.mesh);
+  const MeshAdjacency adjacency = build_adjacency(in.mesh);
+  in.stats = compute_mesh_stats(in.mesh, adjacency.vertex_tets);
+  in.surfaces = interface_triangles(in.mesh, adjacency);
   for (const auto& [pair, tris] : in.surfaces) in.grids.emplace(pair, TriangleGrid(tris));
 
   std::printf(
