@@ -15,14 +15,15 @@ constexpr const char* kRenderUsageHead =
     "                     [--materials 1,2,3 | --hide 1] [--cut AXIS=VALUE | --cut-plane "
     "NX,NY,NZ,D]\n"
     "                     [--view iso|x|y|z | --camera EX,EY,EZ,TX,TY,TZ] [--wireframe]\n"
-    "                     [--highlight-below D] [--simplify --size S ... [--elements N]]\n"
+    "                     [--highlight-below D] [--simplify --size S ... [--elements N] "
+    "[--improve]]\n"
     "\n"
     "Draws the boundary and interface faces of the visible tets offscreen (OpenGL 3.3 core\n"
     "through OSMesa: no display or GPU needed) and writes a PNG.\n";
 constexpr const char* kRenderUsageTail =
     "  --simplify        render the simplified mesh; takes the flags of 'tetlod simplify':\n"
     "                    --size, --stretch, --valence, --tolerance, --material-size,\n"
-    "                    --size-field, --no-subdivide, --crease-angle, and\n"
+    "                    --size-field, --no-subdivide, --crease-angle, --improve, and\n"
     "  --elements N      the level of the collapse history nearest N elements\n";
 
 void print_usage(std::FILE* stream) {

@@ -11,6 +11,7 @@
 #include "app/commands.h"
 #include "app/render_options.h"
 #include "core/adjacency.h"
+#include "core/improve.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
 #include "render/histogram_chart.h"
@@ -26,7 +27,9 @@ constexpr const char* kReportUsageHead =
     "and its stretch histogram. The pictures and charts are also written as PNG files.\n"
     "  --levels N,...    levels of the collapse history nearest N elements each\n"
     "  --simplify        simplify with the flags of 'tetlod simplify' (--size, --stretch,\n"
-    "                    --valence, --tolerance, --material-size, --size-field, ...)\n"
+    "                    --valence, --tolerance, --material-size, --size-field, ...);\n"
+    "                    with --improve, every level is drawn and measured after\n"
+    "                    'tetlod simplify --improve' has improved its shapes\n"
     "View flags, as for 'tetlod render' (default picture 480 x 480):\n";
 
 void print_usage(std::FILE* stream) {
@@ -208,7 +211,8 @@ int cmd_report(const Args& args) {
                  format("%g", so.params.min_stretch) + ", valence " +
                  std::to_string(so.params.max_valence) + ", tolerance " +
                  format("%g", so.params.tolerance) +
-                 (so.params.subdivide ? "" : ", no subdivision");
+                 (so.params.subdivide ? "" : ", no subdivision") +
+                 (so.improve ? "; levels improved (--improve)" : "");
     meshes.push_back({"input", input});
     Lod lod(result.base, &result.history);
     std::sort(levels.begin(), levels.end(), std::greater<>());
@@ -220,6 +224,12 @@ int cmd_report(const Args& args) {
     }
     meshes.push_back({"simplified (step " + std::to_string(result.history.step_count()) + ")",
                       std::move(result.output)});
+    if (so.improve) {
+      for (size_t k = 1; k < meshes.size(); ++k) {
+        improve_mesh(&meshes[k].mesh, so.params);
+        meshes[k].label += ", improved";
+      }
+    }
   } else {
     meshes.push_back({"input", std::move(input)});
   }

@@ -83,7 +83,6 @@ int cmd_simplify(const Args& args) {
     return kExitOk;
   }
   std::string in, out, history_path;
-  bool improve = false;
   SimplifyOptions options;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -94,8 +93,6 @@ int cmd_simplify(const Args& args) {
       if (!parse_option_value(args, &i, "-o", &out)) return kExitUsage;
     } else if (a == "--history") {
       if (!parse_option_value(args, &i, "--history", &history_path)) return kExitUsage;
-    } else if (a == "--improve") {
-      improve = true;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "tetlod simplify: unknown option '%s'\n\n", a.c_str());
       print_simplify_usage(stderr);
@@ -126,6 +123,7 @@ int cmd_simplify(const Args& args) {
   finish_simplify_options(input, &options);
   const SimplifyParams& params = options.params;
   const long long elements = options.elements;
+  const bool improve = options.improve;
 
   std::printf("input %s\n", in.c_str());
   print_property_table(stats_of(input));
@@ -220,7 +218,7 @@ int cmd_lod(const Args& args) {
     std::string v;
     // The thresholds (not --elements, which here may be 0, nor the simplifier's own
     // --tolerance and --no-subdivide, which a level does not use).
-    if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide") {
+    if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide" && a != "--improve") {
       const OptionResult parsed = parse_simplify_option(args, &i, "lod", &options);
       if (parsed == OptionResult::kError) return kExitUsage;
       if (parsed == OptionResult::kParsed) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "app/cli_util.h"
+#include "core/improve.h"
 #include "core/lod.h"
 
 namespace tetlod::app {
@@ -239,6 +240,7 @@ bool simplified_mesh(const TetMesh& input, const char* command, RenderOptions* o
   } else {
     *out = std::move(result.output);
   }
+  if (so.improve) improve_mesh(out, so.params);
   return true;
 }
 

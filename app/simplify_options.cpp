@@ -78,6 +78,8 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
       return OptionResult::kError;
     }
     options->size_given = true;
+  } else if (a == "--improve") {
+    options->improve = true;
   } else if (a == "--elements") {
     if (!value()) return OptionResult::kError;
     const auto n = parse_integer(v);

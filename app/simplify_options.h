@@ -14,6 +14,7 @@ struct SimplifyOptions {
   bool size_given = false;       // --size, --material-size or --size-field
   bool tolerance_given = false;  // else 1e-3 x the bounding-box diagonal
   long long elements = -1;       // --elements N, or -1
+  bool improve = false;          // --improve: improve_mesh() on the level written
 };
 
 // The flag lines of the usage text (the thresholds and sizing, without --elements).
@@ -26,7 +27,7 @@ enum class OptionResult {
 };
 
 // Parses one simplifier flag at args[*i] (--size --stretch --valence --tolerance
-// --crease-angle --no-subdivide --material-size --size-field --elements).
+// --crease-angle --no-subdivide --material-size --size-field --elements --improve).
 OptionResult parse_simplify_option(const Args& args, size_t* i, const char* command,
                                    SimplifyOptions* options);
 

@@ -64,6 +64,40 @@ TEST(CliRender, RendersASimplifiedLevel) {
   EXPECT_EQ(png_size(out), std::make_pair(64, 64));
 }
 
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// `render --simplify --improve` draws what `simplify --improve` writes, and that is not
+// what `render --simplify` draws.
+TEST(CliRender, RendersTheImprovedLevelThatSimplifyWrites) {
+  const std::string level = out_dir() + "/improved_level.mesh";
+  const std::string flags = " --size 12 --tolerance 0.05 --improve";
+  CommandResult r = run("simplify " + asset("motor.mesh") + " -o " + level + flags);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string view = " --hide 1 --cut y=0 --highlight-below 0.2 --width 96 --height 96 -o ";
+  const std::string direct = out_dir() + "/improved_direct.png";
+  const std::string later = out_dir() + "/improved_later.png";
+  const std::string plain = out_dir() + "/not_improved.png";
+  r = run("render " + asset("motor.mesh") + " --simplify" + flags + view + direct);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const CommandResult from_file = run("render " + level + view + later);
+  ASSERT_EQ(from_file.code, 0) << from_file.output;
+  // "PATH: WxH, N tets, ..." from each.
+  auto tets = [](const std::string& output) {
+    const size_t at = output.find("x96, ");
+    return at == std::string::npos ? -1L : std::atol(output.c_str() + at + 5);
+  };
+  EXPECT_GT(tets(r.output), 0) << r.output;
+  EXPECT_EQ(tets(r.output), tets(from_file.output)) << from_file.output;
+  EXPECT_EQ(file_bytes(direct), file_bytes(later));
+  r = run("render " + asset("motor.mesh") + " --simplify --size 12 --tolerance 0.05" + view +
+          plain);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(file_bytes(plain), file_bytes(direct));
+}
+
 TEST(CliRender, BadValuesAreUsageErrors) {
   const std::string in = asset("box2.mesh");
   const std::string out = out_dir() + "/never.png";
@@ -144,6 +178,35 @@ TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
   EXPECT_EQ(png_size(dir + "/level0.png"), std::make_pair(96, 96));
   EXPECT_EQ(png_size(dir + "/level3_histogram.png"), std::make_pair(480, 260));
   EXPECT_EQ(html.rfind("</html>"), html.size() - 8);
+}
+
+// With --improve every level of the report is the improved one: its Table I row is the
+// one `simplify --elements N --improve` writes.
+TEST(CliReport, ImproveReportsTheImprovedLevels) {
+  const std::string dir = out_dir() + "/report_improved";
+  fs::remove_all(dir);
+  const std::string flags = " --size 12 --tolerance 0.05 --improve";
+  const CommandResult r = run("report " + asset("motor.mesh") + " --hide 1 --simplify" + flags +
+                              " --levels 40000 --width 64 --height 64 -o " + dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir + "/report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("level ~40000 (step"), std::string::npos);
+  EXPECT_EQ(count_of(html, ", improved</th>"), 2u);  // the level and the final mesh
+  EXPECT_NE(html.find("levels improved (--improve)"), std::string::npos);
+  const std::string level = out_dir() + "/report_level.mesh";
+  const CommandResult s =
+      run("simplify " + asset("motor.mesh") + " -o " + level + flags + " --elements 40000");
+  ASSERT_EQ(s.code, 0) << s.output;
+  const CommandResult stats = run("stats --json " + level);
+  ASSERT_EQ(stats.code, 0) << stats.output;
+  const size_t key = stats.output.find("\"elements\": ");
+  ASSERT_NE(key, std::string::npos) << stats.output;
+  const std::string elements = std::to_string(std::atol(stats.output.c_str() + key + 12));
+  const size_t row = html.find("<tr><th>level ~40000");
+  ASSERT_NE(row, std::string::npos);
+  const std::string cells = html.substr(row, html.find("</tr>", row) - row);
+  EXPECT_NE(cells.find("<td>" + elements + "</td>"), std::string::npos) << elements << cells;
 }
 
 TEST(CliReport, ErrorsAreClear) {
