@@ -1,6 +1,9 @@
-// Gmsh MSH ASCII 2.2 and 4.1 (.msh), as specified in the Gmsh reference manual,
-// section "MSH file format" (https://gmsh.info/doc/texinfo/gmsh.html).
+// Gmsh MSH 2.2 and 4.1 (.msh), ASCII and binary, as specified in the Gmsh reference
+// manual, section "MSH file format" (https://gmsh.info/doc/texinfo/gmsh.html).
+// TetLOD writes ASCII.
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <unordered_map>
@@ -42,10 +45,49 @@ int64_t material_from_name(std::string_view name) {
   return value <= std::numeric_limits<int32_t>::max() ? value : -1;
 }
 
+// The numbers of a binary section, read in the file's byte order: int (4 bytes),
+// double (8) and, in 4.1, size_t (8). A read past the end returns 0 and clears ok().
+class BinaryCursor {
+ public:
+  BinaryCursor(std::string_view data, bool swap) : data_(data), swap_(swap) {}
+
+  int32_t i32() { return get<int32_t>(); }
+  uint64_t u64() { return get<uint64_t>(); }
+  double f64() { return get<double>(); }
+  // True if `count` items of `bytes_each` bytes fit in what is left.
+  bool fits(uint64_t count, uint64_t bytes_each) const {
+    return bytes_each == 0 || count <= (data_.size() - at_) / bytes_each;
+  }
+  bool ok() const { return ok_; }
+  size_t used() const { return at_; }
+
+ private:
+  template <typename T>
+  T get() {
+    T value{};
+    if (data_.size() - at_ < sizeof(T)) {
+      ok_ = false;
+      at_ = data_.size();
+      return value;
+    }
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, data_.data() + at_, sizeof(T));
+    if (swap_) std::reverse(bytes, bytes + sizeof(T));
+    std::memcpy(&value, bytes, sizeof(T));
+    at_ += sizeof(T);
+    return value;
+  }
+
+  std::string_view data_;
+  bool swap_;
+  size_t at_ = 0;
+  bool ok_ = true;
+};
+
 class GmshParser {
  public:
   GmshParser(std::string_view text, const std::string& name, ParsedMesh* out)
-      : scanner_(text, name), out_(out) {}
+      : text_(text), scanner_(text, name), out_(out) {}
 
   Status parse(int* version) {
     if (!parse_header()) return scanner_.status();
@@ -59,21 +101,24 @@ class GmshParser {
         }
       } else if (section == "$Entities" && version_ == 41) {
         if (!seen_elements_) {
-          parse_entities();
+          binary_ ? parse_entities_binary() : parse_entities();
         } else {
           scanner_.fail("$Entities after $Elements is not supported");
         }
       } else if (section == "$Nodes") {
         if (seen_nodes_) {
           scanner_.fail("a second $Nodes section");
-        } else if (version_ == 22 ? parse_nodes_22() : parse_nodes_41()) {
+        } else if (binary_ ? (version_ == 22 ? parse_nodes_22_binary() : parse_nodes_41_binary())
+                           : (version_ == 22 ? parse_nodes_22() : parse_nodes_41())) {
           seen_nodes_ = true;
           finish_nodes();
         }
       } else if (section == "$Elements") {
         if (!seen_nodes_ || seen_elements_) {
           scanner_.fail(seen_elements_ ? "a second $Elements section" : "$Elements before $Nodes");
-        } else if (version_ == 22 ? parse_elements_22() : parse_elements_41()) {
+        } else if (binary_
+                       ? (version_ == 22 ? parse_elements_22_binary() : parse_elements_41_binary())
+                       : (version_ == 22 ? parse_elements_22() : parse_elements_41())) {
           seen_elements_ = true;
           finish_elements();
         }
@@ -104,8 +149,9 @@ class GmshParser {
         !scanner_.read_int(&data_size, "data size")) {
       return false;
     }
-    if (file_type != 0) {
-      return scanner_.fail("binary .msh is not supported; save the mesh as ASCII");
+    if (file_type != 0 && file_type != 1) {
+      return scanner_.fail("file type " + std::to_string(file_type) +
+                           " is not 0 (ASCII) or 1 (binary)");
     }
     if (number >= 2 && number < 3) {
       version_ = 22;
@@ -115,8 +161,312 @@ class GmshParser {
       return scanner_.fail("unsupported .msh version " + TextScanner::quote(version_text) +
                            " (supported: 2.2 and 4.1)");
     }
+    if (file_type == 1 && !start_binary_file(data_size)) return false;
     return expect_end("$EndMeshFormat");
   }
+
+  // ------------------------------------------------------------------ binary
+  // A binary file has the same sections, with the numbers stored as raw values
+  // (4.1: everything after each section's name; 2.2: after the count line of $Nodes
+  // and $Elements). $PhysicalNames stays text.
+
+  // Reads the binary 1 after the header line that gives the byte order.
+  bool start_binary_file(int64_t data_size) {
+    if (data_size != 8) {
+      return scanner_.fail("binary .msh with data size " + std::to_string(data_size) +
+                           " is not supported (only 8: double precision)");
+    }
+    if (!begin_binary()) return false;
+    const std::string_view data = scanner_.remaining_text();
+    int32_t one = 0;
+    if (data.size() < 4) return scanner_.fail("the file ends inside the binary header");
+    std::memcpy(&one, data.data(), 4);
+    if (one == 1) {
+      swap_ = false;
+    } else if (one == 0x01000000) {
+      swap_ = true;
+    } else {
+      return scanner_.fail("the binary header's byte-order check reads " + std::to_string(one) +
+                           ", not 1");
+    }
+    binary_ = true;
+    scanner_.advance(4);
+    scanner_.report_byte_offsets(text_.data());
+    return true;
+  }
+
+  // Moves past the line break that ends a text line before binary data.
+  bool begin_binary() {
+    const std::string_view rest = scanner_.rest_of_line();
+    if (!rest.empty()) {
+      return scanner_.fail("unexpected " + TextScanner::quote(rest) +
+                           " before the binary data of the section");
+    }
+    return true;
+  }
+
+  BinaryCursor binary_cursor() const { return BinaryCursor(scanner_.remaining_text(), swap_); }
+
+  // Moves the scanner past what `cursor` read; fails if it ran past the end.
+  bool end_binary(const BinaryCursor& cursor, const char* section) {
+    if (!cursor.ok()) return truncated(section);
+    scanner_.advance(cursor.used());
+    return true;
+  }
+
+  // The rest of the file is shorter than a section's counts say.
+  bool truncated(const char* section) {
+    scanner_.advance(scanner_.remaining_bytes());
+    return scanner_.fail(std::string("the file ends inside the binary ") + section +
+                         " section (truncated file?)");
+  }
+
+  bool fail_binary(const BinaryCursor& cursor, const std::string& message) {
+    scanner_.advance(cursor.used());
+    return scanner_.fail(message);
+  }
+
+  // A size_t count of items taking at least `bytes_each` bytes each.
+  bool binary_count(BinaryCursor& cursor, uint64_t* count, const char* what, uint64_t bytes_each) {
+    *count = cursor.u64();
+    if (cursor.ok() && !cursor.fits(*count, bytes_each)) {
+      return fail_binary(cursor, std::string(what) + " " + std::to_string(*count) +
+                                     " is more than the rest of the file can hold");
+    }
+    return true;
+  }
+
+  bool parse_entities_binary() {
+    if (!begin_binary()) return false;
+    BinaryCursor c = binary_cursor();
+    uint64_t counts[4] = {};
+    const char* names[4] = {"point entity count", "curve entity count", "surface entity count",
+                            "volume entity count"};
+    for (int d = 0; d < 4; ++d) {
+      // A point takes at least 36 bytes, another entity 68.
+      if (!binary_count(c, &counts[d], names[d], d == 0 ? 36 : 68)) return false;
+    }
+    for (int dimension = 0; dimension < 4 && c.ok(); ++dimension) {
+      for (uint64_t i = 0; i < counts[dimension] && c.ok(); ++i) {
+        const int32_t tag = c.i32();
+        for (int k = 0; k < (dimension == 0 ? 3 : 6); ++k) c.f64();
+        uint64_t physical_count = 0;
+        if (!binary_count(c, &physical_count, "physical tag count", 4)) return false;
+        int32_t physical = 0;
+        for (uint64_t k = 0; k < physical_count; ++k) {
+          const int32_t value = c.i32();
+          if (k == 0) physical = value;
+        }
+        if (dimension > 0) {
+          uint64_t bounding = 0;
+          if (!binary_count(c, &bounding, "bounding entity count", 4)) return false;
+          for (uint64_t k = 0; k < bounding; ++k) c.i32();
+        }
+        if (dimension == 3) volume_physical_[tag] = physical;
+      }
+    }
+    return end_binary(c, "$Entities") && expect_end("$EndEntities");
+  }
+
+  bool add_binary_position(BinaryCursor& c) {
+    Vec3 p;
+    p.x = c.f64();
+    p.y = c.f64();
+    p.z = c.f64();
+    if (c.ok() && !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) {
+      return fail_binary(c, "node " + std::to_string(out_->mesh.positions.size() + 1) +
+                                " has a coordinate that is not a finite number");
+    }
+    out_->mesh.positions.push_back(p);
+    return true;
+  }
+
+  bool parse_nodes_22_binary() {
+    uint64_t count = 0;
+    // A node takes 28 bytes (int tag, three doubles).
+    if (!scanner_.read_count(&count, "node count", 28) || !reserve_nodes(count) ||
+        !begin_binary()) {
+      return false;
+    }
+    BinaryCursor c = binary_cursor();
+    if (!c.fits(count, 28)) return truncated("$Nodes");
+    for (uint64_t i = 0; i < count; ++i) {
+      const int32_t tag = c.i32();
+      if (tag < 1) return fail_binary(c, "node tag " + std::to_string(tag) + " is below 1");
+      node_tags_.push_back(uint64_t(tag));
+      if (!add_binary_position(c)) return false;
+    }
+    return end_binary(c, "$Nodes") && expect_end("$EndNodes");
+  }
+
+  bool parse_nodes_41_binary() {
+    if (!begin_binary()) return false;
+    BinaryCursor c = binary_cursor();
+    uint64_t block_count = 0, count = 0;
+    // A block header takes 20 bytes, a node at least 32.
+    if (!binary_count(c, &block_count, "entity block count", 20) ||
+        !binary_count(c, &count, "node count", 32)) {
+      return false;
+    }
+    c.u64();  // the smallest and largest node tags
+    c.u64();
+    if (!c.ok()) return end_binary(c, "$Nodes");
+    if (!reserve_nodes(count)) return false;
+    for (uint64_t block = 0; block < block_count; ++block) {
+      const int32_t dimension = c.i32();
+      c.i32();  // entity tag
+      const int32_t parametric = c.i32();
+      const uint64_t block_size = c.u64();
+      if (!c.ok()) return end_binary(c, "$Nodes");
+      if (dimension < 0 || dimension > 3 || parametric < 0 || parametric > 1) {
+        return fail_binary(c, "node block " + std::to_string(block + 1) + " has entity dimension " +
+                                  std::to_string(dimension) + " and parametric flag " +
+                                  std::to_string(parametric));
+      }
+      if (block_size > count - node_tags_.size()) {
+        return fail_binary(c, "the node blocks hold more nodes than the " + std::to_string(count) +
+                                  " of the $Nodes header");
+      }
+      const uint64_t parameters = parametric ? uint64_t(dimension) : 0;
+      if (!c.fits(block_size, 32 + 8 * parameters)) return truncated("$Nodes");
+      for (uint64_t i = 0; i < block_size; ++i) {
+        const uint64_t tag = c.u64();
+        if (tag < 1 || tag > uint64_t(kMaxTag)) {
+          return fail_binary(c, "node tag " + std::to_string(tag) + " is out of range");
+        }
+        node_tags_.push_back(tag);
+      }
+      for (uint64_t i = 0; i < block_size; ++i) {
+        if (!add_binary_position(c)) return false;
+        for (uint64_t k = 0; k < parameters; ++k) c.f64();
+      }
+    }
+    if (node_tags_.size() != count) {
+      return fail_binary(c, "the node blocks hold " + std::to_string(node_tags_.size()) +
+                                " nodes, the $Nodes header says " + std::to_string(count));
+    }
+    return end_binary(c, "$Nodes") && expect_end("$EndNodes");
+  }
+
+  bool parse_elements_22_binary() {
+    uint64_t count = 0;
+    // An element takes at least 12 bytes (tag, no tags, one node).
+    if (!scanner_.read_count(&count, "element count", 12) || !begin_binary()) return false;
+    BinaryCursor c = binary_cursor();
+    uint64_t read = 0;
+    while (read < count) {
+      // A header: element type, elements following, tags per element.
+      const int32_t type = c.i32();
+      const int32_t following = c.i32();
+      const int32_t tag_count = c.i32();
+      if (!c.ok()) return end_binary(c, "$Elements");
+      const int nodes = nodes_per_element(type);
+      if (nodes == 0) {
+        return fail_binary(c, "element type " + std::to_string(type) +
+                                  " is unknown: a binary file does not say how many nodes it has");
+      }
+      if (following < 1 || uint64_t(following) > count - read || tag_count < 0) {
+        return fail_binary(c, "an element header gives " + std::to_string(following) +
+                                  " elements with " + std::to_string(tag_count) + " tags each, " +
+                                  std::to_string(count - read) + " elements being left");
+      }
+      const uint64_t ints = 1 + uint64_t(tag_count) + uint64_t(nodes);
+      if (!c.fits(uint64_t(following), 4 * ints)) return truncated("$Elements");
+      const bool is_tet = type == kTet4 || type == kTet10;
+      for (int32_t e = 0; e < following; ++e) {
+        const int64_t element_tag = c.i32();
+        int64_t physical = 0, elementary = 0;
+        for (int32_t k = 0; k < tag_count; ++k) {
+          const int32_t value = c.i32();
+          if (k == 0) physical = value;
+          if (k == 1) elementary = value;
+        }
+        if (is_tet) {
+          int64_t corners[4];
+          for (int64_t& corner : corners) corner = c.i32();
+          for (int k = 4; k < nodes; ++k) c.i32();
+          int32_t material = 0;
+          if (!resolve_material(physical, elementary, &material) ||
+              !store_tet(element_tag, corners, material, 0)) {
+            scanner_.advance(c.used());
+            return false;
+          }
+        } else {
+          for (int k = 0; k < nodes; ++k) c.i32();
+        }
+      }
+      read += uint64_t(following);
+    }
+    return end_binary(c, "$Elements") && expect_end("$EndElements");
+  }
+
+  bool parse_elements_41_binary() {
+    if (!begin_binary()) return false;
+    BinaryCursor c = binary_cursor();
+    uint64_t block_count = 0, count = 0, elements_read = 0;
+    // A block header takes 20 bytes, an element at least 16.
+    if (!binary_count(c, &block_count, "entity block count", 20) ||
+        !binary_count(c, &count, "element count", 16)) {
+      return false;
+    }
+    c.u64();  // the smallest and largest element tags
+    c.u64();
+    // At most `count` tets (the count fits in the file): no regrowth.
+    out_->mesh.tets.reserve(count);
+    out_->mesh.materials.reserve(count);
+    element_tags_.reserve(count);
+    for (uint64_t block = 0; block < block_count; ++block) {
+      c.i32();  // entity dimension
+      const int32_t entity = c.i32();
+      const int32_t type = c.i32();
+      const uint64_t block_size = c.u64();
+      if (!c.ok()) return end_binary(c, "$Elements");
+      const int nodes = nodes_per_element(type);
+      if (nodes == 0) {
+        return fail_binary(c, "element type " + std::to_string(type) +
+                                  " is unknown: a binary file does not say how many nodes it has");
+      }
+      if (block_size > count - elements_read) {
+        return fail_binary(c, "the element blocks hold more elements than the " +
+                                  std::to_string(count) + " of the $Elements header");
+      }
+      if (!c.fits(block_size, 8 * (1 + uint64_t(nodes)))) {
+        return truncated("$Elements");
+      }
+      elements_read += block_size;
+      const bool is_tet = type == kTet4 || type == kTet10;
+      int32_t material = 0;
+      if (is_tet) {
+        const auto it = volume_physical_.find(entity);
+        if (!resolve_material(it != volume_physical_.end() ? it->second : 0, entity, &material)) {
+          scanner_.advance(c.used());
+          return false;
+        }
+      }
+      for (uint64_t i = 0; i < block_size; ++i) {
+        const uint64_t element_tag = c.u64();
+        if (!is_tet) {
+          for (int k = 0; k < nodes; ++k) c.u64();
+          continue;
+        }
+        int64_t corners[4];
+        for (int64_t& corner : corners) corner = as_tag(c.u64());
+        for (int k = 4; k < nodes; ++k) c.u64();
+        if (!store_tet(as_tag(element_tag), corners, material, 0)) {
+          scanner_.advance(c.used());
+          return false;
+        }
+      }
+    }
+    if (elements_read != count) {
+      return fail_binary(c, "the element blocks hold " + std::to_string(elements_read) +
+                                " elements, the $Elements header says " + std::to_string(count));
+    }
+    return end_binary(c, "$Elements") && expect_end("$EndElements");
+  }
+
+  // A size_t tag as a signed one (-1 if it does not fit: no node has it).
+  static int64_t as_tag(uint64_t tag) { return tag > uint64_t(kMaxTag) ? -1 : int64_t(tag); }
 
   bool expect_end(const char* marker) {
     std::string_view token;
@@ -292,11 +642,11 @@ class GmshParser {
       std::stable_sort(order.begin(), order.end(),
                        [&](uint32_t a, uint32_t b) { return node_tags_[a] < node_tags_[b]; });
       std::vector<uint64_t> tags(count);
-      std::vector<uint32_t> lines(count);
+      std::vector<uint32_t> lines(node_lines_.size());
       std::vector<Vec3> positions(count);
       for (size_t i = 0; i < count; ++i) {
         tags[i] = node_tags_[order[i]];
-        lines[i] = node_lines_[order[i]];
+        if (!lines.empty()) lines[i] = node_lines_[order[i]];
         positions[i] = mesh.positions[order[i]];
       }
       node_tags_.swap(tags);
@@ -306,7 +656,8 @@ class GmshParser {
     for (size_t i = 1; i < count; ++i) {
       if (node_tags_[i] == node_tags_[i - 1]) {
         return scanner_.fail_at_line(
-            node_lines_[i], "node tag " + std::to_string(node_tags_[i]) + " is defined twice");
+            binary_ ? 0 : node_lines_[i],
+            "node tag " + std::to_string(node_tags_[i]) + " is defined twice");
       }
     }
     node_lines_ = {};
@@ -349,21 +700,28 @@ class GmshParser {
 
   // Reads the node tags of a tet element (4 or 10 nodes) and stores its corners.
   bool read_tet(int64_t element_tag, int64_t type, int32_t material, size_t line) {
+    int64_t corners[4];
+    for (int64_t& corner : corners) {
+      if (!scanner_.read_int(&corner, "node tag")) return false;
+    }
+    if (!store_tet(element_tag, corners, material, line)) return false;
+    return type != kTet10 || scanner_.skip_numbers(6, "node tags");
+  }
+
+  // Stores a tet from the node tags of its corners (`line` only for text files).
+  bool store_tet(int64_t element_tag, const int64_t corners[4], int32_t material, size_t line) {
     Tet tet;
     for (int k = 0; k < 4; ++k) {
-      int64_t tag = 0;
-      if (!scanner_.read_int(&tag, "node tag")) return false;
-      tet[k] = find_node(tag);
+      tet[k] = find_node(corners[k]);
       if (tet[k] == kInvalidIndex) {
         return scanner_.fail("element " + std::to_string(element_tag) + " uses node " +
-                             std::to_string(tag) + ", which is not in $Nodes");
+                             std::to_string(corners[k]) + ", which is not in $Nodes");
       }
     }
-    if (type == kTet10 && !scanner_.skip_numbers(6, "node tags")) return false;
     if (out_->mesh.tets.size() + 1 >= kInvalidIndex) return scanner_.fail("too many tetrahedra");
     out_->mesh.tets.push_back(tet);
     out_->mesh.materials.push_back(material);
-    out_->tet_lines.push_back(line_number(line));
+    if (!binary_) out_->tet_lines.push_back(line_number(line));
     element_tags_.push_back(element_tag);
     return true;
   }
@@ -466,18 +824,18 @@ class GmshParser {
     for (size_t i = 1; i < count; ++i) {
       if (element_tags_[order[i]] == element_tags_[order[i - 1]]) {
         return scanner_.fail_at_line(
-            out_->tet_lines[order[i]],
+            binary_ ? 0 : out_->tet_lines[order[i]],
             "element tag " + std::to_string(element_tags_[order[i]]) + " is used twice");
       }
     }
     if (std::is_sorted(element_tags_.begin(), element_tags_.end())) return true;
     std::vector<Tet> tets(count);
     std::vector<int32_t> materials(count);
-    std::vector<uint32_t> lines(count);
+    std::vector<uint32_t> lines(out_->tet_lines.size());
     for (size_t i = 0; i < count; ++i) {
       tets[i] = mesh.tets[order[i]];
       materials[i] = mesh.materials[order[i]];
-      lines[i] = out_->tet_lines[order[i]];
+      if (!lines.empty()) lines[i] = out_->tet_lines[order[i]];
     }
     mesh.tets.swap(tets);
     mesh.materials.swap(materials);
@@ -485,9 +843,12 @@ class GmshParser {
     return true;
   }
 
+  std::string_view text_;
   TextScanner scanner_;
   ParsedMesh* out_;
   int version_ = 0;
+  bool binary_ = false;  // file type 1
+  bool swap_ = false;    // binary numbers in the other byte order
   bool seen_nodes_ = false;
   bool seen_elements_ = false;
   std::unordered_map<int64_t, int64_t> named_materials_;  // physical tag -> "material_<n>"

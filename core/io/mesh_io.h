@@ -1,14 +1,15 @@
 // Reading and writing tetrahedral meshes in the formats analysts' tools use.
 // The format is chosen from the file extension (ASCII case-insensitive):
 //   .mesh          Medit ASCII (MMG, CGAL, TetWild, Gmsh); material = tet reference
-//   .msh           Gmsh ASCII 2.2 or 4.1 (read: from $MeshFormat; write: 4.1 unless
-//                  WriteOptions::gmsh_version == 22); material = physical tag, else
-//                  the elementary tag
+//   .msh           Gmsh 2.2 or 4.1 (read: from $MeshFormat, ASCII or binary in either
+//                  byte order; write: ASCII 4.1 unless WriteOptions::gmsh_version ==
+//                  22); material = physical tag, else the elementary tag
 //   .node / .ele   TetGen pair (either name selects both); material = first region
 //                  attribute; 0- or 1-based numbering
 //   .vtk           VTK legacy ASCII unstructured grid, cell data "material", "stretch"
 //   .vtu           VTK XML ASCII unstructured grid, cell data "material", "stretch"
-// Every read ends with validate_mesh(); every error reads "path:line: message".
+// Every read ends with validate_mesh(); every error reads "path:line: message"
+// ("path: byte N: message" past the header of a binary .msh).
 // Writes go to a temporary file in the same directory that is renamed over the
 // target, so a failed write never leaves a half-written file.
 //

@@ -220,7 +220,10 @@ bool TextScanner::fail(std::string_view message) {
 bool TextScanner::fail_at_line(size_t line, std::string_view message) {
   if (!failed_) {
     failed_ = true;
-    error_ = name_ + ":" + std::to_string(line) + ": " + std::string(message);
+    error_ =
+        byte_base_ != nullptr
+            ? name_ + ": byte " + std::to_string(pos_ - byte_base_) + ": " + std::string(message)
+            : name_ + ":" + std::to_string(line) + ": " + std::string(message);
   }
   return false;
 }

@@ -27,6 +27,10 @@ class TextScanner {
               size_t first_line = 1);
 
   void set_number_may_end_text(bool allowed) { number_may_end_text_ = allowed; }
+  // From now on errors read "name: byte N: message", N the offset of the current
+  // position from `base` (the start of the file): for files with binary sections,
+  // where line numbers mean nothing.
+  void report_byte_offsets(const char* base) { byte_base_ = base; }
 
   // The next token; false (without error) at the end of the text.
   bool next_token(std::string_view* token);
@@ -96,6 +100,7 @@ class TextScanner {
   char comment_;
   size_t line_;
   size_t token_line_;
+  const char* byte_base_ = nullptr;
   bool number_may_end_text_ = false;
   bool failed_ = false;
   std::string error_;

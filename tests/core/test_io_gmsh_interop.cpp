@@ -1,7 +1,9 @@
 // Gmsh itself reads what we write: run the `gmsh` binary (when it is on PATH) on
-// our 2.2 and 4.1 files, have it save the mesh again, and read its output back.
+// our 2.2 and 4.1 files, have it save the mesh again, as text and as binary, and
+// read its output back.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "core/io/mesh_io.h"
@@ -32,13 +34,18 @@ TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
     WriteOptions options;
     options.gmsh_version = version;
     ASSERT_TRUE(write_mesh(ours, mesh, options).ok());
-    for (const char* out_format : {"msh22", "msh41"}) {
+    // Gmsh's own files, text and binary.
+    for (const char* out_format : {"msh22", "msh41", "msh22 -bin", "msh41 -bin"}) {
       SCOPED_TRACE(out_format);
-      const std::string theirs =
-          dir + "/gmsh_" + std::to_string(version) + "_" + out_format + ".msh";
+      std::string suffix = out_format;
+      std::replace(suffix.begin(), suffix.end(), ' ', '_');
+      const std::string theirs = dir + "/gmsh_" + std::to_string(version) + "_" + suffix + ".msh";
       const std::string log = theirs + ".log";
       ASSERT_TRUE(run_gmsh("'" + ours + "' -0 -format " + out_format + " -o '" + theirs + "'", log))
           << test::read_text(log);
+      if (suffix.find("bin") != std::string::npos) {
+        ASSERT_NE(test::read_text(theirs).find(" 1 8\n"), std::string::npos) << "not binary";
+      }
       const std::string output = test::read_text(log);
       EXPECT_NE(output.find(std::to_string(mesh.tet_count()) + " elements"), std::string::npos)
           << output;

@@ -109,7 +109,8 @@ const char* const kGmsh22 =
 TEST(IoMalformed, Gmsh22) {
   expect_failures(MeshFormat::kGmsh22, "m.msh", kGmsh22,
                   {
-                      {{{2, "2.2 1 8"}}, 2, "binary .msh is not supported"},
+                      {{{2, "2.2 1 8"}}, 2, "byte-order check"},
+                      {{{2, "2.2 2 8"}}, 2, "is not 0 (ASCII) or 1 (binary)"},
                       {{{2, "3.0 0 8"}}, 2, "unsupported .msh version"},
                       {{{5, "6"}}, 11, "not an integer"},
                       {{{5, "4"}}, 10, "wrong count"},
@@ -166,7 +167,7 @@ const char* const kGmsh41 =
 TEST(IoMalformed, Gmsh41) {
   expect_failures(MeshFormat::kGmsh41, "m.msh", kGmsh41,
                   {
-                      {{{2, "4.1 1 8"}}, 2, "binary .msh is not supported"},
+                      {{{2, "4.1 1 8"}}, 2, "byte-order check"},
                       {{{2, "4.0 0 8"}}, 2, "unsupported .msh version"},
                       {{{9, "1 6 1 6"}}, 20, "header says 6"},
                       {{{9, "1 6 1 6"}, {10, "3 7 0 6"}}, 16, "out of range"},
