@@ -13,9 +13,9 @@
 namespace tetlod {
 namespace {
 
-constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vtu";
+constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vtu, .bdf/.nas";
 
-enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu };
+enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu, kNastran };
 
 // The extension of the file name in `path`, lower case, without the dot.
 std::string extension_of(const std::string& path) {
@@ -41,6 +41,8 @@ Status file_kind(const std::string& path, FileKind* kind) {
     *kind = FileKind::kVtkLegacy;
   } else if (extension == "vtu") {
     *kind = FileKind::kVtu;
+  } else if (extension == "bdf" || extension == "nas") {
+    *kind = FileKind::kNastran;
   } else if (extension == "meshb") {
     return Status::error(
         path + ": binary Medit .meshb is not supported (supported: " + kSupportedExtensions + ")");
@@ -110,6 +112,8 @@ const char* format_name(MeshFormat format) {
       return "VTK legacy .vtk";
     case MeshFormat::kVtu:
       return "VTK XML .vtu";
+    case MeshFormat::kNastran:
+      return "Nastran bulk data .bdf";
   }
   return "unknown format";
 }
@@ -136,6 +140,9 @@ Status read_mesh_from_memory(std::string_view data, MeshFormat format, const std
       break;
     case MeshFormat::kVtu:
       status = io::parse_vtu(data, name, &parsed);
+      break;
+    case MeshFormat::kNastran:
+      status = io::parse_nastran(data, name, &parsed);
       break;
   }
   if (!status.ok()) return status;
@@ -164,9 +171,9 @@ Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   }
   std::string text;
   if (!(status = io::read_file(path, &text)).ok()) return status;
-  static constexpr MeshFormat kFormats[] = {MeshFormat::kMedit, MeshFormat::kGmsh41,
+  static constexpr MeshFormat kFormats[] = {MeshFormat::kMedit,  MeshFormat::kGmsh41,
                                             MeshFormat::kTetGen, MeshFormat::kVtkLegacy,
-                                            MeshFormat::kVtu};
+                                            MeshFormat::kVtu,    MeshFormat::kNastran};
   return read_mesh_from_memory(text, kFormats[int(kind)], path, mesh, info);
 }
 
@@ -202,6 +209,9 @@ Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptio
       break;
     case FileKind::kVtu:
       io::write_vtu(mesh, &files[0].contents);
+      break;
+    case FileKind::kNastran:
+      io::write_nastran(mesh, &files[0].contents);
       break;
   }
   return io::write_files_atomically(files);

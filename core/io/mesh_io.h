@@ -8,6 +8,10 @@
 //                  attribute; 0- or 1-based numbering
 //   .vtk           VTK legacy ASCII unstructured grid, cell data "material", "stretch"
 //   .vtu           VTK XML ASCII unstructured grid, cell data "material", "stretch"
+//   .bdf / .nas    Nastran bulk data: GRID and CTETRA entries (small, large and free
+//                  field); material = the CTETRA's property id (PID); written with
+//                  GRID* (16-character coordinates: exact when the shortest exact
+//                  form fits, else 10 or more significant digits)
 // Every read ends with validate_mesh(); every error reads "path:line: message"
 // ("path: byte N: message" past the header of a binary .msh).
 // Writes go to a temporary file in the same directory that is renamed over the
@@ -64,7 +68,7 @@
 
 namespace tetlod {
 
-enum class MeshFormat { kMedit, kGmsh22, kGmsh41, kTetGen, kVtkLegacy, kVtu };
+enum class MeshFormat { kMedit, kGmsh22, kGmsh41, kTetGen, kVtkLegacy, kVtu, kNastran };
 
 const char* format_name(MeshFormat format);
 

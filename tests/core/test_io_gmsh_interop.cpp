@@ -61,6 +61,39 @@ TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
   }
 }
 
+// Nastran bulk data both ways: Gmsh reads what we write (PID = material), and we
+// read what Gmsh writes in each of its three field formats.
+TEST(IoGmshInterop, NastranBothWays) {
+  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  const std::string dir = test::output_dir("gmsh_nastran");
+  const TetMesh mesh = test::make_grid_mesh(
+      3, 2, 2, [](int i, int j, int) { return 1 + (i + j) % 4; }, 0.25);
+  const std::string ours = dir + "/ours.bdf";
+  ASSERT_TRUE(write_mesh(ours, mesh).ok());
+  const std::string read_by_gmsh = dir + "/gmsh_read.msh";
+  std::string log = dir + "/read.log";
+  ASSERT_TRUE(run_gmsh("'" + ours + "' -0 -format msh41 -o '" + read_by_gmsh + "'", log))
+      << test::read_text(log);
+  TetMesh back;
+  Status status = read_mesh(read_by_gmsh, &back);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+
+  ASSERT_TRUE(write_mesh(dir + "/ours.msh", mesh).ok());
+  for (int field_format : {0, 1, 2}) {  // free, small, large
+    SCOPED_TRACE(field_format);
+    const std::string theirs = dir + "/gmsh_" + std::to_string(field_format) + ".bdf";
+    log = theirs + ".log";
+    ASSERT_TRUE(run_gmsh("'" + dir + "/ours.msh' -0 -format bdf -setnumber Mesh.BdfFieldFormat " +
+                             std::to_string(field_format) + " -o '" + theirs + "'",
+                         log))
+        << test::read_text(log);
+    status = read_mesh(theirs, &back);
+    ASSERT_TRUE(status.ok()) << status.message();
+    EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+  }
+}
+
 TEST(IoGmshInterop, GmshFindsNoInvertedTets) {
   if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
   const std::string dir = test::output_dir("gmsh_orientation");

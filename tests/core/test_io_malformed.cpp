@@ -355,6 +355,38 @@ TEST(IoMalformed, Vtu) {
       });
 }
 
+const char* const kNastran =
+    "$ two tets\n"  // 1
+    "GRID,1,,0.,0.,0.\n"
+    "GRID,2,,1.,0.,0.\n"
+    "GRID,3,,0.,1.,0.\n"
+    "GRID,4,,0.,0.,1.\n"  // 5
+    "GRID,5,,1.,1.,1.\n"
+    "CTETRA,1,3,1,2,3,4\n"
+    "CTETRA,2,7,2,3,4,5\n"
+    "ENDDATA\n";
+
+TEST(IoMalformed, Nastran) {
+  expect_failures(
+      MeshFormat::kNastran, "m.bdf", kNastran,
+      {
+          {{{3, "GRID,2,5,1.,0.,0."}}, 3, "coordinate system '5' is not supported"},
+          {{{3, "GRID,2,,1.2.3,0.,0."}}, 3, "x coordinate '1.2.3' is not a finite number"},
+          {{{4, "GRID,3,,0.,1.e999,0."}}, 4, "y coordinate"},
+          {{{4, "GRID,2,,0.,1.,0."}}, 4, "GRID 2 is defined twice"},
+          {{{4, "GRID,0,,0.,1.,0."}}, 4, "id '0' is not an integer >= 1"},
+          {{{7, "CTETRA,1,3,1,2,3,99"}}, 7, "uses GRID 99, which is not defined"},
+          {{{8, "CTETRA,2,7,2,3,,5"}}, 8, "grid '' is not an integer >= 1"},
+          {{{8, "CTETRA,2,3000000000,2,3,4,5"}}, 8, "too large for a material id"},
+          {{{8, "CTETRA,2,-1,2,3,4,5"}}, 8, "property id (PID) '-1'"},
+          {{{2, "+,1"}}, 2, "a continuation line without an entry"},
+          {{{9, ""}}, 8, "no ENDDATA"},
+          {{{1, "$ TetLOD material 0 = PID x"}}, 1, "not a positive integer"},
+          {{{8, "CTETRA,2,7,2,3,4,1"}}, 8, "duplicates"},
+          {{{8, "CTETRA,2,7,2,3,4,4"}}, 8, "repeats vertex"},
+      });
+}
+
 // Inputs the fuzzers found.
 TEST(IoMalformed, FuzzerFindings) {
   TetMesh mesh;

@@ -102,11 +102,9 @@ TEST(IoTruncation, WrittenFilesOfEveryFormat) {
     const char* file;
     int gmsh_version;
     MeshFormat format;
-  } files[] = {{"t.mesh", 41, MeshFormat::kMedit},
-               {"t22.msh", 22, MeshFormat::kGmsh22},
-               {"t41.msh", 41, MeshFormat::kGmsh41},
-               {"t.vtk", 41, MeshFormat::kVtkLegacy},
-               {"t.vtu", 41, MeshFormat::kVtu}};
+  } files[] = {{"t.mesh", 41, MeshFormat::kMedit},   {"t22.msh", 22, MeshFormat::kGmsh22},
+               {"t41.msh", 41, MeshFormat::kGmsh41}, {"t.vtk", 41, MeshFormat::kVtkLegacy},
+               {"t.vtu", 41, MeshFormat::kVtu},      {"t.bdf", 41, MeshFormat::kNastran}};
   for (const auto& file : files) {
     WriteOptions options;
     options.gmsh_version = file.gmsh_version;

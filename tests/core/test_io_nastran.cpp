@@ -1,0 +1,127 @@
+// Nastran bulk data (.bdf/.nas): the three field formats, continuations, short
+// reals, skipped entries and executive control read as the mesh they describe;
+// what TetLOD writes reads back with every material; random damage never crashes.
+// (test_io_gmsh_interop.cpp checks that Gmsh reads ours and we read Gmsh's.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/io/mesh_io.h"
+#include "core/test_io_helpers.h"
+#include "core/test_meshes.h"
+
+namespace tetlod {
+namespace {
+
+// A fixed-field line: the name and the fields each padded to `width` (the name to 8).
+std::string fixed(const std::string& name, const std::vector<std::string>& fields,
+                  size_t width = 8) {
+  std::string line = name;
+  line.resize(8, ' ');
+  for (const std::string& f : fields) {
+    std::string padded = f;
+    padded.resize(width, ' ');
+    line += padded;
+  }
+  return line + "\n";
+}
+
+// Seven GRIDs and four CTETRAs in every field format, among entries to skip.
+std::string sample() {
+  std::string s =
+      "$ executive and case control, then the bulk data\n"
+      "SOL 101\n"
+      "CEND\n"
+      "TITLE = GRID 99 is not bulk data\n"
+      "BEGIN BULK\n";
+  s += fixed("PSOLID", {"3", "1"});
+  s += fixed("MAT1", {"1", "2.1+5", "", "0.3"});
+  s += fixed("GRID", {"1", "", "0.", "0.", "0."});
+  s += fixed("GRID", {"2", "0", "1.0", "", "0.0"});  // a blank coordinate is 0
+  s += fixed("GRID*", {"3", "", "0.", "1.0D0"}, 16) + fixed("*", {"0."}, 16);
+  s += "grid,4,,0.,0.,10.-1\n";             // 10.-1 = 1.0
+  s += "GRID,5,0,1.,+1.,.1+1 $ comment\n";  // .1+1 = 1.0
+  s += "GRID\t6\t\t0.\t0.\t-1.E0\n";        // tabs: 8-column fields
+  s += fixed("CTETRA", {"1", "3", "1", "2", "3", "4"});
+  s += "ctetra,2,7,2,3,4,5\n";
+  s += fixed("CHEXA", {"9", "1", "1", "2", "3", "4", "5", "6"}) + fixed("+", {"7", "8"});
+  s += fixed("CTETRA*", {"3", "7", "1", "2"}, 16) + fixed("*", {"3", "6"}, 16);
+  // A 10-node tet (the PID left blank: the element id) over a continuation line.
+  s += fixed("CTETRA", {"4", "", "1", "2", "4", "7", "1", "1"}) + fixed("+", {"1", "1", "1", "1"});
+  s += fixed("GRID", {"7", "", "0.", "-1.", "0."});  // after the CTETRA that uses it
+  s += "ENDDATA\n"
+       "GRID,8,,text after ENDDATA is not read\n";
+  return s;
+}
+
+TEST(IoNastran, ReadsEveryFieldFormat) {
+  const char* medit =
+      "MeshVersionFormatted 2\nDimension 3\nVertices\n7\n"
+      "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n0 0 -1 0\n0 -1 0 0\n"
+      "Tetrahedra\n4\n1 2 3 4 3\n2 3 4 5 7\n1 2 3 6 7\n1 2 4 7 4\nEnd\n";
+  TetMesh expected, mesh;
+  ASSERT_TRUE(read_mesh_from_memory(medit, MeshFormat::kMedit, "e.mesh", &expected).ok());
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(sample(), MeshFormat::kNastran, "s.bdf", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message() << "\n" << sample();
+  test::expect_same_mesh(expected, mesh);
+  EXPECT_EQ(info.format, MeshFormat::kNastran);
+}
+
+TEST(IoNastran, WrittenFilesReadBackWithEveryMaterial) {
+  const std::string dir = test::output_dir("nastran");
+  // Materials 0 (not a valid PID), 7 and INT32_MAX (too wide for small field).
+  const TetMesh mesh = test::make_io_mesh();
+  ASSERT_TRUE(write_mesh(dir + "/io.nas", mesh).ok());
+  TetMesh back;
+  const Status s = read_mesh(dir + "/io.nas", &back);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(back.tets, mesh.tets);
+  EXPECT_EQ(back.materials, mesh.materials);
+  ASSERT_EQ(back.positions.size(), mesh.positions.size());
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    for (int k = 0; k < 3; ++k) {
+      const double x = mesh.positions[v][k];
+      EXPECT_NEAR(back.positions[v][k], x, 1e-13 * std::max(1.0, std::abs(x))) << v;
+    }
+  }
+  // Every line fits in 80 columns; coordinates that fit in 16 characters are exact.
+  const std::string text = test::read_text(dir + "/io.nas");
+  size_t start = 0;
+  for (size_t end = text.find('\n'); end != std::string::npos; end = text.find('\n', start)) {
+    if (text[start] != '$') {
+      EXPECT_LE(end - start, 80u) << text.substr(start, end - start);
+    }
+    start = end + 1;
+  }
+  const TetMesh grid = test::make_grid_mesh(
+      3, 2, 2, [](int i, int j, int) { return 1 + i + j; }, 0.25);
+  ASSERT_TRUE(write_mesh(dir + "/grid.bdf", grid).ok());
+  ASSERT_TRUE(read_mesh(dir + "/grid.bdf", &back).ok());
+  test::expect_same_mesh(grid, back);
+}
+
+TEST(IoNastran, RandomDamageNeverCrashes) {
+  std::mt19937 random(777);
+  const std::string valid = sample();
+  const char alphabet[] = "0123456789+-.,*$ \t\nEDGRIDCTETRA";
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::string data = valid;
+    for (int k = 0; k <= trial % 3; ++k) {
+      data[random() % data.size()] = alphabet[random() % (sizeof alphabet - 1)];
+    }
+    if (trial % 5 == 0) data.resize(random() % data.size());
+    TetMesh mesh;
+    const Status s = read_mesh_from_memory(data, MeshFormat::kNastran, "d.bdf", &mesh);
+    if (!s.ok()) {
+      ASSERT_EQ(s.message().rfind("d.bdf:", 0), 0u) << s.message();
+    } else {
+      for (const Tet& t : mesh.tets)
+        for (uint32_t v : t) ASSERT_LT(v, mesh.positions.size());
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tetlod
