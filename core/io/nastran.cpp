@@ -243,6 +243,10 @@ class NastranParser {
     card_open_ = false;
     if (card_name_ == "GRID") return grid();
     if (card_name_ == "CTETRA") return ctetra();
+    if (card_name_ == "INCLUDE") {
+      return fail(card_line_, "INCLUDE is not followed: read the included file instead, or "
+                              "paste it in");
+    }
     return true;
   }
 

@@ -384,6 +384,7 @@ TEST(IoMalformed, Nastran) {
           {{{1, "$ TetLOD material 0 = PID x"}}, 1, "not a positive integer"},
           {{{8, "CTETRA,2,7,2,3,4,1"}}, 8, "duplicates"},
           {{{8, "CTETRA,2,7,2,3,4,4"}}, 8, "repeats vertex"},
+          {{{6, "INCLUDE 'grids.bdf'"}}, 6, "INCLUDE is not followed"},
       });
 }
 
