@@ -218,7 +218,7 @@ class NastranParser {
   // without the E, "1.5-3" (1.5e-3) and "1.5+3".
   static bool parse_real(std::string_view s, double* value) {
     if (s.empty() || s.size() > 40) return false;
-    char buffer[48];
+    char buffer[2 * 40];  // an 'E' may go before every sign
     size_t n = 0;
     for (size_t i = 0; i < s.size(); ++i) {
       char c = s[i];
@@ -244,8 +244,9 @@ class NastranParser {
     if (card_name_ == "GRID") return grid();
     if (card_name_ == "CTETRA") return ctetra();
     if (card_name_ == "INCLUDE") {
-      return fail(card_line_, "INCLUDE is not followed: read the included file instead, or "
-                              "paste it in");
+      return fail(card_line_,
+                  "INCLUDE is not followed: read the included file instead, or "
+                  "paste it in");
     }
     return true;
   }
