@@ -6,14 +6,15 @@
 //                  22); material = physical tag, else the elementary tag
 //   .node / .ele   TetGen pair (either name selects both); material = first region
 //                  attribute; 0- or 1-based numbering
-//   .vtk           VTK legacy ASCII unstructured grid, cell data "material", "stretch"
+//   .vtk           VTK legacy unstructured grid (read: ASCII or binary; write: ASCII),
+//                  cell data "material", "stretch"
 //   .vtu           VTK XML ASCII unstructured grid, cell data "material", "stretch"
 //   .bdf / .nas    Nastran bulk data: GRID and CTETRA entries (small, large and free
 //                  field); material = the CTETRA's property id (PID); written with
 //                  GRID* (16-character coordinates: exact when the shortest exact
 //                  form fits, else 10 or more significant digits)
 // Every read ends with validate_mesh(); every error reads "path:line: message"
-// ("path: byte N: message" past the header of a binary .msh).
+// ("path: byte N: message" past the header of a binary .msh or .vtk).
 // Writes go to a temporary file in the same directory that is renamed over the
 // target, so a failed write never leaves a half-written file.
 //

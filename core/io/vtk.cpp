@@ -1,8 +1,11 @@
-// VTK legacy ASCII unstructured grids (.vtk), as in "The VTK User's Guide",
-// chapter 19 "VTK File Formats", with both cell layouts: "CELLS n size" followed by
-// "k i1 .. ik" lines (file version <= 4.2) and "CELLS n+1 size" followed by OFFSETS
-// and CONNECTIVITY arrays (file version 5.1).
+// VTK legacy unstructured grids (.vtk), ASCII and BINARY, as in "The VTK User's
+// Guide", chapter 19 "VTK File Formats", with both cell layouts: "CELLS n size"
+// followed by "k i1 .. ik" (file version <= 4.2) and "CELLS n+1 size" followed by
+// OFFSETS and CONNECTIVITY arrays (file version 5.1). In a binary file the keyword
+// lines stay text and each array's values follow its line as big-endian numbers.
 #include <charconv>
+#include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "core/io/mesh_formats.h"
@@ -27,10 +30,74 @@ std::vector<std::string_view> split(std::string_view line) {
   return words;
 }
 
+// The value types of binary arrays, with their sizes.
+struct BinaryType {
+  enum Kind { kSigned, kUnsigned, kFloat } kind = kSigned;
+  size_t size = 0;  // 0: not readable in a binary file
+};
+
+BinaryType binary_type(std::string_view name) {
+  struct Entry {
+    const char* name;
+    BinaryType type;
+  };
+  static constexpr Entry kTypes[] = {
+      {"char", {BinaryType::kSigned, 1}},         {"unsigned_char", {BinaryType::kUnsigned, 1}},
+      {"short", {BinaryType::kSigned, 2}},        {"unsigned_short", {BinaryType::kUnsigned, 2}},
+      {"int", {BinaryType::kSigned, 4}},          {"unsigned_int", {BinaryType::kUnsigned, 4}},
+      {"vtktypeint32", {BinaryType::kSigned, 4}}, {"vtktypeuint32", {BinaryType::kUnsigned, 4}},
+      {"vtktypeint64", {BinaryType::kSigned, 8}}, {"vtktypeuint64", {BinaryType::kUnsigned, 8}},
+      {"vtkidtype", {BinaryType::kSigned, 8}},    {"float", {BinaryType::kFloat, 4}},
+      {"double", {BinaryType::kFloat, 8}}};
+  for (const Entry& e : kTypes)
+    if (TextScanner::equals_ignore_case(name, e.name)) return e.type;
+  return {};
+}
+
+// One big-endian value of `type` at `p`.
+uint64_t big_endian_bits(const char* p, size_t size) {
+  uint64_t bits = 0;
+  for (size_t i = 0; i < size; ++i) bits = bits << 8 | uint8_t(p[i]);
+  return bits;
+}
+
+// A float or double.
+double binary_real(const char* p, BinaryType type) {
+  const uint64_t bits = big_endian_bits(p, type.size);
+  if (type.size == 4) {
+    const uint32_t b32 = uint32_t(bits);
+    float f;
+    std::memcpy(&f, &b32, 4);
+    return f;
+  }
+  double d;
+  std::memcpy(&d, &bits, 8);
+  return d;
+}
+
+// An integer from a binary value; false if it is not one or does not fit in int64.
+bool binary_integer(const char* p, BinaryType type, int64_t* value) {
+  if (type.kind == BinaryType::kFloat) {
+    const double d = binary_real(p, type);
+    if (!(d == std::floor(d) && std::abs(d) < 9.0e18)) return false;
+    *value = int64_t(d);
+    return true;
+  }
+  const uint64_t bits = big_endian_bits(p, type.size);
+  if (type.kind == BinaryType::kUnsigned) {
+    if (bits > uint64_t(std::numeric_limits<int64_t>::max())) return false;
+    *value = int64_t(bits);
+    return true;
+  }
+  const unsigned shift = unsigned(64 - 8 * type.size);
+  *value = int64_t(bits << shift) >> shift;
+  return true;
+}
+
 class VtkLegacyParser {
  public:
   VtkLegacyParser(std::string_view text, const std::string& name, ParsedMesh* out)
-      : scanner_(text, name), out_(out) {}
+      : text_(text), scanner_(text, name), out_(out) {}
 
   Status parse() {
     if (!parse_header()) return scanner_.status();
@@ -74,10 +141,8 @@ class VtkLegacyParser {
     std::string_view token;
     if (!scanner_.next_token(&token))
       return scanner_.fail("unexpected end of file, expected ASCII");
-    if (TextScanner::equals_ignore_case(token, "BINARY")) {
-      return scanner_.fail("binary .vtk is not supported; save the file as ASCII");
-    }
-    if (!TextScanner::equals_ignore_case(token, "ASCII")) {
+    binary_ = TextScanner::equals_ignore_case(token, "BINARY");
+    if (!binary_ && !TextScanner::equals_ignore_case(token, "ASCII")) {
       return scanner_.fail("expected ASCII or BINARY, found " + TextScanner::quote(token));
     }
     if (!scanner_.expect_keyword("DATASET")) return false;
@@ -88,6 +153,73 @@ class VtkLegacyParser {
       return scanner_.fail("only DATASET UNSTRUCTURED_GRID is supported, found " +
                            TextScanner::quote(token));
     }
+    // Line numbers mean nothing once binary data has begun.
+    if (binary_) scanner_.report_byte_offsets(text_.data());
+    return true;
+  }
+
+  // The values of an array in a binary file: `count` values of `type_name` that
+  // start after the current line. Fails unless the type is readable and the values
+  // fit in the rest of the file; on success *data points at the first one, and
+  // end_binary() moves past the last.
+  bool begin_binary(uint64_t count, std::string_view type_name, const char* what, BinaryType* type,
+                    const char** data) {
+    // After a SCALARS or other attribute line, whose words were read with the line.
+    const bool line_read = line_read_;
+    line_read_ = false;
+    *type = binary_type(type_name);
+    if (type->size == 0) {
+      return scanner_.fail(std::string(what) + " of type " + TextScanner::quote(type_name) +
+                           " cannot be read from a binary file");
+    }
+    if (!line_read && !trim_line(scanner_.rest_of_line()).empty()) {
+      return scanner_.fail(std::string("unexpected text before the binary ") + what);
+    }
+    if (count > scanner_.remaining_bytes() / type->size) {
+      scanner_.advance(scanner_.remaining_bytes());
+      return scanner_.fail(std::string("the file ends inside the binary ") + what +
+                           " (truncated file?)");
+    }
+    *data = scanner_.remaining_text().data();
+    return true;
+  }
+
+  void end_binary(uint64_t count, const BinaryType& type) { scanner_.advance(count * type.size); }
+
+  static std::string_view trim_line(std::string_view s) {
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    return s;
+  }
+
+  // `count` integers into `out` (cleared), each in [min_value, max_value].
+  bool read_binary_integers(uint64_t count, std::string_view type_name, const char* what,
+                            int64_t min_value, int64_t max_value, std::vector<int64_t>* out) {
+    BinaryType type;
+    const char* data = nullptr;
+    if (!begin_binary(count, type_name, what, &type, &data)) return false;
+    out->clear();
+    out->reserve(count);
+    for (uint64_t i = 0; i < count; ++i) {
+      int64_t value = 0;
+      if (!binary_integer(data + i * type.size, type, &value) || value < min_value ||
+          value > max_value) {
+        end_binary(i, type);
+        return scanner_.fail(std::string(what) + " value " + std::to_string(i) +
+                             " is not an integer from " + std::to_string(min_value) + " to " +
+                             std::to_string(max_value));
+      }
+      out->push_back(value);
+    }
+    end_binary(count, type);
+    return true;
+  }
+
+  bool skip_binary(uint64_t count, std::string_view type_name, const char* what) {
+    BinaryType type;
+    const char* data = nullptr;
+    if (!begin_binary(count, type_name, what, &type, &data)) return false;
+    end_binary(count, type);
     return true;
   }
 
@@ -102,6 +234,30 @@ class VtkLegacyParser {
       return scanner_.fail("unexpected end of file, expected a type");
     seen_points_ = true;
     std::vector<Vec3>& positions = out_->mesh.positions;
+    if (binary_) {
+      BinaryType binary;
+      const char* data = nullptr;
+      if (binary_type(type).kind != BinaryType::kFloat) {
+        return scanner_.fail("binary POINTS of type " + TextScanner::quote(type) +
+                             " are not supported (float or double)");
+      }
+      if (!begin_binary(3 * count, type, "POINTS", &binary, &data)) return false;
+      positions.resize(count);
+      for (uint64_t i = 0; i < count; ++i) {
+        for (int k = 0; k < 3; ++k) {
+          const double x = binary_real(data + (3 * i + k) * binary.size, binary);
+          if (!std::isfinite(x)) {
+            end_binary(3 * i + k, binary);
+            return scanner_.fail("point " + std::to_string(i) +
+                                 " has a coordinate that is not "
+                                 "a finite number");
+          }
+          positions[i][k] = x;
+        }
+      }
+      end_binary(3 * count, binary);
+      return true;
+    }
     positions.reserve(count);
     for (uint64_t i = 0; i < count; ++i) {
       Vec3 p;
@@ -138,6 +294,7 @@ class VtkLegacyParser {
     }
     const uint64_t cell_count = first, size = second;
     if (cell_count >= kInvalidIndex) return scanner_.fail("too many cells");
+    if (binary_) return parse_cells_binary(cell_count, size);
     cell_starts_.reserve(cell_count + 1);
     cell_lines_.reserve(cell_count);
     connectivity_.reserve(size);
@@ -166,12 +323,39 @@ class VtkLegacyParser {
     return true;
   }
 
+  // "k i1 .. ik" for each cell, as 32-bit integers.
+  bool parse_cells_binary(uint64_t cell_count, uint64_t size) {
+    std::vector<int64_t> numbers;
+    if (!read_binary_integers(size, "int", "CELLS", 0, int64_t{kInvalidIndex} - 1, &numbers)) {
+      return false;
+    }
+    cell_starts_.reserve(cell_count + 1);
+    connectivity_.reserve(size);
+    cell_starts_.push_back(0);
+    uint64_t at = 0;
+    for (uint64_t c = 0; c < cell_count; ++c) {
+      if (at >= size || uint64_t(numbers[at]) > size - at - 1) {
+        return scanner_.fail("the cells use more than the " + std::to_string(size) +
+                             " numbers announced after CELLS");
+      }
+      const uint64_t point_count = uint64_t(numbers[at++]);
+      for (uint64_t k = 0; k < point_count; ++k) connectivity_.push_back(uint32_t(numbers[at++]));
+      cell_starts_.push_back(connectivity_.size());
+    }
+    if (at != size) {
+      return scanner_.fail("the cells use " + std::to_string(at) + " numbers, CELLS announced " +
+                           std::to_string(size));
+    }
+    return true;
+  }
+
   bool parse_cells_51(uint64_t offset_count, uint64_t size) {
     std::string_view type;
     if (!scanner_.expect_keyword("OFFSETS") || !scanner_.next_token(&type)) {
       return scanner_.fail("unexpected end of file, expected the OFFSETS type");
     }
     if (offset_count >= kInvalidIndex) return scanner_.fail("too many cells");
+    if (binary_) return parse_cells_51_binary(offset_count, size, type);
     cell_starts_.reserve(offset_count);
     for (uint64_t i = 0; i < offset_count; ++i) {
       int64_t offset = 0;
@@ -206,6 +390,34 @@ class VtkLegacyParser {
     return true;
   }
 
+  bool parse_cells_51_binary(uint64_t offset_count, uint64_t size, std::string_view type) {
+    std::vector<int64_t> numbers;
+    if (!read_binary_integers(offset_count, type, "OFFSETS", 0, int64_t(size), &numbers)) {
+      return false;
+    }
+    for (uint64_t i = 0; i < offset_count; ++i) {
+      if ((i == 0 && numbers[i] != 0) || (i > 0 && numbers[i] < numbers[i - 1])) {
+        return scanner_.fail("the offsets must start at 0 and never decrease (offset " +
+                             std::to_string(i) + ")");
+      }
+      cell_starts_.push_back(uint64_t(numbers[i]));
+    }
+    if (!cell_starts_.empty() && cell_starts_.back() != size) {
+      return scanner_.fail("the last offset is " + std::to_string(cell_starts_.back()) +
+                           ", CELLS announced " + std::to_string(size) + " indices");
+    }
+    if (cell_starts_.empty()) cell_starts_.push_back(0);
+    if (!scanner_.expect_keyword("CONNECTIVITY") || !scanner_.next_token(&type)) {
+      return scanner_.fail("unexpected end of file, expected the CONNECTIVITY type");
+    }
+    if (!read_binary_integers(size, type, "CONNECTIVITY", 0, int64_t{kInvalidIndex} - 1,
+                              &numbers)) {
+      return false;
+    }
+    connectivity_.assign(numbers.begin(), numbers.end());
+    return true;
+  }
+
   size_t cell_count() const { return cell_starts_.empty() ? 0 : cell_starts_.size() - 1; }
 
   bool parse_cell_types() {
@@ -218,6 +430,10 @@ class VtkLegacyParser {
                            std::to_string(cell_count()) + " cells");
     }
     seen_types_ = true;
+    if (binary_) {
+      return read_binary_integers(count, "int", "CELL_TYPES", std::numeric_limits<int32_t>::min(),
+                                  std::numeric_limits<int32_t>::max(), &cell_types_);
+    }
     cell_types_.reserve(count);
     for (uint64_t i = 0; i < count; ++i) {
       int64_t type = 0;
@@ -254,8 +470,18 @@ class VtkLegacyParser {
     return true;
   }
 
-  bool read_materials(uint64_t count) {
+  bool read_materials(uint64_t count, std::string_view type) {
     cell_materials_.clear();
+    if (binary_) {
+      std::vector<int64_t> values;
+      if (!read_binary_integers(count, type, "material array", std::numeric_limits<int32_t>::min(),
+                                std::numeric_limits<int32_t>::max(), &values)) {
+        return false;
+      }
+      cell_materials_.assign(values.begin(), values.end());
+      has_materials_ = true;
+      return true;
+    }
     cell_materials_.reserve(count);
     for (uint64_t i = 0; i < count; ++i) {
       int64_t material = 0;
@@ -295,6 +521,7 @@ class VtkLegacyParser {
     }
     const size_t line = scanner_.line();
     const std::vector<std::string_view> words = split(scanner_.rest_of_line());
+    line_read_ = true;
     if (words.size() < header_words) {
       return scanner_.fail_at_line(line, "incomplete " + std::string(keyword) + " line");
     }
@@ -321,7 +548,7 @@ class VtkLegacyParser {
       }
       if (data_section_ == DataSection::kCells && words[0] == kMaterialArray) {
         if (components != 1) return scanner_.fail_at_line(line, "material must have 1 component");
-        return read_materials(section_count_);
+        return read_materials(section_count_, words[1]);
       }
     } else if (is("COLOR_SCALARS")) {
       if (!number_word(1, 4, &components)) return false;
@@ -333,8 +560,16 @@ class VtkLegacyParser {
       if (!number_word(1, 3, &components)) return false;
     }
     uint64_t value_count = 0;
-    return check_value_count(tuples, components, &value_count) &&
-           scanner_.skip_numbers(value_count, std::string(keyword).c_str());
+    if (!check_value_count(tuples, components, &value_count)) return false;
+    if (!binary_) return scanner_.skip_numbers(value_count, std::string(keyword).c_str());
+    // Colours are unsigned chars in a binary file; the others name their type.
+    const bool colours = is("COLOR_SCALARS") || is("LOOKUP_TABLE");
+    const std::string_view type =
+        colours ? "unsigned_char" : words[is("TEXTURE_COORDINATES") ? 2 : 1];
+    if (is("TEXTURE_COORDINATES") && words.size() < 3) {
+      return scanner_.fail_at_line(line, "incomplete TEXTURE_COORDINATES line");
+    }
+    return skip_binary(value_count, type, std::string(keyword).c_str());
   }
 
   // "FIELD name n" then n arrays "name components tuples type" and their values.
@@ -367,11 +602,12 @@ class VtkLegacyParser {
           return scanner_.fail("the material array has " + std::to_string(tuples) + " values for " +
                                std::to_string(section_count_) + " cells");
         }
-        if (!read_materials(tuples)) return false;
+        if (!read_materials(tuples, type)) return false;
         continue;
       }
-      if (!check_value_count(tuples, components, &value_count) ||
-          !scanner_.skip_numbers(value_count, "field array")) {
+      if (!check_value_count(tuples, components, &value_count)) return false;
+      if (binary_ ? !skip_binary(value_count, type, "field array")
+                  : !scanner_.skip_numbers(value_count, "field array")) {
         return false;
       }
     }
@@ -397,20 +633,24 @@ class VtkLegacyParser {
       const int64_t type = cell_types_[c];
       if (type != kVtkTetra && type != kVtkQuadraticTetra) continue;
       if (size != (type == kVtkTetra ? 4u : 10u)) {
-        return scanner_.fail_at_line(cell_lines_[c], "cell " + std::to_string(c) + " of type " +
-                                                         std::to_string(type) + " has " +
-                                                         std::to_string(size) + " points");
+        return scanner_.fail_at_line(binary_ ? 0 : cell_lines_[c],
+                                     "cell " + std::to_string(c) + " of type " +
+                                         std::to_string(type) + " has " + std::to_string(size) +
+                                         " points");
       }
       const uint32_t* v = connectivity_.data() + cell_starts_[c];
       mesh.tets.push_back({v[0], v[1], v[2], v[3]});
       mesh.materials.push_back(has_materials_ ? cell_materials_[c] : 0);
-      out_->tet_lines.push_back(cell_lines_[c]);
+      if (!binary_) out_->tet_lines.push_back(cell_lines_[c]);
     }
     return true;
   }
 
+  std::string_view text_;
   TextScanner scanner_;
   ParsedMesh* out_;
+  bool binary_ = false;     // BINARY: arrays as big-endian values
+  bool line_read_ = false;  // the line before the next binary array is already read
   bool seen_points_ = false;
   bool seen_cells_ = false;
   bool seen_types_ = false;

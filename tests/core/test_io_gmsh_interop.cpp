@@ -94,6 +94,25 @@ TEST(IoGmshInterop, NastranBothWays) {
   }
 }
 
+// Gmsh's binary legacy VTK (points and cells, no cell data: material 0).
+TEST(IoGmshInterop, WeReadGmshBinaryVtk) {
+  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  const std::string dir = test::output_dir("gmsh_vtk");
+  TetMesh mesh = test::make_grid_mesh(
+      3, 2, 2, [](int, int, int) { return 1; }, 0.25);
+  ASSERT_TRUE(write_mesh(dir + "/ours.msh", mesh).ok());
+  const std::string theirs = dir + "/gmsh.vtk";
+  const std::string log = dir + "/vtk.log";
+  ASSERT_TRUE(run_gmsh("'" + dir + "/ours.msh' -0 -format vtk -bin -o '" + theirs + "'", log))
+      << test::read_text(log);
+  ASSERT_NE(test::read_text(theirs).find("\nBINARY\n"), std::string::npos);
+  TetMesh back;
+  const Status status = read_mesh(theirs, &back);
+  ASSERT_TRUE(status.ok()) << status.message();
+  mesh.materials.assign(mesh.tet_count(), 0);
+  EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+}
+
 TEST(IoGmshInterop, GmshFindsNoInvertedTets) {
   if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
   const std::string dir = test::output_dir("gmsh_orientation");
