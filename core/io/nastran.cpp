@@ -315,7 +315,9 @@ class NastranParser {
     PendingTet t;
     t.line = card_line_;
     if (!integer_field(0, "element id", 1, &t.element)) return false;
-    t.property = t.element;  // the default PID is the element id
+    // A blank PID is material 0. (Nastran would take the element id, which would
+    // give every tet a material of its own; writers such as meshio leave it blank
+    // when a mesh has no properties.)
     if (!field(1).empty() && !integer_field(1, "property id (PID)", 0, &t.property)) return false;
     if (t.property > std::numeric_limits<int32_t>::max()) {
       return fail(card_line_,

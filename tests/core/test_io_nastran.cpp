@@ -47,7 +47,7 @@ std::string sample() {
   s += "ctetra,2,7,2,3,4,5\n";
   s += fixed("CHEXA", {"9", "1", "1", "2", "3", "4", "5", "6"}) + fixed("+", {"7", "8"});
   s += fixed("CTETRA*", {"3", "7", "1", "2"}, 16) + fixed("*", {"3", "6"}, 16);
-  // A 10-node tet (the PID left blank: the element id) over a continuation line.
+  // A 10-node tet (the PID left blank: material 0) over a continuation line.
   s += fixed("CTETRA", {"4", "", "1", "2", "4", "7", "1", "1"}) + fixed("+", {"1", "1", "1", "1"});
   s += fixed("GRID", {"7", "", "0.", "-1.", "0."});  // after the CTETRA that uses it
   s += "ENDDATA\n"
@@ -59,7 +59,7 @@ TEST(IoNastran, ReadsEveryFieldFormat) {
   const char* medit =
       "MeshVersionFormatted 2\nDimension 3\nVertices\n7\n"
       "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n0 0 -1 0\n0 -1 0 0\n"
-      "Tetrahedra\n4\n1 2 3 4 3\n2 3 4 5 7\n1 2 3 6 7\n1 2 4 7 4\nEnd\n";
+      "Tetrahedra\n4\n1 2 3 4 3\n2 3 4 5 7\n1 2 3 6 7\n1 2 4 7 0\nEnd\n";
   TetMesh expected, mesh;
   ASSERT_TRUE(read_mesh_from_memory(medit, MeshFormat::kMedit, "e.mesh", &expected).ok());
   ReadInfo info;
