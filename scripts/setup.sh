@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libtet1.5-dev libgtest-dev
-  libbenchmark-dev)
+  libbenchmark-dev zlib1g-dev)
 # Renderer: GL headers, GLFW (window backend), stb (PNG, text), OSMesa and EGL
 # (offscreen backends, loaded at run time), Xvfb for the window-backend test.
 packages+=(libgl-dev libglfw3-dev libstb-dev libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb

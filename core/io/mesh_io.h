@@ -8,7 +8,8 @@
 //                  attribute; 0- or 1-based numbering
 //   .vtk           VTK legacy unstructured grid (read: ASCII or binary; write: ASCII),
 //                  cell data "material", "stretch"
-//   .vtu           VTK XML ASCII unstructured grid, cell data "material", "stretch"
+//   .vtu           VTK XML unstructured grid (read: ASCII, binary or appended data,
+//                  zlib-compressed or not; write: ASCII), cell data "material", "stretch"
 //   .bdf / .nas    Nastran bulk data: GRID and CTETRA entries (small, large and free
 //                  field); material = the CTETRA's property id (PID); written with
 //                  GRID* (16-character coordinates: exact when the shortest exact

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/io/binary_values.h"
 #include "core/io/mesh_formats.h"
 #include "core/io/text_scanner.h"
 #include "core/io/text_writer.h"
@@ -30,12 +31,7 @@ std::vector<std::string_view> split(std::string_view line) {
   return words;
 }
 
-// The value types of binary arrays, with their sizes.
-struct BinaryType {
-  enum Kind { kSigned, kUnsigned, kFloat } kind = kSigned;
-  size_t size = 0;  // 0: not readable in a binary file
-};
-
+// The value types of a binary legacy file's arrays.
 BinaryType binary_type(std::string_view name) {
   struct Entry {
     const char* name;
@@ -54,44 +50,13 @@ BinaryType binary_type(std::string_view name) {
   return {};
 }
 
-// One big-endian value of `type` at `p`.
-uint64_t big_endian_bits(const char* p, size_t size) {
-  uint64_t bits = 0;
-  for (size_t i = 0; i < size; ++i) bits = bits << 8 | uint8_t(p[i]);
-  return bits;
-}
-
-// A float or double.
+// Legacy binary files are big-endian.
 double binary_real(const char* p, BinaryType type) {
-  const uint64_t bits = big_endian_bits(p, type.size);
-  if (type.size == 4) {
-    const uint32_t b32 = uint32_t(bits);
-    float f;
-    std::memcpy(&f, &b32, 4);
-    return f;
-  }
-  double d;
-  std::memcpy(&d, &bits, 8);
-  return d;
+  return binary_real(value_bits(p, type.size, true), type);
 }
 
-// An integer from a binary value; false if it is not one or does not fit in int64.
 bool binary_integer(const char* p, BinaryType type, int64_t* value) {
-  if (type.kind == BinaryType::kFloat) {
-    const double d = binary_real(p, type);
-    if (!(d == std::floor(d) && std::abs(d) < 9.0e18)) return false;
-    *value = int64_t(d);
-    return true;
-  }
-  const uint64_t bits = big_endian_bits(p, type.size);
-  if (type.kind == BinaryType::kUnsigned) {
-    if (bits > uint64_t(std::numeric_limits<int64_t>::max())) return false;
-    *value = int64_t(bits);
-    return true;
-  }
-  const unsigned shift = unsigned(64 - 8 * type.size);
-  *value = int64_t(bits << shift) >> shift;
-  return true;
+  return binary_integer(value_bits(p, type.size, true), type, value);
 }
 
 class VtkLegacyParser {

@@ -1,11 +1,21 @@
-// VTK XML unstructured grids (.vtu), ASCII data only, as in "VTK File Formats",
-// section "XML File Formats" (https://docs.vtk.org/en/latest/design_documents/
-// VTKFileFormats.html). The reader is a minimal XML tokenizer: tags, attributes,
-// comments and processing instructions; the numbers of a DataArray are read with a
-// TextScanner over its content so that messages keep file line numbers.
-#include <charconv>
-#include <limits>
+// VTK XML unstructured grids (.vtu), as in "VTK File Formats", section "XML File
+// Formats" (https://docs.vtk.org/en/latest/design_documents/VTKFileFormats.html).
+// The reader is a minimal XML tokenizer: tags, attributes, comments and processing
+// instructions; the numbers of an ASCII DataArray are read with a TextScanner over
+// its content so that messages keep file line numbers. Binary arrays are read too:
+// inline (format="binary", base64) and appended raw data (format="appended" with
+// <AppendedData encoding="raw">), each a header of header_type (UInt32 or UInt64)
+// and the values in byte_order, optionally in blocks compressed with zlib
+// (compressor="vtkZLibDataCompressor"), as ParaView and meshio write them.
+#include <zlib.h>
 
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/io/binary_values.h"
 #include "core/io/mesh_formats.h"
 #include "core/io/text_scanner.h"
 #include "core/io/text_writer.h"
@@ -41,6 +51,61 @@ bool is_xml_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r';
 }
 
+// The value type of a DataArray's type attribute.
+BinaryType vtu_type(std::string_view name) {
+  struct Entry {
+    const char* name;
+    BinaryType type;
+  };
+  static constexpr Entry kTypes[] = {
+      {"Int8", {BinaryType::kSigned, 1}},   {"UInt8", {BinaryType::kUnsigned, 1}},
+      {"Int16", {BinaryType::kSigned, 2}},  {"UInt16", {BinaryType::kUnsigned, 2}},
+      {"Int32", {BinaryType::kSigned, 4}},  {"UInt32", {BinaryType::kUnsigned, 4}},
+      {"Int64", {BinaryType::kSigned, 8}},  {"UInt64", {BinaryType::kUnsigned, 8}},
+      {"Float32", {BinaryType::kFloat, 4}}, {"Float64", {BinaryType::kFloat, 8}}};
+  for (const Entry& e : kTypes)
+    if (name == e.name) return e.type;
+  return {};
+}
+
+// Decodes base64 text (whitespace ignored). The header and the values of an array
+// may be encoded separately, each with its own padding: the decoded pieces are
+// concatenated. False on a character outside the alphabet or a cut group.
+bool decode_base64(std::string_view text, std::string* out) {
+  static const auto table = [] {
+    std::array<int8_t, 256> t{};
+    t.fill(-1);
+    const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (int i = 0; i < 64; ++i) t[uint8_t(alphabet[i])] = int8_t(i);
+    return t;
+  }();
+  out->clear();
+  out->reserve(text.size() / 4 * 3);
+  uint32_t group = 0;
+  int filled = 0, padding = 0;
+  for (char c : text) {
+    if (is_xml_space(c)) continue;
+    if (c == '=') {
+      if (filled < 2) return false;
+      ++padding;
+      ++filled;
+    } else {
+      const int8_t v = table[uint8_t(c)];
+      if (v < 0 || padding > 0) return false;
+      group = group << 6 | uint32_t(v);
+      ++filled;
+    }
+    if (filled == 4) {
+      group <<= 6 * padding;
+      const int bytes = 3 - padding;
+      for (int k = 0; k < bytes; ++k) out->push_back(char(group >> (16 - 8 * k) & 0xff));
+      group = 0;
+      filled = padding = 0;
+    }
+  }
+  return filled == 0;
+}
+
 class VtuParser {
  public:
   VtuParser(std::string_view text, const std::string& name, ParsedMesh* out)
@@ -69,6 +134,8 @@ class VtuParser {
         } else if (tag.attribute("type") != "UnstructuredGrid") {
           fail("only UnstructuredGrid .vtu files are supported, found type=\"" +
                std::string(tag.attribute("type")) + "\"");
+        } else {
+          read_encoding(tag);
         }
         seen_root = true;
       } else {
@@ -87,7 +154,10 @@ class VtuParser {
           scanner_.current_line(),
           "unexpected end of file inside <" + std::string(open.back()) + "> (truncated file?)");
     }
-    build_tets();
+    for (const PendingArray& array : appended_arrays_) {
+      if (!read_appended(array)) break;
+    }
+    if (error_.ok()) build_tets();
     return error_;
   }
 
@@ -203,7 +273,7 @@ class VtuParser {
 
   void open_element(const Tag& tag, std::string_view parent) {
     if (tag.name == "AppendedData") {
-      fail("appended data is not supported; save the .vtu with ASCII data");
+      open_appended_data(tag);
     } else if (tag.name == "Piece") {
       if (seen_piece_) {
         fail("more than one <Piece> is not supported");
@@ -241,8 +311,10 @@ class VtuParser {
     std::string_view content;
     const size_t line = scanner_.current_line();
     if (!tag.self_closing) {
+      // The values end at the next tag: </DataArray>, or the <InformationKey>
+      // elements VTK writes after them.
       const std::string_view rest = scanner_.remaining_text();
-      const size_t end = rest.find("</DataArray");
+      const size_t end = rest.find('<');
       if (end == std::string_view::npos) {
         fail("unexpected end of file inside <DataArray> (truncated file?)");
         return;
@@ -256,10 +328,45 @@ class VtuParser {
         return;
       }
       const std::string_view format = tag.attribute("format");
+      if (format == "binary" || format == "appended") {
+        PendingArray array;
+        array.target = target;
+        array.type = vtu_type(tag.attribute("type"));
+        array.name = std::string(tag.attribute("Name"));
+        array.components = std::string(tag.attribute("NumberOfComponents"));
+        array.line = line;
+        if (array.type.size == 0) {
+          fail("DataArray \"" + array.name + "\" has type \"" + std::string(tag.attribute("type")) +
+               "\", not a VTK numeric type");
+          return;
+        }
+        if (format == "binary") {
+          std::string raw;
+          if (!decode_base64(content, &raw)) {
+            fail_at(line, "DataArray \"" + array.name + "\" is not valid base64");
+            return;
+          }
+          if (!read_binary_array(array, raw)) return;
+        } else {
+          uint64_t offset = 0;
+          const std::string_view text = tag.attribute("offset");
+          const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), offset);
+          if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+            fail_at(line, "DataArray \"" + array.name +
+                              "\" needs an offset into the appended "
+                              "data, found \"" +
+                              std::string(text.substr(0, 40)) + "\"");
+            return;
+          }
+          array.offset = offset;
+          appended_arrays_.push_back(std::move(array));
+        }
+        scanner_.advance(content.size());
+        return;
+      }
       if (format != "ascii") {
         fail("DataArray \"" + std::string(tag.attribute("Name")) + "\" has format=\"" +
-             std::string(format) +
-             "\"; only ASCII .vtu is supported (not binary, appended or compressed data)");
+             std::string(format) + "\", not ascii, binary or appended");
         return;
       }
       TextScanner values(content, scanner_.name(), 0, line);
@@ -267,6 +374,286 @@ class VtuParser {
       if (!read_values(values, tag, target)) return;
     }
     scanner_.advance(content.size());
+  }
+
+  // ---------------------------------------------------------------- binary data
+  struct PendingArray {
+    Target target = Target::kNone;
+    BinaryType type;
+    std::string name, components;
+    size_t line = 0;
+    uint64_t offset = 0;  // into the appended data
+  };
+
+  void read_encoding(const Tag& root) {
+    const std::string_view order = root.attribute("byte_order");
+    const std::string_view header = root.attribute("header_type");
+    const std::string_view compressor = root.attribute("compressor");
+    if (order == "BigEndian") {
+      big_endian_ = true;
+    } else if (!order.empty() && order != "LittleEndian") {
+      fail("byte_order \"" + std::string(order) + "\" is not LittleEndian or BigEndian");
+    }
+    if (header == "UInt64") {
+      header_size_ = 8;
+    } else if (!header.empty() && header != "UInt32") {
+      fail("header_type \"" + std::string(header) + "\" is not UInt32 or UInt64");
+    }
+    if (compressor == "vtkZLibDataCompressor") {
+      zlib_ = true;
+    } else if (!compressor.empty()) {
+      fail("compressor \"" + std::string(compressor) +
+           "\" is not supported (only vtkZLibDataCompressor); save the file uncompressed");
+    }
+  }
+
+  // <AppendedData encoding="raw"> then '_' and the bytes. The arrays are read at the
+  // end, by offset; the XML goes on at the last </AppendedData>, since raw bytes may
+  // hold anything, even '<'.
+  void open_appended_data(const Tag& tag) {
+    appended_base64_ = tag.attribute("encoding") == "base64";
+    if (!appended_base64_ && tag.attribute("encoding") != "raw") {
+      fail("AppendedData encoding \"" + std::string(tag.attribute("encoding")) +
+           "\" is not raw or base64");
+      return;
+    }
+    if (tag.self_closing) return;
+    const std::string_view rest = scanner_.remaining_text();
+    const size_t underscore = rest.find('_');
+    const size_t close = rest.rfind("</AppendedData>");
+    if (underscore == std::string_view::npos || close == std::string_view::npos ||
+        close < underscore) {
+      fail(
+          "<AppendedData> needs '_' before its data and a closing </AppendedData> "
+          "(truncated file?)");
+      return;
+    }
+    appended_ = rest.substr(underscore + 1, close - underscore - 1);
+    seen_appended_ = true;
+    scanner_.advance(close);
+  }
+
+  bool read_appended(const PendingArray& array) {
+    if (!seen_appended_) {
+      return fail_at(array.line, "DataArray \"" + array.name +
+                                     "\" is appended but the file "
+                                     "has no <AppendedData>");
+    }
+    if (array.offset > appended_.size()) {
+      return fail_at(array.line, "DataArray \"" + array.name + "\" starts at offset " +
+                                     std::to_string(array.offset) + ", past the " +
+                                     std::to_string(appended_.size()) + " appended bytes");
+    }
+    if (!appended_base64_) return read_binary_array(array, appended_.substr(array.offset));
+    std::string raw;
+    if (!decode_appended_base64(array, appended_.substr(array.offset), &raw)) return false;
+    return read_binary_array(array, raw);
+  }
+
+  // Base64 appended data: the header and the values of an array are encoded apart,
+  // so the header is decoded first to learn how many characters the values take.
+  bool decode_appended_base64(const PendingArray& array, std::string_view text, std::string* raw) {
+    auto chars_for = [](uint64_t bytes) { return (bytes + 2) / 3 * 4; };
+    auto decode = [&](size_t at, uint64_t bytes, std::string* out) {
+      const uint64_t chars = chars_for(bytes);
+      if (at > text.size() || chars > text.size() - at ||
+          !decode_base64(text.substr(at, chars), out) || out->size() < bytes) {
+        return fail_at(array.line, "DataArray \"" + array.name +
+                                       "\": the appended base64 data "
+                                       "is cut short or not base64");
+      }
+      out->resize(bytes);
+      return true;
+    };
+    std::string header, values;
+    uint64_t header_bytes = header_size_, value_bytes = 0;
+    if (zlib_) {
+      if (!decode(0, 3 * header_size_, &header)) return false;
+      const uint64_t blocks = header_value(header, 0);
+      if (blocks > text.size() / header_size_) {
+        return fail_at(array.line, "DataArray \"" + array.name + "\": the header gives " +
+                                       std::to_string(blocks) +
+                                       " compressed blocks, more than "
+                                       "the file can hold");
+      }
+      header_bytes = (3 + blocks) * header_size_;
+      if (!decode(0, header_bytes, &header)) return false;
+      for (uint64_t b = 0; b < blocks && value_bytes <= text.size(); ++b) {
+        value_bytes += std::min<uint64_t>(header_value(header, 3 + b), text.size() + 1);
+      }
+    } else {
+      if (!decode(0, header_bytes, &header)) return false;
+      value_bytes = header_value(header, 0);
+    }
+    if (value_bytes > text.size()) value_bytes = text.size() + 1;  // cut short: fails below
+    if (!decode(size_t(chars_for(header_bytes)), value_bytes, &values)) return false;
+    *raw = header + values;
+    return true;
+  }
+
+  uint64_t header_value(std::string_view raw, size_t index) const {
+    return value_bits(raw.data() + index * header_size_, header_size_, big_endian_);
+  }
+
+  // The number of values an array must hold, or 0 if only a bound is known.
+  uint64_t expected_values(const PendingArray& array, uint64_t* bound) const {
+    *bound = 0;
+    switch (array.target) {
+      case Target::kPoints:
+        return 3 * point_count_;
+      case Target::kOffsets:
+      case Target::kTypes:
+      case Target::kMaterial:
+        return cell_count_;
+      case Target::kConnectivity:
+        *bound = 64 * cell_count_;  // a generous bound on the points of all cells
+        return 0;
+      case Target::kNone:
+        break;
+    }
+    return 0;
+  }
+
+  // The values of a binary array from its bytes (header first) into the target.
+  bool read_binary_array(const PendingArray& array, std::string_view raw) {
+    auto bad = [&](const std::string& what) {
+      return fail_at(array.line, "DataArray \"" + array.name + "\": " + what);
+    };
+    uint64_t bound = 0;
+    const uint64_t expected = expected_values(array, &bound);
+    const size_t size = array.type.size;
+    std::string inflated;
+    std::string_view values;
+    if (!zlib_) {
+      if (raw.size() < header_size_) return bad("the file ends inside the header");
+      const uint64_t bytes = header_value(raw, 0);
+      if (bytes > raw.size() - header_size_) {
+        return bad("the header gives " + std::to_string(bytes) + " bytes, the file holds " +
+                   std::to_string(raw.size() - header_size_) + " (truncated file?)");
+      }
+      values = raw.substr(header_size_, bytes);
+    } else {
+      // Blocks, size of a block, size of the last one (0: full), compressed sizes.
+      if (raw.size() < 3 * header_size_) return bad("the file ends inside the header");
+      const uint64_t blocks = header_value(raw, 0);
+      const uint64_t block_size = header_value(raw, 1);
+      const uint64_t last_size = header_value(raw, 2);
+      if (blocks > (raw.size() - 3 * header_size_) / header_size_) {
+        return bad("the header gives " + std::to_string(blocks) +
+                   " compressed blocks, more "
+                   "than the file can hold");
+      }
+      const uint64_t limit = (expected != 0 ? expected : bound) * size;
+      // Every block but the last is full: bounded first, so that the total cannot wrap.
+      if (blocks > 0 && (block_size == 0 || last_size > block_size ||
+                         (blocks > 1 && block_size > limit / (blocks - 1)))) {
+        return bad("the compressed header's block sizes do not fit " + std::to_string(limit) +
+                   " bytes of values");
+      }
+      const uint64_t total =
+          blocks == 0 ? 0 : (blocks - 1) * block_size + (last_size == 0 ? block_size : last_size);
+      if (total > limit || (expected != 0 && total != expected * size)) {
+        return bad("the compressed header gives " + std::to_string(total) +
+                   " bytes of values, not " + std::to_string(expected * size));
+      }
+      size_t at = size_t(3 + blocks) * header_size_;
+      inflated.resize(total);
+      uint64_t written = 0;
+      for (uint64_t b = 0; b < blocks; ++b) {
+        const uint64_t compressed = header_value(raw, 3 + b);
+        if (compressed > raw.size() - at) return bad("the file ends inside compressed data");
+        uLongf length = uLongf(b + 1 == blocks && last_size != 0 ? last_size : block_size);
+        const uLongf wanted = length;
+        const int status =
+            uncompress(reinterpret_cast<Bytef*>(&inflated[written]), &length,
+                       reinterpret_cast<const Bytef*>(raw.data() + at), uLong(compressed));
+        if (status != Z_OK || length != wanted) {
+          return bad("compressed block " + std::to_string(b) + " does not inflate to " +
+                     std::to_string(wanted) + " bytes");
+        }
+        written += length;
+        at += size_t(compressed);
+      }
+      values = inflated;
+    }
+    if (values.size() % size != 0) return bad("the byte count is not a whole number of values");
+    const uint64_t count = values.size() / size;
+    if (expected != 0 && count != expected) {
+      return bad("holds " + std::to_string(count) + " values, not " + std::to_string(expected));
+    }
+    if (expected == 0 && count > bound) return bad("holds more values than the cells can use");
+    return store_binary(array, values, count);
+  }
+
+  bool store_binary(const PendingArray& array, std::string_view values, uint64_t count) {
+    const BinaryType type = array.type;
+    auto bits = [&](uint64_t i) {
+      return value_bits(values.data() + i * type.size, type.size, big_endian_);
+    };
+    auto integer = [&](uint64_t i, int64_t min_value, int64_t max_value, int64_t* value) {
+      if (binary_integer(bits(i), type, value) && *value >= min_value && *value <= max_value)
+        return true;
+      return fail_at(array.line, "DataArray \"" + array.name + "\" value " + std::to_string(i) +
+                                     " is not an integer from " + std::to_string(min_value) +
+                                     " to " + std::to_string(max_value));
+    };
+    int64_t value = 0;
+    switch (array.target) {
+      case Target::kPoints: {
+        if (array.components != "3")
+          return fail_at(array.line, "Points must have NumberOfComponents=\"3\"");
+        std::vector<Vec3>& positions = out_->mesh.positions;
+        if (!positions.empty()) return fail_at(array.line, "a second Points array");
+        positions.resize(point_count_);
+        for (uint64_t i = 0; i < count; ++i) {
+          const double x = binary_real(bits(i), type);
+          if (!std::isfinite(x)) {
+            return fail_at(array.line, "point " + std::to_string(i / 3) +
+                                           " has a coordinate that is not a finite number");
+          }
+          positions[i / 3][int(i % 3)] = x;
+        }
+        return true;
+      }
+      case Target::kConnectivity:
+        connectivity_.resize(count);
+        for (uint64_t i = 0; i < count; ++i) {
+          if (!integer(i, 0, int64_t{kInvalidIndex} - 1, &value)) return false;
+          connectivity_[i] = uint32_t(value);
+        }
+        return true;
+      case Target::kOffsets:
+        offsets_line_ = array.line;
+        offsets_.resize(count);
+        for (uint64_t i = 0; i < count; ++i) {
+          if (!integer(i, 0, int64_t{kInvalidIndex} * 10, &value)) return false;
+          offsets_[i] = uint64_t(value);
+        }
+        return true;
+      case Target::kTypes:
+        types_.resize(count);
+        for (uint64_t i = 0; i < count; ++i) {
+          if (!integer(i, std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max(),
+                       &types_[i])) {
+            return false;
+          }
+        }
+        return true;
+      case Target::kMaterial:
+        materials_.resize(count);
+        for (uint64_t i = 0; i < count; ++i) {
+          if (!integer(i, std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max(),
+                       &value)) {
+            return false;
+          }
+          materials_[i] = int32_t(value);
+        }
+        has_materials_ = true;
+        return true;
+      case Target::kNone:
+        return true;
+    }
+    return true;
   }
 
   bool read_values(TextScanner& values, const Tag& tag, Target target) {
@@ -386,6 +773,14 @@ class VtuParser {
   std::vector<int64_t> types_;
   bool has_materials_ = false;
   std::vector<int32_t> materials_;
+  // Binary data.
+  bool big_endian_ = false;
+  size_t header_size_ = 4;  // UInt32
+  bool zlib_ = false;
+  bool seen_appended_ = false;
+  bool appended_base64_ = false;
+  std::string_view appended_;  // the bytes after '_'
+  std::vector<PendingArray> appended_arrays_;
 };
 
 // Appends values `per_line` to a line, indented for readability.

@@ -328,8 +328,10 @@ TEST(IoMalformed, Vtu) {
   expect_failures(
       MeshFormat::kVtu, "m.vtu", kVtu,
       {
-          {{{5, points + "\"binary\">"}}, 5, "only ASCII .vtu"},
-          {{{5, points + "\"appended\" offset=\"0\"/>"}, {11, ""}, {6, ""}}, 5, "only ASCII .vtu"},
+          {{{5, points + "\"binary\">"}}, 5, "not valid base64"},
+          {{{5, points + "\"appended\" offset=\"0\"/>"}, {11, ""}, {6, ""}},
+           5,
+           "no <AppendedData>"},
           {{{3, "<Piece NumberOfPoints=\"6\" NumberOfCells=\"2\">"}}, 10, "end of file"},
           {{{3, "<Piece NumberOfPoints=\"4\" NumberOfCells=\"2\">"}}, 10, "more values"},
           {{{15, "0 1 2 9"}}, 15, "only 5 vertices"},
@@ -351,7 +353,7 @@ TEST(IoMalformed, Vtu) {
           {{{18, "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4 9</DataArray>"}},
            18,
            "past the connectivity"},
-          {{{21, "<AppendedData encoding=\"raw\">"}, {23, "</AppendedData>"}}, 21, "appended"},
+          {{{21, "<AppendedData encoding=\"raw\">"}, {23, "</AppendedData>"}}, 21, "needs '_'"},
       });
 }
 

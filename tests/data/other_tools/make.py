@@ -1,0 +1,59 @@
+# Writes the files of this folder with VTK 9.1 and meshio 5.0 (Debian 12:
+# apt-get install python3-vtk9 python3-meshio), from the bundled box2 model:
+#   build/app/tetlod convert assets/box2.mesh /tmp/box2.vtk
+#   /usr/bin/python3 tests/data/other_tools/make.py /tmp/box2.vtk tests/data/other_tools
+# Not run by the build or the tests: the files are committed, so that the tests
+# check TetLOD against what those tools really write without depending on them.
+import sys
+
+import meshio
+import vtk
+
+source, folder = sys.argv[1], sys.argv[2]
+reader = vtk.vtkUnstructuredGridReader()
+reader.SetFileName(source)
+reader.ReadAllScalarsOn()
+reader.Update()
+
+
+def vtk_xml(name, mode, compressor, header64=False, encode=False):
+    w = vtk.vtkXMLUnstructuredGridWriter()
+    w.SetInputData(reader.GetOutput())
+    w.SetFileName(folder + "/" + name)
+    {"ascii": w.SetDataModeToAscii, "binary": w.SetDataModeToBinary,
+     "appended": w.SetDataModeToAppended}[mode]()
+    w.SetEncodeAppendedData(1 if encode else 0)
+    {"none": w.SetCompressorTypeToNone, "zlib": w.SetCompressorTypeToZLib,
+     "lz4": w.SetCompressorTypeToLZ4}[compressor]()
+    w.SetHeaderTypeToUInt64() if header64 else w.SetHeaderTypeToUInt32()
+    w.Write()
+
+
+vtk_xml("vtu_vtk9_binary_zlib.vtu", "binary", "zlib")
+vtk_xml("vtu_vtk9_binary_none_uint64.vtu", "binary", "none", header64=True)
+vtk_xml("vtu_vtk9_appended_zlib.vtu", "appended", "zlib")
+vtk_xml("vtu_vtk9_appended_none_uint64.vtu", "appended", "none", header64=True)
+vtk_xml("vtu_vtk9_appended_base64.vtu", "appended", "zlib", encode=True)
+vtk_xml("vtu_vtk9_appended_lz4.vtu", "appended", "lz4")
+vtk_xml("vtu_vtk9_ascii.vtu", "ascii", "none")  # with <InformationKey> after the values
+
+
+def vtk_legacy(name, version):
+    w = vtk.vtkUnstructuredGridWriter()
+    w.SetInputData(reader.GetOutput())
+    w.SetFileName(folder + "/" + name)
+    w.SetFileTypeToBinary()
+    w.SetFileVersion(version)
+    w.Write()
+
+
+vtk_legacy("vtk_vtk9_binary51.vtk", 51)
+vtk_legacy("vtk_vtk9_binary42.vtk", 42)
+
+mesh = meshio.read(source)
+meshio.write(folder + "/vtu_meshio_zlib.vtu", mesh)  # binary, zlib: meshio's default
+meshio.write(folder + "/vtu_meshio_lzma.vtu", mesh, compression="lzma")
+meshio.write(folder + "/vtk_meshio_binary.vtk", mesh)  # binary by default
+meshio.write(folder + "/msh_meshio_binary.msh", mesh, file_format="gmsh", binary=True)
+meshio.write(folder + "/msh22_meshio_binary.msh", mesh, file_format="gmsh22", binary=True)
+meshio.write(folder + "/nas_meshio.nas", mesh)
