@@ -348,6 +348,14 @@ class GmshParser {
     return end_binary(c, "$Nodes") && expect_end("$EndNodes");
   }
 
+  // The node count of an element type: a binary file gives no other way to skip it.
+  bool binary_nodes_per_element(const BinaryCursor& c, int32_t type, int* nodes) {
+    *nodes = nodes_per_element(type);
+    if (*nodes > 0) return true;
+    return fail_binary(c, "element type " + std::to_string(type) +
+                              " is unknown: a binary file does not say how many nodes it has");
+  }
+
   bool parse_elements_22_binary() {
     uint64_t count = 0;
     // An element takes at least 12 bytes (tag, no tags, one node).
@@ -360,11 +368,8 @@ class GmshParser {
       const int32_t following = c.i32();
       const int32_t tag_count = c.i32();
       if (!c.ok()) return end_binary(c, "$Elements");
-      const int nodes = nodes_per_element(type);
-      if (nodes == 0) {
-        return fail_binary(c, "element type " + std::to_string(type) +
-                                  " is unknown: a binary file does not say how many nodes it has");
-      }
+      int nodes = 0;
+      if (!binary_nodes_per_element(c, type, &nodes)) return false;
       if (following < 1 || uint64_t(following) > count - read || tag_count < 0) {
         return fail_binary(c, "an element header gives " + std::to_string(following) +
                                   " elements with " + std::to_string(tag_count) + " tags each, " +
@@ -421,11 +426,8 @@ class GmshParser {
       const int32_t type = c.i32();
       const uint64_t block_size = c.u64();
       if (!c.ok()) return end_binary(c, "$Elements");
-      const int nodes = nodes_per_element(type);
-      if (nodes == 0) {
-        return fail_binary(c, "element type " + std::to_string(type) +
-                                  " is unknown: a binary file does not say how many nodes it has");
-      }
+      int nodes = 0;
+      if (!binary_nodes_per_element(c, type, &nodes)) return false;
       if (block_size > count - elements_read) {
         return fail_binary(c, "the element blocks hold more elements than the " +
                                   std::to_string(count) + " of the $Elements header");

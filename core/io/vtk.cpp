@@ -314,6 +314,19 @@ class VtkLegacyParser {
     return true;
   }
 
+  // After the offsets: the last one ends the connectivity; its keyword and type follow.
+  bool end_offsets(uint64_t size, std::string_view* type) {
+    if (!cell_starts_.empty() && cell_starts_.back() != size) {
+      return scanner_.fail("the last offset is " + std::to_string(cell_starts_.back()) +
+                           ", CELLS announced " + std::to_string(size) + " indices");
+    }
+    if (cell_starts_.empty()) cell_starts_.push_back(0);
+    if (!scanner_.expect_keyword("CONNECTIVITY") || !scanner_.next_token(type)) {
+      return scanner_.fail("unexpected end of file, expected the CONNECTIVITY type");
+    }
+    return true;
+  }
+
   bool parse_cells_51(uint64_t offset_count, uint64_t size) {
     std::string_view type;
     if (!scanner_.expect_keyword("OFFSETS") || !scanner_.next_token(&type)) {
@@ -329,14 +342,7 @@ class VtkLegacyParser {
       if (i == 0 && offset != 0) return scanner_.fail("the first offset must be 0");
       cell_starts_.push_back(uint64_t(offset));
     }
-    if (!cell_starts_.empty() && cell_starts_.back() != size) {
-      return scanner_.fail("the last offset is " + std::to_string(cell_starts_.back()) +
-                           ", CELLS announced " + std::to_string(size) + " indices");
-    }
-    if (cell_starts_.empty()) cell_starts_.push_back(0);
-    if (!scanner_.expect_keyword("CONNECTIVITY") || !scanner_.next_token(&type)) {
-      return scanner_.fail("unexpected end of file, expected the CONNECTIVITY type");
-    }
+    if (!end_offsets(size, &type)) return false;
     connectivity_.reserve(size);
     cell_lines_.reserve(cell_starts_.size() - 1);
     size_t cell = 0;
@@ -367,14 +373,7 @@ class VtkLegacyParser {
       }
       cell_starts_.push_back(uint64_t(numbers[i]));
     }
-    if (!cell_starts_.empty() && cell_starts_.back() != size) {
-      return scanner_.fail("the last offset is " + std::to_string(cell_starts_.back()) +
-                           ", CELLS announced " + std::to_string(size) + " indices");
-    }
-    if (cell_starts_.empty()) cell_starts_.push_back(0);
-    if (!scanner_.expect_keyword("CONNECTIVITY") || !scanner_.next_token(&type)) {
-      return scanner_.fail("unexpected end of file, expected the CONNECTIVITY type");
-    }
+    if (!end_offsets(size, &type)) return false;
     if (!read_binary_integers(size, type, "CONNECTIVITY", 0, int64_t{kInvalidIndex} - 1,
                               &numbers)) {
       return false;
