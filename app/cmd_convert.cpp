@@ -14,8 +14,8 @@ constexpr const char* kConvertUsage =
     "Converts a tetrahedral mesh between formats, chosen by extension, keeping the\n"
     "material of every tetrahedron:\n"
     "  .mesh (Medit)  .msh (Gmsh 2.2/4.1)  .node/.ele (TetGen)  .vtk (legacy)  .vtu\n"
-    "  .bdf/.nas (Nastran bulk data; material = PID)\n"
-    "Binary .msh and .vtk files are read; every format is written as text.\n"
+    "  .bdf/.nas (Nastran bulk data; material = PID)  .inp (Abaqus, CalculiX)\n"
+    "Binary .msh, .vtk and .vtu files are read; every format is written as text.\n"
     "The output is written to a temporary file and renamed, never left half-written.\n"
     "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n";
 

@@ -248,7 +248,7 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::SameLine();
   if (ImGui::Button("Save level"))
     commands->push_back({CommandKind::kSave, panel->save_path, panel->save_improved ? 1 : 0});
-  ImGui::TextDisabled(".mesh .msh .node .vtk .vtu .bdf .nas");
+  ImGui::TextDisabled(".mesh .msh .node .vtk .vtu .bdf .nas .inp");
   ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(

@@ -28,6 +28,7 @@ Status parse_tetgen(std::string_view node_text, const std::string& node_name,
 Status parse_vtk_legacy(std::string_view text, const std::string& name, ParsedMesh* out);
 Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out);
 Status parse_nastran(std::string_view text, const std::string& name, ParsedMesh* out);
+Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* out);
 
 void write_medit(const TetMesh& mesh, std::string* out);
 // `version` is 22 or 41.
@@ -37,6 +38,7 @@ void write_tetgen_ele(const TetMesh& mesh, std::string* out);
 void write_vtk_legacy(const TetMesh& mesh, std::string* out);
 void write_vtu(const TetMesh& mesh, std::string* out);
 void write_nastran(const TetMesh& mesh, std::string* out);
+void write_abaqus(const TetMesh& mesh, std::string* out);
 // With extra point and cell arrays (sizes and names checked by the caller).
 void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out);
 

@@ -13,9 +13,9 @@
 namespace tetlod {
 namespace {
 
-constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vtu, .bdf/.nas";
+constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vtu, .bdf/.nas, .inp";
 
-enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu, kNastran };
+enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu, kNastran, kAbaqus };
 
 // The extension of the file name in `path`, lower case, without the dot.
 std::string extension_of(const std::string& path) {
@@ -43,6 +43,8 @@ Status file_kind(const std::string& path, FileKind* kind) {
     *kind = FileKind::kVtu;
   } else if (extension == "bdf" || extension == "nas") {
     *kind = FileKind::kNastran;
+  } else if (extension == "inp") {
+    *kind = FileKind::kAbaqus;
   } else if (extension == "meshb") {
     return Status::error(
         path + ": binary Medit .meshb is not supported (supported: " + kSupportedExtensions + ")");
@@ -114,6 +116,8 @@ const char* format_name(MeshFormat format) {
       return "VTK XML .vtu";
     case MeshFormat::kNastran:
       return "Nastran bulk data .bdf";
+    case MeshFormat::kAbaqus:
+      return "Abaqus input .inp";
   }
   return "unknown format";
 }
@@ -144,6 +148,9 @@ Status read_mesh_from_memory(std::string_view data, MeshFormat format, const std
     case MeshFormat::kNastran:
       status = io::parse_nastran(data, name, &parsed);
       break;
+    case MeshFormat::kAbaqus:
+      status = io::parse_abaqus(data, name, &parsed);
+      break;
   }
   if (!status.ok()) return status;
   return finish_read(&parsed, format, name, mesh, info);
@@ -171,9 +178,9 @@ Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   }
   std::string text;
   if (!(status = io::read_file(path, &text)).ok()) return status;
-  static constexpr MeshFormat kFormats[] = {MeshFormat::kMedit,  MeshFormat::kGmsh41,
-                                            MeshFormat::kTetGen, MeshFormat::kVtkLegacy,
-                                            MeshFormat::kVtu,    MeshFormat::kNastran};
+  static constexpr MeshFormat kFormats[] = {
+      MeshFormat::kMedit, MeshFormat::kGmsh41,  MeshFormat::kTetGen, MeshFormat::kVtkLegacy,
+      MeshFormat::kVtu,   MeshFormat::kNastran, MeshFormat::kAbaqus};
   return read_mesh_from_memory(text, kFormats[int(kind)], path, mesh, info);
 }
 
@@ -212,6 +219,9 @@ Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptio
       break;
     case FileKind::kNastran:
       io::write_nastran(mesh, &files[0].contents);
+      break;
+    case FileKind::kAbaqus:
+      io::write_abaqus(mesh, &files[0].contents);
       break;
   }
   return io::write_files_atomically(files);

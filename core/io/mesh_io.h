@@ -14,6 +14,10 @@
 //                  field); material = the CTETRA's property id (PID); written with
 //                  GRID* (16-character coordinates: exact when the shortest exact
 //                  form fits, else 10 or more significant digits)
+//   .inp           Abaqus / CalculiX input: *NODE, tetrahedral *ELEMENT types, element
+//                  sets and *SOLID SECTION (see io/abaqus.cpp for how materials are
+//                  found); written with one set MATERIAL_<id> per material. The
+//                  format has no end marker: a file cut between lines reads as less
 // Every read ends with validate_mesh(); every error reads "path:line: message"
 // ("path: byte N: message" past the header of a binary .msh or .vtk).
 // Writes go to a temporary file in the same directory that is renamed over the
@@ -70,7 +74,7 @@
 
 namespace tetlod {
 
-enum class MeshFormat { kMedit, kGmsh22, kGmsh41, kTetGen, kVtkLegacy, kVtu, kNastran };
+enum class MeshFormat { kMedit, kGmsh22, kGmsh41, kTetGen, kVtkLegacy, kVtu, kNastran, kAbaqus };
 
 const char* format_name(MeshFormat format);
 

@@ -78,7 +78,7 @@ TEST(Cli, BadInputNamesTheFileAndExitsOne) {
 
 TEST(Cli, ConvertKeepsCountsAcrossFormats) {
   const std::string path = write_grid("conv.mesh");
-  for (const char* ext : {"msh", "vtu", "vtk", "node", "mesh", "bdf", "nas"}) {
+  for (const char* ext : {"msh", "vtu", "vtk", "node", "mesh", "bdf", "nas", "inp"}) {
     const std::string target = out_dir() + "/conv_out." + ext;
     const CommandResult c = run("convert " + path + " " + target);
     ASSERT_EQ(c.code, 0) << c.output;

@@ -113,6 +113,23 @@ TEST(IoGmshInterop, WeReadGmshBinaryVtk) {
   EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
 }
 
+// Gmsh's Abaqus input: its physical groups (our materials) as *ELSET material_<n>.
+TEST(IoGmshInterop, WeReadGmshAbaqusInput) {
+  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  const std::string dir = test::output_dir("gmsh_inp");
+  const TetMesh mesh = test::make_grid_mesh(
+      3, 2, 2, [](int i, int j, int k) { return 1 + (i + 2 * j + k) % 3; }, 0.25);
+  ASSERT_TRUE(write_mesh(dir + "/ours.msh", mesh).ok());
+  const std::string theirs = dir + "/gmsh.inp";
+  const std::string log = dir + "/inp.log";
+  ASSERT_TRUE(run_gmsh("'" + dir + "/ours.msh' -0 -format inp -o '" + theirs + "'", log))
+      << test::read_text(log);
+  TetMesh back;
+  const Status status = read_mesh(theirs, &back);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+}
+
 TEST(IoGmshInterop, GmshFindsNoInvertedTets) {
   if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
   const std::string dir = test::output_dir("gmsh_orientation");

@@ -57,3 +57,4 @@ meshio.write(folder + "/vtk_meshio_binary.vtk", mesh)  # binary by default
 meshio.write(folder + "/msh_meshio_binary.msh", mesh, file_format="gmsh", binary=True)
 meshio.write(folder + "/msh22_meshio_binary.msh", mesh, file_format="gmsh22", binary=True)
 meshio.write(folder + "/nas_meshio.nas", mesh)
+meshio.write(folder + "/inp_meshio.inp", mesh)

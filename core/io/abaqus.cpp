@@ -1,0 +1,500 @@
+// Abaqus / CalculiX input (.inp): *NODE and *ELEMENT of the tetrahedral types
+// (C3D4, C3D10 and their variants: DC3D4, C3D10M, EMC3D4 ...), element sets
+// (*ELEMENT's ELSET, *ELSET with or without GENERATE) and *SOLID SECTION, after the
+// Abaqus Keywords Reference. A flat input or one with a single *PART. The material
+// of a tet: the section that covers it (by material name), else the first *ELSET
+// holding it (Gmsh writes its physical groups so), else its *ELEMENT's ELSET, else 0;
+// a name ending in digits is that number ("material_7", "Volume2"), other names get
+// the next free numbers in order of appearance.
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+#include "core/io/mesh_formats.h"
+#include "core/io/text_writer.h"
+
+namespace tetlod::io {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
+  return s;
+}
+
+std::string upper(std::string_view s) {
+  std::string u(s);
+  for (char& c : u) c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
+  return u;
+}
+
+std::vector<std::string_view> split_commas(std::string_view line) {
+  std::vector<std::string_view> parts;
+  size_t at = 0;
+  while (true) {
+    const size_t comma = line.find(',', at);
+    parts.push_back(trim(
+        line.substr(at, comma == std::string_view::npos ? std::string_view::npos : comma - at)));
+    if (comma == std::string_view::npos) break;
+    at = comma + 1;
+  }
+  return parts;
+}
+
+// The nodes of a tet element type (4 or 10), 0 for any other type.
+int tet_nodes(const std::string& type) {
+  const size_t at = type.find("3D");
+  if (at == std::string::npos || at == 0) return 0;
+  const std::string_view rest = std::string_view(type).substr(at + 2);
+  if (rest.substr(0, 2) == "10") return 10;
+  if (rest.substr(0, 1) == "4" && (rest.size() == 1 || !std::isdigit(uint8_t(rest[1])))) return 4;
+  return 0;
+}
+
+struct Keyword {
+  std::string name;                            // upper case, without '*'
+  std::map<std::string, std::string> options;  // upper-case keys; values as written
+  bool has(const char* key) const { return options.count(key) > 0; }
+  std::string get(const char* key) const {
+    const auto it = options.find(key);
+    return it == options.end() ? std::string() : it->second;
+  }
+};
+
+class AbaqusParser {
+ public:
+  AbaqusParser(std::string_view text, const std::string& name, ParsedMesh* out)
+      : text_(text), name_(name), out_(out) {}
+
+  Status parse() {
+    std::string_view line;
+    Keyword keyword;
+    bool have_keyword = false;
+    while (next_line(&line)) {
+      const std::string_view content = trim(line);
+      if (content.empty() || content.substr(0, 2) == "**") continue;
+      if (content.front() == '*') {
+        if (!read_keyword(content, &keyword)) return error_;
+        have_keyword = true;
+        if (!start(keyword)) return error_;
+        continue;
+      }
+      if (!have_keyword) {
+        fail(line_, "data before the first keyword line: not an Abaqus input");
+        return error_;
+      }
+      // A data line ending in a comma goes on to the next line.
+      std::string record(content);
+      const size_t first_line = line_;
+      // (Gmsh ends every line of a set with a comma: never into a keyword line.)
+      while (!record.empty() && record.back() == ',' && mode_ != Mode::kSkip) {
+        const size_t saved_pos = pos_, saved_line = line_;
+        std::string_view more;
+        if (!next_line(&more)) break;
+        more = trim(more);
+        if (!more.empty() && more.front() == '*') {
+          pos_ = saved_pos, line_ = saved_line;
+          break;
+        }
+        record += std::string(more);
+      }
+      if (!data(record, first_line)) return error_;
+    }
+    if (!resolve()) return error_;
+    return Status();
+  }
+
+ private:
+  enum class Mode { kSkip, kNodes, kElements, kElset, kElsetGenerate, kInstance };
+
+  bool next_line(std::string_view* line) {
+    if (pos_ >= text_.size()) return false;
+    const size_t end = std::min(text_.find('\n', pos_), text_.size());
+    *line = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    ++line_;
+    return true;
+  }
+
+  // "*NAME, KEY=value, FLAG" (continued on the next line after a trailing comma).
+  bool read_keyword(std::string_view content, Keyword* keyword) {
+    std::string text(content);
+    while (!text.empty() && text.back() == ',') {
+      std::string_view more;
+      if (!next_line(&more)) break;
+      text += std::string(trim(more));
+    }
+    const std::vector<std::string_view> parts = split_commas(std::string_view(text).substr(1));
+    keyword->name = upper(parts[0]);
+    keyword->options.clear();
+    for (size_t i = 1; i < parts.size(); ++i) {
+      if (parts[i].empty()) continue;
+      const size_t equals = parts[i].find('=');
+      const std::string key = upper(trim(parts[i].substr(0, equals)));
+      const std::string value = equals == std::string_view::npos
+                                    ? std::string()
+                                    : std::string(trim(parts[i].substr(equals + 1)));
+      keyword->options[key] = value;
+    }
+    return true;
+  }
+
+  bool start(const Keyword& k) {
+    mode_ = Mode::kSkip;
+    if (k.name == "INCLUDE") {
+      return fail(line_,
+                  "*INCLUDE is not followed: read the included file instead, or paste it "
+                  "in");
+    }
+    if (k.name == "PART") {
+      if (++parts_ > 1) {
+        return fail(line_,
+                    "an input with several parts is not supported; write it flat "
+                    "(Abaqus/CAE: the input file of the meshed part, or one part)");
+      }
+    } else if (k.name == "INSTANCE") {
+      instance_line_ = line_;
+      mode_ = Mode::kInstance;
+    } else if (k.name == "NODE") {
+      mode_ = Mode::kNodes;
+    } else if (k.name == "ELEMENT") {
+      const std::string type = upper(k.get("TYPE"));
+      if (type.empty()) return fail(line_, "*ELEMENT needs TYPE=");
+      element_nodes_ = tet_nodes(type);
+      element_set_ = k.has("ELSET") ? key_of(k.get("ELSET")) : -1;
+      element_set_name_ = upper(k.get("ELSET"));
+      mode_ = Mode::kElements;
+    } else if (k.name == "ELSET") {
+      const std::string set = k.get("ELSET");
+      if (set.empty()) return fail(line_, "*ELSET needs ELSET=");
+      current_set_ = upper(set);
+      if (sets_.find(current_set_) == sets_.end()) set_order_.push_back(current_set_);
+      sets_[current_set_];  // defined, even if empty
+      mode_ = k.has("GENERATE") ? Mode::kElsetGenerate : Mode::kElset;
+    } else if (k.name == "SOLID SECTION") {
+      const std::string set = k.get("ELSET"), material = k.get("MATERIAL");
+      if (set.empty() || material.empty()) {
+        return fail(line_, "*SOLID SECTION needs ELSET= and MATERIAL=");
+      }
+      sections_.push_back({upper(set), key_of(material), line_});
+    }
+    return true;
+  }
+
+  bool data(const std::string& record, size_t line) {
+    switch (mode_) {
+      case Mode::kSkip:
+        return true;
+      case Mode::kNodes:
+        return node(record, line);
+      case Mode::kElements:
+        return element(record, line);
+      case Mode::kElset:
+      case Mode::kElsetGenerate:
+        return elset(record, line);
+      case Mode::kInstance:
+        return fail(line, "*INSTANCE with a translation or rotation is not supported");
+    }
+    return true;
+  }
+
+  bool integer(std::string_view s, int64_t* value) const {
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), *value);
+    return !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
+  }
+
+  bool real(std::string_view s, double* value) const {
+    if (s.empty()) {
+      *value = 0;  // a blank coordinate is 0
+      return true;
+    }
+    if (s.front() == '+') s.remove_prefix(1);
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), *value);
+    return r.ec == std::errc() && r.ptr == s.data() + s.size() && std::isfinite(*value);
+  }
+
+  bool node(const std::string& record, size_t line) {
+    const std::vector<std::string_view> f = split_commas(record);
+    int64_t id = 0;
+    if (!integer(f[0], &id) || id < 1) {
+      return fail(line, "node id '" + std::string(f[0]) + "' is not an integer >= 1");
+    }
+    Vec3 p;
+    for (int k = 0; k < 3; ++k) {
+      if (size_t(k + 1) < f.size() && !real(f[size_t(k + 1)], &p[k])) {
+        return fail(line, "node " + std::to_string(id) + ": coordinate '" +
+                              std::string(f[size_t(k + 1)]) + "' is not a finite number");
+      }
+    }
+    if (f.size() < 3)
+      return fail(line, "node " + std::to_string(id) + " has fewer than 2 coordinates");
+    if (out_->mesh.positions.size() + 1 >= kInvalidIndex) return fail(line, "too many nodes");
+    const auto inserted = node_index_.emplace(id, uint32_t(out_->mesh.positions.size()));
+    if (!inserted.second) return fail(line, "node " + std::to_string(id) + " is defined twice");
+    out_->mesh.positions.push_back(p);
+    return true;
+  }
+
+  bool element(const std::string& record, size_t line) {
+    std::vector<std::string_view> f = split_commas(record);
+    if (!f.empty() && f.back().empty()) f.pop_back();  // a trailing comma
+    int64_t id = 0;
+    if (!integer(f[0], &id) || id < 1) {
+      return fail(line, "element id '" + std::string(f[0]) + "' is not an integer >= 1");
+    }
+    if (element_nodes_ == 0) return true;  // not a tet
+    if (f.size() != size_t(element_nodes_) + 1) {
+      return fail(line, "element " + std::to_string(id) + " has " + std::to_string(f.size() - 1) +
+                            " nodes, its type " + std::to_string(element_nodes_));
+    }
+    PendingTet t;
+    t.element = id;
+    t.line = line;
+    t.element_set = element_set_;
+    for (int k = 0; k < 4; ++k) {
+      if (!integer(f[size_t(k + 1)], &t.nodes[k])) {
+        return fail(line, "element " + std::to_string(id) + ": node '" +
+                              std::string(f[size_t(k + 1)]) + "' is not an integer");
+      }
+    }
+    if (tets_.size() + 1 >= kInvalidIndex) return fail(line, "too many elements");
+    if (!tet_of_element_.emplace(id, uint32_t(tets_.size())).second) {
+      return fail(line, "element " + std::to_string(id) + " is defined twice");
+    }
+    tets_.push_back(t);
+    if (!element_set_name_.empty()) element_sets_[element_set_name_].push_back(id);
+    return true;
+  }
+
+  bool elset(const std::string& record, size_t line) {
+    std::vector<int64_t>& members = sets_[current_set_];
+    std::vector<std::string_view> f = split_commas(record);
+    if (!f.empty() && f.back().empty()) f.pop_back();
+    if (mode_ == Mode::kElsetGenerate) {
+      int64_t first = 0, last = 0, step = 1;
+      if (f.size() < 2 || f.size() > 3 || !integer(f[0], &first) || !integer(f[1], &last) ||
+          (f.size() == 3 && !integer(f[2], &step)) || step < 1 || last < first) {
+        return fail(line,
+                    "*ELSET, GENERATE needs 'first, last[, step]' with first <= last and "
+                    "step >= 1");
+      }
+      // No more members than elements exist: a hostile range cannot exhaust memory.
+      if (uint64_t(last - first) / uint64_t(step) >= tets_.size() + (1u << 20)) {
+        return fail(line, "*ELSET, GENERATE range " + std::to_string(first) + ".." +
+                              std::to_string(last) + " is larger than the input");
+      }
+      for (int64_t e = first; e <= last; e += step) members.push_back(e);
+      return true;
+    }
+    for (std::string_view item : f) {
+      int64_t e = 0;
+      if (integer(item, &e)) {
+        members.push_back(e);
+      } else {
+        // Another set's name: its members so far.
+        const std::vector<int64_t>* other = members_of(upper(item));
+        if (other == nullptr) {
+          return fail(line, "*ELSET " + current_set_ + ": '" + std::string(item) +
+                                "' is neither an element id nor a set defined before");
+        }
+        if (other != &members) {
+          const std::vector<int64_t> copy = *other;
+          members.insert(members.end(), copy.begin(), copy.end());
+        }
+      }
+    }
+    return true;
+  }
+
+  // The index of a material or set name in keys_.
+  int key_of(const std::string& name) {
+    const std::string u = upper(name);
+    const auto it = key_index_.find(u);
+    if (it != key_index_.end()) return it->second;
+    key_index_.emplace(u, int(keys_.size()));
+    keys_.push_back(u);
+    return int(keys_.size()) - 1;
+  }
+
+  bool resolve() {
+    if (instance_line_ != 0 && parts_ == 0) {
+      return fail(instance_line_, "*INSTANCE of a part that is not in the file");
+    }
+    // Material key per tet: sections, then *ELSET membership, then *ELEMENT's ELSET.
+    std::vector<int> key(tets_.size(), -1);
+    for (const Section& s : sections_) {
+      const std::vector<int64_t>* members = members_of(s.set);
+      if (members == nullptr) {
+        return fail(s.line, "*SOLID SECTION: element set " + s.set + " is not defined");
+      }
+      for (int64_t e : *members) {
+        const auto it = tet_of_element_.find(e);
+        if (it != tet_of_element_.end() && key[it->second] < 0) key[it->second] = s.material;
+      }
+    }
+    if (sections_.empty()) {
+      for (const auto& [set_name, members] : sets_in_order()) {
+        const int k = key_of(set_name);
+        for (int64_t e : *members) {
+          const auto it = tet_of_element_.find(e);
+          if (it != tet_of_element_.end() && key[it->second] < 0) key[it->second] = k;
+        }
+      }
+    }
+    for (size_t t = 0; t < tets_.size(); ++t) {
+      if (key[t] < 0) key[t] = tets_[t].element_set;
+    }
+    // Key -> material id, for the keys in use: the trailing number of the name, else
+    // the next free numbers after the largest such, in order of appearance.
+    std::vector<int64_t> id(keys_.size(), -1);
+    std::vector<char> used(keys_.size(), 0);
+    for (int k : key)
+      if (k >= 0) used[size_t(k)] = 1;
+    int64_t largest = 0;
+    for (size_t k = 0; k < keys_.size(); ++k) {
+      const std::string& s = keys_[k];
+      size_t digits = s.size();
+      while (digits > 0 && std::isdigit(uint8_t(s[digits - 1]))) --digits;
+      if (used[k] && digits < s.size() && s.size() - digits <= 18) {
+        id[k] = std::stoll(s.substr(digits));
+        largest = std::max(largest, id[k]);
+      }
+    }
+    for (size_t k = 0; k < keys_.size(); ++k) {
+      if (used[k] && id[k] < 0) id[k] = ++largest;
+    }
+    TetMesh& mesh = out_->mesh;
+    mesh.tets.reserve(tets_.size());
+    mesh.materials.reserve(tets_.size());
+    out_->tet_lines.reserve(tets_.size());
+    for (size_t t = 0; t < tets_.size(); ++t) {
+      const PendingTet& p = tets_[t];
+      Tet tet;
+      for (int k = 0; k < 4; ++k) {
+        const auto it = node_index_.find(p.nodes[k]);
+        if (it == node_index_.end()) {
+          return fail(p.line, "element " + std::to_string(p.element) + " uses node " +
+                                  std::to_string(p.nodes[k]) + ", which is not defined");
+        }
+        tet[k] = it->second;
+      }
+      const int64_t material = key[t] < 0 ? 0 : id[size_t(key[t])];
+      if (material > std::numeric_limits<int32_t>::max()) {
+        return fail(p.line, "element " + std::to_string(p.element) + ": material " +
+                                std::to_string(material) + " is too large");
+      }
+      mesh.tets.push_back(tet);
+      mesh.materials.push_back(int32_t(material));
+      out_->tet_lines.push_back(line_number(p.line));
+    }
+    return true;
+  }
+
+  // The members of a set defined by *ELSET or by *ELEMENT's ELSET, or null.
+  const std::vector<int64_t>* members_of(const std::string& name) const {
+    const auto it = sets_.find(name);
+    if (it != sets_.end()) return &it->second;
+    const auto e = element_sets_.find(name);
+    return e != element_sets_.end() ? &e->second : nullptr;
+  }
+
+  // The *ELSET sets in the order they were defined.
+  std::vector<std::pair<std::string, const std::vector<int64_t>*>> sets_in_order() const {
+    std::vector<std::pair<std::string, const std::vector<int64_t>*>> result;
+    for (const std::string& name : set_order_) result.push_back({name, &sets_.at(name)});
+    return result;
+  }
+
+  bool fail(size_t line, const std::string& message) {
+    if (error_.ok()) error_ = Status::error(name_ + ":" + std::to_string(line) + ": " + message);
+    return false;
+  }
+
+  struct PendingTet {
+    int64_t element = 0;
+    int64_t nodes[4] = {};
+    int element_set = -1;  // key of *ELEMENT's ELSET
+    size_t line = 0;
+  };
+  struct Section {
+    std::string set;
+    int material = -1;  // key
+    size_t line = 0;
+  };
+
+  std::string_view text_;
+  const std::string& name_;
+  ParsedMesh* out_;
+  size_t pos_ = 0;
+  size_t line_ = 0;
+  Status error_;
+  Mode mode_ = Mode::kSkip;
+  int parts_ = 0;
+  size_t instance_line_ = 0;
+  int element_nodes_ = 0;
+  int element_set_ = -1;
+  std::string element_set_name_;
+  std::string current_set_;
+  std::unordered_map<std::string, std::vector<int64_t>> element_sets_;  // *ELEMENT's ELSET
+  std::unordered_map<int64_t, uint32_t> node_index_;
+  std::unordered_map<int64_t, uint32_t> tet_of_element_;
+  std::vector<PendingTet> tets_;
+  std::unordered_map<std::string, std::vector<int64_t>> sets_;
+  std::vector<std::string> set_order_;
+  std::vector<Section> sections_;
+  std::vector<std::string> keys_;  // material and set names, upper case
+  std::unordered_map<std::string, int> key_index_;
+};
+
+}  // namespace
+
+Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* out) {
+  AbaqusParser parser(text, name, out);
+  return parser.parse();
+}
+
+void write_abaqus(const TetMesh& mesh, std::string* out) {
+  out->reserve(out->size() + mesh.vertex_count() * 64 + mesh.tet_count() * 48);
+  out->append("*HEADING\nTetLOD tetrahedral mesh: ");
+  append_number(out, mesh.vertex_count());
+  out->append(" nodes, ");
+  append_number(out, mesh.tet_count());
+  out->append(" C3D4 elements, one element set MATERIAL_<id> per material\n*NODE\n");
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Vec3& p = mesh.positions[v];
+    append_number(out, v + 1);
+    for (int k = 0; k < 3; ++k) {
+      out->append(", ");
+      append_number(out, p[k]);
+    }
+    out->push_back('\n');
+  }
+  // One *ELEMENT block per material, in order of the materials' ids; element ids
+  // are the tets' positions in the mesh.
+  std::vector<uint32_t> order(mesh.tet_count());
+  for (uint32_t t = 0; t < order.size(); ++t) order[t] = t;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t a, uint32_t b) { return mesh.materials[a] < mesh.materials[b]; });
+  for (size_t i = 0; i < order.size(); ++i) {
+    const uint32_t t = order[i];
+    if (i == 0 || mesh.materials[t] != mesh.materials[order[i - 1]]) {
+      out->append("*ELEMENT, TYPE=C3D4, ELSET=MATERIAL_");
+      append_number(out, mesh.materials[t]);
+      out->push_back('\n');
+    }
+    append_number(out, t + 1);
+    for (uint32_t v : mesh.tets[t]) {
+      out->append(", ");
+      append_number(out, v + 1);
+    }
+    out->push_back('\n');
+  }
+}
+
+}  // namespace tetlod::io

@@ -1,0 +1,162 @@
+// Abaqus / CalculiX input (.inp): an Abaqus/CAE-like deck with a part, sets,
+// GENERATE, sections and 10-node elements over continuation lines; Gmsh's way of
+// writing physical groups as *ELSET after elementary *ELEMENT sets; what TetLOD
+// writes reads back; broken decks name the line; random damage never crashes.
+// (Gmsh's own .inp: test_io_gmsh_interop.cpp; meshio's: IoOtherTools.)
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/io/mesh_io.h"
+#include "core/test_io_helpers.h"
+
+namespace tetlod {
+namespace {
+
+// The two-tet mesh of test_io_malformed.cpp plus two tets below and beside it.
+const char* const kMedit =
+    "MeshVersionFormatted 2\nDimension 3\nVertices\n7\n"
+    "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n0 0 -1 0\n0 -1 0 0\n"
+    "Tetrahedra\n4\n1 2 3 4 %d\n2 3 4 5 %d\n1 2 3 6 %d\n1 2 4 7 %d\nEnd\n";
+
+TetMesh expected(int m1, int m2, int m3, int m4) {
+  char text[512];
+  std::snprintf(text, sizeof text, kMedit, m1, m2, m3, m4);
+  TetMesh mesh;
+  EXPECT_TRUE(read_mesh_from_memory(text, MeshFormat::kMedit, "e.mesh", &mesh).ok());
+  return mesh;
+}
+
+Status read(const std::string& text, TetMesh* mesh) {
+  return read_mesh_from_memory(text, MeshFormat::kAbaqus, "a.inp", mesh);
+}
+
+const char* const kCaeDeck =
+    "*Heading\n"
+    "** a comment\n"
+    "*Part, name=Motor\n"
+    "*node\n"
+    "1, 0., 0., 0.\n"
+    "2, 1., 0., 0.\n"
+    "3, 0., 1., 0.\n"
+    "4, 0., 0., 1.\n"
+    "5, 1., 1., 1.\n"
+    "6, 0., 0., -1.\n"
+    "7, 0., -1.\n"  // a blank z is 0
+    "*Element, type=C3D4\n"
+    "11, 1, 2, 3, 4\n"
+    "12, 2, 3, 4, 5\n"
+    "*Element, type=C3D10M, elset=QUADRATIC\n"
+    "13, 1, 2, 3, 6, 1, 1,\n"  // a record over two lines
+    "     1, 1, 1, 1\n"
+    "*Element, type=S3\n"
+    "20, 1, 2, 3\n"
+    "*ELEMENT, TYPE=DC3D4, ELSET=LAST\n"
+    "14, 1, 2, 4, 7\n"
+    "*Elset, elset=STEEL, generate\n"
+    "11, 12, 1\n"
+    "*Elset, elset=AIR_3\n"
+    "QUADRATIC, 14\n"
+    "*Solid Section, elset=STEEL, material=Steel\n"
+    ",\n"
+    "*Solid Section, elset=AIR_3, material=AIR_3\n"
+    "*End Part\n"
+    "*Assembly, name=Assembly\n"
+    "*Instance, name=Motor-1, part=Motor\n"
+    "*End Instance\n"
+    "*End Assembly\n"
+    "*Material, name=Steel\n"
+    "*Elastic\n"
+    "210000., 0.3\n"
+    "*Step\n"
+    "*Static\n"
+    "*End Step\n";
+
+TEST(IoAbaqus, ReadsACaeDeckWithPartsSetsAndSections) {
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(kCaeDeck, MeshFormat::kAbaqus, "a.inp", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  // AIR_3 is material 3; Steel, without a number, the next one: 4.
+  test::expect_same_mesh(expected(4, 4, 3, 3), mesh);
+  EXPECT_EQ(info.format, MeshFormat::kAbaqus);
+}
+
+// Gmsh: elementary sets on *ELEMENT, physical groups as *ELSET: the latter win.
+TEST(IoAbaqus, ElsetsWinOverTheElementSet) {
+  const std::string deck =
+      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
+      "7, 0, -1, 0\n"
+      "*ELEMENT, type=C3D4, ELSET=Volume1\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n"
+      "*ELEMENT, type=C3D4, ELSET=Volume2\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
+      "*ELSET,ELSET=material_5\n1, 3, \n"
+      "*ELSET,ELSET=material_9\n2, \n";
+  TetMesh mesh;
+  const Status s = read(deck, &mesh);
+  ASSERT_TRUE(s.ok()) << s.message();
+  test::expect_same_mesh(expected(5, 9, 5, 2), mesh);
+}
+
+TEST(IoAbaqus, WrittenFilesReadBack) {
+  const std::string dir = test::output_dir("abaqus");
+  const TetMesh mesh = test::make_io_mesh();  // materials 0, 7 and INT32_MAX
+  ASSERT_TRUE(write_mesh(dir + "/io.inp", mesh).ok());
+  TetMesh back;
+  const Status s = read_mesh(dir + "/io.inp", &back);
+  ASSERT_TRUE(s.ok()) << s.message();
+  test::expect_same_mesh(mesh, back);
+}
+
+TEST(IoAbaqus, BrokenDecksNameTheLine) {
+  const std::string nodes = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n";  // lines 1-5
+  const struct {
+    std::string deck;
+    int line;
+    const char* words;
+  } cases[] = {
+      {nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3\n", 7, "has 3 nodes, its type 4"},
+      {nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 9\n", 7, "uses node 9, which is not defined"},
+      {nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n1, 1, 2, 3, 4\n", 8, "defined twice"},
+      {nodes + "2, 5, 5, 5\n", 6, "node 2 is defined twice"},
+      {nodes + "5, 1, 1, x\n", 6, "coordinate 'x' is not a finite number"},
+      {nodes + "*ELEMENT\n", 6, "needs TYPE="},
+      {nodes + "*INCLUDE, INPUT=mesh.inp\n", 6, "*INCLUDE is not followed"},
+      {"*PART, NAME=A\n*END PART\n*PART, NAME=B\n", 3, "several parts"},
+      {nodes + "*INSTANCE, NAME=I, PART=P\n1., 0., 0.\n", 7, "translation or rotation"},
+      {nodes + "*ELSET, ELSET=S, GENERATE\n5, 1\n", 7, "first <= last"},
+      {nodes + "*ELSET, ELSET=S\nNOPE\n", 7, "neither an element id nor a set"},
+      {nodes + "*SOLID SECTION, ELSET=NONE, MATERIAL=M\n", 6, "element set NONE is not defined"},
+      {"1, 0, 0, 0\n", 1, "not an Abaqus input"},
+  };
+  for (const auto& c : cases) {
+    TetMesh mesh;
+    const Status s = read(c.deck, &mesh);
+    ASSERT_FALSE(s.ok()) << c.deck;
+    EXPECT_EQ(s.message().rfind("a.inp:" + std::to_string(c.line) + ": ", 0), 0u) << s.message();
+    EXPECT_NE(s.message().find(c.words), std::string::npos) << s.message();
+  }
+}
+
+TEST(IoAbaqus, RandomDamageNeverCrashes) {
+  std::mt19937 random(2024);
+  const std::string valid = kCaeDeck;
+  const char alphabet[] = "0123456789,*.-= \nEGNSLTabc";
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::string data = valid;
+    for (int k = 0; k <= trial % 3; ++k) {
+      data[random() % data.size()] = alphabet[random() % (sizeof alphabet - 1)];
+    }
+    if (trial % 5 == 0) data.resize(random() % data.size());
+    TetMesh mesh;
+    const Status s = read(data, &mesh);
+    if (!s.ok()) {
+      ASSERT_EQ(s.message().rfind("a.inp:", 0), 0u) << s.message();
+    } else {
+      for (const Tet& t : mesh.tets)
+        for (uint32_t v : t) ASSERT_LT(v, mesh.positions.size());
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tetlod
