@@ -20,7 +20,7 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
   without_materials.materials.assign(box2.tet_count(), 0);
   const struct {
     const char* file;
-    bool materials;  // meshio's .msh and .nas carry no material without tool-specific data
+    bool materials;  // meshio's .msh, .nas and .inp carry none without tool-specific data
   } files[] = {{"vtu_vtk9_binary_zlib.vtu", true},
                {"vtu_vtk9_binary_none_uint64.vtu", true},
                {"vtu_vtk9_appended_zlib.vtu", true},
@@ -33,7 +33,8 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
                {"vtk_meshio_binary.vtk", true},
                {"msh_meshio_binary.msh", false},
                {"msh22_meshio_binary.msh", false},
-               {"nas_meshio.nas", false}};
+               {"nas_meshio.nas", false},
+               {"inp_meshio.inp", false}};
   for (const auto& f : files) {
     SCOPED_TRACE(f.file);
     TetMesh mesh;
