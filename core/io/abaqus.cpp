@@ -279,22 +279,20 @@ class AbaqusParser {
     if (mode_ == Mode::kElsetGenerate) {
       int64_t first = 0, last = 0, step = 1;
       if (f.size() < 2 || f.size() > 3 || !integer(f[0], &first) || !integer(f[1], &last) ||
-          (f.size() == 3 && !integer(f[2], &step)) || step < 1 || last < first) {
+          (f.size() == 3 && !integer(f[2], &step)) || step < 1 || first < 1 || last < first) {
         return fail(line,
-                    "*ELSET, GENERATE needs 'first, last[, step]' with first <= last and "
-                    "step >= 1");
+                    "*ELSET, GENERATE needs 'first, last[, step]' with 1 <= first <= last "
+                    "and step >= 1");
       }
-      // No more members than elements exist: a hostile range cannot exhaust memory.
-      if (uint64_t(last - first) / uint64_t(step) >= tets_.size() + (1u << 20)) {
-        return fail(line, "*ELSET, GENERATE range " + std::to_string(first) + ".." +
-                              std::to_string(last) + " is larger than the input");
-      }
-      for (int64_t e = first; e <= last; e += step) members.push_back(e);
+      const uint64_t count = uint64_t(last - first) / uint64_t(step) + 1;
+      if (!room_for(count, line)) return false;
+      for (uint64_t i = 0; i < count; ++i) members.push_back(first + int64_t(i) * step);
       return true;
     }
     for (std::string_view item : f) {
       int64_t e = 0;
       if (integer(item, &e)) {
+        if (!room_for(1, line)) return false;
         members.push_back(e);
       } else {
         // Another set's name: its members so far.
@@ -304,11 +302,24 @@ class AbaqusParser {
                                 "' is neither an element id nor a set defined before");
         }
         if (other != &members) {
+          if (!room_for(other->size(), line)) return false;
           const std::vector<int64_t> copy = *other;
           members.insert(members.end(), copy.begin(), copy.end());
         }
       }
     }
+    return true;
+  }
+
+  // Sets may name sets and generate ranges: their members together stay within a
+  // bound proportional to the input, so that no file can exhaust memory.
+  bool room_for(uint64_t more, size_t line) {
+    const uint64_t limit = 16 * uint64_t(text_.size()) + (uint64_t(1) << 20);
+    if (more > limit - set_members_) {
+      return fail(line, "the element sets hold more members than an input of this size can (" +
+                            std::to_string(limit) + ")");
+    }
+    set_members_ += more;
     return true;
   }
 
@@ -447,6 +458,7 @@ class AbaqusParser {
   std::vector<PendingTet> tets_;
   std::unordered_map<std::string, std::vector<int64_t>> sets_;
   std::vector<std::string> set_order_;
+  uint64_t set_members_ = 0;  // in all *ELSET sets
   std::vector<Section> sections_;
   std::vector<std::string> keys_;  // material and set names, upper case
   std::unordered_map<std::string, int> key_index_;

@@ -124,6 +124,12 @@ TEST(IoAbaqus, BrokenDecksNameTheLine) {
       {"*PART, NAME=A\n*END PART\n*PART, NAME=B\n", 3, "several parts"},
       {nodes + "*INSTANCE, NAME=I, PART=P\n1., 0., 0.\n", 7, "translation or rotation"},
       {nodes + "*ELSET, ELSET=S, GENERATE\n5, 1\n", 7, "first <= last"},
+      {nodes + "*ELSET, ELSET=S, GENERATE\n1, 9000000000000000000\n", 7, "more members"},
+      {nodes + "*ELSET, ELSET=S, GENERATE\n-9000000000000000000, 9000000000000000000\n", 7,
+       "1 <= first"},
+      {nodes + "*ELSET, ELSET=A, GENERATE\n1, 100000\n*ELSET, ELSET=B\nA, A, A, A, A, A, A, A\n"
+               "*ELSET, ELSET=C\nB, B, B, B, B, B, B, B\n",
+       11, "more members"},
       {nodes + "*ELSET, ELSET=S\nNOPE\n", 7, "neither an element id nor a set"},
       {nodes + "*SOLID SECTION, ELSET=NONE, MATERIAL=M\n", 6, "element set NONE is not defined"},
       {"1, 0, 0, 0\n", 1, "not an Abaqus input"},
