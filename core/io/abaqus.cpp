@@ -15,18 +15,11 @@
 #include <unordered_map>
 
 #include "core/io/mesh_formats.h"
+#include "core/io/text_lines.h"
 #include "core/io/text_writer.h"
 
 namespace tetlod::io {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
 
 std::string upper(std::string_view s) {
   std::string u(s);
@@ -39,7 +32,7 @@ std::vector<std::string_view> split_commas(std::string_view line) {
   size_t at = 0;
   while (true) {
     const size_t comma = line.find(',', at);
-    parts.push_back(trim(
+    parts.push_back(trim_blanks(
         line.substr(at, comma == std::string_view::npos ? std::string_view::npos : comma - at)));
     if (comma == std::string_view::npos) break;
     at = comma + 1;
@@ -77,7 +70,7 @@ class AbaqusParser {
     Keyword keyword;
     bool have_keyword = false;
     while (next_line(&line)) {
-      const std::string_view content = trim(line);
+      const std::string_view content = trim_blanks(line);
       if (content.empty() || content.substr(0, 2) == "**") continue;
       if (content.front() == '*') {
         if (!read_keyword(content, &keyword)) return error_;
@@ -97,7 +90,7 @@ class AbaqusParser {
         const size_t saved_pos = pos_, saved_line = line_;
         std::string_view more;
         if (!next_line(&more)) break;
-        more = trim(more);
+        more = trim_blanks(more);
         if (!more.empty() && more.front() == '*') {
           pos_ = saved_pos, line_ = saved_line;
           break;
@@ -113,14 +106,7 @@ class AbaqusParser {
  private:
   enum class Mode { kSkip, kNodes, kElements, kElset, kElsetGenerate, kInstance };
 
-  bool next_line(std::string_view* line) {
-    if (pos_ >= text_.size()) return false;
-    const size_t end = std::min(text_.find('\n', pos_), text_.size());
-    *line = text_.substr(pos_, end - pos_);
-    pos_ = end + 1;
-    ++line_;
-    return true;
-  }
+  bool next_line(std::string_view* line) { return next_text_line(text_, &pos_, &line_, line); }
 
   // "*NAME, KEY=value, FLAG" (continued on the next line after a trailing comma).
   bool read_keyword(std::string_view content, Keyword* keyword) {
@@ -128,7 +114,7 @@ class AbaqusParser {
     while (!text.empty() && text.back() == ',') {
       std::string_view more;
       if (!next_line(&more)) break;
-      text += std::string(trim(more));
+      text += std::string(trim_blanks(more));
     }
     const std::vector<std::string_view> parts = split_commas(std::string_view(text).substr(1));
     keyword->name = upper(parts[0]);
@@ -136,10 +122,10 @@ class AbaqusParser {
     for (size_t i = 1; i < parts.size(); ++i) {
       if (parts[i].empty()) continue;
       const size_t equals = parts[i].find('=');
-      const std::string key = upper(trim(parts[i].substr(0, equals)));
+      const std::string key = upper(trim_blanks(parts[i].substr(0, equals)));
       const std::string value = equals == std::string_view::npos
                                     ? std::string()
-                                    : std::string(trim(parts[i].substr(equals + 1)));
+                                    : std::string(trim_blanks(parts[i].substr(equals + 1)));
       keyword->options[key] = value;
     }
     return true;

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/io/mesh_formats.h"
+#include "core/io/text_lines.h"
 #include "core/io/text_scanner.h"
 #include "core/io/text_writer.h"
 
@@ -17,14 +18,6 @@ namespace {
 
 // The comment that keeps material 0, which cannot be a Nastran PID, through a file.
 constexpr std::string_view kMaterialZeroComment = "$ TetLOD material 0 = PID ";
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
 
 bool equals_upper(std::string_view s, std::string_view upper) {
   if (s.size() != upper.size()) return false;
@@ -58,7 +51,7 @@ class NastranParser {
     bool ended = false;
     std::string_view line;
     while (!ended && next_line(&line)) {
-      const std::string_view content = trim(line);
+      const std::string_view content = trim_blanks(line);
       if (content.empty()) continue;
       last_line_ = line_;
       if (content.front() == '$') {
@@ -71,7 +64,7 @@ class NastranParser {
       }
       expand_tabs(strip_comment(line), &expanded_);
       const std::string& expanded = expanded_;
-      if (trim(expanded).empty()) continue;
+      if (trim_blanks(expanded).empty()) continue;
       if (is_continuation(expanded)) {
         if (!card_open_) {
           fail(line_, "a continuation line without an entry before it");
@@ -81,7 +74,7 @@ class NastranParser {
         continue;
       }
       if (card_open_ && !finish_card()) return error_;
-      if (equals_upper(trim(expanded), "ENDDATA")) {
+      if (equals_upper(trim_blanks(expanded), "ENDDATA")) {
         ended = true;
         break;
       }
@@ -102,24 +95,17 @@ class NastranParser {
     size_t at = 0;
     while (at < text_.size()) {
       const size_t end = std::min(text_.find('\n', at), text_.size());
-      if (starts_with_upper(trim(text_.substr(at, end - at)), "BEGIN BULK")) return true;
+      if (starts_with_upper(trim_blanks(text_.substr(at, end - at)), "BEGIN BULK")) return true;
       at = end + 1;
     }
     return false;
   }
 
-  bool next_line(std::string_view* line) {
-    if (pos_ >= text_.size()) return false;
-    const size_t end = std::min(text_.find('\n', pos_), text_.size());
-    *line = text_.substr(pos_, end - pos_);
-    pos_ = end + 1;
-    ++line_;
-    return true;
-  }
+  bool next_line(std::string_view* line) { return next_text_line(text_, &pos_, &line_, line); }
 
   bool read_comment(std::string_view comment) {
     if (comment.substr(0, kMaterialZeroComment.size()) != kMaterialZeroComment) return true;
-    const std::string_view value = trim(comment.substr(kMaterialZeroComment.size()));
+    const std::string_view value = trim_blanks(comment.substr(kMaterialZeroComment.size()));
     int64_t pid = 0;
     if (!parse_integer(value, &pid) || pid < 1) {
       return fail(line_, "the material 0 comment gives PID '" + std::string(value) +
@@ -150,8 +136,9 @@ class NastranParser {
   // leading comma).
   static bool is_continuation(const std::string& line) {
     if (line[0] == '+' || line[0] == '*' || line[0] == ',') return true;
-    if (line.find(',') != std::string::npos) return trim(line.substr(0, line.find(','))).empty();
-    return trim(std::string_view(line).substr(0, std::min<size_t>(8, line.size()))).empty();
+    if (line.find(',') != std::string::npos)
+      return trim_blanks(line.substr(0, line.find(','))).empty();
+    return trim_blanks(std::string_view(line).substr(0, std::min<size_t>(8, line.size()))).empty();
   }
 
   void start_card(const std::string& line) {
@@ -160,8 +147,8 @@ class NastranParser {
     field_count_ = 0;
     const bool free = line.find(',') != std::string::npos;
     std::string name(
-        trim(free ? std::string_view(line).substr(0, line.find(','))
-                  : std::string_view(line).substr(0, std::min<size_t>(8, line.size()))));
+        trim_blanks(free ? std::string_view(line).substr(0, line.find(','))
+                         : std::string_view(line).substr(0, std::min<size_t>(8, line.size()))));
     large_ = !name.empty() && name.back() == '*';
     if (large_) name.pop_back();
     for (char& c : name) c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
@@ -180,7 +167,7 @@ class NastranParser {
       while (true) {
         const size_t comma = line.find(',', at);
         const size_t end = comma == std::string::npos ? line.size() : comma;
-        push_field(trim(std::string_view(line).substr(at, end - at)));
+        push_field(trim_blanks(std::string_view(line).substr(at, end - at)));
         if (comma == std::string::npos) break;
         at = comma + 1;
       }
@@ -193,7 +180,7 @@ class NastranParser {
     const size_t width = large_ ? 16 : 8;
     for (size_t k = 0; k < per_line; ++k) {
       const size_t start = 8 + k * width;
-      push_field(start < line.size() ? trim(std::string_view(line).substr(start, width))
+      push_field(start < line.size() ? trim_blanks(std::string_view(line).substr(start, width))
                                      : std::string_view());
     }
   }

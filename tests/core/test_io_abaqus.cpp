@@ -153,14 +153,8 @@ TEST(IoAbaqus, RandomDamageNeverCrashes) {
       data[random() % data.size()] = alphabet[random() % (sizeof alphabet - 1)];
     }
     if (trial % 5 == 0) data.resize(random() % data.size());
-    TetMesh mesh;
-    const Status s = read(data, &mesh);
-    if (!s.ok()) {
-      ASSERT_EQ(s.message().rfind("a.inp:", 0), 0u) << s.message();
-    } else {
-      for (const Tet& t : mesh.tets)
-        for (uint32_t v : t) ASSERT_LT(v, mesh.positions.size());
-    }
+    test::expect_error_or_valid_mesh(data, MeshFormat::kAbaqus, "a.inp");
+    if (testing::Test::HasFatalFailure()) return;
   }
 }
 

@@ -251,15 +251,8 @@ TEST(IoGmshBinary, RandomDamageNeverCrashes) {
         const size_t at = 30 + random() % (data.size() - 30);
         data[at] = char(trial % 3 == 0 ? 0xff : random() & 0xff);
       }
-      TetMesh mesh;
-      const Status s = read(data, &mesh);
-      if (!s.ok()) {
-        ASSERT_EQ(s.message().rfind("b.msh:", 0), 0u) << s.message();
-      } else {
-        ASSERT_EQ(mesh.materials.size(), mesh.tets.size());
-        for (const Tet& t : mesh.tets)
-          for (uint32_t v : t) ASSERT_LT(v, mesh.positions.size());
-      }
+      test::expect_error_or_valid_mesh(data, MeshFormat::kGmsh41, "b.msh");
+      if (testing::Test::HasFatalFailure()) return;
     }
   }
 }

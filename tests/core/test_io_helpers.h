@@ -85,6 +85,21 @@ inline std::vector<CanonicalTet> canonical_tets(const TetMesh& mesh) {
   return result;
 }
 
+// Reads damaged `data` as `format`: it must give an error that starts with
+// "name:" or a consistent mesh (every corner a vertex, one material per tet).
+inline void expect_error_or_valid_mesh(std::string_view data, MeshFormat format,
+                                       const std::string& name) {
+  TetMesh mesh;
+  const Status s = read_mesh_from_memory(data, format, name, &mesh);
+  if (!s.ok()) {
+    ASSERT_EQ(s.message().rfind(name + ":", 0), 0u) << s.message();
+    return;
+  }
+  ASSERT_EQ(mesh.materials.size(), mesh.tets.size());
+  for (const Tet& t : mesh.tets)
+    for (uint32_t v : t) ASSERT_LT(v, mesh.positions.size());
+}
+
 inline void expect_positive_orientation(const TetMesh& mesh) {
   for (const Tet& t : mesh.tets) EXPECT_GT(signed_volume6(mesh, t), 0.0);
 }

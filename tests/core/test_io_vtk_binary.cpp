@@ -172,14 +172,8 @@ TEST(IoVtkBinary, RandomDamageNeverCrashes) {
       for (int k = 0; k <= trial % 4; ++k) {
         data[60 + random() % (data.size() - 60)] = char(random() & 0xff);
       }
-      TetMesh mesh;
-      const Status s = read(data, &mesh);
-      if (!s.ok()) {
-        ASSERT_EQ(s.message().rfind("b.vtk:", 0), 0u) << s.message();
-      } else {
-        for (const Tet& t : mesh.tets)
-          for (uint32_t v : t) ASSERT_LT(v, mesh.positions.size());
-      }
+      test::expect_error_or_valid_mesh(data, MeshFormat::kVtkLegacy, "b.vtk");
+      if (testing::Test::HasFatalFailure()) return;
     }
   }
 }
