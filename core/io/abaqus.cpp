@@ -73,7 +73,7 @@ class AbaqusParser {
       const std::string_view content = trim_blanks(line);
       if (content.empty() || content.substr(0, 2) == "**") continue;
       if (content.front() == '*') {
-        if (!read_keyword(content, &keyword)) return error_;
+        read_keyword(content, &keyword);
         have_keyword = true;
         if (!start(keyword)) return error_;
         continue;
@@ -109,7 +109,7 @@ class AbaqusParser {
   bool next_line(std::string_view* line) { return next_text_line(text_, &pos_, &line_, line); }
 
   // "*NAME, KEY=value, FLAG" (continued on the next line after a trailing comma).
-  bool read_keyword(std::string_view content, Keyword* keyword) {
+  void read_keyword(std::string_view content, Keyword* keyword) {
     std::string text(content);
     while (!text.empty() && text.back() == ',') {
       std::string_view more;
@@ -128,7 +128,6 @@ class AbaqusParser {
                                     : std::string(trim_blanks(parts[i].substr(equals + 1)));
       keyword->options[key] = value;
     }
-    return true;
   }
 
   bool start(const Keyword& k) {
@@ -336,9 +335,9 @@ class AbaqusParser {
       }
     }
     if (sections_.empty()) {
-      for (const auto& [set_name, members] : sets_in_order()) {
+      for (const std::string& set_name : set_order_) {  // in the order they were defined
         const int k = key_of(set_name);
-        for (int64_t e : *members) {
+        for (int64_t e : sets_.at(set_name)) {
           const auto it = tet_of_element_.find(e);
           if (it != tet_of_element_.end() && key[it->second] < 0) key[it->second] = k;
         }
@@ -399,13 +398,6 @@ class AbaqusParser {
     if (it != sets_.end()) return &it->second;
     const auto e = element_sets_.find(name);
     return e != element_sets_.end() ? &e->second : nullptr;
-  }
-
-  // The *ELSET sets in the order they were defined.
-  std::vector<std::pair<std::string, const std::vector<int64_t>*>> sets_in_order() const {
-    std::vector<std::pair<std::string, const std::vector<int64_t>*>> result;
-    for (const std::string& name : set_order_) result.push_back({name, &sets_.at(name)});
-    return result;
   }
 
   bool fail(size_t line, const std::string& message) {
