@@ -21,7 +21,7 @@ constexpr const char* kStatsUsage =
     "average and minimum stretch, maximum valence, maximum size (longest edge) -- for the\n"
     "whole mesh and for each material's sub-mesh, a stretch histogram (bins of 0.1), the\n"
     "boundary/interface triangles per material pair and the vertex classification.\n"
-    "FILE: .mesh .msh .node/.ele .vtk .vtu\n"
+    "FILE: .mesh .msh .node/.ele .vtk .vtu .bdf/.nas .inp\n"
     "  --json   machine-readable output on stdout\n";
 
 struct SurfaceSummary {
