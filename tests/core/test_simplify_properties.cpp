@@ -26,8 +26,9 @@
 namespace tetlod {
 namespace {
 
-std::string asset(const std::string& name) {
-  return std::string(TETLOD_SOURCE_DIR) + "/assets/" + name;
+// A path relative to the source tree (assets/..., tests/data/...).
+std::string source_file(const std::string& name) {
+  return std::string(TETLOD_SOURCE_DIR) + "/" + name;
 }
 
 // Connected regions per material.
@@ -65,7 +66,7 @@ std::map<int32_t, double> surface_area_per_material(const TetMesh& mesh) {
 
 struct Case {
   const char* name;
-  const char* asset;
+  const char* file;  // relative to the source tree
   double size;
   double stretch;
   uint32_t valence;
@@ -78,7 +79,7 @@ TEST_P(SimplifyProperties, HoldAfterEveryCollapse) {
   const Case& c = GetParam();
   TetMesh input;
   ReadInfo info;
-  const Status read = read_mesh(asset(c.asset), &input, &info);
+  const Status read = read_mesh(source_file(c.file), &input, &info);
   ASSERT_TRUE(read) << read.message();
 
   SimplifyParams params;
@@ -165,18 +166,58 @@ TEST_P(SimplifyProperties, HoldAfterEveryCollapse) {
 
 INSTANTIATE_TEST_SUITE_P(
     Bundled, SimplifyProperties,
-    ::testing::Values(Case{"motor", "motor.mesh", 12.0, 0.15, 25, 0.05},
-                      Case{"spheres", "spheres.mesh", 1.2, 0.15, 25, 0.02},
+    ::testing::Values(Case{"motor", "assets/motor.mesh", 12.0, 0.15, 25, 0.05},
+                      Case{"spheres", "assets/spheres.mesh", 1.2, 0.15, 25, 0.02},
                       // Tight: many input tets and nodes already break these.
-                      Case{"spheres_tight", "spheres.mesh", 1.5, 0.3, 18, 0.006},
+                      Case{"spheres_tight", "assets/spheres.mesh", 1.5, 0.3, 18, 0.006},
                       // Loose: large collapses, surfaces free to move.
-                      Case{"motor_loose", "motor.mesh", 30.0, 0.05, 40, 0.5}),
+                      Case{"motor_loose", "assets/motor.mesh", 30.0, 0.05, 40, 0.5}),
     [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
+
+// Gmsh meshes of non-manifold configurations (tests/data/topology): regions of one
+// material touching along edges and at a vertex, and a non-manifold outer boundary.
+INSTANTIATE_TEST_SUITE_P(
+    NonManifold, SimplifyProperties,
+    ::testing::Values(
+        Case{"checker", "tests/data/topology/checker.mesh", 0.6, 0.15, 25, 0.01},
+        Case{"checker_loose", "tests/data/topology/checker.mesh", 3.0, 0.05, 40, 0.3},
+        Case{"edge_touch", "tests/data/topology/edge_touch.mesh", 0.6, 0.15, 25, 0.01},
+        Case{"edge_touch_loose", "tests/data/topology/edge_touch.mesh", 3.0, 0.05, 40, 0.3},
+        Case{"vertex_touch", "tests/data/topology/vertex_touch.mesh", 0.6, 0.15, 25, 0.01},
+        Case{"vertex_touch_loose", "tests/data/topology/vertex_touch.mesh", 3.0, 0.05, 40, 0.3}),
+    [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
+
+// The non-manifold test meshes are what their .geo says, and stay so at the
+// coarsest level: the property test above only compares a level with the base.
+TEST(SimplifyTopology, NonManifoldMeshesKeepTheirRegions) {
+  const struct {
+    const char* file;
+    std::map<int32_t, int> regions;
+  } cases[] = {{"tests/data/topology/checker.mesh", {{1, 4}, {2, 4}}},
+               {"tests/data/topology/edge_touch.mesh", {{1, 1}, {2, 1}}},
+               {"tests/data/topology/vertex_touch.mesh", {{1, 2}}}};
+  for (const auto& c : cases) {
+    TetMesh input;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(source_file(c.file), &input, &info)) << c.file;
+    EXPECT_EQ(regions_per_material(input), c.regions) << c.file;
+    SimplifyParams params;
+    params.sizing.uniform = 3.0;
+    params.min_stretch = 0.05;
+    params.max_valence = 40;
+    params.tolerance = 0.3;
+    SimplifyResult result;
+    ASSERT_TRUE(simplify(input, params, &result)) << c.file;
+    EXPECT_LT(result.output.tet_count() * 10, input.tet_count()) << c.file;
+    EXPECT_EQ(regions_per_material(result.output), c.regions) << c.file;
+    EXPECT_EQ(test::interface_euler(result.output), test::interface_euler(input)) << c.file;
+  }
+}
 
 TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
   TetMesh input;
   ReadInfo info;
-  ASSERT_TRUE(read_mesh(asset("spheres.mesh"), &input, &info));
+  ASSERT_TRUE(read_mesh(source_file("assets/spheres.mesh"), &input, &info));
   SimplifyParams params;
   params.sizing.uniform = 1.0;
   params.tolerance = 0.02;
@@ -202,7 +243,7 @@ TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
 TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
   TetMesh input;
   ReadInfo info;
-  ASSERT_TRUE(read_mesh(asset("spheres.mesh"), &input, &info));
+  ASSERT_TRUE(read_mesh(source_file("assets/spheres.mesh"), &input, &info));
   SimplifyParams params;
   params.sizing.uniform = 1.0;
   params.tolerance = 0.02;

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Remakes the meshes of this folder with Gmsh (Debian 12: gmsh 4.8.4) from their .geo:
+#   bash tests/data/topology/make.sh
+# Not run by the build or the tests: the meshes are committed, so the tests do not
+# depend on Gmsh's version.
+set -euo pipefail
+cd "$(dirname "$0")"
+tetlod=../../../build/app/tetlod
+for g in checker edge_touch vertex_touch; do
+  gmsh -3 "$g.geo" -o "/tmp/tetlod_$g.msh" -format msh41 > /dev/null
+  "$tetlod" convert "/tmp/tetlod_$g.msh" "$g.mesh"
+  rm -f "/tmp/tetlod_$g.msh"
+done
