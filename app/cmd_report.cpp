@@ -200,7 +200,7 @@ int cmd_report(const Args& args) {
   std::string thresholds;
   if (options.simplify) {
     SimplifyOptions& so = options.simplify_options;
-    finish_simplify_options(input, &so);
+    if (!finish_simplify_options(input, "report", &so)) return kExitUsage;
     SimplifyResult result;
     const Status s = simplify(input, so.params, &result);
     if (!s) {

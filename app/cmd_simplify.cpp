@@ -120,7 +120,7 @@ int cmd_simplify(const Args& args) {
   TetMesh input;
   ReadInfo info;
   if (!load_mesh(in, &input, &info)) return kExitBadInput;
-  finish_simplify_options(input, &options);
+  if (!finish_simplify_options(input, "simplify", &options)) return kExitUsage;
   const SimplifyParams& params = options.params;
   const long long elements = options.elements;
   const bool improve = options.improve;

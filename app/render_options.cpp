@@ -226,7 +226,7 @@ bool simplified_mesh(const TetMesh& input, const char* command, RenderOptions* o
                  command);
     return false;
   }
-  finish_simplify_options(input, &so);
+  if (!finish_simplify_options(input, command, &so)) return false;
   SimplifyResult result;
   const Status status = simplify(input, so.params, &result);
   if (!status) {

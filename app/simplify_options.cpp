@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "app/cli_util.h"
 
@@ -91,14 +94,29 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   return OptionResult::kParsed;
 }
 
-void finish_simplify_options(const TetMesh& input, SimplifyOptions* options) {
-  if (options->tolerance_given || input.positions.empty()) return;
+bool finish_simplify_options(const TetMesh& input, const char* command, SimplifyOptions* options) {
+  const std::vector<std::pair<int32_t, double>>& sizes = options->params.sizing.material_sizes;
+  if (!sizes.empty()) {
+    const std::set<int32_t> present(input.materials.begin(), input.materials.end());
+    for (const auto& [material, size] : sizes) {
+      if (present.count(material)) continue;
+      std::string list;
+      for (int32_t m : present) list += (list.empty() ? "" : ", ") + std::to_string(m);
+      std::fprintf(stderr,
+                   "tetlod %s: --material-size %d=%g: the mesh has no material %d (its "
+                   "materials: %s)\n",
+                   command, material, size, material, list.c_str());
+      return false;
+    }
+  }
+  if (options->tolerance_given || input.positions.empty()) return true;
   Vec3 lo = input.positions[0], hi = input.positions[0];
   for (const Vec3& p : input.positions) {
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
   }
   options->params.tolerance = 1e-3 * length(hi - lo);
+  return true;
 }
 
 }  // namespace tetlod::app

@@ -34,7 +34,10 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
 // Reads "--flag VALUE": false with a message if VALUE is missing.
 bool parse_option_value(const Args& args, size_t* i, const char* name, std::string* value);
 
-// Fills in the defaults that depend on the input (the tolerance).
-void finish_simplify_options(const TetMesh& input, SimplifyOptions* options);
+// Fills in the defaults that depend on the input (the tolerance), and checks that
+// every material of --material-size is in the input: false, with a message to
+// stderr prefixed with "tetlod <command>: ", if one is not (a mistyped id would
+// otherwise be ignored without a word).
+bool finish_simplify_options(const TetMesh& input, const char* command, SimplifyOptions* options);
 
 }  // namespace tetlod::app

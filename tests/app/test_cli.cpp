@@ -101,6 +101,29 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A --material-size for a material the mesh does not have (a mistyped id) is an
+// error naming it and the materials there are, not a size silently ignored.
+TEST(Cli, MaterialSizeOfAnAbsentMaterialIsAnError) {
+  const std::string path = write_grid("absent.mesh");
+  const std::string out = out_dir() + "/absent_out.mesh";
+  const CommandResult r =
+      run("simplify " + path + " -o " + out + " --size 2 --material-size 2=0.5,3=0.5");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(
+      r.output.find("--material-size 3=0.5: the mesh has no material 3 (its materials: 1, 2)"),
+      std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  const CommandResult render =
+      run("render " + path + " -o " + out_dir() + "/absent.png --simplify --material-size 9=1");
+  EXPECT_NE(render.code, 0);
+  EXPECT_NE(render.output.find("tetlod render: --material-size 9=1: the mesh has no material 9"),
+            std::string::npos)
+      << render.output;
+  const CommandResult ok = run("simplify " + path + " -o " + out + " --material-size 2=0.5");
+  EXPECT_EQ(ok.code, 0) << ok.output;
+}
+
 TEST(Cli, SimplifyThenLodWritesLevels) {
   const std::string path = write_grid("simp.mesh");
   const std::string out = out_dir() + "/simp_out.mesh";
