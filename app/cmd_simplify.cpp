@@ -277,6 +277,7 @@ int cmd_lod(const Args& args) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
+  if (improve && !finish_simplify_options(base, "lod", &options)) return kExitUsage;
   Lod lod(std::move(base), &history);
   const size_t target = step >= 0 ? std::min<size_t>(static_cast<size_t>(step), lod.step_count())
                                   : lod.step_for_elements(static_cast<size_t>(elements));

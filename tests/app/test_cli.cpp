@@ -106,6 +106,7 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
 TEST(Cli, MaterialSizeOfAnAbsentMaterialIsAnError) {
   const std::string path = write_grid("absent.mesh");
   const std::string out = out_dir() + "/absent_out.mesh";
+  fs::remove(out);  // from an earlier run
   const CommandResult r =
       run("simplify " + path + " -o " + out + " --size 2 --material-size 2=0.5,3=0.5");
   EXPECT_EQ(r.code, 2) << r.output;
@@ -120,8 +121,16 @@ TEST(Cli, MaterialSizeOfAnAbsentMaterialIsAnError) {
   EXPECT_NE(render.output.find("tetlod render: --material-size 9=1: the mesh has no material 9"),
             std::string::npos)
       << render.output;
-  const CommandResult ok = run("simplify " + path + " -o " + out + " --material-size 2=0.5");
+  const std::string history = out_dir() + "/absent.tlh";
+  const CommandResult ok =
+      run("simplify " + path + " -o " + out + " --material-size 2=0.5 --history " + history);
   EXPECT_EQ(ok.code, 0) << ok.output;
+  const CommandResult lod = run("lod " + history + " --step 1 -o " + out_dir() +
+                                "/absent_lod.mesh --improve --material-size 4=1");
+  EXPECT_EQ(lod.code, 2) << lod.output;
+  EXPECT_NE(lod.output.find("tetlod lod: --material-size 4=1: the mesh has no material 4"),
+            std::string::npos)
+      << lod.output;
 }
 
 TEST(Cli, SimplifyThenLodWritesLevels) {
