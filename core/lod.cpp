@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
 #include <utility>
 
 namespace tetlod {
@@ -187,6 +188,10 @@ namespace {
 
 constexpr char kHistoryMagic[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '1'};
 
+bool tet_has(const Tet& t, uint32_t v) {
+  return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
+}
+
 struct FileCloser {
   void operator()(std::FILE* f) const {
     if (f) std::fclose(f);
@@ -285,21 +290,61 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
     if ((c >> 2) >= tet_count) return bad("rewired tet out of range");
   for (uint32_t t : history->moved)
     if (t >= tet_count) return bad("moved tet out of range");
-  // Replay once to check the steps are consistent with the mesh (each tet retired
-  // once, rewired corners hold the retired vertex).
+  // The base: what the simplifier writes is a validated mesh, so every tet is
+  // positive and every material >= 0.
+  for (size_t t = 0; t < tet_count; ++t) {
+    if (base->materials[t] < 0) return bad("tet " + std::to_string(t) + " has a negative material");
+    if (!(signed_volume6(*base, base->tets[t]) > 0))
+      return bad("tet " + std::to_string(t) + " is flat or inverted");
+  }
+  // Replay once to check that the steps are collapses of this mesh: each step
+  // retires alive tets around the edge (kept, removed), rewires every other use of
+  // the removed vertex to the kept one, lists as moved exactly the other tets of
+  // the kept vertex, starts from the kept vertex's current position, and leaves
+  // every tet it changed positive. Then every level is a mesh of positive tets.
   std::vector<uint8_t> alive(tet_count, 1);
   std::vector<Tet> tets = base->tets;
+  std::vector<Vec3> positions = base->positions;
+  std::vector<uint32_t> uses(vertex_count, 0);  // alive tet corners holding each vertex
+  for (const Tet& t : tets)
+    for (uint32_t v : t) ++uses[v];
+  auto positive = [&](uint32_t t) {
+    const Tet& q = tets[t];
+    return signed_volume6(positions[q[0]], positions[q[1]], positions[q[2]], positions[q[3]]) > 0;
+  };
   for (size_t s = 0; s < history->steps.size(); ++s) {
     const CollapseHistory::Step& st = history->steps[s];
+    const std::string at = "step " + std::to_string(s) + ": ";
+    if (uses[st.kept] == 0 || uses[st.removed] == 0) return bad(at + "a vertex no tet uses");
+    if (std::memcmp(&positions[st.kept], &st.old_position, sizeof(Vec3)) != 0)
+      return bad(at + "the kept vertex is not where the step starts");
     for (uint32_t k = st.removed_begin; k < history->removed_end(s); ++k) {
-      if (!alive[history->removed_tets[k]]) return bad("tet retired twice");
-      alive[history->removed_tets[k]] = 0;
+      const uint32_t t = history->removed_tets[k];
+      if (!alive[t]) return bad(at + "tet retired twice");
+      if (!tet_has(tets[t], st.kept) || !tet_has(tets[t], st.removed))
+        return bad(at + "a retired tet is not around the edge");
+      alive[t] = 0;
+      for (uint32_t v : tets[t]) --uses[v];
     }
+    positions[st.kept] = st.new_position;
     for (uint32_t k = st.rewired_begin; k < history->rewired_end(s); ++k) {
       const uint32_t c = history->rewired[k];
-      if (tets[c >> 2][c & 3] != st.removed) return bad("rewired corner mismatch");
+      if (!alive[c >> 2] || tets[c >> 2][c & 3] != st.removed)
+        return bad(at + "rewired corner mismatch");
       tets[c >> 2][c & 3] = st.kept;
+      --uses[st.removed];
+      ++uses[st.kept];
+      if (!positive(c >> 2)) return bad(at + "makes a flat or inverted tet");
     }
+    if (uses[st.removed] != 0) return bad(at + "the removed vertex is still used");
+    for (uint32_t k = st.moved_begin; k < history->moved_end(s); ++k) {
+      const uint32_t t = history->moved[k];
+      if (!alive[t] || !tet_has(tets[t], st.kept)) return bad(at + "moved tet mismatch");
+      if (!positive(t)) return bad(at + "makes a flat or inverted tet");
+    }
+    if (uses[st.kept] !=
+        (history->rewired_end(s) - st.rewired_begin) + (history->moved_end(s) - st.moved_begin))
+      return bad(at + "moved tets missing");
   }
   return Status();
 }

@@ -103,7 +103,10 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 
 // A saved simplification: the base mesh and its history, so that any level can be
 // written later without simplifying again. Binary, little-endian, versioned; the
-// reader checks every count and index (a hostile file gives an error, never a crash).
+// reader checks every count and index (a hostile file gives an error, never a crash),
+// and replays the steps once to check that they are collapses of the base mesh that
+// leave every tet positive, so every level of an accepted history is made of
+// positive tets (not that they never overlap: a forged file can still do that).
 Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history);
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history);
 

@@ -1,0 +1,190 @@
+// Collapse-history files (write_history / read_history, core/lod.h): a round trip
+// gives the same history, and a damaged or forged file gives an error that says what
+// is wrong, never a crash, and never a history whose replay makes a flat or inverted
+// tet (what `tetlod lod` would then write).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/lod.h"
+#include "core/simplify.h"
+#include "core/test_meshes.h"
+
+namespace tetlod {
+namespace {
+
+std::string out_path(const std::string& name) {
+  const std::string dir = std::string(TETLOD_TEST_OUTPUT_DIR) + "/history";
+  std::filesystem::create_directories(dir);
+  return dir + "/" + name;
+}
+
+// A small two-material history with every kind of entry (removed, rewired, moved).
+const SimplifyResult& small_run() {
+  static const SimplifyResult result = [] {
+    const TetMesh mesh = test::make_grid_mesh(
+        6, 3, 3, [](int i, int, int) { return i < 3 ? 1 : 2; }, 1.0 / 3);
+    SimplifyParams p;
+    p.sizing.uniform = 1.5;
+    p.min_stretch = 0.05;
+    p.max_valence = 40;
+    p.tolerance = 1e-9;
+    p.subdivide = false;
+    SimplifyResult r;
+    EXPECT_TRUE(simplify(mesh, p, &r).ok());
+    return r;
+  }();
+  return result;
+}
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// Every level of `history` over `base` has only positive tets: each step's changed
+// tets are checked right after it (the others keep their shape).
+void expect_positive_levels(const TetMesh& base, const CollapseHistory& history) {
+  for (const Tet& t : base.tets) ASSERT_GT(signed_volume6(base, t), 0);
+  Lod lod(base, &history);
+  LodDelta delta;
+  for (size_t s = 1; s <= lod.step_count(); ++s) {
+    lod.seek(s, &delta);
+    for (uint32_t t : delta.changed) {
+      const Tet& q = lod.tets()[t];
+      ASSERT_GT(signed_volume6(lod.positions()[q[0]], lod.positions()[q[1]], lod.positions()[q[2]],
+                               lod.positions()[q[3]]),
+                0)
+          << "step " << s;
+    }
+  }
+}
+
+TEST(HistoryFile, RoundTripIsExact) {
+  const SimplifyResult& r = small_run();
+  ASSERT_GT(r.history.step_count(), 20u);
+  ASSERT_FALSE(r.history.moved.empty());
+  const std::string path = out_path("round_trip.tlh");
+  ASSERT_TRUE(write_history(path, r.base, r.history).ok());
+  TetMesh base;
+  CollapseHistory history;
+  const Status s = read_history(path, &base, &history);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(base.tets, r.base.tets);
+  EXPECT_EQ(base.materials, r.base.materials);
+  ASSERT_EQ(base.positions.size(), r.base.positions.size());
+  EXPECT_EQ(std::memcmp(base.positions.data(), r.base.positions.data(),
+                        base.positions.size() * sizeof(Vec3)),
+            0);
+  ASSERT_EQ(history.step_count(), r.history.step_count());
+  EXPECT_EQ(std::memcmp(history.steps.data(), r.history.steps.data(),
+                        history.steps.size() * sizeof(CollapseHistory::Step)),
+            0);
+  EXPECT_EQ(history.removed_tets, r.history.removed_tets);
+  EXPECT_EQ(history.rewired, r.history.rewired);
+  EXPECT_EQ(history.moved, r.history.moved);
+  Lod lod(base, &history);
+  lod.seek(lod.step_count());
+  const TetMesh level = lod.extract();
+  EXPECT_EQ(level.tets, r.output.tets);
+  EXPECT_EQ(level.materials, r.output.materials);
+}
+
+// A forged history: one field changed, each caught by the check that names it.
+TEST(HistoryFile, ForgedStepsAreNamed) {
+  const SimplifyResult& r = small_run();
+  const size_t middle = r.history.step_count() / 2;
+  const CollapseHistory::Step step = r.history.steps[middle];
+  ASSERT_LT(step.moved_begin, r.history.moved_end(middle));
+  ASSERT_LT(step.rewired_begin, r.history.rewired_end(middle));
+  struct Forgery {
+    const char* expected;
+    void (*forge)(TetMesh* base, CollapseHistory* h, size_t s);
+  };
+  const Forgery forgeries[] = {
+      {"negative material", [](TetMesh* b, CollapseHistory*, size_t) { b->materials[3] = -1; }},
+      {"flat or inverted",
+       [](TetMesh* b, CollapseHistory*, size_t) { std::swap(b->tets[5][0], b->tets[5][1]); }},
+      {"not where the step starts",
+       [](TetMesh*, CollapseHistory* h, size_t s) { h->steps[s].old_position.x += 1e-9; }},
+      {"flat or inverted",
+       [](TetMesh* b, CollapseHistory* h, size_t s) {
+         // Move the kept vertex through its star: far beyond the opposite side.
+         const Vec3 k = h->steps[s].new_position;
+         const Vec3 far_away = b->positions[h->steps[s].removed];
+         h->steps[s].new_position = k + (far_away - k) * 50.0;
+       }},
+      {"vertex out of range",
+       [](TetMesh*, CollapseHistory* h, size_t s) { h->steps[s].removed = h->steps[s].kept; }},
+      {"moved tet mismatch",
+       [](TetMesh*, CollapseHistory* h, size_t s) {
+         h->moved[h->steps[s].moved_begin] = h->removed_tets[h->steps[s].removed_begin];
+       }},
+      {"rewired corner mismatch",
+       [](TetMesh*, CollapseHistory* h, size_t s) { h->rewired[h->steps[s].rewired_begin] ^= 1; }},
+      {"not around the edge",
+       [](TetMesh*, CollapseHistory* h, size_t s) {
+         h->removed_tets[h->steps[s].removed_begin] = h->moved[h->steps[s].moved_begin];
+       }},
+  };
+  for (const Forgery& f : forgeries) {
+    TetMesh base = r.base;
+    CollapseHistory history = r.history;
+    f.forge(&base, &history, middle);
+    const std::string path = out_path("forged.tlh");
+    ASSERT_TRUE(write_history(path, base, history).ok());
+    TetMesh read_base;
+    CollapseHistory read;
+    const Status status = read_history(path, &read_base, &read);
+    EXPECT_FALSE(status.ok()) << f.expected;
+    EXPECT_NE(status.message().find(f.expected), std::string::npos)
+        << f.expected << ": " << status.message();
+    EXPECT_NE(status.message().find("forged.tlh"), std::string::npos) << status.message();
+  }
+}
+
+// Every cut of the file is an error (the file ends inside an array, or an array is
+// missing); random byte damage is an error or a history whose levels are all valid.
+TEST(HistoryFile, TruncatedAndDamagedFilesNeverReplayBadly) {
+  const SimplifyResult& r = small_run();
+  const std::string path = out_path("whole.tlh");
+  ASSERT_TRUE(write_history(path, r.base, r.history).ok());
+  const std::string whole = read_bytes(path);
+  const std::string cut_path = out_path("cut.tlh");
+  for (size_t n = 0; n < whole.size(); n += n < 64 ? 1 : 37) {
+    write_bytes(cut_path, whole.substr(0, n));
+    TetMesh base;
+    CollapseHistory history;
+    EXPECT_FALSE(read_history(cut_path, &base, &history).ok()) << "cut at " << n;
+  }
+  std::mt19937 random(7);
+  size_t accepted = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::string damaged = whole;
+    const int flips = 1 + static_cast<int>(random() % 4);
+    for (int k = 0; k < flips; ++k) damaged[random() % damaged.size()] ^= 1 << (random() % 8);
+    write_bytes(cut_path, damaged);
+    TetMesh base;
+    CollapseHistory history;
+    if (!read_history(cut_path, &base, &history).ok()) continue;
+    ++accepted;
+    expect_positive_levels(base, history);
+    if (testing::Test::HasFatalFailure()) return;
+  }
+  // Flips in low mantissa bits of positions pass every check (and are harmless).
+  EXPECT_GT(accepted, 0u);
+}
+
+}  // namespace
+}  // namespace tetlod
