@@ -13,6 +13,7 @@
 #include "core/lod.h"
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
+#include "core/validate.h"
 
 namespace tetlod::app {
 namespace {
@@ -286,6 +287,15 @@ int cmd_lod(const Args& args) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   TetMesh level = lod.extract();
+  // The reader has checked that every level is made of positive tets; a hostile file
+  // could still make tets overlap: write only what TetLOD itself would read back.
+  ValidationReport report;
+  s = validate_mesh(&level, history_path + " (level at step " + std::to_string(target) + ")", {},
+                    &report);
+  if (!s) {
+    std::fprintf(stderr, "tetlod lod: corrupt history: %s\n", s.message().c_str());
+    return kExitBadInput;
+  }
   ImproveResult improved;
   double seconds_improve = 0;
   if (improve) improved = improve_timed(&level, options.params, &seconds_improve);

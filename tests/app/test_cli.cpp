@@ -10,6 +10,7 @@
 
 #include "app/cli_runner.h"
 #include "core/io/mesh_io.h"
+#include "core/lod.h"
 #include "core/test_meshes.h"
 
 namespace tetlod {
@@ -153,6 +154,25 @@ TEST(Cli, SimplifyThenLodWritesLevels) {
   const CommandResult junk = run("lod " + out_dir() + "/junk.tlh --step 0 -o " + level);
   EXPECT_EQ(junk.code, 1);
   EXPECT_NE(junk.output.find("junk.tlh"), std::string::npos);
+}
+
+// A forged history whose mesh has positive tets that overlap (three on one face):
+// the reader's replay checks pass, but lod checks the level as a mesh file would be
+// checked, and writes nothing.
+TEST(Cli, LodRefusesAHistoryWhoseLevelIsNotAMesh) {
+  TetMesh base;
+  base.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.1, 0.1, 1}, {0.2, 0.1, 0.9}};
+  base.tets = {{0, 1, 2, 3}, {0, 1, 2, 4}, {0, 1, 2, 5}};
+  base.materials = {1, 1, 1};
+  const std::string history = out_dir() + "/overlap.tlh";
+  ASSERT_TRUE(write_history(history, base, CollapseHistory()).ok());
+  const std::string out = out_dir() + "/overlap.mesh";
+  fs::remove(out);
+  const CommandResult r = run("lod " + history + " --step 0 -o " + out);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("corrupt history: " + history + " (level at step 0)"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // --improve reshapes the level written (flips, vertex moves) within the thresholds and
