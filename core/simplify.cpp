@@ -271,7 +271,7 @@ TETLOD_KERNEL void first_pass(TetBlock& b, double kx, double ky, double kz, doub
     const double thin = 6 * v6 * v6 < floor2 * s2 * area_squares ? 1.0 : 0.0;
     const double verdict = v6 > 0 ? (s2 > b.limit[n] * b.limit[n] ? 2.0 : thin) : 1.0;
     const bool keeps = (b.side[n] == unmoved) & (b.steady[n] != 0);
-    b.code[n] = keeps | (b.skip[n] != 0) ? 0.0 : verdict;
+    b.code[n] = (keeps | (b.skip[n] != 0)) ? 0.0 : verdict;
   }
 }
 

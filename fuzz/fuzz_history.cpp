@@ -1,0 +1,48 @@
+// libFuzzer target for the collapse-history reader (tetlod lod HISTORY, the viewer's
+// history files). A history the reader accepts must replay without going astray:
+// seeks to the end, back to the start and to the middle (with a render delta), and
+// the levels extracted there reference only their own vertices and have only
+// positive tets (the reader's replay checks promise that much).
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include <unistd.h>
+
+#include "core/lod.h"
+
+namespace {
+
+void check_level(const tetlod::TetMesh& level) {
+  if (level.materials.size() != level.tets.size()) __builtin_trap();
+  for (const tetlod::Tet& t : level.tets) {
+    for (uint32_t v : t)
+      if (v >= level.vertex_count()) __builtin_trap();
+    if (!(tetlod::signed_volume6(level, t) > 0)) __builtin_trap();
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  // read_history() reads a file: give it one (per process, reused).
+  static const std::string path = "/tmp/tetlod_fuzz_history_" + std::to_string(getpid()) + ".tlh";
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return 0;
+  std::fwrite(data, 1, size, f);
+  std::fclose(f);
+  tetlod::TetMesh base;
+  tetlod::CollapseHistory history;
+  if (!tetlod::read_history(path, &base, &history).ok()) return 0;
+  tetlod::Lod lod(base, &history);
+  tetlod::LodDelta delta;
+  lod.seek(lod.step_count(), &delta);
+  check_level(lod.extract());
+  lod.seek(0, &delta);
+  check_level(lod.extract());
+  lod.seek(lod.step_count() / 2, &delta);
+  check_level(lod.extract());
+  (void)lod.step_for_elements(1);
+  return 0;
+}
