@@ -60,6 +60,11 @@ double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
+// A collapse history file (read_history / write_history), by its extension.
+bool is_history_path(const std::string& path) {
+  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".tlh") == 0;
+}
+
 // A loaded mesh and what is displayed of it: the LOD over the last simplification
 // result, or over the input alone (an empty history) before any.
 struct Scene {
@@ -68,6 +73,7 @@ struct Scene {
   std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
   std::string above_size_reason;                 // of the result ("" if nothing is above)
   SimplifyParams params;                         // of the result's run
+  bool from_history = false;  // the result was read from a history file, not run here
   CollapseHistory empty_history;
   std::unique_ptr<Lod> lod;
   render::LodSurface surface;
@@ -583,7 +589,17 @@ void Viewer::start_load(const std::string& path) {
       std::lock_guard<std::mutex> lock(job->mutex);
       job->phase = "reading";
     }
-    const Status s = read_mesh(job->path, mesh.get(), &info);
+    // A collapse history (tetlod simplify --history, or saved here): its finest
+    // level is the input, and its levels are there at once.
+    std::shared_ptr<SimplifyResult> history;
+    Status s;
+    if (is_history_path(job->path)) {
+      history = std::make_shared<SimplifyResult>();
+      s = read_history(job->path, &history->base, &history->history);
+      if (s) *mesh = history->base;
+    } else {
+      s = read_mesh(job->path, mesh.get(), &info);
+    }
     if (!s) {
       std::lock_guard<std::mutex> lock(job->mutex);
       job->error = s.message();
@@ -594,7 +610,8 @@ void Viewer::start_load(const std::string& path) {
       }
       ui::ViewSettings v = view;
       v.cut = false;  // the cut position belongs to the old model
-      auto scene = make_scene(job->path, std::move(mesh), nullptr, v);
+      auto scene = make_scene(job->path, std::move(mesh), history, v);
+      scene->from_history = history != nullptr;
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
     }
@@ -981,10 +998,24 @@ Status Viewer::screenshot(const std::string& path, int width, int height) {
 Status Viewer::save_level(const std::string& path, bool improve) {
   if (!scene_) return Status::error("nothing to save: no mesh loaded");
   if (save_future_.valid()) return Status::error("still saving " + save_path_);
+  if (is_history_path(path)) {
+    // The whole collapse history, for 'tetlod lod' or to open here again later.
+    if (improve) return Status::error(path + ": a history is saved as it is (no improve)");
+    if (!scene_->result) return Status::error(path + ": nothing simplified yet: no history");
+    save_path_ = path;
+    save_future_ = std::async(std::launch::async, [path, result = scene_->result] {
+      Saved saved;
+      saved.status = write_history(path, result->base, result->history);
+      saved.note =
+          " (the collapse history, " + std::to_string(result->history.step_count()) + " steps)";
+      return saved;
+    });
+    return Status();
+  }
   // Improving uses the thresholds of the run that made the levels, or the panel's
-  // when nothing was simplified yet.
+  // when nothing was simplified here (a history file keeps no thresholds).
   SimplifyParams params = scene_->params;
-  if (improve && !scene_->result) {
+  if (improve && (!scene_->result || scene_->from_history)) {
     std::string error;
     if (!ui::to_simplify_params(thresholds_, &params, &error))
       return Status::error("improve: thresholds: " + error);
@@ -1233,8 +1264,9 @@ void Viewer::fill_status() {
     s.bounds_min[k] = static_cast<float>(k == 0 ? scene.lo.x : k == 1 ? scene.lo.y : scene.lo.z);
     s.bounds_max[k] = static_cast<float>(k == 0 ? scene.hi.x : k == 1 ? scene.hi.y : scene.hi.z);
   }
-  s.has_result = scene.result != nullptr;
-  if (scene.result) {
+  s.from_history = scene.from_history;
+  s.has_result = scene.result != nullptr && !scene.from_history;
+  if (s.has_result) {
     s.rejections = scene.result->rejections;
     s.splits = scene.result->splits;
     s.violations = scene.result->violations;

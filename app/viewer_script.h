@@ -3,8 +3,9 @@
 // previous one has finished (a simplification, a scrub, a statistics update).
 //
 //   # comment                        blank lines and comments are skipped
-//   open PATH [may-fail]             load a mesh (waits); with may-fail a bad file is
-//                                    not a script error: it shows in the UI as for a user
+//   open PATH [may-fail]             load a mesh, or a collapse history (.tlh) with its
+//                                    levels (waits); with may-fail a bad file is not a
+//                                    script error: it shows in the UI as for a user
 //   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h)
 //   simplify [wait=0]                run the simplifier with the thresholds (waits,
@@ -26,7 +27,8 @@
 //   zoom CLICKS                      as by the mouse wheel (positive: closer)
 //   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
 //   save PATH [improve]              the displayed level, format from the extension;
-//                                    improve: its shapes improved first (improve.h)
+//                                    improve: its shapes improved first (improve.h);
+//                                    PATH.tlh: the whole collapse history instead
 //   wait frames=N | seconds=S        keep drawing (and taking input) meanwhile
 //   bench-scrub [frames=N] [out=CSV] drag the scrubber end to end and back over N
 //                                    frames each way; prints frame times

@@ -190,6 +190,12 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     ImGui::Text("%zu collapses, %.0f /s, %.1f s", status.collapses, status.collapses_per_second,
                 status.elapsed_seconds);
   }
+  if (status.from_history) {
+    ImGui::TextWrapped(
+        "Levels from a saved collapse history (%zu steps). A history keeps no thresholds "
+        "or run statistics; Simplify starts again from its finest level.",
+        status.step_count);
+  }
   if (status.has_result) {
     ImGui::Text("Last run: %.2f s, %zu splits%s", status.simplify_seconds, status.splits,
                 status.result_cancelled ? " (cancelled)" : "");
@@ -248,7 +254,7 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::SameLine();
   if (ImGui::Button("Save level"))
     commands->push_back({CommandKind::kSave, panel->save_path, panel->save_improved ? 1 : 0});
-  ImGui::TextDisabled(".mesh .msh .node .vtk .vtu .bdf .nas .inp");
+  ImGui::TextDisabled(".mesh .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
   ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(

@@ -140,7 +140,8 @@ struct ViewerStatus {
   size_t collapses = 0;
   double collapses_per_second = 0;
   double elapsed_seconds = 0;
-  bool has_result = false;
+  bool has_result = false;    // a run in this session (its statistics below)
+  bool from_history = false;  // the levels are a history file's (no run statistics)
   bool result_cancelled = false;
   RejectionCounts rejections;
   size_t splits = 0;

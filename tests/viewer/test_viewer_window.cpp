@@ -232,6 +232,65 @@ TEST(ViewerWindow, SimplifyingAgainStartsFromTheInput) {
   EXPECT_EQ(saved.tet_count(), from_input.output.tet_count());
 }
 
+// A run's collapse history saved from the viewer (save PATH.tlh) opens again with
+// all its levels, without simplifying: its levels are the run's, saving it again gives
+// the same file, and a damaged history is an error in the panel, not a crash.
+TEST(ViewerWindow, SavesAndOpensCollapseHistories) {
+  const fs::path dir = fresh_output_dir("viewer_history");
+  {
+    std::ofstream bad(dir / "bad.tlh", std::ios::binary);
+    bad << "TETLODH1" << std::string(40, '\x7f');
+  }
+  std::ofstream(dir / "history.script")
+      << "save early.tlh\n"  // nothing simplified yet: an error, not a file
+      << "thresholds size=25 stretch=0.15 valence=25 tolerance=0.05\nsimplify\n"
+         "save run.tlh\nsave coarse.mesh\n"
+         "open run.tlh\nscrub step=700\nsave step700.mesh\nscrub end\nsave end.mesh\n"
+         "save again.tlh\nscreenshot before_ui.png ui=1\nopen bad.tlh may-fail\n"
+         "screenshot after_ui.png ui=1\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 800x600 --script history.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;  // the first line fails
+  EXPECT_NE(run.output.find("history.script:1: early.tlh: nothing simplified yet"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(dir / "early.tlh"));
+
+  // Without the failing first line, the rest runs to the end.
+  std::ifstream in(dir / "history.script");
+  std::string first_line, rest;
+  std::getline(in, first_line);
+  rest.assign(std::istreambuf_iterator<char>(in), {});
+  std::ofstream(dir / "history.script") << rest;
+  const ViewerRun ok =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 800x600 --script history.script");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+
+  TetMesh base;
+  CollapseHistory history;
+  ASSERT_TRUE(read_history((dir / "run.tlh").string(), &base, &history).ok());
+  ASSERT_GT(history.step_count(), 700u);
+  Lod lod(base, &history);
+  for (const auto& [file, step] : {std::make_pair("step700.mesh", size_t{700}),
+                                   std::make_pair("end.mesh", history.step_count())}) {
+    lod.seek(step);
+    const TetMesh expected = lod.extract();
+    TetMesh saved;
+    ASSERT_TRUE(read_mesh((dir / file).string(), &saved).ok()) << file;
+    EXPECT_EQ(saved.tets, expected.tets) << file;
+    EXPECT_EQ(saved.materials, expected.materials) << file;
+  }
+  auto bytes = [&](const char* name) {
+    std::ifstream f(dir / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  };
+  EXPECT_EQ(bytes("again.tlh"), bytes("run.tlh"));
+  EXPECT_EQ(bytes("end.mesh"), bytes("coarse.mesh"));
+  EXPECT_GT(red_panel_pixels(load_png(dir / "after_ui.png")),
+            red_panel_pixels(load_png(dir / "before_ui.png")) + 50)
+      << "no error text in the panel for bad.tlh";
+}
+
 TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
   const fs::path dir = fresh_output_dir("viewer_failed_save");
   std::ofstream(dir / "save.script") << "save level.mesh\nsave /nonexistent-dir/level.mesh\nquit\n";
