@@ -312,17 +312,18 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
     const Tet& q = tets[t];
     return signed_volume6(positions[q[0]], positions[q[1]], positions[q[2]], positions[q[3]]) > 0;
   };
+  std::vector<uint32_t> listed_at(tet_count, 0);  // 1 + the last step listing a tet as moved
   for (size_t s = 0; s < history->steps.size(); ++s) {
     const CollapseHistory::Step& st = history->steps[s];
-    const std::string at = "step " + std::to_string(s) + ": ";
-    if (uses[st.kept] == 0 || uses[st.removed] == 0) return bad(at + "a vertex no tet uses");
+    auto at = [s](const char* what) { return "step " + std::to_string(s) + ": " + what; };
+    if (uses[st.kept] == 0 || uses[st.removed] == 0) return bad(at("a vertex no tet uses"));
     if (std::memcmp(&positions[st.kept], &st.old_position, sizeof(Vec3)) != 0)
-      return bad(at + "the kept vertex is not where the step starts");
+      return bad(at("the kept vertex is not where the step starts"));
     for (uint32_t k = st.removed_begin; k < history->removed_end(s); ++k) {
       const uint32_t t = history->removed_tets[k];
-      if (!alive[t]) return bad(at + "tet retired twice");
+      if (!alive[t]) return bad(at("tet retired twice"));
       if (!tet_has(tets[t], st.kept) || !tet_has(tets[t], st.removed))
-        return bad(at + "a retired tet is not around the edge");
+        return bad(at("a retired tet is not around the edge"));
       alive[t] = 0;
       for (uint32_t v : tets[t]) --uses[v];
     }
@@ -330,21 +331,23 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
     for (uint32_t k = st.rewired_begin; k < history->rewired_end(s); ++k) {
       const uint32_t c = history->rewired[k];
       if (!alive[c >> 2] || tets[c >> 2][c & 3] != st.removed)
-        return bad(at + "rewired corner mismatch");
+        return bad(at("rewired corner mismatch"));
       tets[c >> 2][c & 3] = st.kept;
       --uses[st.removed];
       ++uses[st.kept];
-      if (!positive(c >> 2)) return bad(at + "makes a flat or inverted tet");
+      if (!positive(c >> 2)) return bad(at("makes a flat or inverted tet"));
     }
-    if (uses[st.removed] != 0) return bad(at + "the removed vertex is still used");
+    if (uses[st.removed] != 0) return bad(at("the removed vertex is still used"));
     for (uint32_t k = st.moved_begin; k < history->moved_end(s); ++k) {
       const uint32_t t = history->moved[k];
-      if (!alive[t] || !tet_has(tets[t], st.kept)) return bad(at + "moved tet mismatch");
-      if (!positive(t)) return bad(at + "makes a flat or inverted tet");
+      if (!alive[t] || !tet_has(tets[t], st.kept)) return bad(at("moved tet mismatch"));
+      if (listed_at[t] == s + 1) return bad(at("a moved tet listed twice"));
+      listed_at[t] = static_cast<uint32_t>(s + 1);
+      if (!positive(t)) return bad(at("makes a flat or inverted tet"));
     }
     if (uses[st.kept] !=
         (history->rewired_end(s) - st.rewired_begin) + (history->moved_end(s) - st.moved_begin))
-      return bad(at + "moved tets missing");
+      return bad(at("moved tets missing"));
   }
   return Status();
 }

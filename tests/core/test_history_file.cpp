@@ -131,6 +131,12 @@ TEST(HistoryFile, ForgedStepsAreNamed) {
        [](TetMesh*, CollapseHistory* h, size_t s) {
          h->moved[h->steps[s].moved_begin] = h->removed_tets[h->steps[s].removed_begin];
        }},
+      {"listed twice",
+       [](TetMesh*, CollapseHistory* h, size_t s) {
+         // One moved tet twice and another not at all: the count alone would pass.
+         ASSERT_GE(h->moved_end(s) - h->steps[s].moved_begin, 2u);
+         h->moved[h->steps[s].moved_begin + 1] = h->moved[h->steps[s].moved_begin];
+       }},
       {"rewired corner mismatch",
        [](TetMesh*, CollapseHistory* h, size_t s) { h->rewired[h->steps[s].rewired_begin] ^= 1; }},
       {"not around the edge",
