@@ -1,7 +1,13 @@
 #include "app/cli_util.h"
 
+#include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
+#include <utility>
+
+#include "core/lod.h"
+#include "core/validate.h"
 
 namespace tetlod::app {
 
@@ -40,6 +46,41 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   if (info->validation.removed_unused_vertices > 0) {
     std::fprintf(stderr, "tetlod: %s: note: %zu vertices used by no tetrahedron were dropped\n",
                  path.c_str(), info->validation.removed_unused_vertices);
+  }
+  return true;
+}
+
+bool is_history_path(const std::string& path) {
+  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".tlh") == 0;
+}
+
+bool load_history_level(const std::string& path, const char* command, long long step,
+                        long long elements, HistoryLevel* level) {
+  TetMesh base;
+  CollapseHistory history;
+  Status s = read_history(path, &base, &history);
+  if (!s) {
+    std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
+    return false;
+  }
+  Lod lod(std::move(base), &history);
+  level->step_count = lod.step_count();
+  level->step = step >= 0       ? std::min<size_t>(static_cast<size_t>(step), lod.step_count())
+                : elements >= 0 ? lod.step_for_elements(static_cast<size_t>(elements))
+                                : lod.step_count();
+  const auto start = std::chrono::steady_clock::now();
+  lod.seek(level->step);
+  level->seek_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  level->mesh = lod.extract();
+  // The reader has checked that every level is made of positive tets; a forged file
+  // could still make tets overlap: hand on only what TetLOD would read from a file.
+  ValidationReport report;
+  s = validate_mesh(&level->mesh, path + " (level at step " + std::to_string(level->step) + ")", {},
+                    &report);
+  if (!s) {
+    std::fprintf(stderr, "tetlod %s: corrupt history: %s\n", command, s.message().c_str());
+    return false;
   }
   return true;
 }

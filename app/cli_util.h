@@ -23,6 +23,24 @@ std::optional<long long> parse_integer(const std::string& text);
 // Notes about repairs (reoriented tets, dropped vertices) go to stderr too.
 bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info);
 
+// A collapse history file (tetlod simplify --history, the viewer's save), by its
+// extension: .tlh.
+bool is_history_path(const std::string& path);
+
+// A level of a collapse history file.
+struct HistoryLevel {
+  TetMesh mesh;  // validated as a mesh file is (a forged history could make tets overlap)
+  size_t step = 0, step_count = 0;
+  double seek_seconds = 0;  // moving the Lod from step 0 to `step`
+};
+
+// Reads the history at `path` and extracts step `step` (clamped to the last) if
+// step >= 0, else the step nearest `elements` elements if elements >= 0, else the
+// last step. On failure prints "tetlod <command>: <message>" to stderr and returns
+// false.
+bool load_history_level(const std::string& path, const char* command, long long step,
+                        long long elements, HistoryLevel* level);
+
 // Prints the Table I rows (whole mesh, then each material) as an aligned table.
 void print_property_table(const MeshStats& stats);
 

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "app/cli_util.h"
 #include "app/commands.h"
@@ -19,7 +20,9 @@ constexpr const char* kRenderUsageHead =
     "[--improve]]\n"
     "\n"
     "Draws the boundary and interface faces of the visible tets offscreen (OpenGL 3.3 core\n"
-    "through OSMesa: no display or GPU needed) and writes a PNG.\n";
+    "through OSMesa: no display or GPU needed) and writes a PNG. FILE may be a collapse\n"
+    "history (.tlh, from 'tetlod simplify --history'): then --elements N picks its level\n"
+    "(default: the last), without simplifying again.\n";
 constexpr const char* kRenderUsageTail =
     "  --simplify        render the simplified mesh; takes the flags of 'tetlod simplify':\n"
     "                    --size, --stretch, --valence, --tolerance, --material-size,\n"
@@ -65,7 +68,15 @@ int cmd_render(const Args& args) {
     print_usage(stderr);
     return kExitUsage;
   }
-  if (options.simplify && !options.simplify_options.size_given) {
+  const bool history = is_history_path(in);
+  if (history && options.simplify_beyond_elements) {
+    std::fprintf(stderr,
+                 "tetlod render: %s is a collapse history, already simplified: give only "
+                 "--elements N to choose its level (default: the last)\n",
+                 in.c_str());
+    return kExitUsage;
+  }
+  if (!history && options.simplify && !options.simplify_options.size_given) {
     std::fputs(
         "tetlod render: --simplify needs a target size (--size, --material-size or "
         "--size-field)\n",
@@ -74,10 +85,17 @@ int cmd_render(const Args& args) {
   }
 
   TetMesh mesh;
-  ReadInfo info;
-  if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
+  if (history) {
+    HistoryLevel level;
+    if (!load_history_level(in, "render", -1, options.simplify_options.elements, &level))
+      return kExitBadInput;
+    mesh = std::move(level.mesh);
+  } else {
+    ReadInfo info;
+    if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
+  }
   if (!resolve_materials(mesh, "render", &options)) return kExitBadInput;
-  if (options.simplify) {
+  if (options.simplify && !history) {
     TetMesh simplified;
     if (!simplified_mesh(mesh, "render", &options, &simplified)) return kExitBadInput;
     mesh = std::move(simplified);

@@ -13,7 +13,6 @@
 #include "core/lod.h"
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
-#include "core/validate.h"
 
 namespace tetlod::app {
 namespace {
@@ -271,41 +270,20 @@ int cmd_lod(const Args& args) {
       return kExitUsage;
     }
   }
-  TetMesh base;
-  CollapseHistory history;
-  Status s = read_history(history_path, &base, &history);
-  if (!s) {
-    std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
-    return kExitBadInput;
-  }
-  if (improve && !finish_simplify_options(base, "lod", &options)) return kExitUsage;
-  Lod lod(std::move(base), &history);
-  const size_t target = step >= 0 ? std::min<size_t>(static_cast<size_t>(step), lod.step_count())
-                                  : lod.step_for_elements(static_cast<size_t>(elements));
-  const auto start = std::chrono::steady_clock::now();
-  lod.seek(target);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  TetMesh level = lod.extract();
-  // The reader has checked that every level is made of positive tets; a hostile file
-  // could still make tets overlap: write only what TetLOD itself would read back.
-  ValidationReport report;
-  s = validate_mesh(&level, history_path + " (level at step " + std::to_string(target) + ")", {},
-                    &report);
-  if (!s) {
-    std::fprintf(stderr, "tetlod lod: corrupt history: %s\n", s.message().c_str());
-    return kExitBadInput;
-  }
+  HistoryLevel level;
+  if (!load_history_level(history_path, "lod", step, elements, &level)) return kExitBadInput;
+  if (improve && !finish_simplify_options(level.mesh, "lod", &options)) return kExitUsage;
   ImproveResult improved;
   double seconds_improve = 0;
-  if (improve) improved = improve_timed(&level, options.params, &seconds_improve);
-  s = write_mesh(out, level);
+  if (improve) improved = improve_timed(&level.mesh, options.params, &seconds_improve);
+  const Status s = write_mesh(out, level.mesh);
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
   std::printf("%s: step %zu of %zu, %zu elements, %zu nodes (moved there in %.4f s)\n", out.c_str(),
-              target, lod.step_count(), level.tet_count(), level.vertex_count(), seconds);
+              level.step, level.step_count, level.mesh.tet_count(), level.mesh.vertex_count(),
+              level.seek_seconds);
   if (improve) print_improve(improved, seconds_improve);
   return kExitOk;
 }

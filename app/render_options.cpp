@@ -59,13 +59,14 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
                                  RenderOptions* options) {
   const std::string& a = args[*i];
   if (a == "--simplify") {
-    options->simplify = true;
+    options->simplify = options->simplify_beyond_elements = true;
     return OptionResult::kParsed;
   }
   const OptionResult simplify_flag =
       parse_simplify_option(args, i, command, &options->simplify_options);
   if (simplify_flag != OptionResult::kNotMine) {
     options->simplify = true;
+    options->simplify_beyond_elements |= a != "--elements";
     return simplify_flag;
   }
   render::SnapshotSettings& s = options->snapshot;

@@ -19,6 +19,7 @@ struct RenderOptions {
   std::vector<int32_t> shown_materials;   // --materials: only these (empty: all)
   std::vector<int32_t> hidden_materials;  // --hide
   bool simplify = false;                  // --simplify, or any simplifier flag
+  bool simplify_beyond_elements = false;  // ... other than --elements
   SimplifyOptions simplify_options;
 };
 

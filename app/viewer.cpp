@@ -36,6 +36,7 @@
 #include <optional>
 #include <thread>
 
+#include "app/cli_util.h"
 #include "app/commands.h"
 #include "app/orbit_camera.h"
 #include "core/adjacency.h"
@@ -58,11 +59,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
-}
-
-// A collapse history file (read_history / write_history), by its extension.
-bool is_history_path(const std::string& path) {
-  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".tlh") == 0;
 }
 
 // A loaded mesh and what is displayed of it: the LOD over the last simplification

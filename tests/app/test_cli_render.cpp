@@ -98,6 +98,35 @@ TEST(CliRender, RendersTheImprovedLevelThatSimplifyWrites) {
   EXPECT_NE(file_bytes(plain), file_bytes(direct));
 }
 
+// A saved history renders any of its levels without simplifying again: the level
+// nearest --elements (the last by default) is drawn as `lod` writes it; simplifier
+// flags other than --elements are usage errors for a history.
+TEST(CliRender, RendersALevelOfASavedHistory) {
+  const std::string history = out_dir() + "/render_history.tlh";
+  CommandResult r = run("simplify " + asset("motor.mesh") + " -o " + out_dir() +
+                        "/render_history_end.mesh --size 12 --tolerance 0.05 --history " + history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string view = " --hide 1 --cut y=0 --width 96 --height 96 -o ";
+  for (const char* elements : {"40000", ""}) {
+    const std::string level = out_dir() + "/render_history_level.mesh";
+    const std::string select = *elements ? std::string(" --elements ") + elements : "";
+    r = run("lod " + history + (*elements ? select : " --step 999999") + " -o " + level);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string from_history = out_dir() + "/render_history_direct.png";
+    const std::string from_level = out_dir() + "/render_history_level.png";
+    r = run("render " + history + select + view + from_history);
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = run("render " + level + view + from_level);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(file_bytes(from_history), file_bytes(from_level)) << "--elements " << elements;
+  }
+  for (const char* flags : {" --simplify", " --size 3", " --elements 10 --improve"}) {
+    r = run("render " + history + flags + view + out_dir() + "/render_history_bad.png");
+    EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
+    EXPECT_NE(r.output.find("is a collapse history"), std::string::npos) << r.output;
+  }
+}
+
 TEST(CliRender, BadValuesAreUsageErrors) {
   const std::string in = asset("box2.mesh");
   const std::string out = out_dir() + "/never.png";
