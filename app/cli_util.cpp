@@ -34,6 +34,13 @@ std::optional<long long> parse_integer(const std::string& text) {
 }
 
 bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
+  if (is_history_path(path)) {
+    std::fprintf(stderr,
+                 "tetlod: %s is a collapse history, not a mesh: write one of its levels with "
+                 "'tetlod lod %s --elements N -o LEVEL.mesh' (render and view open it too)\n",
+                 path.c_str(), path.c_str());
+    return false;
+  }
   const Status status = read_mesh(path, mesh, info);
   if (!status) {
     std::fprintf(stderr, "tetlod: %s\n", status.message().c_str());

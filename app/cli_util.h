@@ -19,7 +19,8 @@ bool wants_help(const Args& args);
 std::optional<double> parse_double(const std::string& text);
 std::optional<long long> parse_integer(const std::string& text);
 
-// Reads a mesh; on failure prints "tetlod: <message>" to stderr and returns false.
+// Reads a mesh; on failure prints "tetlod: <message>" to stderr and returns false
+// (for a collapse history, what to do with it instead).
 // Notes about repairs (reoriented tets, dropped vertices) go to stderr too.
 bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info);
 

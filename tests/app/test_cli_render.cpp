@@ -120,6 +120,13 @@ TEST(CliRender, RendersALevelOfASavedHistory) {
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(file_bytes(from_history), file_bytes(from_level)) << "--elements " << elements;
   }
+  // Commands that take a mesh say what to do with a history instead.
+  r = run("stats " + history);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("is a collapse history, not a mesh: write one of its levels with "
+                          "'tetlod lod"),
+            std::string::npos)
+      << r.output;
   for (const char* flags : {" --simplify", " --size 3", " --elements 10 --improve"}) {
     r = run("render " + history + flags + view + out_dir() + "/render_history_bad.png");
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
