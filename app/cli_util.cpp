@@ -4,6 +4,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "core/lod.h"
@@ -61,35 +62,48 @@ bool is_history_path(const std::string& path) {
   return path.size() >= 4 && path.compare(path.size() - 4, 4, ".tlh") == 0;
 }
 
-bool load_history_level(const std::string& path, const char* command, long long step,
-                        long long elements, HistoryLevel* level) {
+bool open_history(const std::string& path, const char* command, OpenedHistory* opened) {
   TetMesh base;
-  CollapseHistory history;
-  Status s = read_history(path, &base, &history);
+  opened->path = path;
+  const Status s = read_history(path, &base, &opened->history);
   if (!s) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
     return false;
   }
-  Lod lod(std::move(base), &history);
-  level->step_count = lod.step_count();
-  level->step = step >= 0       ? std::min<size_t>(static_cast<size_t>(step), lod.step_count())
-                : elements >= 0 ? lod.step_for_elements(static_cast<size_t>(elements))
-                                : lod.step_count();
+  opened->lod = std::make_unique<Lod>(std::move(base), &opened->history);
+  return true;
+}
+
+bool history_level(OpenedHistory* opened, const char* command, size_t step, TetMesh* level,
+                   double* seek_seconds) {
   const auto start = std::chrono::steady_clock::now();
-  lod.seek(level->step);
-  level->seek_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  level->mesh = lod.extract();
+  opened->lod->seek(step);
+  if (seek_seconds)
+    *seek_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  *level = opened->lod->extract();
   // The reader has checked that every level is made of positive tets; a forged file
   // could still make tets overlap: hand on only what TetLOD would read from a file.
   ValidationReport report;
-  s = validate_mesh(&level->mesh, path + " (level at step " + std::to_string(level->step) + ")", {},
-                    &report);
+  const Status s = validate_mesh(
+      level, opened->path + " (level at step " + std::to_string(opened->lod->step()) + ")", {},
+      &report);
   if (!s) {
     std::fprintf(stderr, "tetlod %s: corrupt history: %s\n", command, s.message().c_str());
     return false;
   }
   return true;
+}
+
+bool load_history_level(const std::string& path, const char* command, long long step,
+                        long long elements, HistoryLevel* level) {
+  OpenedHistory opened;
+  if (!open_history(path, command, &opened)) return false;
+  const Lod& lod = *opened.lod;
+  level->step_count = lod.step_count();
+  level->step = step >= 0       ? std::min<size_t>(static_cast<size_t>(step), lod.step_count())
+                : elements >= 0 ? lod.step_for_elements(static_cast<size_t>(elements))
+                                : lod.step_count();
+  return history_level(&opened, command, level->step, &level->mesh, &level->seek_seconds);
 }
 
 void print_property_table(const MeshStats& stats) {

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "app/commands.h"
 #include "core/io/mesh_io.h"
+#include "core/lod.h"
 #include "core/mesh_stats.h"
 
 namespace tetlod::app {
@@ -27,6 +29,26 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info);
 // A collapse history file (tetlod simplify --history, the viewer's save), by its
 // extension: .tlh.
 bool is_history_path(const std::string& path);
+
+// A collapse history file opened to read levels from.
+struct OpenedHistory {
+  OpenedHistory() = default;
+  OpenedHistory(const OpenedHistory&) = delete;  // `lod` points into `history`
+  OpenedHistory& operator=(const OpenedHistory&) = delete;
+  std::string path;
+  CollapseHistory history;
+  std::unique_ptr<Lod> lod;  // over `history`, from its base mesh
+};
+
+// Reads the history at `path`; on failure prints "tetlod <command>: <message>" to
+// stderr and returns false.
+bool open_history(const std::string& path, const char* command, OpenedHistory* opened);
+
+// The level at `step` (clamped to the last), validated as a mesh file is (a forged
+// history could make tets overlap); on failure prints "tetlod <command>: corrupt
+// history: ..." and returns false. `seek_seconds`, if given: moving the Lod there.
+bool history_level(OpenedHistory* opened, const char* command, size_t step, TetMesh* level,
+                   double* seek_seconds = nullptr);
 
 // A level of a collapse history file.
 struct HistoryLevel {

@@ -25,6 +25,8 @@ constexpr const char* kReportUsageHead =
     "Writes DIR/report.html, a self-contained page (images embedded): the paper's Table I\n"
     "row for the input and for each level, a picture of each (like the paper's Fig. 4)\n"
     "and its stretch histogram. The pictures and charts are also written as PNG files.\n"
+    "IN may be a saved collapse history (.tlh, from 'tetlod simplify --history'): then\n"
+    "its levels are reported without simplifying again (--levels only).\n"
     "  --levels N,...    levels of the collapse history nearest N elements each\n"
     "  --simplify        simplify with the flags of 'tetlod simplify' (--size, --stretch,\n"
     "                    --valence, --tolerance, --material-size, --size-field, ...);\n"
@@ -180,7 +182,15 @@ int cmd_report(const Args& args) {
     print_usage(stderr);
     return kExitUsage;
   }
-  if (options.simplify && !options.simplify_options.size_given) {
+  const bool from_history = is_history_path(in);
+  if (from_history && options.simplify_beyond_elements) {
+    std::fprintf(stderr,
+                 "tetlod report: %s is a collapse history, already simplified: give only "
+                 "--levels N,... (and --elements N) to choose its levels\n",
+                 in.c_str());
+    return kExitUsage;
+  }
+  if (!from_history && options.simplify && !options.simplify_options.size_given) {
     std::fputs(
         "tetlod report: --simplify and --levels need a target size (--size, --material-size or "
         "--size-field)\n",
@@ -190,15 +200,38 @@ int cmd_report(const Args& args) {
   if (options.simplify_options.elements > 0) levels.push_back(options.simplify_options.elements);
 
   TetMesh input;
-  ReadInfo info;
-  if (!load_mesh(in, &input, &info)) return kExitBadInput;
+  OpenedHistory history;
+  if (from_history) {
+    // The levels of a saved run: its finest level (the subdivided input), those
+    // nearest --levels, and its last, all without simplifying again.
+    if (!open_history(in, "report", &history)) return kExitBadInput;
+    if (!history_level(&history, "report", 0, &input)) return kExitBadInput;
+  } else {
+    ReadInfo info;
+    if (!load_mesh(in, &input, &info)) return kExitBadInput;
+  }
   if (!resolve_materials(input, "report", &options)) return kExitBadInput;
   OffscreenRenderer offscreen;
   if (!open_offscreen_renderer("report", &offscreen)) return kExitBadInput;
 
   std::vector<Level> meshes;
   std::string thresholds;
-  if (options.simplify) {
+  if (from_history) {
+    const size_t last = history.lod->step_count();
+    meshes.push_back({"step 0 (the subdivided input)", std::move(input)});
+    std::sort(levels.begin(), levels.end(), std::greater<>());
+    std::vector<size_t> steps;
+    for (const long long n : levels) steps.push_back(history.lod->step_for_elements(size_t(n)));
+    steps.push_back(last);
+    for (size_t k = 0; k < steps.size(); ++k) {
+      Level level;
+      level.label = k + 1 < steps.size() ? "level ~" + std::to_string(levels[k]) + " (step " +
+                                               std::to_string(steps[k]) + ")"
+                                         : "last step (" + std::to_string(last) + ")";
+      if (!history_level(&history, "report", steps[k], &level.mesh)) return kExitBadInput;
+      meshes.push_back(std::move(level));
+    }
+  } else if (options.simplify) {
     SimplifyOptions& so = options.simplify_options;
     if (!finish_simplify_options(input, "report", &so)) return kExitUsage;
     SimplifyResult result;
@@ -287,6 +320,9 @@ int cmd_report(const Args& args) {
       "</head><body>\n<h1>TetLOD report</h1>\n<p>Input: <code>" +
       html_escape(in) + "</code>" +
       (thresholds.empty() ? "" : "<br>Thresholds: " + html_escape(thresholds)) +
+      (from_history ? "<br>The levels of a saved collapse history, without simplifying again (a "
+                      "history keeps no thresholds)"
+                    : "") +
       "</p>\n<h2>Properties (Table I)</h2>\n<table>\n" + kTableHead + summary + "</table>\n" +
       figures + "</body></html>\n";
   const std::string path = dir + "/report.html";

@@ -245,6 +245,41 @@ TEST(CliReport, ImproveReportsTheImprovedLevels) {
   EXPECT_NE(cells.find("<td>" + elements + "</td>"), std::string::npos) << elements << cells;
 }
 
+// A report of a saved history has the rows and pictures of the report that made the
+// same run, level for level, without simplifying again.
+TEST(CliReport, ReportsTheLevelsOfASavedHistory) {
+  const std::string history = out_dir() + "/report_history.tlh";
+  CommandResult r = run("simplify " + asset("box2.mesh") + " -o " + out_dir() +
+                        "/report_history.mesh --size 10 --no-subdivide --history " + history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string view = " --levels 100,60 --width 96 --height 96 -o ";
+  const std::string direct = out_dir() + "/report_direct", saved = out_dir() + "/report_saved";
+  fs::remove_all(direct);
+  fs::remove_all(saved);
+  r = run("report " + asset("box2.mesh") + " --simplify --size 10 --no-subdivide" + view + direct);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run("report " + history + view + saved);
+  ASSERT_EQ(r.code, 0) << r.output;
+  auto html = [](const std::string& dir) { return file_bytes(dir + "/report.html"); };
+  const std::string from_history = html(saved);
+  EXPECT_NE(from_history.find("levels of a saved collapse history"), std::string::npos);
+  // Level by level: the same Table I row (after the label) and the same picture.
+  auto row = [](const std::string& page, const std::string& label) {
+    const size_t at = page.find("<tr><th>" + label);
+    if (at == std::string::npos) return std::string("missing ") + label;
+    const size_t cells = page.find("<td>", at);
+    return page.substr(cells, page.find("</tr>", at) - cells);
+  };
+  for (const char* label : {"level ~100", "level ~60"})
+    EXPECT_EQ(row(from_history, label), row(html(direct), label)) << label;
+  EXPECT_EQ(row(from_history, "last step"), row(html(direct), "simplified (step"));
+  for (const char* picture : {"/level1.png", "/level2.png", "/level3.png"})
+    EXPECT_EQ(file_bytes(saved + picture), file_bytes(direct + picture)) << picture;
+  r = run("report " + history + " --size 3 -o " + saved);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("is a collapse history"), std::string::npos) << r.output;
+}
+
 TEST(CliReport, ErrorsAreClear) {
   EXPECT_EQ(run("report --help").code, 0);
   EXPECT_EQ(run("report " + asset("box2.mesh")).code, 2);                        // no -o
