@@ -69,13 +69,9 @@ int cmd_render(const Args& args) {
     return kExitUsage;
   }
   const bool history = is_history_path(in);
-  if (history && options.simplify_beyond_elements) {
-    std::fprintf(stderr,
-                 "tetlod render: %s is a collapse history, already simplified: give only "
-                 "--elements N to choose its level (default: the last)\n",
-                 in.c_str());
+  if (history && !history_flags_ok(in, "render", options,
+                                   "--elements N to choose its level (default: the last)"))
     return kExitUsage;
-  }
   if (!history && options.simplify && !options.simplify_options.size_given) {
     std::fputs(
         "tetlod render: --simplify needs a target size (--size, --material-size or "

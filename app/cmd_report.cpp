@@ -183,13 +183,9 @@ int cmd_report(const Args& args) {
     return kExitUsage;
   }
   const bool from_history = is_history_path(in);
-  if (from_history && options.simplify_beyond_elements) {
-    std::fprintf(stderr,
-                 "tetlod report: %s is a collapse history, already simplified: give only "
-                 "--levels N,... (and --elements N) to choose its levels\n",
-                 in.c_str());
+  if (from_history && !history_flags_ok(in, "report", options,
+                                        "--levels N,... (and --elements N) to choose its levels"))
     return kExitUsage;
-  }
   if (!from_history && options.simplify && !options.simplify_options.size_given) {
     std::fputs(
         "tetlod report: --simplify and --levels need a target size (--size, --material-size or "

@@ -217,6 +217,14 @@ bool open_offscreen_renderer(const char* command, OffscreenRenderer* out) {
   return true;
 }
 
+bool history_flags_ok(const std::string& in, const char* command, const RenderOptions& options,
+                      const char* choose) {
+  if (!options.simplify_beyond_elements) return true;
+  std::fprintf(stderr, "tetlod %s: %s is a collapse history, already simplified: give only %s\n",
+               command, in.c_str(), choose);
+  return false;
+}
+
 bool simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
                      TetMesh* out) {
   SimplifyOptions& so = options->simplify_options;

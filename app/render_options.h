@@ -25,6 +25,12 @@ struct RenderOptions {
 
 extern const char* const kRenderFlagsHelp;
 
+// For an input that is a collapse history (already simplified), simplifier flags
+// other than --elements are a usage error: false, with a message to stderr that
+// names the file and says which flags choose its levels (`choose`).
+bool history_flags_ok(const std::string& in, const char* command, const RenderOptions& options,
+                      const char* choose);
+
 // Parses one view flag at args[*i] (see kRenderFlagsHelp) or a simplifier flag.
 OptionResult parse_render_option(const Args& args, size_t* i, const char* command,
                                  RenderOptions* options);
