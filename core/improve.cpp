@@ -15,10 +15,6 @@
 namespace tetlod {
 namespace {
 
-inline bool tet_has(const Tet& t, uint32_t v) {
-  return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
-}
-
 // Edge removal looks at rings of up to this many tets (42 triangulations at 7).
 constexpr int kMaxRing = 7;
 

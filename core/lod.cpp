@@ -188,10 +188,6 @@ namespace {
 
 constexpr char kHistoryMagic[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '1'};
 
-bool tet_has(const Tet& t, uint32_t v) {
-  return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
-}
-
 struct FileCloser {
   void operator()(std::FILE* f) const {
     if (f) std::fclose(f);

@@ -158,10 +158,6 @@ constexpr int kOtherCorners[4][4][2] = {
     {{1, 2}, {0, 2}, {0, 1}, {0, 0}},
 };
 
-inline bool tet_has(const Tet& t, uint32_t v) {
-  return (t[0] == v) | (t[1] == v) | (t[2] == v) | (t[3] == v);  // no branches to mispredict
-}
-
 template <class T>
 void sort_unique(std::vector<T>& v) {
   std::sort(v.begin(), v.end());

@@ -37,6 +37,11 @@ struct TetMesh {
   size_t tet_count() const { return tets.size(); }
 };
 
+// Whether vertex v is a corner of tet t (branch-free: the simplifier's hot loops use it).
+inline bool tet_has(const Tet& t, uint32_t v) {
+  return (t[0] == v) | (t[1] == v) | (t[2] == v) | (t[3] == v);
+}
+
 // Six times the signed volume of the tet (a, b, c, d).
 inline double signed_volume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return dot(b - a, cross(c - a, d - a));

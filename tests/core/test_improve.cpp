@@ -57,10 +57,6 @@ SimplifyParams loose() {
   return p;
 }
 
-bool tet_has(const Tet& t, uint32_t v) {
-  return std::find(t.begin(), t.end(), v) != t.end();
-}
-
 double min_stretch(const TetMesh& mesh) {
   double low = 1;
   for (const Tet& t : mesh.tets) low = std::min(low, tet_shape(mesh, t).stretch);

@@ -100,10 +100,6 @@ std::vector<uint32_t> alive_star(const Lod& lod, uint32_t v) {
   return star;
 }
 
-bool tet_has(const Tet& t, uint32_t v) {
-  return t[0] == v || t[1] == v || t[2] == v || t[3] == v;
-}
-
 using Face = std::array<uint32_t, 3>;
 
 // Boundary and interface faces (sorted corner ids) of the alive tets.
