@@ -579,22 +579,24 @@ void Viewer::start_load(const std::string& path) {
   Job* job = job_.get();
   const ui::ViewSettings view = view_;
   job->thread = std::thread([job, view] {
-    auto mesh = std::make_shared<TetMesh>();
-    ReadInfo info;
     {
       std::lock_guard<std::mutex> lock(job->mutex);
       job->phase = "reading";
     }
     // A collapse history (tetlod simplify --history, or saved here): its finest
-    // level is the input, and its levels are there at once.
+    // level is the input (shared, not copied), and its levels are there at once.
+    std::shared_ptr<const TetMesh> mesh;
     std::shared_ptr<SimplifyResult> history;
     Status s;
     if (is_history_path(job->path)) {
       history = std::make_shared<SimplifyResult>();
       s = read_history(job->path, &history->base, &history->history);
-      if (s) *mesh = history->base;
+      mesh = std::shared_ptr<const TetMesh>(history, &history->base);
     } else {
-      s = read_mesh(job->path, mesh.get(), &info);
+      auto read = std::make_shared<TetMesh>();
+      ReadInfo info;
+      s = read_mesh(job->path, read.get(), &info);
+      mesh = std::move(read);
     }
     if (!s) {
       std::lock_guard<std::mutex> lock(job->mutex);
