@@ -93,7 +93,7 @@ int cmd_render(const Args& args) {
   if (!resolve_materials(mesh, "render", &options)) return kExitBadInput;
   if (options.simplify && !history) {
     TetMesh simplified;
-    if (!simplified_mesh(mesh, "render", &options, &simplified)) return kExitBadInput;
+    if (const int code = simplified_mesh(mesh, "render", &options, &simplified)) return code;
     mesh = std::move(simplified);
   }
   OffscreenRenderer offscreen;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "app/cli_util.h"
+#include "app/commands.h"
 #include "core/improve.h"
 #include "core/lod.h"
 
@@ -225,22 +226,15 @@ bool history_flags_ok(const std::string& in, const char* command, const RenderOp
   return false;
 }
 
-bool simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
-                     TetMesh* out) {
+int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
+                    TetMesh* out) {
   SimplifyOptions& so = options->simplify_options;
-  if (!so.size_given) {
-    std::fprintf(stderr,
-                 "tetlod %s: --simplify needs a target size (--size, --material-size or "
-                 "--size-field)\n",
-                 command);
-    return false;
-  }
-  if (!finish_simplify_options(input, command, &so)) return false;
+  if (!finish_simplify_options(input, command, &so)) return kExitUsage;
   SimplifyResult result;
   const Status status = simplify(input, so.params, &result);
   if (!status) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, status.message().c_str());
-    return false;
+    return kExitBadInput;
   }
   if (so.elements > 0) {
     Lod lod(result.base, &result.history);
@@ -250,7 +244,7 @@ bool simplified_mesh(const TetMesh& input, const char* command, RenderOptions* o
     *out = std::move(result.output);
   }
   if (so.improve) improve_mesh(out, so.params);
-  return true;
+  return 0;
 }
 
 }  // namespace tetlod::app

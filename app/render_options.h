@@ -48,8 +48,10 @@ struct OffscreenRenderer {
 bool open_offscreen_renderer(const char* command, OffscreenRenderer* out);
 
 // The mesh `options` asks for: `input` itself or, with --simplify, the simplified
-// mesh (or the level nearest --elements). False with a message on failure.
-bool simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
-                     TetMesh* out);
+// mesh (or the level nearest --elements); --simplify needs a size, checked before.
+// 0, or the exit code with a message on stderr: kExitUsage for a --material-size the
+// mesh has no material for, kExitBadInput if the simplifier refuses the mesh.
+int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
+                    TetMesh* out);
 
 }  // namespace tetlod::app

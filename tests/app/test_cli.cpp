@@ -118,7 +118,7 @@ TEST(Cli, MaterialSizeOfAnAbsentMaterialIsAnError) {
   EXPECT_FALSE(fs::exists(out));
   const CommandResult render =
       run("render " + path + " -o " + out_dir() + "/absent.png --simplify --material-size 9=1");
-  EXPECT_NE(render.code, 0);
+  EXPECT_EQ(render.code, 2) << render.output;  // a usage error, as in simplify
   EXPECT_NE(render.output.find("tetlod render: --material-size 9=1: the mesh has no material 9"),
             std::string::npos)
       << render.output;
