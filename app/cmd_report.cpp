@@ -12,6 +12,7 @@
 #include "app/render_options.h"
 #include "core/adjacency.h"
 #include "core/improve.h"
+#include "core/io/output_files.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
 #include "render/histogram_chart.h"
@@ -105,22 +106,6 @@ constexpr const char* kTableHead =
 
 std::string img(const std::vector<uint8_t>& png, const std::string& alt) {
   return "<img src=\"data:image/png;base64," + base64(png) + "\" alt=\"" + html_escape(alt) + "\">";
-}
-
-Status write_text_atomically(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".tmp";
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file) return Status::error(path + ": cannot write");
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-  if (std::fclose(file) != 0 || !written) {
-    std::remove(temporary.c_str());
-    return Status::error(path + ": write failed");
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    return Status::error(path + ": cannot replace");
-  }
-  return Status();
 }
 
 std::optional<std::vector<long long>> parse_levels(const std::string& text) {
@@ -322,7 +307,7 @@ int cmd_report(const Args& args) {
       "</p>\n<h2>Properties (Table I)</h2>\n<table>\n" + kTableHead + summary + "</table>\n" +
       figures + "</body></html>\n";
   const std::string path = dir + "/report.html";
-  const Status s = write_text_atomically(path, html);
+  const Status s = write_file_atomically(path, html);
   if (!s) {
     std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
     return kExitBadInput;

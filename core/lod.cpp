@@ -212,21 +212,20 @@ bool read_array(std::FILE* f, uint64_t remaining_bytes, std::vector<T>* v) {
 
 }  // namespace
 
+Status stage_history(OutputFiles* files, const std::string& path, const TetMesh& base,
+                     const CollapseHistory& history) {
+  return files->stage(path, [&](std::FILE* f) {
+    return std::fwrite(kHistoryMagic, 1, 8, f) == 8 && write_array(f, base.positions) &&
+           write_array(f, base.tets) && write_array(f, base.materials) &&
+           write_array(f, history.steps) && write_array(f, history.removed_tets) &&
+           write_array(f, history.rewired) && write_array(f, history.moved);
+  });
+}
+
 Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history) {
-  const std::string temporary = path + ".tmp";
-  std::FILE* f = std::fopen(temporary.c_str(), "wb");
-  if (!f) return Status::error(path + ": cannot open for writing: " + std::strerror(errno));
-  bool ok = std::fwrite(kHistoryMagic, 1, 8, f) == 8 && write_array(f, base.positions) &&
-            write_array(f, base.tets) && write_array(f, base.materials) &&
-            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
-            write_array(f, history.rewired) && write_array(f, history.moved);
-  ok = (std::fflush(f) == 0) && ok;
-  ok = (std::fclose(f) == 0) && ok;
-  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    return Status::error(path + ": write failed");
-  }
-  return Status();
+  OutputFiles files;
+  if (Status s = stage_history(&files, path, base, history); !s) return s;
+  return files.commit();
 }
 
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/output_files.h"
 #include "core/status.h"
 #include "core/tet_mesh.h"
 
@@ -108,6 +109,9 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // leave every tet positive, so every level of an accepted history is made of
 // positive tets (not that they never overlap: a forged file can still do that).
 Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history);
+// The same, staged in `files` to be committed with the other outputs of a command.
+Status stage_history(OutputFiles* files, const std::string& path, const TetMesh& base,
+                     const CollapseHistory& history);
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history);
 
 }  // namespace tetlod

@@ -1,13 +1,13 @@
 #include "render/image.h"
 
 #include <stb_easy_font.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+
+#include "core/io/output_files.h"
 
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -45,21 +45,8 @@ Status write_png(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0) return Status::error(path + ": empty image");
   const std::vector<uint8_t> bytes = encode_png(image);
   if (bytes.empty()) return Status::error(path + ": PNG encoding failed");
-  const std::string temporary = path + ".tmp" + std::to_string(getpid());
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file) return Status::error(path + ": cannot write: " + std::strerror(errno));
-  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    std::remove(temporary.c_str());
-    return Status::error(path + ": write failed");
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    return Status::error(path + ": cannot replace: " + reason);
-  }
-  return Status();
+  return write_file_atomically(
+      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 Status read_png(const std::string& path, Image* image) {

@@ -184,7 +184,13 @@ Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   return read_mesh_from_memory(text, kFormats[int(kind)], path, mesh, info);
 }
 
-Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options) {
+Status check_mesh_path(const std::string& path) {
+  FileKind kind;
+  return file_kind(path, &kind);
+}
+
+Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
+                  const WriteOptions& options) {
   FileKind kind;
   Status status = file_kind(path, &kind);
   if (!status.ok()) return status;
@@ -193,38 +199,42 @@ Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptio
                          std::to_string(options.gmsh_version) + " (use 22 or 41)");
   }
   if (!(status = check_writable(path, mesh)).ok()) return status;
-  std::vector<io::OutputFile> files(1);
-  files[0].path = path;
+  std::string text;
   switch (kind) {
     case FileKind::kMedit:
-      io::write_medit(mesh, &files[0].contents);
+      io::write_medit(mesh, &text);
       break;
     case FileKind::kGmsh:
-      io::write_gmsh(mesh, options.gmsh_version, &files[0].contents);
+      io::write_gmsh(mesh, options.gmsh_version, &text);
       break;
     case FileKind::kTetGen: {
       const std::string base = tetgen_base(path);
-      files.resize(2);
-      files[0].path = base + ".node";
-      files[1].path = base + ".ele";
-      io::write_tetgen_node(mesh, &files[0].contents);
-      io::write_tetgen_ele(mesh, &files[1].contents);
-      break;
+      io::write_tetgen_node(mesh, &text);
+      if (!(status = files->stage(base + ".node", text)).ok()) return status;
+      text.clear();
+      io::write_tetgen_ele(mesh, &text);
+      return files->stage(base + ".ele", text);
     }
     case FileKind::kVtkLegacy:
-      io::write_vtk_legacy(mesh, &files[0].contents);
+      io::write_vtk_legacy(mesh, &text);
       break;
     case FileKind::kVtu:
-      io::write_vtu(mesh, &files[0].contents);
+      io::write_vtu(mesh, &text);
       break;
     case FileKind::kNastran:
-      io::write_nastran(mesh, &files[0].contents);
+      io::write_nastran(mesh, &text);
       break;
     case FileKind::kAbaqus:
-      io::write_abaqus(mesh, &files[0].contents);
+      io::write_abaqus(mesh, &text);
       break;
   }
-  return io::write_files_atomically(files);
+  return files->stage(path, text);
+}
+
+Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options) {
+  OutputFiles files;
+  if (Status status = stage_mesh(&files, path, mesh, options); !status) return status;
+  return files.commit();
 }
 
 Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh,
@@ -258,10 +268,9 @@ Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh,
   };
   if (Status s = check(fields.point_data, mesh.vertex_count(), "point"); !s) return s;
   if (Status s = check(fields.cell_data, mesh.tet_count(), "cell"); !s) return s;
-  std::vector<io::OutputFile> files(1);
-  files[0].path = path;
-  io::write_vtu(mesh, fields, &files[0].contents);
-  return io::write_files_atomically(files);
+  std::string text;
+  io::write_vtu(mesh, fields, &text);
+  return write_file_atomically(path, text);
 }
 
 }  // namespace tetlod

@@ -68,6 +68,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/io/output_files.h"
 #include "core/status.h"
 #include "core/tet_mesh.h"
 #include "core/validate.h"
@@ -96,6 +97,10 @@ Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_
                                const std::string& node_name, const std::string& ele_name,
                                TetMesh* mesh, ReadInfo* info = nullptr);
 
+// Whether `path` has an extension read_mesh() and write_mesh() know; the error names
+// it and lists the ones they do. For a command to check its output path up front.
+Status check_mesh_path(const std::string& path);
+
 struct WriteOptions {
   int gmsh_version = 41;  // 41 or 22, for .msh
 };
@@ -104,6 +109,10 @@ struct WriteOptions {
 // For .node/.ele both files of the pair are written. An invalid mesh or an
 // unwritable path gives an error naming the path, and leaves no file behind.
 Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options = {});
+// The same, staged in `files` to be committed with the other outputs of a command
+// (output_files.h): nothing is written until files->commit().
+Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
+                  const WriteOptions& options = {});
 
 // A named scalar array to write along with a mesh, one value per point or per cell
 // (e.g. a potential and a field magnitude). `values` must outlive the call.

@@ -1,7 +1,11 @@
 // Writes go through a temporary file that is renamed over the target.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <cstdio>
 #include <filesystem>
+#include <thread>
 
 #include "core/io/mesh_io.h"
 #include "core/test_io_helpers.h"
@@ -9,6 +13,8 @@
 
 namespace tetlod {
 namespace {
+
+namespace fs = std::filesystem;
 
 std::vector<std::string> directory_entries(const std::string& dir) {
   std::vector<std::string> names;
@@ -47,13 +53,13 @@ TEST(IoAtomicWrite, OverwritesAnExistingFile) {
   EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"m.mesh"});
 }
 
-TEST(IoAtomicWrite, FailedRenameRemovesTheTemporaryFile) {
-  // The target is a directory: the temporary file is written, rename() fails.
+TEST(IoAtomicWrite, ADirectoryIsNotReplaced) {
+  // The target is a directory: refused before anything is written.
   const std::string dir = test::output_dir("atomic_rename");
   std::filesystem::create_directories(dir + "/m.vtu/inside");
   const Status status = write_mesh(dir + "/m.vtu", test::make_single_tet());
   ASSERT_FALSE(status.ok());
-  EXPECT_EQ(status.message().rfind(dir + "/m.vtu: cannot write: cannot replace it", 0), 0u)
+  EXPECT_EQ(status.message().rfind(dir + "/m.vtu: cannot write: it is a directory", 0), 0u)
       << status.message();
   EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"m.vtu"});
 }
@@ -64,11 +70,9 @@ TEST(IoAtomicWrite, TetGenPairFailureLeavesNoTemporaryFile) {
   const Status status = write_mesh(dir + "/m.node", test::make_single_tet());
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("m.ele"), std::string::npos) << status.message();
-  // The .node file was renamed first; its replacement is the documented limit of a
-  // two-file write. No temporary file is left.
-  for (const std::string& name : directory_entries(dir)) {
-    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
-  }
+  // Both files are staged before either is renamed: no .node without its .ele, and
+  // no temporary file left.
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"m.ele"});
 }
 
 TEST(IoAtomicWrite, ReadingADirectoryIsAnError) {
@@ -78,6 +82,115 @@ TEST(IoAtomicWrite, ReadingADirectoryIsAnError) {
   const Status status = read_mesh(dir + "/d.mesh", &mesh);
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("directory"), std::string::npos) << status.message();
+}
+
+// A file that is replaced keeps its permission bits (a 0600 file does not become
+// readable by everyone).
+TEST(IoAtomicWrite, ReplacedFileKeepsItsPermissions) {
+  const std::string dir = test::output_dir("atomic_mode");
+  const std::string path = dir + "/m.mesh";
+  for (const auto mode : {fs::perms::owner_read | fs::perms::owner_write,
+                          fs::perms::owner_all | fs::perms::group_read}) {
+    test::write_text(path, "old");
+    fs::permissions(path, mode);
+    ASSERT_TRUE(write_mesh(path, test::make_single_tet()).ok());
+    EXPECT_EQ(fs::status(path).permissions(), mode);
+    EXPECT_NE(test::read_text(path), "old");
+  }
+}
+
+// A symbolic link is written through: the file it points to is replaced (or made,
+// for a dangling link), the link stays a link.
+TEST(IoAtomicWrite, SymbolicLinksAreWrittenThrough) {
+  const std::string dir = test::output_dir("atomic_link");
+  test::write_text(dir + "/target.mesh", "old");
+  fs::create_directories(dir + "/sub");
+  fs::create_symlink("../target.mesh", dir + "/sub/link.mesh");
+  fs::create_symlink("new.mesh", dir + "/dangling.mesh");
+  const TetMesh mesh = test::make_single_tet();
+  ASSERT_TRUE(write_mesh(dir + "/sub/link.mesh", mesh).ok());
+  ASSERT_TRUE(write_mesh(dir + "/dangling.mesh", mesh).ok());
+  EXPECT_TRUE(fs::is_symlink(dir + "/sub/link.mesh"));
+  EXPECT_TRUE(fs::is_symlink(dir + "/dangling.mesh"));
+  for (const char* name : {"/target.mesh", "/new.mesh"}) {
+    TetMesh read;
+    EXPECT_TRUE(read_mesh(dir + name, &read).ok()) << name;
+    test::expect_same_mesh(mesh, read);
+  }
+  EXPECT_EQ(directory_entries(dir),
+            (std::vector<std::string>{"dangling.mesh", "new.mesh", "sub", "target.mesh"}));
+  EXPECT_EQ(directory_entries(dir + "/sub"), std::vector<std::string>{"link.mesh"});
+  fs::create_symlink("loop.mesh", dir + "/loop.mesh");
+  const Status loop = write_mesh(dir + "/loop.mesh", mesh);
+  EXPECT_NE(loop.message().find("symbolic links"), std::string::npos) << loop.message();
+}
+
+// Nothing replaces a device or a FIFO (as root, a rename over /dev/null would).
+TEST(IoAtomicWrite, ADeviceIsNotReplaced) {
+  const std::string dir = test::output_dir("atomic_device");
+  fs::create_symlink("/dev/null", dir + "/null.mesh");
+  const Status status = write_mesh(dir + "/null.mesh", test::make_single_tet());
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("not a regular file"), std::string::npos) << status.message();
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"null.mesh"});
+}
+
+// A set of outputs: nothing is written until commit(); a set dropped before it
+// leaves no file; the same file twice in one set is refused.
+TEST(IoAtomicWrite, OutputFilesAreCommittedTogetherOrNotAtAll) {
+  const std::string dir = test::output_dir("atomic_set");
+  test::write_text(dir + "/a.txt", "old a");
+  {
+    OutputFiles files;
+    ASSERT_TRUE(files.stage(dir + "/a.txt", "new a").ok());
+    ASSERT_TRUE(files.stage(dir + "/b.txt", "new b").ok());
+    EXPECT_EQ(test::read_text(dir + "/a.txt"), "old a");
+    EXPECT_FALSE(fs::exists(dir + "/b.txt"));
+    for (const char* again : {"/./a.txt", "/../atomic_set/b.txt"}) {
+      const Status twice = files.stage(dir + again, "again");
+      EXPECT_NE(twice.message().find("the same file as " + dir + "/"), std::string::npos)
+          << twice.message();
+    }
+  }  // not committed
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"a.txt"});
+  EXPECT_EQ(test::read_text(dir + "/a.txt"), "old a");
+  OutputFiles files;
+  ASSERT_TRUE(files.stage(dir + "/a.txt", "new a").ok());
+  ASSERT_TRUE(files.stage(dir + "/b.txt", "new b").ok());
+  ASSERT_TRUE(files.commit().ok());
+  EXPECT_EQ(test::read_text(dir + "/a.txt"), "new a");
+  EXPECT_EQ(test::read_text(dir + "/b.txt"), "new b");
+  EXPECT_EQ(directory_entries(dir), (std::vector<std::string>{"a.txt", "b.txt"}));
+}
+
+// A device is refused at once (/dev/zero never ends); a pipe is read.
+TEST(IoAtomicWrite, ReadingADeviceIsAnErrorAndAPipeIsRead) {
+  const std::string dir = test::output_dir("atomic_read_device");
+  fs::create_symlink("/dev/zero", dir + "/zero.mesh");
+  TetMesh mesh;
+  const Status status = read_mesh(dir + "/zero.mesh", &mesh);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find(dir + "/zero.mesh: cannot read: it is a device"),
+            std::string::npos)
+      << status.message();
+
+  const std::string fifo = dir + "/pipe.mesh";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string medit =
+      "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 1\n"
+      "1 0 0 1\n0 1 0 1\n0 0 1 1\nTetrahedra\n1\n1 2 3 4 7\nEnd\n";
+  std::thread writer([&] {
+    std::FILE* f = std::fopen(fifo.c_str(), "wb");
+    if (!f) return;
+    std::fwrite(medit.data(), 1, medit.size(), f);
+    std::fclose(f);
+  });
+  const Status piped = read_mesh(fifo, &mesh);
+  writer.join();
+  ASSERT_TRUE(piped.ok()) << piped.message();
+  EXPECT_EQ(mesh.tet_count(), 1u);
+  EXPECT_EQ(mesh.materials[0], 7);
 }
 
 }  // namespace

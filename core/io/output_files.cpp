@@ -1,0 +1,159 @@
+#include "core/io/output_files.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+
+namespace tetlod {
+namespace {
+
+std::string reason(int error_number) {
+  return std::strerror(error_number);
+}
+
+std::string directory_of(const std::string& path) {
+  const size_t slash = path.rfind('/');
+  if (slash == std::string::npos) return "";
+  return path.substr(0, slash + 1);
+}
+
+// The file a write to `path` should replace: `path` itself, or, if it is a symbolic
+// link (even to a file not there yet), the file at the end of the chain. False if
+// the chain does not end (a loop).
+bool resolve_links(const std::string& path, std::string* target) {
+  *target = path;
+  for (int hop = 0; hop < 40; ++hop) {
+    struct stat info;
+    if (lstat(target->c_str(), &info) != 0 || !S_ISLNK(info.st_mode)) return true;
+    char buffer[PATH_MAX];
+    const ssize_t length = readlink(target->c_str(), buffer, sizeof buffer - 1);
+    if (length < 0) return true;  // let the write report what is wrong
+    const std::string link(buffer, size_t(length));
+    *target = !link.empty() && link[0] == '/' ? link : directory_of(*target) + link;
+  }
+  return false;
+}
+
+// What is wrong with replacing an existing `target` by a new file, or "" if nothing
+// (it does not exist, or it is a regular file). `mode`, if given, gets the
+// permission bits of a regular file there, and stays untouched if there is none.
+std::string unreplaceable(const std::string& target, mode_t* mode) {
+  struct stat info;
+  if (stat(target.c_str(), &info) != 0) return "";
+  if (S_ISDIR(info.st_mode)) return "it is a directory";
+  if (!S_ISREG(info.st_mode)) return "it is not a regular file (a device, FIFO or socket)";
+  if (mode) *mode = info.st_mode & 07777;
+  return "";
+}
+
+constexpr mode_t kNoMode = ~mode_t(0);
+
+// Creates a new file next to `target` with a name no other writer uses ("x": fail
+// if it exists).
+FILE* create_temporary(const std::string& target, std::string* temp_path) {
+  static std::atomic<unsigned> counter{0};
+  constexpr int kAttempts = 100;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    *temp_path = target + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+    FILE* file = std::fopen(temp_path->c_str(), "wbx");
+    if (file || errno != EEXIST) return file;
+  }
+  return nullptr;
+}
+
+// `path` with its directory made absolute and free of links, "." and "..": two
+// spellings of one file give the same string, whether the file exists or not.
+std::string canonical(const std::string& path) {
+  const std::string directory = directory_of(path);
+  char buffer[PATH_MAX];
+  if (!realpath(directory.empty() ? "." : directory.c_str(), buffer)) return path;
+  return std::string(buffer) + "/" + path.substr(directory.size());
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  return a == b || canonical(a) == canonical(b);
+}
+
+}  // namespace
+
+OutputFiles::~OutputFiles() {
+  discard();
+}
+
+void OutputFiles::discard() {
+  for (const Staged& s : staged_) std::remove(s.temporary.c_str());
+  staged_.clear();
+}
+
+Status OutputFiles::stage(const std::string& path, std::string_view contents) {
+  return stage(path, [&](std::FILE* file) {
+    return std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();
+  });
+}
+
+Status OutputFiles::stage(const std::string& path, const std::function<bool(std::FILE*)>& write) {
+  auto fail = [&](const std::string& what) {
+    return Status::error(path + ": cannot write: " + what);
+  };
+  Staged staged;
+  staged.path = path;
+  if (!resolve_links(path, &staged.target)) return fail("too many levels of symbolic links");
+  for (const Staged& other : staged_) {
+    if (same_file(other.target, staged.target))
+      return fail("the same file as " + other.path + ", written by the same command");
+  }
+  mode_t mode = kNoMode;  // a new file: the umask's
+  if (const std::string why = unreplaceable(staged.target, &mode); !why.empty()) return fail(why);
+  FILE* file = create_temporary(staged.target, &staged.temporary);
+  if (!file) return fail(reason(errno));
+  const bool written = write(file);
+  int error_number = errno;
+  bool ok = written && std::fflush(file) == 0 && !std::ferror(file);
+  if (ok) error_number = 0;
+  if (ok && mode != kNoMode && fchmod(fileno(file), mode) != 0) ok = false, error_number = errno;
+  if (std::fclose(file) != 0 && ok) ok = false, error_number = errno;
+  if (!ok) {
+    std::remove(staged.temporary.c_str());
+    return fail(error_number != 0 ? reason(error_number) : "write failed");
+  }
+  staged_.push_back(std::move(staged));
+  return Status();
+}
+
+Status OutputFiles::commit() {
+  for (const Staged& s : staged_) {
+    if (const std::string why = unreplaceable(s.target, nullptr); !why.empty()) {
+      const Status status = Status::error(s.path + ": cannot write: " + why);
+      discard();
+      return status;
+    }
+  }
+  std::string replaced;
+  for (size_t i = 0; i < staged_.size(); ++i) {
+    if (std::rename(staged_[i].temporary.c_str(), staged_[i].target.c_str()) != 0) {
+      const int error_number = errno;
+      std::string message =
+          staged_[i].path + ": cannot write: cannot replace it: " + reason(error_number);
+      if (!replaced.empty()) message += " (" + replaced + " already written)";
+      staged_.erase(staged_.begin(), staged_.begin() + long(i));
+      discard();
+      return Status::error(message);
+    }
+    replaced += (replaced.empty() ? "" : ", ") + staged_[i].path;
+  }
+  staged_.clear();
+  return Status();
+}
+
+Status write_file_atomically(const std::string& path, std::string_view contents) {
+  OutputFiles files;
+  if (Status s = files.stage(path, contents); !s) return s;
+  return files.commit();
+}
+
+}  // namespace tetlod
