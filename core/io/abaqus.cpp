@@ -4,8 +4,9 @@
 // Abaqus Keywords Reference. A flat input or one with a single *PART. The material
 // of a tet: the section that covers it (by material name), else the first *ELSET
 // holding it (Gmsh writes its physical groups so), else its *ELEMENT's ELSET, else 0;
-// a name ending in digits is that number ("material_7", "Volume2"), other names get
-// the next free numbers in order of appearance.
+// a name ending in digits is that number ("material_7", "Volume2") unless an earlier
+// name has it ("Rotor1" then "Stator1"), other names get the next free numbers in
+// order of appearance.
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -347,18 +348,24 @@ class AbaqusParser {
       if (key[t] < 0) key[t] = tets_[t].element_set;
     }
     // Key -> material id, for the keys in use: the trailing number of the name, else
-    // the next free numbers after the largest such, in order of appearance.
+    // the next free numbers after the largest such, in order of appearance. Two names
+    // with the same number ("Rotor1", "Stator1") are two materials: the first keeps
+    // the number, the later one gets a free one.
     std::vector<int64_t> id(keys_.size(), -1);
     std::vector<char> used(keys_.size(), 0);
     for (int k : key)
       if (k >= 0) used[size_t(k)] = 1;
     int64_t largest = 0;
+    std::vector<int64_t> taken;
     for (size_t k = 0; k < keys_.size(); ++k) {
       const std::string& s = keys_[k];
       size_t digits = s.size();
       while (digits > 0 && std::isdigit(uint8_t(s[digits - 1]))) --digits;
       if (used[k] && digits < s.size() && s.size() - digits <= 18) {
-        id[k] = std::stoll(s.substr(digits));
+        const int64_t number = std::stoll(s.substr(digits));
+        if (std::find(taken.begin(), taken.end(), number) != taken.end()) continue;
+        taken.push_back(number);
+        id[k] = number;
         largest = std::max(largest, id[k]);
       }
     }

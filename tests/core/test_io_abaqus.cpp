@@ -97,6 +97,23 @@ TEST(IoAbaqus, ElsetsWinOverTheElementSet) {
   test::expect_same_mesh(expected(5, 9, 5, 2), mesh);
 }
 
+// Two names with the same number are two materials: the first keeps it, the later
+// one takes the next free number (as a name without digits does), after every
+// number a name gives ("Coil7").
+TEST(IoAbaqus, NamesWithTheSameNumberAreDifferentMaterials) {
+  const std::string deck =
+      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
+      "7, 0, -1, 0\n"
+      "*ELEMENT, type=C3D4, ELSET=Rotor1\n1, 1, 2, 3, 4\n"
+      "*ELEMENT, type=C3D4, ELSET=Stator1\n2, 2, 3, 4, 5\n"
+      "*ELEMENT, type=C3D4, ELSET=Vol01\n3, 1, 2, 3, 6\n"
+      "*ELEMENT, type=C3D4, ELSET=Coil7\n4, 1, 2, 4, 7\n";
+  TetMesh mesh;
+  const Status s = read(deck, &mesh);
+  ASSERT_TRUE(s.ok()) << s.message();
+  test::expect_same_mesh(expected(1, 8, 9, 7), mesh);
+}
+
 TEST(IoAbaqus, WrittenFilesReadBack) {
   const std::string dir = test::output_dir("abaqus");
   const TetMesh mesh = test::make_io_mesh();  // materials 0, 7 and INT32_MAX
