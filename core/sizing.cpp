@@ -141,8 +141,8 @@ Status parse_size_field(const std::string& spec, SizingField* field) {
     const size_t k = kind == "axis" ? 6 : 3;
     if (kind == "axis") {
       const Vec3 axis{v[3], v[4], v[5]};
-      if (!(length(axis) > 0)) return Status::error(where + ": the axis direction is zero");
-      r.axis = axis * (1.0 / length(axis));
+      if (!unit_direction(axis, &r.axis))
+        return Status::error(where + ": the axis direction is zero");
     }
     Status s = positive_size(where, values[k], &r.size0);
     if (!s) return s;

@@ -30,6 +30,17 @@ TEST(Sizing, CombinesRulesByTheirMinimum) {
   EXPECT_DOUBLE_EQ(axis.size_at({3, 4, 50}, 0), 6.0);  // distance 5 from the z axis
 }
 
+// An axis direction of any magnitude is that direction: no overflow to a zero axis
+// (which would make the rule radial), no underflow to "zero".
+TEST(Sizing, AxisDirectionsOfAnyMagnitude) {
+  for (const char* rule : {"axis:0,0,0,0,0,1e200,1,1", "axis:0,0,0,0,0,1e-200,1,1",
+                           "axis:0,0,0,0,0,-1e308,1,1", "axis:0,0,0,0,0,5e-324,1,1"}) {
+    SizingField f;
+    ASSERT_TRUE(parse_size_field(rule, &f)) << rule;
+    EXPECT_DOUBLE_EQ(f.size_at({3, 4, 50}, 0), 6.0) << rule;
+  }
+}
+
 TEST(Sizing, ParsersNameTheOffendingValue) {
   SizingField f;
   EXPECT_NE(parse_material_sizes("1=2,x=3", &f).message().find("'x'"), std::string::npos);
