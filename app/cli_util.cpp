@@ -1,9 +1,11 @@
 #include "app/cli_util.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <utility>
 
@@ -58,8 +60,28 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   return true;
 }
 
+bool has_extension(const std::string& path, const char* extension) {
+  const size_t n = std::strlen(extension);
+  if (path.size() < n) return false;
+  for (size_t i = 0; i < n; ++i) {
+    if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != extension[i])
+      return false;
+  }
+  return true;
+}
+
 bool is_history_path(const std::string& path) {
-  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".tlh") == 0;
+  return has_extension(path, ".tlh");
+}
+
+bool mesh_output_path_ok(const std::string& path, const char* command) {
+  const Status status = check_mesh_path(path);
+  if (status) return true;
+  std::fprintf(stderr, "tetlod %s: -o %s\n", command, status.message().c_str());
+  if (is_history_path(path))
+    std::fprintf(stderr,
+                 "(a collapse history is written by 'tetlod simplify --history FILE.tlh')\n");
+  return false;
 }
 
 bool open_history(const std::string& path, const char* command, OpenedHistory* opened) {

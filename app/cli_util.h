@@ -26,9 +26,16 @@ std::optional<long long> parse_integer(const std::string& text);
 // Notes about repairs (reoriented tets, dropped vertices) go to stderr too.
 bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info);
 
+// Whether `path` ends in `extension` (lower case, with the dot), ignoring case.
+bool has_extension(const std::string& path, const char* extension);
+
 // A collapse history file (tetlod simplify --history, the viewer's save), by its
-// extension: .tlh.
+// extension: .tlh, in any case.
 bool is_history_path(const std::string& path);
+
+// Checks, before any work, that `path` can be written as a mesh (a known extension);
+// if not prints "tetlod <command>: ..." and returns false (a usage error).
+bool mesh_output_path_ok(const std::string& path, const char* command);
 
 // A collapse history file opened to read levels from.
 struct OpenedHistory {

@@ -61,6 +61,7 @@ int cmd_convert(const Args& args) {
     std::fprintf(stderr, "tetlod convert: need IN and OUT\n\n%s", kConvertUsage);
     return kExitUsage;
   }
+  if (!mesh_output_path_ok(out, "convert")) return kExitUsage;
   TetMesh mesh;
   ReadInfo info;
   if (!load_mesh(in, &mesh, &info)) return kExitBadInput;

@@ -68,6 +68,11 @@ int cmd_render(const Args& args) {
     print_usage(stderr);
     return kExitUsage;
   }
+  if (!has_extension(out, ".png")) {
+    std::fprintf(stderr, "tetlod render: -o %s: the picture is written as PNG: give a .png name\n",
+                 out.c_str());
+    return kExitUsage;
+  }
   const bool history = is_history_path(in);
   if (history && !history_flags_ok(in, "render", options,
                                    "--elements N to choose its level (default: the last)"))

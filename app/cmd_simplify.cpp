@@ -116,6 +116,12 @@ int cmd_simplify(const Args& args) {
                  "--size-field)\n");
     return kExitUsage;
   }
+  if (!mesh_output_path_ok(out, "simplify")) return kExitUsage;
+  if (!history_path.empty() && !is_history_path(history_path)) {
+    std::fprintf(stderr, "tetlod simplify: --history %s: a collapse history file ends in .tlh\n",
+                 history_path.c_str());
+    return kExitUsage;
+  }
 
   TetMesh input;
   ReadInfo info;
@@ -188,19 +194,17 @@ int cmd_simplify(const Args& args) {
               result.seconds_subdivide, result.seconds_classify, result.seconds_simplify,
               result.kernels);
 
-  Status s = write_mesh(out, output);
+  // The mesh and the history are written together, or neither.
+  OutputFiles files;
+  Status s = stage_mesh(&files, out, output);
+  if (s && !history_path.empty())
+    s = stage_history(&files, history_path, result.base, result.history);
+  if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
-  if (!history_path.empty()) {
-    s = write_history(history_path, result.base, result.history);
-    if (!s) {
-      std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
-      return kExitBadInput;
-    }
-    std::printf("history: %s\n", history_path.c_str());
-  }
+  if (!history_path.empty()) std::printf("history: %s\n", history_path.c_str());
   return kExitOk;
 }
 
@@ -249,11 +253,16 @@ int cmd_lod(const Args& args) {
       return kExitUsage;
     }
   }
-  if (history_path.empty() || out.empty() || (elements < 0) == (step < 0)) {
+  if (elements >= 0 && step >= 0) {
+    std::fprintf(stderr, "tetlod lod: give --elements or --step, not both\n\n%s", kLodUsage);
+    return kExitUsage;
+  }
+  if (history_path.empty() || out.empty() || (elements < 0 && step < 0)) {
     std::fprintf(stderr, "tetlod lod: need HISTORY, -o OUT and one of --elements, --step\n\n%s",
                  kLodUsage);
     return kExitUsage;
   }
+  if (!mesh_output_path_ok(out, "lod")) return kExitUsage;
   if (thresholds_given && !improve) {
     std::fprintf(stderr, "tetlod lod: thresholds are only used with --improve\n\n%s", kLodUsage);
     return kExitUsage;
@@ -281,9 +290,11 @@ int cmd_lod(const Args& args) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
-  std::printf("%s: step %zu of %zu, %zu elements, %zu nodes (moved there in %.4f s)\n", out.c_str(),
-              level.step, level.step_count, level.mesh.tet_count(), level.mesh.vertex_count(),
-              level.seek_seconds);
+  std::printf("%s: step %zu of %zu%s, %zu elements, %zu nodes (moved there in %.4f s)\n",
+              out.c_str(), level.step, level.step_count,
+              step > static_cast<long long>(level.step_count) ? " (the last: --step is past it)"
+                                                              : "",
+              level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
   if (improve) print_improve(improved, seconds_improve);
   return kExitOk;
 }

@@ -162,9 +162,11 @@ int cmd_solve(const Args& args) {
     } else if (a == "--tolerance") {
       if (!next_value(args, &i, &v)) return kExitUsage;
       const auto d = parse_double(v);
-      if (!d || *d <= 0 || *d >= 1) {
-        std::fprintf(stderr, "tetlod solve: --tolerance '%s' is not a number in (0, 1)\n",
-                     v.c_str());
+      if (!d || !(*d >= kMinSolverTolerance) || *d >= 1) {
+        std::fprintf(stderr,
+                     "tetlod solve: --tolerance '%s' is not a number in [%g, 1) (double "
+                     "precision cannot reach a smaller relative residual)\n",
+                     v.c_str(), kMinSolverTolerance);
         return kExitUsage;
       }
       options.tolerance = *d;

@@ -1,6 +1,7 @@
 #include "app/render_options.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "app/cli_util.h"
@@ -132,10 +133,16 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
     const auto d = parse_doubles(v);
     if (!d || d->size() != 4) return bad_value("NX,NY,NZ,D");
     const Vec3 normal{(*d)[0], (*d)[1], (*d)[2]};
-    const double l = length(normal);
-    if (l == 0) return bad_value("a plane with a non-zero normal");
+    Vec3 unit;
+    double largest = 0;
+    if (!unit_direction(normal, &unit, &largest))
+      return bad_value("a plane with a non-zero normal");
+    // N.x = D is unit.x = D / |N|, with |N| computed without overflow.
+    const Vec3 scaled{normal.x / largest, normal.y / largest, normal.z / largest};
+    const double offset = ((*d)[3] / largest) / length(scaled);
+    if (!std::isfinite(offset)) return bad_value("a plane at a finite distance from the origin");
     s.filter.cut = true;
-    s.filter.cut_plane = {normal * (1 / l), (*d)[3] / l};
+    s.filter.cut_plane = {unit, offset};
   } else if (a == "--view") {
     if (!value()) return OptionResult::kError;
     if (v == "iso") {

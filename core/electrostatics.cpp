@@ -482,9 +482,10 @@ Status solve_electrostatics(const TetMesh& mesh, const ElectrostaticsProblem& pr
     solution->cancelled = true;
     return true;
   };
-  if (!(options.tolerance > 0) || !(options.tolerance < 1) || options.max_iterations < 1) {
-    return Status::error("solver tolerance " + format_double(options.tolerance) +
-                         " must be in (0, 1) and max iterations " +
+  if (!(options.tolerance >= kMinSolverTolerance) || !(options.tolerance < 1) ||
+      options.max_iterations < 1) {
+    return Status::error("solver tolerance " + format_double(options.tolerance) + " must be in [" +
+                         format_double(kMinSolverTolerance) + ", 1) and max iterations " +
                          std::to_string(options.max_iterations) + " >= 1");
   }
   auto start = Clock::now();

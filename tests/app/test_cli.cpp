@@ -156,6 +156,54 @@ TEST(Cli, SimplifyThenLodWritesLevels) {
   EXPECT_NE(junk.output.find("junk.tlh"), std::string::npos);
 }
 
+// A command's outputs are written together or not at all, and never over a file the
+// user did not name as an output: a history that cannot be written leaves the mesh
+// output as it was; a history path that is not .tlh (the input, say), an unknown
+// output extension, or --step with --elements are usage errors before any work.
+TEST(Cli, OutputsAreWrittenTogetherOrNotAtAll) {
+  const std::string path = write_grid("together.mesh");
+  const std::string input_bytes = [&] {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  const std::string out = out_dir() + "/together_out.mesh";
+  std::ofstream(out) << "old";
+  const std::string thresholds = " --size 2 --tolerance 1e-9";
+  CommandResult r = run("simplify " + path + " -o " + out + thresholds + " --history " + out_dir() +
+                        "/no_such_dir/h.tlh");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("no_such_dir/h.tlh: cannot write"), std::string::npos) << r.output;
+  std::ifstream kept(out);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "old");
+
+  for (const std::string& history : {path, out, out_dir() + "/h.mesh"}) {
+    r = run("simplify " + path + " -o " + out + thresholds + " --history " + history);
+    EXPECT_EQ(r.code, 2) << history << "\n" << r.output;
+    EXPECT_NE(r.output.find("a collapse history file ends in .tlh"), std::string::npos) << r.output;
+  }
+  std::ifstream input(path, std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(input), {}), input_bytes);
+
+  r = run("simplify " + path + " -o " + out_dir() + "/out.tlh" + thresholds);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("unknown mesh file extension '.tlh'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--history FILE.tlh"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("thresholds:"), std::string::npos) << "checked before the run";
+  r = run("convert " + path + " " + out_dir() + "/x.stl");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("unknown mesh file extension '.stl'"), std::string::npos) << r.output;
+
+  const std::string history = out_dir() + "/together.TLH";  // any case
+  r = run("simplify " + path + " -o " + out + thresholds + " --history " + history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run("lod " + history + " --step 0 --elements 5 -o " + out);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("give --elements or --step, not both"), std::string::npos) << r.output;
+  r = run("lod " + history + " --step 99999999 -o " + out);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("(the last: --step is past it)"), std::string::npos) << r.output;
+}
+
 // A forged history whose mesh has positive tets that overlap (three on one face):
 // the reader's replay checks pass, but lod checks the level as a mesh file would be
 // checked, and writes nothing.
@@ -324,6 +372,9 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
       {"--conductor 1=1 --ground boundary --eps 2=nan", 2, "--eps '2=nan'"},
       {"--conductor 1=1 --ground boundary --solver magic", 2, "--solver 'magic'"},
       {"--conductor 1=1 --ground boundary --tolerance 2", 2, "--tolerance '2'"},
+      // CG cannot reach it in double precision: it would break down, not converge.
+      {"--conductor 1=1 --ground boundary --solver cg --tolerance 1e-300", 2,
+       "--tolerance '1e-300' is not a number in [1e-14, 1)"},
       {"--conductor 1=1", 2, "need MESH, --conductor and --ground"},
       {"--conductor 1=1 --ground boundary -o field.txt", 2, "written as .vtu only"},
       {"--conductor 7=1 --ground boundary", 1, "conductor material 7 does not exist"},

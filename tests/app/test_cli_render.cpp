@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/cli_runner.h"
+#include "core/io/mesh_io.h"
 
 namespace tetlod {
 namespace {
@@ -148,8 +149,39 @@ TEST(CliRender, BadValuesAreUsageErrors) {
     EXPECT_NE(r.output.find("tetlod"), std::string::npos) << flags;
   }
   EXPECT_EQ(run("render " + in).code, 2);  // no -o
+  // PNG only: an output named like the input mesh (or anything else) is refused.
+  const std::string copy = out_dir() + "/box2_copy.mesh";
+  fs::copy_file(in, copy, fs::copy_options::overwrite_existing);
+  for (const std::string& name : {copy, out_dir() + "/shot.jpg", out_dir() + "/shot"}) {
+    const CommandResult r = run("render " + copy + " -o " + name);
+    EXPECT_EQ(r.code, 2) << name << "\n" << r.output;
+    EXPECT_NE(r.output.find("give a .png name"), std::string::npos) << r.output;
+  }
+  TetMesh kept;
+  EXPECT_TRUE(read_mesh(copy, &kept).ok());
   EXPECT_EQ(run("render --help").code, 0);
   EXPECT_FALSE(fs::exists(out));
+}
+
+// A cut plane's normal of any magnitude is that normal: the same faces are drawn for
+// 1,1,0,D, 1e300,1e300,0,1e300*D and 1e-200,1e-200,0,1e-200*D.
+TEST(CliRender, CutPlaneNormalsOfAnyMagnitude) {
+  const std::string out = out_dir() + "/plane.png";
+  std::string first;
+  for (const char* plane : {"1,1,0,0.5", "1e300,1e300,0,5e299", "1e-200,1e-200,0,5e-201"}) {
+    const CommandResult r = run("render " + asset("box2.mesh") +
+                                " --width 64 --height 64 --cut-plane " + plane + " -o " + out);
+    ASSERT_EQ(r.code, 0) << plane << "\n" << r.output;
+    const size_t at = r.output.find(" faces drawn");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const size_t start = r.output.rfind(' ', at - 1) + 1;
+    const std::string faces = r.output.substr(start, at - start);
+    if (first.empty()) first = faces;
+    EXPECT_EQ(faces, first) << plane;
+  }
+  const CommandResult far =
+      run("render " + asset("box2.mesh") + " --cut-plane 1e-300,0,0,1e300 -o " + out);
+  EXPECT_EQ(far.code, 2) << far.output;
 }
 
 TEST(CliRender, FailuresNameTheProblemAndWriteNothing) {
