@@ -101,9 +101,10 @@ bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out) {
     for (int k = 0; k < 4; ++k) {
       int64_t vertex = 0;
       if (!scanner.read_int(&vertex, "vertex index")) return false;
-      if (vertex < base || vertex - base >= int64_t{kInvalidIndex}) {
+      if (vertex < base || vertex - base >= int64_t(mesh.positions.size())) {
         return scanner.fail("vertex index " + std::to_string(vertex) + " is out of range (the " +
-                            "points are numbered from " + std::to_string(base) + ")");
+                            "points are numbered from " + std::to_string(base) + " to " +
+                            std::to_string(base + int64_t(mesh.positions.size()) - 1) + ")");
       }
       tet[k] = uint32_t(vertex - base);
     }

@@ -603,6 +603,15 @@ class VtkLegacyParser {
                                          " points");
       }
       const uint32_t* v = connectivity_.data() + cell_starts_[c];
+      for (int k = 0; k < 4; ++k) {
+        if (v[k] >= mesh.positions.size()) {
+          return scanner_.fail_at_line(binary_ ? 0 : cell_lines_[c],
+                                       "cell " + std::to_string(c) + " uses point " +
+                                           std::to_string(v[k]) + ", but there are only " +
+                                           std::to_string(mesh.positions.size()) +
+                                           " points (numbered from 0)");
+        }
+      }
       mesh.tets.push_back({v[0], v[1], v[2], v[3]});
       mesh.materials.push_back(has_materials_ ? cell_materials_[c] : 0);
       if (!binary_) out_->tet_lines.push_back(cell_lines_[c]);

@@ -751,6 +751,14 @@ class VtuParser {
           return;
         }
         const uint32_t* v = connectivity_.data() + start;
+        for (int k = 0; k < 4; ++k) {
+          if (v[k] >= mesh.positions.size()) {
+            fail_at(line, "cell " + std::to_string(c) + " uses point " + std::to_string(v[k]) +
+                              ", but there are only " + std::to_string(mesh.positions.size()) +
+                              " points (numbered from 0)");
+            return;
+          }
+        }
         mesh.tets.push_back({v[0], v[1], v[2], v[3]});
         mesh.materials.push_back(has_materials_ ? materials_[c] : 0);
         out_->tet_lines.push_back(line_number(line));
