@@ -78,10 +78,12 @@ int cmd_render(const Args& args) {
                                    "--elements N to choose its level (default: the last)"))
     return kExitUsage;
   if (!history && options.simplify && !options.simplify_options.size_given) {
-    std::fputs(
-        "tetlod render: --simplify needs a target size (--size, --material-size or "
-        "--size-field)\n",
-        stderr);
+    std::fputs(options.simplify_beyond_elements
+                   ? "tetlod render: --simplify needs a target size (--size, --material-size or "
+                     "--size-field)\n"
+                   : "tetlod render: --elements picks a level of a simplification: give "
+                     "--simplify with a target size (--size ...), or a saved history (.tlh)\n",
+               stderr);
     return kExitUsage;
   }
 
@@ -122,6 +124,12 @@ int cmd_render(const Args& args) {
   std::printf("%s: %dx%d, %zu tets, %zu faces drawn, %.3f s (%s)\n", out.c_str(), image.width,
               image.height, prepared.mesh.tet_count(), offscreen.renderer->triangle_count(),
               seconds, offscreen.context->description().c_str());
+  if (offscreen.renderer->triangle_count() == 0) {
+    std::fputs(
+        "tetlod render: note: the picture is empty: every tet is hidden (--materials, "
+        "--hide) or cut away (--cut, --cut-plane)\n",
+        stderr);
+  }
   return kExitOk;
 }
 

@@ -221,7 +221,7 @@ int cmd_report(const Args& args) {
       std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
       return kExitBadInput;
     }
-    thresholds = "size " + format("%g", so.params.sizing.uniform) + ", stretch " +
+    thresholds = "size " + describe_size(so.params.sizing) + ", stretch " +
                  format("%g", so.params.min_stretch) + ", valence " +
                  std::to_string(so.params.max_valence) + ", tolerance " +
                  format("%g", so.params.tolerance) +

@@ -134,15 +134,9 @@ int cmd_simplify(const Args& args) {
   std::printf("input %s\n", in.c_str());
   print_property_table(stats_of(input));
   // The size: the uniform one, the local sizing, or the smaller of the two (sizing.h).
-  char size_text[64];
-  if (!std::isfinite(params.sizing.uniform))
-    std::snprintf(size_text, sizeof size_text, "from the local sizing");
-  else
-    std::snprintf(size_text, sizeof size_text, "%g%s", params.sizing.uniform,
-                  params.sizing.has_local_rules() ? ", less where the local sizing asks" : "");
-  std::printf("\nthresholds: size %s, stretch %g, valence %u, tolerance %g%s\n", size_text,
-              params.min_stretch, params.max_valence, params.tolerance,
-              params.subdivide ? "" : ", no subdivision");
+  std::printf("\nthresholds: size %s, stretch %g, valence %u, tolerance %g%s\n",
+              describe_size(params.sizing).c_str(), params.min_stretch, params.max_valence,
+              params.tolerance, params.subdivide ? "" : ", no subdivision");
 
   SimplifyResult result;
   const Status status = simplify(input, params, &result);
@@ -290,11 +284,11 @@ int cmd_lod(const Args& args) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
-  std::printf("%s: step %zu of %zu%s, %zu elements, %zu nodes (moved there in %.4f s)\n",
-              out.c_str(), level.step, level.step_count,
-              step > static_cast<long long>(level.step_count) ? " (the last: --step is past it)"
-                                                              : "",
-              level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
+  std::printf(
+      "%s: step %zu of %zu%s, %zu elements, %zu nodes (moved there in %.4f s)\n", out.c_str(),
+      level.step, level.step_count,
+      step > static_cast<long long>(level.step_count) ? " (the last: --step is past it)" : "",
+      level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
   if (improve) print_improve(improved, seconds_improve);
   return kExitOk;
 }

@@ -1,6 +1,7 @@
 #include "app/simplify_options.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <string>
@@ -57,7 +58,7 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   } else if (a == "--valence") {
     if (!value()) return OptionResult::kError;
     const auto n = parse_integer(v);
-    if (!n || *n < 4 || *n > 100000) return bad_value("a valence >= 4");
+    if (!n || *n < 4 || *n > 100000) return bad_value("a valence in [4, 100000]");
     params.max_valence = static_cast<uint32_t>(*n);
   } else if (a == "--tolerance") {
     if (!value()) return OptionResult::kError;
@@ -117,6 +118,13 @@ bool finish_simplify_options(const TetMesh& input, const char* command, Simplify
   }
   options->params.tolerance = 1e-3 * length(hi - lo);
   return true;
+}
+
+std::string describe_size(const SizingField& sizing) {
+  if (!std::isfinite(sizing.uniform)) return "from the local sizing";
+  char text[64];
+  std::snprintf(text, sizeof text, "%g", sizing.uniform);
+  return text + std::string(sizing.has_local_rules() ? ", less where the local sizing asks" : "");
 }
 
 }  // namespace tetlod::app

@@ -40,4 +40,8 @@ bool parse_option_value(const Args& args, size_t* i, const char* name, std::stri
 // otherwise be ignored without a word).
 bool finish_simplify_options(const TetMesh& input, const char* command, SimplifyOptions* options);
 
+// The size threshold in words: "12", "12, less where the local sizing asks", or
+// "from the local sizing" (no uniform size: --material-size or --size-field alone).
+std::string describe_size(const SizingField& sizing);
+
 }  // namespace tetlod::app

@@ -148,6 +148,10 @@ TEST(CliRender, BadValuesAreUsageErrors) {
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
     EXPECT_NE(r.output.find("tetlod"), std::string::npos) << flags;
   }
+  const CommandResult elements = run("render " + in + " -o " + out + " --elements 5");
+  EXPECT_EQ(elements.code, 2) << elements.output;
+  EXPECT_NE(elements.output.find("--elements picks a level of a simplification"), std::string::npos)
+      << elements.output;
   EXPECT_EQ(run("render " + in).code, 2);  // no -o
   // PNG only: an output named like the input mesh (or anything else) is refused.
   const std::string copy = out_dir() + "/box2_copy.mesh";
@@ -182,6 +186,21 @@ TEST(CliRender, CutPlaneNormalsOfAnyMagnitude) {
   const CommandResult far =
       run("render " + asset("box2.mesh") + " --cut-plane 1e-300,0,0,1e300 -o " + out);
   EXPECT_EQ(far.code, 2) << far.output;
+}
+
+// A picture with nothing in it is still written, with a note that says why.
+TEST(CliRender, AnEmptyPictureSaysWhy) {
+  const std::string out = out_dir() + "/empty.png";
+  for (const char* flags : {"--hide 1,2", "--cut x=-5"}) {
+    const CommandResult r =
+        run("render " + asset("box2.mesh") + " --width 32 --height 32 " + flags + " -o " + out);
+    EXPECT_EQ(r.code, 0) << flags << "\n" << r.output;
+    EXPECT_NE(r.output.find("0 faces drawn"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("note: the picture is empty"), std::string::npos) << r.output;
+  }
+  const CommandResult drawn =
+      run("render " + asset("box2.mesh") + " --width 32 --height 32 -o " + out);
+  EXPECT_EQ(drawn.output.find("note: the picture is empty"), std::string::npos) << drawn.output;
 }
 
 TEST(CliRender, FailuresNameTheProblemAndWriteNothing) {
@@ -250,6 +269,21 @@ TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
 
 // With --improve every level of the report is the improved one: its Table I row is the
 // one `simplify --elements N --improve` writes.
+// Sizes from --material-size alone: the page says so (it used to print "size inf").
+TEST(CliReport, ThresholdsSayWhereTheSizeComesFrom) {
+  const std::string dir = out_dir() + "/report_material_size";
+  fs::remove_all(dir);
+  const CommandResult r = run("report " + asset("box2.mesh") +
+                              " --simplify --material-size 1=10,2=10 --no-subdivide --levels 100 "
+                              "--width 32 --height 32 -o " +
+                              dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir + "/report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("size from the local sizing, stretch"), std::string::npos);
+  EXPECT_EQ(html.find("size inf"), std::string::npos);
+}
+
 TEST(CliReport, ImproveReportsTheImprovedLevels) {
   const std::string dir = out_dir() + "/report_improved";
   fs::remove_all(dir);
