@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <utility>
 
@@ -68,6 +69,7 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
   // Orientation and degeneracy. Positions are read in tet order, that is in random
   // order: prefetch those of a few tets ahead.
   constexpr size_t kPrefetchDistance = 8;
+  constexpr double kMinEdge = 1e-60, kMaxEdge = 1e60;
   for (size_t t = 0; t < tet_count; ++t) {
     if (t + kPrefetchDistance < tet_count) {
       for (uint32_t v : mesh->tets[t + kPrefetchDistance]) __builtin_prefetch(&mesh->positions[v]);
@@ -81,6 +83,15 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
     const double longest2 =
         std::max({squared_length(b - a), squared_length(c - a), squared_length(d - a),
                   squared_length(c - b), squared_length(d - b), squared_length(d - c)});
+    // Face areas square the squared lengths: beyond these the metrics (stretch,
+    // quadrics) under- or overflow, and a regular tet would measure as flat.
+    if (!(longest2 >= kMinEdge * kMinEdge && longest2 <= kMaxEdge * kMaxEdge)) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%g", std::sqrt(longest2));
+      return Status::error(where(source, tet_lines, t) + tet_name(t) + " has edges of length " +
+                           text + ", outside [1e-60, 1e60] where TetLOD's metrics are exact; " +
+                           "rescale the mesh");
+    }
     const double scale = longest2 * std::sqrt(longest2);
     if (!(std::abs(volume6) > 1e-12 * scale)) {
       return Status::error(where(source, tet_lines, t) + tet_name(t) +

@@ -19,8 +19,9 @@ struct ValidationReport {
 
 // Checks and repairs `mesh` in place:
 //  - errors: materials.size() != tets.size(), an index out of range, a tet with a
-//    repeated vertex, a non-finite coordinate, a negative material id, a tet of zero
-//    volume (|6V| <= 1e-12 * longest_edge^3), two tets with the same vertex set, a
+//    repeated vertex, a non-finite coordinate, a negative material id, a tet whose
+//    longest edge is outside [1e-60, 1e60] (the metrics would under- or overflow), a
+//    tet of zero volume (|6V| <= 1e-12 * longest_edge^3), two tets with the same vertex set, a
 //    face shared by three or more tets, two tets overlapping across a shared face;
 //  - repairs (counted in `report`): negatively oriented tets are reoriented by
 //    swapping their last two vertices; unused vertices are removed and tets renumbered.

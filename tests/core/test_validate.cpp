@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "core/metrics.h"
 #include "core/test_meshes.h"
 #include "core/validate.h"
 
@@ -50,6 +51,24 @@ void expect_error(TetMesh mesh, const std::string& fragment,
   const Status s = validate(&mesh, nullptr, lines);
   ASSERT_FALSE(s.ok()) << "expected an error containing '" << fragment << "'";
   EXPECT_NE(s.message().find(fragment), std::string::npos) << s.message();
+}
+
+// A regular tet measures as regular at any accepted scale; beyond [1e-60, 1e60] the
+// face areas would under- or overflow (stretch 0), so such meshes are refused.
+TEST(Validate, ScalesWhereTheMetricsAreExact) {
+  TetMesh unit = test::make_single_tet();
+  unit.positions = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  for (const double scale : {1e-60, 1e-30, 1.0, 1e30, 1e59}) {  // edges 2.83 * scale
+    TetMesh m = unit;
+    for (Vec3& p : m.positions) p = p * scale;
+    ASSERT_TRUE(validate(&m)) << scale;
+    EXPECT_NEAR(tet_shape(m, m.tets[0]).stretch, 1.0, 1e-12) << scale;
+  }
+  for (const double scale : {1e-90, 1e-62, 1e62, 1e100}) {
+    TetMesh m = unit;
+    for (Vec3& p : m.positions) p = p * scale;
+    expect_error(m, "outside [1e-60, 1e60] where TetLOD's metrics are exact");
+  }
 }
 
 TEST(Validate, RejectsBadMeshesWithLineNumbers) {
