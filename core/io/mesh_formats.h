@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,6 +46,18 @@ void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out);
 // VTK cell types read as tets (vtk.cpp, vtu.cpp): the quadratic tet gives its corners.
 inline constexpr int64_t kVtkTetra = 10;
 inline constexpr int64_t kVtkQuadraticTetra = 24;
+
+// The cell array of a .vtk or .vtu that holds the material, by name, best first:
+// TetLOD's "material"; what meshio writes for a mesh it read from Gmsh or Medit;
+// VTK's Exodus reader's; TetGen's -k output. -1 for other names. Only "material"
+// is read whatever its type; the others only when their type is an integer one.
+inline int vtk_material_rank(std::string_view name) {
+  constexpr std::string_view kNames[] = {"material", "gmsh:physical", "medit:ref", "MaterialIds",
+                                         "cell_scalars"};
+  for (int i = 0; i < int(std::size(kNames)); ++i)
+    if (name == kNames[i]) return i;
+  return -1;
+}
 
 // Saturating conversion of a line number for ParsedMesh::tet_lines.
 inline uint32_t line_number(size_t line) {

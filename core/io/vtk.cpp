@@ -434,7 +434,26 @@ class VtkLegacyParser {
     return true;
   }
 
-  bool read_materials(uint64_t count, std::string_view type) {
+  // Whether a cell array other than "material" is read as the material: a name
+  // vtk_material_rank() knows, better than what was read, of an integer type.
+  bool takes_material(std::string_view name, std::string_view type, uint64_t components) const {
+    const int rank = vtk_material_rank(name);
+    if (rank <= 0 || rank >= material_rank_ || components != 1) return false;
+    for (const char* integer : {"char", "unsigned_char", "short", "unsigned_short", "int",
+                                "unsigned_int", "long", "unsigned_long", "vtkIdType"}) {
+      if (TextScanner::equals_ignore_case(type, integer)) return true;
+    }
+    // vtktypeint8 ... vtktypeuint64
+    return TextScanner::equals_ignore_case(type.substr(0, std::min<size_t>(type.size(), 10)),
+                                           "vtktypeint") ||
+           TextScanner::equals_ignore_case(type.substr(0, std::min<size_t>(type.size(), 11)),
+                                           "vtktypeuint");
+  }
+
+  // The material array, of rank `rank` (vtk_material_rank): replaces one of a worse
+  // rank read before.
+  bool read_materials(uint64_t count, std::string_view type, int rank) {
+    material_rank_ = rank;
     cell_materials_.clear();
     if (binary_) {
       std::vector<int64_t> values;
@@ -512,8 +531,10 @@ class VtkLegacyParser {
       }
       if (data_section_ == DataSection::kCells && words[0] == kMaterialArray) {
         if (components != 1) return scanner_.fail_at_line(line, "material must have 1 component");
-        return read_materials(section_count_, words[1]);
+        return read_materials(section_count_, words[1], 0);
       }
+      if (data_section_ == DataSection::kCells && takes_material(words[0], words[1], components))
+        return read_materials(section_count_, words[1], vtk_material_rank(words[0]));
     } else if (is("COLOR_SCALARS")) {
       if (!number_word(1, 4, &components)) return false;
     } else if (is("LOOKUP_TABLE")) {
@@ -561,12 +582,13 @@ class VtkLegacyParser {
           !scanner_.read_count(&tuples, "tuple count", 0) || !scanner_.next_token(&type)) {
         return scanner_.failed() ? false : scanner_.fail("unexpected end of file, expected a type");
       }
-      if (data_section_ == DataSection::kCells && array_name == kMaterialArray && components == 1) {
+      if (data_section_ == DataSection::kCells && components == 1 &&
+          (array_name == kMaterialArray || takes_material(array_name, type, components))) {
         if (tuples != section_count_) {
           return scanner_.fail("the material array has " + std::to_string(tuples) + " values for " +
                                std::to_string(section_count_) + " cells");
         }
-        if (!read_materials(tuples, type)) return false;
+        if (!read_materials(tuples, type, vtk_material_rank(array_name))) return false;
         continue;
       }
       if (!check_value_count(tuples, components, &value_count)) return false;
@@ -636,6 +658,7 @@ class VtkLegacyParser {
   size_t section_arrays_ = 0;
   size_t section_line_ = 0;
   bool has_materials_ = false;
+  int material_rank_ = 1 << 30;  // of the array in cell_materials_ (none yet: worst)
   std::vector<int32_t> cell_materials_;
 };
 

@@ -295,7 +295,8 @@ class VtuParser {
 
   enum class Target { kNone, kPoints, kConnectivity, kOffsets, kTypes, kMaterial };
 
-  Target target_of(const Tag& tag, std::string_view parent) const {
+  // Called once per array, in the order of the file.
+  Target target_of(const Tag& tag, std::string_view parent) {
     const std::string_view name = tag.attribute("Name");
     if (parent == "Points") return Target::kPoints;
     if (parent == "Cells") {
@@ -303,7 +304,19 @@ class VtuParser {
       if (name == "offsets") return Target::kOffsets;
       if (name == "types") return Target::kTypes;
     }
-    if (parent == "CellData" && name == "material") return Target::kMaterial;
+    if (parent == "CellData") {
+      // "material" whatever its type; the other names vtk_material_rank() knows if
+      // they hold integers and are better than an array taken before.
+      const int rank = vtk_material_rank(name);
+      const std::string_view type = tag.attribute("type");
+      const bool integers = type.rfind("Int", 0) == 0 || type.rfind("UInt", 0) == 0;
+      const std::string_view components = tag.attribute("NumberOfComponents");
+      if (rank == 0 || (rank > 0 && rank < material_rank_ && integers &&
+                        (components.empty() || components == "1"))) {
+        material_rank_ = rank;
+        return Target::kMaterial;
+      }
+    }
     return Target::kNone;
   }
 
@@ -780,6 +793,7 @@ class VtuParser {
   size_t offsets_line_ = 0;
   std::vector<int64_t> types_;
   bool has_materials_ = false;
+  int material_rank_ = 1 << 30;  // vtk_material_rank() of the array taken (none yet: worst)
   std::vector<int32_t> materials_;
   // Binary data.
   bool big_endian_ = false;

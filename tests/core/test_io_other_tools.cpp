@@ -31,6 +31,11 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
                {"vtk_vtk9_binary51.vtk", true},
                {"vtk_vtk9_binary42.vtk", true},
                {"vtk_meshio_binary.vtk", true},
+               // meshio from Gmsh and Medit files: the material is "gmsh:physical",
+               // "medit:ref" (next to "gmsh:geometrical" and other integer arrays).
+               {"vtu_meshio_from_gmsh.vtu", true},
+               {"vtk_meshio_from_gmsh.vtk", true},
+               {"vtu_meshio_from_medit.vtu", true},
                {"msh_meshio_binary.msh", false},
                {"msh22_meshio_binary.msh", false},
                {"nas_meshio.nas", false},
@@ -40,12 +45,52 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
     TetMesh mesh;
     const Status s = read_mesh(tool_file(f.file), &mesh);
     ASSERT_TRUE(s.ok()) << s.message();
-    if (std::string(f.file).find("nas") != std::string::npos) {
+    if (std::string(f.file).find("from_gmsh") != std::string::npos) {
+      // Gmsh's numbering of the nodes: the same tets, materials and coordinates.
+      EXPECT_EQ(test::canonical_tets(mesh), test::canonical_tets(box2));
+    } else if (std::string(f.file).find("nas") != std::string::npos) {
       // meshio writes 10 significant digits (box2's coordinates are exact in them).
       EXPECT_EQ(test::canonical_tets(mesh), test::canonical_tets(without_materials));
     } else {
       test::expect_same_mesh(f.materials ? box2 : without_materials, mesh);
     }
+  }
+}
+
+// Several candidate arrays: "material" wins whatever the order; a known name of a
+// floating-point type is not a material.
+TEST(IoOtherTools, TheBestMaterialArrayIsTaken) {
+  auto vtu = [](const std::string& cell_data) {
+    return "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid>\n"
+           "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\"><Points>\n"
+           "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+           "0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points><Cells>\n"
+           "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 2 3</DataArray>\n"
+           "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4</DataArray>\n"
+           "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10</DataArray>\n"
+           "</Cells><CellData>\n" +
+           cell_data + "</CellData></Piece></UnstructuredGrid></VTKFile>\n";
+  };
+  auto array = [](const char* type, const char* name, int value) {
+    return std::string("<DataArray type=\"") + type + "\" Name=\"" + name + "\" format=\"ascii\">" +
+           std::to_string(value) + "</DataArray>\n";
+  };
+  const struct {
+    std::string cell_data;
+    int material;
+  } cases[] = {
+      {array("Int32", "gmsh:physical", 4) + array("Int32", "material", 7), 7},
+      {array("Int32", "material", 7) + array("Int32", "gmsh:physical", 4), 7},
+      {array("Int32", "cell_scalars", 3) + array("Int64", "medit:ref", 5), 5},
+      {array("Int32", "medit:ref", 5) + array("Int32", "gmsh:physical", 4), 4},
+      {array("Float64", "gmsh:physical", 4), 0},
+      {array("Int32", "gmsh:geometrical", 9), 0},
+  };
+  for (const auto& c : cases) {
+    TetMesh mesh;
+    const Status s = read_mesh_from_memory(vtu(c.cell_data), MeshFormat::kVtu, "m.vtu", &mesh);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(mesh.materials[0], c.material) << c.cell_data;
   }
 }
 

@@ -1,7 +1,9 @@
 # Writes the files of this folder with VTK 9.1 and meshio 5.0 (Debian 12:
 # apt-get install python3-vtk9 python3-meshio), from the bundled box2 model:
 #   build/app/tetlod convert assets/box2.mesh /tmp/box2.vtk
-#   /usr/bin/python3 tests/data/other_tools/make.py /tmp/box2.vtk tests/data/other_tools
+#   build/app/tetlod convert assets/box2.mesh /tmp/box2.msh
+#   /usr/bin/python3 tests/data/other_tools/make.py /tmp/box2.vtk tests/data/other_tools \
+#       /tmp/box2.msh assets/box2.mesh
 # Not run by the build or the tests: the files are committed, so that the tests
 # check TetLOD against what those tools really write without depending on them.
 import sys
@@ -9,7 +11,7 @@ import sys
 import meshio
 import vtk
 
-source, folder = sys.argv[1], sys.argv[2]
+source, folder, gmsh_source, medit_source = sys.argv[1:5]
 reader = vtk.vtkUnstructuredGridReader()
 reader.SetFileName(source)
 reader.ReadAllScalarsOn()
@@ -58,3 +60,11 @@ meshio.write(folder + "/msh_meshio_binary.msh", mesh, file_format="gmsh", binary
 meshio.write(folder + "/msh22_meshio_binary.msh", mesh, file_format="gmsh22", binary=True)
 meshio.write(folder + "/nas_meshio.nas", mesh)
 meshio.write(folder + "/inp_meshio.inp", mesh)
+
+# What meshio writes for a mesh it read from Gmsh (cell data "gmsh:physical" and
+# "gmsh:geometrical") or from Medit ("medit:ref"): the material is in those.
+from_gmsh = meshio.read(gmsh_source)
+meshio.write(folder + "/vtu_meshio_from_gmsh.vtu", from_gmsh)
+meshio.write(folder + "/vtk_meshio_from_gmsh.vtk", from_gmsh, binary=False)
+from_medit = meshio.read(medit_source)
+meshio.write(folder + "/vtu_meshio_from_medit.vtu", from_medit)
