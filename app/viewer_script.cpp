@@ -1,5 +1,7 @@
 #include "app/viewer_script.h"
 
+#include <sys/stat.h>
+
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -404,11 +406,19 @@ Status parse_script_text(const std::string& text, const std::string& name,
 }
 
 Status parse_script(const std::string& path, std::vector<ScriptAction>* actions) {
+  // A device (/dev/zero) would never end; a script is small.
+  struct stat info;
+  if (stat(path.c_str(), &info) == 0 && (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode)))
+    return Status::error(path + ": a device, not a script");
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status::error(path + ": cannot open the script");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_script_text(text.str(), path, actions);
+  constexpr size_t kMaxScriptBytes = size_t(16) << 20;
+  std::string text(kMaxScriptBytes + 1, '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  text.resize(size_t(in.gcount()));
+  if (text.size() > kMaxScriptBytes)
+    return Status::error(path + ": more than 16 MiB: not a script");
+  return parse_script_text(text, path, actions);
 }
 
 }  // namespace tetlod::app

@@ -215,6 +215,15 @@ TEST(ViewerScript, ErrorsNameTheFileAndLine) {
             "t.script:3: 'size' needs a number, got 'abc'");
 }
 
+// A script file that is a device (it would never end) is refused at once.
+TEST(ViewerScript, ADeviceIsNotAScript) {
+  std::vector<ScriptAction> actions;
+  const Status s = parse_script("/dev/zero", &actions);
+  EXPECT_EQ(s.message(), "/dev/zero: a device, not a script");
+  EXPECT_EQ(parse_script("/nonexistent/s.script", &actions).message(),
+            "/nonexistent/s.script: cannot open the script");
+}
+
 TEST(ViewerScript, RejectsBadValues) {
   for (const char* bad : {
            "thresholds\n",
