@@ -57,6 +57,12 @@ std::vector<int32_t> mesh_materials(const TetMesh& mesh) {
   return ids;
 }
 
+// Potentials and permittivities within these keep the energy eps |grad u|^2 V finite
+// on every mesh validate_mesh() accepts (edges up to 1e60): far beyond physics (MV,
+// vacuum's 8.85e-12 F/m), short of overflow.
+constexpr double kMaxPotential = 1e30;
+constexpr double kMinPermittivity = 1e-30, kMaxPermittivity = 1e30;
+
 Status check_problem(const ElectrostaticsProblem& problem, const std::vector<int32_t>& ids) {
   auto exists = [&](int32_t m) { return std::binary_search(ids.begin(), ids.end(), m); };
   // Every material named once across conductors and grounds, once among permittivities.
@@ -69,9 +75,9 @@ Status check_problem(const ElectrostaticsProblem& problem, const std::vector<int
       return Status::error("conductor material " + std::to_string(m) +
                            " does not exist in the mesh");
     }
-    if (!std::isfinite(potential)) {
+    if (!(std::fabs(potential) <= kMaxPotential)) {
       return Status::error("conductor material " + std::to_string(m) + ": potential " +
-                           format_double(potential) + " is not a finite number");
+                           format_double(potential) + " is not a number in [-1e30, 1e30]");
     }
     electrodes.push_back(m);
   }
@@ -97,6 +103,10 @@ Status check_problem(const ElectrostaticsProblem& problem, const std::vector<int
       return Status::error("permittivity of material " + std::to_string(m) + " is " +
                            format_double(eps) + ", not a finite number > 0");
     }
+    if (!(eps >= kMinPermittivity && eps <= kMaxPermittivity)) {
+      return Status::error("permittivity of material " + std::to_string(m) + " is " +
+                           format_double(eps) + ", not a number in [1e-30, 1e30]");
+    }
     dielectrics.push_back(m);
   }
   std::sort(dielectrics.begin(), dielectrics.end());
@@ -105,9 +115,10 @@ Status check_problem(const ElectrostaticsProblem& problem, const std::vector<int
     return Status::error("permittivity of material " + std::to_string(*twice) +
                          " is given more than once");
   }
-  if (!std::isfinite(problem.default_permittivity) || problem.default_permittivity <= 0) {
+  if (!(problem.default_permittivity >= kMinPermittivity &&
+        problem.default_permittivity <= kMaxPermittivity)) {
     return Status::error("default permittivity " + format_double(problem.default_permittivity) +
-                         " is not a finite number > 0");
+                         " is not a number in [1e-30, 1e30]");
   }
   return Status();
 }

@@ -38,13 +38,13 @@ namespace tetlod {
 
 struct ElectrostaticsProblem {
   // (material, potential): every node of a tet of that material is held at the
-  // potential. At least one is needed.
+  // potential, in [-1e30, 1e30]. At least one is needed.
   std::vector<std::pair<int32_t, double>> conductors;
   // Materials whose nodes are held at 0.
   std::vector<int32_t> ground_materials;
   // Also hold every node of the outer boundary at 0.
   bool ground_boundary = false;
-  // (material, eps), eps finite and > 0. Materials not listed get default_permittivity.
+  // (material, eps), eps in [1e-30, 1e30]. Materials not listed get default_permittivity.
   std::vector<std::pair<int32_t, double>> permittivities;
   double default_permittivity = 1.0;
 };

@@ -379,6 +379,11 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
       {"--conductor 1=1 --ground boundary -o field.txt", 2, "written as .vtu only"},
       {"--conductor 7=1 --ground boundary", 1, "conductor material 7 does not exist"},
       {"--conductor 1=1 --ground 2 --eps 2=0", 1, "permittivity of material 2 is 0"},
+      // Beyond these the energy overflowed ("a non-finite solution", naming nothing).
+      {"--conductor 1=1e308 --ground boundary", 1,
+       "potential 1e+308 is not a number in [-1e30, 1e30]"},
+      {"--conductor 1=1 --ground boundary --eps 2=1e300", 1,
+       "permittivity of material 2 is 1.0000000000000001e+300, not a number in [1e-30, 1e30]"},
       {"--conductor 1=1 --ground 2", 1, "conductor material 1 (held at 1) touches material 2"},
       {"--conductor 1=1 --ground boundary", 1, "touches the grounded outer boundary"},
   };
