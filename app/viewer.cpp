@@ -46,6 +46,7 @@
 #include "core/lod.h"
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
+#include "core/sizing.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "render/lod_surface.h"
@@ -76,6 +77,12 @@ struct Scene {
   render::SurfaceFilter filter;  // the surface was built with this
   Vec3 lo, hi;                   // bounds of the input
   std::vector<int32_t> materials;
+  // The size and tolerance opening the input sets: three times its median tet size
+  // (core/sizing.h suggested_size: well above twice its typical edge, so that
+  // subdivision, which splits edges above half the size, does not make a first
+  // Simplify's result larger than the input) and 0.001 x its bounding-box diagonal
+  // (the default of `tetlod simplify`).
+  double default_size = 0, default_tolerance = 0;
 };
 
 void mesh_bounds(const TetMesh& mesh, Vec3* lo, Vec3* hi) {
@@ -155,6 +162,10 @@ std::unique_ptr<Scene> make_scene(const std::string& path, std::shared_ptr<const
   scene->input = std::move(input);
   scene->result = std::move(result);
   mesh_bounds(*scene->input, &scene->lo, &scene->hi);
+  const double diagonal = length(scene->hi - scene->lo);
+  scene->default_size = suggested_size(*scene->input);
+  if (!(scene->default_size > 0)) scene->default_size = diagonal / 25;  // no tets, or flat ones
+  scene->default_tolerance = 1e-3 * diagonal;
   scene->materials = scene->input->materials;
   std::sort(scene->materials.begin(), scene->materials.end());
   scene->materials.erase(std::unique(scene->materials.begin(), scene->materials.end()),
@@ -713,9 +724,8 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     view_.cut_offset = static_cast<float>(view_.cut_axis == ui::CutAxis::kX   ? center.x
                                           : view_.cut_axis == ui::CutAxis::kY ? center.y
                                                                               : center.z);
-    const double diagonal = length(scene_->hi - scene_->lo);
-    thresholds_.tolerance = static_cast<float>(1e-3 * diagonal);
-    thresholds_.size = static_cast<float>(diagonal / 25);
+    thresholds_.tolerance = static_cast<float>(scene_->default_tolerance);
+    thresholds_.size = static_cast<float>(scene_->default_size);
     thresholds_.material_sizes.clear();
     camera_.fit(scene_->lo, scene_->hi, render::ViewDirection::kIso);
     add_recent(scene_->path);
@@ -1257,6 +1267,8 @@ void Viewer::fill_status() {
   s.mesh_name = scene.path;
   s.input_tets = scene.input->tet_count();
   s.input_vertices = scene.input->vertex_count();
+  s.default_size = scene.default_size;
+  s.default_tolerance = scene.default_tolerance;
   s.materials = scene.materials;
   for (int k = 0; k < 3; ++k) {
     s.bounds_min[k] = static_cast<float>(k == 0 ? scene.lo.x : k == 1 ? scene.lo.y : scene.lo.z);

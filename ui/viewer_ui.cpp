@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 
@@ -13,6 +14,17 @@ namespace {
 constexpr float kPanelWidth = 380;   // the side panel
 constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
 constexpr float kMargin = 6;
+
+// TextDisabled, wrapped at the panel's edge.
+void text_disabled_wrapped(const char* format, ...) IM_FMTARGS(1);
+void text_disabled_wrapped(const char* format, ...) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  va_list args;
+  va_start(args, format);
+  ImGui::TextWrappedV(format, args);
+  va_end(args);
+  ImGui::PopStyleColor();
+}
 
 void copy_path(const std::string& from, char* to, size_t capacity) {
   std::snprintf(to, capacity, "%s", from.c_str());
@@ -145,6 +157,11 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                         std::vector<Command>* commands) {
   ImGui::TextDisabled("ctrl-click a slider to type a value");
+  if (status.default_size > 0)
+    text_disabled_wrapped(
+        "Set on open: size %.4g = 3 x the median tet size (subdivision splits edges above "
+        "half the size), tolerance %.4g = 0.001 x the bounding-box diagonal.",
+        status.default_size, status.default_tolerance);
   ImGui::SliderFloat("tolerance (TL)", &t->tolerance, 0.0f, 5.0f, "%.4g",
                      ImGuiSliderFlags_Logarithmic);
   if (t->sizing_mode != SizingMode::kPerMaterial)

@@ -132,6 +132,8 @@ struct ViewerStatus {
   std::string message;     // last success message (saved, screenshot, ...)
   bool loading = false;
   std::string loading_path;
+  // The thresholds opening the mesh set (the viewer's defaults for it).
+  double default_size = 0, default_tolerance = 0;
 
   // Simplification: running state and the last result.
   bool running = false;

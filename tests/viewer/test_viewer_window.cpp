@@ -232,6 +232,23 @@ TEST(ViewerWindow, SimplifyingAgainStartsFromTheInput) {
   EXPECT_EQ(saved.tet_count(), from_input.output.tet_count());
 }
 
+// Simplify with the thresholds opening a file sets (no 'thresholds' line) coarsens the
+// bundled motor: the default size (3 x the median tet size, 23) is well above twice its
+// typical edge, so subdivision does not outgrow the collapses (the earlier default,
+// diagonal / 25 = 7.2, gave 88874 tets from 26512).
+TEST(ViewerWindow, FirstDefaultSimplifyCoarsensTheMotor) {
+  const fs::path dir = fresh_output_dir("viewer_default_simplify");
+  std::ofstream(dir / "default.script") << "simplify\nsave default.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script default.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  TetMesh input, saved;
+  ASSERT_TRUE(read_mesh(kSource + "/assets/motor.mesh", &input).ok());
+  ASSERT_TRUE(read_mesh((dir / "default.mesh").string(), &saved).ok());
+  EXPECT_LT(saved.tet_count(), input.tet_count() / 2)
+      << saved.tet_count() << " tets from " << input.tet_count();
+}
+
 // A run's collapse history saved from the viewer (save PATH.tlh) opens again with
 // all its levels, without simplifying: its levels are the run's, saving it again gives
 // the same file, and a damaged history is an error in the panel, not a crash.
