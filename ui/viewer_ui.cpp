@@ -178,6 +178,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     if (ImGui::InputText("rules", buffer, sizeof(buffer))) t->region_spec = buffer;
     ImGui::TextDisabled("radial:cx,cy,cz,s0,g; axis:...; box:x0,y0,z0,x1,y1,z1,s");
   } else if (t->sizing_mode == SizingMode::kPerMaterial) {
+    ImGui::TextDisabled("size (SZ) per material:");
     for (const int32_t m : status.materials) {
       auto it = std::find_if(t->material_sizes.begin(), t->material_sizes.end(),
                              [m](const auto& p) { return p.first == m; });
@@ -187,8 +188,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
         it = std::find_if(t->material_sizes.begin(), t->material_sizes.end(),
                           [m](const auto& p) { return p.first == m; });
       }
-      char label[48];
-      std::snprintf(label, sizeof(label), "size of material %d", m);
+      char label[48];  // the id first: the panel is too narrow for a long label
+      std::snprintf(label, sizeof(label), "mat %d", m);
       ImGui::SliderFloat(label, &it->second, 0.1f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
     }
   }
