@@ -178,19 +178,35 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     if (ImGui::InputText("rules", buffer, sizeof(buffer))) t->region_spec = buffer;
     ImGui::TextDisabled("radial:cx,cy,cz,s0,g; axis:...; box:x0,y0,z0,x1,y1,z1,s");
   } else if (t->sizing_mode == SizingMode::kPerMaterial) {
-    ImGui::TextDisabled("size (SZ) per material:");
+    // A material without a size of its own has no per-material limit, as with
+    // `--material-size` (only the sizes listed); tick it to give it one.
+    text_disabled_wrapped("size (SZ) per material; unticked: no size limit");
+    auto& sizes = t->material_sizes;
     for (const int32_t m : status.materials) {
-      auto it = std::find_if(t->material_sizes.begin(), t->material_sizes.end(),
-                             [m](const auto& p) { return p.first == m; });
-      if (it == t->material_sizes.end()) {
-        t->material_sizes.push_back({m, t->size});
-        std::sort(t->material_sizes.begin(), t->material_sizes.end());
-        it = std::find_if(t->material_sizes.begin(), t->material_sizes.end(),
-                          [m](const auto& p) { return p.first == m; });
-      }
-      char label[48];  // the id first: the panel is too narrow for a long label
+      auto it =
+          std::find_if(sizes.begin(), sizes.end(), [m](const auto& p) { return p.first == m; });
+      ImGui::PushID(m);
+      char label[32];
       std::snprintf(label, sizeof(label), "mat %d", m);
-      ImGui::SliderFloat(label, &it->second, 0.1f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
+      bool limited = it != sizes.end();
+      if (ImGui::Checkbox(label, &limited)) {
+        if (limited) {
+          sizes.insert(std::lower_bound(sizes.begin(), sizes.end(), std::make_pair(m, 0.0f)),
+                       {m, t->size});
+        } else {
+          sizes.erase(it);
+        }
+        it = std::find_if(sizes.begin(), sizes.end(), [m](const auto& p) { return p.first == m; });
+      }
+      ImGui::SameLine(90);
+      if (it != sizes.end()) {
+        ImGui::SetNextItemWidth(-1);
+        ImGui::SliderFloat("##size", &it->second, 0.1f, 100.0f, "%.4g",
+                           ImGuiSliderFlags_Logarithmic);
+      } else {
+        ImGui::TextDisabled("no size limit");
+      }
+      ImGui::PopID();
     }
   }
   ImGui::Checkbox("Subdivide first", &t->subdivide);
