@@ -120,15 +120,20 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
 
   if (!status.materials.empty()) {
     ImGui::Text("Materials shown:");
+    // The boxes flow onto further lines rather than past the panel's edge.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     for (const int32_t m : status.materials) {
       const bool was_hidden =
           std::binary_search(view->hidden_materials.begin(), view->hidden_materials.end(), m);
       bool shown = !was_hidden;
       const render::Rgb c = render::material_rgb(m);
-      ImGui::SameLine();
-      ImGui::PushStyleColor(ImGuiCol_CheckMark, ImVec4(c[0], c[1], c[2], 1));
       char label[32];
       std::snprintf(label, sizeof(label), "%d", m);
+      const float width =
+          ImGui::GetFrameHeight() + style.ItemInnerSpacing.x + ImGui::CalcTextSize(label).x;
+      if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
+      ImGui::PushStyleColor(ImGuiCol_CheckMark, ImVec4(c[0], c[1], c[2], 1));
       ImGui::Checkbox(label, &shown);
       ImGui::PopStyleColor();
       if (shown == was_hidden) {
