@@ -477,9 +477,28 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   for (const float b : bins) top = std::max(top, b);
   ImGui::BeginGroup();
   ImGui::Text("Stretch histogram (0 .. 1)");
+  const float line = ImGui::GetTextLineHeightWithSpacing();
   ImGui::PlotHistogram("##hist", bins.data(), static_cast<int>(bins.size()), 0, nullptr, 0,
-                       top * 1.1f, ImVec2(kChartWidth, ImGui::GetContentRegionAvail().y - 46));
-  ImGui::TextDisabled("0.0            0.5            1.0");
+                       top * 1.1f,
+                       ImVec2(kChartWidth, ImGui::GetContentRegionAvail().y - 24 - line));
+  // Tick labels under stretch 0, 0.5 and 1: the bars span the plot's frame less its
+  // padding (as PlotHistogram draws them), each label centred on its stretch and kept
+  // inside the frame.
+  const ImVec2 frame_min = ImGui::GetItemRectMin(), frame_max = ImGui::GetItemRectMax();
+  const float x0 = frame_min.x + ImGui::GetStyle().FramePadding.x;
+  const float x1 = frame_max.x - ImGui::GetStyle().FramePadding.x;
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImU32 tick_color = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+  for (const float stretch : {0.0f, 0.5f, 1.0f}) {
+    char text[8];
+    std::snprintf(text, sizeof(text), "%.1f", stretch);
+    const float w = ImGui::CalcTextSize(text).x;
+    const float at = x0 + stretch * (x1 - x0);
+    const float left = std::clamp(at - 0.5f * w, frame_min.x, frame_max.x - w);
+    draw->AddLine(ImVec2(at, frame_max.y), ImVec2(at, frame_max.y + 3), tick_color);
+    draw->AddText(ImVec2(left, frame_max.y + 3), tick_color, text);
+  }
+  ImGui::Dummy(ImVec2(kChartWidth, line));
   ImGui::EndGroup();
   if (status.has_result) {
     const RejectionCounts& r = status.rejections;
