@@ -90,7 +90,8 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
   }
   if (field_shown) {
     ImGui::SliderFloat("|E| top (%ile)", &view->field_percentile, 50.0f, 100.0f, "%.1f");
-    ImGui::Text("|E| range [0, %.4g] (max %.4g)", analysis.field_range_max, analysis.field_max);
+    ImGui::TextWrapped("|E| range [0, %.4g] (max %.4g)", analysis.field_range_max,
+                       analysis.field_max);
   } else if (view->color_mode != render::ColorMode::kMaterial) {
     ImGui::DragFloatRange2("Range", &view->range_min, &view->range_max, 0.005f, 0.0f, 1.0f, "%.3f",
                            "%.3f", ImGuiSliderFlags_AlwaysClamp);
@@ -156,7 +157,7 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
         commands->push_back({CommandKind::kAxisView, "", i - 1});
     }
   }
-  ImGui::TextDisabled("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
+  text_disabled_wrapped("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
 }
 
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
@@ -181,7 +182,9 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     char buffer[512];
     copy_path(t->region_spec, buffer, sizeof(buffer));
     if (ImGui::InputText("rules", buffer, sizeof(buffer))) t->region_spec = buffer;
-    ImGui::TextDisabled("radial:cx,cy,cz,s0,g; axis:...; box:x0,y0,z0,x1,y1,z1,s");
+    text_disabled_wrapped(
+        "radial:cx,cy,cz,s0,g; axis:cx,cy,cz,dx,dy,dz,s0,g; box:x0,y0,z0,x1,y1,z1,s "
+        "(';' between rules)");
   } else if (t->sizing_mode == SizingMode::kPerMaterial) {
     // A material without a size of its own has no per-material limit, as with
     // `--material-size` (only the sizes listed); tick it to give it one.
@@ -226,8 +229,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     std::snprintf(overlay, sizeof(overlay), "%s %.0f%%", status.phase.c_str(),
                   100 * status.phase_fraction);
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
-    ImGui::Text("%zu collapses, %.0f /s, %.1f s", status.collapses, status.collapses_per_second,
-                status.elapsed_seconds);
+    ImGui::TextWrapped("%zu collapses, %.0f /s, %.1f s", status.collapses,
+                       status.collapses_per_second, status.elapsed_seconds);
   }
   if (status.from_history) {
     ImGui::TextWrapped(
@@ -236,8 +239,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
         status.step_count);
   }
   if (status.has_result) {
-    ImGui::Text("Last run: %.2f s, %zu splits%s", status.simplify_seconds, status.splits,
-                status.result_cancelled ? " (cancelled)" : "");
+    ImGui::TextWrapped("Last run: %.2f s, %zu splits%s", status.simplify_seconds, status.splits,
+                       status.result_cancelled ? " (cancelled)" : "");
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
     if (v.below_stretch + v.above_size + v.above_valence == 0) {
@@ -283,8 +286,8 @@ void lod_section(const ViewerStatus& status, PanelState* panel, std::vector<Comm
   ImGui::SameLine();
   if (ImGui::Button("Jump to #elements"))
     commands->push_back({CommandKind::kJumpElements, "", panel->jump_elements});
-  ImGui::Text("Shown: step %zu of %zu, %zu elements (%zu at the end)", status.step,
-              status.step_count, status.elements, status.elements_at_end);
+  ImGui::TextWrapped("Shown: step %zu of %zu, %zu elements (%zu at the end)", status.step,
+                     status.step_count, status.elements, status.elements_at_end);
 }
 
 void output_section(PanelState* panel, std::vector<Command>* commands) {
@@ -293,7 +296,7 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::SameLine();
   if (ImGui::Button("Save level"))
     commands->push_back({CommandKind::kSave, panel->save_path, panel->save_improved ? 1 : 0});
-  ImGui::TextDisabled(".mesh .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
+  text_disabled_wrapped(".mesh .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
   ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
@@ -335,7 +338,7 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
                          [](const MaterialAnalysis& x, int32_t id) { return x.material < id; });
     if (it == materials.end() || it->material != m) materials.insert(it, MaterialAnalysis{m});
   }
-  ImGui::TextDisabled("-div(eps grad u) = 0, linear elements (tetlod solve)");
+  text_disabled_wrapped("-div(eps grad u) = 0, linear elements (tetlod solve)");
   if (ImGui::BeginTable("analysis_materials", 3, ImGuiTableFlags_SizingStretchProp)) {
     for (MaterialAnalysis& m : materials) {
       ImGui::PushID(m.material);
@@ -381,15 +384,16 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
     ImGui::PopStyleColor();
   }
   if (!a.has_solution) return;
-  ImGui::Text("Solved: step %zu, %zu tets, %zu unknowns%s", a.solved_step, a.solved_tets,
-              a.unknowns, a.stale ? " (not displayed)" : "");
-  if (a.setup_changed) ImGui::TextDisabled("(the set-up above changed since: solve again)");
+  ImGui::TextWrapped("Solved: step %zu, %zu tets, %zu unknowns%s", a.solved_step, a.solved_tets,
+                     a.unknowns, a.stale ? " (not the displayed level)" : "");
+  if (a.setup_changed) text_disabled_wrapped("(the set-up above changed since: solve again)");
   ImGui::Text("C = %.10g", a.capacitance);
   ImGui::Text("W = %.10g (V = %.4g)", a.energy, a.voltage);
   if (a.direct)
-    ImGui::Text("direct LDL^T, residual %.2g, %.3f s", a.residual, a.seconds);
+    ImGui::TextWrapped("direct LDL^T, residual %.2g, %.3f s", a.residual, a.seconds);
   else
-    ImGui::Text("CG: %d iterations, residual %.2g, %.3f s", a.iterations, a.residual, a.seconds);
+    ImGui::TextWrapped("CG: %d iterations, residual %.2g, %.3f s", a.iterations, a.residual,
+                       a.seconds);
   if (a.finest_is_displayed) {
     ImGui::Text("This is the finest level.");
   } else if (a.has_finest) {
