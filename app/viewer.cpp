@@ -333,6 +333,9 @@ class Viewer {
   std::unique_ptr<SolveJob> solve_job_;
   std::unique_ptr<AnalysisResult> analysis_result_;
   std::string analysis_error_;
+  // Why the last solve is not of the current scene ("the mesh was simplified again",
+  // "another mesh was opened"); "" while it is, or if nothing was solved.
+  std::string analysis_superseded_;
   struct Finest {
     size_t generation = 0;
     ElectrostaticsProblem problem;
@@ -710,6 +713,8 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   has_stats_ = false;
   surface_has_field_ = false;
   if (solve_job_) solve_job_->cancel = true;  // its level is gone; poll_solve() says so
+  if (analysis_result_)
+    analysis_superseded_ = is_load ? "another mesh was opened" : "the mesh was simplified again";
   panel_.target_step = static_cast<long long>(scene_->lod->step());
   if (is_load) {
     // Keep the hidden materials that this mesh has; centre the cut; frame the model.
@@ -1133,6 +1138,7 @@ void Viewer::poll_solve() {
   result->tet_values = std::move(job->tet_values);
   result->sorted_field = std::move(job->sorted_field);
   analysis_result_ = std::move(result);
+  analysis_superseded_.clear();
   if (job->step == 0) {
     finest_ = Finest{job->generation, job->problem, job->solution.capacitance};
   } else if (job->has_finest) {
@@ -1240,6 +1246,11 @@ void Viewer::fill_status() {
   }
   a.error = analysis_error_;
   a.has_solution = analysis_result_ && scene_ && analysis_result_->generation == scene_generation_;
+  if (!a.has_solution && analysis_result_ && !analysis_superseded_.empty()) {
+    a.superseded = analysis_superseded_;
+    a.earlier_capacitance = analysis_result_->solution.capacitance;
+    a.earlier_tets = analysis_result_->tets;
+  }
   if (a.has_solution) {
     const AnalysisResult& r = *analysis_result_;
     const ElectrostaticsSolution& sol = r.solution;

@@ -82,10 +82,17 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
       view->color_mode == render::ColorMode::kField && analysis.has_solution && !analysis.stale;
   if (view->color_mode == render::ColorMode::kField && !field_shown) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-    ImGui::TextWrapped(analysis.has_solution
-                           ? "|E| is stale (the displayed level changed): showing "
-                             "stretch. Solve again in Analysis."
-                           : "No field yet: showing stretch. Solve in Analysis.");
+    if (analysis.has_solution)
+      ImGui::TextWrapped(
+          "|E| is stale (the displayed level changed): showing stretch. Solve again in "
+          "Analysis.");
+    else if (!analysis.superseded.empty())
+      ImGui::TextWrapped(
+          "The last |E| is of an earlier mesh (%s since): showing stretch. Solve again in "
+          "Analysis.",
+          analysis.superseded.c_str());
+    else
+      ImGui::TextWrapped("No field yet: showing stretch. Solve in Analysis.");
     ImGui::PopStyleColor();
   }
   if (field_shown) {
@@ -383,7 +390,14 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
     ImGui::TextWrapped("Solver: %s", a.error.c_str());
     ImGui::PopStyleColor();
   }
-  if (!a.has_solution) return;
+  if (!a.has_solution) {
+    if (!a.superseded.empty())
+      text_disabled_wrapped(
+          "The last solve (C = %.10g, %zu tets) no longer applies: %s since. Solve again "
+          "for this mesh.",
+          a.earlier_capacitance, a.earlier_tets, a.superseded.c_str());
+    return;
+  }
   ImGui::TextWrapped("Solved: step %zu, %zu tets, %zu unknowns%s", a.solved_step, a.solved_tets,
                      a.unknowns, a.stale ? " (not the displayed level)" : "");
   if (a.setup_changed) text_disabled_wrapped("(the set-up above changed since: solve again)");
