@@ -610,6 +610,8 @@ void Viewer::start_load(const std::string& path) {
       auto read = std::make_shared<TetMesh>();
       ReadInfo info;
       s = read_mesh(job->path, read.get(), &info);
+      if (!s && !is_mesh_path(job->path))  // read_mesh's list of formats lacks histories
+        s = Status::error(s.message() + "; the viewer also opens .tlh collapse histories");
       mesh = std::move(read);
     }
     if (!s) {

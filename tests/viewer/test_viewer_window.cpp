@@ -394,6 +394,21 @@ TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
                                  << " orange pixels)";
 }
 
+// A file of no known extension: the message lists what the viewer opens, collapse
+// histories (.tlh) included.
+TEST(ViewerWindow, UnknownExtensionNamesHistoriesToo) {
+  const fs::path dir = fresh_output_dir("viewer_unknown_extension");
+  std::ofstream(dir / "box2.txt") << "MeshVersionFormatted 2\n";
+  std::ofstream(dir / "load.script") << "open box2.txt\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script load.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("load.script:1: box2.txt: unknown mesh file extension '.txt'"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find(".tlh collapse histories"), std::string::npos) << run.output;
+}
+
 TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
   const fs::path dir = fresh_output_dir("viewer_failed_load");
   std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
