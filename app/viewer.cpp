@@ -731,9 +731,13 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     view_.cut_offset = static_cast<float>(view_.cut_axis == ui::CutAxis::kX   ? center.x
                                           : view_.cut_axis == ui::CutAxis::kY ? center.y
                                                                               : center.z);
+    // Every threshold and the sizing start again from the defaults for this mesh
+    // (region rules and material ids belong to the old one); subdivide on/off stays.
+    const bool subdivide = thresholds_.subdivide;
+    thresholds_ = ui::ThresholdSettings{};
+    thresholds_.subdivide = subdivide;
     thresholds_.tolerance = static_cast<float>(scene_->default_tolerance);
     thresholds_.size = static_cast<float>(scene_->default_size);
-    thresholds_.material_sizes.clear();
     camera_.fit(scene_->lo, scene_->hi, render::ViewDirection::kIso);
     add_recent(scene_->path);
     std::snprintf(panel_.open_path, sizeof(panel_.open_path), "%s", scene_->path.c_str());

@@ -173,8 +173,10 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   if (status.default_size > 0)
     text_disabled_wrapped(
         "Set on open: size %.4g = 3 x the median tet size (subdivision splits edges above "
-        "half the size), tolerance %.4g = 0.001 x the bounding-box diagonal.",
-        status.default_size, status.default_tolerance);
+        "half the size), tolerance %.4g = 0.001 x the bounding-box diagonal, stretch %.3g, "
+        "valence %d, uniform sizing.",
+        status.default_size, status.default_tolerance, ThresholdSettings{}.stretch,
+        ThresholdSettings{}.valence);
   ImGui::SliderFloat("tolerance (TL)", &t->tolerance, 0.0f, 5.0f, "%.4g",
                      ImGuiSliderFlags_Logarithmic);
   if (t->sizing_mode != SizingMode::kPerMaterial)

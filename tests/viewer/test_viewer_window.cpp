@@ -249,6 +249,29 @@ TEST(ViewerWindow, FirstDefaultSimplifyCoarsensTheMotor) {
       << saved.tet_count() << " tets from " << input.tet_count();
 }
 
+// Opening a mesh resets every threshold to the defaults for it, not only the size and
+// tolerance: a stretch and valence set for the previous mesh do not carry over (box2
+// gives 12 tets at the defaults, 110 at stretch 0.4 and valence 8).
+TEST(ViewerWindow, OpeningAMeshResetsEveryThreshold) {
+  const fs::path dir = fresh_output_dir("viewer_open_resets");
+  const std::string box2 = kSource + "/assets/box2.mesh";
+  std::ofstream(dir / "reset.script")
+      << "thresholds stretch=0.4 valence=8\nopen " << box2 << "\nsimplify\nsave reset.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script reset.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  TetMesh input, saved;
+  ASSERT_TRUE(read_mesh(box2, &input).ok());
+  ASSERT_TRUE(read_mesh((dir / "reset.mesh").string(), &saved).ok());
+  SimplifyParams defaults;  // stretch 0.15, valence 25, as the panel says
+  defaults.sizing.uniform = 2.3;
+  defaults.tolerance = 1e-3 * std::sqrt(6.0);  // the 2 x 1 x 1 box's diagonal
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(input, defaults, &result).ok());
+  EXPECT_EQ(saved.tet_count(), result.output.tet_count());
+  EXPECT_EQ(saved.tet_count(), 12u);
+}
+
 // Per-material sizing as in the CLI: a material the list leaves out (3 here) gets no
 // size limit of its own, not the uniform size, so the viewer's final mesh is the one
 // `tetlod simplify --material-size` writes for the same list. (Giving material 3 the
