@@ -248,7 +248,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
         status.step_count);
   }
   if (status.has_result) {
-    ImGui::TextWrapped("Last run: %.2f s, %zu splits%s", status.simplify_seconds, status.splits,
+    ImGui::TextWrapped("Last run: %.2f s (subdivide, classify, simplify), %zu splits%s",
+                       status.simplify_seconds, status.splits,
                        status.result_cancelled ? " (cancelled)" : "");
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
