@@ -31,6 +31,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -733,6 +734,8 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   if (analysis_result_)
     analysis_superseded_ = is_load ? "another mesh was opened" : "the mesh was simplified again";
   panel_.target_step = static_cast<long long>(scene_->lod->step());
+  panel_.jump_elements = static_cast<int>(
+      std::min<size_t>(scene_->lod->alive_tet_count(), std::numeric_limits<int>::max()));
   if (is_load) {
     // Keep the hidden materials that this mesh has; centre the cut; frame the model.
     auto& hidden = view_.hidden_materials;
