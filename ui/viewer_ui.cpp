@@ -530,6 +530,38 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   ImGui::End();
 }
 
+// When nothing is drawn, a line in the middle of the 3D view says why: every material
+// hidden, or the cut leaving none of the shown tets.
+void empty_view_note(const ViewerStatus& status, const ViewSettings& view, bool show_stats) {
+  if (status.mesh_name.empty() || status.loading || status.visible_tets > 0) return;
+  bool all_hidden = true;
+  for (const int32_t m : status.materials)
+    all_hidden = all_hidden &&
+                 std::binary_search(view.hidden_materials.begin(), view.hidden_materials.end(), m);
+  char text[256];
+  if (all_hidden) {
+    std::snprintf(text, sizeof(text),
+                  "Nothing to show: every material is hidden (View, Materials shown).");
+  } else if (view.cut) {
+    const char axis = "xyz"[static_cast<int>(view.cut_axis)];
+    std::snprintf(text, sizeof(text),
+                  "Nothing to show: the cut keeps %c %s %.4g, where no tet of the shown materials "
+                  "lies. Move its offset or flip it (View, Cut).",
+                  axis, view.cut_flip ? ">=" : "<=", view.cut_offset);
+  } else {
+    std::snprintf(text, sizeof(text), "Nothing to show at this level.");
+  }
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  const ViewRect r = scene_rect(viewport->WorkSize.x, viewport->WorkSize.y, show_stats);
+  const float wrap = std::min(420.0f, r.width - 40);
+  const ImVec2 size = ImGui::CalcTextSize(text, nullptr, false, wrap);
+  const ImVec2 at(viewport->WorkPos.x + r.x + 0.5f * (r.width - size.x),
+                  viewport->WorkPos.y + r.y + 0.5f * (r.height - size.y));
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(), at, IM_COL32(60, 60, 70, 255), text,
+                nullptr, wrap);
+}
+
 }  // namespace
 
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
@@ -667,6 +699,7 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   if (ImGui::CollapsingHeader("Output")) output_section(panel, commands);
   ImGui::End();
   stats_window(status, panel);
+  empty_view_note(status, *view, panel->show_stats);
 }
 
 }  // namespace tetlod::ui

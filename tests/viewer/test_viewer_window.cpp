@@ -432,6 +432,33 @@ TEST(ViewerWindow, UnknownExtensionNamesHistoriesToo) {
   EXPECT_NE(run.output.find(".tlh collapse histories"), std::string::npos) << run.output;
 }
 
+// An empty view (every material hidden, or everything cut away) says why in the
+// middle of the view, where otherwise nothing at all is drawn (material colours: no
+// colour bar).
+TEST(ViewerWindow, AnEmptyViewSaysWhy) {
+  const fs::path dir = fresh_output_dir("viewer_empty_view");
+  std::ofstream(dir / "empty.script") << "color material\nhide 1\nhide 2\n"
+                                         "screenshot hidden_ui.png ui=1\n"
+                                         "show 1\ncut x=-100\nscreenshot cut_ui.png ui=1\n"
+                                         "cut off\nscreenshot shown_ui.png ui=1\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 960x640 --script empty.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  // The middle band of the view, right of the panel and above the statistics strip,
+  // away from the material key at its top left.
+  const auto middle = [](const render::Image& image) {
+    return non_background(image, 400, 120, image.width, image.height - 260);
+  };
+  for (const char* name : {"hidden_ui.png", "cut_ui.png"}) {
+    const render::Image image = load_png(dir / name);
+    ASSERT_EQ(image.width, 960) << name;
+    const double text = middle(image);
+    EXPECT_GT(text, 0.001) << name << ": no note in the empty view";
+    EXPECT_LT(text, 0.05) << name;
+  }
+  EXPECT_GT(middle(load_png(dir / "shown_ui.png")), 0.05);  // the model itself
+}
+
 TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
   const fs::path dir = fresh_output_dir("viewer_failed_load");
   std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n-4\n";
