@@ -170,13 +170,19 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                         std::vector<Command>* commands) {
   ImGui::TextDisabled("ctrl-click a slider to type a value");
-  if (status.default_size > 0)
+  if (status.default_size > 0) {
     text_disabled_wrapped(
-        "Set on open: size %.4g = 3 x the median tet size (subdivision splits edges above "
-        "half the size), tolerance %.4g = 0.001 x the bounding-box diagonal, stretch %.3g, "
-        "valence %d, uniform sizing.",
-        status.default_size, status.default_tolerance, ThresholdSettings{}.stretch,
-        ThresholdSettings{}.valence);
+        "On open: size %.4g = 3 x median tet size, tolerance %.4g = 0.001 x "
+        "diagonal (hover)",
+        status.default_size, status.default_tolerance);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "Opening a mesh resets every threshold and the sizing: size = 3 x the median tet\n"
+          "size (longest edge), so that subdivision, which splits every edge longer than\n"
+          "half the size, leaves most edges whole; tolerance = 0.001 x the bounding-box\n"
+          "diagonal (as tetlod simplify); stretch %.3g, valence %d, uniform sizing.",
+          ThresholdSettings{}.stretch, ThresholdSettings{}.valence);
+  }
   ImGui::SliderFloat("tolerance (TL)", &t->tolerance, 0.0f, 5.0f, "%.4g",
                      ImGuiSliderFlags_Logarithmic);
   if (t->sizing_mode != SizingMode::kPerMaterial)

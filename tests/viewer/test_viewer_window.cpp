@@ -408,8 +408,10 @@ TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
       << "thresholds size=12 stretch=0.15 valence=25 tolerance=0.05 subdivide=1\nsimplify\n"
          "screenshot broken_ui.png ui=1\n"
          "thresholds stretch=0.05 valence=200\nsimplify\nscreenshot clean_ui.png ui=1\nquit\n";
+  // Tall enough for the warning, under the Thresholds section, to be in sight without
+  // scrolling the panel.
   const ViewerRun run = run_viewer(
-      dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 1280x800 --script run.script");
+      dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 1280x1000 --script run.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const size_t broken = orange_panel_pixels(load_png(dir / "broken_ui.png"));
   const size_t clean = orange_panel_pixels(load_png(dir / "clean_ui.png"));
