@@ -31,6 +31,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -46,6 +47,7 @@
 #include "core/lod.h"
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
+#include "core/sizing.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "render/lod_surface.h"
@@ -76,6 +78,12 @@ struct Scene {
   render::SurfaceFilter filter;  // the surface was built with this
   Vec3 lo, hi;                   // bounds of the input
   std::vector<int32_t> materials;
+  // The size and tolerance opening the input sets: three times its median tet size
+  // (core/sizing.h suggested_size: well above twice its typical edge, so that
+  // subdivision, which splits edges above half the size, does not make a first
+  // Simplify's result larger than the input) and 0.001 x its bounding-box diagonal
+  // (the default of `tetlod simplify`).
+  double default_size = 0, default_tolerance = 0;
 };
 
 void mesh_bounds(const TetMesh& mesh, Vec3* lo, Vec3* hi) {
@@ -155,6 +163,10 @@ std::unique_ptr<Scene> make_scene(const std::string& path, std::shared_ptr<const
   scene->input = std::move(input);
   scene->result = std::move(result);
   mesh_bounds(*scene->input, &scene->lo, &scene->hi);
+  const double diagonal = length(scene->hi - scene->lo);
+  scene->default_size = suggested_size(*scene->input);
+  if (!(scene->default_size > 0)) scene->default_size = diagonal / 25;  // no tets, or flat ones
+  scene->default_tolerance = 1e-3 * diagonal;
   scene->materials = scene->input->materials;
   std::sort(scene->materials.begin(), scene->materials.end());
   scene->materials.erase(std::unique(scene->materials.begin(), scene->materials.end()),
@@ -168,6 +180,12 @@ std::unique_ptr<Scene> make_scene(const std::string& path, std::shared_ptr<const
   scene->filter = make_filter(view);
   scene->surface.reset(render::lod_state(*scene->lod), scene->filter);
   return scene;
+}
+
+// A simplification's own time: subdivide, classify and simplify (not the display's
+// set-up, make_scene()).
+double run_seconds(const SimplifyResult& result) {
+  return result.seconds_classify + result.seconds_subdivide + result.seconds_simplify;
 }
 
 // One background job: a load or a simplification, then make_scene().
@@ -322,6 +340,9 @@ class Viewer {
   std::unique_ptr<SolveJob> solve_job_;
   std::unique_ptr<AnalysisResult> analysis_result_;
   std::string analysis_error_;
+  // Why the last solve is not of the current scene ("the mesh was simplified again",
+  // "another mesh was opened"); "" while it is, or if nothing was solved.
+  std::string analysis_superseded_;
   struct Finest {
     size_t generation = 0;
     ElectrostaticsProblem problem;
@@ -596,6 +617,8 @@ void Viewer::start_load(const std::string& path) {
       auto read = std::make_shared<TetMesh>();
       ReadInfo info;
       s = read_mesh(job->path, read.get(), &info);
+      if (!s && !is_mesh_path(job->path))  // read_mesh's list of formats lacks histories
+        s = Status::error(s.message() + "; the viewer also opens .tlh collapse histories");
       mesh = std::move(read);
     }
     if (!s) {
@@ -687,10 +710,19 @@ void Viewer::poll_job() {
   }
   last_job_error_.clear();
   status_.load_error.clear();
+  const double total = seconds_between(job->start, Clock::now());
   swap_in(std::move(job->scene), job->is_load);
-  char seconds[32];
-  std::snprintf(seconds, sizeof(seconds), "%.2f s", seconds_between(job->start, Clock::now()));
-  status_.message = (job->is_load ? "loaded " + job->path + " in " : "simplified in ") + seconds;
+  char text[160];
+  if (job->is_load) {
+    std::snprintf(text, sizeof(text), " in %.2f s", total);
+    status_.message = "loaded " + job->path + text;
+  } else {
+    // The Thresholds panel shows the run's own time (subdivide, classify, simplify);
+    // the rest is building the levels' display.
+    std::snprintf(text, sizeof(text), "simplified: %.2f s in all, of which the run %.2f s", total,
+                  run_seconds(*scene_->result));
+    status_.message = text;
+  }
 }
 
 void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
@@ -699,7 +731,11 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   has_stats_ = false;
   surface_has_field_ = false;
   if (solve_job_) solve_job_->cancel = true;  // its level is gone; poll_solve() says so
+  if (analysis_result_)
+    analysis_superseded_ = is_load ? "another mesh was opened" : "the mesh was simplified again";
   panel_.target_step = static_cast<long long>(scene_->lod->step());
+  panel_.jump_elements = static_cast<int>(
+      std::min<size_t>(scene_->lod->alive_tet_count(), std::numeric_limits<int>::max()));
   if (is_load) {
     // Keep the hidden materials that this mesh has; centre the cut; frame the model.
     auto& hidden = view_.hidden_materials;
@@ -713,10 +749,13 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     view_.cut_offset = static_cast<float>(view_.cut_axis == ui::CutAxis::kX   ? center.x
                                           : view_.cut_axis == ui::CutAxis::kY ? center.y
                                                                               : center.z);
-    const double diagonal = length(scene_->hi - scene_->lo);
-    thresholds_.tolerance = static_cast<float>(1e-3 * diagonal);
-    thresholds_.size = static_cast<float>(diagonal / 25);
-    thresholds_.material_sizes.clear();
+    // Every threshold and the sizing start again from the defaults for this mesh
+    // (region rules and material ids belong to the old one); subdivide on/off stays.
+    const bool subdivide = thresholds_.subdivide;
+    thresholds_ = ui::ThresholdSettings{};
+    thresholds_.subdivide = subdivide;
+    thresholds_.tolerance = static_cast<float>(scene_->default_tolerance);
+    thresholds_.size = static_cast<float>(scene_->default_size);
     camera_.fit(scene_->lo, scene_->hi, render::ViewDirection::kIso);
     add_recent(scene_->path);
     std::snprintf(panel_.open_path, sizeof(panel_.open_path), "%s", scene_->path.c_str());
@@ -1123,6 +1162,7 @@ void Viewer::poll_solve() {
   result->tet_values = std::move(job->tet_values);
   result->sorted_field = std::move(job->sorted_field);
   analysis_result_ = std::move(result);
+  analysis_superseded_.clear();
   if (job->step == 0) {
     finest_ = Finest{job->generation, job->problem, job->solution.capacitance};
   } else if (job->has_finest) {
@@ -1230,6 +1270,11 @@ void Viewer::fill_status() {
   }
   a.error = analysis_error_;
   a.has_solution = analysis_result_ && scene_ && analysis_result_->generation == scene_generation_;
+  if (!a.has_solution && analysis_result_ && !analysis_superseded_.empty()) {
+    a.superseded = analysis_superseded_;
+    a.earlier_capacitance = analysis_result_->solution.capacitance;
+    a.earlier_tets = analysis_result_->tets;
+  }
   if (a.has_solution) {
     const AnalysisResult& r = *analysis_result_;
     const ElectrostaticsSolution& sol = r.solution;
@@ -1257,6 +1302,8 @@ void Viewer::fill_status() {
   s.mesh_name = scene.path;
   s.input_tets = scene.input->tet_count();
   s.input_vertices = scene.input->vertex_count();
+  s.default_size = scene.default_size;
+  s.default_tolerance = scene.default_tolerance;
   s.materials = scene.materials;
   for (int k = 0; k < 3; ++k) {
     s.bounds_min[k] = static_cast<float>(k == 0 ? scene.lo.x : k == 1 ? scene.lo.y : scene.lo.z);
@@ -1269,8 +1316,7 @@ void Viewer::fill_status() {
     s.splits = scene.result->splits;
     s.violations = scene.result->violations;
     s.above_size_reason = scene.above_size_reason;
-    s.simplify_seconds = scene.result->seconds_classify + scene.result->seconds_subdivide +
-                         scene.result->seconds_simplify;
+    s.simplify_seconds = run_seconds(*scene.result);
     s.result_cancelled = scene.result->cancelled;
   }
   const Lod& lod = *scene.lod;

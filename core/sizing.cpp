@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <vector>
+
+#include "core/metrics.h"
 
 namespace tetlod {
 
@@ -26,6 +29,20 @@ double SizingField::size_at(const Vec3& p, int32_t material) const {
     }
   }
   return size;
+}
+
+double suggested_size(const TetMesh& mesh) {
+  if (mesh.tets.empty()) return 0;
+  std::vector<double> sizes;
+  sizes.reserve(mesh.tets.size());
+  for (const Tet& t : mesh.tets) sizes.push_back(tet_shape(mesh, t).size);
+  const auto median = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
+  std::nth_element(sizes.begin(), median, sizes.end());
+  const double size = 3 * *median;
+  if (!(size > 0) || !std::isfinite(size)) return size;
+  // Two significant digits: 23.43 -> 23, 2.34 -> 2.3.
+  const double unit = std::pow(10.0, std::floor(std::log10(size)) - 1);
+  return std::round(size / unit) * unit;
 }
 
 double SizingField::smallest_size() const {

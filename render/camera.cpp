@@ -37,7 +37,7 @@ Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view) {
       direction = {1, 0, 0};
       break;
     case ViewDirection::kY:
-      direction = {0, -1, 0};
+      direction = {0, 1, 0};
       break;
     case ViewDirection::kZ:
       direction = {0, 0, 1};

@@ -20,8 +20,10 @@ struct Camera {
 enum class ViewDirection { kIso, kX, kY, kZ };
 
 // A camera looking at the box [lo, hi] from `view` (iso: from +x,+y,+z with z up;
-// x: from +x; y: from -y; z: from +z with y up), far enough that the box's bounding
-// sphere fills the smaller image side.
+// x: from +x; y: from +y; z: from +z with y up), far enough that the box's bounding
+// sphere fills the smaller image side. The three axis views look from the + side, the
+// side an unflipped cut (surface_builder.h CutPlane with a + axis normal) removes, so
+// each shows the face the cut exposes.
 Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view);
 
 // A camera at `eye` looking at `target` (z up, or y up when looking along z); near

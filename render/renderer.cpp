@@ -368,14 +368,22 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
   const float scale = std::max(1.0f, float(std::min(width, height)) / 320.0f);
   const float margin = 6 * scale;
   const float line = 11 * scale;
+  const float pad = 3 * scale;
+  const float text_height = 8 * scale;  // stb_easy_font's glyphs, descenders included
   const Rgb ink = {0.12f, 0.12f, 0.14f};
-  float y = margin;
+  // Each part of the legend sits on a white panel with a grey border, so that it reads
+  // where it overlaps the model.
+  const auto add_panel = [&](float x0, float y0, float x1, float y1) {
+    add_rect(&v, x0 - pad - 1, y0 - pad - 1, x1 + pad + 1, y1 + pad + 1, {0.7f, 0.7f, 0.72f});
+    add_rect(&v, x0 - pad, y0 - pad, x1 + pad, y1 + pad, {1, 1, 1});
+  };
   if (settings.color_mode != ColorMode::kMaterial) {
     // A horizontal colour bar at the bottom with the range at its ends.
     const float bar_w = 0.5f * float(width), bar_h = 8 * scale;
     const float x0 = 0.25f * float(width);
     const float y1 = float(height) - margin - line;
     const float y0 = y1 - bar_h;
+    add_panel(x0 - 1, y0 - 1, x0 + bar_w + 1, y1 + 3 * scale + text_height);
     add_rect(&v, x0 - 1, y0 - 1, x0 + bar_w + 1, y1 + 1, ink);
     add_rect(&v, x0, y0, x0 + bar_w, y1, ink, 0, 1);
     const std::string lo = format_value(settings.range_min);
@@ -385,19 +393,26 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     const std::string title = settings.color_mode == ColorMode::kField ? "|E|" : "stretch";
     add_text(&v, x0 + 0.5f * (bar_w - text_pixels(title, scale)), y1 + 3 * scale, title, ink,
              scale);
-  } else {
-    for (const int32_t m : visible_materials_) {
-      add_rect(&v, margin, y, margin + 8 * scale, y + 8 * scale, material_rgb(m));
-      add_text(&v, margin + 11 * scale, y + 1 * scale, "material " + std::to_string(m), ink, scale);
+  }
+  // The key at the top left: a swatch and a name per line.
+  std::vector<std::pair<Rgb, std::string>> key;
+  if (settings.color_mode == ColorMode::kMaterial)
+    for (const int32_t m : visible_materials_)
+      key.push_back({material_rgb(m), "material " + std::to_string(m)});
+  if (highlight_vertices_ > 0 || settings.highlight_below > 0)
+    key.push_back({kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
+                                      std::to_string(highlighted_tets_) + " tets"});
+  if (!key.empty()) {
+    float text_w = 0;
+    for (const auto& [color, text] : key) text_w = std::max(text_w, text_pixels(text, scale));
+    add_panel(margin, margin, margin + 11 * scale + text_w,
+              margin + float(key.size() - 1) * line + 8 * scale);
+    float y = margin;
+    for (const auto& [color, text] : key) {
+      add_rect(&v, margin, y, margin + 8 * scale, y + 8 * scale, color);
+      add_text(&v, margin + 11 * scale, y + 1 * scale, text, ink, scale);
       y += line;
     }
-  }
-  if (highlight_vertices_ > 0 || settings.highlight_below > 0) {
-    add_rect(&v, margin, y, margin + 8 * scale, y + 8 * scale, kHighlightRgb);
-    add_text(&v, margin + 11 * scale, y + 1 * scale,
-             "stretch < " + format_value(settings.highlight_below) + ": " +
-                 std::to_string(highlighted_tets_) + " tets",
-             ink, scale);
   }
   if (v.empty()) return;
   gl_.Disable(GL_DEPTH_TEST);

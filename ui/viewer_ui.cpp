@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 
@@ -13,6 +14,17 @@ namespace {
 constexpr float kPanelWidth = 380;   // the side panel
 constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
 constexpr float kMargin = 6;
+
+// TextDisabled, wrapped at the panel's edge.
+void text_disabled_wrapped(const char* format, ...) IM_FMTARGS(1);
+void text_disabled_wrapped(const char* format, ...) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  va_list args;
+  va_start(args, format);
+  ImGui::TextWrappedV(format, args);
+  va_end(args);
+  ImGui::PopStyleColor();
+}
 
 void copy_path(const std::string& from, char* to, size_t capacity) {
   std::snprintf(to, capacity, "%s", from.c_str());
@@ -70,15 +82,23 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
       view->color_mode == render::ColorMode::kField && analysis.has_solution && !analysis.stale;
   if (view->color_mode == render::ColorMode::kField && !field_shown) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-    ImGui::TextWrapped(analysis.has_solution
-                           ? "|E| is stale (the displayed level changed): showing "
-                             "stretch. Solve again in Analysis."
-                           : "No field yet: showing stretch. Solve in Analysis.");
+    if (analysis.has_solution)
+      ImGui::TextWrapped(
+          "|E| is stale (the displayed level changed): showing stretch. Solve again in "
+          "Analysis.");
+    else if (!analysis.superseded.empty())
+      ImGui::TextWrapped(
+          "The last |E| is of an earlier mesh (%s since): showing stretch. Solve again in "
+          "Analysis.",
+          analysis.superseded.c_str());
+    else
+      ImGui::TextWrapped("No field yet: showing stretch. Solve in Analysis.");
     ImGui::PopStyleColor();
   }
   if (field_shown) {
     ImGui::SliderFloat("|E| top (%ile)", &view->field_percentile, 50.0f, 100.0f, "%.1f");
-    ImGui::Text("|E| range [0, %.4g] (max %.4g)", analysis.field_range_max, analysis.field_max);
+    ImGui::TextWrapped("|E| range [0, %.4g] (max %.4g)", analysis.field_range_max,
+                       analysis.field_max);
   } else if (view->color_mode != render::ColorMode::kMaterial) {
     ImGui::DragFloatRange2("Range", &view->range_min, &view->range_max, 0.005f, 0.0f, 1.0f, "%.3f",
                            "%.3f", ImGuiSliderFlags_AlwaysClamp);
@@ -108,15 +128,20 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
 
   if (!status.materials.empty()) {
     ImGui::Text("Materials shown:");
+    // The boxes flow onto further lines rather than past the panel's edge.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     for (const int32_t m : status.materials) {
       const bool was_hidden =
           std::binary_search(view->hidden_materials.begin(), view->hidden_materials.end(), m);
       bool shown = !was_hidden;
       const render::Rgb c = render::material_rgb(m);
-      ImGui::SameLine();
-      ImGui::PushStyleColor(ImGuiCol_CheckMark, ImVec4(c[0], c[1], c[2], 1));
       char label[32];
       std::snprintf(label, sizeof(label), "%d", m);
+      const float width =
+          ImGui::GetFrameHeight() + style.ItemInnerSpacing.x + ImGui::CalcTextSize(label).x;
+      if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
+      ImGui::PushStyleColor(ImGuiCol_CheckMark, ImVec4(c[0], c[1], c[2], 1));
       ImGui::Checkbox(label, &shown);
       ImGui::PopStyleColor();
       if (shown == was_hidden) {
@@ -139,12 +164,25 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
         commands->push_back({CommandKind::kAxisView, "", i - 1});
     }
   }
-  ImGui::TextDisabled("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
+  text_disabled_wrapped("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
 }
 
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                         std::vector<Command>* commands) {
   ImGui::TextDisabled("ctrl-click a slider to type a value");
+  if (status.default_size > 0) {
+    text_disabled_wrapped(
+        "On open: size %.4g = 3 x median tet size, tolerance %.4g = 0.001 x "
+        "diagonal (hover)",
+        status.default_size, status.default_tolerance);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "Opening a mesh resets every threshold and the sizing: size = 3 x the median tet\n"
+          "size (longest edge), so that subdivision, which splits every edge longer than\n"
+          "half the size, leaves most edges whole; tolerance = 0.001 x the bounding-box\n"
+          "diagonal (as tetlod simplify); stretch %.3g, valence %d, uniform sizing.",
+          ThresholdSettings{}.stretch, ThresholdSettings{}.valence);
+  }
   ImGui::SliderFloat("tolerance (TL)", &t->tolerance, 0.0f, 5.0f, "%.4g",
                      ImGuiSliderFlags_Logarithmic);
   if (t->sizing_mode != SizingMode::kPerMaterial)
@@ -159,20 +197,39 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     char buffer[512];
     copy_path(t->region_spec, buffer, sizeof(buffer));
     if (ImGui::InputText("rules", buffer, sizeof(buffer))) t->region_spec = buffer;
-    ImGui::TextDisabled("radial:cx,cy,cz,s0,g; axis:...; box:x0,y0,z0,x1,y1,z1,s");
+    text_disabled_wrapped(
+        "radial:cx,cy,cz,s0,g; axis:cx,cy,cz,dx,dy,dz,s0,g; box:x0,y0,z0,x1,y1,z1,s "
+        "(';' between rules)");
   } else if (t->sizing_mode == SizingMode::kPerMaterial) {
+    // A material without a size of its own has no per-material limit, as with
+    // `--material-size` (only the sizes listed); tick it to give it one.
+    text_disabled_wrapped("size (SZ) per material; unticked: no size limit");
+    auto& sizes = t->material_sizes;
     for (const int32_t m : status.materials) {
-      auto it = std::find_if(t->material_sizes.begin(), t->material_sizes.end(),
-                             [m](const auto& p) { return p.first == m; });
-      if (it == t->material_sizes.end()) {
-        t->material_sizes.push_back({m, t->size});
-        std::sort(t->material_sizes.begin(), t->material_sizes.end());
-        it = std::find_if(t->material_sizes.begin(), t->material_sizes.end(),
-                          [m](const auto& p) { return p.first == m; });
+      auto it =
+          std::find_if(sizes.begin(), sizes.end(), [m](const auto& p) { return p.first == m; });
+      ImGui::PushID(m);
+      char label[32];
+      std::snprintf(label, sizeof(label), "mat %d", m);
+      bool limited = it != sizes.end();
+      if (ImGui::Checkbox(label, &limited)) {
+        if (limited) {
+          sizes.insert(std::lower_bound(sizes.begin(), sizes.end(), std::make_pair(m, 0.0f)),
+                       {m, t->size});
+        } else {
+          sizes.erase(it);
+        }
+        it = std::find_if(sizes.begin(), sizes.end(), [m](const auto& p) { return p.first == m; });
       }
-      char label[48];
-      std::snprintf(label, sizeof(label), "size of material %d", m);
-      ImGui::SliderFloat(label, &it->second, 0.1f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
+      ImGui::SameLine(90);
+      if (it != sizes.end()) {
+        ImGui::SetNextItemWidth(-1);
+        ImGui::SliderFloat("##size", &it->second, 0.1f, 100.0f, "%.4g",
+                           ImGuiSliderFlags_Logarithmic);
+      } else {
+        ImGui::TextDisabled("no size limit");
+      }
+      ImGui::PopID();
     }
   }
   ImGui::Checkbox("Subdivide first", &t->subdivide);
@@ -187,8 +244,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     std::snprintf(overlay, sizeof(overlay), "%s %.0f%%", status.phase.c_str(),
                   100 * status.phase_fraction);
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
-    ImGui::Text("%zu collapses, %.0f /s, %.1f s", status.collapses, status.collapses_per_second,
-                status.elapsed_seconds);
+    ImGui::TextWrapped("%zu collapses, %.0f /s, %.1f s", status.collapses,
+                       status.collapses_per_second, status.elapsed_seconds);
   }
   if (status.from_history) {
     ImGui::TextWrapped(
@@ -197,8 +254,9 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
         status.step_count);
   }
   if (status.has_result) {
-    ImGui::Text("Last run: %.2f s, %zu splits%s", status.simplify_seconds, status.splits,
-                status.result_cancelled ? " (cancelled)" : "");
+    ImGui::TextWrapped("Last run: %.2f s (subdivide, classify, simplify), %zu splits%s",
+                       status.simplify_seconds, status.splits,
+                       status.result_cancelled ? " (cancelled)" : "");
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
     if (v.below_stretch + v.above_size + v.above_valence == 0) {
@@ -244,8 +302,8 @@ void lod_section(const ViewerStatus& status, PanelState* panel, std::vector<Comm
   ImGui::SameLine();
   if (ImGui::Button("Jump to #elements"))
     commands->push_back({CommandKind::kJumpElements, "", panel->jump_elements});
-  ImGui::Text("Shown: step %zu of %zu, %zu elements (%zu at the end)", status.step,
-              status.step_count, status.elements, status.elements_at_end);
+  ImGui::TextWrapped("Shown: step %zu of %zu, %zu elements (%zu at the end)", status.step,
+                     status.step_count, status.elements, status.elements_at_end);
 }
 
 void output_section(PanelState* panel, std::vector<Command>* commands) {
@@ -254,7 +312,7 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::SameLine();
   if (ImGui::Button("Save level"))
     commands->push_back({CommandKind::kSave, panel->save_path, panel->save_improved ? 1 : 0});
-  ImGui::TextDisabled(".mesh .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
+  text_disabled_wrapped(".mesh .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
   ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
@@ -296,7 +354,7 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
                          [](const MaterialAnalysis& x, int32_t id) { return x.material < id; });
     if (it == materials.end() || it->material != m) materials.insert(it, MaterialAnalysis{m});
   }
-  ImGui::TextDisabled("-div(eps grad u) = 0, linear elements (tetlod solve)");
+  text_disabled_wrapped("-div(eps grad u) = 0, linear elements (tetlod solve)");
   if (ImGui::BeginTable("analysis_materials", 3, ImGuiTableFlags_SizingStretchProp)) {
     for (MaterialAnalysis& m : materials) {
       ImGui::PushID(m.material);
@@ -341,16 +399,24 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
     ImGui::TextWrapped("Solver: %s", a.error.c_str());
     ImGui::PopStyleColor();
   }
-  if (!a.has_solution) return;
-  ImGui::Text("Solved: step %zu, %zu tets, %zu unknowns%s", a.solved_step, a.solved_tets,
-              a.unknowns, a.stale ? " (not displayed)" : "");
-  if (a.setup_changed) ImGui::TextDisabled("(the set-up above changed since: solve again)");
+  if (!a.has_solution) {
+    if (!a.superseded.empty())
+      text_disabled_wrapped(
+          "The last solve (C = %.10g, %zu tets) no longer applies: %s since. Solve again "
+          "for this mesh.",
+          a.earlier_capacitance, a.earlier_tets, a.superseded.c_str());
+    return;
+  }
+  ImGui::TextWrapped("Solved: step %zu, %zu tets, %zu unknowns%s", a.solved_step, a.solved_tets,
+                     a.unknowns, a.stale ? " (not the displayed level)" : "");
+  if (a.setup_changed) text_disabled_wrapped("(the set-up above changed since: solve again)");
   ImGui::Text("C = %.10g", a.capacitance);
   ImGui::Text("W = %.10g (V = %.4g)", a.energy, a.voltage);
   if (a.direct)
-    ImGui::Text("direct LDL^T, residual %.2g, %.3f s", a.residual, a.seconds);
+    ImGui::TextWrapped("direct LDL^T, residual %.2g, %.3f s", a.residual, a.seconds);
   else
-    ImGui::Text("CG: %d iterations, residual %.2g, %.3f s", a.iterations, a.residual, a.seconds);
+    ImGui::TextWrapped("CG: %d iterations, residual %.2g, %.3f s", a.iterations, a.residual,
+                       a.seconds);
   if (a.finest_is_displayed) {
     ImGui::Text("This is the finest level.");
   } else if (a.has_finest) {
@@ -438,9 +504,28 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   for (const float b : bins) top = std::max(top, b);
   ImGui::BeginGroup();
   ImGui::Text("Stretch histogram (0 .. 1)");
+  const float line = ImGui::GetTextLineHeightWithSpacing();
   ImGui::PlotHistogram("##hist", bins.data(), static_cast<int>(bins.size()), 0, nullptr, 0,
-                       top * 1.1f, ImVec2(kChartWidth, ImGui::GetContentRegionAvail().y - 46));
-  ImGui::TextDisabled("0.0            0.5            1.0");
+                       top * 1.1f,
+                       ImVec2(kChartWidth, ImGui::GetContentRegionAvail().y - 24 - line));
+  // Tick labels under stretch 0, 0.5 and 1: the bars span the plot's frame less its
+  // padding (as PlotHistogram draws them), each label centred on its stretch and kept
+  // inside the frame.
+  const ImVec2 frame_min = ImGui::GetItemRectMin(), frame_max = ImGui::GetItemRectMax();
+  const float x0 = frame_min.x + ImGui::GetStyle().FramePadding.x;
+  const float x1 = frame_max.x - ImGui::GetStyle().FramePadding.x;
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImU32 tick_color = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+  for (const float stretch : {0.0f, 0.5f, 1.0f}) {
+    char text[8];
+    std::snprintf(text, sizeof(text), "%.1f", stretch);
+    const float w = ImGui::CalcTextSize(text).x;
+    const float at = x0 + stretch * (x1 - x0);
+    const float left = std::clamp(at - 0.5f * w, frame_min.x, frame_max.x - w);
+    draw->AddLine(ImVec2(at, frame_max.y), ImVec2(at, frame_max.y + 3), tick_color);
+    draw->AddText(ImVec2(left, frame_max.y + 3), tick_color, text);
+  }
+  ImGui::Dummy(ImVec2(kChartWidth, line));
   ImGui::EndGroup();
   if (status.has_result) {
     const RejectionCounts& r = status.rejections;
@@ -449,6 +534,38 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
                        r.tolerance, r.stretch, r.size, r.valence, r.topology);
   }
   ImGui::End();
+}
+
+// When nothing is drawn, a line in the middle of the 3D view says why: every material
+// hidden, or the cut leaving none of the shown tets.
+void empty_view_note(const ViewerStatus& status, const ViewSettings& view, bool show_stats) {
+  if (status.mesh_name.empty() || status.loading || status.visible_tets > 0) return;
+  bool all_hidden = true;
+  for (const int32_t m : status.materials)
+    all_hidden = all_hidden &&
+                 std::binary_search(view.hidden_materials.begin(), view.hidden_materials.end(), m);
+  char text[256];
+  if (all_hidden) {
+    std::snprintf(text, sizeof(text),
+                  "Nothing to show: every material is hidden (View, Materials shown).");
+  } else if (view.cut) {
+    const char axis = "xyz"[static_cast<int>(view.cut_axis)];
+    std::snprintf(text, sizeof(text),
+                  "Nothing to show: the cut keeps %c %s %.4g, where no tet of the shown materials "
+                  "lies. Move its offset or flip it (View, Cut).",
+                  axis, view.cut_flip ? ">=" : "<=", view.cut_offset);
+  } else {
+    std::snprintf(text, sizeof(text), "Nothing to show at this level.");
+  }
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  const ViewRect r = scene_rect(viewport->WorkSize.x, viewport->WorkSize.y, show_stats);
+  const float wrap = std::min(420.0f, r.width - 40);
+  const ImVec2 size = ImGui::CalcTextSize(text, nullptr, false, wrap);
+  const ImVec2 at(viewport->WorkPos.x + r.x + 0.5f * (r.width - size.x),
+                  viewport->WorkPos.y + r.y + 0.5f * (r.height - size.y));
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(), at, IM_COL32(60, 60, 70, 255), text,
+                nullptr, wrap);
 }
 
 }  // namespace
@@ -588,6 +705,7 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   if (ImGui::CollapsingHeader("Output")) output_section(panel, commands);
   ImGui::End();
   stats_window(status, panel);
+  empty_view_note(status, *view, panel->show_stats);
 }
 
 }  // namespace tetlod::ui

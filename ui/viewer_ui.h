@@ -132,6 +132,8 @@ struct ViewerStatus {
   std::string message;     // last success message (saved, screenshot, ...)
   bool loading = false;
   std::string loading_path;
+  // The thresholds opening the mesh set (the viewer's defaults for it).
+  double default_size = 0, default_tolerance = 0;
 
   // Simplification: running state and the last result.
   bool running = false;
@@ -171,6 +173,11 @@ struct ViewerStatus {
     double elapsed_seconds = 0;
     std::string error;  // of the last solve, shown until the next one
     bool has_solution = false;
+    // No solution of this mesh, but one of the mesh before: why it no longer applies
+    // ("the mesh was simplified again", ...) and what it gave.
+    std::string superseded;
+    double earlier_capacitance = 0;
+    size_t earlier_tets = 0;
     bool stale = false;          // the displayed level (or mesh) is not the solved one
     bool setup_changed = false;  // the panel's set-up is not the solved one
     size_t solved_step = 0, solved_tets = 0, unknowns = 0;

@@ -56,6 +56,15 @@ Status file_kind(const std::string& path, FileKind* kind) {
   return Status();
 }
 
+}  // namespace
+
+bool is_mesh_path(const std::string& path) {
+  FileKind kind;
+  return file_kind(path, &kind).ok();
+}
+
+namespace {
+
 // "foo.ele" or "foo.node" -> "foo".
 std::string tetgen_base(const std::string& path) {
   return path.substr(0, path.find_last_of('.'));

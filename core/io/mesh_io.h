@@ -84,6 +84,9 @@ struct ReadInfo {
   ValidationReport validation;
 };
 
+// True if the extension of `path` (any case) names a format read_mesh() reads.
+bool is_mesh_path(const std::string& path);
+
 // Reads `path`; `*mesh` is replaced only on success. For .msh, info->format tells
 // the version found.
 Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info = nullptr);

@@ -43,6 +43,14 @@ void expect_round_trip(const TetMesh& mesh, const std::string& dir) {
   }
 }
 
+TEST(IoRoundTrip, IsMeshPathKnowsTheReadableExtensions) {
+  for (const char* path :
+       {"a.mesh", "dir.x/b.MSH", "c.node", "c.ele", "d.vtk", "e.vtu", "f.bdf", "g.nas", "h.inp"})
+    EXPECT_TRUE(is_mesh_path(path)) << path;
+  for (const char* path : {"a.txt", "a.tlh", "a.meshb", "mesh", "dir.mesh/file", ""})
+    EXPECT_FALSE(is_mesh_path(path)) << path;
+}
+
 TEST(IoRoundTrip, HandBuiltMeshWithAwkwardNumbersAndMaterials) {
   const TetMesh mesh = test::make_io_mesh();
   test::expect_positive_orientation(mesh);

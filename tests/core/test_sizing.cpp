@@ -2,6 +2,7 @@
 // honouring per-material and region sizes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/io/mesh_io.h"
@@ -86,6 +87,45 @@ TEST(Sizing, SimplifierKeepsEachMaterialWithinItsOwnSize) {
   EXPECT_GT(max2, 0.4);       // material 2 did coarsen beyond material 1's size
   EXPECT_GT(count1, count2);  // so the finer material keeps more elements
   EXPECT_EQ(r.violations.created, 0u);
+}
+
+// The viewer's starting size: three times the median tet size, two significant digits.
+TEST(Sizing, SuggestedSizeIsThreeTimesTheMedianTetSize) {
+  EXPECT_DOUBLE_EQ(suggested_size(TetMesh{}), 0.0);
+  EXPECT_DOUBLE_EQ(suggested_size(test::make_single_tet()), 4.2);  // 3 * sqrt(2) = 4.24
+  // Kuhn tets of unit cubes: every longest edge is a cube diagonal, 3 * sqrt(3) = 5.196.
+  EXPECT_DOUBLE_EQ(suggested_size(test::make_grid_mesh(2, 2, 2, [](int, int, int) { return 1; })),
+                   5.2);
+  EXPECT_NEAR(suggested_size(test::make_grid_mesh(
+                  2, 1, 1, [](int, int, int) { return 1; }, 10)),
+              52, 1e-9);
+}
+
+// A first simplification at the suggested size and the CLI's default tolerance (0.001 x
+// the diagonal) coarsens every bundled mesh: subdivision does not outgrow the collapses.
+TEST(Sizing, SuggestedSizeCoarsensTheBundledMeshes) {
+  for (const char* name : {"motor", "spheres", "box2"}) {
+    SCOPED_TRACE(name);
+    TetMesh input;
+    ReadInfo info;
+    ASSERT_TRUE(
+        read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/" + name + ".mesh", &input, &info));
+    Vec3 lo = input.positions[0], hi = lo;
+    for (const Vec3& q : input.positions) {
+      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
+    }
+    SimplifyParams p;
+    p.sizing.uniform = suggested_size(input);
+    p.tolerance = 1e-3 * length(hi - lo);
+    SimplifyResult r;
+    ASSERT_TRUE(simplify(input, p, &r));
+    EXPECT_LT(r.output.tet_count(), input.tet_count()) << "size " << p.sizing.uniform;
+    if (std::string(name) == "motor") {
+      EXPECT_DOUBLE_EQ(p.sizing.uniform, 23.0);
+      EXPECT_LT(r.output.tet_count(), input.tet_count() / 2);
+    }
+  }
 }
 
 }  // namespace

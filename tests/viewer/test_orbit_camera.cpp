@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "app/orbit_camera.h"
+#include "render/surface_builder.h"
 
 namespace tetlod::app {
 namespace {
@@ -29,6 +31,24 @@ TEST(OrbitCamera, FitMatchesTheRenderersFraming) {
     EXPECT_EQ(c.fov_y_degrees, framed.fov_y_degrees);
     EXPECT_GT(c.near_distance, 0);
     EXPECT_GT(c.far_distance, c.near_distance);
+  }
+}
+
+// The X, Y and Z views all look from the + side of their axis: the side a default
+// (unflipped) cut at the centre removes (render::CutPlane keeps dot(n, c) <= offset),
+// so each shows the cut face, not the uncut shell behind it. (Y looked from -y.)
+TEST(OrbitCamera, AxisViewsLookAtTheFaceADefaultCutExposes) {
+  const Vec3 center = 0.5 * (kLo + kHi);
+  const std::pair<render::ViewDirection, Vec3> views[] = {{render::ViewDirection::kX, {1, 0, 0}},
+                                                          {render::ViewDirection::kY, {0, 1, 0}},
+                                                          {render::ViewDirection::kZ, {0, 0, 1}}};
+  for (const auto& [view, axis] : views) {
+    const render::CutPlane cut{axis, dot(axis, center)};  // as the viewer's default cut
+    OrbitCamera camera;
+    camera.fit(kLo, kHi, view);
+    const render::Camera c = camera.camera();
+    EXPECT_GT(dot(cut.normal, c.eye), cut.offset + 0.9 * length(c.eye - c.target))
+        << "view along (" << axis.x << ", " << axis.y << ", " << axis.z << ")";
   }
 }
 

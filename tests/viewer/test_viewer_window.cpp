@@ -232,6 +232,72 @@ TEST(ViewerWindow, SimplifyingAgainStartsFromTheInput) {
   EXPECT_EQ(saved.tet_count(), from_input.output.tet_count());
 }
 
+// Simplify with the thresholds opening a file sets (no 'thresholds' line) coarsens the
+// bundled motor: the default size (3 x the median tet size, 23) is well above twice its
+// typical edge, so subdivision does not outgrow the collapses (the earlier default,
+// diagonal / 25 = 7.2, gave 88874 tets from 26512).
+TEST(ViewerWindow, FirstDefaultSimplifyCoarsensTheMotor) {
+  const fs::path dir = fresh_output_dir("viewer_default_simplify");
+  std::ofstream(dir / "default.script") << "simplify\nsave default.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script default.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  TetMesh input, saved;
+  ASSERT_TRUE(read_mesh(kSource + "/assets/motor.mesh", &input).ok());
+  ASSERT_TRUE(read_mesh((dir / "default.mesh").string(), &saved).ok());
+  EXPECT_LT(saved.tet_count(), input.tet_count() / 2)
+      << saved.tet_count() << " tets from " << input.tet_count();
+}
+
+// Opening a mesh resets every threshold to the defaults for it, not only the size and
+// tolerance: a stretch and valence set for the previous mesh do not carry over (box2
+// gives 12 tets at the defaults, 110 at stretch 0.4 and valence 8).
+TEST(ViewerWindow, OpeningAMeshResetsEveryThreshold) {
+  const fs::path dir = fresh_output_dir("viewer_open_resets");
+  const std::string box2 = kSource + "/assets/box2.mesh";
+  std::ofstream(dir / "reset.script")
+      << "thresholds stretch=0.4 valence=8\nopen " << box2 << "\nsimplify\nsave reset.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script reset.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  TetMesh input, saved;
+  ASSERT_TRUE(read_mesh(box2, &input).ok());
+  ASSERT_TRUE(read_mesh((dir / "reset.mesh").string(), &saved).ok());
+  SimplifyParams defaults;  // stretch 0.15, valence 25, as the panel says
+  defaults.sizing.uniform = 2.3;
+  defaults.tolerance = 1e-3 * std::sqrt(6.0);  // the 2 x 1 x 1 box's diagonal
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(input, defaults, &result).ok());
+  EXPECT_EQ(saved.tet_count(), result.output.tet_count());
+  EXPECT_EQ(saved.tet_count(), 12u);
+}
+
+// Per-material sizing as in the CLI: a material the list leaves out (3 here) gets no
+// size limit of its own, not the uniform size, so the viewer's final mesh is the one
+// `tetlod simplify --material-size` writes for the same list. (Giving material 3 the
+// default size 23 instead changes the result: 45661 tets against 45768.)
+TEST(ViewerWindow, PerMaterialSizesMatchTheCli) {
+  const fs::path dir = fresh_output_dir("viewer_material_sizes");
+  const std::string sizes = "1=40,2=3,4=20,5=20,6=30,7=30";
+  std::ofstream(dir / "sizes.script") << "thresholds material-sizes=" << sizes
+                                      << " stretch=0.15 valence=25 tolerance=0.1\n"
+                                         "simplify\nsave viewer.mesh\nquit\n";
+  const std::string motor = kSource + "/assets/motor.mesh";
+  const ViewerRun run = run_viewer(dir, "'" + motor + "' --size 640x480 --script sizes.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " simplify '" +
+                              motor + "' -o cli.mesh --material-size " + sizes +
+                              " --stretch 0.15 --valence 25 --tolerance 0.1 >cli_log.txt 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  TetMesh viewer, cli;
+  ASSERT_TRUE(read_mesh((dir / "viewer.mesh").string(), &viewer).ok());
+  ASSERT_TRUE(read_mesh((dir / "cli.mesh").string(), &cli).ok());
+  EXPECT_EQ(viewer.tet_count(), cli.tet_count());
+  EXPECT_EQ(viewer.tets, cli.tets);
+  EXPECT_EQ(viewer.materials, cli.materials);
+  EXPECT_EQ(viewer.positions.size(), cli.positions.size());
+}
+
 // A run's collapse history saved from the viewer (save PATH.tlh) opens again with
 // all its levels, without simplifying: its levels are the run's, saving it again gives
 // the same file, and a damaged history is an error in the panel, not a crash.
@@ -342,13 +408,57 @@ TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
       << "thresholds size=12 stretch=0.15 valence=25 tolerance=0.05 subdivide=1\nsimplify\n"
          "screenshot broken_ui.png ui=1\n"
          "thresholds stretch=0.05 valence=200\nsimplify\nscreenshot clean_ui.png ui=1\nquit\n";
+  // Tall enough for the warning, under the Thresholds section, to be in sight without
+  // scrolling the panel.
   const ViewerRun run = run_viewer(
-      dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 1280x800 --script run.script");
+      dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 1280x1000 --script run.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const size_t broken = orange_panel_pixels(load_png(dir / "broken_ui.png"));
   const size_t clean = orange_panel_pixels(load_png(dir / "clean_ui.png"));
   EXPECT_GT(broken, clean + 300) << "no warning in the panel (" << broken << " against " << clean
                                  << " orange pixels)";
+}
+
+// A file of no known extension: the message lists what the viewer opens, collapse
+// histories (.tlh) included.
+TEST(ViewerWindow, UnknownExtensionNamesHistoriesToo) {
+  const fs::path dir = fresh_output_dir("viewer_unknown_extension");
+  std::ofstream(dir / "box2.txt") << "MeshVersionFormatted 2\n";
+  std::ofstream(dir / "load.script") << "open box2.txt\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script load.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("load.script:1: box2.txt: unknown mesh file extension '.txt'"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find(".tlh collapse histories"), std::string::npos) << run.output;
+}
+
+// An empty view (every material hidden, or everything cut away) says why in the
+// middle of the view, where otherwise nothing at all is drawn (material colours: no
+// colour bar).
+TEST(ViewerWindow, AnEmptyViewSaysWhy) {
+  const fs::path dir = fresh_output_dir("viewer_empty_view");
+  std::ofstream(dir / "empty.script") << "color material\nhide 1\nhide 2\n"
+                                         "screenshot hidden_ui.png ui=1\n"
+                                         "show 1\ncut x=-100\nscreenshot cut_ui.png ui=1\n"
+                                         "cut off\nscreenshot shown_ui.png ui=1\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 960x640 --script empty.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  // The middle band of the view, right of the panel and above the statistics strip,
+  // away from the material key at its top left.
+  const auto middle = [](const render::Image& image) {
+    return non_background(image, 400, 120, image.width, image.height - 260);
+  };
+  for (const char* name : {"hidden_ui.png", "cut_ui.png"}) {
+    const render::Image image = load_png(dir / name);
+    ASSERT_EQ(image.width, 960) << name;
+    const double text = middle(image);
+    EXPECT_GT(text, 0.001) << name << ": no note in the empty view";
+    EXPECT_LT(text, 0.05) << name;
+  }
+  EXPECT_GT(middle(load_png(dir / "shown_ui.png")), 0.05);  // the model itself
 }
 
 TEST(ViewerWindow, FailedLoadInAScriptNamesTheLine) {
