@@ -44,6 +44,7 @@
 #include "core/electrostatics.h"
 #include "core/improve.h"
 #include "core/io/mesh_io.h"
+#include "core/io/output_files.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
@@ -617,7 +618,7 @@ void Viewer::start_load(const std::string& path) {
       auto read = std::make_shared<TetMesh>();
       ReadInfo info;
       s = read_mesh(job->path, read.get(), &info);
-      if (!s && !is_mesh_path(job->path))  // read_mesh's list of formats lacks histories
+      if (!s && !check_mesh_path(job->path))  // read_mesh's list of formats lacks histories
         s = Status::error(s.message() + "; the viewer also opens .tlh collapse histories");
       mesh = std::move(read);
     }
@@ -1208,38 +1209,29 @@ Status Viewer::report_analysis(const std::string& path) const {
   if (!analysis_result_) return Status::error("no solve to report: 'solve' first");
   const AnalysisResult& r = *analysis_result_;
   const ElectrostaticsSolution& s = r.solution;
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::trunc);
-    char line[256];
-    const auto put = [&](const char* key, const char* format, auto value) {
-      std::snprintf(line, sizeof(line), format, value);
-      out << key << ' ' << line << '\n';
-    };
-    put("step", "%zu", r.step);
-    put("tets", "%zu", r.tets);
-    put("unknowns", "%zu", s.free_count);
-    put("capacitance", "%.17g", s.capacitance);
-    put("energy", "%.17g", s.energy);
-    put("voltage", "%.17g", s.voltage);
-    put("solver", "%s", s.method == SolverMethod::kDirect ? "direct" : "cg");
-    put("iterations", "%d", s.iterations);
-    put("relative_residual", "%.3g", s.relative_residual);
-    put("seconds", "%.4f",
-        s.seconds_setup + s.seconds_assemble + s.seconds_factor + s.seconds_solve);
-    put("field_max", "%.17g", r.sorted_field.empty() ? 0.0 : double(r.sorted_field.back()));
-    if (finest_ && finest_->generation == r.generation &&
-        same_problem(finest_->problem, r.problem)) {
-      put("finest_capacitance", "%.17g", finest_->capacitance);
-      put("difference_percent", "%.17g",
-          100 * (s.capacitance - finest_->capacitance) / finest_->capacitance);
-    }
-    if (!out) return Status::error("cannot write " + temporary);
+  std::string text;
+  char line[256];
+  const auto put = [&](const char* key, const char* format, auto value) {
+    std::snprintf(line, sizeof(line), format, value);
+    text += std::string(key) + ' ' + line + '\n';
+  };
+  put("step", "%zu", r.step);
+  put("tets", "%zu", r.tets);
+  put("unknowns", "%zu", s.free_count);
+  put("capacitance", "%.17g", s.capacitance);
+  put("energy", "%.17g", s.energy);
+  put("voltage", "%.17g", s.voltage);
+  put("solver", "%s", s.method == SolverMethod::kDirect ? "direct" : "cg");
+  put("iterations", "%d", s.iterations);
+  put("relative_residual", "%.3g", s.relative_residual);
+  put("seconds", "%.4f", s.seconds_setup + s.seconds_assemble + s.seconds_factor + s.seconds_solve);
+  put("field_max", "%.17g", r.sorted_field.empty() ? 0.0 : double(r.sorted_field.back()));
+  if (finest_ && finest_->generation == r.generation && same_problem(finest_->problem, r.problem)) {
+    put("finest_capacitance", "%.17g", finest_->capacitance);
+    put("difference_percent", "%.17g",
+        100 * (s.capacitance - finest_->capacitance) / finest_->capacitance);
   }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) return Status::error("cannot rename " + temporary + " to " + path + ": " + ec.message());
-  return Status();
+  return write_file_atomically(path, text);
 }
 
 void Viewer::fill_status() {

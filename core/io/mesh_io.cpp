@@ -58,11 +58,6 @@ Status file_kind(const std::string& path, FileKind* kind) {
 
 }  // namespace
 
-bool is_mesh_path(const std::string& path) {
-  FileKind kind;
-  return file_kind(path, &kind).ok();
-}
-
 namespace {
 
 // "foo.ele" or "foo.node" -> "foo".

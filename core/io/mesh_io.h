@@ -84,9 +84,6 @@ struct ReadInfo {
   ValidationReport validation;
 };
 
-// True if the extension of `path` (any case) names a format read_mesh() reads.
-bool is_mesh_path(const std::string& path);
-
 // Reads `path`; `*mesh` is replaced only on success. For .msh, info->format tells
 // the version found.
 Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info = nullptr);
@@ -101,7 +98,8 @@ Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_
                                TetMesh* mesh, ReadInfo* info = nullptr);
 
 // Whether `path` has an extension read_mesh() and write_mesh() know; the error names
-// it and lists the ones they do. For a command to check its output path up front.
+// it and lists the ones they do (any case). For a command to check its output path
+// up front, or to tell "not a mesh file" from a mesh file that failed to read.
 Status check_mesh_path(const std::string& path);
 
 struct WriteOptions {
