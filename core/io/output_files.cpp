@@ -111,11 +111,14 @@ Status OutputFiles::stage(const std::string& path, const std::function<bool(std:
   if (const std::string why = unreplaceable(staged.target, &mode); !why.empty()) return fail(why);
   FILE* file = create_temporary(staged.target, &staged.temporary);
   if (!file) return fail(reason(errno));
-  const bool written = write(file);
-  int error_number = errno;
-  bool ok = written && std::fflush(file) == 0 && !std::ferror(file);
-  if (ok) error_number = 0;
-  if (ok && mode != kNoMode && fchmod(fileno(file), mode) != 0) ok = false, error_number = errno;
+  // The old file's permissions before any byte is written (a 0600 file's contents
+  // are never readable by others, not even in the temporary).
+  bool ok = mode == kNoMode || fchmod(fileno(file), mode) == 0;
+  int error_number = ok ? 0 : errno;
+  if (ok) {
+    ok = write(file) && std::fflush(file) == 0 && !std::ferror(file);
+    error_number = ok ? 0 : errno;
+  }
   if (std::fclose(file) != 0 && ok) ok = false, error_number = errno;
   if (!ok) {
     std::remove(staged.temporary.c_str());
