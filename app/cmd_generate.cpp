@@ -51,6 +51,7 @@ int cmd_generate(const Args& args) {
   std::string model_text;
   std::string output;
   GenerateOptions options;
+  bool sphere_level_given = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const bool takes_value = a == "--max-volume" || a == "--tets" || a == "--quality" ||
@@ -65,9 +66,8 @@ int cmd_generate(const Args& args) {
       options.max_volume = *value;
     } else if (a == "--tets") {
       const std::string& v = args[++i];
-      const auto value = parse_double(v);
-      if (!value || !(*value >= 1) || *value > static_cast<double>(kMaxTets) ||
-          std::floor(*value) != *value) {
+      const auto value = parse_integer(v);
+      if (!value || *value < 1 || *value > static_cast<long long>(kMaxTets)) {
         return usage_error("--tets must be a whole number from 1 to " + std::to_string(kMaxTets) +
                            ", not '" + v + "'");
       }
@@ -87,6 +87,7 @@ int cmd_generate(const Args& args) {
                            std::to_string(kMaxSphereLevel) + ", not '" + v + "'");
       }
       options.sphere_level = static_cast<int>(*value);
+      sphere_level_given = true;
     } else if (a == "-o" || a == "--output") {
       output = args[++i];
     } else if (!a.empty() && a[0] == '-') {
@@ -103,6 +104,9 @@ int cmd_generate(const Args& args) {
     return usage_error("unknown model '" + model_text + "' (motor, spheres, box2)");
   }
   if (output.empty()) return usage_error("no output file given (-o FILE)");
+  if (const Status s = check_mesh_path(output); !s) return usage_error("-o " + s.message());
+  if (sphere_level_given && model != Model::kSpheres)
+    return usage_error("--sphere-level applies to the spheres model only");
   if (options.max_volume > 0 && options.target_tets > 0) {
     return usage_error("give --max-volume or --tets, not both");
   }

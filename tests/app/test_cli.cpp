@@ -52,6 +52,29 @@ TEST(Cli, UsageAndExitCodes) {
   EXPECT_EQ(run("stats a.mesh --bogus").code, 2);
 }
 
+// generate: options that would be ignored or read loosely are usage errors, checked
+// before TetGen runs.
+TEST(Cli, GenerateRefusesWhatItWouldIgnore) {
+  const std::string out = out_dir() + "/generated.mesh";
+  fs::remove(out);
+  const struct {
+    const char* arguments;
+    const char* message;
+  } cases[] = {
+      {"box2 --sphere-level 3 -o ", "--sphere-level applies to the spheres model only"},
+      {"box2 --tets 1e3 -o ", "--tets must be a whole number"},
+      {"box2 -o x.stl", "-o x.stl: unknown mesh file extension '.stl'"},
+  };
+  for (const auto& c : cases) {
+    const std::string arguments = c.arguments;
+    const CommandResult r =
+        run("generate " + arguments + (arguments.back() == ' ' ? out : std::string()));
+    EXPECT_EQ(r.code, 2) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Cli, StatsPrintsTableOneAndJson) {
   const std::string path = write_grid("grid.mesh");
   const CommandResult text = run("stats " + path);
