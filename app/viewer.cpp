@@ -1406,6 +1406,11 @@ Status Viewer::run_action(const ScriptAction& a) {
       if (a.material_sizes) {
         SizingField field;
         if (Status s = parse_material_sizes(*a.material_sizes, &field); !s) return s;
+        // As --material-size: a material the mesh lacks is a typo, not a size to ignore.
+        for (const auto& [m, size] : field.material_sizes) {
+          if (scene_ && !std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
+            return Status::error("material-sizes: the mesh has no material " + std::to_string(m));
+        }
         thresholds_.sizing_mode = ui::SizingMode::kPerMaterial;
         thresholds_.material_sizes.clear();
         for (const auto& [m, size] : field.material_sizes)

@@ -298,6 +298,18 @@ TEST(ViewerWindow, PerMaterialSizesMatchTheCli) {
   EXPECT_EQ(viewer.positions.size(), cli.positions.size());
 }
 
+// As `--material-size`: a size for a material the mesh lacks is an error naming it.
+TEST(ViewerWindow, MaterialSizeOfAnAbsentMaterialIsAnError) {
+  const fs::path dir = fresh_output_dir("viewer_absent_material");
+  std::ofstream(dir / "absent.script") << "thresholds material-sizes=1=1,9=1\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script absent.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("absent.script:1: material-sizes: the mesh has no material 9"),
+            std::string::npos)
+      << run.output;
+}
+
 // A run's collapse history saved from the viewer (save PATH.tlh) opens again with
 // all its levels, without simplifying: its levels are the run's, saving it again gives
 // the same file, and a damaged history is an error in the panel, not a crash.
