@@ -134,12 +134,9 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
     if (!d || d->size() != 4) return bad_value("NX,NY,NZ,D");
     const Vec3 normal{(*d)[0], (*d)[1], (*d)[2]};
     Vec3 unit;
-    double largest = 0;
-    if (!unit_direction(normal, &unit, &largest))
-      return bad_value("a plane with a non-zero normal");
-    // N.x = D is unit.x = D / |N|, with |N| computed without overflow.
-    const Vec3 scaled{normal.x / largest, normal.y / largest, normal.z / largest};
-    const double offset = ((*d)[3] / largest) / length(scaled);
+    if (!unit_direction(normal, &unit)) return bad_value("a plane with a non-zero normal");
+    // N.x = D is unit.x = D / |N|, and |N| = N.unit does not overflow.
+    const double offset = (*d)[3] / dot(normal, unit);
     if (!std::isfinite(offset)) return bad_value("a plane at a finite distance from the origin");
     s.filter.cut = true;
     s.filter.cut_plane = {unit, offset};

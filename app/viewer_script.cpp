@@ -408,11 +408,13 @@ Status parse_script(const std::string& path, std::vector<ScriptAction>* actions)
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status::error(path + ": cannot open the script");
   constexpr size_t kMaxScriptBytes = size_t(16) << 20;
-  std::string text(kMaxScriptBytes + 1, '\0');
-  in.read(text.data(), std::streamsize(text.size()));
-  text.resize(size_t(in.gcount()));
-  if (text.size() > kMaxScriptBytes)
-    return Status::error(path + ": more than 16 MiB: not a script");
+  std::string text;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, size_t(in.gcount()));
+    if (text.size() > kMaxScriptBytes)
+      return Status::error(path + ": more than 16 MiB: not a script");
+  }
   return parse_script_text(text, path, actions);
 }
 

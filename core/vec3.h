@@ -48,14 +48,13 @@ inline bool is_finite(const Vec3& a) {
 }
 // A direction given by a user, made unit length without overflow or underflow: the
 // components are divided by the largest first, so (1e300, 1e300, 0) and
-// (1e-200, 0, 0) are fine. `*largest`, if given, gets that largest |a_i|, so that
-// |a| = largest * length(a / largest). False for a zero or non-finite vector.
-inline bool unit_direction(const Vec3& a, Vec3* unit, double* largest = nullptr) {
+// (1e-200, 0, 0) are fine. (Then |a| = dot(a, unit), without overflow either.) False
+// for a zero or non-finite vector.
+inline bool unit_direction(const Vec3& a, Vec3* unit) {
   const double m = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
   if (!(m > 0) || !std::isfinite(m)) return false;
   const Vec3 b{a.x / m, a.y / m, a.z / m};
   *unit = b * (1 / length(b));
-  if (largest) *largest = m;
   return true;
 }
 

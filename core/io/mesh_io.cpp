@@ -56,10 +56,6 @@ Status file_kind(const std::string& path, FileKind* kind) {
   return Status();
 }
 
-}  // namespace
-
-namespace {
-
 // "foo.ele" or "foo.node" -> "foo".
 std::string tetgen_base(const std::string& path) {
   return path.substr(0, path.find_last_of('.'));
