@@ -5,7 +5,6 @@
 #include <cmath>
 #include <vector>
 
-#include "core/metrics.h"
 
 namespace tetlod {
 
@@ -33,12 +32,20 @@ double SizingField::size_at(const Vec3& p, int32_t material) const {
 
 double suggested_size(const TetMesh& mesh) {
   if (mesh.tets.empty()) return 0;
-  std::vector<double> sizes;
-  sizes.reserve(mesh.tets.size());
-  for (const Tet& t : mesh.tets) sizes.push_back(tet_shape(mesh, t).size);
-  const auto median = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
-  std::nth_element(sizes.begin(), median, sizes.end());
-  const double size = 3 * *median;
+  // The median of the squared longest edges; the square root of that one only (the
+  // same value as tet_shape's size, which is the root of the same maximum).
+  std::vector<double> longest2;
+  longest2.reserve(mesh.tets.size());
+  for (const Tet& t : mesh.tets) {
+    const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]],
+               &d = mesh.positions[t[3]];
+    longest2.push_back(
+        std::max({squared_length(b - a), squared_length(c - a), squared_length(d - a),
+                  squared_length(c - b), squared_length(d - b), squared_length(d - c)}));
+  }
+  const auto median = longest2.begin() + static_cast<std::ptrdiff_t>(longest2.size() / 2);
+  std::nth_element(longest2.begin(), median, longest2.end());
+  const double size = 3 * std::sqrt(*median);
   if (!(size > 0) || !std::isfinite(size)) return size;
   // Two significant digits: 23.43 -> 23, 2.34 -> 2.3.
   const double unit = std::pow(10.0, std::floor(std::log10(size)) - 1);
