@@ -1412,6 +1412,8 @@ Status Viewer::run_action(const ScriptAction& a) {
             return Status::error("material-sizes: the mesh has no material " + std::to_string(m));
         }
         thresholds_.sizing_mode = ui::SizingMode::kPerMaterial;
+        // As in the CLI: size= on the same line caps every material as well.
+        thresholds_.material_cap = a.size.has_value();
         thresholds_.material_sizes.clear();
         for (const auto& [m, size] : field.material_sizes)
           thresholds_.material_sizes.push_back({m, static_cast<float>(size)});

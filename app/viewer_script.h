@@ -8,7 +8,9 @@
 //                                    script error: it shows in the UI as for a user
 //   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h;
-//              a material material-sizes leaves out has no size limit, as in the CLI)
+//              a material material-sizes leaves out has no size limit, as in the CLI;
+//              size= on the same line as material-sizes= also caps every material, as
+//              --size with --material-size)
 //   simplify [wait=0]                run the simplifier with the thresholds (waits,
 //                                    unless wait=0: then the next actions run meanwhile)
 //   cancel                           cancel a running simplification and/or solve (waits

@@ -204,6 +204,19 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     // A material without a size of its own has no per-material limit, as with
     // `--material-size` (only the sizes listed); tick it to give it one.
     text_disabled_wrapped("size (SZ) per material; unticked: no size limit");
+    // The cap over every material, as --size given with --material-size.
+    ImGui::Checkbox("all", &t->material_cap);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "A size cap for every material besides its own size\n"
+          "(tetlod simplify --size S --material-size ...)");
+    ImGui::SameLine(90);
+    if (t->material_cap) {
+      ImGui::SetNextItemWidth(-1);
+      ImGui::SliderFloat("##cap", &t->size, 0.1f, 100.0f, "cap %.4g", ImGuiSliderFlags_Logarithmic);
+    } else {
+      ImGui::TextDisabled("no size cap");
+    }
     auto& sizes = t->material_sizes;
     for (const int32_t m : status.materials) {
       auto it =
@@ -582,8 +595,9 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
     return false;
   }
   // Uniform: the size everywhere; region: the cap besides the rules; per material:
-  // only the materials' sizes.
-  if (settings.sizing_mode != SizingMode::kPerMaterial) p.sizing.uniform = settings.size;
+  // the materials' sizes, and the cap if it is ticked.
+  if (settings.sizing_mode != SizingMode::kPerMaterial || settings.material_cap)
+    p.sizing.uniform = settings.size;
   if (settings.sizing_mode == SizingMode::kRegion) {
     const Status s = parse_size_field(settings.region_spec, &p.sizing);
     if (!s) {

@@ -52,6 +52,9 @@ struct ThresholdSettings {
   SizingMode sizing_mode = SizingMode::kUniform;
   std::string region_spec;  // kRegion: the syntax of core/sizing.h parse_size_field()
   std::vector<std::pair<int32_t, float>> material_sizes;  // kPerMaterial
+  // kPerMaterial: `size` also caps every material (as --size with --material-size);
+  // off, a material without a size of its own has no size limit.
+  bool material_cap = false;
   bool subdivide = true;
 };
 

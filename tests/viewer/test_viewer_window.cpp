@@ -275,27 +275,40 @@ TEST(ViewerWindow, OpeningAMeshResetsEveryThreshold) {
 // Per-material sizing as in the CLI: a material the list leaves out (3 here) gets no
 // size limit of its own, not the uniform size, so the viewer's final mesh is the one
 // `tetlod simplify --material-size` writes for the same list. (Giving material 3 the
-// default size 23 instead changes the result: 45661 tets against 45768.)
+// default size 23 instead changes the result: 45661 tets against 45768.) With size= on
+// the same script line (the panel's "all" tick), every material is capped as well, as
+// by --size with --material-size.
 TEST(ViewerWindow, PerMaterialSizesMatchTheCli) {
-  const fs::path dir = fresh_output_dir("viewer_material_sizes");
   const std::string sizes = "1=40,2=3,4=20,5=20,6=30,7=30";
-  std::ofstream(dir / "sizes.script") << "thresholds material-sizes=" << sizes
-                                      << " stretch=0.15 valence=25 tolerance=0.1\n"
-                                         "simplify\nsave viewer.mesh\nquit\n";
   const std::string motor = kSource + "/assets/motor.mesh";
-  const ViewerRun run = run_viewer(dir, "'" + motor + "' --size 640x480 --script sizes.script");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " simplify '" +
-                              motor + "' -o cli.mesh --material-size " + sizes +
-                              " --stretch 0.15 --valence 25 --tolerance 0.1 >cli_log.txt 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  TetMesh viewer, cli;
-  ASSERT_TRUE(read_mesh((dir / "viewer.mesh").string(), &viewer).ok());
-  ASSERT_TRUE(read_mesh((dir / "cli.mesh").string(), &cli).ok());
-  EXPECT_EQ(viewer.tet_count(), cli.tet_count());
-  EXPECT_EQ(viewer.tets, cli.tets);
-  EXPECT_EQ(viewer.materials, cli.materials);
-  EXPECT_EQ(viewer.positions.size(), cli.positions.size());
+  size_t uncapped_tets = 0;
+  for (const bool capped : {false, true}) {
+    SCOPED_TRACE(capped ? "with a size cap" : "without a size cap");
+    const fs::path dir = fresh_output_dir(capped ? "viewer_material_cap" : "viewer_material_sizes");
+    std::ofstream(dir / "sizes.script")
+        << "thresholds material-sizes=" << sizes << (capped ? " size=12" : "")
+        << " stretch=0.15 valence=25 tolerance=0.1\n"
+           "simplify\nsave viewer.mesh\nquit\n";
+    const ViewerRun run = run_viewer(dir, "'" + motor + "' --size 640x480 --script sizes.script");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " simplify '" +
+                                motor + "' -o cli.mesh --material-size " + sizes +
+                                (capped ? " --size 12" : "") +
+                                " --stretch 0.15 --valence 25 --tolerance 0.1 >cli_log.txt 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    TetMesh viewer, cli;
+    ASSERT_TRUE(read_mesh((dir / "viewer.mesh").string(), &viewer).ok());
+    ASSERT_TRUE(read_mesh((dir / "cli.mesh").string(), &cli).ok());
+    EXPECT_EQ(viewer.tet_count(), cli.tet_count());
+    EXPECT_EQ(viewer.tets, cli.tets);
+    EXPECT_EQ(viewer.materials, cli.materials);
+    EXPECT_EQ(viewer.positions.size(), cli.positions.size());
+    if (!capped) {
+      uncapped_tets = viewer.tet_count();
+    } else {
+      EXPECT_NE(viewer.tet_count(), uncapped_tets) << "the cap must change the mesh";
+    }
+  }
 }
 
 // As `--material-size`: a size for a material the mesh lacks is an error naming it.
