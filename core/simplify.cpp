@@ -856,6 +856,12 @@ class Engine {
         __builtin_prefetch(&across_[4 * size_t{t}]);
       }
     }
+    // The whole complex first. In every run measured (the bundled models at several
+    // sizes, stretches down to 0.001, crease angles 40 and 179) this check never
+    // rejected an edge that a later check here, or the geometry, would have passed:
+    // around interior ends, all-positive new tets already rule out a pinched star, and
+    // edges on the boundary are the surface complex's. It stays as the paper's rule
+    // and a guard; no test can isolate it for the same reason.
     if (!link_condition(
             i, j, [](uint32_t) { return true; }, outer_[i], outer_[j]))
       return false;
