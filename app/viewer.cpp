@@ -49,6 +49,7 @@
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
 #include "core/sizing.h"
+#include "core/validate.h"
 #include "render/gl_context.h"
 #include "render/image.h"
 #include "render/lod_surface.h"
@@ -1058,10 +1059,24 @@ Status Viewer::save_level(const std::string& path, bool improve) {
     if (!ui::to_simplify_params(thresholds_, &params, &error))
       return Status::error("improve: thresholds: " + error);
   }
+  // A level of a history file is checked as a mesh file would be before it is saved
+  // (as `tetlod lod` does): the reader's replay proves its tets positive, but a forged
+  // file could still make them overlap.
+  const std::string level_name =
+      scene_->from_history
+          ? scene_->path + " (level at step " + std::to_string(scene_->lod->step()) + ")"
+          : std::string();
   save_path_ = path;
-  save_future_ = std::async(std::launch::async, [path, improve, params,
+  save_future_ = std::async(std::launch::async, [path, improve, params, level_name,
                                                  mesh = scene_->lod->extract()]() mutable {
     Saved saved;
+    if (!level_name.empty()) {
+      ValidationReport report;
+      if (const Status s = validate_mesh(&mesh, level_name, {}, &report); !s) {
+        saved.status = Status::error("corrupt history: " + s.message() + "; nothing saved");
+        return saved;
+      }
+    }
     if (improve) {
       const ImproveResult r = improve_mesh(&mesh, params);
       char note[160];

@@ -395,6 +395,26 @@ TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
   EXPECT_EQ(saved.tet_count(), input.tet_count());  // no simplification: the input itself
 }
 
+// A forged history whose mesh has positive tets that overlap (three on one face): the
+// reader's replay passes it and the viewer shows it, but its levels are checked as a
+// mesh file would be before they are saved (as `tetlod lod` does), and nothing is
+// written; a history TetLOD made saves as before.
+TEST(ViewerWindow, SavingALevelOfAForgedHistoryIsRefused) {
+  const fs::path dir = fresh_output_dir("viewer_forged_history");
+  TetMesh base;
+  base.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.1, 0.1, 1}, {0.2, 0.1, 0.9}};
+  base.tets = {{0, 1, 2, 3}, {0, 1, 2, 4}, {0, 1, 2, 5}};
+  base.materials = {1, 1, 1};
+  ASSERT_TRUE(write_history((dir / "overlap.tlh").string(), base, CollapseHistory()).ok());
+  std::ofstream(dir / "save.script") << "save level.mesh\nquit\n";
+  const ViewerRun run = run_viewer(dir, "overlap.tlh --size 320x240 --script save.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("save.script:1: corrupt history: overlap.tlh (level at step 0)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(dir / "level.mesh"));
+}
+
 // As for a user: a file that fails to load shows its error in the panel (red text)
 // and the mesh on screen stays as it was.
 TEST(ViewerWindow, FailedLoadShowsTheErrorAndKeepsTheMesh) {
