@@ -395,6 +395,36 @@ TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
   EXPECT_EQ(saved.tet_count(), input.tet_count());  // no simplification: the input itself
 }
 
+// The README's example script runs as the README says it does, on the bundled spheres,
+// and writes every file it names.
+TEST(ViewerWindow, ReadmeExampleScriptRuns) {
+  const fs::path dir = fresh_output_dir("viewer_readme_example");
+  std::ifstream readme(kSource + "/README.md");
+  std::string line, script;
+  bool in_block = false, seen_intro = false;
+  while (std::getline(readme, line)) {
+    if (!seen_intro) {
+      seen_intro = line.rfind("`--script SCRIPT` runs actions in the real window", 0) == 0;
+      continue;
+    }
+    if (line.rfind("    ", 0) == 0) {
+      in_block = true;
+      script += line.substr(4) + "\n";
+    } else if (in_block) {
+      break;
+    }
+  }
+  ASSERT_NE(script.find("quit"), std::string::npos) << "no example script in README.md";
+  std::ofstream(dir / "example.script") << script;
+  const ViewerRun run = run_viewer(
+      dir, "'" + kSource + "/assets/spheres.mesh' --size 640x480 --script example.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (const char* file :
+       {"level.png", "window.png", "level.mesh", "level_improved.mesh", "c.txt"}) {
+    EXPECT_TRUE(fs::exists(dir / file)) << file;
+  }
+}
+
 // A forged history whose mesh has positive tets that overlap (three on one face): the
 // reader's replay passes it and the viewer shows it, but its levels are checked as a
 // mesh file would be before they are saved (as `tetlod lod` does), and nothing is
