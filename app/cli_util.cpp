@@ -57,6 +57,8 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
     std::fprintf(stderr, "tetlod: %s: note: %zu vertices used by no tetrahedron were dropped\n",
                  path.c_str(), info->validation.removed_unused_vertices);
   }
+  for (const std::string& note : info->notes)
+    std::fprintf(stderr, "tetlod: %s: note: %s\n", path.c_str(), note.c_str());
   return true;
 }
 

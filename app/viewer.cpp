@@ -204,6 +204,7 @@ struct Job {
   size_t collapses = 0;
   std::unique_ptr<Scene> scene;
   std::string error;
+  std::vector<std::string> notes;  // a load's ReadInfo notes
   bool cancelled = false;
 };
 
@@ -621,6 +622,10 @@ void Viewer::start_load(const std::string& path) {
       s = read_mesh(job->path, read.get(), &info);
       if (!s && !check_mesh_path(job->path))  // read_mesh's list of formats lacks histories
         s = Status::error(s.message() + "; the viewer also opens .tlh collapse histories");
+      if (s) {
+        std::lock_guard<std::mutex> lock(job->mutex);
+        job->notes = std::move(info.notes);
+      }
       mesh = std::move(read);
     }
     if (!s) {
@@ -718,6 +723,10 @@ void Viewer::poll_job() {
   if (job->is_load) {
     std::snprintf(text, sizeof(text), " in %.2f s", total);
     status_.message = "loaded " + job->path + text;
+    for (const std::string& note : job->notes) {
+      status_.message += "; note: " + note;
+      std::fprintf(stderr, "tetlod view: %s: note: %s\n", job->path.c_str(), note.c_str());
+    }
   } else {
     // The Thresholds panel shows the run's own time (subdivide, classify, simplify);
     // the rest is building the levels' display.

@@ -102,15 +102,16 @@ bool read_vertices(TextScanner& scanner, TetMesh& mesh) {
   return true;
 }
 
+// Appends a Tetrahedra section's entries (meshio writes one section per cell block).
 bool read_tets(TextScanner& scanner, ParsedMesh* out) {
   uint64_t count = 0;
   // An entry "a b c d ref" takes at least 10 bytes.
   if (!scanner.read_count(&count, "tetrahedron count", 10)) return false;
-  if (count >= kInvalidIndex) return scanner.fail("too many tetrahedra");
   TetMesh& mesh = out->mesh;
-  mesh.tets.reserve(count);
-  mesh.materials.reserve(count);
-  out->tet_lines.reserve(count);
+  if (count >= kInvalidIndex - mesh.tets.size()) return scanner.fail("too many tetrahedra");
+  mesh.tets.reserve(mesh.tets.size() + count);
+  mesh.materials.reserve(mesh.materials.size() + count);
+  out->tet_lines.reserve(out->tet_lines.size() + count);
   for (uint64_t i = 0; i < count; ++i) {
     Tet tet;
     for (int k = 0; k < 4; ++k) {
@@ -164,7 +165,6 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
       seen_vertices = true;
       read_vertices(scanner, out->mesh);
     } else if (is("Tetrahedra")) {
-      if (seen_tets) scanner.fail("a second Tetrahedra section");
       seen_tets = true;
       read_tets(scanner, out);
     } else if (const SkippedKeyword* skipped = find_skipped(keyword)) {

@@ -19,6 +19,7 @@ namespace tetlod::io {
 struct ParsedMesh {
   TetMesh mesh;
   std::vector<uint32_t> tet_lines;  // 1-based line of each tet in the file
+  std::vector<std::string> notes;   // what a user should know of how it was read
 };
 
 Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out);
@@ -48,16 +49,24 @@ inline constexpr int64_t kVtkTetra = 10;
 inline constexpr int64_t kVtkQuadraticTetra = 24;
 
 // The cell array of a .vtk or .vtu that holds the material, by name, best first:
-// TetLOD's "material"; what meshio writes for a mesh it read from Gmsh or Medit;
-// VTK's Exodus reader's; TetGen's -k output. -1 for other names. Only "material"
-// is read whatever its type; the others only when their type is an integer one.
+// TetLOD's "material"; what meshio writes for a mesh it read from Gmsh, Medit,
+// TetGen or Nastran; VTK's Exodus reader's; TetGen's -k output; last, Gmsh's
+// elementary entity, which meshio writes besides the physical group. -1 for other
+// names. Only "material" is read whatever its type; the others only when their type
+// is an integer one.
+inline constexpr std::string_view kVtkMaterialNames[] = {
+    "material",    "gmsh:physical", "medit:ref",    "tetgen:ref",
+    "nastran:ref", "MaterialIds",   "cell_scalars", "gmsh:geometrical"};
 inline int vtk_material_rank(std::string_view name) {
-  constexpr std::string_view kNames[] = {"material", "gmsh:physical", "medit:ref", "MaterialIds",
-                                         "cell_scalars"};
-  for (int i = 0; i < int(std::size(kNames)); ++i)
-    if (name == kNames[i]) return i;
+  for (int i = 0; i < int(std::size(kVtkMaterialNames)); ++i)
+    if (name == kVtkMaterialNames[i]) return i;
   return -1;
 }
+
+// The note a reader gives when a file has cell arrays but none of them is read as
+// the material (`arrays`: their names, as in the file), so that every tet is
+// material 0.
+std::string no_material_note(const std::vector<std::string>& arrays);
 
 // Saturating conversion of a line number for ParsedMesh::tet_lines.
 inline uint32_t line_number(size_t line) {

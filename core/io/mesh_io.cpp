@@ -70,6 +70,7 @@ Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string&
   if (info) {
     info->format = format;
     info->validation = report;
+    info->notes = std::move(parsed->notes);
   }
   return Status();
 }

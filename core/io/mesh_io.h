@@ -13,7 +13,7 @@
 //   .bdf / .nas    Nastran bulk data: GRID and CTETRA entries (small, large and free
 //                  field); material = the CTETRA's property id (PID); written with
 //                  GRID* (16-character coordinates: exact when the shortest exact
-//                  form fits, else 10 or more significant digits)
+//                  form fits, else 10 or more significant digits; after BEGIN BULK)
 //   .inp           Abaqus / CalculiX input: *NODE, tetrahedral *ELEMENT types, element
 //                  sets and *SOLID SECTION (see io/abaqus.cpp for how materials are
 //                  found); written with one set MATERIAL_<id> per material. The
@@ -82,6 +82,9 @@ const char* format_name(MeshFormat format);
 struct ReadInfo {
   MeshFormat format = MeshFormat::kMedit;
   ValidationReport validation;
+  // What a user should know of how the file was read, e.g. that no array of a .vtu
+  // held the material (callers print them as notes).
+  std::vector<std::string> notes;
 };
 
 // Reads `path`; `*mesh` is replaced only on success. For .msh, info->format tells

@@ -432,6 +432,9 @@ void write_nastran(const TetMesh& mesh, std::string* out) {
     append_number(out, zero_pid);
     out->push_back('\n');
   }
+  // The bulk data section's opening line: a file of bulk data alone does not need it,
+  // but meshio (5.0) reads nothing without it, and Gmsh and TetLOD skip it.
+  out->append("BEGIN BULK\n");
   // GRID* (large field): ID, CP, X1, X2, then X3 on the continuation line.
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     const Vec3& p = mesh.positions[v];

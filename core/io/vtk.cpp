@@ -37,14 +37,23 @@ BinaryType binary_type(std::string_view name) {
     const char* name;
     BinaryType type;
   };
-  static constexpr Entry kTypes[] = {
-      {"char", {BinaryType::kSigned, 1}},         {"unsigned_char", {BinaryType::kUnsigned, 1}},
-      {"short", {BinaryType::kSigned, 2}},        {"unsigned_short", {BinaryType::kUnsigned, 2}},
-      {"int", {BinaryType::kSigned, 4}},          {"unsigned_int", {BinaryType::kUnsigned, 4}},
-      {"vtktypeint32", {BinaryType::kSigned, 4}}, {"vtktypeuint32", {BinaryType::kUnsigned, 4}},
-      {"vtktypeint64", {BinaryType::kSigned, 8}}, {"vtktypeuint64", {BinaryType::kUnsigned, 8}},
-      {"vtkidtype", {BinaryType::kSigned, 8}},    {"float", {BinaryType::kFloat, 4}},
-      {"double", {BinaryType::kFloat, 8}}};
+  static constexpr Entry kTypes[] = {{"char", {BinaryType::kSigned, 1}},
+                                     {"unsigned_char", {BinaryType::kUnsigned, 1}},
+                                     {"short", {BinaryType::kSigned, 2}},
+                                     {"unsigned_short", {BinaryType::kUnsigned, 2}},
+                                     {"int", {BinaryType::kSigned, 4}},
+                                     {"unsigned_int", {BinaryType::kUnsigned, 4}},
+                                     {"vtktypeint32", {BinaryType::kSigned, 4}},
+                                     {"vtktypeuint32", {BinaryType::kUnsigned, 4}},
+                                     {"vtktypeint64", {BinaryType::kSigned, 8}},
+                                     {"vtktypeuint64", {BinaryType::kUnsigned, 8}},
+                                     {"vtkidtype", {BinaryType::kSigned, 8}},
+                                     {"float", {BinaryType::kFloat, 4}},
+                                     {"double", {BinaryType::kFloat, 8}},
+                                     // As VTK reads them on Linux and macOS (a C long of 8 bytes),
+                                     // and as meshio writes 64-bit arrays in the 4.2 layout.
+                                     {"long", {BinaryType::kSigned, 8}},
+                                     {"unsigned_long", {BinaryType::kUnsigned, 8}}};
   for (const Entry& e : kTypes)
     if (TextScanner::equals_ignore_case(name, e.name)) return e.type;
   return {};
@@ -521,6 +530,7 @@ class VtkLegacyParser {
       return true;
     };
     uint64_t tuples = section_count_;
+    if (data_section_ == DataSection::kCells) cell_arrays_.emplace_back(words[0]);
     if (is("SCALARS")) {
       components = 1;
       if (words.size() > 2 && !number_word(2, 4, &components)) return false;
@@ -578,6 +588,7 @@ class VtkLegacyParser {
       if (!scanner_.next_token(&array_name)) {
         return scanner_.fail("unexpected end of file, expected a field array");
       }
+      if (data_section_ == DataSection::kCells) cell_arrays_.emplace_back(array_name);
       if (!scanner_.read_count(&components, "component count", 1) ||
           !scanner_.read_count(&tuples, "tuple count", 0) || !scanner_.next_token(&type)) {
         return scanner_.failed() ? false : scanner_.fail("unexpected end of file, expected a type");
@@ -638,6 +649,8 @@ class VtkLegacyParser {
       mesh.materials.push_back(has_materials_ ? cell_materials_[c] : 0);
       if (!binary_) out_->tet_lines.push_back(cell_lines_[c]);
     }
+    if (!has_materials_ && !cell_arrays_.empty())
+      out_->notes.push_back(no_material_note(cell_arrays_));
     return true;
   }
 
@@ -660,9 +673,21 @@ class VtkLegacyParser {
   bool has_materials_ = false;
   int material_rank_ = 1 << 30;  // of the array in cell_materials_ (none yet: worst)
   std::vector<int32_t> cell_materials_;
+  std::vector<std::string> cell_arrays_;  // names of the cell arrays, in file order
 };
 
 }  // namespace
+
+std::string no_material_note(const std::vector<std::string>& arrays) {
+  std::string names, known;
+  for (const std::string& a : arrays) names += (names.empty() ? "'" : ", '") + a + "'";
+  for (std::string_view k : kVtkMaterialNames)
+    known += (known.empty() ? "'" : ", '") + std::string(k) + "'";
+  return "no cell array is read as the material, so every tet is material 0 (the file's "
+         "cell arrays: " +
+         names + "; the material is read from " + known +
+         ", the first found, the others only if they hold integers)";
+}
 
 Status parse_vtk_legacy(std::string_view text, const std::string& name, ParsedMesh* out) {
   VtkLegacyParser parser(text, name, out);

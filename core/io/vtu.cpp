@@ -305,6 +305,7 @@ class VtuParser {
       if (name == "types") return Target::kTypes;
     }
     if (parent == "CellData") {
+      cell_arrays_.emplace_back(name);
       // "material" whatever its type; the other names vtk_material_rank() knows if
       // they hold integers and are better than an array taken before.
       const int rank = vtk_material_rank(name);
@@ -778,6 +779,8 @@ class VtuParser {
       }
       start = end;
     }
+    if (!has_materials_ && !cell_arrays_.empty())
+      out_->notes.push_back(no_material_note(cell_arrays_));
   }
 
   TextScanner scanner_;
@@ -795,6 +798,7 @@ class VtuParser {
   bool has_materials_ = false;
   int material_rank_ = 1 << 30;  // vtk_material_rank() of the array taken (none yet: worst)
   std::vector<int32_t> materials_;
+  std::vector<std::string> cell_arrays_;  // names of the <CellData> arrays, in file order
   // Binary data.
   bool big_endian_ = false;
   size_t header_size_ = 4;  // UInt32

@@ -100,6 +100,30 @@ TEST(Cli, BadInputNamesTheFileAndExitsOne) {
   EXPECT_NE(r.output.find("bad.mesh:"), std::string::npos) << r.output;
 }
 
+// What a reader notes (here: no cell array of a .vtu read as the material) is printed
+// with the file's name, and the command goes on.
+TEST(Cli, ReadNotesArePrinted) {
+  const std::string path = out_dir() + "/no_material.vtu";
+  std::ofstream(path)
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid>\n"
+         "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\"><Points>\n"
+         "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+         "0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points><Cells>\n"
+         "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 2 3</DataArray>\n"
+         "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4</DataArray>\n"
+         "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10</DataArray>\n"
+         "</Cells><CellData><DataArray type=\"Int32\" Name=\"zone\" format=\"ascii\">3"
+         "</DataArray></CellData></Piece></UnstructuredGrid></VTKFile>\n";
+  const CommandResult r = run("stats " + path);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tetlod: " + path +
+                          ": note: no cell array is read as the material, so every tet is "
+                          "material 0 (the file's cell arrays: 'zone';"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("material 0"), std::string::npos) << r.output;
+}
+
 TEST(Cli, ConvertKeepsCountsAcrossFormats) {
   const std::string path = write_grid("conv.mesh");
   for (const char* ext : {"msh", "vtu", "vtk", "node", "mesh", "bdf", "nas", "inp"}) {

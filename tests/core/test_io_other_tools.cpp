@@ -1,5 +1,5 @@
 // Files written by other tools (tests/data/other_tools, made by its make.py with
-// VTK 9.1 and meshio 5.0 from the bundled box2 model): every binary encoding they
+// VTK 9.1 and meshio 5.0 from the bundled box2 model): every encoding and layout they
 // use reads as box2, and the compressors TetLOD does not read give a clear error.
 #include <gtest/gtest.h>
 
@@ -36,6 +36,14 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
                {"vtu_meshio_from_gmsh.vtu", true},
                {"vtk_meshio_from_gmsh.vtk", true},
                {"vtu_meshio_from_medit.vtu", true},
+               // ... from TetGen and Nastran files TetLOD wrote: "tetgen:ref",
+               // "nastran:ref"; and meshio's binary 4.2 layout, whose 64-bit integers
+               // are typed "long".
+               {"vtu_meshio_from_tetgen.vtu", true},
+               {"vtu_meshio_from_nastran.vtu", true},
+               {"vtk42_meshio_binary_from_medit.vtk", true},
+               // meshio's Medit writer: one Tetrahedra section per cell block.
+               {"mesh_meshio_two_blocks.mesh", true},
                {"msh_meshio_binary.msh", false},
                {"msh22_meshio_binary.msh", false},
                {"nas_meshio.nas", false},
@@ -45,10 +53,12 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
     TetMesh mesh;
     const Status s = read_mesh(tool_file(f.file), &mesh);
     ASSERT_TRUE(s.ok()) << s.message();
-    if (std::string(f.file).find("from_gmsh") != std::string::npos) {
-      // Gmsh's numbering of the nodes: the same tets, materials and coordinates.
+    if (std::string(f.file).find("from_gmsh") != std::string::npos ||
+        std::string(f.file).find("two_blocks") != std::string::npos) {
+      // Gmsh's numbering of the nodes, or the tets grouped by block: the same tets,
+      // materials and coordinates.
       EXPECT_EQ(test::canonical_tets(mesh), test::canonical_tets(box2));
-    } else if (std::string(f.file).find("nas") != std::string::npos) {
+    } else if (std::string(f.file) == "nas_meshio.nas") {
       // meshio writes 10 significant digits (box2's coordinates are exact in them).
       EXPECT_EQ(test::canonical_tets(mesh), test::canonical_tets(without_materials));
     } else {
@@ -58,7 +68,8 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
 }
 
 // Several candidate arrays: "material" wins whatever the order; a known name of a
-// floating-point type is not a material.
+// floating-point type is not a material. When no array is taken the reader says so,
+// naming the file's cell arrays.
 TEST(IoOtherTools, TheBestMaterialArrayIsTaken) {
   auto vtu = [](const std::string& cell_data) {
     return "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid>\n"
@@ -78,19 +89,74 @@ TEST(IoOtherTools, TheBestMaterialArrayIsTaken) {
   const struct {
     std::string cell_data;
     int material;
+    const char* note;  // what the reader notes, or nullptr for nothing
   } cases[] = {
-      {array("Int32", "gmsh:physical", 4) + array("Int32", "material", 7), 7},
-      {array("Int32", "material", 7) + array("Int32", "gmsh:physical", 4), 7},
-      {array("Int32", "cell_scalars", 3) + array("Int64", "medit:ref", 5), 5},
-      {array("Int32", "medit:ref", 5) + array("Int32", "gmsh:physical", 4), 4},
-      {array("Float64", "gmsh:physical", 4), 0},
-      {array("Int32", "gmsh:geometrical", 9), 0},
+      {array("Int32", "gmsh:physical", 4) + array("Int32", "material", 7), 7, nullptr},
+      {array("Int32", "material", 7) + array("Int32", "gmsh:physical", 4), 7, nullptr},
+      {array("Int32", "cell_scalars", 3) + array("Int64", "medit:ref", 5), 5, nullptr},
+      {array("Int32", "medit:ref", 5) + array("Int32", "gmsh:physical", 4), 4, nullptr},
+      {array("Int32", "gmsh:geometrical", 9) + array("Int32", "gmsh:physical", 4), 4, nullptr},
+      {array("Int32", "gmsh:geometrical", 9), 9, nullptr},
+      {array("Int64", "tetgen:ref", 6), 6, nullptr},
+      {array("Int64", "nastran:ref", 8) + array("Int32", "cell_scalars", 3), 8, nullptr},
+      {array("Float64", "gmsh:physical", 4), 0,
+       "no cell array is read as the material, so every tet is material 0 (the file's cell "
+       "arrays: 'gmsh:physical'; the material is read from 'material', 'gmsh:physical'"},
+      {array("Int32", "region", 2) + array("Float64", "quality", 1), 0,
+       "(the file's cell arrays: 'region', 'quality';"},
+      {"", 0, nullptr},
   };
   for (const auto& c : cases) {
+    SCOPED_TRACE(c.cell_data);
     TetMesh mesh;
-    const Status s = read_mesh_from_memory(vtu(c.cell_data), MeshFormat::kVtu, "m.vtu", &mesh);
+    ReadInfo info;
+    const Status s =
+        read_mesh_from_memory(vtu(c.cell_data), MeshFormat::kVtu, "m.vtu", &mesh, &info);
     ASSERT_TRUE(s.ok()) << s.message();
-    EXPECT_EQ(mesh.materials[0], c.material) << c.cell_data;
+    EXPECT_EQ(mesh.materials[0], c.material);
+    if (c.note) {
+      ASSERT_EQ(info.notes.size(), 1u);
+      EXPECT_NE(info.notes[0].find(c.note), std::string::npos) << info.notes[0];
+    } else {
+      EXPECT_TRUE(info.notes.empty()) << info.notes[0];
+    }
+  }
+}
+
+// The same in a legacy .vtk: SCALARS and FIELD arrays of CELL_DATA are named in the
+// note; POINT_DATA arrays are not cell arrays.
+TEST(IoOtherTools, LegacyVtkSaysWhenNoArrayIsTheMaterial) {
+  const std::string head =
+      "# vtk DataFile Version 3.0\nm\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+      "POINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n";
+  const std::string points =
+      "POINT_DATA 4\nSCALARS temperature float 1\nLOOKUP_TABLE "
+      "default\n1 2 3 4\n";
+  const struct {
+    std::string data;
+    int material;
+    const char* note;
+  } cases[] = {
+      {points + "CELL_DATA 1\nSCALARS zone int 1\nLOOKUP_TABLE default\n3\n"
+                "FIELD f 1\nquality 1 1 double\n0.5\n",
+       0, "(the file's cell arrays: 'zone', 'quality';"},
+      {"CELL_DATA 1\nFIELD f 1\ntetgen:ref 1 1 int\n6\n", 6, nullptr},
+      {points, 0, nullptr},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.data);
+    TetMesh mesh;
+    ReadInfo info;
+    const Status s =
+        read_mesh_from_memory(head + c.data, MeshFormat::kVtkLegacy, "m.vtk", &mesh, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(mesh.materials[0], c.material);
+    if (c.note) {
+      ASSERT_EQ(info.notes.size(), 1u);
+      EXPECT_NE(info.notes[0].find(c.note), std::string::npos) << info.notes[0];
+    } else {
+      EXPECT_TRUE(info.notes.empty()) << info.notes[0];
+    }
   }
 }
 

@@ -2,8 +2,10 @@
 # apt-get install python3-vtk9 python3-meshio), from the bundled box2 model:
 #   build/app/tetlod convert assets/box2.mesh /tmp/box2.vtk
 #   build/app/tetlod convert assets/box2.mesh /tmp/box2.msh
+#   build/app/tetlod convert assets/box2.mesh /tmp/box2.node
+#   build/app/tetlod convert assets/box2.mesh /tmp/box2.bdf
 #   /usr/bin/python3 tests/data/other_tools/make.py /tmp/box2.vtk tests/data/other_tools \
-#       /tmp/box2.msh assets/box2.mesh
+#       /tmp/box2.msh assets/box2.mesh /tmp/box2.ele /tmp/box2.bdf
 # Not run by the build or the tests: the files are committed, so that the tests
 # check TetLOD against what those tools really write without depending on them.
 import sys
@@ -11,7 +13,7 @@ import sys
 import meshio
 import vtk
 
-source, folder, gmsh_source, medit_source = sys.argv[1:5]
+source, folder, gmsh_source, medit_source, tetgen_source, nastran_source = sys.argv[1:7]
 reader = vtk.vtkUnstructuredGridReader()
 reader.SetFileName(source)
 reader.ReadAllScalarsOn()
@@ -68,3 +70,19 @@ meshio.write(folder + "/vtu_meshio_from_gmsh.vtu", from_gmsh)
 meshio.write(folder + "/vtk_meshio_from_gmsh.vtk", from_gmsh, binary=False)
 from_medit = meshio.read(medit_source)
 meshio.write(folder + "/vtu_meshio_from_medit.vtu", from_medit)
+
+# From TetGen and Nastran files (cell data "tetgen:ref", "nastran:ref"), and the
+# legacy 4.2 layout in binary, whose 64-bit integer arrays meshio types "long".
+meshio.write(folder + "/vtu_meshio_from_tetgen.vtu", meshio.read(tetgen_source))
+meshio.write(folder + "/vtu_meshio_from_nastran.vtu", meshio.read(nastran_source))
+meshio.vtk.write(folder + "/vtk42_meshio_binary_from_medit.vtk", from_medit, fmt_version="4.2",
+                 binary=True)
+
+# A mesh of two tetra cell blocks (one per material, as meshio holds a mesh read from
+# a .inp or .msh with several element blocks): meshio's Medit writer writes one
+# Tetrahedra section per block.
+tets, refs = from_medit.cells_dict["tetra"], from_medit.cell_data["medit:ref"][0]
+blocks = [tets[refs == m] for m in (1, 2)]
+meshio.write(folder + "/mesh_meshio_two_blocks.mesh",
+             meshio.Mesh(from_medit.points, [("tetra", b) for b in blocks],
+                         cell_data={"medit:ref": [refs[refs == m] for m in (1, 2)]}))
