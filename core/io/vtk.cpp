@@ -712,7 +712,11 @@ void write_vtk_legacy(const TetMesh& mesh, std::string* out) {
   append_line(out, tet_count);
   out->append("SCALARS material int 1\nLOOKUP_TABLE default\n");
   for (int32_t material : mesh.materials) append_line(out, material);
-  out->append("SCALARS stretch double 1\nLOOKUP_TABLE default\n");
+  // The stretch as a FIELD array: VTK's legacy reader takes only the first SCALARS of
+  // a section unless told to read them all, but every FIELD array.
+  out->append("FIELD FieldData 1\nstretch 1 ");
+  append_number(out, tet_count);
+  out->append(" double\n");
   for (const Tet& tet : mesh.tets) append_line(out, tet_shape(mesh, tet).stretch);
 }
 

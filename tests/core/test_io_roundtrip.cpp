@@ -98,7 +98,7 @@ TEST(IoRoundTrip, VtkFilesCarryStretch) {
   const struct {
     const char* name;
     const char* header;
-  } files[] = {{"/m.vtk", "SCALARS stretch double 1\nLOOKUP_TABLE default\n"},
+  } files[] = {{"/m.vtk", "FIELD FieldData 1\nstretch 1 3 double\n"},
                {"/m.vtu", "Name=\"stretch\" format=\"ascii\">"}};
   for (const auto& file : files) {
     const std::string text = test::read_text(dir + file.name);
