@@ -30,20 +30,30 @@ Image draw_histogram_chart(const std::vector<uint64_t>& bins, ColorMap map, int 
   const uint64_t largest = std::max<uint64_t>(1, *std::max_element(bins.begin(), bins.end()));
   const int count = static_cast<int>(bins.size());
   const double bin_width = double(right - left) / count;
+  auto bar_x = [&](int b, int* x0, int* x1) {
+    *x0 = left + int(b * bin_width) + scale;
+    *x1 = left + int((b + 1) * bin_width) - scale;
+  };
+  // The counts above the bars, all at one size: the largest at which every count
+  // that fits its bar at all fits it (one that does not fit even the smallest is left out).
+  int label_scale = scale;
   for (int b = 0; b < count; ++b) {
-    const int x0 = left + int(b * bin_width) + scale;
-    const int x1 = left + int((b + 1) * bin_width) - scale;
+    int x0 = 0, x1 = 0;
+    bar_x(b, &x0, &x1);
+    const std::string label = std::to_string(bins[size_t(b)]);
+    while (label_scale > 1 && text_width(label, label_scale) > x1 - x0 + 2 * scale) --label_scale;
+  }
+  for (int b = 0; b < count; ++b) {
+    int x0 = 0, x1 = 0;
+    bar_x(b, &x0, &x1);
     const int bar = int(double(bottom - top) * double(bins[size_t(b)]) / double(largest) + 0.5);
     const Rgb c = colormap_rgb(map, (b + 0.5) / count);
     fill_rect(&image, x0, bottom - bar, x1, bottom, to_rgba(c));
     const std::string label = std::to_string(bins[size_t(b)]);
-    // The count above the bar, smaller if it does not fit the bar's width.
-    for (int s = scale; s >= 1; --s) {
-      const int w = text_width(label, s);
-      if (w > x1 - x0 + 2 * scale) continue;
-      draw_text(&image, (x0 + x1 - w) / 2, bottom - bar - 10 * s, label, kInk, s);
-      break;
-    }
+    const int w = text_width(label, label_scale);
+    if (w <= x1 - x0 + 2 * scale)
+      draw_text(&image, (x0 + x1 - w) / 2, bottom - bar - 10 * label_scale, label, kInk,
+                label_scale);
   }
   fill_rect(&image, left, bottom, right, bottom + scale, kAxis);
   for (int b = 0; b <= count; b += 2) {
