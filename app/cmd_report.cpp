@@ -108,6 +108,26 @@ std::string img(const std::vector<uint8_t>& png, const std::string& alt) {
   return "<img src=\"data:image/png;base64," + base64(png) + "\" alt=\"" + html_escape(alt) + "\">";
 }
 
+// The heading of the level nearest `n` elements, at `step`. When no level comes near
+// (n is beyond the last or the first level), it says so, and so does a note.
+std::string level_label(long long n, size_t step, const Lod& lod) {
+  std::string label = "level ~" + std::to_string(n) + " (step " + std::to_string(step);
+  const size_t tets = lod.tet_count_at(step);
+  std::string beyond;
+  if (step == lod.step_count() && tets > size_t(n)) {
+    beyond = "no level has fewer than " + std::to_string(tets) + " tets";
+    label += ", the last: " + beyond;
+  } else if (step == 0 && tets < size_t(n)) {
+    beyond = "no level has more than " + std::to_string(tets) + " tets";
+    label += ", the first: " + beyond;
+  }
+  if (!beyond.empty()) {
+    std::fprintf(stderr, "tetlod report: note: --levels %lld: %s; the %s level is reported\n", n,
+                 beyond.c_str(), step == 0 ? "first" : "last");
+  }
+  return label + ")";
+}
+
 std::optional<std::vector<long long>> parse_levels(const std::string& text) {
   std::vector<long long> levels;
   size_t start = 0;
@@ -206,8 +226,7 @@ int cmd_report(const Args& args) {
     steps.push_back(last);
     for (size_t k = 0; k < steps.size(); ++k) {
       Level level;
-      level.label = k + 1 < steps.size() ? "level ~" + std::to_string(levels[k]) + " (step " +
-                                               std::to_string(steps[k]) + ")"
+      level.label = k + 1 < steps.size() ? level_label(levels[k], steps[k], *history.lod)
                                          : "last step (" + std::to_string(last) + ")";
       if (!history_level(&history, "report", steps[k], &level.mesh)) return kExitBadInput;
       meshes.push_back(std::move(level));
@@ -233,8 +252,7 @@ int cmd_report(const Args& args) {
     for (const long long n : levels) {
       const size_t step = lod.step_for_elements(static_cast<size_t>(n));
       lod.seek(step);
-      meshes.push_back(
-          {"level ~" + std::to_string(n) + " (step " + std::to_string(step) + ")", lod.extract()});
+      meshes.push_back({level_label(n, step, lod), lod.extract()});
     }
     meshes.push_back({"simplified (step " + std::to_string(result.history.step_count()) + ")",
                       std::move(result.output)});

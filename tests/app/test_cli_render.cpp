@@ -267,6 +267,35 @@ TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
   EXPECT_EQ(html.rfind("</html>"), html.size() - 8);
 }
 
+// A level no run reaches (fewer tets than the last, more than the first) is the last
+// or first level, and the heading and a note say so, for a run and for a saved history.
+TEST(CliReport, LevelsBeyondTheRunAreNamed) {
+  const std::string history = out_dir() + "/report_beyond.tlh";
+  CommandResult r = run("simplify " + asset("box2.mesh") + " -o " + out_dir() +
+                        "/report_beyond.mesh --size 10 --no-subdivide --history " + history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string view = " --levels 1,100000 --width 64 --height 64 -o ";
+  for (const std::string& source :
+       {asset("box2.mesh") + " --simplify --size 10 --no-subdivide", history}) {
+    SCOPED_TRACE(source);
+    const std::string dir = out_dir() + "/report_beyond";
+    fs::remove_all(dir);
+    r = run("report " + source + view + dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("note: --levels 1: no level has fewer than "), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("note: --levels 100000: no level has more than 136 tets; the first "
+                            "level is reported"),
+              std::string::npos)
+        << r.output;
+    const std::string html = file_bytes(dir + "/report.html");
+    EXPECT_NE(html.find("level ~1 (step "), std::string::npos);
+    EXPECT_NE(html.find(", the last: no level has fewer than "), std::string::npos);
+    EXPECT_NE(html.find("level ~100000 (step 0, the first: no level has more than 136 tets)"),
+              std::string::npos);
+  }
+}
+
 // With --improve every level of the report is the improved one: its Table I row is the
 // one `simplify --elements N --improve` writes.
 // Sizes from --material-size alone: the page says so (it used to print "size inf").
