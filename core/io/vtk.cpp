@@ -37,23 +37,17 @@ BinaryType binary_type(std::string_view name) {
     const char* name;
     BinaryType type;
   };
-  static constexpr Entry kTypes[] = {{"char", {BinaryType::kSigned, 1}},
-                                     {"unsigned_char", {BinaryType::kUnsigned, 1}},
-                                     {"short", {BinaryType::kSigned, 2}},
-                                     {"unsigned_short", {BinaryType::kUnsigned, 2}},
-                                     {"int", {BinaryType::kSigned, 4}},
-                                     {"unsigned_int", {BinaryType::kUnsigned, 4}},
-                                     {"vtktypeint32", {BinaryType::kSigned, 4}},
-                                     {"vtktypeuint32", {BinaryType::kUnsigned, 4}},
-                                     {"vtktypeint64", {BinaryType::kSigned, 8}},
-                                     {"vtktypeuint64", {BinaryType::kUnsigned, 8}},
-                                     {"vtkidtype", {BinaryType::kSigned, 8}},
-                                     {"float", {BinaryType::kFloat, 4}},
-                                     {"double", {BinaryType::kFloat, 8}},
-                                     // As VTK reads them on Linux and macOS (a C long of 8 bytes),
-                                     // and as meshio writes 64-bit arrays in the 4.2 layout.
-                                     {"long", {BinaryType::kSigned, 8}},
-                                     {"unsigned_long", {BinaryType::kUnsigned, 8}}};
+  // "long" as VTK reads it on Linux and macOS (a C long of 8 bytes), and as meshio
+  // writes 64-bit arrays in the 4.2 layout.
+  static constexpr Entry kTypes[] = {
+      {"char", {BinaryType::kSigned, 1}},         {"unsigned_char", {BinaryType::kUnsigned, 1}},
+      {"short", {BinaryType::kSigned, 2}},        {"unsigned_short", {BinaryType::kUnsigned, 2}},
+      {"int", {BinaryType::kSigned, 4}},          {"unsigned_int", {BinaryType::kUnsigned, 4}},
+      {"long", {BinaryType::kSigned, 8}},         {"unsigned_long", {BinaryType::kUnsigned, 8}},
+      {"vtktypeint32", {BinaryType::kSigned, 4}}, {"vtktypeuint32", {BinaryType::kUnsigned, 4}},
+      {"vtktypeint64", {BinaryType::kSigned, 8}}, {"vtktypeuint64", {BinaryType::kUnsigned, 8}},
+      {"vtkidtype", {BinaryType::kSigned, 8}},    {"float", {BinaryType::kFloat, 4}},
+      {"double", {BinaryType::kFloat, 8}}};
   for (const Entry& e : kTypes)
     if (TextScanner::equals_ignore_case(name, e.name)) return e.type;
   return {};
@@ -530,7 +524,8 @@ class VtkLegacyParser {
       return true;
     };
     uint64_t tuples = section_count_;
-    if (data_section_ == DataSection::kCells) cell_arrays_.emplace_back(words[0]);
+    if (data_section_ == DataSection::kCells && !is("LOOKUP_TABLE"))
+      cell_arrays_.emplace_back(words[0]);
     if (is("SCALARS")) {
       components = 1;
       if (words.size() > 2 && !number_word(2, 4, &components)) return false;
@@ -680,7 +675,10 @@ class VtkLegacyParser {
 
 std::string no_material_note(const std::vector<std::string>& arrays) {
   std::string names, known;
-  for (const std::string& a : arrays) names += (names.empty() ? "'" : ", '") + a + "'";
+  constexpr size_t kListed = 10;  // a hostile file may have millions
+  for (size_t i = 0; i < std::min(arrays.size(), kListed); ++i)
+    names += (names.empty() ? "'" : ", '") + arrays[i] + "'";
+  if (arrays.size() > kListed) names += " and " + std::to_string(arrays.size() - kListed) + " more";
   for (std::string_view k : kVtkMaterialNames)
     known += (known.empty() ? "'" : ", '") + std::string(k) + "'";
   return "no cell array is read as the material, so every tet is material 0 (the file's "

@@ -106,6 +106,17 @@ TEST(IoOtherTools, TheBestMaterialArrayIsTaken) {
        "(the file's cell arrays: 'region', 'quality';"},
       {"", 0, nullptr},
   };
+  // Many arrays: the note names the first ten and counts the rest.
+  {
+    std::string many;
+    for (int k = 0; k < 25; ++k) many += array("Int32", ("a" + std::to_string(k)).c_str(), 1);
+    TetMesh mesh;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh_from_memory(vtu(many), MeshFormat::kVtu, "m.vtu", &mesh, &info).ok());
+    ASSERT_EQ(info.notes.size(), 1u);
+    EXPECT_NE(info.notes[0].find("'a8', 'a9' and 15 more;"), std::string::npos) << info.notes[0];
+    EXPECT_EQ(info.notes[0].find("'a10'"), std::string::npos) << info.notes[0];
+  }
   for (const auto& c : cases) {
     SCOPED_TRACE(c.cell_data);
     TetMesh mesh;
@@ -137,8 +148,8 @@ TEST(IoOtherTools, LegacyVtkSaysWhenNoArrayIsTheMaterial) {
     int material;
     const char* note;
   } cases[] = {
-      {points + "CELL_DATA 1\nSCALARS zone int 1\nLOOKUP_TABLE default\n3\n"
-                "FIELD f 1\nquality 1 1 double\n0.5\n",
+      {points + "CELL_DATA 1\nSCALARS zone int 1\nLOOKUP_TABLE colours\n3\n"
+                "LOOKUP_TABLE colours 1\n0 0 1 1\nFIELD f 1\nquality 1 1 double\n0.5\n",
        0, "(the file's cell arrays: 'zone', 'quality';"},
       {"CELL_DATA 1\nFIELD f 1\ntetgen:ref 1 1 int\n6\n", 6, nullptr},
       {points, 0, nullptr},
