@@ -67,6 +67,23 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
   }
 }
 
+// Reads a one-tet file: its material, and the reader's one note (containing `note`)
+// or none (`note` null).
+void expect_material_and_note(const std::string& text, MeshFormat format, int material,
+                              const char* note) {
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(text, format, "m", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(mesh.materials[0], material);
+  if (note) {
+    ASSERT_EQ(info.notes.size(), 1u);
+    EXPECT_NE(info.notes[0].find(note), std::string::npos) << info.notes[0];
+  } else {
+    EXPECT_TRUE(info.notes.empty()) << info.notes[0];
+  }
+}
+
 // Several candidate arrays: "material" wins whatever the order; a known name of a
 // floating-point type is not a material. When no array is taken the reader says so,
 // naming the file's cell arrays.
@@ -119,18 +136,7 @@ TEST(IoOtherTools, TheBestMaterialArrayIsTaken) {
   }
   for (const auto& c : cases) {
     SCOPED_TRACE(c.cell_data);
-    TetMesh mesh;
-    ReadInfo info;
-    const Status s =
-        read_mesh_from_memory(vtu(c.cell_data), MeshFormat::kVtu, "m.vtu", &mesh, &info);
-    ASSERT_TRUE(s.ok()) << s.message();
-    EXPECT_EQ(mesh.materials[0], c.material);
-    if (c.note) {
-      ASSERT_EQ(info.notes.size(), 1u);
-      EXPECT_NE(info.notes[0].find(c.note), std::string::npos) << info.notes[0];
-    } else {
-      EXPECT_TRUE(info.notes.empty()) << info.notes[0];
-    }
+    expect_material_and_note(vtu(c.cell_data), MeshFormat::kVtu, c.material, c.note);
   }
 }
 
@@ -156,18 +162,7 @@ TEST(IoOtherTools, LegacyVtkSaysWhenNoArrayIsTheMaterial) {
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.data);
-    TetMesh mesh;
-    ReadInfo info;
-    const Status s =
-        read_mesh_from_memory(head + c.data, MeshFormat::kVtkLegacy, "m.vtk", &mesh, &info);
-    ASSERT_TRUE(s.ok()) << s.message();
-    EXPECT_EQ(mesh.materials[0], c.material);
-    if (c.note) {
-      ASSERT_EQ(info.notes.size(), 1u);
-      EXPECT_NE(info.notes[0].find(c.note), std::string::npos) << info.notes[0];
-    } else {
-      EXPECT_TRUE(info.notes.empty()) << info.notes[0];
-    }
+    expect_material_and_note(head + c.data, MeshFormat::kVtkLegacy, c.material, c.note);
   }
 }
 
