@@ -49,6 +49,10 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
     std::fprintf(stderr, "tetlod: %s\n", status.message().c_str());
     return false;
   }
+  // The reader's notes first: they may explain the validation's (skipped elements
+  // leave their vertices unused).
+  for (const std::string& note : info->notes)
+    std::fprintf(stderr, "tetlod: %s: note: %s\n", path.c_str(), note.c_str());
   if (info->validation.reoriented_tets > 0) {
     std::fprintf(stderr, "tetlod: %s: note: %zu negatively oriented tetrahedra were reoriented\n",
                  path.c_str(), info->validation.reoriented_tets);
@@ -57,8 +61,6 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
     std::fprintf(stderr, "tetlod: %s: note: %zu vertices used by no tetrahedron were dropped\n",
                  path.c_str(), info->validation.removed_unused_vertices);
   }
-  for (const std::string& note : info->notes)
-    std::fprintf(stderr, "tetlod: %s: note: %s\n", path.c_str(), note.c_str());
   return true;
 }
 

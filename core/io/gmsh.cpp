@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <numeric>
+#include <set>
 #include <unordered_map>
 
 #include "core/io/mesh_formats.h"
@@ -28,6 +30,52 @@ int nodes_per_element(int64_t type) {
   if (type == 92) return 64;
   if (type == 93) return 125;
   return 0;
+}
+
+// What a reader that keeps only 4- and 10-node tets says of the elements it skips:
+// the plural name of a volume or surface element type, nullptr for other types
+// (points, lines), which a tet mesh's file holds as a matter of course.
+const char* skipped_volume_elements(int64_t type) {
+  switch (type) {
+    case 5:
+    case 12:
+    case 17:
+    case 92:
+    case 93:
+      return "hexahedra";
+    case 6:
+    case 13:
+    case 18:
+      return "prisms";
+    case 7:
+    case 14:
+    case 19:
+      return "pyramids";
+    case 29:
+    case 30:
+    case 31:
+      return "tetrahedra of order 3 to 5";
+    default:
+      return nullptr;
+  }
+}
+bool is_surface_element(int64_t type) {
+  switch (type) {
+    case 2:
+    case 3:
+    case 9:
+    case 10:
+    case 16:
+    case 20:
+    case 21:
+    case 22:
+    case 23:
+    case 24:
+    case 25:
+      return true;
+    default:
+      return false;
+  }
 }
 
 // "material_<n>" with 0 <= n <= INT32_MAX gives n; else -1.
@@ -98,6 +146,12 @@ class GmshParser {
           parse_physical_names();
         } else {
           scanner_.fail("$PhysicalNames after $Elements is not supported");
+        }
+      } else if (section == "$PartitionedEntities" && version_ == 41) {
+        if (!seen_elements_) {
+          binary_ ? parse_partitioned_entities_binary() : parse_partitioned_entities();
+        } else {
+          scanner_.fail("$PartitionedEntities after $Elements is not supported");
         }
       } else if (section == "$Entities" && version_ == 41) {
         if (!seen_elements_) {
@@ -234,6 +288,99 @@ class GmshParser {
                                      " is more than the rest of the file can hold");
     }
     return true;
+  }
+
+  // A partitioned mesh (gmsh -part): its elements are in partition entities, each
+  // the piece of a model entity (its parent) in one partition. A partition volume
+  // takes its own physical tag, else its parent volume's, and its parent's tag as
+  // the elementary one.
+  void add_partition_volume(int64_t tag, int64_t parent_dimension, int64_t parent,
+                            int64_t physical) {
+    if (parent_dimension != 3) return;
+    if (physical == 0) {
+      const auto it = volume_physical_.find(parent);
+      if (it != volume_physical_.end()) physical = it->second;
+    }
+    volume_physical_[tag] = physical;
+    volume_parent_[tag] = parent;
+  }
+
+  bool parse_partitioned_entities() {
+    uint64_t partitions = 0, ghosts = 0;
+    if (!scanner_.read_count(&partitions, "partition count", 1) ||
+        !scanner_.read_count(&ghosts, "ghost entity count", 4) ||
+        !scanner_.skip_numbers(2 * ghosts, "ghost entities")) {
+      return false;
+    }
+    uint64_t counts[4] = {};
+    for (uint64_t& count : counts) {
+      // An entity line takes at least 16 bytes ("1 0 1 1 1 0 0 0 0\n").
+      if (!scanner_.read_count(&count, "partitioned entity count", 16)) return false;
+    }
+    for (int dimension = 0; dimension < 4; ++dimension) {
+      for (uint64_t i = 0; i < counts[dimension]; ++i) {
+        int64_t tag = 0, parent_dimension = 0, parent = 0, physical = 0;
+        uint64_t partition_count = 0;
+        if (!scanner_.read_int(&tag, "entity tag") ||
+            !scanner_.read_int(&parent_dimension, "parent dimension") ||
+            !scanner_.read_int(&parent, "parent tag") ||
+            !scanner_.read_count(&partition_count, "partition count", 2) ||
+            !scanner_.skip_numbers(partition_count, "partition tags") ||
+            !scanner_.skip_numbers(dimension == 0 ? 3 : 6, "entity bounding box") ||
+            !read_physical_tags(&physical)) {
+          return false;
+        }
+        if (dimension > 0) {
+          uint64_t bounding = 0;
+          if (!scanner_.read_count(&bounding, "bounding entity count", 2) ||
+              !scanner_.skip_numbers(bounding, "bounding entity tags")) {
+            return false;
+          }
+        }
+        if (dimension == 3) add_partition_volume(tag, parent_dimension, parent, physical);
+      }
+    }
+    return expect_end("$EndPartitionedEntities");
+  }
+
+  bool parse_partitioned_entities_binary() {
+    if (!begin_binary()) return false;
+    BinaryCursor c = binary_cursor();
+    uint64_t partitions = 0, ghosts = 0;
+    if (!binary_count(c, &partitions, "partition count", 0) ||
+        !binary_count(c, &ghosts, "ghost entity count", 8)) {
+      return false;
+    }
+    for (uint64_t k = 0; k < 2 * ghosts; ++k) c.i32();
+    uint64_t counts[4] = {};
+    for (int d = 0; d < 4; ++d) {
+      // A point takes at least 52 bytes, another entity 84.
+      if (!binary_count(c, &counts[d], "partitioned entity count", d == 0 ? 52 : 84)) return false;
+    }
+    for (int dimension = 0; dimension < 4 && c.ok(); ++dimension) {
+      for (uint64_t i = 0; i < counts[dimension] && c.ok(); ++i) {
+        const int32_t tag = c.i32();
+        const int32_t parent_dimension = c.i32();
+        const int32_t parent = c.i32();
+        uint64_t partition_count = 0, physical_count = 0;
+        if (!binary_count(c, &partition_count, "partition count", 4)) return false;
+        for (uint64_t k = 0; k < partition_count; ++k) c.i32();
+        for (int k = 0; k < (dimension == 0 ? 3 : 6); ++k) c.f64();
+        if (!binary_count(c, &physical_count, "physical tag count", 4)) return false;
+        int32_t physical = 0;
+        for (uint64_t k = 0; k < physical_count; ++k) {
+          const int32_t value = c.i32();
+          if (k == 0) physical = value;
+        }
+        if (dimension > 0) {
+          uint64_t bounding = 0;
+          if (!binary_count(c, &bounding, "bounding entity count", 4)) return false;
+          for (uint64_t k = 0; k < bounding; ++k) c.i32();
+        }
+        if (dimension == 3 && c.ok()) add_partition_volume(tag, parent_dimension, parent, physical);
+      }
+    }
+    return end_binary(c, "$PartitionedEntities") && expect_end("$EndPartitionedEntities");
   }
 
   bool parse_entities_binary() {
@@ -377,6 +524,7 @@ class GmshParser {
       }
       const uint64_t ints = 1 + uint64_t(tag_count) + uint64_t(nodes);
       if (!c.fits(uint64_t(following), 4 * ints)) return truncated("$Elements");
+      count_elements(type, uint64_t(following));
       const bool is_tet = type == kTet4 || type == kTet10;
       for (int32_t e = 0; e < following; ++e) {
         const int64_t element_tag = c.i32();
@@ -436,11 +584,13 @@ class GmshParser {
         return truncated("$Elements");
       }
       elements_read += block_size;
+      count_elements(type, block_size);
       const bool is_tet = type == kTet4 || type == kTet10;
       int32_t material = 0;
       if (is_tet) {
         const auto it = volume_physical_.find(entity);
-        if (!resolve_material(it != volume_physical_.end() ? it->second : 0, entity, &material)) {
+        if (!resolve_material(it != volume_physical_.end() ? it->second : 0, elementary_of(entity),
+                              &material)) {
           scanner_.advance(c.used());
           return false;
         }
@@ -510,6 +660,8 @@ class GmshParser {
       }
       const int64_t material = material_from_name(name);
       if (dimension == 3 && material >= 0) named_materials_[tag] = material;
+      if ((dimension == 2 || dimension == 3) && material < 0 && physical_names_.size() < 1000)
+        physical_names_[{dimension, tag}] = std::string(name);
     }
     return expect_end("$EndPhysicalNames");
   }
@@ -685,8 +837,15 @@ class GmshParser {
     return uint32_t(it - node_tags_.begin());
   }
 
+  // The elementary tag of a 4.1 volume entity: a partition volume's parent's.
+  int64_t elementary_of(int64_t entity) const {
+    const auto it = volume_parent_.find(entity);
+    return it != volume_parent_.end() ? it->second : entity;
+  }
+
   // Material of a tet from its physical tag (0: none) and elementary tag.
   bool resolve_material(int64_t physical, int64_t elementary, int32_t* material) {
+    from_elementary_ = physical == 0;
     int64_t value = elementary;
     if (physical != 0) {
       const auto it = named_materials_.find(physical);
@@ -725,6 +884,13 @@ class GmshParser {
     out_->mesh.materials.push_back(material);
     if (!binary_) out_->tet_lines.push_back(line_number(line));
     element_tags_.push_back(element_tag);
+    if (from_elementary_) {
+      ++elementary_tets_;
+      if (elementary_materials_.size() < 1000) elementary_materials_.insert(material);
+    } else {
+      ++physical_tets_;
+      if (physical_materials_.size() < 1000) physical_materials_.insert(material);
+    }
     return true;
   }
 
@@ -755,6 +921,7 @@ class GmshParser {
         if (k == 0) physical = value;
         if (k == 1) elementary = value;
       }
+      count_elements(type, 1);
       if (type == kTet4 || type == kTet10) {
         int32_t material = 0;
         if (!resolve_material(physical, elementary, &material) ||
@@ -790,11 +957,13 @@ class GmshParser {
                              std::to_string(count) + " of the $Elements header");
       }
       elements_read += block_size;
+      count_elements(type, block_size);
       const bool is_tet = type == kTet4 || type == kTet10;
       int32_t material = 0;
       if (is_tet) {
         const auto it = volume_physical_.find(entity);
-        if (!resolve_material(it != volume_physical_.end() ? it->second : 0, entity, &material)) {
+        if (!resolve_material(it != volume_physical_.end() ? it->second : 0, elementary_of(entity),
+                              &material)) {
           return false;
         }
       }
@@ -813,8 +982,79 @@ class GmshParser {
     return expect_end("$EndElements");
   }
 
+  void count_elements(int64_t type, uint64_t count) { element_counts_[type] += count; }
+
+  // What the user should know of what was not read: elements other than 4- and
+  // 10-node tets, the mid-edge nodes of 10-node ones, surface groups, and how groups
+  // became materials.
+  void add_notes() {
+    auto quoted_list = [](const std::vector<std::string>& items) {
+      std::string text;
+      for (size_t i = 0; i < std::min<size_t>(items.size(), 10); ++i)
+        text += (i == 0 ? "" : ", ") + items[i];
+      if (items.size() > 10) text += " and " + std::to_string(items.size() - 10) + " more";
+      return text;
+    };
+    std::map<std::string, uint64_t> skipped_volumes;
+    uint64_t surface_elements = 0;
+    for (const auto& [type, count] : element_counts_) {
+      if (const char* name = skipped_volume_elements(type)) skipped_volumes[name] += count;
+      if (is_surface_element(type)) surface_elements += count;
+    }
+    if (!skipped_volumes.empty()) {
+      std::vector<std::string> parts;
+      for (const auto& [name, count] : skipped_volumes)
+        parts.push_back(std::to_string(count) + " " + name);
+      out_->notes.push_back("skipped " + quoted_list(parts) +
+                            ": TetLOD reads 4- and 10-node tetrahedra only, so a region "
+                            "meshed with other elements is not in the mesh");
+    }
+    if (const auto it = element_counts_.find(kTet10); it != element_counts_.end()) {
+      out_->notes.push_back(std::to_string(it->second) +
+                            " 10-node tetrahedra were read as 4-node ones (by their corners; "
+                            "their mid-edge nodes are dropped)");
+    }
+    std::vector<std::string> surface_names, volume_names;
+    for (const auto& [key, name] : physical_names_) {
+      if (key.first == 2) surface_names.push_back("'" + name + "'");
+      if (key.first == 3) {
+        const bool has_tets = std::find(out_->mesh.materials.begin(), out_->mesh.materials.end(),
+                                        key.second) != out_->mesh.materials.end();
+        volume_names.push_back("'" + name + "' = " + std::to_string(key.second) +
+                               (has_tets ? "" : " (no tetrahedra: not in the mesh)"));
+      }
+    }
+    if (surface_elements > 0) {
+      out_->notes.push_back(std::to_string(surface_elements) + " surface elements are not kept" +
+                            (surface_names.empty()
+                                 ? std::string()
+                                 : ", nor the surface groups " + quoted_list(surface_names)) +
+                            ": TetLOD keeps the tetrahedra and their volume groups (written as "
+                            "material_<id>)");
+    }
+    if (!volume_names.empty()) {
+      out_->notes.push_back("volume groups are materials by their number: " +
+                            quoted_list(volume_names));
+    }
+    if (elementary_tets_ > 0 && physical_tets_ > 0) {
+      std::vector<std::string> ids, shared;
+      for (int32_t m : elementary_materials_) {
+        ids.push_back(std::to_string(m));
+        if (physical_materials_.count(m)) shared.push_back(std::to_string(m));
+      }
+      out_->notes.push_back(
+          std::to_string(elementary_tets_) +
+          " tetrahedra are in no physical group: their material is their volume's entity tag (" +
+          quoted_list(ids) + ")" +
+          (shared.empty() ? std::string()
+                          : "; " + quoted_list(shared) +
+                                " is also a physical group's number, so both are one material"));
+    }
+  }
+
   // Orders the tets by element tag and rejects repeated tags.
   bool finish_elements() {
+    add_notes();
     TetMesh& mesh = out_->mesh;
     const size_t count = mesh.tets.size();
     std::vector<uint32_t> order(count);
@@ -855,7 +1095,15 @@ class GmshParser {
   bool seen_elements_ = false;
   std::unordered_map<int64_t, int64_t> named_materials_;  // physical tag -> "material_<n>"
   std::unordered_map<int64_t, int64_t> volume_physical_;  // volume entity -> first physical tag
-  std::vector<uint64_t> node_tags_;                       // sorted by finish_nodes()
+  std::unordered_map<int64_t, int64_t> volume_parent_;    // partition volume -> model volume
+  // For the notes: physical names of surfaces and volumes other than "material_<n>"
+  // ((dimension, tag) -> name), elements by type, tets by where their material came from.
+  std::map<std::pair<int64_t, int64_t>, std::string> physical_names_;
+  std::map<int64_t, uint64_t> element_counts_;
+  bool from_elementary_ = false;  // of the last resolve_material()
+  uint64_t physical_tets_ = 0, elementary_tets_ = 0;
+  std::set<int32_t> elementary_materials_, physical_materials_;  // the first 1000
+  std::vector<uint64_t> node_tags_;                              // sorted by finish_nodes()
   std::vector<uint32_t> node_lines_;
   uint64_t first_tag_ = 0;
   std::vector<uint32_t> dense_index_;  // node tag - first_tag_ -> vertex, when compact

@@ -1,0 +1,117 @@
+// Files Gmsh 4.8 wrote as analysts get them (tests/data/gmsh, made by its make.sh):
+// partitioned meshes, second-order tets, tets next to prisms, physical surfaces and
+// names. What is read is right, and what is not read is said in the reader's notes.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "core/io/mesh_io.h"
+#include "core/test_io_helpers.h"
+
+namespace tetlod {
+namespace {
+
+std::string gmsh_file(const std::string& name) {
+  return test::data_path("gmsh/" + name);
+}
+
+// Whether one of the notes contains `text`.
+bool has_note(const ReadInfo& info, const std::string& text) {
+  for (const std::string& note : info.notes)
+    if (note.find(text) != std::string::npos) return true;
+  return false;
+}
+
+std::map<int32_t, size_t> tets_per_material(const TetMesh& mesh) {
+  std::map<int32_t, size_t> count;
+  for (int32_t m : mesh.materials) ++count[m];
+  return count;
+}
+
+std::string all_notes(const ReadInfo& info) {
+  std::string text;
+  for (const std::string& note : info.notes) text += note + "\n";
+  return text;
+}
+
+// A partitioned mesh's elements are in partition entities: their materials are the
+// physical groups of the model volumes they are pieces of (they were the partition
+// entities' own tags), as in the same mesh unpartitioned (here second-order).
+TEST(IoGmshFiles, PartitionedMeshesKeepTheirPhysicalGroups) {
+  TetMesh order2;
+  ReadInfo order2_info;
+  ASSERT_TRUE(read_mesh(gmsh_file("coax_order2.msh"), &order2, &order2_info).ok());
+  for (const char* file : {"coax_part3.msh", "coax_part3_bin.msh"}) {
+    SCOPED_TRACE(file);
+    TetMesh mesh;
+    ReadInfo info;
+    const Status s = read_mesh(gmsh_file(file), &mesh, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    // The same mesh (Gmsh's text and binary coordinates may differ in the last digit).
+    EXPECT_EQ(tets_per_material(mesh), tets_per_material(order2));
+    EXPECT_EQ(tets_per_material(mesh).size(), 4u);
+    EXPECT_TRUE(has_note(info,
+                         "volume groups are materials by their number: "
+                         "'inner_conductor' = 1, 'dielectric_inner' = 2, "
+                         "'dielectric_outer' = 3, 'shield' = 4"))
+        << all_notes(info);
+    EXPECT_TRUE(has_note(info,
+                         " surface elements are not kept, nor the surface groups "
+                         "'ends', 'jacket'"))
+        << all_notes(info);
+  }
+  EXPECT_TRUE(has_note(order2_info, "1386 10-node tetrahedra were read as 4-node ones"))
+      << all_notes(order2_info);
+}
+
+// Prisms are not read: the note says so, and that the group they made has no tets.
+TEST(IoGmshFiles, SkippedElementsAreNamed) {
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(gmsh_file("mixed_prisms.msh"), &mesh, &info).ok());
+  for (int32_t m : mesh.materials) EXPECT_EQ(m, 1);
+  EXPECT_TRUE(has_note(info, "skipped 28 prisms: TetLOD reads 4- and 10-node tetrahedra only"))
+      << all_notes(info);
+  EXPECT_TRUE(has_note(info, "'layer' = 2 (no tetrahedra: not in the mesh)")) << all_notes(info);
+  EXPECT_GT(info.validation.removed_unused_vertices, 0u);
+}
+
+// Tets without a physical group take their volume's tag, which here is also a
+// physical group's number: the note says both are one material. Tets all without a
+// group (the documented fallback) or all with one give no such note.
+TEST(IoGmshFiles, ElementaryTagsSharedWithAPhysicalGroupAreNoted) {
+  auto file = [](const std::string& second_tags) {
+    return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+           "4 0 0 1\n5 0 0 -1\n$EndNodes\n$Elements\n2\n1 4 2 4 1 1 2 3 4\n2 4 2 " +
+           second_tags + " 1 3 2 5\n$EndElements\n";
+  };
+  const struct {
+    std::string tags;  // physical and elementary tag of the second tet
+    const char* note;
+  } cases[] = {
+      {"0 4",
+       "1 tetrahedra are in no physical group: their material is their volume's entity "
+       "tag (4); 4 is also a physical group's number, so both are one material"},
+      {"0 7",
+       "1 tetrahedra are in no physical group: their material is their volume's entity "
+       "tag (7)\n"},
+      {"2 7", nullptr},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.tags);
+    TetMesh mesh;
+    ReadInfo info;
+    const Status s =
+        read_mesh_from_memory(file(c.tags), MeshFormat::kGmsh22, "m.msh", &mesh, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    if (c.note) {
+      EXPECT_NE(all_notes(info).find(c.note), std::string::npos) << all_notes(info);
+    } else {
+      EXPECT_TRUE(info.notes.empty()) << all_notes(info);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tetlod

@@ -1,0 +1,13 @@
+# Writes the Gmsh files of this folder with Debian 12's Gmsh (4.8.4) from the .geo
+# models here. Not run by the build or the tests: the files are committed.
+#   cd tests/data/gmsh && bash make.sh
+set -euo pipefail
+opts="-3 -clmax 2.5 -v 0"
+# A coax of four physical volumes and two physical surfaces, partitioned in three
+# (text and binary): the elements are in partition entities.
+gmsh coax.geo $opts -part 3 -format msh41 -o coax_part3.msh
+gmsh coax.geo $opts -part 3 -format msh41 -bin -o coax_part3_bin.msh
+# Second-order (10-node) tets.
+gmsh coax.geo $opts -order 2 -format msh41 -o coax_order2.msh
+# Tets and prisms.
+gmsh mixed.geo -3 -v 0 -format msh41 -o mixed_prisms.msh
