@@ -64,6 +64,15 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   return true;
 }
 
+std::string beyond_levels_note(long long elements, size_t step, size_t step_count, size_t tets) {
+  if (elements < 0) return "";
+  if (step == step_count && tets > size_t(elements))
+    return "the last: no level has fewer elements than this one";
+  if (step == 0 && tets < size_t(elements))
+    return "the first: no level has more elements than this one";
+  return "";
+}
+
 bool has_extension(const std::string& path, const char* extension) {
   const size_t n = std::strlen(extension);
   if (path.size() < n) return false;

@@ -71,6 +71,10 @@ struct HistoryLevel {
 bool load_history_level(const std::string& path, const char* command, long long step,
                         long long elements, HistoryLevel* level);
 
+// For the level a command wrote for --elements N: "the last: no level has fewer
+// elements ..." or "the first: ... more ..." when N lies beyond the history, else "".
+std::string beyond_levels_note(long long elements, size_t step, size_t step_count, size_t tets);
+
 // Prints the Table I rows (whole mesh, then each material) as an aligned table.
 void print_property_table(const MeshStats& stats);
 

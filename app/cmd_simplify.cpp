@@ -153,15 +153,19 @@ int cmd_simplify(const Args& args) {
     lod.seek(step);
     output = lod.extract();
   }
+  std::string beyond = beyond_levels_note(elements > 0 ? elements : -1, step,
+                                          result.history.step_count(), output.tet_count());
+  if (!beyond.empty()) beyond = "; " + beyond;
   ImproveResult improved;
   double seconds_improve = 0;
   if (improve) improved = improve_timed(&output, params, &seconds_improve);
-  std::printf("\noutput %s (step %zu of %zu)\n", out.c_str(), step, result.history.step_count());
+  std::printf("\noutput %s (step %zu of %zu%s)\n", out.c_str(), step, result.history.step_count(),
+              beyond.c_str());
   print_property_table(stats_of(output));
   const RejectionCounts& r = result.rejections;
   std::printf(
-      "\nsubdivision: %zu splits (%zu long edges left unsplit to keep the thresholds: %zu for "
-      "a piece's stretch or size, %zu for a node's valence), %zu tets\n"
+      "\nsubdivision: %zu splits (%zu edges longer than half the size left unsplit to keep the "
+      "thresholds: %zu for a piece's stretch or size, %zu for a node's valence), %zu tets\n"
       "collapses: %zu\nrejected evaluations: tolerance %llu, stretch %llu, size %llu, valence "
       "%llu, topology %llu\n",
       result.splits, result.splits_skipped, result.splits_skipped - result.splits_skipped_valence,
@@ -179,7 +183,8 @@ int cmd_simplify(const Args& args) {
   const ThresholdViolations& v = result.violations;
   std::printf(
       "final mesh%s, breaking a threshold: %zu tets below the stretch, %zu above the size, "
-      "%zu nodes above the valence (%zu of them made by TetLOD)\n",
+      "%zu nodes above the valence (%zu of them new: the others are input tets or nodes, or "
+      "pieces of input tets, that already broke it)\n",
       improve ? " (before --improve)" : "", v.below_stretch, v.above_size, v.above_valence,
       v.created);
   if (v.above_size > 0) std::printf("why: %s\n", above_size_reason(params, result).c_str());
@@ -275,6 +280,10 @@ int cmd_lod(const Args& args) {
   }
   HistoryLevel level;
   if (!load_history_level(history_path, "lod", step, elements, &level)) return kExitBadInput;
+  std::string beyond = step >= 0 ? std::string()
+                                 : beyond_levels_note(elements, level.step, level.step_count,
+                                                      level.mesh.tet_count());
+  if (!beyond.empty()) beyond = " (" + beyond + ")";
   if (improve && !finish_simplify_options(level.mesh, "lod", &options)) return kExitUsage;
   ImproveResult improved;
   double seconds_improve = 0;
@@ -284,11 +293,11 @@ int cmd_lod(const Args& args) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
-  std::printf(
-      "%s: step %zu of %zu%s, %zu elements, %zu nodes (moved there in %.4f s)\n", out.c_str(),
-      level.step, level.step_count,
-      step > static_cast<long long>(level.step_count) ? " (the last: --step is past it)" : "",
-      level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
+  std::printf("%s: step %zu of %zu%s, %zu elements, %zu nodes (moved there in %.4f s)\n",
+              out.c_str(), level.step, level.step_count,
+              step > static_cast<long long>(level.step_count) ? " (the last: --step is past it)"
+                                                              : beyond.c_str(),
+              level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
   if (improve) print_improve(improved, seconds_improve);
   return kExitOk;
 }

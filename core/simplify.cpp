@@ -1555,17 +1555,18 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
 std::string above_size_reason(const SimplifyParams& params, const SimplifyResult& result) {
   if (!params.subdivide)
     return "subdivision was off, so the input's tets larger than the size stay unless a valid "
-           "collapse removes them";
+           "collapse removes them.";
   if (result.cancelled && result.history.step_count() == 0)
     return "the run was cancelled before any collapse: subdivision may not have split every "
-           "long edge";
+           "long edge.";
   if (result.splits_skipped == 0)  // not expected: every long edge was split
-    return "subdivision split every long edge it found";
+    return "subdivision split every long edge it found.";
   const size_t valence = result.splits_skipped_valence;
   const size_t shape = result.splits_skipped - valence;
   const bool both = shape > 0 && valence > 0;
-  std::string why = "these tets hold long edges that subdivision left unsplit (" +
-                    std::to_string(result.splits_skipped) + "): splitting ";
+  std::string why =
+      "these tets hold edges longer than half the size that subdivision left unsplit (" +
+      std::to_string(result.splits_skipped) + " such edges in the mesh): splitting ";
   if (shape > 0)
     why += (both ? std::to_string(shape) + " of them" : std::string("them")) +
            " would have made a piece flatter than the stretch threshold (or than its parent) "
@@ -1578,7 +1579,7 @@ std::string above_size_reason(const SimplifyParams& params, const SimplifyResult
   if (shape > 0)
     why += valence > 0 ? ", a lower stretch threshold" : " or a lower stretch threshold";
   if (valence > 0) why += " or a higher valence threshold";
-  return why + " leaves fewer";
+  return why + " leaves fewer.";
 }
 
 }  // namespace tetlod

@@ -280,10 +280,11 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
           "Final mesh: %zu tets below the stretch, %zu above the size, %zu nodes above the "
           "valence; %s.",
           v.below_stretch, v.above_size, v.above_valence,
-          v.created == 0 ? "all from the input, none made by TetLOD" : "some made by TetLOD");
+          v.created == 0 ? "all input ones or pieces of input tets that already broke it"
+                         : "some new ones: please report it");
       ImGui::PopStyleColor();
       if (!status.above_size_reason.empty())
-        ImGui::TextWrapped("Above the size: %s.", status.above_size_reason.c_str());
+        ImGui::TextWrapped("Above the size: %s", status.above_size_reason.c_str());
     }
   }
 }

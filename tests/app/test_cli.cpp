@@ -192,7 +192,8 @@ TEST(Cli, SimplifyThenLodWritesLevels) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("rejected evaluations"), std::string::npos);
   EXPECT_NE(r.output.find("evaluations: "), std::string::npos);
-  EXPECT_NE(r.output.find("0 of them made by TetLOD"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("0 of them new: the others are input tets or nodes"), std::string::npos)
+      << r.output;
   const std::string level = out_dir() + "/simp_level.vtu";
   const CommandResult l = run("lod " + history + " --step 0 -o " + level);
   ASSERT_EQ(l.code, 0) << l.output;
@@ -249,6 +250,16 @@ TEST(Cli, OutputsAreWrittenTogetherOrNotAtAll) {
   r = run("lod " + history + " --step 99999999 -o " + out);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("(the last: --step is past it)"), std::string::npos) << r.output;
+  r = run("lod " + history + " --elements 1 -o " + out);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("(the last: no level has fewer elements than this one)"),
+            std::string::npos)
+      << r.output;
+  r = run("lod " + history + " --elements 100000000 -o " + out);
+  EXPECT_NE(r.output.find("step 0 of "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(the first: no level has more elements than this one)"),
+            std::string::npos)
+      << r.output;
 }
 
 // A forged history whose mesh has positive tets that overlap (three on one face):
@@ -359,8 +370,10 @@ TEST(Cli, SimplifyKernelsAgreeBitForBit) {
       EXPECT_NE(r.output.find(size_line), std::string::npos) << r.output;
       // The bundled motor is coarse: some of its long edges cannot be split within the
       // thresholds, and the output says so, with both reasons.
-      EXPECT_NE(r.output.find("why: these tets hold long edges that subdivision left unsplit"),
-                std::string::npos)
+      EXPECT_NE(
+          r.output.find(
+              "why: these tets hold edges longer than half the size that subdivision left unsplit"),
+          std::string::npos)
           << r.output;
       EXPECT_NE(r.output.find("would have raised a node's valence"), std::string::npos);
     }
