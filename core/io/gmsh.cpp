@@ -846,6 +846,11 @@ class GmshParser {
   // Material of a tet from its physical tag (0: none) and elementary tag.
   bool resolve_material(int64_t physical, int64_t elementary, int32_t* material) {
     from_elementary_ = physical == 0;
+    current_elementary_ = elementary;
+    // An elementary entity in two physical groups: Gmsh 2.2 writes its elements once
+    // per group (drop_repeated_tets()).
+    const auto [it, inserted] = first_physical_of_.try_emplace(elementary, physical);
+    if (!inserted && it->second != physical) entity_in_two_groups_ = true;
     int64_t value = elementary;
     if (physical != 0) {
       const auto it = named_materials_.find(physical);
@@ -884,6 +889,7 @@ class GmshParser {
     out_->mesh.materials.push_back(material);
     if (!binary_) out_->tet_lines.push_back(line_number(line));
     element_tags_.push_back(element_tag);
+    tet_elementary_.push_back(current_elementary_);
     if (from_elementary_) {
       ++elementary_tets_;
       if (elementary_materials_.size() < 1000) elementary_materials_.insert(material);
@@ -1053,7 +1059,65 @@ class GmshParser {
   }
 
   // Orders the tets by element tag and rejects repeated tags.
+  // Gmsh 2.2 writes an element once for each physical group that holds it: the same
+  // tet (same nodes, same elementary entity) twice. Each is kept once, in the first
+  // group the file lists it in, and a note says so. Two different entities' tets on
+  // the same nodes stay, for the validation to report.
+  void drop_repeated_tets() {
+    if (version_ != 22 || !entity_in_two_groups_) return;
+    TetMesh& mesh = out_->mesh;
+    const size_t count = mesh.tets.size();
+    std::vector<Tet> keys(mesh.tets);
+    for (Tet& k : keys) std::sort(k.begin(), k.end());
+    std::vector<uint32_t> order(count);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+      return keys[a] != keys[b] ? keys[a] < keys[b] : a < b;
+    });
+    std::vector<uint8_t> drop(count, 0);
+    std::set<int32_t> dropped_materials;
+    size_t dropped = 0;
+    for (size_t i = 0, first = 0; i < count; ++i) {
+      if (i == 0 || keys[order[i]] != keys[order[first]]) {
+        first = i;
+        continue;
+      }
+      const uint32_t t = order[i];
+      for (size_t j = first; j < i; ++j) {
+        const uint32_t kept = order[j];
+        if (!drop[kept] && tet_elementary_[kept] == tet_elementary_[t]) {
+          drop[t] = 1;
+          ++dropped;
+          if (dropped_materials.size() < 10) dropped_materials.insert(mesh.materials[t]);
+          break;
+        }
+      }
+    }
+    if (dropped == 0) return;
+    size_t kept = 0;
+    for (size_t t = 0; t < count; ++t) {
+      if (drop[t]) continue;
+      mesh.tets[kept] = mesh.tets[t];
+      mesh.materials[kept] = mesh.materials[t];
+      element_tags_[kept] = element_tags_[t];
+      if (!out_->tet_lines.empty()) out_->tet_lines[kept] = out_->tet_lines[t];
+      ++kept;
+    }
+    mesh.tets.resize(kept);
+    mesh.materials.resize(kept);
+    element_tags_.resize(kept);
+    if (!out_->tet_lines.empty()) out_->tet_lines.resize(kept);
+    std::string groups;
+    for (int32_t m : dropped_materials) groups += (groups.empty() ? "" : ", ") + std::to_string(m);
+    out_->notes.push_back(std::to_string(dropped) +
+                          " tetrahedra are listed again in another physical group (Gmsh 2.2 "
+                          "writes an element once per group that holds it): each is read "
+                          "once, in the first group listed, not in group(s) " +
+                          groups);
+  }
+
   bool finish_elements() {
+    drop_repeated_tets();
     add_notes();
     TetMesh& mesh = out_->mesh;
     const size_t count = mesh.tets.size();
@@ -1106,8 +1170,12 @@ class GmshParser {
   std::vector<uint64_t> node_tags_;                              // sorted by finish_nodes()
   std::vector<uint32_t> node_lines_;
   uint64_t first_tag_ = 0;
-  std::vector<uint32_t> dense_index_;  // node tag - first_tag_ -> vertex, when compact
-  std::vector<int64_t> element_tags_;  // per tet
+  std::vector<uint32_t> dense_index_;    // node tag - first_tag_ -> vertex, when compact
+  std::vector<int64_t> element_tags_;    // per tet
+  std::vector<int64_t> tet_elementary_;  // per tet: its elementary entity's tag
+  int64_t current_elementary_ = 0;       // of the last resolve_material()
+  std::unordered_map<int64_t, int64_t> first_physical_of_;  // elementary -> physical
+  bool entity_in_two_groups_ = false;
 };
 
 void append_physical_names(const std::vector<int32_t>& materials,

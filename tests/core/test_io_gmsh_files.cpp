@@ -65,6 +65,31 @@ TEST(IoGmshFiles, PartitionedMeshesKeepTheirPhysicalGroups) {
       << all_notes(order2_info);
 }
 
+// An element in two physical groups is written twice by Gmsh 2.2: it is read once, in
+// the first group, and the mesh is the same as the one without the second group
+// (which used to fail as a non-manifold).
+TEST(IoGmshFiles, ElementsInTwoGroupsAreReadOnce) {
+  TetMesh twice, once;
+  ReadInfo info;
+  const Status s = read_mesh(gmsh_file("coax_two_groups22.msh"), &twice, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_TRUE(read_mesh(gmsh_file("coax_order2.msh"), &once).ok());
+  EXPECT_EQ(tets_per_material(twice), tets_per_material(once));
+  EXPECT_TRUE(has_note(info, "620 tetrahedra are listed again in another physical group"))
+      << all_notes(info);
+  EXPECT_TRUE(has_note(info, "not in group(s) 100")) << all_notes(info);
+  // The same nodes in two elementary entities are not a repeat but a broken mesh.
+  const std::string two_entities =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+      "4 0 0 1\n$EndNodes\n$Elements\n3\n1 4 2 1 1 1 2 3 4\n2 4 2 2 1 1 2 3 4\n"
+      "3 4 2 2 2 1 2 3 4\n$EndElements\n";
+  TetMesh mesh;
+  const Status broken =
+      read_mesh_from_memory(two_entities, MeshFormat::kGmsh22, "m.msh", &mesh, &info);
+  ASSERT_FALSE(broken.ok());
+  EXPECT_NE(broken.message().find("m.msh:"), std::string::npos) << broken.message();
+}
+
 // Prisms are not read: the note says so, and that the group they made has no tets.
 TEST(IoGmshFiles, SkippedElementsAreNamed) {
   TetMesh mesh;

@@ -11,3 +11,5 @@ gmsh coax.geo $opts -part 3 -format msh41 -bin -o coax_part3_bin.msh
 gmsh coax.geo $opts -order 2 -format msh41 -o coax_order2.msh
 # Tets and prisms.
 gmsh mixed.geo -3 -v 0 -format msh41 -o mixed_prisms.msh
+# Conductors in two physical groups each: Gmsh 2.2 writes their elements twice.
+gmsh coax_two_groups.geo $opts -format msh22 -o coax_two_groups22.msh
