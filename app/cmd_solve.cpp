@@ -16,7 +16,7 @@ namespace tetlod::app {
 namespace {
 
 constexpr const char* kSolveUsage =
-    "usage: tetlod solve MESH --conductor M=V[,M=V...] --ground boundary|M[,...]\n"
+    "usage: tetlod solve MESH --conductor M=V[,M=V...] [--ground boundary|M[,...]]\n"
     "                    [--eps M=E[,M=E...]] [-o FIELD.vtu] [--solver auto|direct|cg]\n"
     "                    [--preconditioner jacobi|ic] [--tolerance T]\n"
     "\n"
@@ -24,9 +24,11 @@ constexpr const char* kSolveUsage =
     "conductor material M held at potential V, every node of a ground material (or of\n"
     "the outer boundary, 'boundary') at 0, zero normal flux elsewhere. Prints the energy\n"
     "W = 1/2 int eps |grad u|^2, the capacitance C = 2 W / V^2 (V: highest minus lowest\n"
-    "potential), the solver's iterations and residual, and the time.\n"
+    "potential), the solver's iterations and residual, and the time. C is in the units\n"
+    "of eps times length: with relative permittivities, in eps0 times the mesh's unit.\n"
     "  --conductor M=V,...  conductor materials and their potentials\n"
-    "  --ground G,...       'boundary' and/or material ids held at 0\n"
+    "  --ground G,...       'boundary' and/or material ids held at 0 (needed unless the\n"
+    "                       conductors hold two potentials)\n"
     "  --eps M=E,...        permittivity per material, E > 0 (default 1 for the rest)\n"
     "  -o FIELD.vtu         write the potential (point data) and |E| (cell data) for ParaView\n"
     "  --solver S           auto (direct up to 2000 unknowns, else cg), direct, cg\n"
@@ -180,8 +182,16 @@ int cmd_solve(const Args& args) {
       return kExitUsage;
     }
   }
-  if (in.empty() || problem.conductors.empty() || !ground_given) {
-    std::fprintf(stderr, "tetlod solve: need MESH, --conductor and --ground\n\n%s", kSolveUsage);
+  // A ground is not needed when the conductors hold two potentials (a two-conductor
+  // capacitor: --conductor 1=1,4=0).
+  bool two_potentials = false;
+  for (const auto& c : problem.conductors)
+    two_potentials = two_potentials || c.second != problem.conductors.front().second;
+  if (in.empty() || problem.conductors.empty() || (!ground_given && !two_potentials)) {
+    std::fprintf(stderr,
+                 "tetlod solve: need MESH, --conductor and --ground (or conductors at two "
+                 "potentials)\n\n%s",
+                 kSolveUsage);
     return kExitUsage;
   }
 
@@ -201,7 +211,10 @@ int cmd_solve(const Args& args) {
               mesh.tet_count());
   std::printf("unknowns     %zu (%zu nodes held), %zu matrix entries\n", solution.free_count,
               solution.dirichlet_count, solution.nonzeros);
-  std::printf("capacitance  C = %.10g\n", solution.capacitance);
+  std::printf(
+      "capacitance  C = %.10g (in eps x length: with relative eps, in eps0 x the mesh's "
+      "length unit)\n",
+      solution.capacitance);
   std::printf("energy       W = %.10g (V = %.10g)\n", solution.energy, solution.voltage);
   if (solution.method == SolverMethod::kDirect) {
     std::printf("solver       direct (LDL^T), relative residual %.3g\n",

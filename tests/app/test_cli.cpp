@@ -399,6 +399,15 @@ TEST(Cli, SolveSpheresPrintsCapacitanceAndWritesTheField) {
   EXPECT_NE(r.output.find("capacitance  C = 46.9104"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("energy       W = 23.4552"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("time "), std::string::npos);
+  // Two conductors at two potentials need no ground: the outer sphere at 0 V is the
+  // same problem.
+  const CommandResult two = run("solve " + spheres + " --conductor 1=1,4=0 --eps 2=2,3=5");
+  ASSERT_EQ(two.code, 0) << two.output;
+  EXPECT_NE(two.output.find("capacitance  C = 46.9104"), std::string::npos) << two.output;
+  const CommandResult one = run("solve " + spheres + " --conductor 1=1 --eps 2=2,3=5");
+  EXPECT_EQ(one.code, 2) << one.output;
+  EXPECT_NE(one.output.find("--ground (or conductors at two potentials)"), std::string::npos)
+      << one.output;
   std::ifstream file(field);
   std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("<PointData Scalars=\"potential\">"), std::string::npos);
