@@ -96,6 +96,25 @@ void mesh_bounds(const TetMesh& mesh, Vec3* lo, Vec3* hi) {
   }
 }
 
+// The bounds of the input's tets of the shown materials (`hidden` sorted), for the
+// camera to frame what is on screen (as `tetlod render --view`); the whole mesh's if
+// every material is hidden.
+void shown_bounds(const TetMesh& mesh, const std::vector<int32_t>& hidden, Vec3* lo, Vec3* hi) {
+  if (hidden.empty()) return mesh_bounds(mesh, lo, hi);
+  bool any = false;
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    if (std::binary_search(hidden.begin(), hidden.end(), mesh.materials[t])) continue;
+    for (uint32_t v : mesh.tets[t]) {
+      const Vec3& p = mesh.positions[v];
+      if (!any) *lo = *hi = p;
+      any = true;
+      *lo = {std::min(lo->x, p.x), std::min(lo->y, p.y), std::min(lo->z, p.z)};
+      *hi = {std::max(hi->x, p.x), std::max(hi->y, p.y), std::max(hi->z, p.z)};
+    }
+  }
+  if (!any) mesh_bounds(mesh, lo, hi);
+}
+
 render::SurfaceFilter make_filter(const ui::ViewSettings& view) {
   render::SurfaceFilter filter;
   filter.hidden_materials = view.hidden_materials;
@@ -767,7 +786,9 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     thresholds_.subdivide = subdivide;
     thresholds_.tolerance = static_cast<float>(scene_->default_tolerance);
     thresholds_.size = static_cast<float>(scene_->default_size);
-    camera_.fit(scene_->lo, scene_->hi, render::ViewDirection::kIso);
+    Vec3 lo, hi;
+    shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
+    camera_.fit(lo, hi, render::ViewDirection::kIso);
     add_recent(scene_->path);
     std::snprintf(panel_.open_path, sizeof(panel_.open_path), "%s", scene_->path.c_str());
   }
@@ -820,14 +841,20 @@ void Viewer::execute(const ui::Command& command) {
             scene_->lod->step_for_elements(static_cast<size_t>(std::max(0LL, command.value))));
       break;
     case ui::CommandKind::kFit:
-      if (scene_) camera_.fit(scene_->lo, scene_->hi, render::ViewDirection::kIso);
+      if (scene_) {
+        Vec3 lo, hi;
+        shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
+        camera_.fit(lo, hi, render::ViewDirection::kIso);
+      }
       break;
     case ui::CommandKind::kAxisView:
       if (scene_) {
         const render::ViewDirection views[] = {render::ViewDirection::kIso,
                                                render::ViewDirection::kX, render::ViewDirection::kY,
                                                render::ViewDirection::kZ};
-        camera_.fit(scene_->lo, scene_->hi, views[std::clamp<long long>(command.value, 0, 3)]);
+        Vec3 lo, hi;
+        shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
+        camera_.fit(lo, hi, views[std::clamp<long long>(command.value, 0, 3)]);
       }
       break;
     case ui::CommandKind::kSave: {

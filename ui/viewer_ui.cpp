@@ -435,7 +435,8 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
     ImGui::Text("This is the finest level.");
   } else if (a.has_finest) {
     const double diff = 100 * (a.capacitance - a.finest_capacitance) / a.finest_capacitance;
-    ImGui::Text("Finest level: C = %.10g", a.finest_capacitance);
+    ImGui::TextWrapped("Finest level (step 0: the input as subdivided): C = %.10g",
+                       a.finest_capacitance);
     ImGui::Text("Difference from finest: %+.4f %%", diff);
   } else {
     ImGui::TextDisabled("Finest level: not solved yet");
@@ -458,7 +459,7 @@ void row_cells(const PropertyRow& r) {
   ImGui::TableNextColumn();
   ImGui::Text("%.3g", r.max_size);
   ImGui::TableNextColumn();
-  ImGui::Text("%.4g", r.volume);
+  ImGui::Text("%.7g", r.volume);
 }
 
 void stats_window(const ViewerStatus& status, PanelState* panel) {

@@ -395,6 +395,25 @@ TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
   EXPECT_EQ(saved.tet_count(), input.tet_count());  // no simplification: the input itself
 }
 
+// Fit frames the shown materials, as `tetlod render --view` does: with the motor's
+// box (material 1) hidden, the parts inside fill more of the picture after a Fit
+// than in the whole mesh's framing.
+TEST(ViewerWindow, FitFramesTheShownMaterials) {
+  const fs::path dir = fresh_output_dir("viewer_fit_shown");
+  std::ofstream(dir / "fit.script") << "hide 1\nscreenshot before.png width=320 height=320\n"
+                                       "view fit\nscreenshot fitted.png width=320 height=320\n"
+                                       "view z\nscreenshot z.png width=320 height=320\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script fit.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const double before = non_background(load_png(dir / "before.png"), 0, 0, 320, 320);
+  const double fitted = non_background(load_png(dir / "fitted.png"), 0, 0, 320, 320);
+  const double z = non_background(load_png(dir / "z.png"), 0, 0, 320, 320);
+  EXPECT_GT(before, 0.02);
+  EXPECT_GT(fitted, 1.3 * before) << before << " -> " << fitted;
+  EXPECT_GT(z, 1.3 * before) << before << " -> " << z;
+}
+
 // The README's example script runs as the README says it does, on the bundled spheres,
 // and writes every file it names.
 TEST(ViewerWindow, ReadmeExampleScriptRuns) {
