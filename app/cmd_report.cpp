@@ -216,7 +216,7 @@ int cmd_report(const Args& args) {
   if (!open_offscreen_renderer("report", &offscreen)) return kExitBadInput;
 
   std::vector<Level> meshes;
-  std::string thresholds;
+  std::string thresholds, run_summary;
   if (from_history) {
     const size_t last = history.lod->step_count();
     meshes.push_back({"step 0 (the subdivided input)", std::move(input)});
@@ -240,6 +240,23 @@ int cmd_report(const Args& args) {
       std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
       return kExitBadInput;
     }
+    // What the run did and what the final mesh still breaks, as `tetlod simplify`
+    // prints it.
+    const RejectionCounts& r = result.rejections;
+    const ThresholdViolations& v = result.violations;
+    run_summary =
+        std::to_string(result.splits) + " splits, " + std::to_string(result.history.step_count()) +
+        " collapses; rejected evaluations: tolerance " + std::to_string(r.tolerance) +
+        ", stretch " + std::to_string(r.stretch) + ", size " + std::to_string(r.size) +
+        ", valence " + std::to_string(r.valence) + ", topology " + std::to_string(r.topology) +
+        ". Final mesh" + (so.improve ? std::string(" (before --improve)") : std::string()) + ": " +
+        std::to_string(v.below_stretch) + " tets below the stretch, " +
+        std::to_string(v.above_size) + " above the size, " + std::to_string(v.above_valence) +
+        " nodes above the valence (" + std::to_string(v.created) +
+        " of them new: the others are input tets or nodes, or pieces of input tets, "
+        "that already broke it)." +
+        (v.above_size > 0 ? " Above the size: " + above_size_reason(so.params, result)
+                          : std::string());
     thresholds = "size " + describe_size(so.params.sizing) + ", stretch " +
                  format("%g", so.params.min_stretch) + ", valence " +
                  std::to_string(so.params.max_valence) + ", tolerance " +
@@ -319,6 +336,7 @@ int cmd_report(const Args& args) {
       "</head><body>\n<h1>TetLOD report</h1>\n<p>Input: <code>" +
       html_escape(in) + "</code>" +
       (thresholds.empty() ? "" : "<br>Thresholds: " + html_escape(thresholds)) +
+      (run_summary.empty() ? "" : "<br>Run: " + html_escape(run_summary)) +
       (from_history ? "<br>The levels of a saved collapse history, without simplifying again (a "
                       "history keeps no thresholds)"
                     : "") +

@@ -260,6 +260,10 @@ TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
   EXPECT_NE(html.find("level ~100"), std::string::npos);
   EXPECT_NE(html.find("level ~60"), std::string::npos);
   EXPECT_NE(html.find("simplified (step"), std::string::npos);
+  // What the run did and what the final mesh still breaks, as simplify prints it.
+  EXPECT_NE(html.find("<br>Run: 0 splits, "), std::string::npos);
+  EXPECT_NE(html.find(" collapses; rejected evaluations: tolerance "), std::string::npos);
+  EXPECT_NE(html.find("Final mesh: 0 tets below the stretch, "), std::string::npos);
   // input, two levels, the final mesh: a picture and a histogram each.
   EXPECT_EQ(count_of(html, "<img src=\"data:image/png;base64,iVBORw0KGgo"), 8u);
   EXPECT_EQ(png_size(dir + "/level0.png"), std::make_pair(96, 96));
