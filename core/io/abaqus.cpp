@@ -101,6 +101,14 @@ class AbaqusParser {
       if (!data(record, first_line)) return error_;
     }
     if (!resolve()) return error_;
+    if (!skipped_solids_.empty()) {
+      std::string list;
+      for (const auto& [type, count] : skipped_solids_)
+        list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + type;
+      out_->notes.push_back("skipped the elements " + list +
+                            ": TetLOD reads tetrahedra only, so a region meshed with other "
+                            "elements is not in the mesh");
+    }
     return Status();
   }
 
@@ -153,6 +161,11 @@ class AbaqusParser {
       const std::string type = upper(k.get("TYPE"));
       if (type.empty()) return fail(line_, "*ELEMENT needs TYPE=");
       element_nodes_ = tet_nodes(type);
+      // Solid elements other than tets (C3D8, C3D6, ...) are skipped: counted for a note.
+      skipped_type_ =
+          element_nodes_ == 0 && (type.rfind("C3D", 0) == 0 || type.rfind("DC3D", 0) == 0)
+              ? type
+              : std::string();
       element_set_ = k.has("ELSET") ? key_of(k.get("ELSET")) : -1;
       element_set_name_ = upper(k.get("ELSET"));
       mode_ = Mode::kElements;
@@ -234,7 +247,10 @@ class AbaqusParser {
     if (!integer(f[0], &id) || id < 1) {
       return fail(line, "element id '" + std::string(f[0]) + "' is not an integer >= 1");
     }
-    if (element_nodes_ == 0) return true;  // not a tet
+    if (element_nodes_ == 0) {  // not a tet
+      if (!skipped_type_.empty() && skipped_solids_.size() < 100) ++skipped_solids_[skipped_type_];
+      return true;
+    }
     if (f.size() != size_t(element_nodes_) + 1) {
       return fail(line, "element " + std::to_string(id) + " has " + std::to_string(f.size() - 1) +
                             " nodes, its type " + std::to_string(element_nodes_));
@@ -434,6 +450,8 @@ class AbaqusParser {
   int parts_ = 0;
   size_t instance_line_ = 0;
   int element_nodes_ = 0;
+  std::string skipped_type_;                      // of the *ELEMENT block: a non-tet solid
+  std::map<std::string, size_t> skipped_solids_;  // by type
   int element_set_ = -1;
   std::string element_set_name_;
   std::string current_set_;

@@ -152,6 +152,8 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   }
   bool seen_vertices = false;
   bool seen_tets = false;
+  std::string skipped_volumes;  // "28 Prisms, 3 Hexahedra"
+
   while (!scanner.failed() && scanner.next_token(&keyword)) {
     auto is = [&](const char* word) { return TextScanner::equals_ignore_case(keyword, word); };
     if (is("End")) break;
@@ -172,6 +174,11 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
       const uint64_t width = uint64_t(skipped->numbers_per_entry);
       if (skipped->has_count) scanner.read_count(&count, "entry count", 2 * width);
       if (!scanner.failed()) scanner.skip_numbers(count * width, skipped->name);
+      // Volume elements other than 4-node tets are not read: say so.
+      for (const char* volume : {"Prisms", "Pyramids", "Hexahedra", "HexahedraQ2", "TetrahedraP2"})
+        if (count > 0 && std::string_view(skipped->name) == volume)
+          skipped_volumes +=
+              (skipped_volumes.empty() ? "" : ", ") + std::to_string(count) + " " + volume;
     } else if (is_string_keyword(keyword)) {
       skip_string(scanner, keyword);
     } else if (TextScanner::looks_numeric(keyword)) {
@@ -183,7 +190,17 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   }
   if (scanner.failed()) return scanner.status();
   if (!seen_vertices) return Status::error(name + ": no Vertices section");
-  if (!seen_tets) return Status::error(name + ": no Tetrahedra section");
+  if (!seen_tets) {
+    return Status::error(name + ": no Tetrahedra section" +
+                         (skipped_volumes.empty() ? std::string()
+                                                  : " (TetLOD reads 4-node tetrahedra only, not " +
+                                                        skipped_volumes + ")"));
+  }
+  if (!skipped_volumes.empty()) {
+    out->notes.push_back("skipped " + skipped_volumes +
+                         ": TetLOD reads 4-node tetrahedra only, so a region meshed with other "
+                         "elements is not in the mesh");
+  }
   return Status();
 }
 

@@ -63,6 +63,11 @@ inline int vtk_material_rank(std::string_view name) {
   return -1;
 }
 
+// The notes a .vtk or .vtu reader gives of its cells by VTK type (`counts`, every
+// cell): volume cells other than tets that it skipped, and quadratic tets read by
+// their corners. Surface, line and vertex cells are skipped without a note.
+void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh* out);
+
 // The note a reader gives when a file has cell arrays but none of them is read as
 // the material (`arrays`: their names, as in the file), so that every tet is
 // material 0.

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "core/io/mesh_formats.h"
 #include "core/io/text_lines.h"
@@ -87,6 +89,14 @@ class NastranParser {
                            "ends with ENDDATA");
     }
     if (!resolve()) return error_;
+    if (!skipped_solids_.empty()) {
+      std::string list;
+      for (const auto& [card, count] : skipped_solids_)
+        list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + card;
+      out_->notes.push_back("skipped the solid elements " + list +
+                            ": TetLOD reads CTETRA only, so a region meshed with other elements "
+                            "is not in the mesh");
+    }
     return Status();
   }
 
@@ -230,6 +240,11 @@ class NastranParser {
     card_open_ = false;
     if (card_name_ == "GRID") return grid();
     if (card_name_ == "CTETRA") return ctetra();
+    if (card_name_ == "CHEXA" || card_name_ == "CPENTA" || card_name_ == "CPYRAM" ||
+        card_name_ == "CPYRA") {
+      ++skipped_solids_[card_name_];
+      return true;
+    }
     if (card_name_ == "INCLUDE") {
       return fail(card_line_,
                   "INCLUDE is not followed: read the included file instead, or "
@@ -371,6 +386,7 @@ class NastranParser {
   std::vector<std::pair<int64_t, uint32_t>> sorted_;  // (id, vertex), else
   std::vector<PendingTet> tets_;
   int64_t zero_pid_ = -1;
+  std::map<std::string, size_t> skipped_solids_;  // CHEXA, CPENTA, CPYRAM entries
 };
 
 // `value` in at most 16 characters as a Nastran real (with a decimal point): exact

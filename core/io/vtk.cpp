@@ -620,9 +620,11 @@ class VtkLegacyParser {
     if (!seen_cells_) return scanner_.fail("no CELLS section");
     if (!seen_types_) return scanner_.fail("no CELL_TYPES section");
     TetMesh& mesh = out_->mesh;
+    std::vector<uint64_t> counts_by_type(128, 0);
     for (size_t c = 0; c < cell_count(); ++c) {
       const uint64_t size = cell_starts_[c + 1] - cell_starts_[c];
       const int64_t type = cell_types_[c];
+      if (type >= 0 && type < 128) ++counts_by_type[size_t(type)];
       if (type != kVtkTetra && type != kVtkQuadraticTetra) continue;
       if (size != (type == kVtkTetra ? 4u : 10u)) {
         return scanner_.fail_at_line(binary_ ? 0 : cell_lines_[c],
@@ -644,6 +646,7 @@ class VtkLegacyParser {
       mesh.materials.push_back(has_materials_ ? cell_materials_[c] : 0);
       if (!binary_) out_->tet_lines.push_back(cell_lines_[c]);
     }
+    add_vtk_cell_notes(counts_by_type, out_);
     if (!has_materials_ && !cell_arrays_.empty())
       out_->notes.push_back(no_material_note(cell_arrays_));
     return true;
@@ -672,6 +675,36 @@ class VtkLegacyParser {
 };
 
 }  // namespace
+
+void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh* out) {
+  auto count = [&](std::initializer_list<int> types) {
+    uint64_t n = 0;
+    for (int t : types)
+      if (size_t(t) < counts_by_type.size()) n += counts_by_type[size_t(t)];
+    return n;
+  };
+  const struct {
+    const char* name;
+    uint64_t n;
+  } skipped[] = {{"hexahedra", count({11, 12, 25, 29, 33, 72})},
+                 {"wedges", count({13, 26, 32, 73})},
+                 {"pyramids", count({14, 27, 74})},
+                 {"polyhedra", count({15, 16, 42})},
+                 {"higher-order tetrahedra", count({71})}};
+  std::string list;
+  for (const auto& s : skipped)
+    if (s.n > 0) list += (list.empty() ? "" : ", ") + std::to_string(s.n) + " " + s.name;
+  if (!list.empty()) {
+    out->notes.push_back("skipped " + list +
+                         ": TetLOD reads tetrahedra only, so a region meshed with other cells is "
+                         "not in the mesh");
+  }
+  if (const uint64_t quadratic = count({int(kVtkQuadraticTetra)}); quadratic > 0) {
+    out->notes.push_back(std::to_string(quadratic) +
+                         " quadratic (10-node) tetrahedra were read as 4-node ones (by their "
+                         "corners; their mid-edge points are dropped)");
+  }
+}
 
 std::string no_material_note(const std::vector<std::string>& arrays) {
   std::string names, known;

@@ -747,9 +747,11 @@ class VtuParser {
       return;
     }
     TetMesh& mesh = out_->mesh;
+    std::vector<uint64_t> counts_by_type(128, 0);
     uint64_t start = 0;
     for (size_t c = 0; c < cell_count_; ++c) {
       const uint64_t end = offsets_[c];
+      if (types_[c] >= 0 && types_[c] < 128) ++counts_by_type[size_t(types_[c])];
       if (end < start || end > connectivity_.size()) {
         fail_at(offsets_line_, "offset " + std::to_string(end) + " of cell " + std::to_string(c) +
                                    " is out of order or past the connectivity array");
@@ -779,6 +781,7 @@ class VtuParser {
       }
       start = end;
     }
+    add_vtk_cell_notes(counts_by_type, out_);
     if (!has_materials_ && !cell_arrays_.empty())
       out_->notes.push_back(no_material_note(cell_arrays_));
   }

@@ -47,6 +47,64 @@ TEST(IoSamples, ReadFilesInOtherToolsConventions) {
   }
 }
 
+// Cells the readers skip, or read by their corners, are named in a note.
+TEST(IoSamples, SkippedCellsAreNoted) {
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(test::data_path("vtk_mixed.vtk"), &mesh, &info).ok());
+  ASSERT_FALSE(info.notes.empty());
+  EXPECT_NE(info.notes[0].find("skipped 1 hexahedra: TetLOD reads tetrahedra only"),
+            std::string::npos)
+      << info.notes[0];
+  // A quadratic tet (type 24) and a wedge (13) in a legacy file.
+  const std::string vtk =
+      "# vtk DataFile Version 3.0\nm\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 10 double\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1 0.5 0 0 0.5 0.5 0 0 0.5 0 0 0 0.5 0.5 0 0.5 0 0.5 0.5\n"
+      "CELLS 2 18\n10 0 1 2 3 4 5 6 7 8 9\n6 0 1 2 3 4 5\nCELL_TYPES 2\n24\n13\n";
+  ASSERT_TRUE(read_mesh_from_memory(vtk, MeshFormat::kVtkLegacy, "m.vtk", &mesh, &info).ok());
+  ASSERT_EQ(info.notes.size(), 2u);
+  EXPECT_NE(info.notes[0].find("skipped 1 wedges"), std::string::npos) << info.notes[0];
+  EXPECT_NE(info.notes[1].find("1 quadratic (10-node) tetrahedra were read as 4-node ones"),
+            std::string::npos)
+      << info.notes[1];
+  EXPECT_EQ(mesh.tet_count(), 1u);
+  // Medit: a Prisms section beside the tets is noted; TetrahedraP2 alone is named in the
+  // error.
+  const std::string medit =
+      "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n"
+      "0 0 1 0\n";
+  ASSERT_TRUE(read_mesh_from_memory(medit + "Tetrahedra\n1\n1 2 3 4 1\nPrisms\n1\n"
+                                            "1 2 3 1 2 3 2\nEnd\n",
+                                    MeshFormat::kMedit, "m.mesh", &mesh, &info)
+                  .ok());
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_NE(info.notes[0].find("skipped 1 Prisms: TetLOD reads 4-node tetrahedra only"),
+            std::string::npos)
+      << info.notes[0];
+  const Status p2 = read_mesh_from_memory(medit + "TetrahedraP2\n1\n1 2 3 4 1 2 3 4 1 2 1\nEnd\n",
+                                          MeshFormat::kMedit, "m.mesh", &mesh, &info);
+  ASSERT_FALSE(p2.ok());
+  EXPECT_NE(p2.message().find("no Tetrahedra section (TetLOD reads 4-node tetrahedra only, not "
+                              "1 TetrahedraP2)"),
+            std::string::npos)
+      << p2.message();
+  // Nastran's CPENTA and Abaqus's C3D6 beside a tet.
+  const std::string nastran =
+      "BEGIN BULK\nGRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n"
+      "GRID,5,,1.,1.,1.\nGRID,6,,1.,1.,0.\nCTETRA,1,1,1,2,3,4\nCPENTA,2,2,1,2,3,4,5,6\n"
+      "ENDDATA\n";
+  ASSERT_TRUE(read_mesh_from_memory(nastran, MeshFormat::kNastran, "m.bdf", &mesh, &info).ok());
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_NE(info.notes[0].find("skipped the solid elements 1 CPENTA"), std::string::npos)
+      << info.notes[0];
+  const std::string abaqus =
+      "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n5,1,1,1\n6,1,1,0\n"
+      "*ELEMENT,TYPE=C3D4,ELSET=A\n1,1,2,3,4\n*ELEMENT,TYPE=C3D6,ELSET=B\n2,1,2,3,4,5,6\n";
+  ASSERT_TRUE(read_mesh_from_memory(abaqus, MeshFormat::kAbaqus, "m.inp", &mesh, &info).ok());
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_NE(info.notes[0].find("skipped the elements 1 C3D6"), std::string::npos) << info.notes[0];
+}
+
 TEST(IoSamples, GmshOrdersVerticesByNodeTagAndTetsByElementTag) {
   TetMesh mesh;
   ASSERT_TRUE(read_mesh(test::data_path("gmsh22_mixed.msh"), &mesh).ok());
