@@ -343,6 +343,26 @@ class GmshParser {
     return expect_end("$EndPartitionedEntities");
   }
 
+  // The rest of a binary (partitioned) entity after its tags: the coordinates or
+  // bounding box, the physical tags (the first into `physical`, 0 if none), and for
+  // curves, surfaces and volumes the bounding entities.
+  bool binary_entity_tail(BinaryCursor& c, int dimension, int32_t* physical) {
+    for (int k = 0; k < (dimension == 0 ? 3 : 6); ++k) c.f64();
+    uint64_t physical_count = 0;
+    if (!binary_count(c, &physical_count, "physical tag count", 4)) return false;
+    *physical = 0;
+    for (uint64_t k = 0; k < physical_count; ++k) {
+      const int32_t value = c.i32();
+      if (k == 0) *physical = value;
+    }
+    if (dimension > 0) {
+      uint64_t bounding = 0;
+      if (!binary_count(c, &bounding, "bounding entity count", 4)) return false;
+      for (uint64_t k = 0; k < bounding; ++k) c.i32();
+    }
+    return true;
+  }
+
   bool parse_partitioned_entities_binary() {
     if (!begin_binary()) return false;
     BinaryCursor c = binary_cursor();
@@ -362,21 +382,11 @@ class GmshParser {
         const int32_t tag = c.i32();
         const int32_t parent_dimension = c.i32();
         const int32_t parent = c.i32();
-        uint64_t partition_count = 0, physical_count = 0;
+        uint64_t partition_count = 0;
         if (!binary_count(c, &partition_count, "partition count", 4)) return false;
         for (uint64_t k = 0; k < partition_count; ++k) c.i32();
-        for (int k = 0; k < (dimension == 0 ? 3 : 6); ++k) c.f64();
-        if (!binary_count(c, &physical_count, "physical tag count", 4)) return false;
         int32_t physical = 0;
-        for (uint64_t k = 0; k < physical_count; ++k) {
-          const int32_t value = c.i32();
-          if (k == 0) physical = value;
-        }
-        if (dimension > 0) {
-          uint64_t bounding = 0;
-          if (!binary_count(c, &bounding, "bounding entity count", 4)) return false;
-          for (uint64_t k = 0; k < bounding; ++k) c.i32();
-        }
+        if (!binary_entity_tail(c, dimension, &physical)) return false;
         if (dimension == 3 && c.ok()) add_partition_volume(tag, parent_dimension, parent, physical);
       }
     }
@@ -396,19 +406,8 @@ class GmshParser {
     for (int dimension = 0; dimension < 4 && c.ok(); ++dimension) {
       for (uint64_t i = 0; i < counts[dimension] && c.ok(); ++i) {
         const int32_t tag = c.i32();
-        for (int k = 0; k < (dimension == 0 ? 3 : 6); ++k) c.f64();
-        uint64_t physical_count = 0;
-        if (!binary_count(c, &physical_count, "physical tag count", 4)) return false;
         int32_t physical = 0;
-        for (uint64_t k = 0; k < physical_count; ++k) {
-          const int32_t value = c.i32();
-          if (k == 0) physical = value;
-        }
-        if (dimension > 0) {
-          uint64_t bounding = 0;
-          if (!binary_count(c, &bounding, "bounding entity count", 4)) return false;
-          for (uint64_t k = 0; k < bounding; ++k) c.i32();
-        }
+        if (!binary_entity_tail(c, dimension, &physical)) return false;
         if (dimension == 3) volume_physical_[tag] = physical;
       }
     }
