@@ -848,8 +848,8 @@ class GmshParser {
     current_elementary_ = elementary;
     // An elementary entity in two physical groups: Gmsh 2.2 writes its elements once
     // per group (drop_repeated_tets()).
-    const auto [it, inserted] = first_physical_of_.try_emplace(elementary, physical);
-    if (!inserted && it->second != physical) entity_in_two_groups_ = true;
+    const auto [first, inserted] = first_physical_of_.try_emplace(elementary, physical);
+    if (!inserted && first->second != physical) entity_in_two_groups_ = true;
     int64_t value = elementary;
     if (physical != 0) {
       const auto it = named_materials_.find(physical);
