@@ -19,6 +19,12 @@ namespace {
 
 constexpr int64_t kTet4 = 4;
 constexpr int64_t kTet10 = 11;
+
+// Tets of any order (4, 10, 20, 35, 56 nodes): Gmsh lists their corners first, and
+// they are read by them.
+bool is_tet_type(int64_t type) {
+  return type == kTet4 || type == kTet10 || type == 29 || type == 30 || type == 31;
+}
 constexpr int64_t kMaxTag = std::numeric_limits<int64_t>::max();
 constexpr const char* kMaterialPrefix = "material_";
 
@@ -32,7 +38,7 @@ int nodes_per_element(int64_t type) {
   return 0;
 }
 
-// What a reader that keeps only 4- and 10-node tets says of the elements it skips:
+// What a reader that keeps only tets says of the elements it skips:
 // the plural name of a volume or surface element type, nullptr for other types
 // (points, lines), which a tet mesh's file holds as a matter of course.
 const char* skipped_volume_elements(int64_t type) {
@@ -51,10 +57,6 @@ const char* skipped_volume_elements(int64_t type) {
     case 14:
     case 19:
       return "pyramids";
-    case 29:
-    case 30:
-    case 31:
-      return "tetrahedra of order 3 to 5";
     default:
       return nullptr;
   }
@@ -524,7 +526,7 @@ class GmshParser {
       const uint64_t ints = 1 + uint64_t(tag_count) + uint64_t(nodes);
       if (!c.fits(uint64_t(following), 4 * ints)) return truncated("$Elements");
       count_elements(type, uint64_t(following));
-      const bool is_tet = type == kTet4 || type == kTet10;
+      const bool is_tet = is_tet_type(type);
       for (int32_t e = 0; e < following; ++e) {
         const int64_t element_tag = c.i32();
         int64_t physical = 0, elementary = 0;
@@ -584,7 +586,7 @@ class GmshParser {
       }
       elements_read += block_size;
       count_elements(type, block_size);
-      const bool is_tet = type == kTet4 || type == kTet10;
+      const bool is_tet = is_tet_type(type);
       int32_t material = 0;
       if (is_tet) {
         const auto it = volume_physical_.find(entity);
@@ -870,7 +872,8 @@ class GmshParser {
       if (!scanner_.read_int(&corner, "node tag")) return false;
     }
     if (!store_tet(element_tag, corners, material, line)) return false;
-    return type != kTet10 || scanner_.skip_numbers(6, "node tags");
+    return type == kTet4 ||
+           scanner_.skip_numbers(uint64_t(nodes_per_element(type) - 4), "node tags");
   }
 
   // Stores a tet from the node tags of its corners (`line` only for text files).
@@ -927,7 +930,7 @@ class GmshParser {
         if (k == 1) elementary = value;
       }
       count_elements(type, 1);
-      if (type == kTet4 || type == kTet10) {
+      if (is_tet_type(type)) {
         int32_t material = 0;
         if (!resolve_material(physical, elementary, &material) ||
             !read_tet(element_tag, type, material, line)) {
@@ -963,7 +966,7 @@ class GmshParser {
       }
       elements_read += block_size;
       count_elements(type, block_size);
-      const bool is_tet = type == kTet4 || type == kTet10;
+      const bool is_tet = is_tet_type(type);
       int32_t material = 0;
       if (is_tet) {
         const auto it = volume_physical_.find(entity);
@@ -1011,13 +1014,18 @@ class GmshParser {
       for (const auto& [name, count] : skipped_volumes)
         parts.push_back(std::to_string(count) + " " + name);
       out_->notes.push_back("skipped " + quoted_list(parts) +
-                            ": TetLOD reads 4- and 10-node tetrahedra only, so a region "
+                            ": TetLOD reads tetrahedra only, so a region "
                             "meshed with other elements is not in the mesh");
     }
-    if (const auto it = element_counts_.find(kTet10); it != element_counts_.end()) {
-      out_->notes.push_back(std::to_string(it->second) +
-                            " 10-node tetrahedra were read as 4-node ones (by their corners; "
-                            "their mid-edge nodes are dropped)");
+    uint64_t higher_order = 0;
+    for (int64_t type : {kTet10, int64_t{29}, int64_t{30}, int64_t{31}}) {
+      if (const auto it = element_counts_.find(type); it != element_counts_.end())
+        higher_order += it->second;
+    }
+    if (higher_order > 0) {
+      out_->notes.push_back(std::to_string(higher_order) +
+                            " higher-order tetrahedra (10 nodes or more) were read as 4-node "
+                            "ones (by their corners; their other nodes are dropped)");
     }
     std::vector<std::string> surface_names, volume_names;
     for (const auto& [key, name] : physical_names_) {

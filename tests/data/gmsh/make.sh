@@ -13,3 +13,6 @@ gmsh coax.geo $opts -order 2 -format msh41 -o coax_order2.msh
 gmsh mixed.geo -3 -v 0 -format msh41 -o mixed_prisms.msh
 # Conductors in two physical groups each: Gmsh 2.2 writes their elements twice.
 gmsh coax_two_groups.geo $opts -format msh22 -o coax_two_groups22.msh
+# Third-order (20-node) tets, and the same mesh first-order.
+gmsh cube.geo -3 -clmin 0.8 -clmax 0.8 -v 0 -order 3 -format msh41 -o cube_order3.msh
+gmsh cube.geo -3 -clmin 0.8 -clmax 0.8 -v 0 -format msh41 -o cube_order1.msh
