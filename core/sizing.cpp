@@ -5,7 +5,6 @@
 #include <cmath>
 #include <vector>
 
-
 namespace tetlod {
 
 double SizingField::size_at(const Vec3& p, int32_t material) const {

@@ -162,7 +162,9 @@ TEST(Simplify, CountsUnsplitEdgesByReasonAndExplainsTetsAboveTheSize) {
   ASSERT_GT(r.violations.above_size, 0u);
   EXPECT_EQ(r.violations.created, 0u);
   std::string why = above_size_reason(p, r);
-  EXPECT_NE(why.find("(" + std::to_string(r.splits_skipped) + " such edges in the mesh)"), std::string::npos) << why;
+  EXPECT_NE(why.find("(" + std::to_string(r.splits_skipped) + " such edges in the mesh)"),
+            std::string::npos)
+      << why;
   EXPECT_NE(why.find("valence"), std::string::npos) << why;
   EXPECT_EQ(why.find("flatter"), std::string::npos) << why;
 
