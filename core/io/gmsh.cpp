@@ -9,6 +9,7 @@
 #include <numeric>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/io/mesh_formats.h"
 #include "core/io/text_scanner.h"
@@ -845,7 +846,13 @@ class GmshParser {
   }
 
   // Material of a tet from its physical tag (0: none) and elementary tag.
+  // Runs of elements with the same tags (a 2.2 file's are in runs; 4.1 asks once per
+  // block) reuse the last answer, so the bookkeeping for the notes is done once a run.
   bool resolve_material(int64_t physical, int64_t elementary, int32_t* material) {
+    if (has_last_tags_ && physical == last_physical_ && elementary == current_elementary_) {
+      *material = last_material_;
+      return true;
+    }
     from_elementary_ = physical == 0;
     current_elementary_ = elementary;
     // An elementary entity in two physical groups: Gmsh 2.2 writes its elements once
@@ -862,10 +869,15 @@ class GmshParser {
       return scanner_.fail("material id " + std::to_string(value) + " is out of range");
     }
     *material = int32_t(value);
+    std::set<int32_t>& noted = from_elementary_ ? elementary_materials_ : physical_materials_;
+    if (noted.size() < 1000) noted.insert(*material);
+    has_last_tags_ = true;
+    last_physical_ = physical;
+    last_material_ = *material;
     return true;
   }
 
-  // Reads the node tags of a tet element (4 or 10 nodes) and stores its corners.
+  // Reads the node tags of a tet element (of any order) and stores its corners.
   bool read_tet(int64_t element_tag, int64_t type, int32_t material, size_t line) {
     int64_t corners[4];
     for (int64_t& corner : corners) {
@@ -891,14 +903,8 @@ class GmshParser {
     out_->mesh.materials.push_back(material);
     if (!binary_) out_->tet_lines.push_back(line_number(line));
     element_tags_.push_back(element_tag);
-    tet_elementary_.push_back(current_elementary_);
-    if (from_elementary_) {
-      ++elementary_tets_;
-      if (elementary_materials_.size() < 1000) elementary_materials_.insert(material);
-    } else {
-      ++physical_tets_;
-      if (physical_materials_.size() < 1000) physical_materials_.insert(material);
-    }
+    if (version_ == 22) tet_elementary_.push_back(current_elementary_);
+    ++(from_elementary_ ? elementary_tets_ : physical_tets_);
     return true;
   }
 
@@ -1028,11 +1034,15 @@ class GmshParser {
                             "ones (by their corners; their other nodes are dropped)");
     }
     std::vector<std::string> surface_names, volume_names;
+    // The materials the tets have, for the volume groups left without tets (one pass,
+    // not one per group).
+    std::unordered_set<int32_t> present;
+    if (!physical_names_.empty())
+      present.insert(out_->mesh.materials.begin(), out_->mesh.materials.end());
     for (const auto& [key, name] : physical_names_) {
       if (key.first == 2) surface_names.push_back("'" + name + "'");
       if (key.first == 3) {
-        const bool has_tets = std::find(out_->mesh.materials.begin(), out_->mesh.materials.end(),
-                                        key.second) != out_->mesh.materials.end();
+        const bool has_tets = present.count(int32_t(key.second)) > 0;
         volume_names.push_back("'" + name + "' = " + std::to_string(key.second) +
                                (has_tets ? "" : " (no tetrahedra: not in the mesh)"));
       }
@@ -1180,7 +1190,10 @@ class GmshParser {
   std::vector<uint32_t> dense_index_;    // node tag - first_tag_ -> vertex, when compact
   std::vector<int64_t> element_tags_;    // per tet
   std::vector<int64_t> tet_elementary_;  // per tet: its elementary entity's tag
-  int64_t current_elementary_ = 0;       // of the last resolve_material()
+  // The tags of the last resolve_material() and its answer.
+  bool has_last_tags_ = false;
+  int64_t last_physical_ = 0, current_elementary_ = 0;
+  int32_t last_material_ = 0;
   std::unordered_map<int64_t, int64_t> first_physical_of_;  // elementary -> physical
   bool entity_in_two_groups_ = false;
 };
