@@ -102,10 +102,7 @@ class AbaqusParser {
     }
     if (!resolve()) return error_;
     if (!skipped_solids_.empty()) {
-      std::string list;
-      for (const auto& [type, count] : skipped_solids_)
-        list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + type;
-      out_->notes.push_back("skipped the elements " + list +
+      out_->notes.push_back("skipped the elements " + count_list(skipped_solids_) +
                             ": TetLOD reads tetrahedra only, so a region meshed with other "
                             "elements is not in the mesh");
     }

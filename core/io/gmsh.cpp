@@ -1009,17 +1009,14 @@ class GmshParser {
       if (items.size() > 10) text += " and " + std::to_string(items.size() - 10) + " more";
       return text;
     };
-    std::map<std::string, uint64_t> skipped_volumes;
+    std::map<std::string, size_t> skipped_volumes;
     uint64_t surface_elements = 0;
     for (const auto& [type, count] : element_counts_) {
       if (const char* name = skipped_volume_elements(type)) skipped_volumes[name] += count;
       if (is_surface_element(type)) surface_elements += count;
     }
     if (!skipped_volumes.empty()) {
-      std::vector<std::string> parts;
-      for (const auto& [name, count] : skipped_volumes)
-        parts.push_back(std::to_string(count) + " " + name);
-      out_->notes.push_back("skipped " + quoted_list(parts) +
+      out_->notes.push_back("skipped " + count_list(skipped_volumes) +
                             ": TetLOD reads tetrahedra only, so a region "
                             "meshed with other elements is not in the mesh");
     }

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <iterator>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,14 @@ inline int vtk_material_rank(std::string_view name) {
   for (int i = 0; i < int(std::size(kVtkMaterialNames)); ++i)
     if (name == kVtkMaterialNames[i]) return i;
   return -1;
+}
+
+// "2 C3D8, 1 C3D6": counts of the element kinds a reader skipped, for its note.
+inline std::string count_list(const std::map<std::string, size_t>& counts) {
+  std::string list;
+  for (const auto& [kind, count] : counts)
+    list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + kind;
+  return list;
 }
 
 // The notes a .vtk or .vtu reader gives of its cells by VTK type (`counts`, every

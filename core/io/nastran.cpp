@@ -90,10 +90,7 @@ class NastranParser {
     }
     if (!resolve()) return error_;
     if (!skipped_solids_.empty()) {
-      std::string list;
-      for (const auto& [card, count] : skipped_solids_)
-        list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + card;
-      out_->notes.push_back("skipped the solid elements " + list +
+      out_->notes.push_back("skipped the solid elements " + count_list(skipped_solids_) +
                             ": TetLOD reads CTETRA only, so a region meshed with other elements "
                             "is not in the mesh");
     }
