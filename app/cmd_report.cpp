@@ -242,21 +242,14 @@ int cmd_report(const Args& args) {
     }
     // What the run did and what the final mesh still breaks, as `tetlod simplify`
     // prints it.
-    const RejectionCounts& r = result.rejections;
-    const ThresholdViolations& v = result.violations;
     run_summary =
         std::to_string(result.splits) + " splits, " + std::to_string(result.history.step_count()) +
-        " collapses; rejected evaluations: tolerance " + std::to_string(r.tolerance) +
-        ", stretch " + std::to_string(r.stretch) + ", size " + std::to_string(r.size) +
-        ", valence " + std::to_string(r.valence) + ", topology " + std::to_string(r.topology) +
+        " collapses; rejected evaluations: " + describe_rejections(result.rejections) +
         ". Final mesh" + (so.improve ? std::string(" (before --improve)") : std::string()) + ": " +
-        std::to_string(v.below_stretch) + " tets below the stretch, " +
-        std::to_string(v.above_size) + " above the size, " + std::to_string(v.above_valence) +
-        " nodes above the valence (" + std::to_string(v.created) +
-        " of them new: the others are input tets or nodes, or pieces of input tets, "
-        "that already broke it)." +
-        (v.above_size > 0 ? " Above the size: " + above_size_reason(so.params, result)
-                          : std::string());
+        describe_violations(result.violations) + "." +
+        (result.violations.above_size > 0
+             ? " Above the size: " + above_size_reason(so.params, result)
+             : std::string());
     thresholds = "size " + describe_size(so.params.sizing) + ", stretch " +
                  format("%g", so.params.min_stretch) + ", valence " +
                  std::to_string(so.params.max_valence) + ", tolerance " +

@@ -162,17 +162,13 @@ int cmd_simplify(const Args& args) {
   std::printf("\noutput %s (step %zu of %zu%s)\n", out.c_str(), step, result.history.step_count(),
               beyond.c_str());
   print_property_table(stats_of(output));
-  const RejectionCounts& r = result.rejections;
   std::printf(
       "\nsubdivision: %zu splits (%zu edges longer than half the size left unsplit to keep the "
       "thresholds: %zu for a piece's stretch or size, %zu for a node's valence), %zu tets\n"
-      "collapses: %zu\nrejected evaluations: tolerance %llu, stretch %llu, size %llu, valence "
-      "%llu, topology %llu\n",
+      "collapses: %zu\nrejected evaluations: %s\n",
       result.splits, result.splits_skipped, result.splits_skipped - result.splits_skipped_valence,
       result.splits_skipped_valence, result.base.tet_count(), result.history.step_count(),
-      static_cast<unsigned long long>(r.tolerance), static_cast<unsigned long long>(r.stretch),
-      static_cast<unsigned long long>(r.size), static_cast<unsigned long long>(r.valence),
-      static_cast<unsigned long long>(r.topology));
+      describe_rejections(result.rejections).c_str());
   const EvaluationCounts& e = result.evaluations;
   std::printf(
       "evaluations: %llu of every edge at the start, %llu of new nodes' edges, %llu of stale "
@@ -181,12 +177,8 @@ int cmd_simplify(const Args& args) {
       static_cast<unsigned long long>(e.stale), static_cast<unsigned long long>(e.sweep),
       static_cast<unsigned long long>(e.sweeps), static_cast<unsigned long long>(e.total()));
   const ThresholdViolations& v = result.violations;
-  std::printf(
-      "final mesh%s, breaking a threshold: %zu tets below the stretch, %zu above the size, "
-      "%zu nodes above the valence (%zu of them new: the others are input tets or nodes, or "
-      "pieces of input tets, that already broke it)\n",
-      improve ? " (before --improve)" : "", v.below_stretch, v.above_size, v.above_valence,
-      v.created);
+  std::printf("final mesh%s, breaking a threshold: %s\n", improve ? " (before --improve)" : "",
+              describe_violations(v).c_str());
   if (v.above_size > 0) std::printf("why: %s\n", above_size_reason(params, result).c_str());
   if (improve) print_improve(improved, seconds_improve);
   std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)\n",

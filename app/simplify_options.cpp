@@ -120,6 +120,20 @@ bool finish_simplify_options(const TetMesh& input, const char* command, Simplify
   return true;
 }
 
+std::string describe_rejections(const RejectionCounts& r) {
+  return "tolerance " + std::to_string(r.tolerance) + ", stretch " + std::to_string(r.stretch) +
+         ", size " + std::to_string(r.size) + ", valence " + std::to_string(r.valence) +
+         ", topology " + std::to_string(r.topology);
+}
+
+std::string describe_violations(const ThresholdViolations& v) {
+  return std::to_string(v.below_stretch) + " tets below the stretch, " +
+         std::to_string(v.above_size) + " above the size, " + std::to_string(v.above_valence) +
+         " nodes above the valence (" + std::to_string(v.created) +
+         " of them new: the others are input tets or nodes, or pieces of input tets, that "
+         "already broke it)";
+}
+
 std::string describe_size(const SizingField& sizing) {
   if (!std::isfinite(sizing.uniform)) return "from the local sizing";
   char text[64];

@@ -44,4 +44,11 @@ bool finish_simplify_options(const TetMesh& input, const char* command, Simplify
 // "from the local sizing" (no uniform size: --material-size or --size-field alone).
 std::string describe_size(const SizingField& sizing);
 
+// "tolerance 3, stretch 12, size 0, valence 5, topology 2": a run's rejected
+// evaluations by reason, as simplify and report print them.
+std::string describe_rejections(const RejectionCounts& r);
+// "2 tets below the stretch, 0 above the size, 1 nodes above the valence (0 of them
+// new: ...)": what a run's final mesh still breaks.
+std::string describe_violations(const ThresholdViolations& v);
+
 }  // namespace tetlod::app
