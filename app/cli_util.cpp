@@ -64,12 +64,22 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   return true;
 }
 
+BeyondLevels beyond_levels(long long elements, size_t step, size_t step_count, size_t tets) {
+  if (elements < 0) return BeyondLevels::kNo;
+  if (step == step_count && tets > size_t(elements)) return BeyondLevels::kPastTheLast;
+  if (step == 0 && tets < size_t(elements)) return BeyondLevels::kBeforeTheFirst;
+  return BeyondLevels::kNo;
+}
+
 std::string beyond_levels_note(long long elements, size_t step, size_t step_count, size_t tets) {
-  if (elements < 0) return "";
-  if (step == step_count && tets > size_t(elements))
-    return "the last: no level has fewer elements than this one";
-  if (step == 0 && tets < size_t(elements))
-    return "the first: no level has more elements than this one";
+  switch (beyond_levels(elements, step, step_count, tets)) {
+    case BeyondLevels::kPastTheLast:
+      return "the last: no level has fewer elements than this one";
+    case BeyondLevels::kBeforeTheFirst:
+      return "the first: no level has more elements than this one";
+    case BeyondLevels::kNo:
+      break;
+  }
   return "";
 }
 

@@ -71,6 +71,10 @@ struct HistoryLevel {
 bool load_history_level(const std::string& path, const char* command, long long step,
                         long long elements, HistoryLevel* level);
 
+// Whether the level nearest N elements (at `step`, with `tets`) is the last or the
+// first only because N lies beyond the history's levels (N < 0: no target).
+enum class BeyondLevels { kNo, kPastTheLast, kBeforeTheFirst };
+BeyondLevels beyond_levels(long long elements, size_t step, size_t step_count, size_t tets);
 // For the level a command wrote for --elements N: "the last: no level has fewer
 // elements ..." or "the first: ... more ..." when N lies beyond the history, else "".
 std::string beyond_levels_note(long long elements, size_t step, size_t step_count, size_t tets);

@@ -113,11 +113,12 @@ std::string img(const std::vector<uint8_t>& png, const std::string& alt) {
 std::string level_label(long long n, size_t step, const Lod& lod) {
   std::string label = "level ~" + std::to_string(n) + " (step " + std::to_string(step);
   const size_t tets = lod.tet_count_at(step);
+  const BeyondLevels where = beyond_levels(n, step, lod.step_count(), tets);
   std::string beyond;
-  if (step == lod.step_count() && tets > size_t(n)) {
+  if (where == BeyondLevels::kPastTheLast) {
     beyond = "no level has fewer than " + std::to_string(tets) + " tets";
     label += ", the last: " + beyond;
-  } else if (step == 0 && tets < size_t(n)) {
+  } else if (where == BeyondLevels::kBeforeTheFirst) {
     beyond = "no level has more than " + std::to_string(tets) + " tets";
     label += ", the first: " + beyond;
   }
