@@ -1,5 +1,10 @@
 #include "core/surface.h"
 
+#include <algorithm>
+#include <map>
+#include <tuple>
+#include <utility>
+
 namespace tetlod {
 
 std::vector<SurfaceTriangle> extract_surface(const TetMesh& mesh,
@@ -24,6 +29,46 @@ std::vector<SurfaceTriangle> extract_surface(const TetMesh& mesh,
     }
   }
   return triangles;
+}
+
+int32_t first_surface_tag(const TetMesh& mesh) {
+  if (mesh.materials.empty()) return 1;
+  std::vector<int32_t> materials = mesh.materials;
+  std::sort(materials.begin(), materials.end());
+  materials.erase(std::unique(materials.begin(), materials.end()), materials.end());
+  int32_t largest = materials.back();
+  if (materials.front() == 0) {
+    int32_t zero_tag = 1;  // as write_gmsh() numbers material 0
+    for (int32_t m : materials) {
+      if (m == zero_tag) ++zero_tag;
+    }
+    largest = std::max(largest, zero_tag);
+  }
+  return std::max(largest, 0) + 1;
+}
+
+SurfaceGroups group_surface(const TetMesh& mesh) {
+  SurfaceGroups result;
+  result.surface = extract_surface(mesh, build_adjacency(mesh).tet_neighbors);
+  // Key: boundaries (0, m, -1) before interfaces (1, a, b).
+  std::map<std::tuple<int, int32_t, int32_t>, std::vector<uint32_t>> by_pair;
+  for (uint32_t i = 0; i < result.surface.size(); ++i) {
+    const SurfaceTriangle& t = result.surface[i];
+    by_pair[{t.outer == kOutsideMaterial ? 0 : 1, t.inner, t.outer}].push_back(i);
+  }
+  int32_t tag = first_surface_tag(mesh);
+  for (auto& [key, triangles] : by_pair) {
+    SurfaceGroup group;
+    group.material = std::get<1>(key);
+    group.other = std::get<2>(key);
+    group.tag = tag++;
+    group.name = group.other == kOutsideMaterial ? "boundary_" + std::to_string(group.material)
+                                                 : "interface_" + std::to_string(group.material) +
+                                                       "_" + std::to_string(group.other);
+    group.triangles = std::move(triangles);
+    result.groups.push_back(std::move(group));
+  }
+  return result;
 }
 
 }  // namespace tetlod

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/adjacency.h"
@@ -23,5 +24,32 @@ struct SurfaceTriangle {
 // tet of the smaller material id, so inner < outer), in order of (tet, corner).
 std::vector<SurfaceTriangle> extract_surface(const TetMesh& mesh,
                                              const std::vector<uint32_t>& tet_neighbors);
+
+// The surface triangles grouped by material pair, as writers carry them for boundary
+// conditions (Gmsh physical surfaces, Medit triangle references, TetGen face
+// markers, Abaqus node sets and element-face surfaces). One group per pair that
+// has triangles: first the boundary of each material ("boundary_<m>"), by material,
+// then each interface ("interface_<a>_<b>", a < b), by pair. Groups are numbered
+// from first_surface_tag() up, in that order, so a group's tag is above every tag a
+// writer gives a material and is the same in every format.
+struct SurfaceGroup {
+  int32_t material;                 // the smaller material of the pair
+  int32_t other;                    // the larger one, kOutsideMaterial on the boundary
+  int32_t tag;                      // >= first_surface_tag(mesh)
+  std::string name;                 // "boundary_<m>" or "interface_<a>_<b>"
+  std::vector<uint32_t> triangles;  // indices into the surface, increasing
+};
+struct SurfaceGroups {
+  std::vector<SurfaceTriangle> surface;  // extract_surface() of the mesh
+  std::vector<SurfaceGroup> groups;
+};
+
+// 1 + the largest tag a writer gives a material: the largest material, or, when
+// material 0 is present, the Gmsh tag it gets (the smallest positive tag no
+// material uses) if that is larger. At least 1.
+int32_t first_surface_tag(const TetMesh& mesh);
+
+// Precondition: the mesh passed validate_mesh().
+SurfaceGroups group_surface(const TetMesh& mesh);
 
 }  // namespace tetlod

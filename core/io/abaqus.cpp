@@ -464,6 +464,40 @@ class AbaqusParser {
   std::unordered_map<std::string, int> key_index_;
 };
 
+// Per surface group, a *NSET of its nodes (for *BOUNDARY) and a *SURFACE of element
+// faces (for *DLOAD, *DFLUX, contact), both named after the group in upper case.
+// The faces are those of the group's tets of the smaller material; element ids are
+// the tets' positions + 1, as write_abaqus() numbers them.
+void write_abaqus_surfaces(const SurfaceGroups& surfaces, std::string* out) {
+  // Abaqus face labels of C3D4 by the corner opposite the face: S1 = nodes 1-2-3,
+  // S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
+  static constexpr const char* kFaceLabel[4] = {"S3", "S4", "S2", "S1"};
+  std::vector<uint32_t> nodes;
+  for (const SurfaceGroup& group : surfaces.groups) {
+    std::string name = group.name;
+    for (char& c : name) c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
+    nodes.clear();
+    for (uint32_t i : group.triangles) {
+      for (uint32_t v : surfaces.surface[i].v) nodes.push_back(v);
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    out->append("*NSET, NSET=" + name + "\n");
+    for (size_t i = 0; i < nodes.size(); ++i) {  // at most 16 entries per data line
+      append_number(out, nodes[i] + 1);
+      out->append(i + 1 == nodes.size() || i % 16 == 15 ? "\n" : ", ");
+    }
+    out->append("*SURFACE, TYPE=ELEMENT, NAME=" + name + "_FACES\n");
+    for (uint32_t i : group.triangles) {
+      const SurfaceTriangle& t = surfaces.surface[i];
+      append_number(out, t.tet + 1);
+      out->append(", ");
+      out->append(kFaceLabel[t.corner]);
+      out->push_back('\n');
+    }
+  }
+}
+
 }  // namespace
 
 Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* out) {
@@ -471,13 +505,15 @@ Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* 
   return parser.parse();
 }
 
-void write_abaqus(const TetMesh& mesh, std::string* out) {
+void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
   out->reserve(out->size() + mesh.vertex_count() * 64 + mesh.tet_count() * 48);
   out->append("*HEADING\nTetLOD tetrahedral mesh: ");
   append_number(out, mesh.vertex_count());
   out->append(" nodes, ");
   append_number(out, mesh.tet_count());
-  out->append(" C3D4 elements, one element set MATERIAL_<id> per material\n*NODE\n");
+  out->append(" C3D4 elements, one element set MATERIAL_<id> per material");
+  if (surfaces) out->append(", a node set and a surface (<name>_FACES) per surface group");
+  out->append("\n*NODE\n");
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     const Vec3& p = mesh.positions[v];
     append_number(out, v + 1);
@@ -507,6 +543,7 @@ void write_abaqus(const TetMesh& mesh, std::string* out) {
     }
     out->push_back('\n');
   }
+  if (surfaces) write_abaqus_surfaces(*surfaces, out);
 }
 
 }  // namespace tetlod::io

@@ -19,6 +19,7 @@ namespace tetlod::io {
 namespace {
 
 constexpr int64_t kTet4 = 4;
+constexpr int64_t kTriangle3 = 2;
 constexpr int64_t kTet10 = 11;
 
 // Tets of any order (4, 10, 20, 35, 56 nodes): Gmsh lists their corners first, and
@@ -1050,7 +1051,9 @@ class GmshParser {
                                  ? std::string()
                                  : ", nor the surface groups " + quoted_list(surface_names)) +
                             ": TetLOD keeps the tetrahedra and their volume groups (written as "
-                            "material_<id>)");
+                            "material_<id>; with the command line's --surfaces, outputs carry "
+                            "the boundary and interface triangles again, a group per "
+                            "material pair)");
     }
     if (!volume_names.empty()) {
       out_->notes.push_back("volume groups are materials by their number: " +
@@ -1196,9 +1199,17 @@ class GmshParser {
 };
 
 void append_physical_names(const std::vector<int32_t>& materials,
-                           const std::vector<int32_t>& physical_tags, std::string* out) {
+                           const std::vector<int32_t>& physical_tags, const SurfaceGroups* surfaces,
+                           std::string* out) {
   out->append("$PhysicalNames\n");
-  append_line(out, materials.size());
+  append_line(out, materials.size() + (surfaces ? surfaces->groups.size() : 0));
+  if (surfaces) {
+    for (const SurfaceGroup& group : surfaces->groups) {
+      out->append("2 ");
+      append_number(out, group.tag);
+      out->append(" \"" + group.name + "\"\n");
+    }
+  }
   for (size_t i = 0; i < materials.size(); ++i) {
     out->append("3 ");
     append_number(out, physical_tags[i]);
@@ -1217,7 +1228,7 @@ Status parse_gmsh(std::string_view text, const std::string& name, ParsedMesh* ou
   return parser.parse(version);
 }
 
-void write_gmsh(const TetMesh& mesh, int version, std::string* out) {
+void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces, std::string* out) {
   // Distinct materials and their physical tags: m for m > 0; 0 takes the smallest
   // positive tag no material uses.
   std::vector<int32_t> materials = mesh.materials;
@@ -1239,7 +1250,11 @@ void write_gmsh(const TetMesh& mesh, int version, std::string* out) {
   out->reserve(out->size() + mesh.vertex_count() * 64 + mesh.tet_count() * 48);
   out->append(version == 22 ? "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
                             : "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
-  append_physical_names(materials, physical_tags, out);
+  append_physical_names(materials, physical_tags, surfaces, out);
+  const std::vector<SurfaceGroup> no_groups;
+  const std::vector<SurfaceGroup>& groups = surfaces ? surfaces->groups : no_groups;
+  size_t triangle_count = 0;
+  for (const SurfaceGroup& group : groups) triangle_count += group.triangles.size();
 
   if (version == 22) {
     out->append("$Nodes\n");
@@ -1249,11 +1264,20 @@ void write_gmsh(const TetMesh& mesh, int version, std::string* out) {
       append_line(out, v + 1, p.x, p.y, p.z);
     }
     out->append("$EndNodes\n$Elements\n");
-    append_line(out, mesh.tet_count());
+    append_line(out, mesh.tet_count() + triangle_count);
     for (size_t t = 0; t < mesh.tet_count(); ++t) {
       const Tet& tet = mesh.tets[t];
       const int32_t tag = physical_tags[group_of(mesh.materials[t])];
       append_line(out, t + 1, kTet4, 2, tag, tag, tet[0] + 1, tet[1] + 1, tet[2] + 1, tet[3] + 1);
+    }
+    // Triangles after the tets, so that tet t keeps element tag t + 1.
+    size_t element = mesh.tet_count();
+    for (const SurfaceGroup& group : groups) {
+      for (uint32_t i : group.triangles) {
+        const auto& v = surfaces->surface[i].v;
+        append_line(out, ++element, kTriangle3, 2, group.tag, group.tag, v[0] + 1, v[1] + 1,
+                    v[2] + 1);
+      }
     }
     out->append("$EndElements\n");
     return;
@@ -1306,7 +1330,21 @@ void write_gmsh(const TetMesh& mesh, int version, std::string* out) {
   for (const auto& vertices : group_vertices) node_block_count += vertices.empty() ? 0 : 1;
 
   out->append("$Entities\n");
-  append_line(out, 0, 0, 0, group_count);
+  append_line(out, 0, 0, groups.size(), group_count);
+  // One surface entity per surface group (entity tag = physical tag).
+  for (const SurfaceGroup& group : groups) {
+    Vec3 lo = mesh.positions[surfaces->surface[group.triangles[0]].v[0]];  // never empty
+    Vec3 hi = lo;
+    for (uint32_t i : group.triangles) {
+      for (uint32_t v : surfaces->surface[i].v) {
+        for (int k = 0; k < 3; ++k) {
+          lo[k] = std::min(lo[k], mesh.positions[v][k]);
+          hi[k] = std::max(hi[k], mesh.positions[v][k]);
+        }
+      }
+    }
+    append_line(out, group.tag, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, 1, group.tag, 0);
+  }
   for (size_t g = 0; g < group_count; ++g) {
     const Vec3& lo = box_min[g];
     const Vec3& hi = box_max[g];
@@ -1326,7 +1364,18 @@ void write_gmsh(const TetMesh& mesh, int version, std::string* out) {
     }
   }
   out->append("$EndNodes\n$Elements\n");
-  append_line(out, group_count, mesh.tet_count(), mesh.tet_count() > 0 ? 1 : 0, mesh.tet_count());
+  const size_t element_count = mesh.tet_count() + triangle_count;
+  append_line(out, group_count + groups.size(), element_count, element_count > 0 ? 1 : 0,
+              element_count);
+  // Triangles numbered after the tets, so that tet t keeps element tag t + 1.
+  size_t element = mesh.tet_count();
+  for (const SurfaceGroup& group : groups) {
+    append_line(out, 2, group.tag, kTriangle3, group.triangles.size());
+    for (uint32_t i : group.triangles) {
+      const auto& v = surfaces->surface[i].v;
+      append_line(out, ++element, v[0] + 1, v[1] + 1, v[2] + 1);
+    }
+  }
   for (size_t g = 0; g < group_count; ++g) {
     append_line(out, 3, physical_tags[g], kTet4, group_tet_start[g + 1] - group_tet_start[g]);
     for (size_t i = group_tet_start[g]; i < group_tet_start[g + 1]; ++i) {

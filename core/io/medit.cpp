@@ -204,11 +204,21 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   return Status();
 }
 
-void write_medit(const TetMesh& mesh, std::string* out) {
+void write_medit(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
   out->reserve(out->size() + mesh.vertex_count() * 64 + mesh.tet_count() * 40);
   out->append("MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n");
   append_line(out, mesh.vertex_count());
   for (const Vec3& p : mesh.positions) append_line(out, p.x, p.y, p.z, 0);
+  if (surfaces) {  // reference = the group's tag, as MMG reads boundary references
+    out->append("\nTriangles\n");
+    append_line(out, surfaces->surface.size());
+    for (const SurfaceGroup& group : surfaces->groups) {
+      for (uint32_t i : group.triangles) {
+        const auto& v = surfaces->surface[i].v;
+        append_line(out, v[0] + 1, v[1] + 1, v[2] + 1, group.tag);
+      }
+    }
+  }
   out->append("\nTetrahedra\n");
   append_line(out, mesh.tet_count());
   for (size_t t = 0; t < mesh.tet_count(); ++t) {

@@ -13,6 +13,7 @@
 
 #include "core/io/mesh_io.h"
 #include "core/status.h"
+#include "core/surface.h"
 #include "core/tet_mesh.h"
 
 namespace tetlod::io {
@@ -33,15 +34,18 @@ Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out
 Status parse_nastran(std::string_view text, const std::string& name, ParsedMesh* out);
 Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* out);
 
-void write_medit(const TetMesh& mesh, std::string* out);
+// `surfaces` (group_surface() of the mesh, or null for none): the surface groups
+// to write as well, in the format's way (mesh_io.h).
+void write_medit(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 // `version` is 22 or 41.
-void write_gmsh(const TetMesh& mesh, int version, std::string* out);
+void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces, std::string* out);
 void write_tetgen_node(const TetMesh& mesh, std::string* out);
 void write_tetgen_ele(const TetMesh& mesh, std::string* out);
+void write_tetgen_face(const SurfaceGroups& surfaces, std::string* out);
 void write_vtk_legacy(const TetMesh& mesh, std::string* out);
 void write_vtu(const TetMesh& mesh, std::string* out);
 void write_nastran(const TetMesh& mesh, std::string* out);
-void write_abaqus(const TetMesh& mesh, std::string* out);
+void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 // With extra point and cell arrays (sizes and names checked by the caller).
 void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out);
 

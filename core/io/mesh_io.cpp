@@ -17,6 +17,11 @@ constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vt
 
 enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu, kNastran, kAbaqus };
 
+bool surface_groups_supported(FileKind kind) {
+  return kind == FileKind::kMedit || kind == FileKind::kGmsh || kind == FileKind::kTetGen ||
+         kind == FileKind::kAbaqus;
+}
+
 // The extension of the file name in `path`, lower case, without the dot.
 std::string extension_of(const std::string& path) {
   const size_t slash = path.find_last_of('/');
@@ -185,13 +190,7 @@ Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   return read_mesh_from_memory(text, kFormats[int(kind)], path, mesh, info);
 }
 
-Status check_mesh_path(const std::string& path) {
-  FileKind kind;
-  return file_kind(path, &kind);
-}
-
-Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
-                  const WriteOptions& options) {
+Status check_mesh_path(const std::string& path, const WriteOptions& options) {
   FileKind kind;
   Status status = file_kind(path, &kind);
   if (!status.ok()) return status;
@@ -199,14 +198,34 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
     return Status::error(path + ": unsupported Gmsh version " +
                          std::to_string(options.gmsh_version) + " (use 22 or 41)");
   }
+  if (options.surface_groups && !surface_groups_supported(kind)) {
+    return Status::error(path +
+                         ": surface groups are written to .msh, .mesh, .node/.ele (as "
+                         "a .face file) and .inp only");
+  }
+  return Status();
+}
+
+Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
+                  const WriteOptions& options) {
+  FileKind kind;
+  Status status = file_kind(path, &kind);
+  if (status.ok()) status = check_mesh_path(path, options);
+  if (!status.ok()) return status;
   if (!(status = check_writable(path, mesh)).ok()) return status;
+  SurfaceGroups computed;
+  const SurfaceGroups* surfaces = nullptr;
+  if (options.surface_groups) {
+    if (!options.groups) computed = group_surface(mesh);
+    surfaces = options.groups ? options.groups : &computed;
+  }
   std::string text;
   switch (kind) {
     case FileKind::kMedit:
-      io::write_medit(mesh, &text);
+      io::write_medit(mesh, surfaces, &text);
       break;
     case FileKind::kGmsh:
-      io::write_gmsh(mesh, options.gmsh_version, &text);
+      io::write_gmsh(mesh, options.gmsh_version, surfaces, &text);
       break;
     case FileKind::kTetGen: {
       const std::string base = tetgen_base(path);
@@ -214,7 +233,11 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       if (!(status = files->stage(base + ".node", text)).ok()) return status;
       text.clear();
       io::write_tetgen_ele(mesh, &text);
-      return files->stage(base + ".ele", text);
+      if (!surfaces) return files->stage(base + ".ele", text);
+      if (!(status = files->stage(base + ".ele", text)).ok()) return status;
+      text.clear();
+      io::write_tetgen_face(*surfaces, &text);
+      return files->stage(base + ".face", text);
     }
     case FileKind::kVtkLegacy:
       io::write_vtk_legacy(mesh, &text);
@@ -226,7 +249,7 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       io::write_nastran(mesh, &text);
       break;
     case FileKind::kAbaqus:
-      io::write_abaqus(mesh, &text);
+      io::write_abaqus(mesh, surfaces, &text);
       break;
   }
   return files->stage(path, text);

@@ -70,6 +70,7 @@
 
 #include "core/io/output_files.h"
 #include "core/status.h"
+#include "core/surface.h"
 #include "core/tet_mesh.h"
 #include "core/validate.h"
 
@@ -100,17 +101,32 @@ Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_
                                const std::string& node_name, const std::string& ele_name,
                                TetMesh* mesh, ReadInfo* info = nullptr);
 
-// Whether `path` has an extension read_mesh() and write_mesh() know; the error names
-// it and lists the ones they do (any case). For a command to check its output path
-// up front, or to tell "not a mesh file" from a mesh file that failed to read.
-Status check_mesh_path(const std::string& path);
-
 struct WriteOptions {
   int gmsh_version = 41;  // 41 or 22, for .msh
+  // Also write the boundary and interface triangles, one group per material pair
+  // (group_surface() in core/surface.h: "boundary_<m>", "interface_<a>_<b>", tags
+  // above every material's), for boundary conditions:
+  //  - .msh: triangles in physical surfaces of those tags and names (4.1: one surface
+  //    entity per group), numbered after the tets;
+  //  - .mesh: a Triangles section, reference = the group's tag;
+  //  - .node/.ele: a .face file beside them, boundary marker = the group's tag;
+  //  - .inp: per group a *NSET and a *SURFACE of element faces (<NAME>_FACES).
+  // Other formats have no place for them: writing them is an error.
+  bool surface_groups = false;
+  // With surface_groups: group_surface() of the very mesh written, for a caller that
+  // also prints them; null to have the writer compute them.
+  const SurfaceGroups* groups = nullptr;
 };
 
+// Whether `path` has an extension read_mesh() and write_mesh() know; the error names
+// it and lists the ones they do (any case). With `options`, also whether they can be
+// written there (Gmsh version, surface groups). For a command to check its output
+// path up front, or to tell "not a mesh file" from a mesh file that failed to read.
+Status check_mesh_path(const std::string& path, const WriteOptions& options = {});
+
 // Writes `mesh` (valid: see tet_mesh.h) in the format of the extension of `path`.
-// For .node/.ele both files of the pair are written. An invalid mesh or an
+// For .node/.ele both files of the pair are written (and the .face file with
+// surface groups). An invalid mesh or an
 // unwritable path gives an error naming the path, and leaves no file behind.
 Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options = {});
 // The same, staged in `files` to be committed with the other outputs of a command

@@ -1,0 +1,317 @@
+// Surface groups (core/surface.h) and the writers that carry them (WriteOptions::
+// surface_groups): the grouping and numbering, each format's text, and the tools
+// that read them: Gmsh (physical surfaces) and CalculiX (node sets and element-face
+// surfaces under a pressure load), when they are on PATH.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "core/adjacency.h"
+#include "core/io/mesh_io.h"
+#include "core/surface.h"
+#include "core/test_io_helpers.h"
+#include "core/test_meshes.h"
+
+namespace tetlod {
+namespace {
+
+TetMesh box2() {
+  TetMesh mesh;
+  const Status s = read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &mesh);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return mesh;
+}
+
+// A triangle by its corner positions, rotated to start at the smallest, so that it
+// compares equal across renumberings but keeps its orientation.
+using PositionTriangle = std::array<std::array<double, 3>, 3>;
+PositionTriangle by_positions(const std::vector<Vec3>& positions, std::array<uint32_t, 3> v) {
+  PositionTriangle t;
+  for (int k = 0; k < 3; ++k) t[k] = {positions[v[k]].x, positions[v[k]].y, positions[v[k]].z};
+  std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  return t;
+}
+
+// group tag -> its triangles by positions, sorted.
+std::map<int32_t, std::vector<PositionTriangle>> triangles_by_tag(const TetMesh& mesh,
+                                                                  const SurfaceGroups& groups) {
+  std::map<int32_t, std::vector<PositionTriangle>> result;
+  for (const SurfaceGroup& group : groups.groups) {
+    auto& list = result[group.tag];
+    for (uint32_t i : group.triangles)
+      list.push_back(by_positions(mesh.positions, groups.surface[i].v));
+    std::sort(list.begin(), list.end());
+  }
+  return result;
+}
+
+TEST(SurfaceGroups, Box2HasTwoBoundariesAndOneInterface) {
+  const TetMesh mesh = box2();
+  const SurfaceGroups groups = group_surface(mesh);
+  ASSERT_EQ(groups.groups.size(), 3u);
+  const char* names[] = {"boundary_1", "boundary_2", "interface_1_2"};
+  size_t total = 0;
+  for (size_t g = 0; g < 3; ++g) {
+    const SurfaceGroup& group = groups.groups[g];
+    EXPECT_EQ(group.name, names[g]);
+    EXPECT_EQ(group.tag, int32_t(3 + g));  // above materials 1 and 2
+    EXPECT_EQ(group.material, g == 1 ? 2 : 1);
+    EXPECT_EQ(group.other, g == 2 ? 2 : kOutsideMaterial);
+    EXPECT_TRUE(std::is_sorted(group.triangles.begin(), group.triangles.end()));
+    for (uint32_t i : group.triangles) {
+      EXPECT_EQ(groups.surface[i].inner, group.material);
+      EXPECT_EQ(groups.surface[i].outer, group.other);
+    }
+    total += group.triangles.size();
+  }
+  EXPECT_EQ(total, groups.surface.size());
+  // box2 is [0,2]x[0,1]x[0,1], split at x = 1: each boundary is five unit squares'
+  // worth of area, the interface one, all of it facing +x from material 1.
+  for (size_t g = 0; g < 3; ++g) {
+    double area = 0;
+    Vec3 vector_area{};
+    for (uint32_t i : groups.groups[g].triangles) {
+      const auto& v = groups.surface[i].v;
+      const Vec3 n = cross(mesh.positions[v[1]] - mesh.positions[v[0]],
+                           mesh.positions[v[2]] - mesh.positions[v[0]]) *
+                     0.5;
+      area += std::sqrt(dot(n, n));
+      vector_area = vector_area + n;
+    }
+    EXPECT_NEAR(area, g == 2 ? 1.0 : 5.0, 1e-12) << g;
+    // Normals point out of the group's material: the interface +x, and each
+    // boundary closes its material with it.
+    EXPECT_NEAR(vector_area.x, g == 0 ? -1.0 : 1.0, 1e-12) << g;
+    EXPECT_NEAR(vector_area.y, 0.0, 1e-12) << g;
+    EXPECT_NEAR(vector_area.z, 0.0, 1e-12) << g;
+  }
+}
+
+TEST(SurfaceGroups, TagsStartAboveEveryMaterialTag) {
+  auto first_tag = [](std::vector<int32_t> materials) {
+    TetMesh mesh = test::make_grid_mesh(
+        int(materials.size()), 1, 1, [&](int i, int, int) { return materials[size_t(i)]; }, 1.0);
+    return first_surface_tag(mesh);
+  };
+  EXPECT_EQ(first_tag({5}), 6);
+  EXPECT_EQ(first_tag({0}), 2);        // material 0 is Gmsh tag 1
+  EXPECT_EQ(first_tag({0, 2}), 3);     // 0 is tag 1
+  EXPECT_EQ(first_tag({0, 1, 2}), 4);  // 0 is tag 3
+  EXPECT_EQ(first_tag({2, 7, 3}), 8);
+  // Pairs in order: boundaries by material, then interfaces by pair.
+  TetMesh mesh = test::make_grid_mesh(
+      3, 1, 1, [](int i, int, int) { return i == 0   ? 7
+                                            : i == 1 ? 0
+                                                     : 3; }, 1.0);
+  const SurfaceGroups groups = group_surface(mesh);
+  std::vector<std::string> names;
+  for (const SurfaceGroup& g : groups.groups) names.push_back(g.name + "=" + std::to_string(g.tag));
+  EXPECT_EQ(names, (std::vector<std::string>{"boundary_0=8", "boundary_3=9", "boundary_7=10",
+                                             "interface_0_3=11", "interface_0_7=12"}));
+}
+
+TEST(SurfaceGroups, EachWriterCarriesThem) {
+  const TetMesh mesh = box2();
+  const SurfaceGroups groups = group_surface(mesh);
+  const std::string dir = test::output_dir("surface_groups");
+  WriteOptions options;
+  options.surface_groups = true;
+
+  // Medit: a Triangles section, reference = tag, and the tets read back unchanged.
+  ASSERT_TRUE(write_mesh(dir + "/box2.mesh", mesh, options).ok());
+  {
+    const std::string text = test::read_text(dir + "/box2.mesh");
+    std::istringstream in(text.substr(text.find("\nTriangles\n") + 11));
+    size_t count = 0;
+    in >> count;
+    ASSERT_EQ(count, groups.surface.size());
+    std::map<int32_t, std::vector<PositionTriangle>> read;
+    for (size_t i = 0; i < count; ++i) {
+      std::array<uint32_t, 3> v;
+      int32_t ref;
+      in >> v[0] >> v[1] >> v[2] >> ref;
+      for (uint32_t& x : v) --x;
+      read[ref].push_back(by_positions(mesh.positions, v));
+    }
+    for (auto& [tag, list] : read) std::sort(list.begin(), list.end());
+    EXPECT_EQ(read, triangles_by_tag(mesh, groups));
+    TetMesh back;
+    ASSERT_TRUE(read_mesh(dir + "/box2.mesh", &back).ok());
+    test::expect_same_mesh(mesh, back);
+  }
+
+  // TetGen: a .face file beside .node/.ele, boundary marker = tag.
+  ASSERT_TRUE(write_mesh(dir + "/box2.node", mesh, options).ok());
+  {
+    std::istringstream in(test::read_text(dir + "/box2.face"));
+    size_t count = 0, markers = 0;
+    in >> count >> markers;
+    ASSERT_EQ(count, groups.surface.size());
+    EXPECT_EQ(markers, 1u);
+    std::map<int32_t, std::vector<PositionTriangle>> read;
+    for (size_t i = 0; i < count; ++i) {
+      size_t index;
+      std::array<uint32_t, 3> v;
+      int32_t marker;
+      in >> index >> v[0] >> v[1] >> v[2] >> marker;
+      EXPECT_EQ(index, i + 1);
+      for (uint32_t& x : v) --x;
+      read[marker].push_back(by_positions(mesh.positions, v));
+    }
+    for (auto& [tag, list] : read) std::sort(list.begin(), list.end());
+    EXPECT_EQ(read, triangles_by_tag(mesh, groups));
+  }
+
+  // Gmsh, both versions: physical surfaces named after the groups; our reader keeps
+  // the tets and says the surface groups were not kept.
+  for (int version : {22, 41}) {
+    SCOPED_TRACE(version);
+    options.gmsh_version = version;
+    const std::string path = dir + "/box2_" + std::to_string(version) + ".msh";
+    ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+    const std::string text = test::read_text(path);
+    EXPECT_NE(text.find("2 3 \"boundary_1\"\n2 4 \"boundary_2\"\n2 5 \"interface_1_2\"\n"),
+              std::string::npos);
+    TetMesh back;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+    test::expect_same_mesh(mesh, back);
+    ASSERT_FALSE(info.notes.empty());
+    EXPECT_NE(info.notes[0].find(std::to_string(groups.surface.size()) +
+                                 " surface elements are not kept, nor the surface groups "
+                                 "'boundary_1', 'boundary_2', 'interface_1_2'"),
+              std::string::npos)
+        << info.notes[0];
+  }
+
+  // Formats with no place for them: an error naming the path, and no file.
+  for (const char* name : {"/box2.vtu", "/box2.vtk", "/box2.bdf"}) {
+    const std::string path = dir + name;
+    std::filesystem::remove(path);
+    const Status s = write_mesh(path, mesh, options);
+    ASSERT_FALSE(s.ok()) << name;
+    EXPECT_NE(s.message().find(path + ": surface groups are written to .msh, .mesh"),
+              std::string::npos)
+        << s.message();
+    EXPECT_FALSE(std::filesystem::exists(path));
+    EXPECT_FALSE(check_mesh_path(path, options).ok());
+  }
+}
+
+// Gmsh reads the physical surfaces: it saves them again (as 2.2 text) with the same
+// triangles, oriented the same way, under the same tags.
+TEST(SurfaceGroups, GmshKeepsOurPhysicalSurfaces) {
+  if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
+  const TetMesh mesh = test::make_grid_mesh(
+      3, 2, 2, [](int i, int j, int) { return i == 2 && j == 1 ? 1000000 : (i + j) % 4; }, 0.25);
+  const SurfaceGroups groups = group_surface(mesh);
+  const std::string dir = test::output_dir("surface_groups_gmsh");
+  for (int version : {22, 41}) {
+    SCOPED_TRACE(version);
+    WriteOptions options;
+    options.surface_groups = true;
+    options.gmsh_version = version;
+    const std::string ours = dir + "/ours" + std::to_string(version) + ".msh";
+    const std::string theirs = dir + "/gmsh" + std::to_string(version) + ".msh";
+    ASSERT_TRUE(write_mesh(ours, mesh, options).ok());
+    const std::string log = theirs + ".log";
+    ASSERT_EQ(std::system(
+                  ("gmsh '" + ours + "' -0 -format msh22 -o '" + theirs + "' > '" + log + "' 2>&1")
+                      .c_str()),
+              0)
+        << test::read_text(log);
+    // Gmsh's 2.2 text: nodes "tag x y z", elements "tag type ntags physical ...".
+    std::istringstream in(test::read_text(theirs));
+    std::string line;
+    std::map<long, std::array<double, 3>> nodes;
+    std::map<int32_t, std::vector<PositionTriangle>> read;
+    std::map<int32_t, std::string> names;
+    enum { kNone, kNames, kNodes, kElements } section = kNone;
+    bool counted = false;
+    while (std::getline(in, line)) {
+      if (line.rfind("$End", 0) == 0) {
+        section = kNone;
+      } else if (line[0] == '$') {
+        section = line == "$PhysicalNames" ? kNames
+                  : line == "$Nodes"       ? kNodes
+                  : line == "$Elements"    ? kElements
+                                           : kNone;
+        counted = false;
+      } else if (section != kNone && !counted) {
+        counted = true;  // the count line
+      } else if (section == kNames) {
+        std::istringstream f(line);
+        int dimension, tag;
+        std::string name;
+        f >> dimension >> tag >> name;
+        if (dimension == 2) names[tag] = name.substr(1, name.size() - 2);
+      } else if (section == kNodes) {
+        std::istringstream f(line);
+        long tag;
+        std::array<double, 3> p;
+        f >> tag >> p[0] >> p[1] >> p[2];
+        nodes[tag] = p;
+      } else if (section == kElements) {
+        std::istringstream f(line);
+        long tag, type, tag_count;
+        f >> tag >> type >> tag_count;
+        if (type != 2) continue;
+        std::vector<long> tags(static_cast<size_t>(tag_count));
+        for (long& t : tags) f >> t;
+        PositionTriangle t;
+        for (auto& corner : t) {
+          long node;
+          f >> node;
+          corner = nodes.at(node);
+        }
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        read[int32_t(tags[0])].push_back(t);
+      }
+    }
+    for (auto& [tag, list] : read) std::sort(list.begin(), list.end());
+    EXPECT_EQ(read, triangles_by_tag(mesh, groups));
+    std::map<int32_t, std::string> expected_names;
+    for (const SurfaceGroup& g : groups.groups) expected_names[g.tag] = g.name;
+    EXPECT_EQ(names, expected_names);
+  }
+}
+
+// CalculiX applies a unit pressure on the surface boundary_2_FACES and holds the
+// node set BOUNDARY_1: the reaction at BOUNDARY_1 balances the pressure's resultant,
+// (1, 0, 0) on box2 (the interface at x = 1 closes material 2's boundary). Wrong
+// face labels would load other faces, wrong node sets hold other nodes.
+TEST(SurfaceGroups, CalculixLoadsOurSurfacesAndHoldsOurNodeSets) {
+  if (std::system("command -v ccx > /dev/null 2>&1") != 0) GTEST_SKIP() << "no ccx on PATH";
+  const std::string dir = test::output_dir("surface_groups_calculix");
+  WriteOptions options;
+  options.surface_groups = true;
+  ASSERT_TRUE(write_mesh(dir + "/mesh.inp", box2(), options).ok());
+  test::write_text(dir + "/job.inp",
+                   "*INCLUDE, INPUT=mesh.inp\n"
+                   "*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n"
+                   "*SOLID SECTION, ELSET=MATERIAL_1, MATERIAL=STEEL\n"
+                   "*SOLID SECTION, ELSET=MATERIAL_2, MATERIAL=STEEL\n"
+                   "*STEP\n*STATIC\n*BOUNDARY\nBOUNDARY_1, 1, 3\n"
+                   "*DLOAD\nBOUNDARY_2_FACES, P, 1.0\n"
+                   "*NODE PRINT, NSET=BOUNDARY_1, TOTALS=ONLY\nRF\n*END STEP\n");
+  ASSERT_EQ(std::system(("cd '" + dir + "' && ccx job > ccx.log 2>&1").c_str()), 0)
+      << test::read_text(dir + "/ccx.log");
+  const std::string dat = test::read_text(dir + "/job.dat");
+  const size_t at = dat.find("total force (fx,fy,fz) for set BOUNDARY_1");
+  ASSERT_NE(at, std::string::npos) << dat << test::read_text(dir + "/ccx.log");
+  std::istringstream in(dat.substr(dat.find('\n', at)));
+  double f[3] = {0, 0, 0};
+  in >> f[0] >> f[1] >> f[2];
+  EXPECT_NEAR(f[0], 1.0, 1e-9);
+  EXPECT_NEAR(f[1], 0.0, 1e-9);
+  EXPECT_NEAR(f[2], 0.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace tetlod
