@@ -97,14 +97,35 @@ bool is_history_path(const std::string& path) {
   return has_extension(path, ".tlh");
 }
 
-bool mesh_output_path_ok(const std::string& path, const char* command) {
-  const Status status = check_mesh_path(path);
+bool mesh_output_path_ok(const std::string& path, const char* command,
+                         const WriteOptions& options) {
+  const Status status = check_mesh_path(path, options);
   if (status) return true;
   std::fprintf(stderr, "tetlod %s: -o %s\n", command, status.message().c_str());
   if (is_history_path(path))
     std::fprintf(stderr,
                  "(a collapse history is written by 'tetlod simplify --history FILE.tlh')\n");
   return false;
+}
+
+Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
+                         WriteOptions options, StagedMesh* staged) {
+  staged->has_groups = options.surface_groups;
+  if (options.surface_groups) {
+    staged->groups = group_surface(mesh);
+    options.groups = &staged->groups;
+  }
+  return stage_mesh(files, path, mesh, options);
+}
+
+void print_staged_surface_groups(const StagedMesh& staged) {
+  if (!staged.has_groups) return;
+  std::string line;
+  for (const SurfaceGroup& group : staged.groups.groups) {
+    line += (line.empty() ? "" : ", ") + std::to_string(group.tag) + " " + group.name + ": " +
+            std::to_string(group.triangles.size());
+  }
+  std::printf("surface groups (tag name: triangles): %s\n", line.empty() ? "none" : line.c_str());
 }
 
 bool open_history(const std::string& path, const char* command, OpenedHistory* opened) {

@@ -33,9 +33,22 @@ bool has_extension(const std::string& path, const char* extension);
 // extension: .tlh, in any case.
 bool is_history_path(const std::string& path);
 
-// Checks, before any work, that `path` can be written as a mesh (a known extension);
-// if not prints "tetlod <command>: ..." and returns false (a usage error).
-bool mesh_output_path_ok(const std::string& path, const char* command);
+// Checks, before any work, that `path` can be written as a mesh (a known extension,
+// and one that can hold what `options` asks for); if not prints "tetlod <command>:
+// ..." and returns false (a usage error).
+bool mesh_output_path_ok(const std::string& path, const char* command,
+                         const WriteOptions& options = {});
+
+// Writes `mesh` to `path` with `options` as stage_mesh() (core/io/mesh_io.h), and
+// with surface groups prints them, a line "surface groups (tag name: triangles): 5
+// boundary_1: 1200, ..." once the files are committed (print_staged_surface_groups).
+struct StagedMesh {
+  SurfaceGroups groups;  // group_surface(mesh) when asked for
+  bool has_groups = false;
+};
+Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
+                         WriteOptions options, StagedMesh* staged);
+void print_staged_surface_groups(const StagedMesh& staged);
 
 // A collapse history file opened to read levels from.
 struct OpenedHistory {

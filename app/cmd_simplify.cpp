@@ -21,6 +21,7 @@ constexpr const char* kSimplifyUsageHead =
     "usage: tetlod simplify IN -o OUT --size S [--stretch D] [--valence V] [--tolerance T]\n"
     "                       [--no-subdivide] [--material-size M=S,...] [--size-field SPEC]\n"
     "                       [--elements N] [--history FILE] [--crease-angle DEG] [--improve]\n"
+    "                       [--msh-version V] [--surfaces]\n"
     "\n"
     "Subdivides IN (every edge longer than half its target size), then collapses edges in\n"
     "order of the paper's priority index while every threshold holds:\n";
@@ -37,10 +38,11 @@ void print_simplify_usage(std::FILE* stream) {
   std::fputs(kSimplifyUsageHead, stream);
   std::fputs(kSimplifyFlagsHelp, stream);
   std::fputs(kSimplifyUsageTail, stream);
+  std::fputs(kWriteFlagsHelp, stream);
 }
 
 constexpr const char* kLodUsage =
-    "usage: tetlod lod HISTORY (--elements N | --step K) -o OUT\n"
+    "usage: tetlod lod HISTORY (--elements N | --step K) -o OUT [--msh-version V] [--surfaces]\n"
     "                  [--improve --size S [--stretch D] [--valence V] [--material-size ...]\n"
     "                   [--size-field ...] [--crease-angle DEG]]\n"
     "\n"
@@ -49,6 +51,11 @@ constexpr const char* kLodUsage =
     "  --improve         improve the level's shapes first, as 'tetlod simplify --improve',\n"
     "                    within the thresholds given (a history does not keep them; give\n"
     "                    the ones it was made with)\n";
+
+void print_lod_usage(std::FILE* stream) {
+  std::fputs(kLodUsage, stream);
+  std::fputs(kWriteFlagsHelp, stream);
+}
 
 // Runs improve_mesh() on `mesh`, timed.
 ImproveResult improve_timed(TetMesh* mesh, const SimplifyParams& params, double* seconds) {
@@ -84,9 +91,12 @@ int cmd_simplify(const Args& args) {
   }
   std::string in, out, history_path;
   SimplifyOptions options;
+  WriteOptions write_options;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    const OptionResult parsed = parse_simplify_option(args, &i, "simplify", &options);
+    OptionResult parsed = parse_simplify_option(args, &i, "simplify", &options);
+    if (parsed == OptionResult::kNotMine)
+      parsed = parse_write_option(args, &i, "simplify", &write_options);
     if (parsed == OptionResult::kError) return kExitUsage;
     if (parsed == OptionResult::kParsed) continue;
     if (a == "-o" || a == "--output") {
@@ -116,7 +126,7 @@ int cmd_simplify(const Args& args) {
                  "--size-field)\n");
     return kExitUsage;
   }
-  if (!mesh_output_path_ok(out, "simplify")) return kExitUsage;
+  if (!mesh_output_path_ok(out, "simplify", write_options)) return kExitUsage;
   if (!history_path.empty() && !is_history_path(history_path)) {
     std::fprintf(stderr, "tetlod simplify: --history %s: a collapse history file ends in .tlh\n",
                  history_path.c_str());
@@ -187,7 +197,8 @@ int cmd_simplify(const Args& args) {
 
   // The mesh and the history are written together, or neither.
   OutputFiles files;
-  Status s = stage_mesh(&files, out, output);
+  StagedMesh staged;
+  Status s = stage_output_mesh(&files, out, output, write_options, &staged);
   if (s && !history_path.empty())
     s = stage_history(&files, history_path, result.base, result.history);
   if (s) s = files.commit();
@@ -195,16 +206,18 @@ int cmd_simplify(const Args& args) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
+  print_staged_surface_groups(staged);
   if (!history_path.empty()) std::printf("history: %s\n", history_path.c_str());
   return kExitOk;
 }
 
 int cmd_lod(const Args& args) {
   if (wants_help(args)) {
-    std::fputs(kLodUsage, stdout);
+    print_lod_usage(stdout);
     return kExitOk;
   }
   std::string history_path, out;
+  WriteOptions write_options;
   long long elements = -1, step = -1;
   bool improve = false, thresholds_given = false;
   SimplifyOptions options;  // the thresholds for --improve
@@ -221,6 +234,9 @@ int cmd_lod(const Args& args) {
         continue;
       }
     }
+    const OptionResult written = parse_write_option(args, &i, "lod", &write_options);
+    if (written == OptionResult::kError) return kExitUsage;
+    if (written == OptionResult::kParsed) continue;
     if (a == "--improve") {
       improve = true;
     } else if (a == "-o" || a == "--output") {
@@ -253,7 +269,7 @@ int cmd_lod(const Args& args) {
                  kLodUsage);
     return kExitUsage;
   }
-  if (!mesh_output_path_ok(out, "lod")) return kExitUsage;
+  if (!mesh_output_path_ok(out, "lod", write_options)) return kExitUsage;
   if (thresholds_given && !improve) {
     std::fprintf(stderr, "tetlod lod: thresholds are only used with --improve\n\n%s", kLodUsage);
     return kExitUsage;
@@ -280,7 +296,10 @@ int cmd_lod(const Args& args) {
   ImproveResult improved;
   double seconds_improve = 0;
   if (improve) improved = improve_timed(&level.mesh, options.params, &seconds_improve);
-  const Status s = write_mesh(out, level.mesh);
+  OutputFiles files;
+  StagedMesh staged;
+  Status s = stage_output_mesh(&files, out, level.mesh, write_options, &staged);
+  if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
@@ -291,6 +310,7 @@ int cmd_lod(const Args& args) {
                                                               : beyond.c_str(),
               level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
   if (improve) print_improve(improved, seconds_improve);
+  print_staged_surface_groups(staged);
   return kExitOk;
 }
 

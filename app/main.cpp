@@ -14,7 +14,7 @@ constexpr const char* kUsage =
     "  stats FILE [--json]              mesh properties (the paper's Table I row) and a\n"
     "                                   stretch histogram, whole mesh and per material\n"
     "  convert IN OUT [--msh-version V] convert between .mesh .msh .node/.ele .vtk .vtu\n"
-    "                                   .bdf/.nas .inp\n"
+    "                                   .bdf/.nas .inp (--surfaces: with boundary groups)\n"
     "  generate MODEL -o FILE           make a bundled model (motor, spheres, box2) with TetGen\n"
     "  simplify IN -o OUT --size S ...  subdivide and simplify under the four thresholds\n"
     "  lod HISTORY --elements N -o OUT  write a level of a saved collapse history\n"

@@ -25,6 +25,36 @@ const char* const kSimplifyFlagsHelp =
     "  --no-subdivide    skip the subdivision step\n"
     "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
 
+const char* const kWriteFlagsHelp =
+    "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n"
+    "  --surfaces        also write the boundary and interface triangles, a group per\n"
+    "                    material pair (boundary_<m>, interface_<a>_<b>, numbered above\n"
+    "                    the materials), for boundary conditions: .msh physical surfaces,\n"
+    "                    .mesh triangle references, a TetGen .face file, .inp node sets\n"
+    "                    and element-face surfaces\n";
+
+OptionResult parse_write_option(const Args& args, size_t* i, const char* command,
+                                WriteOptions* options) {
+  const std::string& a = args[*i];
+  if (a == "--surfaces") {
+    options->surface_groups = true;
+    return OptionResult::kParsed;
+  }
+  if (a != "--msh-version") return OptionResult::kNotMine;
+  std::string v;
+  if (!parse_option_value(args, i, "--msh-version", &v)) return OptionResult::kError;
+  if (v == "2.2" || v == "22") {
+    options->gmsh_version = 22;
+  } else if (v == "4.1" || v == "41") {
+    options->gmsh_version = 41;
+  } else {
+    std::fprintf(stderr, "tetlod %s: --msh-version must be 2.2 or 4.1, not '%s'\n", command,
+                 v.c_str());
+    return OptionResult::kError;
+  }
+  return OptionResult::kParsed;
+}
+
 bool parse_option_value(const Args& args, size_t* i, const char* name, std::string* value) {
   if (*i + 1 >= args.size()) {
     std::fprintf(stderr, "tetlod: %s needs a value\n", name);

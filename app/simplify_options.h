@@ -1,10 +1,12 @@
 // The simplifier's command-line flags, shared by `simplify`, `render --simplify`
-// and `report`, so every command reads them the same way.
+// and `report`, and the flags of how a mesh is written, shared by `convert`,
+// `simplify` and `lod`, so every command reads them the same way.
 #pragma once
 
 #include <string>
 
 #include "app/commands.h"
+#include "core/io/mesh_io.h"
 #include "core/simplify.h"
 
 namespace tetlod::app {
@@ -30,6 +32,14 @@ enum class OptionResult {
 // --crease-angle --no-subdivide --material-size --size-field --elements --improve).
 OptionResult parse_simplify_option(const Args& args, size_t* i, const char* command,
                                    SimplifyOptions* options);
+
+// The flag lines of the usage text of the write flags.
+extern const char* const kWriteFlagsHelp;
+
+// Parses one flag of how the output mesh is written at args[*i]: --msh-version
+// 2.2|4.1, --surfaces (WriteOptions::surface_groups).
+OptionResult parse_write_option(const Args& args, size_t* i, const char* command,
+                                WriteOptions* options);
 
 // Reads "--flag VALUE": false with a message if VALUE is missing.
 bool parse_option_value(const Args& args, size_t* i, const char* name, std::string* value);

@@ -28,6 +28,11 @@ std::string out_dir() {
   return test::cli_output_dir("cli");
 }
 
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 std::string write_grid(const std::string& name) {
   const TetMesh mesh = test::make_grid_mesh(
       4, 2, 2, [](int i, int, int) { return i < 2 ? 1 : 2; }, 0.5);
@@ -134,6 +139,56 @@ TEST(Cli, ConvertKeepsCountsAcrossFormats) {
     ASSERT_EQ(s.code, 0) << s.output;
     EXPECT_NE(s.output.find("\"elements\": 96"), std::string::npos) << ext;
   }
+}
+
+// --surfaces and --msh-version on every command that writes a mesh: the groups are
+// printed and written; a format with no place for them is a usage error up front.
+TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
+  const std::string path = write_grid("surf.mesh");  // materials 1 (x < 1) and 2
+  const std::string groups_line =
+      "surface groups (tag name: triangles): 3 boundary_1: 40, 4 boundary_2: 40, "
+      "5 interface_1_2: 8\n";
+  const std::string converted = out_dir() + "/surf_out.msh";
+  CommandResult r = run("convert " + path + " " + converted + " --msh-version 2.2 --surfaces");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  std::string text = read_file(converted);
+  EXPECT_EQ(text.rfind("$MeshFormat\n2.2 0 8\n", 0), 0u);
+  EXPECT_NE(text.find("$PhysicalNames\n5\n2 3 \"boundary_1\"\n"), std::string::npos);
+
+  const std::string vtu = out_dir() + "/surf_out.vtu";
+  fs::remove(vtu);
+  r = run("convert " + path + " " + vtu + " --surfaces");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("surf_out.vtu: surface groups are written to .msh, .mesh"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(vtu));
+  r = run("convert " + path + " " + converted + " --msh-version 3");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("--msh-version must be 2.2 or 4.1, not '3'"), std::string::npos);
+
+  // simplify at a size that keeps the grid as it is (no collapse can pass the
+  // tolerance), so the groups are the input's.
+  const std::string simplified = out_dir() + "/surf_simp.msh";
+  const std::string history = out_dir() + "/surf.tlh";
+  r = run("simplify " + path + " -o " + simplified + " --size 0.9 --tolerance 1e-12 " +
+          "--no-subdivide --surfaces --msh-version 2.2 --history " + history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(simplified).rfind("$MeshFormat\n2.2 0 8\n", 0), 0u);
+  r = run("simplify " + path + " -o " + vtu + " --size 0.9 --surfaces");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(r.output.find("input "), std::string::npos) << "checked before any work";
+
+  const std::string level = out_dir() + "/surf_level.mesh";
+  r = run("lod " + history + " --step 0 -o " + level + " --surfaces");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  text = read_file(level);
+  EXPECT_NE(text.find("\nTriangles\n88\n"), std::string::npos);
+  r = run("lod " + history + " --step 0 -o " + vtu + " --surfaces");
+  EXPECT_EQ(r.code, 2) << r.output;
 }
 
 TEST(Cli, SimplifyRejectsAbsurdThresholds) {
