@@ -319,7 +319,7 @@ class Viewer {
   ViewPixels view_pixels(int fb_width, int fb_height) const;
   void draw_scene(int fb_width, int fb_height);
   Status screenshot(const std::string& path, int width, int height);
-  Status save_level(const std::string& path, bool improve);
+  Status save_level(const std::string& path, bool improve, bool surfaces);
   void fill_status();
   void add_recent(const std::string& path);
   void upload_all();
@@ -858,7 +858,8 @@ void Viewer::execute(const ui::Command& command) {
       }
       break;
     case ui::CommandKind::kSave: {
-      const Status s = save_level(command.path, command.value != 0);
+      const Status s = save_level(command.path, (command.value & ui::kSaveImproved) != 0,
+                                  (command.value & ui::kSaveSurfaces) != 0);
       if (!s) status_.load_error = s.message();
       break;
     }
@@ -1070,12 +1071,13 @@ Status Viewer::screenshot(const std::string& path, int width, int height) {
   return render::write_png(path, image);
 }
 
-Status Viewer::save_level(const std::string& path, bool improve) {
+Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) {
   if (!scene_) return Status::error("nothing to save: no mesh loaded");
   if (save_future_.valid()) return Status::error("still saving " + save_path_);
   if (is_history_path(path)) {
     // The whole collapse history, for 'tetlod lod' or to open here again later.
-    if (improve) return Status::error(path + ": a history is saved as it is (no improve)");
+    if (improve || surfaces)
+      return Status::error(path + ": a history is saved as it is (no improve, no boundary groups)");
     if (!scene_->result) return Status::error(path + ": nothing simplified yet: no history");
     save_path_ = path;
     save_future_ = std::async(std::launch::async, [path, result = scene_->result] {
@@ -1102,8 +1104,11 @@ Status Viewer::save_level(const std::string& path, bool improve) {
       scene_->from_history
           ? scene_->path + " (level at step " + std::to_string(scene_->lod->step()) + ")"
           : std::string();
+  WriteOptions options;
+  options.surface_groups = surfaces;
+  if (Status s = check_mesh_path(path, options); !s) return s;
   save_path_ = path;
-  save_future_ = std::async(std::launch::async, [path, improve, params, level_name,
+  save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
                                                  mesh = scene_->lod->extract()]() mutable {
     Saved saved;
     if (!level_name.empty()) {
@@ -1121,7 +1126,18 @@ Status Viewer::save_level(const std::string& path, bool improve) {
                     r.min_stretch_after);
       saved.note = note;
     }
-    saved.status = write_mesh(path, mesh);
+    if (!options.surface_groups) {
+      saved.status = write_mesh(path, mesh);
+      return saved;
+    }
+    const SurfaceGroups groups = group_surface(mesh);
+    options.groups = &groups;
+    saved.status = write_mesh(path, mesh, options);
+    saved.note += " (with " + std::to_string(groups.groups.size()) + " surface groups, tags " +
+                  (groups.groups.empty() ? std::string("-")
+                                         : std::to_string(groups.groups.front().tag) + "-" +
+                                               std::to_string(groups.groups.back().tag)) +
+                  ")";
     return saved;
   });
   return Status();
@@ -1593,7 +1609,7 @@ Status Viewer::run_action(const ScriptAction& a) {
       return screenshot(a.path, a.width, a.height);
     case Kind::kSave:
       save_line_ = a.line;
-      return save_level(a.path, a.flag);
+      return save_level(a.path, a.flag, a.surfaces);
     case Kind::kWait:
       wait_frames_ = static_cast<int>(a.count);
       wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(

@@ -300,11 +300,13 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
       return p.error("a screenshot with the UI is taken at the window size (--size WxH)");
   } else if (command == "save") {
     a->kind = Kind::kSave;
-    if (Status s = p.arg_count(1, 2); !s) return s;
+    if (Status s = p.arg_count(1, 3); !s) return s;
     a->path = w[1];
-    if (w.size() == 3) {
-      if (w[2] != "improve") return p.error("'save' takes PATH [improve]");
-      a->flag = true;
+    for (size_t i = 2; i < w.size(); ++i) {
+      bool& option = w[i] == "improve" ? a->flag : a->surfaces;
+      if ((w[i] != "improve" && w[i] != "surfaces") || option)
+        return p.error("'save' takes PATH [improve] [surfaces]");
+      option = true;
     }
   } else if (command == "wait") {
     a->kind = Kind::kWait;

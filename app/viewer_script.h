@@ -29,8 +29,9 @@
 //   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
 //   zoom CLICKS                      as by the mouse wheel (positive: closer)
 //   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
-//   save PATH [improve]              the displayed level, format from the extension;
+//   save PATH [improve] [surfaces]   the displayed level, format from the extension;
 //                                    improve: its shapes improved first (improve.h);
+//                                    surfaces: with boundary groups (WriteOptions);
 //                                    PATH.tlh: the whole collapse history instead
 //   wait frames=N | seconds=S        keep drawing (and taking input) meanwhile
 //   bench-scrub [frames=N] [out=CSV] drag the scrubber end to end and back over N
@@ -99,13 +100,14 @@ struct ScriptAction {
   };
   Kind kind = Kind::kQuit;
   int line = 0;
-  std::string path;     // open, screenshot, save, bench-scrub out, report-analysis
-  std::string word;     // color, colormap, view
-  long long count = 0;  // step, elements, material, frames, solve: wait (1) or not (0)
-  double value = 0;     // cut offset, highlight, range min, field-range percentile
-  double value2 = 0;    // range max
-  int axis = 0;         // cut: 0 x, 1 y, 2 z
-  bool flag = false;    // cut flip, wireframe on, screenshot ui, save improve
+  std::string path;       // open, screenshot, save, bench-scrub out, report-analysis
+  std::string word;       // color, colormap, view
+  long long count = 0;    // step, elements, material, frames, solve: wait (1) or not (0)
+  double value = 0;       // cut offset, highlight, range min, field-range percentile
+  double value2 = 0;      // range max
+  int axis = 0;           // cut: 0 x, 1 y, 2 z
+  bool flag = false;      // cut flip, wireframe on, screenshot ui, save improve
+  bool surfaces = false;  // save surfaces
   int width = 0, height = 0;
   // thresholds
   std::optional<double> size, stretch, tolerance;

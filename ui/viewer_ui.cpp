@@ -325,7 +325,9 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::InputText("##save", panel->save_path, sizeof(panel->save_path));
   ImGui::SameLine();
   if (ImGui::Button("Save level"))
-    commands->push_back({CommandKind::kSave, panel->save_path, panel->save_improved ? 1 : 0});
+    commands->push_back(
+        {CommandKind::kSave, panel->save_path,
+         (panel->save_improved ? kSaveImproved : 0) | (panel->save_surfaces ? kSaveSurfaces : 0)});
   text_disabled_wrapped(".mesh .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
   ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
@@ -333,6 +335,13 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
         "Before saving, edge removals, flips and vertex moves that raise the worst\n"
         "stretch, within the run's thresholds; boundaries and interfaces stay where they\n"
         "are. The levels on screen do not change.");
+  ImGui::Checkbox("boundary groups", &panel->save_surfaces);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Also write the boundary and interface triangles, a group per material pair\n"
+        "(boundary_<m>, interface_<a>_<b>), for boundary conditions: .msh physical\n"
+        "surfaces, .mesh triangle references, a TetGen .face file, .inp node sets and\n"
+        "element-face surfaces. Other formats have no place for them.");
   ImGui::SetNextItemWidth(-110);
   ImGui::InputText("##shot", panel->screenshot_path, sizeof(panel->screenshot_path));
   ImGui::SameLine();

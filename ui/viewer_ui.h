@@ -93,11 +93,15 @@ enum class CommandKind {
   kJumpElements,  // value: target number of elements
   kFit,           // fit the camera to the model
   kAxisView,      // value: 0 iso, 1 x, 2 y, 3 z
-  kSave,          // path: the displayed level; value 1: improved first (improve.h)
+  kSave,          // path: the displayed level; value: kSaveImproved | kSaveSurfaces
   kScreenshot,    // path, width, height (0: window size), with_ui
   kSolve,         // the displayed level, with the current AnalysisSettings
   kCancelSolve,
 };
+
+// The bits of a kSave command's value.
+inline constexpr long long kSaveImproved = 1;  // improve the shapes first (improve.h)
+inline constexpr long long kSaveSurfaces = 2;  // with surface groups (WriteOptions)
 
 struct Command {
   Command() = default;
@@ -119,6 +123,7 @@ struct PanelState {
   int jump_elements = 0;
   char save_path[1024] = "level.mesh";
   bool save_improved = false;  // improve the level's shapes before saving (improve.h)
+  bool save_surfaces = false;  // with the boundary and interface triangles (surface.h)
   char screenshot_path[1024] = "screenshot.png";
   int screenshot_size[2] = {0, 0};  // width, height; 0: the 3D view's size
   bool screenshot_ui = false;

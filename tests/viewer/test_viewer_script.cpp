@@ -58,8 +58,9 @@ TEST(ViewerScript, ParsesEveryCommand) {
       "wait frames=3\n"
       "bench-scrub frames=50 out=b.csv\n"
       "save better.mesh improve\n"
+      "save groups.msh surfaces improve\n"
       "quit\n");
-  ASSERT_EQ(a.size(), 24u);
+  ASSERT_EQ(a.size(), 25u);
   EXPECT_EQ(a[0].kind, Kind::kOpen);
   EXPECT_EQ(a[0].line, 3);
   EXPECT_EQ(a[0].path, "m.mesh");
@@ -105,7 +106,12 @@ TEST(ViewerScript, ParsesEveryCommand) {
   EXPECT_EQ(a[22].kind, Kind::kSave);
   EXPECT_EQ(a[22].path, "better.mesh");
   EXPECT_TRUE(a[22].flag);
-  EXPECT_EQ(a[23].kind, Kind::kQuit);
+  EXPECT_FALSE(a[22].surfaces);
+  EXPECT_FALSE(a[19].surfaces);
+  EXPECT_EQ(a[23].kind, Kind::kSave);
+  EXPECT_TRUE(a[23].flag);
+  EXPECT_TRUE(a[23].surfaces);
+  EXPECT_EQ(a[24].kind, Kind::kQuit);
 }
 
 TEST(ViewerScript, CameraMoves) {
@@ -118,6 +124,10 @@ TEST(ViewerScript, CameraMoves) {
   EXPECT_EQ(a[2].kind, Kind::kZoom);
   EXPECT_EQ(a[2].value, -2.5);
   EXPECT_EQ(parse_error("orbit 1\n"), "t.script:1: 'orbit' takes 2 argument(s), got 1");
+  EXPECT_EQ(parse_error("save a.msh surfaces surfaces\n"),
+            "t.script:1: 'save' takes PATH [improve] [surfaces]");
+  EXPECT_EQ(parse_error("save a.msh boundary\n"),
+            "t.script:1: 'save' takes PATH [improve] [surfaces]");
   EXPECT_EQ(parse_error("zoom in\n"), "t.script:1: 'clicks' needs a number, got 'in'");
 }
 

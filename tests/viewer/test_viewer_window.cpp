@@ -395,6 +395,28 @@ TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
   EXPECT_EQ(saved.tet_count(), input.tet_count());  // no simplification: the input itself
 }
 
+// `save PATH surfaces` writes the boundary groups, as `tetlod convert --surfaces`
+// does, and a format with no place for them fails on its script line, writing nothing.
+TEST(ViewerWindow, SaveWithSurfaceGroups) {
+  const fs::path dir = fresh_output_dir("viewer_save_surfaces");
+  std::ofstream(dir / "save.script") << "save level.msh surfaces\nsave level.vtu surfaces\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script save.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("save.script:2: "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("level.vtu: surface groups are written to .msh"), std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(dir / "level.vtu"));
+  std::ifstream f(dir / "level.msh");
+  const std::string text{std::istreambuf_iterator<char>(f), {}};
+  EXPECT_NE(text.find("2 3 \"boundary_1\"\n2 4 \"boundary_2\"\n2 5 \"interface_1_2\"\n"),
+            std::string::npos);
+  TetMesh saved, input;
+  ASSERT_TRUE(read_mesh((dir / "level.msh").string(), &saved).ok());
+  ASSERT_TRUE(read_mesh(kSource + "/assets/box2.mesh", &input).ok());
+  EXPECT_EQ(saved.tet_count(), input.tet_count());
+}
+
 // Fit frames the shown materials, as `tetlod render --view` does: with the motor's
 // box (material 1) hidden, the parts inside fill more of the picture after a Fit
 // than in the whole mesh's framing.
