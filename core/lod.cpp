@@ -1,11 +1,14 @@
 #include "core/lod.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <utility>
+
+#include "core/simplify.h"
 
 namespace tetlod {
 
@@ -182,7 +185,8 @@ TetMesh Lod::extract() const {
 }
 
 // ---------------------------------------------------------------------------------
-// History files: "TETLODH1", then counts and raw little-endian arrays.
+// History files: "TETLODH1", then counts and raw little-endian arrays; then,
+// optionally, "TLPARAM1" and the thresholds (write_params()).
 
 namespace {
 
@@ -210,25 +214,164 @@ bool read_array(std::FILE* f, uint64_t remaining_bytes, std::vector<T>* v) {
   return n == 0 || std::fread(v->data(), sizeof(T), n, f) == n;
 }
 
+constexpr char kParamsMagic[8] = {'T', 'L', 'P', 'A', 'R', 'A', 'M', '1'};
+
+// The thresholds as fixed-width little-endian fields: tolerance, stretch (f64),
+// valence, subdivide (u32), crease angle, uniform size (f64, +inf: none), then
+// counted lists: material sizes (i32 material, i32 0, f64 size), radial rules (8 f64:
+// centre, axis, size0, growth), boxes (7 f64: low, high, size).
+struct ParamsWriter {
+  std::FILE* f;
+  bool ok = true;
+  template <class T>
+  void put(T value) {
+    ok = ok && std::fwrite(&value, sizeof value, 1, f) == 1;
+  }
+  void put(const Vec3& p) {
+    put(p.x);
+    put(p.y);
+    put(p.z);
+  }
+};
+
+bool write_params(std::FILE* f, const SimplifyParams& p) {
+  if (std::fwrite(kParamsMagic, 1, 8, f) != 8) return false;
+  ParamsWriter w{f};
+  w.put(p.tolerance);
+  w.put(p.min_stretch);
+  w.put(uint32_t(p.max_valence));
+  w.put(uint32_t(p.subdivide ? 1 : 0));
+  w.put(p.crease_angle_degrees);
+  const SizingField& s = p.sizing;
+  w.put(s.uniform);
+  w.put(uint64_t(s.material_sizes.size()));
+  for (const auto& [material, size] : s.material_sizes) {
+    w.put(int32_t(material));
+    w.put(int32_t(0));
+    w.put(size);
+  }
+  w.put(uint64_t(s.radial.size()));
+  for (const SizingField::Radial& r : s.radial) {
+    w.put(r.center);
+    w.put(r.axis);
+    w.put(r.size0);
+    w.put(r.growth);
+  }
+  w.put(uint64_t(s.boxes.size()));
+  for (const SizingField::Box& b : s.boxes) {
+    w.put(b.low);
+    w.put(b.high);
+    w.put(b.size);
+  }
+  return w.ok;
+}
+
+struct ParamsReader {
+  std::FILE* f;
+  bool ok = true;
+  template <class T>
+  T get() {
+    T value{};
+    ok = ok && std::fread(&value, sizeof value, 1, f) == 1;
+    return value;
+  }
+  Vec3 get_vec3() {
+    Vec3 p;
+    p.x = get<double>();
+    p.y = get<double>();
+    p.z = get<double>();
+    return p;
+  }
+  // A list count that the rest of the file (`remaining` bytes) can hold.
+  uint64_t get_count(uint64_t remaining, uint64_t entry_bytes) {
+    const uint64_t n = get<uint64_t>();
+    if (n > remaining / entry_bytes) ok = false;
+    return ok ? n : 0;
+  }
+};
+
+// Reads the thresholds after "TLPARAM1"; an error message, or "" on success.
+std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
+  ParamsReader r{f};
+  p->tolerance = r.get<double>();
+  p->min_stretch = r.get<double>();
+  p->max_valence = r.get<uint32_t>();
+  const uint32_t subdivide = r.get<uint32_t>();
+  p->subdivide = subdivide != 0;
+  p->crease_angle_degrees = r.get<double>();
+  SizingField& s = p->sizing;
+  s.uniform = r.get<double>();
+  const uint64_t materials = r.get_count(bytes, 16);
+  for (uint64_t i = 0; i < materials && r.ok; ++i) {
+    const int32_t material = r.get<int32_t>();
+    r.get<int32_t>();
+    s.material_sizes.emplace_back(material, r.get<double>());
+  }
+  const uint64_t radial = r.get_count(bytes, 64);
+  for (uint64_t i = 0; i < radial && r.ok; ++i) {
+    SizingField::Radial rule;
+    rule.center = r.get_vec3();
+    rule.axis = r.get_vec3();
+    rule.size0 = r.get<double>();
+    rule.growth = r.get<double>();
+    s.radial.push_back(rule);
+  }
+  const uint64_t boxes = r.get_count(bytes, 56);
+  for (uint64_t i = 0; i < boxes && r.ok; ++i) {
+    SizingField::Box box;
+    box.low = r.get_vec3();
+    box.high = r.get_vec3();
+    box.size = r.get<double>();
+    s.boxes.push_back(box);
+  }
+  if (!r.ok) return "truncated thresholds";
+  if (std::fgetc(f) != EOF) return "bytes after the thresholds";
+  // What the command line's parsers accept (sizing.h), then check_params().
+  if (subdivide > 1) return "thresholds: subdivide flag " + std::to_string(subdivide);
+  if (std::isnan(s.uniform)) return "thresholds: size is not a number";
+  for (size_t i = 0; i < s.material_sizes.size(); ++i) {
+    const auto& [material, size] = s.material_sizes[i];
+    if (material < 0 || (i > 0 && material <= s.material_sizes[i - 1].first) ||
+        !std::isfinite(size) || !(size > 0))
+      return "thresholds: material size " + std::to_string(i);
+  }
+  for (size_t i = 0; i < s.radial.size(); ++i) {
+    const SizingField::Radial& rule = s.radial[i];
+    if (!is_finite(rule.center) || !is_finite(rule.axis) || !std::isfinite(rule.size0) ||
+        !(rule.size0 > 0) || !std::isfinite(rule.growth) || !(rule.growth >= 0))
+      return "thresholds: radial rule " + std::to_string(i);
+  }
+  for (size_t i = 0; i < s.boxes.size(); ++i) {
+    const SizingField::Box& box = s.boxes[i];
+    if (!is_finite(box.low) || !is_finite(box.high) || !std::isfinite(box.size) || !(box.size > 0))
+      return "thresholds: box rule " + std::to_string(i);
+  }
+  if (Status status = check_params(*p); !status) return "thresholds: " + status.message();
+  return "";
+}
+
 }  // namespace
 
 Status stage_history(OutputFiles* files, const std::string& path, const TetMesh& base,
-                     const CollapseHistory& history) {
+                     const CollapseHistory& history, const SimplifyParams* params) {
   return files->stage(path, [&](std::FILE* f) {
     return std::fwrite(kHistoryMagic, 1, 8, f) == 8 && write_array(f, base.positions) &&
            write_array(f, base.tets) && write_array(f, base.materials) &&
            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
-           write_array(f, history.rewired) && write_array(f, history.moved);
+           write_array(f, history.rewired) && write_array(f, history.moved) &&
+           (!params || write_params(f, *params));
   });
 }
 
-Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history) {
+Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history,
+                     const SimplifyParams* params) {
   OutputFiles files;
-  if (Status s = stage_history(&files, path, base, history); !s) return s;
+  if (Status s = stage_history(&files, path, base, history, params); !s) return s;
   return files.commit();
 }
 
-Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history) {
+Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
+                    std::optional<SimplifyParams>* params) {
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   std::FILE* f = file.get();
   if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
@@ -245,6 +388,17 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
       !read_array(f, bytes, &history->removed_tets) || !read_array(f, bytes, &history->rewired) ||
       !read_array(f, bytes, &history->moved)) {
     return Status::error(path + ": truncated or corrupt history file");
+  }
+  // The thresholds, if saved (after the arrays, so that older readers ignore them).
+  std::optional<SimplifyParams> saved_params;
+  char params_magic[8] = {};
+  const size_t magic_bytes = std::fread(params_magic, 1, 8, f);
+  if (magic_bytes != 0) {
+    if (magic_bytes != 8 || std::memcmp(params_magic, kParamsMagic, 8) != 0)
+      return Status::error(path + ": corrupt history: bytes after the last step");
+    saved_params.emplace();
+    const std::string error = read_params(f, bytes, &*saved_params);
+    if (!error.empty()) return Status::error(path + ": corrupt history: " + error);
   }
   // Every index in range and every range well formed, so replay cannot go astray.
   const size_t vertex_count = base->positions.size();
@@ -344,6 +498,7 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
         (history->rewired_end(s) - st.rewired_begin) + (history->moved_end(s) - st.moved_begin))
       return bad(at("moved tets missing"));
   }
+  if (params) *params = std::move(saved_params);
   return Status();
 }
 

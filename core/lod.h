@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@
 #include "core/tet_mesh.h"
 
 namespace tetlod {
+
+struct SimplifyParams;  // simplify.h
 
 struct CollapseHistory {
   struct Step {
@@ -108,10 +111,18 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // and replays the steps once to check that they are collapses of the base mesh that
 // leave every tet positive, so every level of an accepted history is made of
 // positive tets (not that they never overlap: a forged file can still do that).
-Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history);
+// `params`, if given: the thresholds the history was made with (all but
+// target_elements, which is about a level), saved after it so that a level can be
+// improved later within them (improve.h) without the user giving them again.
+Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history,
+                     const SimplifyParams* params = nullptr);
 // The same, staged in `files` to be committed with the other outputs of a command.
 Status stage_history(OutputFiles* files, const std::string& path, const TetMesh& base,
-                     const CollapseHistory& history);
-Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history);
+                     const CollapseHistory& history, const SimplifyParams* params = nullptr);
+// `params`, if given, receives the saved thresholds, or nullopt for a history saved
+// without them (as every one before 2026-11-24 was); saved thresholds that
+// check_params() refuses, or any byte after them, make the file corrupt.
+Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
+                    std::optional<SimplifyParams>* params = nullptr);
 
 }  // namespace tetlod

@@ -2,15 +2,18 @@
 // history files). A history the reader accepts must replay without going astray:
 // seeks to the end, back to the start and to the middle (with a render delta), and
 // the levels extracted there reference only their own vertices and have only
-// positive tets (the reader's replay checks promise that much).
+// positive tets (the reader's replay checks promise that much); saved thresholds it
+// accepts pass check_params().
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include <unistd.h>
 
 #include "core/lod.h"
+#include "core/simplify.h"
 
 namespace {
 
@@ -34,7 +37,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::fclose(f);
   tetlod::TetMesh base;
   tetlod::CollapseHistory history;
-  if (!tetlod::read_history(path, &base, &history).ok()) return 0;
+  std::optional<tetlod::SimplifyParams> params;
+  if (!tetlod::read_history(path, &base, &history, &params).ok()) return 0;
+  if (params && !tetlod::check_params(*params).ok()) __builtin_trap();  // accepted: valid
   tetlod::Lod lod(base, &history);
   tetlod::LodDelta delta;
   lod.seek(lod.step_count(), &delta);

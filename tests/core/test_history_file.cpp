@@ -4,11 +4,13 @@
 // tet (what `tetlod lod` would then write).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -99,6 +101,94 @@ TEST(HistoryFile, RoundTripIsExact) {
   const TetMesh level = lod.extract();
   EXPECT_EQ(level.tets, r.output.tets);
   EXPECT_EQ(level.materials, r.output.materials);
+}
+
+// The thresholds saved after the history (for `lod --improve` and the viewer): they
+// come back as written, a file without them reads as before, and damaged ones are
+// refused with what is wrong.
+TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
+  const SimplifyResult& r = small_run();
+  SimplifyParams p;
+  p.tolerance = 0.01;
+  p.min_stretch = 0.2;
+  p.max_valence = 30;
+  p.subdivide = false;
+  p.crease_angle_degrees = 35;
+  p.sizing.uniform = 1.5;
+  p.sizing.material_sizes = {{1, 0.7}, {2, 0.9}};
+  p.sizing.radial.push_back({{0.5, 0.5, 0.5}, {0, 0, 1}, 0.3, 0.25});
+  p.sizing.boxes.push_back({{0, 0, 0}, {1, 1, 1}, 0.4});
+  const std::string plain = out_path("no_params.tlh");
+  const std::string path = out_path("params.tlh");
+  ASSERT_TRUE(write_history(plain, r.base, r.history).ok());
+  ASSERT_TRUE(write_history(path, r.base, r.history, &p).ok());
+
+  TetMesh base;
+  CollapseHistory history;
+  std::optional<SimplifyParams> read;
+  Status s = read_history(path, &base, &history, &read);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_TRUE(read.has_value());
+  EXPECT_EQ(read->tolerance, p.tolerance);
+  EXPECT_EQ(read->min_stretch, p.min_stretch);
+  EXPECT_EQ(read->max_valence, p.max_valence);
+  EXPECT_EQ(read->subdivide, p.subdivide);
+  EXPECT_EQ(read->crease_angle_degrees, p.crease_angle_degrees);
+  EXPECT_EQ(read->sizing.uniform, p.sizing.uniform);
+  EXPECT_EQ(read->sizing.material_sizes, p.sizing.material_sizes);
+  ASSERT_EQ(read->sizing.radial.size(), 1u);
+  EXPECT_EQ(std::memcmp(&read->sizing.radial[0], &p.sizing.radial[0], sizeof(p.sizing.radial[0])),
+            0);
+  ASSERT_EQ(read->sizing.boxes.size(), 1u);
+  EXPECT_EQ(std::memcmp(&read->sizing.boxes[0], &p.sizing.boxes[0], sizeof(p.sizing.boxes[0])), 0);
+  EXPECT_EQ(history.steps.size(), r.history.steps.size());
+  EXPECT_TRUE(read_history(path, &base, &history).ok());  // without asking for them
+  s = read_history(plain, &base, &history, &read);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_FALSE(read.has_value());
+  // No limit at all is refused as --size would be; +inf is "no uniform size".
+  SimplifyParams unlimited = p;
+  unlimited.sizing = {};
+  ASSERT_TRUE(write_history(out_path("unlimited.tlh"), r.base, r.history, &unlimited).ok());
+  s = read_history(out_path("unlimited.tlh"), &base, &history, &read);
+  EXPECT_NE(s.message().find("corrupt history: thresholds: no size limit"), std::string::npos)
+      << s.message();
+
+  const std::string whole = read_bytes(path);
+  const size_t at = read_bytes(plain).size();  // where the thresholds start
+  ASSERT_EQ(whole.substr(at, 8), "TLPARAM1");
+  const std::string damaged = out_path("damaged_params.tlh");
+  auto error_with = [&](const std::string& bytes) {
+    write_bytes(damaged, bytes);
+    TetMesh b;
+    CollapseHistory h;
+    std::optional<SimplifyParams> q;
+    const Status status = read_history(damaged, &b, &h, &q);
+    return status.ok() ? std::string("accepted") : status.message();
+  };
+  auto with_double = [&](size_t offset, double value) {
+    std::string bytes = whole;
+    std::memcpy(&bytes[at + offset], &value, sizeof value);
+    return bytes;
+  };
+  EXPECT_NE(error_with(with_double(16, 1.5)).find("corrupt history: thresholds: stretch 1.5"),
+            std::string::npos);
+  EXPECT_NE(error_with(with_double(40, std::nan(""))).find("size is not a number"),
+            std::string::npos);
+  EXPECT_NE(error_with(with_double(8, -1)).find("thresholds: tolerance -1"), std::string::npos);
+  EXPECT_NE(error_with(whole + "x").find("bytes after the thresholds"), std::string::npos);
+  EXPECT_NE(error_with(read_bytes(plain) + "TLPARAM2").find("bytes after the last step"),
+            std::string::npos);
+  // Cut anywhere inside the thresholds: refused. (Cut exactly where they start, the
+  // file is a history saved without them, which it then is.)
+  for (size_t n = at + 1; n < whole.size(); ++n) {
+    EXPECT_NE(error_with(whole.substr(0, n)).find("corrupt history"), std::string::npos) << n;
+  }
+  // A count no file could hold.
+  std::string huge = whole;
+  const uint64_t count = uint64_t(1) << 60;
+  std::memcpy(&huge[at + 48], &count, sizeof count);
+  EXPECT_NE(error_with(huge).find("truncated thresholds"), std::string::npos);
 }
 
 // A forged history: one field changed, each caught by the check that names it.
