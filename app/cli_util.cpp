@@ -131,7 +131,7 @@ void print_staged_surface_groups(const StagedMesh& staged) {
 bool open_history(const std::string& path, const char* command, OpenedHistory* opened) {
   TetMesh base;
   opened->path = path;
-  const Status s = read_history(path, &base, &opened->history);
+  const Status s = read_history(path, &base, &opened->history, &opened->params);
   if (!s) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
     return false;
@@ -165,6 +165,7 @@ bool load_history_level(const std::string& path, const char* command, long long 
   OpenedHistory opened;
   if (!open_history(path, command, &opened)) return false;
   const Lod& lod = *opened.lod;
+  level->params = opened.params;
   level->step_count = lod.step_count();
   level->step = step >= 0       ? std::min<size_t>(static_cast<size_t>(step), lod.step_count())
                 : elements >= 0 ? lod.step_for_elements(static_cast<size_t>(elements))

@@ -11,6 +11,7 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
+#include "core/simplify.h"
 
 namespace tetlod::app {
 
@@ -57,7 +58,8 @@ struct OpenedHistory {
   OpenedHistory& operator=(const OpenedHistory&) = delete;
   std::string path;
   CollapseHistory history;
-  std::unique_ptr<Lod> lod;  // over `history`, from its base mesh
+  std::optional<SimplifyParams> params;  // the thresholds saved with it, if any
+  std::unique_ptr<Lod> lod;              // over `history`, from its base mesh
 };
 
 // Reads the history at `path`; on failure prints "tetlod <command>: <message>" to
@@ -74,7 +76,8 @@ bool history_level(OpenedHistory* opened, const char* command, size_t step, TetM
 struct HistoryLevel {
   TetMesh mesh;  // validated as a mesh file is (a forged history could make tets overlap)
   size_t step = 0, step_count = 0;
-  double seek_seconds = 0;  // moving the Lod from step 0 to `step`
+  double seek_seconds = 0;               // moving the Lod from step 0 to `step`
+  std::optional<SimplifyParams> params;  // the thresholds saved with the history, if any
 };
 
 // Reads the history at `path` and extracts step `step` (clamped to the last) if

@@ -220,6 +220,8 @@ int cmd_report(const Args& args) {
   std::string thresholds, run_summary;
   if (from_history) {
     const size_t last = history.lod->step_count();
+    if (history.params)
+      thresholds = describe_thresholds(*history.params) + " (saved in the history)";
     meshes.push_back({"step 0 (the subdivided input)", std::move(input)});
     std::sort(levels.begin(), levels.end(), std::greater<>());
     std::vector<size_t> steps;
@@ -251,12 +253,8 @@ int cmd_report(const Args& args) {
         (result.violations.above_size > 0
              ? " Above the size: " + above_size_reason(so.params, result)
              : std::string());
-    thresholds = "size " + describe_size(so.params.sizing) + ", stretch " +
-                 format("%g", so.params.min_stretch) + ", valence " +
-                 std::to_string(so.params.max_valence) + ", tolerance " +
-                 format("%g", so.params.tolerance) +
-                 (so.params.subdivide ? "" : ", no subdivision") +
-                 (so.improve ? "; levels improved (--improve)" : "");
+    thresholds =
+        describe_thresholds(so.params) + (so.improve ? "; levels improved (--improve)" : "");
     meshes.push_back({"input", input});
     Lod lod(result.base, &result.history);
     std::sort(levels.begin(), levels.end(), std::greater<>());
@@ -331,9 +329,10 @@ int cmd_report(const Args& args) {
       html_escape(in) + "</code>" +
       (thresholds.empty() ? "" : "<br>Thresholds: " + html_escape(thresholds)) +
       (run_summary.empty() ? "" : "<br>Run: " + html_escape(run_summary)) +
-      (from_history ? "<br>The levels of a saved collapse history, without simplifying again (a "
-                      "history keeps no thresholds)"
-                    : "") +
+      (from_history ? std::string("<br>The levels of a saved collapse history, without "
+                                  "simplifying again") +
+                          (thresholds.empty() ? " (saved without its thresholds)" : "")
+                    : std::string()) +
       "</p>\n<h2>Properties (Table I)</h2>\n<table>\n" + kTableHead + summary + "</table>\n" +
       figures + "</body></html>\n";
   const std::string path = dir + "/report.html";

@@ -49,8 +49,9 @@ constexpr const char* kLodUsage =
     "Writes a level of a saved collapse history (tetlod simplify --history) without\n"
     "simplifying again: the step nearest N elements, or step K (0 = the subdivided input).\n"
     "  --improve         improve the level's shapes first, as 'tetlod simplify --improve',\n"
-    "                    within the thresholds given (a history does not keep them; give\n"
-    "                    the ones it was made with)\n";
+    "                    within the thresholds saved in the history (histories saved\n"
+    "                    before 2026-11-24 have none: give the ones it was made with);\n"
+    "                    thresholds given here replace the saved ones\n";
 
 void print_lod_usage(std::FILE* stream) {
   std::fputs(kLodUsage, stream);
@@ -144,9 +145,7 @@ int cmd_simplify(const Args& args) {
   std::printf("input %s\n", in.c_str());
   print_property_table(stats_of(input));
   // The size: the uniform one, the local sizing, or the smaller of the two (sizing.h).
-  std::printf("\nthresholds: size %s, stretch %g, valence %u, tolerance %g%s\n",
-              describe_size(params.sizing).c_str(), params.min_stretch, params.max_valence,
-              params.tolerance, params.subdivide ? "" : ", no subdivision");
+  std::printf("\nthresholds: %s\n", describe_thresholds(params).c_str());
 
   SimplifyResult result;
   const Status status = simplify(input, params, &result);
@@ -200,7 +199,7 @@ int cmd_simplify(const Args& args) {
   StagedMesh staged;
   Status s = stage_output_mesh(&files, out, output, write_options, &staged);
   if (s && !history_path.empty())
-    s = stage_history(&files, history_path, result.base, result.history);
+    s = stage_history(&files, history_path, result.base, result.history, &params);
   if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
@@ -274,11 +273,11 @@ int cmd_lod(const Args& args) {
     std::fprintf(stderr, "tetlod lod: thresholds are only used with --improve\n\n%s", kLodUsage);
     return kExitUsage;
   }
-  if (improve) {
+  if (improve && thresholds_given) {
     if (!options.size_given) {
       std::fprintf(stderr,
-                   "tetlod lod: --improve needs the size the history was made with (--size, "
-                   "--material-size or --size-field)\n");
+                   "tetlod lod: --improve with thresholds needs the size the history was made "
+                   "with too (--size, --material-size or --size-field)\n");
       return kExitUsage;
     }
     if (const Status p = check_params(options.params); !p) {
@@ -288,6 +287,18 @@ int cmd_lod(const Args& args) {
   }
   HistoryLevel level;
   if (!load_history_level(history_path, "lod", step, elements, &level)) return kExitBadInput;
+  if (improve && !thresholds_given) {
+    if (!level.params) {
+      std::fprintf(stderr,
+                   "tetlod lod: %s was saved without its thresholds (before 2026-11-24): "
+                   "--improve needs the ones it was made with (--size S [--stretch D] "
+                   "[--valence V] ...)\n",
+                   history_path.c_str());
+      return kExitUsage;
+    }
+    options.params = *level.params;
+    options.tolerance_given = true;  // a level does not use it
+  }
   std::string beyond = step >= 0 ? std::string()
                                  : beyond_levels_note(elements, level.step, level.step_count,
                                                       level.mesh.tet_count());
@@ -295,7 +306,11 @@ int cmd_lod(const Args& args) {
   if (improve && !finish_simplify_options(level.mesh, "lod", &options)) return kExitUsage;
   ImproveResult improved;
   double seconds_improve = 0;
-  if (improve) improved = improve_timed(&level.mesh, options.params, &seconds_improve);
+  if (improve) {
+    std::printf("improving within %s (%s)\n", describe_thresholds(options.params).c_str(),
+                thresholds_given ? "given here" : "saved in the history");
+    improved = improve_timed(&level.mesh, options.params, &seconds_improve);
+  }
   OutputFiles files;
   StagedMesh staged;
   Status s = stage_output_mesh(&files, out, level.mesh, write_options, &staged);

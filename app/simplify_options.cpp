@@ -171,4 +171,17 @@ std::string describe_size(const SizingField& sizing) {
   return text + std::string(sizing.has_local_rules() ? ", less where the local sizing asks" : "");
 }
 
+std::string describe_thresholds(const SimplifyParams& params) {
+  char text[256];
+  std::snprintf(text, sizeof text, "stretch %g, valence %u, tolerance %g", params.min_stretch,
+                params.max_valence, params.tolerance);
+  std::string result = "size " + describe_size(params.sizing) + ", " + text;
+  if (!params.subdivide) result += ", no subdivision";
+  if (params.crease_angle_degrees != SimplifyParams{}.crease_angle_degrees) {
+    std::snprintf(text, sizeof text, ", crease angle %g", params.crease_angle_degrees);
+    result += text;
+  }
+  return result;
+}
+
 }  // namespace tetlod::app

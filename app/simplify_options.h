@@ -54,6 +54,10 @@ bool finish_simplify_options(const TetMesh& input, const char* command, Simplify
 // "from the local sizing" (no uniform size: --material-size or --size-field alone).
 std::string describe_size(const SizingField& sizing);
 
+// "size 12, stretch 0.15, valence 25, tolerance 0.05" (", no subdivision", ",
+// crease angle 30" when not the defaults).
+std::string describe_thresholds(const SimplifyParams& params);
+
 // "tolerance 3, stretch 12, size 0, valence 5, topology 2": a run's rejected
 // evaluations by reason, as simplify and report print them.
 std::string describe_rejections(const RejectionCounts& r);

@@ -390,11 +390,35 @@ TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
   const std::string plain = out_dir() + "/improve_plain.mesh";
   ASSERT_EQ(run("lod " + history + " --elements 20000 -o " + plain).code, 0);
   EXPECT_NE(file_bytes(plain), file_bytes(direct));
-  for (const char* flags : {" --size 12", " --improve", " --improve --size 12 --stretch 1",
-                            " --improve --size 12 --tolerance 0.05"}) {
+  for (const char* flags :
+       {" --size 12", " --improve --stretch 0.2", " --improve --size 12 --stretch 1",
+        " --improve --size 12 --tolerance 0.05"}) {
     const CommandResult bad = run("lod " + history + " --step 0 -o " + plain + flags);
     EXPECT_EQ(bad.code, 2) << flags << "\n" << bad.output;
   }
+  // The history keeps its thresholds: --improve alone uses them.
+  const std::string saved = out_dir() + "/improve_saved.mesh";
+  const CommandResult a = run("lod " + history + " --elements 20000 -o " + saved + " --improve");
+  ASSERT_EQ(a.code, 0) << a.output;
+  EXPECT_NE(a.output.find("improving within size 12, stretch 0.15, valence 25, tolerance 0.05 "
+                          "(saved in the history)"),
+            std::string::npos)
+      << a.output;
+  EXPECT_EQ(file_bytes(saved), file_bytes(direct));
+  // One saved without them (as before 2026-11-24: the file up to the thresholds) needs
+  // them given.
+  const std::string bytes = file_bytes(history);
+  const size_t at = bytes.find("TLPARAM1");
+  ASSERT_NE(at, std::string::npos);
+  const std::string legacy = out_dir() + "/improve_legacy.tlh";
+  std::ofstream(legacy, std::ios::binary) << bytes.substr(0, at);
+  const CommandResult b = run("lod " + legacy + " --elements 20000 -o " + saved + " --improve");
+  EXPECT_EQ(b.code, 2) << b.output;
+  EXPECT_NE(b.output.find("improve_legacy.tlh was saved without its thresholds"), std::string::npos)
+      << b.output;
+  ASSERT_EQ(run("lod " + legacy + " --elements 20000 -o " + saved + " --improve --size 12").code,
+            0);
+  EXPECT_EQ(file_bytes(saved), file_bytes(direct));
 }
 
 // The simplifier's candidate kernels run on AVX2 where the processor has it, else on

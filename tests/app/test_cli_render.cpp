@@ -362,6 +362,15 @@ TEST(CliReport, ReportsTheLevelsOfASavedHistory) {
   auto html = [](const std::string& dir) { return file_bytes(dir + "/report.html"); };
   const std::string from_history = html(saved);
   EXPECT_NE(from_history.find("levels of a saved collapse history"), std::string::npos);
+  // The thresholds it keeps, as the direct report prints its own.
+  const size_t start = html(direct).find("Thresholds: ");
+  ASSERT_NE(start, std::string::npos);
+  const std::string thresholds =
+      html(direct).substr(start, html(direct).find("<br>", start) - start);
+  EXPECT_NE(thresholds.find("size 10, stretch 0.15, valence 25, tolerance "), std::string::npos)
+      << thresholds;
+  EXPECT_NE(from_history.find(thresholds + " (saved in the history)"), std::string::npos)
+      << thresholds;
   // Level by level: the same Table I row (after the label) and the same picture.
   auto row = [](const std::string& page, const std::string& label) {
     const size_t at = page.find("<tr><th>" + label);
