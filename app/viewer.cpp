@@ -40,6 +40,7 @@
 #include "app/cli_util.h"
 #include "app/commands.h"
 #include "app/orbit_camera.h"
+#include "app/simplify_options.h"
 #include "core/adjacency.h"
 #include "core/electrostatics.h"
 #include "core/improve.h"
@@ -72,7 +73,8 @@ struct Scene {
   std::shared_ptr<const TetMesh> input;
   std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
   std::string above_size_reason;                 // of the result ("" if nothing is above)
-  SimplifyParams params;                         // of the result's run
+  SimplifyParams params;                         // of the result's run, if params_known
+  bool params_known = false;                     // run here, or saved in the history file read
   bool from_history = false;  // the result was read from a history file, not run here
   CollapseHistory empty_history;
   std::unique_ptr<Lod> lod;
@@ -379,7 +381,8 @@ class Viewer {
   };
   std::future<Saved> save_future_;
   std::string save_path_;
-  int save_line_ = 0;  // the script line that asked, if any
+  bool thresholds_from_history_ = false;  // the panel shows the opened history's thresholds
+  int save_line_ = 0;                     // the script line that asked, if any
 
   // A surface being rebuilt for a new filter (see apply_view_changes()).
   std::future<std::unique_ptr<render::LodSurface>> surface_future_;
@@ -630,11 +633,17 @@ void Viewer::start_load(const std::string& path) {
     // level is the input (shared, not copied), and its levels are there at once.
     std::shared_ptr<const TetMesh> mesh;
     std::shared_ptr<SimplifyResult> history;
+    std::optional<SimplifyParams> saved_params;
     Status s;
     if (is_history_path(job->path)) {
       history = std::make_shared<SimplifyResult>();
-      s = read_history(job->path, &history->base, &history->history);
+      s = read_history(job->path, &history->base, &history->history, &saved_params);
       mesh = std::shared_ptr<const TetMesh>(history, &history->base);
+      if (s) {
+        std::lock_guard<std::mutex> lock(job->mutex);
+        job->notes.push_back(saved_params ? "made with " + describe_thresholds(*saved_params)
+                                          : "saved without its thresholds");
+      }
     } else {
       auto read = std::make_shared<TetMesh>();
       ReadInfo info;
@@ -659,6 +668,10 @@ void Viewer::start_load(const std::string& path) {
       v.cut = false;  // the cut position belongs to the old model
       auto scene = make_scene(job->path, std::move(mesh), history, v);
       scene->from_history = history != nullptr;
+      if (saved_params) {
+        scene->params = *saved_params;
+        scene->params_known = true;
+      }
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
     }
@@ -712,6 +725,7 @@ void Viewer::start_simplify() {
       auto scene = make_scene(job->path, input, std::move(result), view);
       scene->above_size_reason = reason;
       scene->params = params;
+      scene->params_known = true;
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
     }
@@ -786,6 +800,9 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     thresholds_.subdivide = subdivide;
     thresholds_.tolerance = static_cast<float>(scene_->default_tolerance);
     thresholds_.size = static_cast<float>(scene_->default_size);
+    // A history's own thresholds, where the panel can hold them.
+    thresholds_from_history_ = scene_->from_history && scene_->params_known &&
+                               ui::from_simplify_params(scene_->params, &thresholds_);
     Vec3 lo, hi;
     shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
     camera_.fit(lo, hi, render::ViewDirection::kIso);
@@ -1080,19 +1097,22 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
       return Status::error(path + ": a history is saved as it is (no improve, no boundary groups)");
     if (!scene_->result) return Status::error(path + ": nothing simplified yet: no history");
     save_path_ = path;
-    save_future_ = std::async(std::launch::async, [path, result = scene_->result] {
+    const std::optional<SimplifyParams> params =
+        scene_->params_known ? std::optional<SimplifyParams>(scene_->params) : std::nullopt;
+    save_future_ = std::async(std::launch::async, [path, params, result = scene_->result] {
       Saved saved;
-      saved.status = write_history(path, result->base, result->history);
+      saved.status =
+          write_history(path, result->base, result->history, params ? &*params : nullptr);
       saved.note =
           " (the collapse history, " + std::to_string(result->history.step_count()) + " steps)";
       return saved;
     });
     return Status();
   }
-  // Improving uses the thresholds of the run that made the levels, or the panel's
-  // when nothing was simplified here (a history file keeps no thresholds).
+  // Improving uses the thresholds of the run that made the levels (here, or saved in
+  // the history file), or the panel's when they are not known.
   SimplifyParams params = scene_->params;
-  if (improve && (!scene_->result || scene_->from_history)) {
+  if (improve && !scene_->params_known) {
     std::string error;
     if (!ui::to_simplify_params(thresholds_, &params, &error))
       return Status::error("improve: thresholds: " + error);
@@ -1369,6 +1389,9 @@ void Viewer::fill_status() {
     s.bounds_max[k] = static_cast<float>(k == 0 ? scene.hi.x : k == 1 ? scene.hi.y : scene.hi.z);
   }
   s.from_history = scene.from_history;
+  s.thresholds_from_history = thresholds_from_history_;
+  s.history_thresholds =
+      scene.from_history && scene.params_known ? describe_thresholds(scene.params) : "";
   s.has_result = scene.result != nullptr && !scene.from_history;
   if (s.has_result) {
     s.rejections = scene.result->rejections;

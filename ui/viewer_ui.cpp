@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
@@ -170,7 +171,9 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                         std::vector<Command>* commands) {
   ImGui::TextDisabled("ctrl-click a slider to type a value");
-  if (status.default_size > 0) {
+  if (status.thresholds_from_history) {
+    text_disabled_wrapped("On open: the thresholds the history was made with");
+  } else if (status.default_size > 0) {
     text_disabled_wrapped(
         "On open: size %.4g = 3 x median tet size, tolerance %.4g = 0.001 x "
         "diagonal (hover)",
@@ -260,10 +263,16 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     ImGui::TextWrapped("%zu collapses, %.0f /s, %.1f s", status.collapses,
                        status.collapses_per_second, status.elapsed_seconds);
   }
-  if (status.from_history) {
+  if (status.from_history && !status.history_thresholds.empty()) {
     ImGui::TextWrapped(
-        "Levels from a saved collapse history (%zu steps). A history keeps no thresholds "
-        "or run statistics; Simplify starts again from its finest level.",
+        "Levels from a saved collapse history (%zu steps), made with %s (Save's improve "
+        "uses them). It keeps no run statistics; Simplify starts again from its finest level.",
+        status.step_count, status.history_thresholds.c_str());
+  } else if (status.from_history) {
+    ImGui::TextWrapped(
+        "Levels from a saved collapse history (%zu steps), saved without its thresholds "
+        "(Save's improve uses the panel's) or run statistics; Simplify starts again from its "
+        "finest level.",
         status.step_count);
   }
   if (status.has_result) {
@@ -631,6 +640,49 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
     return false;
   }
   *params = std::move(p);
+  return true;
+}
+
+bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings) {
+  const SizingField& sizing = params.sizing;
+  const bool region = !sizing.radial.empty() || !sizing.boxes.empty();
+  const bool uniform = std::isfinite(sizing.uniform);
+  if ((region && (!sizing.material_sizes.empty() || !uniform)) ||
+      (!uniform && sizing.material_sizes.empty()) ||
+      params.crease_angle_degrees != SimplifyParams{}.crease_angle_degrees)
+    return false;
+  ThresholdSettings t;
+  t.tolerance = static_cast<float>(params.tolerance);
+  t.stretch = static_cast<float>(params.min_stretch);
+  t.valence = static_cast<int>(std::min<uint32_t>(params.max_valence, 1 << 30));
+  t.subdivide = params.subdivide;
+  if (uniform) t.size = static_cast<float>(sizing.uniform);
+  if (region) {
+    t.sizing_mode = SizingMode::kRegion;
+    char rule[512];
+    for (const SizingField::Radial& r : sizing.radial) {
+      const Vec3 &c = r.center, &a = r.axis;
+      if (a == Vec3{}) {
+        std::snprintf(rule, sizeof rule, "radial:%.17g,%.17g,%.17g,%.17g,%.17g", c.x, c.y, c.z,
+                      r.size0, r.growth);
+      } else {
+        std::snprintf(rule, sizeof rule, "axis:%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g",
+                      c.x, c.y, c.z, a.x, a.y, a.z, r.size0, r.growth);
+      }
+      t.region_spec += (t.region_spec.empty() ? "" : ";") + std::string(rule);
+    }
+    for (const SizingField::Box& b : sizing.boxes) {
+      std::snprintf(rule, sizeof rule, "box:%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", b.low.x,
+                    b.low.y, b.low.z, b.high.x, b.high.y, b.high.z, b.size);
+      t.region_spec += (t.region_spec.empty() ? "" : ";") + std::string(rule);
+    }
+  } else if (!sizing.material_sizes.empty()) {
+    t.sizing_mode = SizingMode::kPerMaterial;
+    t.material_cap = uniform;
+    for (const auto& [material, size] : sizing.material_sizes)
+      t.material_sizes.push_back({material, static_cast<float>(size)});
+  }
+  *settings = std::move(t);
   return true;
 }
 

@@ -62,6 +62,11 @@ struct ThresholdSettings {
 // value (a region spec that does not parse, a size <= 0, ...).
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
                         std::string* error);
+// The reverse, for the panel to show the thresholds a history was made with: the
+// settings that give `params` back (to float precision). False, leaving `settings`
+// alone, where the panel cannot hold them: material sizes and region rules together,
+// region rules without a uniform size, a crease angle other than the default.
+bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings);
 
 // The Analysis panel's set-up (issue 6): an electrostatic problem over the materials
 // of the loaded mesh (core/electrostatics.h).
@@ -150,8 +155,10 @@ struct ViewerStatus {
   size_t collapses = 0;
   double collapses_per_second = 0;
   double elapsed_seconds = 0;
-  bool has_result = false;    // a run in this session (its statistics below)
-  bool from_history = false;  // the levels are a history file's (no run statistics)
+  bool has_result = false;               // a run in this session (its statistics below)
+  bool from_history = false;             // the levels are a history file's (no run statistics)
+  std::string history_thresholds;        // the thresholds saved with it, in words; "" if none
+  bool thresholds_from_history = false;  // opening it set the panel to them
   bool result_cancelled = false;
   RejectionCounts rejections;
   size_t splits = 0;

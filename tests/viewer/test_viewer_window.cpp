@@ -417,6 +417,37 @@ TEST(ViewerWindow, SaveWithSurfaceGroups) {
   EXPECT_EQ(saved.tet_count(), input.tet_count());
 }
 
+// A history keeps the thresholds it was made with: the viewer names them when it
+// opens it, and "save ... improve" improves within them (not the panel's), writing
+// what `tetlod lod --improve` writes.
+TEST(ViewerWindow, HistoryThresholdsAreUsedToImprove) {
+  const fs::path dir = fresh_output_dir("viewer_history_thresholds");
+  const std::string tetlod = TETLOD_BINARY;
+  const std::string history = (dir / "run.tlh").string();
+  ASSERT_EQ(std::system((tetlod + " simplify '" + kSource + "/assets/motor.mesh' -o '" +
+                         (dir / "out.mesh").string() +
+                         "' --size 12 --stretch 0.2 --tolerance 0.05 --history '" + history +
+                         "' > /dev/null")
+                            .c_str()),
+            0);
+  ASSERT_EQ(std::system((tetlod + " lod '" + history + "' --step 1000000000 --improve -o '" +
+                         (dir / "by_lod.mesh").string() + "' > /dev/null")
+                            .c_str()),
+            0);
+  std::ofstream(dir / "save.script") << "save by_viewer.mesh improve\nquit\n";
+  const ViewerRun run = run_viewer(dir, "'" + history + "' --size 320x240 --script save.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("made with size 12, stretch 0.2, valence 25, tolerance 0.05"),
+            std::string::npos)
+      << run.output;
+  auto bytes = [&](const char* name) {
+    std::ifstream f(dir / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  };
+  EXPECT_FALSE(bytes("by_lod.mesh").empty());
+  EXPECT_EQ(bytes("by_viewer.mesh"), bytes("by_lod.mesh"));
+}
+
 // Fit frames the shown materials, as `tetlod render --view` does: with the motor's
 // box (material 1) hidden, the parts inside fill more of the picture after a Fit
 // than in the whole mesh's framing.
