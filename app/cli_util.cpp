@@ -98,10 +98,11 @@ bool is_history_path(const std::string& path) {
 }
 
 bool mesh_output_path_ok(const std::string& path, const char* command,
-                         const WriteOptions& options) {
+                         const WriteOptions& options, const char* flag) {
   const Status status = check_mesh_path(path, options);
   if (status) return true;
-  std::fprintf(stderr, "tetlod %s: -o %s\n", command, status.message().c_str());
+  std::fprintf(stderr, "tetlod %s: %s%s%s\n", command, flag, *flag ? " " : "",
+               status.message().c_str());
   if (is_history_path(path))
     std::fprintf(stderr,
                  "(a collapse history is written by 'tetlod simplify --history FILE.tlh')\n");

@@ -37,8 +37,9 @@ bool is_history_path(const std::string& path);
 // Checks, before any work, that `path` can be written as a mesh (a known extension,
 // and one that can hold what `options` asks for); if not prints "tetlod <command>:
 // ..." and returns false (a usage error).
+// `flag`: how the output was given, for the message ("" for convert's positional OUT).
 bool mesh_output_path_ok(const std::string& path, const char* command,
-                         const WriteOptions& options = {});
+                         const WriteOptions& options = {}, const char* flag = "-o");
 
 // Writes `mesh` to `path` with `options` as stage_mesh() (core/io/mesh_io.h), and
 // with surface groups prints them, a line "surface groups (tag name: triangles): 5

@@ -57,7 +57,7 @@ int cmd_convert(const Args& args) {
     print_convert_usage(stderr);
     return kExitUsage;
   }
-  if (!mesh_output_path_ok(out, "convert", options)) return kExitUsage;
+  if (!mesh_output_path_ok(out, "convert", options, "")) return kExitUsage;
   TetMesh mesh;
   ReadInfo info;
   if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
