@@ -7,6 +7,7 @@
 #include "app/cli_util.h"
 #include "app/commands.h"
 #include "app/render_options.h"
+#include "core/improve.h"
 
 namespace tetlod::app {
 namespace {
@@ -22,7 +23,8 @@ constexpr const char* kRenderUsageHead =
     "Draws the boundary and interface faces of the visible tets offscreen (OpenGL 3.3 core\n"
     "through OSMesa: no display or GPU needed) and writes a PNG. FILE may be a collapse\n"
     "history (.tlh, from 'tetlod simplify --history'): then --elements N picks its level\n"
-    "(default: the last), without simplifying again.\n";
+    "(default: the last), without simplifying again, and --improve improves it within the\n"
+    "thresholds saved in the history.\n";
 constexpr const char* kRenderUsageTail =
     "  --simplify        render the simplified mesh; takes the flags of 'tetlod simplify':\n"
     "                    --size, --stretch, --valence, --tolerance, --material-size,\n"
@@ -81,7 +83,7 @@ int cmd_render(const Args& args) {
     std::fputs(options.simplify_beyond_elements
                    ? "tetlod render: --simplify needs a target size (--size, --material-size or "
                      "--size-field)\n"
-                   : "tetlod render: --elements picks a level of a simplification: give "
+                   : "tetlod render: --elements and --improve act on a simplification: give "
                      "--simplify with a target size (--size ...), or a saved history (.tlh)\n",
                stderr);
     return kExitUsage;
@@ -93,6 +95,10 @@ int cmd_render(const Args& args) {
     if (!load_history_level(in, "render", -1, options.simplify_options.elements, &level))
       return kExitBadInput;
     mesh = std::move(level.mesh);
+    if (options.simplify_options.improve) {
+      if (!history_improve_params(in, "render", level.params)) return kExitUsage;
+      improve_mesh(&mesh, *level.params);
+    }
   } else {
     ReadInfo info;
     if (!load_mesh(in, &mesh, &info)) return kExitBadInput;

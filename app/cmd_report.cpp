@@ -27,7 +27,8 @@ constexpr const char* kReportUsageHead =
     "row for the input and for each level, a picture of each (like the paper's Fig. 4)\n"
     "and its stretch histogram. The pictures and charts are also written as PNG files.\n"
     "IN may be a saved collapse history (.tlh, from 'tetlod simplify --history'): then\n"
-    "its levels are reported without simplifying again (--levels only).\n"
+    "its levels are reported without simplifying again (--levels, and --improve within\n"
+    "the thresholds saved in the history).\n"
     "  --levels N,...    levels of the collapse history nearest N elements each\n"
     "  --simplify        simplify with the flags of 'tetlod simplify' (--size, --stretch,\n"
     "                    --valence, --tolerance, --material-size, --size-field, ...);\n"
@@ -207,6 +208,8 @@ int cmd_report(const Args& args) {
     // The levels of a saved run: its finest level (the subdivided input), those
     // nearest --levels, and its last, all without simplifying again.
     if (!open_history(in, "report", &history)) return kExitBadInput;
+    if (options.simplify_options.improve && !history_improve_params(in, "report", history.params))
+      return kExitUsage;
     if (!history_level(&history, "report", 0, &input)) return kExitBadInput;
   } else {
     ReadInfo info;
@@ -221,7 +224,8 @@ int cmd_report(const Args& args) {
   if (from_history) {
     const size_t last = history.lod->step_count();
     if (history.params)
-      thresholds = describe_thresholds(*history.params) + " (saved in the history)";
+      thresholds = describe_thresholds(*history.params) + " (saved in the history)" +
+                   (options.simplify_options.improve ? "; levels improved (--improve)" : "");
     meshes.push_back({"step 0 (the subdivided input)", std::move(input)});
     std::sort(levels.begin(), levels.end(), std::greater<>());
     std::vector<size_t> steps;
@@ -232,6 +236,10 @@ int cmd_report(const Args& args) {
       level.label = k + 1 < steps.size() ? level_label(levels[k], steps[k], *history.lod)
                                          : "last step (" + std::to_string(last) + ")";
       if (!history_level(&history, "report", steps[k], &level.mesh)) return kExitBadInput;
+      if (options.simplify_options.improve) {
+        improve_mesh(&level.mesh, *history.params);
+        level.label += ", improved";
+      }
       meshes.push_back(std::move(level));
     }
   } else if (options.simplify) {

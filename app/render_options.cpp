@@ -68,7 +68,8 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
       parse_simplify_option(args, i, command, &options->simplify_options);
   if (simplify_flag != OptionResult::kNotMine) {
     options->simplify = true;
-    options->simplify_beyond_elements |= a != "--elements";
+    // A history's level takes --elements and --improve (with its saved thresholds).
+    options->simplify_beyond_elements |= a != "--elements" && a != "--improve";
     return simplify_flag;
   }
   render::SnapshotSettings& s = options->snapshot;
@@ -227,6 +228,17 @@ bool history_flags_ok(const std::string& in, const char* command, const RenderOp
   if (!options.simplify_beyond_elements) return true;
   std::fprintf(stderr, "tetlod %s: %s is a collapse history, already simplified: give only %s\n",
                command, in.c_str(), choose);
+  return false;
+}
+
+bool history_improve_params(const std::string& in, const char* command,
+                            const std::optional<SimplifyParams>& saved) {
+  if (saved) return true;
+  std::fprintf(stderr,
+               "tetlod %s: %s was saved without its thresholds (before 2026-11-24), which "
+               "--improve needs: write the level with 'tetlod lod %s --improve --size S ...' "
+               "and give that\n",
+               command, in.c_str(), in.c_str());
   return false;
 }
 

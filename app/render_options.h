@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,17 +20,24 @@ struct RenderOptions {
   std::vector<int32_t> shown_materials;   // --materials: only these (empty: all)
   std::vector<int32_t> hidden_materials;  // --hide
   bool simplify = false;                  // --simplify, or any simplifier flag
-  bool simplify_beyond_elements = false;  // ... other than --elements
+  bool simplify_beyond_elements = false;  // ... other than --elements and --improve
   SimplifyOptions simplify_options;
 };
 
 extern const char* const kRenderFlagsHelp;
 
 // For an input that is a collapse history (already simplified), simplifier flags
-// other than --elements are a usage error: false, with a message to stderr that
+// other than --elements and --improve (which uses the history's saved thresholds:
+// history_improve_params()) are a usage error: false, with a message to stderr that
 // names the file and says which flags choose its levels (`choose`).
 bool history_flags_ok(const std::string& in, const char* command, const RenderOptions& options,
                       const char* choose);
+
+// The thresholds to improve a level of the history `in` with: those saved in it
+// (`saved`); if it has none, prints "tetlod <command>: ..." and returns false (a
+// usage error: it was saved before 2026-11-24, use 'tetlod lod --improve --size ...').
+bool history_improve_params(const std::string& in, const char* command,
+                            const std::optional<SimplifyParams>& saved);
 
 // Parses one view flag at args[*i] (see kRenderFlagsHelp) or a simplifier flag.
 OptionResult parse_render_option(const Args& args, size_t* i, const char* command,

@@ -128,11 +128,31 @@ TEST(CliRender, RendersALevelOfASavedHistory) {
                           "'tetlod lod"),
             std::string::npos)
       << r.output;
-  for (const char* flags : {" --simplify", " --size 3", " --elements 10 --improve"}) {
+  for (const char* flags : {" --simplify", " --size 3", " --elements 10 --improve --size 3"}) {
     r = run("render " + history + flags + view + out_dir() + "/render_history_bad.png");
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
     EXPECT_NE(r.output.find("is a collapse history"), std::string::npos) << r.output;
   }
+  // --improve improves the level within the history's saved thresholds, as `lod
+  // --improve` does; a history saved without them says so.
+  const std::string improved = out_dir() + "/render_history_improved.mesh";
+  ASSERT_EQ(run("lod " + history + " --elements 40000 --improve -o " + improved).code, 0);
+  const std::string from_history = out_dir() + "/render_history_improved_direct.png";
+  const std::string from_level = out_dir() + "/render_history_improved_level.png";
+  r = run("render " + history + " --elements 40000 --improve" + view + from_history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(run("render " + improved + view + from_level).code, 0);
+  EXPECT_EQ(file_bytes(from_history), file_bytes(from_level));
+  r = run("render " + history + " --elements 40000" + view + from_level);
+  EXPECT_NE(file_bytes(from_history), file_bytes(from_level)) << "--improve changed nothing";
+  const std::string bytes = file_bytes(history);
+  const std::string legacy = out_dir() + "/render_history_legacy.tlh";
+  std::ofstream(legacy, std::ios::binary) << bytes.substr(0, bytes.find("TLPARAM1"));
+  r = run("render " + legacy + " --improve" + view + from_level);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("render_history_legacy.tlh was saved without its thresholds"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(CliRender, BadValuesAreUsageErrors) {
@@ -386,6 +406,20 @@ TEST(CliReport, ReportsTheLevelsOfASavedHistory) {
   r = run("report " + history + " --size 3 -o " + saved);
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("is a collapse history"), std::string::npos) << r.output;
+  // --improve: the levels improved within the saved thresholds, as a direct run's.
+  fs::remove_all(direct);
+  fs::remove_all(saved);
+  r = run("report " + asset("box2.mesh") + " --simplify --size 10 --no-subdivide --improve" + view +
+          direct);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run("report " + history + " --improve" + view + saved);
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* label : {"level ~100", "level ~60"}) {
+    EXPECT_NE(row(html(saved), label).find("<td>"), std::string::npos) << label;
+    EXPECT_EQ(row(html(saved), label), row(html(direct), label)) << label;
+  }
+  EXPECT_NE(html(saved).find(", improved</th>"), std::string::npos);
+  EXPECT_NE(html(saved).find("; levels improved (--improve)"), std::string::npos);
 }
 
 TEST(CliReport, ErrorsAreClear) {
