@@ -80,12 +80,19 @@ int cmd_render(const Args& args) {
                                    "--elements N to choose its level (default: the last)"))
     return kExitUsage;
   if (!history && options.simplify && !options.simplify_options.size_given) {
-    std::fputs(options.simplify_beyond_elements
-                   ? "tetlod render: --simplify needs a target size (--size, --material-size or "
-                     "--size-field)\n"
-                   : "tetlod render: --elements and --improve act on a simplification: give "
-                     "--simplify with a target size (--size ...), or a saved history (.tlh)\n",
-               stderr);
+    if (options.simplify_beyond_elements) {
+      std::fputs(
+          "tetlod render: --simplify needs a target size (--size, --material-size or "
+          "--size-field)\n",
+          stderr);
+    } else {
+      std::fprintf(stderr,
+                   "tetlod render: %s: give --simplify with a target size (--size ...), or a "
+                   "saved history (.tlh)\n",
+                   options.simplify_options.improve
+                       ? "--improve improves a level of a simplification"
+                       : "--elements picks a level of a simplification");
+    }
     return kExitUsage;
   }
 
