@@ -337,8 +337,10 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
   }
   for (size_t i = 0; i < s.radial.size(); ++i) {
     const SizingField::Radial& rule = s.radial[i];
-    if (!is_finite(rule.center) || !is_finite(rule.axis) || !std::isfinite(rule.size0) ||
-        !(rule.size0 > 0) || !std::isfinite(rule.growth) || !(rule.growth >= 0))
+    const bool axis_ok = rule.axis == Vec3{} || std::abs(length(rule.axis) - 1) < 1e-9;
+    if (!is_finite(rule.center) || !is_finite(rule.axis) || !axis_ok ||
+        !std::isfinite(rule.size0) || !(rule.size0 > 0) || !std::isfinite(rule.growth) ||
+        !(rule.growth >= 0))
       return "thresholds: radial rule " + std::to_string(i);
   }
   for (size_t i = 0; i < s.boxes.size(); ++i) {

@@ -177,6 +177,11 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
             std::string::npos);
   EXPECT_NE(error_with(with_double(8, -1)).find("thresholds: tolerance -1"), std::string::npos);
   EXPECT_NE(error_with(whole + "x").find("bytes after the thresholds"), std::string::npos);
+  // The radial rule's axis (its z at 48 fixed bytes + the material count and two
+  // material sizes + the radial count + its centre + x, y) must be zero or a unit
+  // vector, as parse_size_field() leaves it.
+  EXPECT_NE(error_with(with_double(48 + 8 + 32 + 8 + 24 + 16, 2)).find("radial rule 0"),
+            std::string::npos);
   EXPECT_NE(error_with(read_bytes(plain) + "TLPARAM2").find("bytes after the last step"),
             std::string::npos);
   // Cut anywhere inside the thresholds: refused. (Cut exactly where they start, the
