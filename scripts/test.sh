@@ -4,10 +4,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # gmsh: the test suite checks that Gmsh itself reads the .msh files TetLOD writes;
-# calculix-ccx: that CalculiX runs an analysis on the .inp files TetLOD writes.
+# calculix-ccx: that CalculiX runs an analysis on the .inp files TetLOD writes;
+# getdp: that GetDP solves on the surface groups of the .msh files TetLOD writes.
 # (setup.sh also installs xvfb + xauth: ctest runs the GLFW window test under
 # xvfb-run; the golden-image tests render offscreen with OSMesa and need no display.)
-TETLOD_EXTRA_PACKAGES="gmsh calculix-ccx" bash scripts/setup.sh
+TETLOD_EXTRA_PACKAGES="gmsh calculix-ccx getdp" bash scripts/setup.sh
 
 jobs=$(nproc)
 ctest --test-dir build --output-on-failure -j"$jobs"
