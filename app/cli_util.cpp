@@ -97,8 +97,8 @@ bool is_history_path(const std::string& path) {
   return has_extension(path, ".tlh");
 }
 
-bool mesh_output_path_ok(const std::string& path, const char* command,
-                         const WriteOptions& options, const char* flag) {
+bool mesh_output_path_ok(const std::string& path, const char* command, const WriteOptions& options,
+                         const char* flag) {
   const Status status = check_mesh_path(path, options);
   if (status) return true;
   std::fprintf(stderr, "tetlod %s: %s%s%s\n", command, flag, *flag ? " " : "",
@@ -113,7 +113,8 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
                          WriteOptions options, StagedMesh* staged) {
   staged->has_groups = options.surface_groups;
   if (options.surface_groups) {
-    staged->groups = group_surface(mesh);
+    if (Status s = group_surface(mesh, &staged->groups); !s)
+      return Status::error(path + ": " + s.message());
     options.groups = &staged->groups;
   }
   return stage_mesh(files, path, mesh, options);

@@ -1150,7 +1150,11 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
       saved.status = write_mesh(path, mesh);
       return saved;
     }
-    const SurfaceGroups groups = group_surface(mesh);
+    SurfaceGroups groups;
+    if (Status s = group_surface(mesh, &groups); !s) {
+      saved.status = Status::error(path + ": " + s.message());
+      return saved;
+    }
     options.groups = &groups;
     saved.status = write_mesh(path, mesh, options);
     saved.note += " (with " + std::to_string(groups.groups.size()) + " surface groups, tags " +

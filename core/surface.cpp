@@ -1,6 +1,7 @@
 #include "core/surface.h"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <tuple>
 #include <utility>
@@ -31,7 +32,7 @@ std::vector<SurfaceTriangle> extract_surface(const TetMesh& mesh,
   return triangles;
 }
 
-int32_t first_surface_tag(const TetMesh& mesh) {
+int64_t first_surface_tag(const TetMesh& mesh) {
   if (mesh.materials.empty()) return 1;
   std::vector<int32_t> materials = mesh.materials;
   std::sort(materials.begin(), materials.end());
@@ -44,10 +45,10 @@ int32_t first_surface_tag(const TetMesh& mesh) {
     }
     largest = std::max(largest, zero_tag);
   }
-  return std::max(largest, 0) + 1;
+  return int64_t{std::max(largest, 0)} + 1;
 }
 
-SurfaceGroups group_surface(const TetMesh& mesh) {
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups) {
   SurfaceGroups result;
   result.surface = extract_surface(mesh, build_adjacency(mesh).tet_neighbors);
   // Key: boundaries (0, m, -1) before interfaces (1, a, b).
@@ -56,7 +57,13 @@ SurfaceGroups group_surface(const TetMesh& mesh) {
     const SurfaceTriangle& t = result.surface[i];
     by_pair[{t.outer == kOutsideMaterial ? 0 : 1, t.inner, t.outer}].push_back(i);
   }
-  int32_t tag = first_surface_tag(mesh);
+  const int64_t first = first_surface_tag(mesh);
+  if (first + int64_t(by_pair.size()) - 1 > std::numeric_limits<int32_t>::max()) {
+    return Status::error("material ids up to " + std::to_string(first - 1) +
+                         " leave no room to number the " + std::to_string(by_pair.size()) +
+                         " surface groups above them (tags end at 2147483647)");
+  }
+  int32_t tag = static_cast<int32_t>(first);
   for (auto& [key, triangles] : by_pair) {
     SurfaceGroup group;
     group.material = std::get<1>(key);
@@ -68,7 +75,8 @@ SurfaceGroups group_surface(const TetMesh& mesh) {
     group.triangles = std::move(triangles);
     result.groups.push_back(std::move(group));
   }
-  return result;
+  *groups = std::move(result);
+  return Status();
 }
 
 }  // namespace tetlod

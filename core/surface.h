@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/adjacency.h"
+#include "core/status.h"
 #include "core/tet_mesh.h"
 
 namespace tetlod {
@@ -46,10 +47,12 @@ struct SurfaceGroups {
 
 // 1 + the largest tag a writer gives a material: the largest material, or, when
 // material 0 is present, the Gmsh tag it gets (the smallest positive tag no
-// material uses) if that is larger. At least 1.
-int32_t first_surface_tag(const TetMesh& mesh);
+// material uses) if that is larger. At least 1; may exceed the int32 range.
+int64_t first_surface_tag(const TetMesh& mesh);
 
-// Precondition: the mesh passed validate_mesh().
-SurfaceGroups group_surface(const TetMesh& mesh);
+// Precondition: the mesh passed validate_mesh(). An error, naming the largest
+// material, when the tags would run past 2^31 - 1 (the largest tag Gmsh and Medit
+// take); `groups` is then left as it was.
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 
 }  // namespace tetlod

@@ -216,7 +216,8 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
   SurfaceGroups computed;
   const SurfaceGroups* surfaces = nullptr;
   if (options.surface_groups) {
-    if (!options.groups) computed = group_surface(mesh);
+    if (!options.groups && !(status = group_surface(mesh, &computed)).ok())
+      return Status::error(path + ": " + status.message());
     surfaces = options.groups ? options.groups : &computed;
   }
   std::string text;

@@ -65,7 +65,9 @@ TEST(IoGetdpInterop, GetdpSolvesOnOurSurfaceGroups) {
   options.surface_groups = true;
   ASSERT_TRUE(write_mesh(dir + "/spheres.msh", mesh, options).ok());
   int32_t inner = 0, outer = 0;
-  for (const SurfaceGroup& g : group_surface(mesh).groups) {
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(mesh, &groups).ok());
+  for (const SurfaceGroup& g : groups.groups) {
     if (g.name == "interface_1_2") inner = g.tag;
     if (g.name == "interface_3_4") outer = g.tag;
   }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -20,6 +21,13 @@
 
 namespace tetlod {
 namespace {
+
+SurfaceGroups groups_of(const TetMesh& mesh) {
+  SurfaceGroups groups;
+  const Status s = group_surface(mesh, &groups);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return groups;
+}
 
 TetMesh box2() {
   TetMesh mesh;
@@ -53,7 +61,7 @@ std::map<int32_t, std::vector<PositionTriangle>> triangles_by_tag(const TetMesh&
 
 TEST(SurfaceGroups, Box2HasTwoBoundariesAndOneInterface) {
   const TetMesh mesh = box2();
-  const SurfaceGroups groups = group_surface(mesh);
+  const SurfaceGroups groups = groups_of(mesh);
   ASSERT_EQ(groups.groups.size(), 3u);
   const char* names[] = {"boundary_1", "boundary_2", "interface_1_2"};
   size_t total = 0;
@@ -109,16 +117,37 @@ TEST(SurfaceGroups, TagsStartAboveEveryMaterialTag) {
       3, 1, 1, [](int i, int, int) { return i == 0   ? 7
                                             : i == 1 ? 0
                                                      : 3; }, 1.0);
-  const SurfaceGroups groups = group_surface(mesh);
+  const SurfaceGroups groups = groups_of(mesh);
   std::vector<std::string> names;
   for (const SurfaceGroup& g : groups.groups) names.push_back(g.name + "=" + std::to_string(g.tag));
   EXPECT_EQ(names, (std::vector<std::string>{"boundary_0=8", "boundary_3=9", "boundary_7=10",
                                              "interface_0_3=11", "interface_0_7=12"}));
+  // Tags end at 2^31 - 1: one group fits above 2^31 - 2, two groups do not.
+  const int32_t top = std::numeric_limits<int32_t>::max();
+  mesh = test::make_grid_mesh(
+      2, 1, 1, [&](int, int, int) { return top - 1; }, 1.0);
+  std::vector<std::string> one;
+  for (const SurfaceGroup& g : groups_of(mesh).groups)
+    one.push_back(g.name + "=" + std::to_string(g.tag));
+  EXPECT_EQ(one, (std::vector<std::string>{"boundary_2147483646=2147483647"}));
+  mesh.materials[0] = top;
+  SurfaceGroups untouched;
+  untouched.groups.resize(1);
+  const Status s = group_surface(mesh, &untouched);
+  EXPECT_NE(s.message().find("material ids up to 2147483647 leave no room"), std::string::npos)
+      << s.message();
+  EXPECT_EQ(untouched.groups.size(), 1u);
+  WriteOptions options;
+  options.surface_groups = true;
+  const std::string path = test::output_dir("surface_groups_overflow") + "/x.msh";
+  const Status w = write_mesh(path, mesh, options);
+  EXPECT_NE(w.message().find(path + ": material ids up to"), std::string::npos) << w.message();
+  EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 TEST(SurfaceGroups, EachWriterCarriesThem) {
   const TetMesh mesh = box2();
-  const SurfaceGroups groups = group_surface(mesh);
+  const SurfaceGroups groups = groups_of(mesh);
   const std::string dir = test::output_dir("surface_groups");
   WriteOptions options;
   options.surface_groups = true;
@@ -210,7 +239,7 @@ TEST(SurfaceGroups, GmshKeepsOurPhysicalSurfaces) {
   if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
   const TetMesh mesh = test::make_grid_mesh(
       3, 2, 2, [](int i, int j, int) { return i == 2 && j == 1 ? 1000000 : (i + j) % 4; }, 0.25);
-  const SurfaceGroups groups = group_surface(mesh);
+  const SurfaceGroups groups = groups_of(mesh);
   const std::string dir = test::output_dir("surface_groups_gmsh");
   for (int version : {22, 41}) {
     SCOPED_TRACE(version);
