@@ -31,20 +31,22 @@ constexpr const char* kSimplifyUsageTail =
     "  --improve         then improve the shapes of the level written, within the same\n"
     "                    thresholds: edge removals and flips inside one material, and\n"
     "                    vertex moves; boundaries and interfaces stay where they are\n"
-    "                    (beyond the paper; the history is not changed)\n"
-    "Prints the Table I rows before and after, the rejection counts and the phase times.\n";
+    "                    (beyond the paper; the history is not changed)\n";
 
 void print_simplify_usage(std::FILE* stream) {
   std::fputs(kSimplifyUsageHead, stream);
   std::fputs(kSimplifyFlagsHelp, stream);
   std::fputs(kSimplifyUsageTail, stream);
   std::fputs(kWriteFlagsHelp, stream);
+  std::fputs(
+      "Prints the Table I rows before and after, the rejection counts and the phase times.\n",
+      stream);
 }
 
 constexpr const char* kLodUsage =
     "usage: tetlod lod HISTORY (--elements N | --step K) -o OUT [--msh-version V] [--surfaces]\n"
-    "                  [--improve --size S [--stretch D] [--valence V] [--material-size ...]\n"
-    "                   [--size-field ...] [--crease-angle DEG]]\n"
+    "                  [--improve [--size S [--stretch D] [--valence V] [--material-size ...]\n"
+    "                   [--size-field ...] [--crease-angle DEG]]]\n"
     "\n"
     "Writes a level of a saved collapse history (tetlod simplify --history) without\n"
     "simplifying again: the step nearest N elements, or step K (0 = the subdivided input).\n"
