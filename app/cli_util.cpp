@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <utility>
 
@@ -112,6 +113,12 @@ bool mesh_output_path_ok(const std::string& path, const char* command, const Wri
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
                          WriteOptions options, StagedMesh* staged) {
   staged->has_groups = options.surface_groups;
+  if (!options.surface_groups && (has_extension(path, ".node") || has_extension(path, ".ele"))) {
+    const std::string face =
+        path.substr(0, path.size() - (has_extension(path, ".ele") ? 4 : 5)) + ".face";
+    std::error_code ec;
+    if (std::filesystem::exists(face, ec)) staged->stale_face = face;
+  }
   if (options.surface_groups) {
     if (Status s = group_surface(mesh, &staged->groups); !s)
       return Status::error(path + ": " + s.message());
@@ -120,7 +127,13 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
   return stage_mesh(files, path, mesh, options);
 }
 
-void print_staged_surface_groups(const StagedMesh& staged) {
+void print_staged_mesh_notes(const StagedMesh& staged) {
+  if (!staged.stale_face.empty()) {
+    std::fprintf(stderr,
+                 "tetlod: note: %s is left from an earlier write and may not describe this "
+                 "mesh (--surfaces writes it anew)\n",
+                 staged.stale_face.c_str());
+  }
   if (!staged.has_groups) return;
   std::string line;
   for (const SurfaceGroup& group : staged.groups.groups) {

@@ -41,16 +41,19 @@ bool is_history_path(const std::string& path);
 bool mesh_output_path_ok(const std::string& path, const char* command,
                          const WriteOptions& options = {}, const char* flag = "-o");
 
-// Writes `mesh` to `path` with `options` as stage_mesh() (core/io/mesh_io.h), and
-// with surface groups prints them, a line "surface groups (tag name: triangles): 5
-// boundary_1: 1200, ..." once the files are committed (print_staged_surface_groups).
+// Writes `mesh` to `path` with `options` as stage_mesh() (core/io/mesh_io.h). Once
+// the files are committed, print_staged_mesh_notes() prints the surface groups
+// written, a line "surface groups (tag name: triangles): 5 boundary_1: 1200, ...",
+// and, on stderr, a note when a TetGen .face file beside the .node/.ele written
+// without surface groups is left from an earlier write (it is not removed).
 struct StagedMesh {
   SurfaceGroups groups;  // group_surface(mesh) when asked for
   bool has_groups = false;
+  std::string stale_face;  // the .face left beside a TetGen pair, or ""
 };
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
                          WriteOptions options, StagedMesh* staged);
-void print_staged_surface_groups(const StagedMesh& staged);
+void print_staged_mesh_notes(const StagedMesh& staged);
 
 // A collapse history file opened to read levels from.
 struct OpenedHistory {

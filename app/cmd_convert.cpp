@@ -71,7 +71,7 @@ int cmd_convert(const Args& args) {
   }
   std::printf("%s -> %s: %zu vertices, %zu tetrahedra\n", in.c_str(), out.c_str(),
               mesh.vertex_count(), mesh.tet_count());
-  print_staged_surface_groups(staged);
+  print_staged_mesh_notes(staged);
   return kExitOk;
 }
 

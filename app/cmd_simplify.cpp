@@ -1,9 +1,11 @@
 // tetlod simplify IN -o OUT --size S [...]   and   tetlod lod HISTORY (--elements N | --step K) -o
 // OUT
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "app/cli_util.h"
 #include "app/commands.h"
@@ -51,9 +53,11 @@ constexpr const char* kLodUsage =
     "Writes a level of a saved collapse history (tetlod simplify --history) without\n"
     "simplifying again: the step nearest N elements, or step K (0 = the subdivided input).\n"
     "  --improve         improve the level's shapes first, as 'tetlod simplify --improve',\n"
-    "                    within the thresholds saved in the history (histories saved\n"
-    "                    before 2026-11-24 have none: give the ones it was made with);\n"
-    "                    thresholds given here replace the saved ones\n";
+    "                    within the thresholds saved in the history; a threshold given\n"
+    "                    here replaces its saved value (--size the uniform size,\n"
+    "                    --material-size the material sizes, --size-field the region\n"
+    "                    rules). Histories saved before 2026-11-24 have none: give the\n"
+    "                    ones it was made with.\n";
 
 void print_lod_usage(std::FILE* stream) {
   std::fputs(kLodUsage, stream);
@@ -207,7 +211,7 @@ int cmd_simplify(const Args& args) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
-  print_staged_surface_groups(staged);
+  print_staged_mesh_notes(staged);
   if (!history_path.empty()) std::printf("history: %s\n", history_path.c_str());
   return kExitOk;
 }
@@ -221,7 +225,8 @@ int cmd_lod(const Args& args) {
   WriteOptions write_options;
   long long elements = -1, step = -1;
   bool improve = false, thresholds_given = false;
-  SimplifyOptions options;  // the thresholds for --improve
+  SimplifyOptions options;         // the thresholds for --improve
+  std::vector<std::string> given;  // which of them, by flag
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     std::string v;
@@ -232,6 +237,7 @@ int cmd_lod(const Args& args) {
       if (parsed == OptionResult::kError) return kExitUsage;
       if (parsed == OptionResult::kParsed) {
         thresholds_given = true;
+        given.push_back(a);
         continue;
       }
     }
@@ -275,31 +281,52 @@ int cmd_lod(const Args& args) {
     std::fprintf(stderr, "tetlod lod: thresholds are only used with --improve\n\n%s", kLodUsage);
     return kExitUsage;
   }
-  if (improve && thresholds_given) {
-    if (!options.size_given) {
-      std::fprintf(stderr,
-                   "tetlod lod: --improve with thresholds needs the size the history was made "
-                   "with too (--size, --material-size or --size-field)\n");
-      return kExitUsage;
-    }
-    if (const Status p = check_params(options.params); !p) {
-      std::fprintf(stderr, "tetlod lod: %s\n", p.message().c_str());
-      return kExitUsage;
-    }
-  }
   HistoryLevel level;
   if (!load_history_level(history_path, "lod", step, elements, &level)) return kExitBadInput;
-  if (improve && !thresholds_given) {
-    if (!level.params) {
+  // The thresholds to improve within: those saved in the history, each one given here
+  // replacing its own (--size the uniform size, --material-size the material sizes,
+  // --size-field the region rules); with none saved, those given, which need a size.
+  std::string source = "saved in the history";
+  if (improve && level.params) {
+    SimplifyParams merged = *level.params;
+    const SimplifyParams& g = options.params;
+    for (const std::string& flag : given) {
+      if (flag == "--size") merged.sizing.uniform = g.sizing.uniform;
+      if (flag == "--material-size") merged.sizing.material_sizes = g.sizing.material_sizes;
+      if (flag == "--size-field") {
+        merged.sizing.radial = g.sizing.radial;
+        merged.sizing.boxes = g.sizing.boxes;
+      }
+      if (flag == "--stretch") merged.min_stretch = g.min_stretch;
+      if (flag == "--valence") merged.max_valence = g.max_valence;
+      if (flag == "--crease-angle") merged.crease_angle_degrees = g.crease_angle_degrees;
+    }
+    options.params = merged;
+    options.tolerance_given = true;  // a level does not use it
+    if (!given.empty()) {
+      std::sort(given.begin(), given.end());
+      given.erase(std::unique(given.begin(), given.end()), given.end());
+      std::string flags;
+      for (const std::string& flag : given) flags += (flags.empty() ? "" : ", ") + flag;
+      source += ", but " + flags + " given here";
+    }
+  } else if (improve) {
+    if (!options.size_given) {
       std::fprintf(stderr,
-                   "tetlod lod: %s was saved without its thresholds (before 2026-11-24): "
+                   "tetlod lod: %s was saved without its thresholds (as every history before "
+                   "2026-11-24 was): "
                    "--improve needs the ones it was made with (--size S [--stretch D] "
                    "[--valence V] ...)\n",
                    history_path.c_str());
       return kExitUsage;
     }
-    options.params = *level.params;
-    options.tolerance_given = true;  // a level does not use it
+    source = "given here; the history has none saved";
+  }
+  if (improve) {
+    if (const Status p = check_params(options.params); !p) {
+      std::fprintf(stderr, "tetlod lod: %s\n", p.message().c_str());
+      return kExitUsage;
+    }
   }
   std::string beyond = step >= 0 ? std::string()
                                  : beyond_levels_note(elements, level.step, level.step_count,
@@ -309,8 +336,8 @@ int cmd_lod(const Args& args) {
   ImproveResult improved;
   double seconds_improve = 0;
   if (improve) {
-    std::printf("improving within %s (%s)\n", describe_thresholds(options.params).c_str(),
-                thresholds_given ? "given here" : "saved in the history");
+    std::printf("improving within %s (%s)\n", describe_thresholds(options.params, false).c_str(),
+                source.c_str());
     improved = improve_timed(&level.mesh, options.params, &seconds_improve);
   }
   OutputFiles files;
@@ -327,7 +354,7 @@ int cmd_lod(const Args& args) {
                                                               : beyond.c_str(),
               level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
   if (improve) print_improve(improved, seconds_improve);
-  print_staged_surface_groups(staged);
+  print_staged_mesh_notes(staged);
   return kExitOk;
 }
 

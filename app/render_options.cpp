@@ -235,7 +235,8 @@ bool history_improve_params(const std::string& in, const char* command,
                             const std::optional<SimplifyParams>& saved) {
   if (saved) return true;
   std::fprintf(stderr,
-               "tetlod %s: %s was saved without its thresholds (before 2026-11-24), which "
+               "tetlod %s: %s was saved without its thresholds (as every history before "
+               "2026-11-24 was), which "
                "--improve needs: write the level with 'tetlod lod %s --improve --size S ...' "
                "and give that\n",
                command, in.c_str(), in.c_str());

@@ -171,11 +171,15 @@ std::string describe_size(const SizingField& sizing) {
   return text + std::string(sizing.has_local_rules() ? ", less where the local sizing asks" : "");
 }
 
-std::string describe_thresholds(const SimplifyParams& params) {
+std::string describe_thresholds(const SimplifyParams& params, bool with_tolerance) {
   char text[256];
-  std::snprintf(text, sizeof text, "stretch %g, valence %u, tolerance %g", params.min_stretch,
-                params.max_valence, params.tolerance);
+  std::snprintf(text, sizeof text, "stretch %g, valence %u", params.min_stretch,
+                params.max_valence);
   std::string result = "size " + describe_size(params.sizing) + ", " + text;
+  if (with_tolerance) {
+    std::snprintf(text, sizeof text, ", tolerance %g", params.tolerance);
+    result += text;
+  }
   if (!params.subdivide) result += ", no subdivision";
   if (params.crease_angle_degrees != SimplifyParams{}.crease_angle_degrees) {
     std::snprintf(text, sizeof text, ", crease angle %g", params.crease_angle_degrees);

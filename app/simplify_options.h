@@ -55,8 +55,9 @@ bool finish_simplify_options(const TetMesh& input, const char* command, Simplify
 std::string describe_size(const SizingField& sizing);
 
 // "size 12, stretch 0.15, valence 25, tolerance 0.05" (", no subdivision", ",
-// crease angle 30" when not the defaults).
-std::string describe_thresholds(const SimplifyParams& params);
+// crease angle 30" when not the defaults); without the tolerance for what does not use
+// it (improve.h).
+std::string describe_thresholds(const SimplifyParams& params, bool with_tolerance = true);
 
 // "tolerance 3, stretch 12, size 0, valence 5, topology 2": a run's rejected
 // evaluations by reason, as simplify and report print them.

@@ -324,7 +324,7 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
     box.size = r.get<double>();
     s.boxes.push_back(box);
   }
-  if (!r.ok) return "truncated thresholds";
+  if (!r.ok) return "truncated thresholds, or a list longer than the file";
   if (std::fgetc(f) != EOF) return "bytes after the thresholds";
   // What the command line's parsers accept (sizing.h), then check_params().
   if (subdivide > 1) return "thresholds: subdivide flag " + std::to_string(subdivide);
@@ -499,6 +499,17 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
     if (uses[st.kept] !=
         (history->rewired_end(s) - st.rewired_begin) + (history->moved_end(s) - st.moved_begin))
       return bad(at("moved tets missing"));
+  }
+  // A saved material size names a material of the mesh (as --material-size must).
+  if (saved_params) {
+    std::vector<int32_t> materials = base->materials;
+    std::sort(materials.begin(), materials.end());
+    const auto& sizes = saved_params->sizing.material_sizes;
+    for (size_t i = 0; i < sizes.size(); ++i) {
+      if (!std::binary_search(materials.begin(), materials.end(), sizes[i].first))
+        return bad("thresholds: material size " + std::to_string(i) + " names material " +
+                   std::to_string(sizes[i].first) + ", which the mesh does not have");
+    }
   }
   if (params) *params = std::move(saved_params);
   return Status();

@@ -164,6 +164,17 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(vtu));
+  // A TetGen pair with its .face; written again without, the old .face is named.
+  const std::string node = out_dir() + "/surf_pair.node";
+  fs::remove(out_dir() + "/surf_pair.face");
+  r = run("convert " + path + " " + node + " --surfaces");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(read_file(out_dir() + "/surf_pair.face").rfind("88 1\n", 0), 0u);
+  r = run("convert " + path + " " + node);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: " + out_dir() + "/surf_pair.face is left from an earlier write"),
+            std::string::npos)
+      << r.output;
   r = run("convert " + path + " " + converted + " --msh-version 3");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("--msh-version must be 2.2 or 4.1, not '3'"), std::string::npos);
@@ -294,9 +305,9 @@ TEST(Cli, OutputsAreWrittenTogetherOrNotAtAll) {
   EXPECT_EQ(r.output.find("thresholds:"), std::string::npos) << "checked before the run";
   r = run("convert " + path + " " + out_dir() + "/x.stl");
   EXPECT_EQ(r.code, 2) << r.output;
-  EXPECT_NE(r.output.find("tetlod convert: " + out_dir() +
-                          "/x.stl: unknown mesh file extension '.stl'"),
-            std::string::npos)
+  EXPECT_NE(
+      r.output.find("tetlod convert: " + out_dir() + "/x.stl: unknown mesh file extension '.stl'"),
+      std::string::npos)
       << r.output;  // no "-o": convert's OUT is not an option
 
   const std::string history = out_dir() + "/together.TLH";  // any case
@@ -393,9 +404,8 @@ TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
   const std::string plain = out_dir() + "/improve_plain.mesh";
   ASSERT_EQ(run("lod " + history + " --elements 20000 -o " + plain).code, 0);
   EXPECT_NE(file_bytes(plain), file_bytes(direct));
-  for (const char* flags :
-       {" --size 12", " --improve --stretch 0.2", " --improve --size 12 --stretch 1",
-        " --improve --size 12 --tolerance 0.05"}) {
+  for (const char* flags : {" --size 12", " --improve --size 12 --stretch 1",
+                            " --improve --size 12 --tolerance 0.05"}) {
     const CommandResult bad = run("lod " + history + " --step 0 -o " + plain + flags);
     EXPECT_EQ(bad.code, 2) << flags << "\n" << bad.output;
   }
@@ -403,11 +413,19 @@ TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
   const std::string saved = out_dir() + "/improve_saved.mesh";
   const CommandResult a = run("lod " + history + " --elements 20000 -o " + saved + " --improve");
   ASSERT_EQ(a.code, 0) << a.output;
-  EXPECT_NE(a.output.find("improving within size 12, stretch 0.15, valence 25, tolerance 0.05 "
-                          "(saved in the history)"),
+  EXPECT_NE(a.output.find("improving within size 12, stretch 0.15, valence 25 (saved in the "
+                          "history)"),
             std::string::npos)
       << a.output;
   EXPECT_EQ(file_bytes(saved), file_bytes(direct));
+  // A threshold given here replaces only its own saved value.
+  const CommandResult m =
+      run("lod " + history + " --elements 20000 -o " + saved + " --improve --valence 30");
+  ASSERT_EQ(m.code, 0) << m.output;
+  EXPECT_NE(m.output.find("improving within size 12, stretch 0.15, valence 30 (saved in the "
+                          "history, but --valence given here)"),
+            std::string::npos)
+      << m.output;
   // One saved without them (as before 2026-11-24: the file up to the thresholds) needs
   // them given.
   const std::string bytes = file_bytes(history);

@@ -177,6 +177,17 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
             std::string::npos);
   EXPECT_NE(error_with(with_double(8, -1)).find("thresholds: tolerance -1"), std::string::npos);
   EXPECT_NE(error_with(whole + "x").find("bytes after the thresholds"), std::string::npos);
+  // The first material size's id (after the 48 fixed bytes and the count): 1 -> 0.
+  {
+    std::string bytes = whole;
+    const int32_t material = 0;
+    std::memcpy(&bytes[at + 56], &material, sizeof material);
+    EXPECT_NE(error_with(bytes).find(
+                  "corrupt history: thresholds: material size 0 names material 0, which the "
+                  "mesh does not have"),
+              std::string::npos)
+        << error_with(bytes);
+  }
   // The radial rule's axis (its z at 48 fixed bytes + the material count and two
   // material sizes + the radial count + its centre + x, y) must be zero or a unit
   // vector, as parse_size_field() leaves it.
