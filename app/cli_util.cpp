@@ -111,7 +111,8 @@ bool mesh_output_path_ok(const std::string& path, const char* command, const Wri
 }
 
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
-                         WriteOptions options, StagedMesh* staged) {
+                         WriteOptions options, StagedMesh* staged,
+                         const std::vector<SurfaceGroupName>* names) {
   staged->has_groups = options.surface_groups;
   if (!options.surface_groups && (has_extension(path, ".node") || has_extension(path, ".ele"))) {
     const std::string face =
@@ -120,11 +121,46 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
     if (std::filesystem::exists(face, ec)) staged->stale_face = face;
   }
   if (options.surface_groups) {
-    if (Status s = group_surface(mesh, &staged->groups); !s)
+    if (Status s = group_surface(mesh, &staged->groups, names); !s)
       return Status::error(path + ": " + s.message());
     options.groups = &staged->groups;
   }
   return stage_mesh(files, path, mesh, options);
+}
+
+std::vector<SurfaceGroupName> input_group_names(const TetMesh& input, const ReadInfo& info,
+                                                const WriteOptions& options, const char* command) {
+  if (!options.surface_groups || info.surface_groups.empty()) return {};
+  std::vector<const InputSurfaceGroup*> unmatched;
+  std::vector<SurfaceGroupName> names =
+      match_surface_groups(input, info.surface_groups, &unmatched);
+  auto label = [](const std::string& name, int32_t tag) {
+    return (name.empty() ? std::string("unnamed") : "'" + name + "'") + " (tag " +
+           std::to_string(tag) + ")";
+  };
+  for (const SurfaceGroupName& n : names) {
+    std::fprintf(
+        stderr,
+        "tetlod %s: note: surface group %s is all of %s: written under its own name "
+        "and tag\n",
+        command, label(n.name, n.tag).c_str(),
+        (n.other == kOutsideMaterial ? "material " + std::to_string(n.material) + "'s boundary"
+                                     : "the interface of materials " + std::to_string(n.material) +
+                                           " and " + std::to_string(n.other))
+            .c_str());
+  }
+  if (!unmatched.empty()) {
+    std::string list;
+    for (const InputSurfaceGroup* g : unmatched)
+      list += (list.empty() ? "" : ", ") + label(g->name, g->tag);
+    std::fprintf(stderr,
+                 "tetlod %s: note: surface group%s %s %s not the whole boundary or interface "
+                 "of one material pair, so not written; %s triangles are in the groups by "
+                 "material pair\n",
+                 command, unmatched.size() > 1 ? "s" : "", list.c_str(),
+                 unmatched.size() > 1 ? "are" : "is", unmatched.size() > 1 ? "their" : "its");
+  }
+  return names;
 }
 
 void print_staged_mesh_notes(const StagedMesh& staged) {

@@ -51,8 +51,17 @@ struct StagedMesh {
   bool has_groups = false;
   std::string stale_face;  // the .face left beside a TetGen pair, or ""
 };
+// `names`: groups under the user's own names and tags (input_group_names()).
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
-                         WriteOptions options, StagedMesh* staged);
+                         WriteOptions options, StagedMesh* staged,
+                         const std::vector<SurfaceGroupName>* names = nullptr);
+
+// With surface groups asked for, the input's own groups (ReadInfo::surface_groups)
+// that are a whole material pair's boundary or interface of `input`, to be written
+// under their names and tags; prints a note for each, and one listing the groups
+// that are not (their triangles go into the groups by material pair).
+std::vector<SurfaceGroupName> input_group_names(const TetMesh& input, const ReadInfo& info,
+                                                const WriteOptions& options, const char* command);
 void print_staged_mesh_notes(const StagedMesh& staged);
 
 // A collapse history file opened to read levels from.

@@ -61,9 +61,10 @@ int cmd_convert(const Args& args) {
   TetMesh mesh;
   ReadInfo info;
   if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
+  const std::vector<SurfaceGroupName> names = input_group_names(mesh, info, options, "convert");
   OutputFiles files;
   StagedMesh staged;
-  Status status = stage_output_mesh(&files, out, mesh, options, &staged);
+  Status status = stage_output_mesh(&files, out, mesh, options, &staged, &names);
   if (status) status = files.commit();
   if (!status) {
     std::fprintf(stderr, "tetlod: %s\n", status.message().c_str());

@@ -144,6 +144,10 @@ int cmd_simplify(const Args& args) {
   ReadInfo info;
   if (!load_mesh(in, &input, &info)) return kExitBadInput;
   if (!finish_simplify_options(input, "simplify", &options)) return kExitUsage;
+  // The simplifier keeps every material pair's boundary and interface (their topology):
+  // an input group that is one of them names it in the output too.
+  const std::vector<SurfaceGroupName> names =
+      input_group_names(input, info, write_options, "simplify");
   const SimplifyParams& params = options.params;
   const long long elements = options.elements;
   const bool improve = options.improve;
@@ -203,7 +207,7 @@ int cmd_simplify(const Args& args) {
   // The mesh and the history are written together, or neither.
   OutputFiles files;
   StagedMesh staged;
-  Status s = stage_output_mesh(&files, out, output, write_options, &staged);
+  Status s = stage_output_mesh(&files, out, output, write_options, &staged, &names);
   if (s && !history_path.empty())
     s = stage_history(&files, history_path, result.base, result.history, &params);
   if (s) s = files.commit();

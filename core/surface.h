@@ -50,9 +50,36 @@ struct SurfaceGroups {
 // material uses) if that is larger. At least 1; may exceed the int32 range.
 int64_t first_surface_tag(const TetMesh& mesh);
 
-// Precondition: the mesh passed validate_mesh(). An error, naming the largest
-// material, when the tags would run past 2^31 - 1 (the largest tag Gmsh and Medit
-// take); `groups` is then left as it was.
-Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
+// A material pair's group under a name and tag of the user's own (an input file's
+// surface group that is exactly that pair's boundary or interface).
+struct SurfaceGroupName {
+  int32_t material;  // the pair, as in SurfaceGroup
+  int32_t other;
+  int32_t tag;       // >= 1
+  std::string name;  // "" keeps the generated name
+};
+
+// Precondition: the mesh passed validate_mesh(). The pairs in `names` take those
+// tags and names; the others are numbered as above, skipping the tags `names` uses.
+// An error, naming the largest material, when the tags would run past 2^31 - 1 (the
+// largest tag Gmsh and Medit take); `groups` is then left as it was.
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups,
+                     const std::vector<SurfaceGroupName>* names = nullptr);
+
+// A surface group of an input file (a Gmsh physical surface): its triangles by the
+// positions of their corners.
+struct InputSurfaceGroup {
+  int32_t tag = 0;
+  std::string name;  // "" if the file names none
+  std::vector<std::array<Vec3, 3>> triangles;
+};
+
+// The input groups that are exactly one material pair's whole boundary or interface
+// of `mesh` (every triangle of the pair, in any order and orientation, and no other),
+// as names for group_surface(); the first such group of a pair wins. The others are
+// listed in `unmatched` (e.g. a group covering part of a boundary, or several pairs).
+std::vector<SurfaceGroupName> match_surface_groups(
+    const TetMesh& mesh, const std::vector<InputSurfaceGroup>& input,
+    std::vector<const InputSurfaceGroup*>* unmatched);
 
 }  // namespace tetlod

@@ -474,8 +474,14 @@ void write_abaqus_surfaces(const SurfaceGroups& surfaces, std::string* out) {
   static constexpr const char* kFaceLabel[4] = {"S3", "S4", "S2", "S1"};
   std::vector<uint32_t> nodes;
   for (const SurfaceGroup& group : surfaces.groups) {
+    // Upper case; a user's name (from an input file) made a valid Abaqus label: letters,
+    // digits and '_', starting with a letter.
     std::string name = group.name;
-    for (char& c : name) c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
+    for (char& c : name) {
+      c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
+      if (!std::isalnum(uint8_t(c)) && c != '_') c = '_';
+    }
+    if (name.empty() || !std::isalpha(uint8_t(name[0]))) name = "S_" + name;
     nodes.clear();
     for (uint32_t i : group.triangles) {
       for (uint32_t v : surfaces.surface[i].v) nodes.push_back(v);

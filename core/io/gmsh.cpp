@@ -2,6 +2,7 @@
 // manual, section "MSH file format" (https://gmsh.info/doc/texinfo/gmsh.html).
 // TetLOD writes ASCII.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -26,6 +27,10 @@ constexpr int64_t kTet10 = 11;
 // they are read by them.
 bool is_tet_type(int64_t type) {
   return type == kTet4 || type == kTet10 || type == 29 || type == 30 || type == 31;
+}
+// Triangles of any order (3 to 21 nodes): their corners come first.
+bool is_triangle_type(int64_t type) {
+  return type == kTriangle3 || type == 9 || (type >= 20 && type <= 25);
 }
 constexpr int64_t kMaxTag = std::numeric_limits<int64_t>::max();
 constexpr const char* kMaterialPrefix = "material_";
@@ -413,6 +418,7 @@ class GmshParser {
         int32_t physical = 0;
         if (!binary_entity_tail(c, dimension, &physical)) return false;
         if (dimension == 3) volume_physical_[tag] = physical;
+        if (dimension == 2) surface_physical_[tag] = physical;
       }
     }
     return end_binary(c, "$Entities") && expect_end("$EndEntities");
@@ -548,7 +554,12 @@ class GmshParser {
             return false;
           }
         } else {
-          for (int k = 0; k < nodes; ++k) c.i32();
+          int64_t corners[3] = {0, 0, 0};
+          for (int k = 0; k < nodes; ++k) {
+            const int32_t node = c.i32();
+            if (k < 3) corners[k] = node;
+          }
+          if (c.ok() && physical > 0 && is_triangle_type(type)) store_triangle(physical, corners);
         }
       }
       read += uint64_t(following);
@@ -572,7 +583,7 @@ class GmshParser {
     out_->mesh.materials.reserve(count);
     element_tags_.reserve(count);
     for (uint64_t block = 0; block < block_count; ++block) {
-      c.i32();  // entity dimension
+      const int32_t dimension = c.i32();
       const int32_t entity = c.i32();
       const int32_t type = c.i32();
       const uint64_t block_size = c.u64();
@@ -598,10 +609,17 @@ class GmshParser {
           return false;
         }
       }
+      const int64_t surface_group =
+          dimension == 2 && is_triangle_type(type) ? surface_physical_of(entity) : 0;
       for (uint64_t i = 0; i < block_size; ++i) {
         const uint64_t element_tag = c.u64();
         if (!is_tet) {
-          for (int k = 0; k < nodes; ++k) c.u64();
+          int64_t corners[3] = {0, 0, 0};
+          for (int k = 0; k < nodes; ++k) {
+            const uint64_t node = c.u64();
+            if (k < 3) corners[k] = as_tag(node);
+          }
+          if (c.ok() && surface_group > 0) store_triangle(surface_group, corners);
           continue;
         }
         int64_t corners[4];
@@ -708,6 +726,7 @@ class GmshParser {
           }
         }
         if (dimension == 3) volume_physical_[tag] = physical;
+        if (dimension == 2) surface_physical_[tag] = physical;
       }
     }
     return expect_end("$EndEntities");
@@ -909,6 +928,36 @@ class GmshParser {
     return true;
   }
 
+  // The first physical tag of a 4.1 surface entity, 0 if none (or a partition's:
+  // partitioned surfaces are not followed to their parents).
+  int64_t surface_physical_of(int64_t entity) const {
+    const auto it = surface_physical_.find(entity);
+    return it != surface_physical_.end() ? it->second : 0;
+  }
+
+  // A triangle of the physical surface `physical`, by its corners' node tags, kept by
+  // their positions for match_surface_groups(); one naming a node not in $Nodes is
+  // left out (its group then matches nothing).
+  void store_triangle(int64_t physical, const int64_t corners[3]) {
+    std::array<Vec3, 3> triangle;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = find_node(corners[k]);
+      if (v == kInvalidIndex) return;
+      triangle[size_t(k)] = out_->mesh.positions[v];
+    }
+    surface_triangles_[physical].push_back(triangle);
+  }
+
+  // Reads a triangle element's node tags (of any order) and stores its corners.
+  bool read_triangle(int64_t type, int64_t physical) {
+    int64_t corners[3];
+    for (int64_t& corner : corners) {
+      if (!scanner_.read_int(&corner, "node tag")) return false;
+    }
+    store_triangle(physical, corners);
+    return scanner_.skip_numbers(uint64_t(nodes_per_element(type) - 3), "node tags");
+  }
+
   // Skips the nodes of an element that is not a tet.
   bool skip_element_nodes(int64_t type) {
     const int nodes = nodes_per_element(type);
@@ -943,6 +992,8 @@ class GmshParser {
             !read_tet(element_tag, type, material, line)) {
           return false;
         }
+      } else if (physical > 0 && is_triangle_type(type)) {
+        if (!read_triangle(type, physical)) return false;
       } else if (!skip_element_nodes(type)) {
         return false;
       }
@@ -982,11 +1033,14 @@ class GmshParser {
           return false;
         }
       }
+      const int64_t surface_group =
+          dimension == 2 && is_triangle_type(type) ? surface_physical_of(entity) : 0;
       for (uint64_t i = 0; i < block_size; ++i) {
         int64_t element_tag = 0;
         if (!scanner_.read_int(&element_tag, "element tag")) return false;
-        const bool ok = is_tet ? read_tet(element_tag, type, material, scanner_.line())
-                               : skip_element_nodes(type);
+        const bool ok = is_tet              ? read_tet(element_tag, type, material, scanner_.line())
+                        : surface_group > 0 ? read_triangle(type, surface_group)
+                                            : skip_element_nodes(type);
         if (!ok) return false;
       }
     }
@@ -1053,7 +1107,8 @@ class GmshParser {
                             ": TetLOD keeps the tetrahedra and their volume groups (written as "
                             "material_<id>; with the command line's --surfaces, outputs carry "
                             "the boundary and interface triangles again, a group per "
-                            "material pair)");
+                            "material pair, under a group's own name and tag where it is "
+                            "exactly one pair's)");
     }
     if (!volume_names.empty()) {
       out_->notes.push_back("volume groups are materials by their number: " +
@@ -1136,6 +1191,16 @@ class GmshParser {
   bool finish_elements() {
     drop_repeated_tets();
     add_notes();
+    for (auto& [tag, triangles] : surface_triangles_) {
+      if (tag > std::numeric_limits<int32_t>::max()) continue;
+      InputSurfaceGroup group;
+      group.tag = int32_t(tag);
+      const auto name = physical_names_.find({2, tag});
+      if (name != physical_names_.end()) group.name = name->second;
+      group.triangles = std::move(triangles);
+      out_->surface_groups.push_back(std::move(group));
+    }
+    surface_triangles_.clear();
     TetMesh& mesh = out_->mesh;
     const size_t count = mesh.tets.size();
     std::vector<uint32_t> order(count);
@@ -1174,9 +1239,11 @@ class GmshParser {
   bool swap_ = false;    // binary numbers in the other byte order
   bool seen_nodes_ = false;
   bool seen_elements_ = false;
-  std::unordered_map<int64_t, int64_t> named_materials_;  // physical tag -> "material_<n>"
-  std::unordered_map<int64_t, int64_t> volume_physical_;  // volume entity -> first physical tag
-  std::unordered_map<int64_t, int64_t> volume_parent_;    // partition volume -> model volume
+  std::unordered_map<int64_t, int64_t> named_materials_;   // physical tag -> "material_<n>"
+  std::unordered_map<int64_t, int64_t> volume_physical_;   // volume entity -> first physical tag
+  std::unordered_map<int64_t, int64_t> volume_parent_;     // partition volume -> model volume
+  std::unordered_map<int64_t, int64_t> surface_physical_;  // surface entity -> first physical
+  std::map<int64_t, std::vector<std::array<Vec3, 3>>> surface_triangles_;  // by physical tag
   // For the notes: physical names of surfaces and volumes other than "material_<n>"
   // ((dimension, tag) -> name), elements by type, tets by where their material came from.
   std::map<std::pair<int64_t, int64_t>, std::string> physical_names_;
@@ -1207,7 +1274,9 @@ void append_physical_names(const std::vector<int32_t>& materials,
     for (const SurfaceGroup& group : surfaces->groups) {
       out->append("2 ");
       append_number(out, group.tag);
-      out->append(" \"" + group.name + "\"\n");
+      std::string name = group.name;  // a user's: no quote or line break inside the quotes
+      for (char& c : name) c = c == '"' || uint8_t(c) < 32 ? '_' : c;
+      out->append(" \"" + name + "\"\n");
     }
   }
   for (size_t i = 0; i < materials.size(); ++i) {

@@ -20,8 +20,9 @@ namespace tetlod::io {
 
 struct ParsedMesh {
   TetMesh mesh;
-  std::vector<uint32_t> tet_lines;  // 1-based line of each tet in the file
-  std::vector<std::string> notes;   // what a user should know of how it was read
+  std::vector<uint32_t> tet_lines;                // 1-based line of each tet in the file
+  std::vector<std::string> notes;                 // what a user should know of how it was read
+  std::vector<InputSurfaceGroup> surface_groups;  // Gmsh physical surfaces (ReadInfo)
 };
 
 Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out);

@@ -76,6 +76,7 @@ Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string&
     info->format = format;
     info->validation = report;
     info->notes = std::move(parsed->notes);
+    info->surface_groups = std::move(parsed->surface_groups);
   }
   return Status();
 }

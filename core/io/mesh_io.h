@@ -35,7 +35,9 @@
 //    $Entities), else the elementary (entity) tag. A 3D physical group named
 //    "material_<n>" in $PhysicalNames gives material n whatever its tag. Node and
 //    element tags may be sparse or huge: vertices come out ordered by node tag,
-//    tets by element tag. Binary files are rejected.
+//    tets by element tag. The triangles (of any order) of physical surfaces are kept
+//    by their corners' positions as ReadInfo::surface_groups (an entity's first
+//    physical tag; not followed through partitions).
 //  - TetGen: `.node` header "n 3 nattr nmarker", `.ele` header "m 4|10 nattr";
 //    0- or 1-based numbering from the first index in .node, '#' comments; the
 //    first region attribute must be an integer (no attribute: material 0). Either
@@ -86,6 +88,9 @@ struct ReadInfo {
   // What a user should know of how the file was read, e.g. that no array of a .vtu
   // held the material (callers print them as notes).
   std::vector<std::string> notes;
+  // The file's own surface groups (Gmsh physical surfaces of triangles; other formats
+  // none), for match_surface_groups() (core/surface.h) when writing surface groups.
+  std::vector<InputSurfaceGroup> surface_groups;
 };
 
 // Reads `path`; `*mesh` is replaced only on success. For .msh, info->format tells

@@ -164,6 +164,15 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(vtu));
+  // Read back, each group is a whole pair's: written again under the same tag and name.
+  const std::string again = out_dir() + "/surf_again.msh";
+  r = run("convert " + converted + " " + again + " --surfaces");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("surface group 'interface_1_2' (tag 5) is all of the interface of "
+                          "materials 1 and 2: written under its own name and tag"),
+            std::string::npos)
+      << r.output;
   // A TetGen pair with its .face; written again without, the old .face is named.
   const std::string node = out_dir() + "/surf_pair.node";
   fs::remove(out_dir() + "/surf_pair.face");

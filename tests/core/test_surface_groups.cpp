@@ -233,6 +233,93 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
   }
 }
 
+// A Gmsh file's own physical surfaces (tests/data/gmsh/groups.geo, in each of the
+// reader's paths): a group that is exactly one material pair's boundary or interface
+// keeps its name and tag, the others are listed as unmatched; the other pairs are
+// numbered around the tags taken.
+TEST(SurfaceGroups, InputGroupsThatAreWholePairsKeepTheirNamesAndTags) {
+  for (const char* file : {"groups41.msh", "groups41_bin.msh", "groups22.msh", "groups22_bin.msh",
+                           "groups_order2.msh"}) {
+    SCOPED_TRACE(file);
+    TetMesh mesh;
+    ReadInfo info;
+    const Status s = read_mesh(test::data_path(std::string("gmsh/") + file), &mesh, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    ASSERT_EQ(info.surface_groups.size(), 3u);
+    EXPECT_EQ(info.surface_groups[0].tag, 100);
+    EXPECT_EQ(info.surface_groups[0].name, "outer_left");
+    EXPECT_EQ(info.surface_groups[1].name, "membrane");
+    EXPECT_EQ(info.surface_groups[2].name, "right_end");
+    std::vector<const InputSurfaceGroup*> unmatched;
+    const std::vector<SurfaceGroupName> names =
+        match_surface_groups(mesh, info.surface_groups, &unmatched);
+    ASSERT_EQ(names.size(), 2u);
+    EXPECT_EQ(names[0].material, 1);
+    EXPECT_EQ(names[0].other, kOutsideMaterial);
+    EXPECT_EQ(names[0].tag, 100);
+    EXPECT_EQ(names[1].material, 1);
+    EXPECT_EQ(names[1].other, 2);
+    EXPECT_EQ(names[1].tag, 200);
+    ASSERT_EQ(unmatched.size(), 1u);
+    EXPECT_EQ(unmatched[0]->tag, 300);
+    SurfaceGroups groups;
+    ASSERT_TRUE(group_surface(mesh, &groups, &names).ok());
+    std::vector<std::string> written;
+    for (const SurfaceGroup& g : groups.groups)
+      written.push_back(g.name + "=" + std::to_string(g.tag));
+    EXPECT_EQ(written,
+              (std::vector<std::string>{"outer_left=100", "boundary_2=3", "membrane=200"}));
+  }
+  // A group missing one triangle of its pair, or holding one of another pair, is no
+  // whole pair; generated tags skip a tag a name took.
+  TetMesh mesh = box2();
+  const SurfaceGroups plain = groups_of(mesh);
+  auto input_of = [&](const SurfaceGroup& g, int32_t tag) {
+    InputSurfaceGroup in;
+    in.tag = tag;
+    for (uint32_t i : g.triangles) {
+      const auto& v = plain.surface[i].v;
+      in.triangles.push_back({mesh.positions[v[2]], mesh.positions[v[1]], mesh.positions[v[0]]});
+    }
+    return in;
+  };
+  std::vector<InputSurfaceGroup> input = {
+      input_of(plain.groups[0], 4), input_of(plain.groups[1], 50), input_of(plain.groups[2], 60)};
+  input[1].triangles.pop_back();
+  input[2].triangles.push_back(input[0].triangles[0]);
+  std::vector<const InputSurfaceGroup*> unmatched;
+  const std::vector<SurfaceGroupName> names = match_surface_groups(mesh, input, &unmatched);
+  ASSERT_EQ(names.size(), 1u);  // the first, reversed triangles and all
+  EXPECT_EQ(names[0].tag, 4);
+  EXPECT_TRUE(names[0].name.empty());
+  EXPECT_EQ(unmatched.size(), 2u);
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(mesh, &groups, &names).ok());
+  std::vector<std::string> written;
+  for (const SurfaceGroup& g : groups.groups)
+    written.push_back(g.name + "=" + std::to_string(g.tag));
+  EXPECT_EQ(written, (std::vector<std::string>{"boundary_1=4", "boundary_2=3", "interface_1_2=5"}));
+  // A user's name becomes a valid Abaqus label and stays inside Gmsh's quotes.
+  const std::vector<SurfaceGroupName> odd = {{1, kOutsideMaterial, 7, "1st \"outer\" wall"}};
+  ASSERT_TRUE(group_surface(mesh, &groups, &odd).ok());
+  WriteOptions options;
+  options.surface_groups = true;
+  options.groups = &groups;
+  const std::string dir = test::output_dir("surface_groups_names");
+  ASSERT_TRUE(write_mesh(dir + "/odd.inp", mesh, options).ok());
+  EXPECT_NE(test::read_text(dir + "/odd.inp").find("*NSET, NSET=S_1ST__OUTER__WALL\n"),
+            std::string::npos);
+  ASSERT_TRUE(write_mesh(dir + "/odd.msh", mesh, options).ok());
+  EXPECT_NE(test::read_text(dir + "/odd.msh").find("2 7 \"1st _outer_ wall\"\n"),
+            std::string::npos);
+  TetMesh back;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(dir + "/odd.msh", &back, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), 3u);  // by tag: 3, 5, 7
+  EXPECT_EQ(info.surface_groups[2].tag, 7);
+  EXPECT_EQ(info.surface_groups[2].name, "1st _outer_ wall");
+}
+
 // Gmsh reads the physical surfaces: it saves them again (as 2.2 text) with the same
 // triangles, oriented the same way, under the same tags.
 TEST(SurfaceGroups, GmshKeepsOurPhysicalSurfaces) {

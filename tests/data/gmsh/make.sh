@@ -16,3 +16,10 @@ gmsh coax_two_groups.geo $opts -format msh22 -o coax_two_groups22.msh
 # Third-order (20-node) tets, and the same mesh first-order.
 gmsh cube.geo -3 -clmin 0.8 -clmax 0.8 -v 0 -order 3 -format msh41 -o cube_order3.msh
 gmsh cube.geo -3 -clmin 0.8 -clmax 0.8 -v 0 -format msh41 -o cube_order1.msh
+# Two boxes with surface groups that are a whole boundary, an interface, and part of
+# a boundary; text and binary, both versions, and second order.
+gmsh groups.geo -3 -clmax 0.5 -v 0 -format msh41 -o groups41.msh
+gmsh groups.geo -3 -clmax 0.5 -v 0 -format msh41 -bin -o groups41_bin.msh
+gmsh groups.geo -3 -clmax 0.5 -v 0 -format msh22 -o groups22.msh
+gmsh groups.geo -3 -clmax 0.5 -v 0 -format msh22 -bin -o groups22_bin.msh
+gmsh groups.geo -3 -clmax 0.5 -v 0 -order 2 -format msh41 -o groups_order2.msh
