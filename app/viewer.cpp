@@ -75,6 +75,9 @@ struct Scene {
   std::string above_size_reason;                 // of the result ("" if nothing is above)
   SimplifyParams params;                         // of the result's run, if params_known
   bool params_known = false;                     // run here, or saved in the history file read
+  // The input file's own surface groups (ReadInfo::surface_groups): Save's boundary
+  // groups keep the names and tags of those that are a whole material pair's.
+  std::shared_ptr<const std::vector<InputSurfaceGroup>> input_groups;
   bool from_history = false;  // the result was read from a history file, not run here
   CollapseHistory empty_history;
   std::unique_ptr<Lod> lod;
@@ -634,6 +637,7 @@ void Viewer::start_load(const std::string& path) {
     std::shared_ptr<const TetMesh> mesh;
     std::shared_ptr<SimplifyResult> history;
     std::optional<SimplifyParams> saved_params;
+    std::shared_ptr<const std::vector<InputSurfaceGroup>> input_groups;
     Status s;
     if (is_history_path(job->path)) {
       history = std::make_shared<SimplifyResult>();
@@ -654,6 +658,10 @@ void Viewer::start_load(const std::string& path) {
         std::lock_guard<std::mutex> lock(job->mutex);
         job->notes = std::move(info.notes);
       }
+      if (s && !info.surface_groups.empty()) {
+        input_groups =
+            std::make_shared<const std::vector<InputSurfaceGroup>>(std::move(info.surface_groups));
+      }
       mesh = std::move(read);
     }
     if (!s) {
@@ -668,6 +676,7 @@ void Viewer::start_load(const std::string& path) {
       v.cut = false;  // the cut position belongs to the old model
       auto scene = make_scene(job->path, std::move(mesh), history, v);
       scene->from_history = history != nullptr;
+      scene->input_groups = std::move(input_groups);
       if (saved_params) {
         scene->params = *saved_params;
         scene->params_known = true;
@@ -696,8 +705,9 @@ void Viewer::start_simplify() {
   job_->path = scene_->path;
   Job* job = job_.get();
   std::shared_ptr<const TetMesh> input = scene_->input;  // always the loaded input
+  auto input_groups = scene_->input_groups;
   const ui::ViewSettings view = view_;
-  job->thread = std::thread([job, input, params, view] {
+  job->thread = std::thread([job, input, input_groups, params, view] {
     auto result = std::make_shared<SimplifyResult>();
     const Status s = simplify(
         *input, params, result.get(),
@@ -726,6 +736,7 @@ void Viewer::start_simplify() {
       scene->above_size_reason = reason;
       scene->params = params;
       scene->params_known = true;
+      scene->input_groups = input_groups;
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
     }
@@ -1129,6 +1140,8 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
   if (Status s = check_mesh_path(path, options); !s) return s;
   save_path_ = path;
   save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
+                                                 input = scene_->input,
+                                                 input_groups = scene_->input_groups,
                                                  mesh = scene_->lod->extract()]() mutable {
     Saved saved;
     if (!level_name.empty()) {
@@ -1150,17 +1163,21 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
       saved.status = write_mesh(path, mesh);
       return saved;
     }
+    // The input's own groups that are a whole material pair's keep their names and
+    // tags: the levels keep every pair's boundary and interface.
+    const std::vector<SurfaceGroupName> names =
+        input_groups ? match_surface_groups(*input, *input_groups, nullptr)
+                     : std::vector<SurfaceGroupName>();
     SurfaceGroups groups;
-    if (Status s = group_surface(mesh, &groups); !s) {
+    if (Status s = group_surface(mesh, &groups, &names); !s) {
       saved.status = Status::error(path + ": " + s.message());
       return saved;
     }
     options.groups = &groups;
     saved.status = write_mesh(path, mesh, options);
-    saved.note += " (with " + std::to_string(groups.groups.size()) + " surface groups, tags " +
-                  (groups.groups.empty() ? std::string("-")
-                                         : std::to_string(groups.groups.front().tag) + "-" +
-                                               std::to_string(groups.groups.back().tag)) +
+    saved.note += " (with " + std::to_string(groups.groups.size()) + " surface groups" +
+                  (names.empty() ? std::string()
+                                 : ", " + std::to_string(names.size()) + " of them the input's") +
                   ")";
     return saved;
   });

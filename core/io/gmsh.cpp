@@ -1100,15 +1100,15 @@ class GmshParser {
       }
     }
     if (surface_elements > 0) {
-      out_->notes.push_back(std::to_string(surface_elements) + " surface elements are not kept" +
-                            (surface_names.empty()
-                                 ? std::string()
+      out_->notes.push_back(
+          std::to_string(surface_elements) + " surface elements are not kept" +
+          (surface_names.empty() ? std::string()
                                  : ", nor the surface groups " + quoted_list(surface_names)) +
-                            ": TetLOD keeps the tetrahedra and their volume groups (written as "
-                            "material_<id>; with the command line's --surfaces, outputs carry "
-                            "the boundary and interface triangles again, a group per "
-                            "material pair, under a group's own name and tag where it is "
-                            "exactly one pair's)");
+          ": TetLOD keeps the tetrahedra and their volume groups (written as "
+          "material_<id>; with --surfaces, or the viewer's boundary groups, outputs carry "
+          "the boundary and interface triangles again, a group per "
+          "material pair, under a group's own name and tag where it is "
+          "exactly one pair's)");
     }
     if (!volume_names.empty()) {
       out_->notes.push_back("volume groups are materials by their number: " +

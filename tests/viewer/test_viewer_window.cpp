@@ -417,6 +417,28 @@ TEST(ViewerWindow, SaveWithSurfaceGroups) {
   EXPECT_EQ(saved.tet_count(), input.tet_count());
 }
 
+// The input's own surface groups that are a whole material pair's keep their names and
+// tags in what Save writes, after a simplification too, as `tetlod simplify
+// --surfaces` writes them.
+TEST(ViewerWindow, SaveKeepsTheInputsWholePairGroups) {
+  const fs::path dir = fresh_output_dir("viewer_save_input_groups");
+  std::ofstream(dir / "save.script") << "thresholds size=0.8 tolerance=0.01\nsimplify\n"
+                                        "save simplified.msh surfaces\nquit\n";
+  const std::string input = kSource + "/tests/data/gmsh/groups41.msh";
+  const ViewerRun run = run_viewer(dir, "'" + input + "' --size 320x240 --script save.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream f(dir / "simplified.msh");
+  const std::string text{std::istreambuf_iterator<char>(f), {}};
+  EXPECT_NE(text.find("2 100 \"outer_left\"\n2 3 \"boundary_2\"\n2 200 \"membrane\"\n"),
+            std::string::npos)
+      << text.substr(0, 300);
+  TetMesh saved;
+  ASSERT_TRUE(read_mesh((dir / "simplified.msh").string(), &saved).ok());
+  TetMesh original;
+  ASSERT_TRUE(read_mesh(input, &original).ok());
+  EXPECT_LT(saved.tet_count(), original.tet_count());
+}
+
 // A history keeps the thresholds it was made with: the viewer names them when it
 // opens it, and "save ... improve" improves within them (not the panel's), writing
 // what `tetlod lod --improve` writes.
