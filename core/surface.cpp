@@ -34,19 +34,21 @@ std::vector<SurfaceTriangle> extract_surface(const TetMesh& mesh,
   return triangles;
 }
 
+int32_t gmsh_material_zero_tag(const std::vector<int32_t>& materials) {
+  int32_t tag = 1;
+  for (int32_t m : materials) {
+    if (m == tag) ++tag;
+  }
+  return tag;
+}
+
 int64_t first_surface_tag(const TetMesh& mesh) {
   if (mesh.materials.empty()) return 1;
   std::vector<int32_t> materials = mesh.materials;
   std::sort(materials.begin(), materials.end());
   materials.erase(std::unique(materials.begin(), materials.end()), materials.end());
   int32_t largest = materials.back();
-  if (materials.front() == 0) {
-    int32_t zero_tag = 1;  // as write_gmsh() numbers material 0
-    for (int32_t m : materials) {
-      if (m == zero_tag) ++zero_tag;
-    }
-    largest = std::max(largest, zero_tag);
-  }
+  if (materials.front() == 0) largest = std::max(largest, gmsh_material_zero_tag(materials));
   return int64_t{std::max(largest, 0)} + 1;
 }
 
@@ -123,24 +125,24 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups,
 std::vector<SurfaceGroupName> match_surface_groups(
     const TetMesh& mesh, const std::vector<InputSurfaceGroup>& input,
     std::vector<const InputSurfaceGroup*>* unmatched) {
-  const std::vector<SurfaceTriangle> surface =
-      extract_surface(mesh, build_adjacency(mesh).tet_neighbors);
-  std::map<PairKey, size_t> pair_index;
-  std::vector<std::pair<int32_t, int32_t>> pairs;
-  std::vector<size_t> pair_size;
-  std::map<TriangleKey, size_t> pair_of;  // surface triangle -> its pair
-  for (const SurfaceTriangle& t : surface) {
-    const auto [it, inserted] = pair_index.try_emplace(pair_key(t), pairs.size());
-    if (inserted) {
-      pairs.push_back({t.inner, t.outer});
-      pair_size.push_back(0);
+  // The pairs as group_surface() groups them (its tags are not used); if it cannot
+  // number them, no write can, and no group is matched.
+  SurfaceGroups groups;
+  if (!group_surface(mesh, &groups).ok()) {
+    if (unmatched)
+      for (const InputSurfaceGroup& group : input) unmatched->push_back(&group);
+    return {};
+  }
+  std::map<TriangleKey, size_t> pair_of;  // surface triangle -> its group
+  for (size_t g = 0; g < groups.groups.size(); ++g) {
+    for (uint32_t i : groups.groups[g].triangles) {
+      const auto& v = groups.surface[i].v;
+      const auto& p = mesh.positions;
+      pair_of[triangle_key(p[v[0]], p[v[1]], p[v[2]])] = g;
     }
-    ++pair_size[it->second];
-    const auto& p = mesh.positions;
-    pair_of[triangle_key(p[t.v[0]], p[t.v[1]], p[t.v[2]])] = it->second;
   }
   std::vector<SurfaceGroupName> names;
-  std::vector<bool> taken(pairs.size(), false);
+  std::vector<bool> taken(groups.groups.size(), false);
   for (const InputSurfaceGroup& group : input) {
     std::set<TriangleKey> seen;
     size_t pair = SIZE_MAX;
@@ -155,9 +157,11 @@ std::vector<SurfaceGroupName> match_surface_groups(
       pair = it->second;
       seen.insert(key);
     }
-    if (one_pair && seen.size() == pair_size[pair] && !taken[pair] && group.tag >= 1) {
+    if (one_pair && seen.size() == groups.groups[pair].triangles.size() && !taken[pair] &&
+        group.tag >= 1) {
       taken[pair] = true;
-      names.push_back({pairs[pair].first, pairs[pair].second, group.tag, group.name});
+      names.push_back(
+          {groups.groups[pair].material, groups.groups[pair].other, group.tag, group.name});
     } else if (unmatched) {
       unmatched->push_back(&group);
     }

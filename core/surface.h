@@ -45,6 +45,11 @@ struct SurfaceGroups {
   std::vector<SurfaceGroup> groups;
 };
 
+// The Gmsh physical tag of material 0 (tags must be > 0): the smallest positive tag
+// none of `materials` (distinct, increasing) uses. write_gmsh() numbers it so, and
+// first_surface_tag() counts it.
+int32_t gmsh_material_zero_tag(const std::vector<int32_t>& materials);
+
 // 1 + the largest tag a writer gives a material: the largest material, or, when
 // material 0 is present, the Gmsh tag it gets (the smallest positive tag no
 // material uses) if that is larger. At least 1; may exceed the int32 range.

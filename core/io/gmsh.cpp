@@ -1303,10 +1303,7 @@ void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
   std::vector<int32_t> materials = mesh.materials;
   std::sort(materials.begin(), materials.end());
   materials.erase(std::unique(materials.begin(), materials.end()), materials.end());
-  int32_t zero_tag = 1;
-  for (int32_t m : materials) {
-    if (m == zero_tag) ++zero_tag;
-  }
+  const int32_t zero_tag = gmsh_material_zero_tag(materials);
   std::vector<int32_t> physical_tags(materials.size());
   for (size_t i = 0; i < materials.size(); ++i) {
     physical_tags[i] = materials[i] > 0 ? materials[i] : zero_tag;
