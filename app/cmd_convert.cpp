@@ -1,4 +1,4 @@
-// tetlod convert IN OUT [--msh-version 2.2|4.1] [--surfaces]
+// tetlod convert IN OUT (or IN -o OUT) [--msh-version 2.2|4.1] [--surfaces]
 #include <cstdio>
 #include <string>
 
@@ -11,9 +11,11 @@ namespace {
 
 constexpr const char* kConvertUsage =
     "usage: tetlod convert IN OUT [--msh-version 2.2|4.1] [--surfaces]\n"
+    "       (OUT may also be given as -o OUT)\n"
     "\n"
     "Converts a tetrahedral mesh between formats, chosen by extension, keeping the\n"
-    "material of every tetrahedron:\n"
+    "material of every tetrahedron, and the materials' names where both formats\n"
+    "have them (Gmsh physical volumes, Abaqus element sets and sections):\n"
     "  .mesh (Medit)  .msh (Gmsh 2.2/4.1)  .node/.ele (TetGen)  .vtk (legacy)  .vtu\n"
     "  .bdf/.nas (Nastran bulk data; material = PID)  .inp (Abaqus, CalculiX)\n"
     "Binary .msh, .vtk and .vtu files are read; every format is written as text.\n"
@@ -38,7 +40,17 @@ int cmd_convert(const Args& args) {
     const OptionResult parsed = parse_write_option(args, &i, "convert", &options);
     if (parsed == OptionResult::kError) return kExitUsage;
     if (parsed == OptionResult::kParsed) continue;
-    if (!a.empty() && a[0] == '-') {
+    if (a == "-o" || a == "--output") {  // as simplify and lod take it
+      if (i + 1 == args.size()) {
+        std::fprintf(stderr, "tetlod convert: %s needs a file\n", a.c_str());
+        return kExitUsage;
+      }
+      if (!out.empty()) {
+        std::fputs("tetlod convert: give the output once\n", stderr);
+        return kExitUsage;
+      }
+      out = args[++i];
+    } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "tetlod convert: unknown option '%s'\n\n", a.c_str());
       print_convert_usage(stderr);
       return kExitUsage;
@@ -62,6 +74,7 @@ int cmd_convert(const Args& args) {
   ReadInfo info;
   if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
   const std::vector<SurfaceGroupName> names = input_group_names(mesh, info, options, "convert");
+  options.material_names = &info.material_names;
   OutputFiles files;
   StagedMesh staged;
   Status status = stage_output_mesh(&files, out, mesh, options, &staged, &names);

@@ -148,6 +148,7 @@ int cmd_simplify(const Args& args) {
   // an input group that is one of them names it in the output too.
   const std::vector<SurfaceGroupName> names =
       input_group_names(input, info, write_options, "simplify");
+  write_options.material_names = &info.material_names;  // no material disappears
   const SimplifyParams& params = options.params;
   const long long elements = options.elements;
   const bool improve = options.improve;

@@ -78,6 +78,8 @@ struct Scene {
   // The input file's own surface groups (ReadInfo::surface_groups): Save's boundary
   // groups keep the names and tags of those that are a whole material pair's.
   std::shared_ptr<const std::vector<InputSurfaceGroup>> input_groups;
+  // The input file's names of its materials (ReadInfo::material_names), for Save.
+  std::shared_ptr<const std::vector<MaterialName>> material_names;
   bool from_history = false;  // the result was read from a history file, not run here
   CollapseHistory empty_history;
   std::unique_ptr<Lod> lod;
@@ -638,6 +640,7 @@ void Viewer::start_load(const std::string& path) {
     std::shared_ptr<SimplifyResult> history;
     std::optional<SimplifyParams> saved_params;
     std::shared_ptr<const std::vector<InputSurfaceGroup>> input_groups;
+    std::shared_ptr<const std::vector<MaterialName>> material_names;
     Status s;
     if (is_history_path(job->path)) {
       history = std::make_shared<SimplifyResult>();
@@ -662,6 +665,10 @@ void Viewer::start_load(const std::string& path) {
         input_groups =
             std::make_shared<const std::vector<InputSurfaceGroup>>(std::move(info.surface_groups));
       }
+      if (s && !info.material_names.empty()) {
+        material_names =
+            std::make_shared<const std::vector<MaterialName>>(std::move(info.material_names));
+      }
       mesh = std::move(read);
     }
     if (!s) {
@@ -677,6 +684,7 @@ void Viewer::start_load(const std::string& path) {
       auto scene = make_scene(job->path, std::move(mesh), history, v);
       scene->from_history = history != nullptr;
       scene->input_groups = std::move(input_groups);
+      scene->material_names = std::move(material_names);
       if (saved_params) {
         scene->params = *saved_params;
         scene->params_known = true;
@@ -706,8 +714,9 @@ void Viewer::start_simplify() {
   Job* job = job_.get();
   std::shared_ptr<const TetMesh> input = scene_->input;  // always the loaded input
   auto input_groups = scene_->input_groups;
+  auto material_names = scene_->material_names;
   const ui::ViewSettings view = view_;
-  job->thread = std::thread([job, input, input_groups, params, view] {
+  job->thread = std::thread([job, input, input_groups, material_names, params, view] {
     auto result = std::make_shared<SimplifyResult>();
     const Status s = simplify(
         *input, params, result.get(),
@@ -737,6 +746,7 @@ void Viewer::start_simplify() {
       scene->params = params;
       scene->params_known = true;
       scene->input_groups = input_groups;
+      scene->material_names = material_names;
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
     }
@@ -1142,6 +1152,7 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
   save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
                                                  input = scene_->input,
                                                  input_groups = scene_->input_groups,
+                                                 material_names = scene_->material_names,
                                                  mesh = scene_->lod->extract()]() mutable {
     Saved saved;
     if (!level_name.empty()) {
@@ -1159,8 +1170,9 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
                     r.min_stretch_after);
       saved.note = note;
     }
+    options.material_names = material_names.get();
     if (!options.surface_groups) {
-      saved.status = write_mesh(path, mesh);
+      saved.status = write_mesh(path, mesh, options);
       return saved;
     }
     // The input's own groups that are a whole material pair's keep their names and

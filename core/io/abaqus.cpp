@@ -385,6 +385,14 @@ class AbaqusParser {
     for (size_t k = 0; k < keys_.size(); ++k) {
       if (used[k] && id[k] < 0) id[k] = ++largest;
     }
+    // The names, but not our own MATERIAL_<id>, which only says the number.
+    for (size_t k = 0; k < keys_.size(); ++k) {
+      if (used[k] && keys_[k] != "MATERIAL_" + std::to_string(id[k]) &&
+          id[k] <= std::numeric_limits<int32_t>::max())
+        out_->material_names.push_back({int32_t(id[k]), keys_[k]});
+    }
+    std::sort(out_->material_names.begin(), out_->material_names.end(),
+              [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
     TetMesh& mesh = out_->mesh;
     mesh.tets.reserve(tets_.size());
     mesh.materials.reserve(tets_.size());
@@ -468,20 +476,47 @@ class AbaqusParser {
 // faces (for *DLOAD, *DFLUX, contact), both named after the group in upper case.
 // The faces are those of the group's tets of the smaller material; element ids are
 // the tets' positions + 1, as write_abaqus() numbers them.
+// A user's name made a valid Abaqus label: upper case, letters, digits and '_',
+// starting with a letter (else after `prefix`).
+std::string abaqus_label(const std::string& name, const char* prefix) {
+  std::string label = name;
+  for (char& c : label) {
+    c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
+    if (!std::isalnum(uint8_t(c)) && c != '_') c = '_';
+  }
+  if (label.empty() || !std::isalpha(uint8_t(label[0]))) label = prefix + label;
+  return label;
+}
+
+// The element set of material m: MATERIAL_<m>, or its name (WriteOptions::
+// material_names) ending in m, so that the reader gives the tets m again.
+std::string material_set_name(int32_t m, const std::vector<MaterialName>* names) {
+  const std::string number = std::to_string(m);
+  if (names) {
+    const auto it =
+        std::lower_bound(names->begin(), names->end(), m,
+                         [](const MaterialName& n, int32_t value) { return n.material < value; });
+    if (it != names->end() && it->material == m && !it->name.empty()) {
+      std::string label = abaqus_label(it->name, "M_");
+      if (label.size() > 60) label.resize(60);  // Abaqus labels: at most 80 characters
+      size_t digits = label.size();
+      while (digits > 0 && std::isdigit(uint8_t(label[digits - 1]))) --digits;
+      const std::string_view tail = std::string_view(label).substr(digits);
+      const bool ends_in_m =
+          !tail.empty() && tail.size() <= 18 && std::stoll(std::string(tail)) == m;
+      return ends_in_m ? label : label + "_" + number;
+    }
+  }
+  return "MATERIAL_" + number;
+}
+
 void write_abaqus_surfaces(const SurfaceGroups& surfaces, std::string* out) {
   // Abaqus face labels of C3D4 by the corner opposite the face: S1 = nodes 1-2-3,
   // S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
   static constexpr const char* kFaceLabel[4] = {"S3", "S4", "S2", "S1"};
   std::vector<uint32_t> nodes;
   for (const SurfaceGroup& group : surfaces.groups) {
-    // Upper case; a user's name (from an input file) made a valid Abaqus label: letters,
-    // digits and '_', starting with a letter.
-    std::string name = group.name;
-    for (char& c : name) {
-      c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
-      if (!std::isalnum(uint8_t(c)) && c != '_') c = '_';
-    }
-    if (name.empty() || !std::isalpha(uint8_t(name[0]))) name = "S_" + name;
+    const std::string name = abaqus_label(group.name, "S_");
     nodes.clear();
     for (uint32_t i : group.triangles) {
       for (uint32_t v : surfaces.surface[i].v) nodes.push_back(v);
@@ -511,13 +546,16 @@ Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* 
   return parser.parse();
 }
 
-void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
+void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
+                  const std::vector<MaterialName>* names, std::string* out) {
   out->reserve(out->size() + mesh.vertex_count() * 64 + mesh.tet_count() * 48);
   out->append("*HEADING\nTetLOD tetrahedral mesh: ");
   append_number(out, mesh.vertex_count());
   out->append(" nodes, ");
   append_number(out, mesh.tet_count());
-  out->append(" C3D4 elements, one element set MATERIAL_<id> per material");
+  out->append(
+      " C3D4 elements, one element set per material (MATERIAL_<id>, or the "
+      "material's name ending in its id)");
   if (surfaces) out->append(", a node set and a surface (<name>_FACES) per surface group");
   out->append("\n*NODE\n");
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -538,9 +576,8 @@ void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces, std::strin
   for (size_t i = 0; i < order.size(); ++i) {
     const uint32_t t = order[i];
     if (i == 0 || mesh.materials[t] != mesh.materials[order[i - 1]]) {
-      out->append("*ELEMENT, TYPE=C3D4, ELSET=MATERIAL_");
-      append_number(out, mesh.materials[t]);
-      out->push_back('\n');
+      out->append("*ELEMENT, TYPE=C3D4, ELSET=" + material_set_name(mesh.materials[t], names) +
+                  "\n");
     }
     append_number(out, t + 1);
     for (uint32_t v : mesh.tets[t]) {

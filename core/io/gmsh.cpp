@@ -1094,9 +1094,13 @@ class GmshParser {
     for (const auto& [key, name] : physical_names_) {
       if (key.first == 2) surface_names.push_back("'" + name + "'");
       if (key.first == 3) {
-        const bool has_tets = present.count(int32_t(key.second)) > 0;
+        const bool has_tets = key.second >= 0 &&
+                              key.second <= std::numeric_limits<int32_t>::max() &&
+                              present.count(int32_t(key.second)) > 0;
         volume_names.push_back("'" + name + "' = " + std::to_string(key.second) +
                                (has_tets ? "" : " (no tetrahedra: not in the mesh)"));
+        // Sorted by tag, so by material; a group's name is its material's.
+        if (has_tets) out_->material_names.push_back({int32_t(key.second), name});
       }
     }
     if (surface_elements > 0) {
@@ -1104,15 +1108,17 @@ class GmshParser {
           std::to_string(surface_elements) + " surface elements are not kept" +
           (surface_names.empty() ? std::string()
                                  : ", nor the surface groups " + quoted_list(surface_names)) +
-          ": TetLOD keeps the tetrahedra and their volume groups (written as "
-          "material_<id>; with --surfaces, or the viewer's boundary groups, outputs carry "
+          ": TetLOD keeps the tetrahedra and their volume groups (with their names in "
+          ".msh and .inp outputs; with --surfaces, or the viewer's boundary groups, outputs carry "
           "the boundary and interface triangles again, a group per "
           "material pair, under a group's own name and tag where it is "
           "exactly one pair's)");
     }
     if (!volume_names.empty()) {
-      out_->notes.push_back("volume groups are materials by their number: " +
-                            quoted_list(volume_names));
+      out_->notes.push_back(
+          "volume groups are materials by their number (.msh and .inp "
+          "outputs keep their names): " +
+          quoted_list(volume_names));
     }
     if (elementary_tets_ > 0 && physical_tets_ > 0) {
       std::vector<std::string> ids, shared;
@@ -1265,26 +1271,45 @@ class GmshParser {
   bool entity_in_two_groups_ = false;
 };
 
+// A user's name inside Gmsh's quotes: no quote or line break.
+std::string quotable(std::string name) {
+  for (char& c : name) c = c == '"' || uint8_t(c) < 32 ? '_' : c;
+  return name;
+}
+
 void append_physical_names(const std::vector<int32_t>& materials,
                            const std::vector<int32_t>& physical_tags, const SurfaceGroups* surfaces,
-                           std::string* out) {
+                           const std::vector<MaterialName>* names, std::string* out) {
   out->append("$PhysicalNames\n");
   append_line(out, materials.size() + (surfaces ? surfaces->groups.size() : 0));
   if (surfaces) {
     for (const SurfaceGroup& group : surfaces->groups) {
       out->append("2 ");
       append_number(out, group.tag);
-      std::string name = group.name;  // a user's: no quote or line break inside the quotes
-      for (char& c : name) c = c == '"' || uint8_t(c) < 32 ? '_' : c;
-      out->append(" \"" + name + "\"\n");
+      out->append(" \"" + quotable(group.name) + "\"\n");
     }
   }
   for (size_t i = 0; i < materials.size(); ++i) {
     out->append("3 ");
     append_number(out, physical_tags[i]);
     out->append(" \"");
-    out->append(kMaterialPrefix);
-    append_number(out, materials[i]);
+    // A name of its own, unless it is empty, would read as another material's
+    // number, or the tag is not the id (material 0).
+    const std::string* name = nullptr;
+    if (names && materials[i] > 0) {
+      const auto it =
+          std::lower_bound(names->begin(), names->end(), materials[i],
+                           [](const MaterialName& n, int32_t m) { return n.material < m; });
+      if (it != names->end() && it->material == materials[i] && !it->name.empty() &&
+          (material_from_name(it->name) < 0 || material_from_name(it->name) == materials[i]))
+        name = &it->name;
+    }
+    if (name) {
+      out->append(quotable(*name));
+    } else {
+      out->append(kMaterialPrefix);
+      append_number(out, materials[i]);
+    }
     out->append("\"\n");
   }
   out->append("$EndPhysicalNames\n");
@@ -1297,7 +1322,8 @@ Status parse_gmsh(std::string_view text, const std::string& name, ParsedMesh* ou
   return parser.parse(version);
 }
 
-void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces, std::string* out) {
+void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
+                const std::vector<MaterialName>* names, std::string* out) {
   // Distinct materials and their physical tags: m for m > 0; 0 takes the smallest
   // positive tag no material uses.
   std::vector<int32_t> materials = mesh.materials;
@@ -1316,7 +1342,7 @@ void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
   out->reserve(out->size() + mesh.vertex_count() * 64 + mesh.tet_count() * 48);
   out->append(version == 22 ? "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
                             : "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
-  append_physical_names(materials, physical_tags, surfaces, out);
+  append_physical_names(materials, physical_tags, surfaces, names, out);
   const std::vector<SurfaceGroup> no_groups;
   const std::vector<SurfaceGroup>& groups = surfaces ? surfaces->groups : no_groups;
   size_t triangle_count = 0;

@@ -23,6 +23,7 @@ struct ParsedMesh {
   std::vector<uint32_t> tet_lines;                // 1-based line of each tet in the file
   std::vector<std::string> notes;                 // what a user should know of how it was read
   std::vector<InputSurfaceGroup> surface_groups;  // Gmsh physical surfaces (ReadInfo)
+  std::vector<MaterialName> material_names;       // ReadInfo's: sorted, present materials
 };
 
 Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out);
@@ -39,14 +40,17 @@ Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* 
 // to write as well, in the format's way (mesh_io.h).
 void write_medit(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 // `version` is 22 or 41.
-void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces, std::string* out);
+// `names`: WriteOptions::material_names, or null.
+void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
+                const std::vector<MaterialName>* names, std::string* out);
 void write_tetgen_node(const TetMesh& mesh, std::string* out);
 void write_tetgen_ele(const TetMesh& mesh, std::string* out);
 void write_tetgen_face(const SurfaceGroups& surfaces, std::string* out);
 void write_vtk_legacy(const TetMesh& mesh, std::string* out);
 void write_vtu(const TetMesh& mesh, std::string* out);
 void write_nastran(const TetMesh& mesh, std::string* out);
-void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
+void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
+                  const std::vector<MaterialName>* names, std::string* out);
 // With extra point and cell arrays (sizes and names checked by the caller).
 void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out);
 

@@ -77,6 +77,7 @@ Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string&
     info->validation = report;
     info->notes = std::move(parsed->notes);
     info->surface_groups = std::move(parsed->surface_groups);
+    info->material_names = std::move(parsed->material_names);
   }
   return Status();
 }
@@ -227,7 +228,7 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       io::write_medit(mesh, surfaces, &text);
       break;
     case FileKind::kGmsh:
-      io::write_gmsh(mesh, options.gmsh_version, surfaces, &text);
+      io::write_gmsh(mesh, options.gmsh_version, surfaces, options.material_names, &text);
       break;
     case FileKind::kTetGen: {
       const std::string base = tetgen_base(path);
@@ -251,7 +252,7 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       io::write_nastran(mesh, &text);
       break;
     case FileKind::kAbaqus:
-      io::write_abaqus(mesh, surfaces, &text);
+      io::write_abaqus(mesh, surfaces, options.material_names, &text);
       break;
   }
   return files->stage(path, text);

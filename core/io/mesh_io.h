@@ -33,7 +33,8 @@
 //    other element types are skipped. Material = the first physical tag (2.2: the
 //    first element tag when not 0; 4.1: the volume entity's first physical tag in
 //    $Entities), else the elementary (entity) tag. A 3D physical group named
-//    "material_<n>" in $PhysicalNames gives material n whatever its tag. Node and
+//    "material_<n>" in $PhysicalNames gives material n whatever its tag; other
+//    names of 3D groups are kept as ReadInfo::material_names. Node and
 //    element tags may be sparse or huge: vertices come out ordered by node tag,
 //    tets by element tag. The triangles (of any order) of physical surfaces are kept
 //    by their corners' positions as ReadInfo::surface_groups (an entity's first
@@ -61,8 +62,8 @@
 //    as physical tag m (and volume entity m), so other tools see the same ids.
 //    Material 0 is written as the smallest positive tag no material uses, and every
 //    physical group is named "material_<m>" in $PhysicalNames, which our reader
-//    maps back. 4.1 files carry $Entities with bounding boxes, one volume entity
-//    per material.
+//    maps back, unless WriteOptions::material_names gives it a name (m > 0 only).
+//    4.1 files carry $Entities with bounding boxes, one volume entity per material.
 //  - TetGen: the pair is written 1-based with one region attribute (the material).
 #pragma once
 
@@ -82,6 +83,14 @@ enum class MeshFormat { kMedit, kGmsh22, kGmsh41, kTetGen, kVtkLegacy, kVtu, kNa
 
 const char* format_name(MeshFormat format);
 
+// A material's name in the file it was read from (a Gmsh physical volume's name;
+// the MATERIAL of an Abaqus *SOLID SECTION, or its element set's name), so that a
+// file written from the mesh can carry it again (WriteOptions::material_names).
+struct MaterialName {
+  int32_t material = 0;
+  std::string name;
+};
+
 struct ReadInfo {
   MeshFormat format = MeshFormat::kMedit;
   ValidationReport validation;
@@ -91,6 +100,10 @@ struct ReadInfo {
   // The file's own surface groups (Gmsh physical surfaces of triangles; other formats
   // none), for match_surface_groups() (core/surface.h) when writing surface groups.
   std::vector<InputSurfaceGroup> surface_groups;
+  // The names the file gives the materials of its tets, by material id (none for a
+  // name that only says the number, such as Gmsh's "material_<n>"; formats without
+  // names give none).
+  std::vector<MaterialName> material_names;
 };
 
 // Reads `path`; `*mesh` is replaced only on success. For .msh, info->format tells
@@ -121,6 +134,12 @@ struct WriteOptions {
   // With surface_groups: group_surface() of the very mesh written, for a caller that
   // also prints them; null to have the writer compute them.
   const SurfaceGroups* groups = nullptr;
+  // Names for the materials (ReadInfo::material_names of the input, or null), where
+  // the format has a place for them: .msh physical volume names ("material_<m>" for
+  // a material without one, and always for material 0, whose Gmsh tag is not its
+  // id); .inp element sets <NAME>_<m> (MATERIAL_<m> without). Names of materials the
+  // mesh does not have are ignored; characters the format cannot hold become '_'.
+  const std::vector<MaterialName>* material_names = nullptr;
 };
 
 // Whether `path` has an extension read_mesh() and write_mesh() know; the error names

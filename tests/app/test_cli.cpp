@@ -141,6 +141,33 @@ TEST(Cli, ConvertKeepsCountsAcrossFormats) {
   }
 }
 
+// The materials' names of a Gmsh input (its physical volumes) are in what convert and
+// simplify write; convert also takes its output as -o OUT, once.
+TEST(Cli, ConvertAndSimplifyKeepMaterialNames) {
+  const std::string input = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_order2.msh";
+  const std::string names =
+      "$PhysicalNames\n4\n3 1 \"inner_conductor\"\n3 2 \"dielectric_inner\"\n"
+      "3 3 \"dielectric_outer\"\n3 4 \"shield\"\n$EndPhysicalNames\n";
+  const std::string converted = out_dir() + "/named.msh";
+  CommandResult r = run("convert " + input + " -o " + converted);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(read_file(converted).find(names), std::string::npos);
+  const std::string deck = out_dir() + "/named.inp";
+  r = run("convert " + converted + " " + deck);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(read_file(deck).find("*ELEMENT, TYPE=C3D4, ELSET=SHIELD_4\n"), std::string::npos);
+  const std::string simplified = out_dir() + "/named_simplified.msh";
+  r = run("simplify " + input + " -o " + simplified + " --size 2 --tolerance 0.01");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(read_file(simplified).find(names), std::string::npos);
+  r = run("convert " + input + " -o " + converted + " -o " + deck);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("give the output once"), std::string::npos) << r.output;
+  r = run("convert " + input + " -o");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("-o needs a file"), std::string::npos) << r.output;
+}
+
 // --surfaces and --msh-version on every command that writes a mesh: the groups are
 // printed and written; a format with no place for them is a usage error up front.
 TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {

@@ -439,6 +439,23 @@ TEST(ViewerWindow, SaveKeepsTheInputsWholePairGroups) {
   EXPECT_LT(saved.tet_count(), original.tet_count());
 }
 
+// Save keeps the input's names of its materials (Gmsh physical volumes), as `tetlod
+// simplify` does.
+TEST(ViewerWindow, SaveKeepsMaterialNames) {
+  const fs::path dir = fresh_output_dir("viewer_save_material_names");
+  std::ofstream(dir / "save.script") << "thresholds size=2 tolerance=0.01\nsimplify\n"
+                                        "save simplified.msh\nquit\n";
+  const std::string input = kSource + "/tests/data/gmsh/coax_order2.msh";
+  const ViewerRun run = run_viewer(dir, "'" + input + "' --size 320x240 --script save.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream f(dir / "simplified.msh");
+  const std::string text{std::istreambuf_iterator<char>(f), {}};
+  EXPECT_NE(text.find("$PhysicalNames\n4\n3 1 \"inner_conductor\"\n3 2 \"dielectric_inner\"\n"
+                      "3 3 \"dielectric_outer\"\n3 4 \"shield\"\n"),
+            std::string::npos)
+      << text.substr(0, 300);
+}
+
 // A history keeps the thresholds it was made with: the viewer names them when it
 // opens it, and "save ... improve" improves within them (not the panel's), writing
 // what `tetlod lod --improve` writes.

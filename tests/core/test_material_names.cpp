@@ -1,0 +1,172 @@
+// Material names: Gmsh physical volume names and Abaqus section materials or element
+// sets are read as ReadInfo::material_names, and written again (WriteOptions::
+// material_names) to .msh physical names and .inp element sets, without changing any
+// tet's material; Gmsh itself sees the names we write.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "core/io/mesh_io.h"
+#include "core/test_io_helpers.h"
+#include "core/test_meshes.h"
+
+namespace tetlod {
+namespace {
+
+using Names = std::vector<std::pair<int32_t, std::string>>;
+
+Names as_pairs(const std::vector<MaterialName>& names) {
+  Names pairs;
+  for (const MaterialName& n : names) pairs.push_back({n.material, n.name});
+  return pairs;
+}
+
+const Names kCoaxNames = {
+    {1, "inner_conductor"}, {2, "dielectric_inner"}, {3, "dielectric_outer"}, {4, "shield"}};
+
+// Gmsh files as Gmsh wrote them: text and binary, partitioned or not.
+TEST(MaterialNames, GmshPhysicalVolumeNamesAreRead) {
+  for (const char* file : {"coax_order2.msh", "coax_part3.msh", "coax_part3_bin.msh"}) {
+    SCOPED_TRACE(file);
+    TetMesh mesh;
+    ReadInfo info;
+    const Status s = read_mesh(test::data_path(std::string("gmsh/") + file), &mesh, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(as_pairs(info.material_names), kCoaxNames);
+  }
+  // Volume groups without names: none.
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/groups41.msh"), &mesh, &info).ok());
+  EXPECT_TRUE(info.material_names.empty());
+}
+
+TEST(MaterialNames, GmshWritesThemAndReadsThemBack) {
+  const std::string dir = test::output_dir("material_names_gmsh");
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/coax_order2.msh"), &mesh, &info).ok());
+  for (int version : {22, 41}) {
+    SCOPED_TRACE(version);
+    const std::string path = dir + "/coax" + std::to_string(version) + ".msh";
+    WriteOptions options;
+    options.gmsh_version = version;
+    options.material_names = &info.material_names;
+    ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+    EXPECT_NE(test::read_text(path).find("$PhysicalNames\n4\n3 1 \"inner_conductor\"\n3 2 "
+                                         "\"dielectric_inner\"\n3 3 \"dielectric_outer\"\n3 4 "
+                                         "\"shield\"\n$EndPhysicalNames\n"),
+              std::string::npos);
+    TetMesh back;
+    ReadInfo back_info;
+    ASSERT_TRUE(read_mesh(path, &back, &back_info).ok());
+    test::expect_same_mesh(mesh, back);
+    EXPECT_EQ(as_pairs(back_info.material_names), kCoaxNames);
+  }
+  // Without names: material_<m>, as before.
+  ASSERT_TRUE(write_mesh(dir + "/plain.msh", mesh).ok());
+  EXPECT_NE(test::read_text(dir + "/plain.msh").find("3 1 \"material_1\"\n"), std::string::npos);
+}
+
+// Names that cannot be written as they are: material 0 (its Gmsh tag is not its id)
+// keeps material_0; an empty name, or one that reads as another material's number,
+// gives material_<m>; quotes and line breaks become '_'; names of absent materials
+// are ignored. Every tet keeps its material.
+TEST(MaterialNames, GmshNamesThatCannotStandAreReplaced) {
+  const std::string dir = test::output_dir("material_names_odd");
+  const TetMesh mesh = test::make_grid_mesh(
+      4, 1, 1, [](int i, int, int) { return i; }, 0.5);  // materials 0..3
+  const std::vector<MaterialName> names = {
+      {0, "zero"}, {1, "a\"b\nc"}, {2, "material_9"}, {3, ""}, {7, "absent"}};
+  WriteOptions options;
+  options.material_names = &names;
+  const std::string path = dir + "/odd.msh";
+  ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+  const std::string text = test::read_text(path);
+  EXPECT_NE(text.find("3 4 \"material_0\"\n3 1 \"a_b_c\"\n3 2 \"material_2\"\n3 3 "
+                      "\"material_3\"\n$EndPhysicalNames"),
+            std::string::npos)
+      << text.substr(0, 200);
+  EXPECT_EQ(text.find("absent"), std::string::npos);
+  TetMesh back;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+  test::expect_same_mesh(mesh, back);
+  EXPECT_EQ(as_pairs(info.material_names), (Names{{1, "a_b_c"}}));
+}
+
+// Gmsh reads our names: it saves the physical groups again under them.
+TEST(MaterialNames, GmshKeepsTheNamesWeWrite) {
+  if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
+  const std::string dir = test::output_dir("material_names_by_gmsh");
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/coax_order2.msh"), &mesh, &info).ok());
+  WriteOptions options;
+  options.material_names = &info.material_names;
+  ASSERT_TRUE(write_mesh(dir + "/ours.msh", mesh, options).ok());
+  const std::string theirs = dir + "/gmsh_saved.msh";
+  ASSERT_EQ(std::system(("gmsh '" + dir + "/ours.msh' -0 -format msh22 -o '" + theirs + "' > '" +
+                         dir + "/gmsh.log' 2>&1")
+                            .c_str()),
+            0)
+      << test::read_text(dir + "/gmsh.log");
+  TetMesh back;
+  ReadInfo back_info;
+  ASSERT_TRUE(read_mesh(theirs, &back, &back_info).ok());
+  EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+  EXPECT_EQ(as_pairs(back_info.material_names), kCoaxNames);
+}
+
+// Abaqus: a section's material name, or the element set's, is the name; our own
+// MATERIAL_<id> is none.
+TEST(MaterialNames, AbaqusNamesAreRead) {
+  const std::string deck =
+      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
+      "7, 0, -1, 0\n"
+      "*ELEMENT, type=C3D4, ELSET=EIRON\n1, 1, 2, 3, 4\n"
+      "*ELEMENT, type=C3D4, ELSET=Coil2\n2, 2, 3, 4, 5\n"
+      "*ELEMENT, type=C3D4, ELSET=MATERIAL_5\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
+      "*SOLID SECTION, ELSET=EIRON, MATERIAL=Iron\n"
+      "*SOLID SECTION, ELSET=Coil2, MATERIAL=Copper_7\n"
+      "*SOLID SECTION, ELSET=MATERIAL_5, MATERIAL=MATERIAL_5\n";
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(deck, MeshFormat::kAbaqus, "a.inp", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{8, 7, 5, 5}));
+  EXPECT_EQ(as_pairs(info.material_names), (Names{{7, "COPPER_7"}, {8, "IRON"}}));
+}
+
+// Written to .inp, each named material's element set is its name ending in its id, so
+// that reading gives every tet its material again; written again from what was read,
+// the deck is the same.
+TEST(MaterialNames, AbaqusElementSetsCarryThem) {
+  const std::string dir = test::output_dir("material_names_abaqus");
+  const TetMesh mesh = test::make_grid_mesh(
+      5, 1, 1, [](int i, int, int) { return i + 1; }, 0.5);  // materials 1..5
+  const std::vector<MaterialName> names = {
+      {1, "inner conductor"}, {2, "Rotor2"}, {3, "3phase"}, {4, "coil_2"}};
+  WriteOptions options;
+  options.material_names = &names;
+  const std::string path = dir + "/named.inp";
+  ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+  const std::string text = test::read_text(path);
+  for (const char* set : {"ELSET=INNER_CONDUCTOR_1\n", "ELSET=ROTOR2\n", "ELSET=M_3PHASE_3\n",
+                          "ELSET=COIL_2_4\n", "ELSET=MATERIAL_5\n"})
+    EXPECT_NE(text.find(set), std::string::npos) << set;
+  TetMesh back;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+  test::expect_same_mesh(mesh, back);
+  EXPECT_EQ(as_pairs(info.material_names),
+            (Names{{1, "INNER_CONDUCTOR_1"}, {2, "ROTOR2"}, {3, "M_3PHASE_3"}, {4, "COIL_2_4"}}));
+  options.material_names = &info.material_names;
+  ASSERT_TRUE(write_mesh(dir + "/again.inp", back, options).ok());
+  EXPECT_EQ(test::read_text(dir + "/again.inp"), text);
+}
+
+}  // namespace
+}  // namespace tetlod
