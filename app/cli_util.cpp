@@ -224,17 +224,26 @@ bool load_history_level(const std::string& path, const char* command, long long 
   return history_level(&opened, command, level->step, &level->mesh, &level->seek_seconds);
 }
 
-void print_property_table(const MeshStats& stats) {
-  std::printf("%-14s %9s %9s %10s %9s %9s %8s %11s %12s\n", "", "#nodes", "#edges", "#elements",
-              "ave.str", "min.str", "max.val", "max.size", "volume");
-  auto row = [](const std::string& label, const PropertyRow& r) {
-    std::printf("%-14s %9zu %9zu %10zu %9.4f %9.4f %8u %11.5g %12.6g\n", label.c_str(), r.nodes,
+std::string material_name_of(const std::vector<MaterialName>* names, int32_t m) {
+  if (!names) return "";
+  const auto it =
+      std::lower_bound(names->begin(), names->end(), m,
+                       [](const MaterialName& n, int32_t id) { return n.material < id; });
+  return it != names->end() && it->material == m ? it->name : "";
+}
+
+void print_property_table(const MeshStats& stats, const std::vector<MaterialName>* names) {
+  const bool named = names && !names->empty();
+  std::printf("%-14s %9s %9s %10s %9s %9s %8s %11s %12s%s\n", "", "#nodes", "#edges", "#elements",
+              "ave.str", "min.str", "max.val", "max.size", "volume", named ? "  name" : "");
+  auto row = [](const std::string& label, const PropertyRow& r, const std::string& name) {
+    std::printf("%-14s %9zu %9zu %10zu %9.4f %9.4f %8u %11.5g %12.6g%s\n", label.c_str(), r.nodes,
                 r.edges, r.elements, r.average_stretch, r.min_stretch, r.max_valence, r.max_size,
-                r.volume);
+                r.volume, name.empty() ? "" : ("  " + name).c_str());
   };
-  row("whole mesh", stats.whole);
+  row("whole mesh", stats.whole, "");
   for (const MaterialRow& m : stats.per_material)
-    row("material " + std::to_string(m.material), m.row);
+    row("material " + std::to_string(m.material), m.row, material_name_of(names, m.material));
 }
 
 std::string json_escape(const std::string& text) {

@@ -108,8 +108,11 @@ BeyondLevels beyond_levels(long long elements, size_t step, size_t step_count, s
 // elements ..." or "the first: ... more ..." when N lies beyond the history, else "".
 std::string beyond_levels_note(long long elements, size_t step, size_t step_count, size_t tets);
 
-// Prints the Table I rows (whole mesh, then each material) as an aligned table.
-void print_property_table(const MeshStats& stats);
+// Prints the Table I rows (whole mesh, then each material) as an aligned table; with
+// `names` (ReadInfo::material_names) a last column names the materials that have one.
+void print_property_table(const MeshStats& stats, const std::vector<MaterialName>* names = nullptr);
+// The input file's name of material m ("" if none); `names` may be null.
+std::string material_name_of(const std::vector<MaterialName>* names, int32_t m);
 
 // Escapes a string for a JSON string literal (without the quotes).
 std::string json_escape(const std::string& text);

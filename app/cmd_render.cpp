@@ -97,6 +97,7 @@ int cmd_render(const Args& args) {
   }
 
   TetMesh mesh;
+  std::vector<std::pair<int32_t, std::string>> names;  // for the legend
   if (history) {
     HistoryLevel level;
     if (!load_history_level(in, "render", -1, options.simplify_options.elements, &level))
@@ -109,6 +110,7 @@ int cmd_render(const Args& args) {
   } else {
     ReadInfo info;
     if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
+    for (const MaterialName& n : info.material_names) names.push_back({n.material, n.name});
   }
   if (!resolve_materials(mesh, "render", &options)) return kExitBadInput;
   if (options.simplify && !history) {
@@ -118,6 +120,7 @@ int cmd_render(const Args& args) {
   }
   OffscreenRenderer offscreen;
   if (!open_offscreen_renderer("render", &offscreen)) return kExitBadInput;
+  offscreen.renderer->set_material_names(std::move(names));
 
   const auto start = std::chrono::steady_clock::now();
   const render::PreparedMesh prepared = render::prepare_mesh(std::move(mesh));

@@ -203,6 +203,7 @@ int cmd_report(const Args& args) {
   if (options.simplify_options.elements > 0) levels.push_back(options.simplify_options.elements);
 
   TetMesh input;
+  std::vector<MaterialName> names;  // of the input file's materials
   OpenedHistory history;
   if (from_history) {
     // The levels of a saved run: its finest level (the subdivided input), those
@@ -214,10 +215,16 @@ int cmd_report(const Args& args) {
   } else {
     ReadInfo info;
     if (!load_mesh(in, &input, &info)) return kExitBadInput;
+    names = std::move(info.material_names);
   }
   if (!resolve_materials(input, "report", &options)) return kExitBadInput;
   OffscreenRenderer offscreen;
   if (!open_offscreen_renderer("report", &offscreen)) return kExitBadInput;
+  {
+    std::vector<std::pair<int32_t, std::string>> legend;
+    for (const MaterialName& n : names) legend.push_back({n.material, n.name});
+    offscreen.renderer->set_material_names(std::move(legend));
+  }
 
   std::vector<Level> meshes;
   std::string thresholds, run_summary;
@@ -317,8 +324,11 @@ int cmd_report(const Args& args) {
       }
     }
     std::string materials = "<table>\n" + std::string(kTableHead);
-    for (const MaterialRow& m : stats.per_material)
-      materials += table_row("material " + std::to_string(m.material), m.row);
+    for (const MaterialRow& m : stats.per_material) {
+      const std::string name = material_name_of(&names, m.material);
+      materials += table_row(
+          "material " + std::to_string(m.material) + (name.empty() ? "" : " " + name), m.row);
+    }
     materials += "</table>\n";
     figures += "<section><h2>" + html_escape(level.label) + "</h2>\n<div class=\"figs\">" +
                img(render::encode_png(picture), level.label) +

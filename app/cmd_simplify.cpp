@@ -154,7 +154,7 @@ int cmd_simplify(const Args& args) {
   const bool improve = options.improve;
 
   std::printf("input %s\n", in.c_str());
-  print_property_table(stats_of(input));
+  print_property_table(stats_of(input), &info.material_names);
   // The size: the uniform one, the local sizing, or the smaller of the two (sizing.h).
   std::printf("\nthresholds: %s\n", describe_thresholds(params).c_str());
 
@@ -181,7 +181,7 @@ int cmd_simplify(const Args& args) {
   if (improve) improved = improve_timed(&output, params, &seconds_improve);
   std::printf("\noutput %s (step %zu of %zu%s)\n", out.c_str(), step, result.history.step_count(),
               beyond.c_str());
-  print_property_table(stats_of(output));
+  print_property_table(stats_of(output), &info.material_names);
   std::printf(
       "\nsubdivision: %zu splits (%zu edges longer than half the size left unsplit to keep the "
       "thresholds: %zu for a piece's stretch or size, %zu for a node's valence), %zu tets\n"

@@ -99,8 +99,10 @@ int cmd_stats(const Args& args) {
     print_row_json(stats.whole);
     std::printf(",\n  \"materials\": [");
     for (size_t i = 0; i < stats.per_material.size(); ++i) {
-      std::printf("%s\n    {\"material\": %d, \"row\": ", i ? "," : "",
-                  stats.per_material[i].material);
+      const int32_t m = stats.per_material[i].material;
+      const std::string name = material_name_of(&info.material_names, m);
+      std::printf("%s\n    {\"material\": %d, %s\"row\": ", i ? "," : "", m,
+                  name.empty() ? "" : ("\"name\": \"" + json_escape(name) + "\", ").c_str());
       print_row_json(stats.per_material[i].row);
       std::printf("}");
     }
@@ -125,7 +127,7 @@ int cmd_stats(const Args& args) {
   }
 
   std::printf("%s (%s)\n\n", path.c_str(), format_name(info.format));
-  print_property_table(stats);
+  print_property_table(stats, &info.material_names);
   std::printf("\nstretch histogram (whole mesh)\n");
   uint64_t most = 1;
   for (uint64_t c : stats.stretch_histogram) most = std::max(most, c);

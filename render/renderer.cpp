@@ -397,8 +397,17 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
   // The key at the top left: a swatch and a name per line.
   std::vector<std::pair<Rgb, std::string>> key;
   if (settings.color_mode == ColorMode::kMaterial)
-    for (const int32_t m : visible_materials_)
-      key.push_back({material_rgb(m), "material " + std::to_string(m)});
+    for (const int32_t m : visible_materials_) {
+      const auto it = std::lower_bound(material_names_.begin(), material_names_.end(), m,
+                                       [](const auto& n, int32_t id) { return n.first < id; });
+      std::string text = "material " + std::to_string(m);
+      if (it != material_names_.end() && it->first == m) {
+        text = std::to_string(m) + " " + it->second.substr(0, 32);
+        if (it->second.size() > 32) text += "...";
+        for (char& c : text) c = c < 32 || c > 126 ? '?' : c;  // the font's glyphs
+      }
+      key.push_back({material_rgb(m), text});
+    }
   if (highlight_vertices_ > 0 || settings.highlight_below > 0)
     key.push_back({kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
                                       std::to_string(highlighted_tets_) + " tets"});

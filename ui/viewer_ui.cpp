@@ -12,6 +12,26 @@
 namespace tetlod::ui {
 namespace {
 
+// The input file's name of material m, or null.
+const std::string* material_name(const ViewerStatus& status, int32_t m) {
+  const auto& names = status.material_names;
+  const auto it = std::lower_bound(names.begin(), names.end(), m,
+                                   [](const auto& n, int32_t id) { return n.first < id; });
+  return it != names.end() && it->first == m ? &it->second : nullptr;
+}
+
+// "3 shield" for a named material, else `unnamed` ("3" or "mat 3"); a long name is
+// cut to `max_chars` characters and "...".
+std::string material_label(const ViewerStatus& status, int32_t m, const char* unnamed_prefix,
+                           size_t max_chars = 24) {
+  const std::string* name = material_name(status, m);
+  if (!name) return unnamed_prefix + std::to_string(m);
+  std::string label = std::to_string(m) + " " + *name;
+  if (name->size() > max_chars)
+    label = std::to_string(m) + " " + name->substr(0, max_chars) + "...";
+  return label;
+}
+
 constexpr float kPanelWidth = 380;   // the side panel
 constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
 constexpr float kMargin = 6;
@@ -137,14 +157,15 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
           std::binary_search(view->hidden_materials.begin(), view->hidden_materials.end(), m);
       bool shown = !was_hidden;
       const render::Rgb c = render::material_rgb(m);
-      char label[32];
-      std::snprintf(label, sizeof(label), "%d", m);
-      const float width =
-          ImGui::GetFrameHeight() + style.ItemInnerSpacing.x + ImGui::CalcTextSize(label).x;
+      const std::string label = material_label(status, m, "", 16) + "##shown" + std::to_string(m);
+      const float width = ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                          ImGui::CalcTextSize(label.c_str(), nullptr, true).x;
       if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
       ImGui::PushStyleColor(ImGuiCol_CheckMark, ImVec4(c[0], c[1], c[2], 1));
-      ImGui::Checkbox(label, &shown);
+      ImGui::Checkbox(label.c_str(), &shown);
       ImGui::PopStyleColor();
+      if (const std::string* name = material_name(status, m); name && ImGui::IsItemHovered())
+        ImGui::SetTooltip("material %d: %s", m, name->c_str());
       if (shown == was_hidden) {
         auto& hidden = view->hidden_materials;
         if (shown)
@@ -228,7 +249,10 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       char label[32];
       std::snprintf(label, sizeof(label), "mat %d", m);
       bool limited = it != sizes.end();
-      if (ImGui::Checkbox(label, &limited)) {
+      const bool changed = ImGui::Checkbox(label, &limited);
+      if (const std::string* name = material_name(status, m); name && ImGui::IsItemHovered())
+        ImGui::SetTooltip("material %d: %s", m, name->c_str());
+      if (changed) {
         if (limited) {
           sizes.insert(std::lower_bound(sizes.begin(), sizes.end(), std::make_pair(m, 0.0f)),
                        {m, t->size});
@@ -393,7 +417,8 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
       const render::Rgb c = render::material_rgb(m.material);
-      ImGui::TextColored(ImVec4(c[0], c[1], c[2], 1), "mat %d", m.material);
+      ImGui::TextColored(ImVec4(c[0], c[1], c[2], 1), "%s",
+                         material_label(status, m.material, "mat ").c_str());
       ImGui::TableNextColumn();
       int role = static_cast<int>(m.role);
       ImGui::SetNextItemWidth(-1);
@@ -524,7 +549,7 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
     for (const MaterialRow& m : status.stats.per_material) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::Text("mat %d", m.material);
+      ImGui::TextUnformatted(material_label(status, m.material, "mat ").c_str());
       row_cells(m.row);
     }
     ImGui::EndTable();

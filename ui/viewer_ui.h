@@ -139,7 +139,10 @@ struct PanelState {
 struct ViewerStatus {
   std::string mesh_name;  // path of the loaded mesh ("" if none)
   size_t input_tets = 0, input_vertices = 0;
-  std::vector<int32_t> materials;                              // ids present in the input
+  std::vector<int32_t> materials;  // ids present in the input
+  // The input file's names of its materials (a Gmsh physical volume's, an Abaqus
+  // section's), sorted by id; materials without a name are not listed.
+  std::vector<std::pair<int32_t, std::string>> material_names;
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {1, 1, 1};  // of the input
   std::string load_error;  // last failed load or action, shown until replaced
   std::string message;     // last success message (saved, screenshot, ...)

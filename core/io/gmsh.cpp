@@ -1108,11 +1108,9 @@ class GmshParser {
           std::to_string(surface_elements) + " surface elements are not kept" +
           (surface_names.empty() ? std::string()
                                  : ", nor the surface groups " + quoted_list(surface_names)) +
-          ": TetLOD keeps the tetrahedra and their volume groups (with their names in "
-          ".msh and .inp outputs; with --surfaces, or the viewer's boundary groups, outputs carry "
-          "the boundary and interface triangles again, a group per "
-          "material pair, under a group's own name and tag where it is "
-          "exactly one pair's)");
+          ": TetLOD keeps the tetrahedra and their volume groups (--surfaces, or the "
+          "viewer's boundary groups, writes the boundary and interface triangles again, a "
+          "group per material pair)");
     }
     if (!volume_names.empty()) {
       out_->notes.push_back(

@@ -160,6 +160,16 @@ TEST(Cli, ConvertAndSimplifyKeepMaterialNames) {
   r = run("simplify " + input + " -o " + simplified + " --size 2 --tolerance 0.01");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(read_file(simplified).find(names), std::string::npos);
+  EXPECT_NE(r.output.find("volume  name\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("46.9738  shield\n"), std::string::npos) << r.output;  // the input
+  // stats names them too, in its table and its JSON.
+  r = run("stats " + input);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("11.3237  inner_conductor\n"), std::string::npos) << r.output;
+  r = run("stats --json " + input);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("{\"material\": 4, \"name\": \"shield\", \"row\": "), std::string::npos)
+      << r.output;
   r = run("convert " + input + " -o " + converted + " -o " + deck);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("give the output once"), std::string::npos) << r.output;

@@ -291,6 +291,20 @@ TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
   EXPECT_EQ(html.rfind("</html>"), html.size() - 8);
 }
 
+// A Gmsh input's material names label the per-material rows of every level.
+TEST(CliReport, NamesTheMaterialsAsTheInputDoes) {
+  const std::string dir = out_dir() + "/report_names";
+  fs::remove_all(dir);
+  const CommandResult r = run("report " + std::string(TETLOD_SOURCE_DIR) +
+                              "/tests/data/gmsh/coax_order2.msh --simplify --size 2 --tolerance "
+                              "0.01 --width 64 --height 64 -o " +
+                              dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string html = file_bytes(dir + "/report.html");
+  EXPECT_EQ(count_of(html, "<tr><th>material 4 shield</th>"), 2u);  // input and result
+  EXPECT_EQ(count_of(html, "<tr><th>material 1 inner_conductor</th>"), 2u);
+}
+
 // A level no run reaches (fewer tets than the last, more than the first) is the last
 // or first level, and the heading and a note say so, for a run and for a saved history.
 TEST(CliReport, LevelsBeyondTheRunAreNamed) {

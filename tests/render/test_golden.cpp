@@ -5,7 +5,9 @@
 // tests/golden/ on purpose (look at them before committing).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -251,6 +253,36 @@ TEST(GoldenSensitivity, HighlightChangeIsCaught) {
   s.filter.highlight = false;
   const ImageDifference d = difference_from_golden("motor_cut", render_case("motor.mesh", s));
   EXPECT_FALSE(matches(d)) << d.differing_pixels << " pixels differ";
+}
+
+// Names given to the materials replace "material <m>" in the key at the top left, and
+// nothing else in the picture changes; an unnamed material keeps its number.
+TEST(GoldenSensitivity, MaterialNamesAreInTheKeyOnly) {
+  const Image plain = render_case("box2.mesh", box2_wireframe());
+  Offscreen::get().renderer()->set_material_names({{2, "air gap"}});
+  const Image named = render_case("box2.mesh", box2_wireframe());
+  Offscreen::get().renderer()->set_material_names({});  // the renderer is shared
+  ASSERT_EQ(plain.width, kSize);
+  ASSERT_EQ(named.width, kSize);
+  // The key's second line (material 2) is 8 x 2 pixels high at the top left; the
+  // first line, for material 1, stays.
+  int x_max = 0, y_min = kSize, y_max = 0;
+  size_t changed = 0;
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      if (std::memcmp(plain.pixel(x, y), named.pixel(x, y), 3) == 0) continue;
+      ++changed;
+      x_max = std::max(x_max, x);
+      y_min = std::min(y_min, y);
+      y_max = std::max(y_max, y);
+    }
+  }
+  EXPECT_GT(changed, 40u);      // the new text
+  EXPECT_LT(x_max, kSize / 2);  // within the key
+  EXPECT_GT(y_min, 16);         // below its first line
+  EXPECT_LT(y_max, 48);         // within its second line
+  const Image again = render_case("box2.mesh", box2_wireframe());
+  EXPECT_EQ(again.rgba, plain.rgba);
 }
 
 // The EGL surfaceless backend (OSMesa's successor) draws the same pictures.
