@@ -103,6 +103,7 @@ int cmd_render(const Args& args) {
     if (!load_history_level(in, "render", -1, options.simplify_options.elements, &level))
       return kExitBadInput;
     mesh = std::move(level.mesh);
+    for (const MaterialName& n : level.names) names.push_back({n.material, n.name});
     if (options.simplify_options.improve) {
       if (!history_improve_params(in, "render", level.params)) return kExitUsage;
       improve_mesh(&mesh, *level.params);

@@ -212,6 +212,7 @@ int cmd_report(const Args& args) {
     if (options.simplify_options.improve && !history_improve_params(in, "report", history.params))
       return kExitUsage;
     if (!history_level(&history, "report", 0, &input)) return kExitBadInput;
+    names = history.names;
   } else {
     ReadInfo info;
     if (!load_mesh(in, &input, &info)) return kExitBadInput;

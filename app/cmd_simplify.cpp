@@ -210,7 +210,8 @@ int cmd_simplify(const Args& args) {
   StagedMesh staged;
   Status s = stage_output_mesh(&files, out, output, write_options, &staged, &names);
   if (s && !history_path.empty())
-    s = stage_history(&files, history_path, result.base, result.history, &params);
+    s = stage_history(&files, history_path, result.base, result.history, &params,
+                      &info.material_names);
   if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
@@ -345,6 +346,7 @@ int cmd_lod(const Args& args) {
                 source.c_str());
     improved = improve_timed(&level.mesh, options.params, &seconds_improve);
   }
+  write_options.material_names = &level.names;
   OutputFiles files;
   StagedMesh staged;
   Status s = stage_output_mesh(&files, out, level.mesh, write_options, &staged);

@@ -644,7 +644,10 @@ void Viewer::start_load(const std::string& path) {
     Status s;
     if (is_history_path(job->path)) {
       history = std::make_shared<SimplifyResult>();
-      s = read_history(job->path, &history->base, &history->history, &saved_params);
+      std::vector<MaterialName> saved_names;
+      s = read_history(job->path, &history->base, &history->history, &saved_params, &saved_names);
+      if (s && !saved_names.empty())
+        material_names = std::make_shared<const std::vector<MaterialName>>(std::move(saved_names));
       mesh = std::shared_ptr<const TetMesh>(history, &history->base);
       if (s) {
         std::lock_guard<std::mutex> lock(job->mutex);
@@ -1124,10 +1127,11 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
     save_path_ = path;
     const std::optional<SimplifyParams> params =
         scene_->params_known ? std::optional<SimplifyParams>(scene_->params) : std::nullopt;
-    save_future_ = std::async(std::launch::async, [path, params, result = scene_->result] {
+    save_future_ = std::async(std::launch::async, [path, params, result = scene_->result,
+                                                   names = scene_->material_names] {
       Saved saved;
-      saved.status =
-          write_history(path, result->base, result->history, params ? &*params : nullptr);
+      saved.status = write_history(path, result->base, result->history, params ? &*params : nullptr,
+                                   names.get());
       saved.note =
           " (the collapse history, " + std::to_string(result->history.step_count()) + " steps)";
       return saved;

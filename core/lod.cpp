@@ -186,7 +186,8 @@ TetMesh Lod::extract() const {
 
 // ---------------------------------------------------------------------------------
 // History files: "TETLODH1", then counts and raw little-endian arrays; then,
-// optionally, "TLPARAM1" and the thresholds (write_params()).
+// optionally, "TLPARAM1" and the thresholds (write_params()); then, optionally,
+// "TLNAMES1" and the material names (write_names()).
 
 namespace {
 
@@ -290,6 +291,44 @@ struct ParamsReader {
   }
 };
 
+constexpr char kNamesMagic[8] = {'T', 'L', 'N', 'A', 'M', 'E', 'S', '1'};
+constexpr size_t kMaxSavedNameBytes = 1024;
+
+// The material names: a u64 count, then per name i32 material, u32 byte length and
+// the bytes.
+bool write_names(std::FILE* f, const std::vector<MaterialName>& names) {
+  if (std::fwrite(kNamesMagic, 1, 8, f) != 8) return false;
+  ParamsWriter w{f};
+  w.put(uint64_t(names.size()));
+  for (const MaterialName& n : names) {
+    w.put(int32_t(n.material));
+    const std::string name = n.name.substr(0, kMaxSavedNameBytes);
+    w.put(uint32_t(name.size()));
+    w.ok = w.ok && (name.empty() || std::fwrite(name.data(), 1, name.size(), f) == name.size());
+  }
+  return w.ok;
+}
+
+// Reads the names after "TLNAMES1"; an error message, or "" on success.
+std::string read_names(std::FILE* f, uint64_t bytes, std::vector<MaterialName>* names) {
+  ParamsReader r{f};
+  const uint64_t count = r.get_count(bytes, 8);
+  for (uint64_t i = 0; i < count && r.ok; ++i) {
+    MaterialName n;
+    n.material = r.get<int32_t>();
+    const uint32_t length = r.get<uint32_t>();
+    if (!r.ok) break;
+    if (length == 0 || length > kMaxSavedNameBytes) return "material name " + std::to_string(i);
+    n.name.resize(length);
+    if (std::fread(n.name.data(), 1, length, f) != length) r.ok = false;
+    if (r.ok && !names->empty() && n.material <= names->back().material)
+      return "material names out of order";
+    names->push_back(std::move(n));
+  }
+  if (!r.ok) return "truncated material names, or a list longer than the file";
+  return "";
+}
+
 // Reads the thresholds after "TLPARAM1"; an error message, or "" on success.
 std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
   ParamsReader r{f};
@@ -325,7 +364,6 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
     s.boxes.push_back(box);
   }
   if (!r.ok) return "truncated thresholds, or a list longer than the file";
-  if (std::fgetc(f) != EOF) return "bytes after the thresholds";
   // What the command line's parsers accept (sizing.h), then check_params().
   if (subdivide > 1) return "thresholds: subdivide flag " + std::to_string(subdivide);
   if (std::isnan(s.uniform)) return "thresholds: size is not a number";
@@ -355,25 +393,38 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
 }  // namespace
 
 Status stage_history(OutputFiles* files, const std::string& path, const TetMesh& base,
-                     const CollapseHistory& history, const SimplifyParams* params) {
+                     const CollapseHistory& history, const SimplifyParams* params,
+                     const std::vector<MaterialName>* names) {
+  // Only the names of the base's materials, in order, each once and not empty: what
+  // the reader accepts.
+  std::vector<MaterialName> kept;
+  if (names && !names->empty()) {
+    std::vector<int32_t> materials = base.materials;
+    std::sort(materials.begin(), materials.end());
+    for (const MaterialName& n : *names) {
+      if (!n.name.empty() && std::binary_search(materials.begin(), materials.end(), n.material) &&
+          (kept.empty() || n.material > kept.back().material))
+        kept.push_back(n);
+    }
+  }
   return files->stage(path, [&](std::FILE* f) {
     return std::fwrite(kHistoryMagic, 1, 8, f) == 8 && write_array(f, base.positions) &&
            write_array(f, base.tets) && write_array(f, base.materials) &&
            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
            write_array(f, history.rewired) && write_array(f, history.moved) &&
-           (!params || write_params(f, *params));
+           (!params || write_params(f, *params)) && (kept.empty() || write_names(f, kept));
   });
 }
 
 Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history,
-                     const SimplifyParams* params) {
+                     const SimplifyParams* params, const std::vector<MaterialName>* names) {
   OutputFiles files;
-  if (Status s = stage_history(&files, path, base, history, params); !s) return s;
+  if (Status s = stage_history(&files, path, base, history, params, names); !s) return s;
   return files.commit();
 }
 
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
-                    std::optional<SimplifyParams>* params) {
+                    std::optional<SimplifyParams>* params, std::vector<MaterialName>* names) {
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   std::FILE* f = file.get();
   if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
@@ -391,15 +442,27 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
       !read_array(f, bytes, &history->moved)) {
     return Status::error(path + ": truncated or corrupt history file");
   }
-  // The thresholds, if saved (after the arrays, so that older readers ignore them).
+  // The thresholds and the material names, if saved (after the arrays, in this
+  // order, each at most once).
   std::optional<SimplifyParams> saved_params;
-  char params_magic[8] = {};
-  const size_t magic_bytes = std::fread(params_magic, 1, 8, f);
-  if (magic_bytes != 0) {
-    if (magic_bytes != 8 || std::memcmp(params_magic, kParamsMagic, 8) != 0)
-      return Status::error(path + ": corrupt history: bytes after the last step");
-    saved_params.emplace();
-    const std::string error = read_params(f, bytes, &*saved_params);
+  std::vector<MaterialName> saved_names;
+  bool names_read = false;
+  for (;;) {
+    char block_magic[8] = {};
+    const size_t magic_bytes = std::fread(block_magic, 1, 8, f);
+    if (magic_bytes == 0) break;
+    std::string error;
+    if (magic_bytes == 8 && !saved_params && !names_read &&
+        std::memcmp(block_magic, kParamsMagic, 8) == 0) {
+      saved_params.emplace();
+      error = read_params(f, bytes, &*saved_params);
+    } else if (magic_bytes == 8 && !names_read && std::memcmp(block_magic, kNamesMagic, 8) == 0) {
+      names_read = true;
+      error = read_names(f, bytes, &saved_names);
+    } else {
+      error = saved_params || names_read ? "bytes after the thresholds or names"
+                                         : "bytes after the last step";
+    }
     if (!error.empty()) return Status::error(path + ": corrupt history: " + error);
   }
   // Every index in range and every range well formed, so replay cannot go astray.
@@ -511,7 +574,18 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
                    std::to_string(sizes[i].first) + ", which the mesh does not have");
     }
   }
+  // A saved name is of a material of the mesh.
+  if (!saved_names.empty()) {
+    std::vector<int32_t> materials = base->materials;
+    std::sort(materials.begin(), materials.end());
+    for (const MaterialName& n : saved_names) {
+      if (!std::binary_search(materials.begin(), materials.end(), n.material))
+        return bad("a name for material " + std::to_string(n.material) +
+                   ", which the mesh does not have");
+    }
+  }
   if (params) *params = std::move(saved_params);
+  if (names) *names = std::move(saved_names);
   return Status();
 }
 

@@ -114,15 +114,24 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // `params`, if given: the thresholds the history was made with (all but
 // target_elements, which is about a level), saved after it so that a level can be
 // improved later within them (improve.h) without the user giving them again.
+// `names`, if given and not empty: the input file's names of the materials (sorted,
+// each of a material the base has), saved last, so that levels written later
+// carry them.
 Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history,
-                     const SimplifyParams* params = nullptr);
+                     const SimplifyParams* params = nullptr,
+                     const std::vector<MaterialName>* names = nullptr);
 // The same, staged in `files` to be committed with the other outputs of a command.
 Status stage_history(OutputFiles* files, const std::string& path, const TetMesh& base,
-                     const CollapseHistory& history, const SimplifyParams* params = nullptr);
+                     const CollapseHistory& history, const SimplifyParams* params = nullptr,
+                     const std::vector<MaterialName>* names = nullptr);
 // `params`, if given, receives the saved thresholds, or nullopt for a history saved
 // without them (as every one before 2026-11-24 was); saved thresholds that
-// check_params() refuses, or any byte after them, make the file corrupt.
+// check_params() refuses, or any byte after them, make the file corrupt. `names`, if
+// given, receives the saved material names (empty if none); a name list out of
+// order, of a material the base does not have, or with an empty or over-long name
+// makes the file corrupt.
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
-                    std::optional<SimplifyParams>* params = nullptr);
+                    std::optional<SimplifyParams>* params = nullptr,
+                    std::vector<MaterialName>* names = nullptr);
 
 }  // namespace tetlod

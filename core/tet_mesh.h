@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/vec3.h"
@@ -35,6 +36,15 @@ struct TetMesh {
 
   size_t vertex_count() const { return positions.size(); }
   size_t tet_count() const { return tets.size(); }
+};
+
+// A material's name in the file it was read from (a Gmsh physical volume's name;
+// the MATERIAL of an Abaqus *SOLID SECTION, or its element set's name), so that a
+// file written from the mesh can carry it again (io/mesh_io.h, WriteOptions::
+// material_names; lod.h, histories). Lists of them are sorted by material.
+struct MaterialName {
+  int32_t material = 0;
+  std::string name;
 };
 
 // Whether vertex v is a corner of tet t (branch-free: the simplifier's hot loops use it).

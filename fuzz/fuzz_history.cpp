@@ -4,11 +4,13 @@
 // the levels extracted there reference only their own vertices and have only
 // positive tets (the reader's replay checks promise that much); saved thresholds it
 // accepts pass check_params().
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -38,8 +40,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   tetlod::TetMesh base;
   tetlod::CollapseHistory history;
   std::optional<tetlod::SimplifyParams> params;
-  if (!tetlod::read_history(path, &base, &history, &params).ok()) return 0;
+  std::vector<tetlod::MaterialName> names;
+  if (!tetlod::read_history(path, &base, &history, &params, &names).ok()) return 0;
   if (params && !tetlod::check_params(*params).ok()) __builtin_trap();  // accepted: valid
+  for (size_t i = 0; i < names.size(); ++i) {  // accepted: sorted, not empty, of the mesh
+    if (names[i].name.empty() || (i > 0 && names[i].material <= names[i - 1].material) ||
+        std::find(base.materials.begin(), base.materials.end(), names[i].material) ==
+            base.materials.end())
+      __builtin_trap();
+  }
   tetlod::Lod lod(base, &history);
   tetlod::LodDelta delta;
   lod.seek(lod.step_count(), &delta);

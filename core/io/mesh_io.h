@@ -83,14 +83,6 @@ enum class MeshFormat { kMedit, kGmsh22, kGmsh41, kTetGen, kVtkLegacy, kVtu, kNa
 
 const char* format_name(MeshFormat format);
 
-// A material's name in the file it was read from (a Gmsh physical volume's name;
-// the MATERIAL of an Abaqus *SOLID SECTION, or its element set's name), so that a
-// file written from the mesh can carry it again (WriteOptions::material_names).
-struct MaterialName {
-  int32_t material = 0;
-  std::string name;
-};
-
 struct ReadInfo {
   MeshFormat format = MeshFormat::kMedit;
   ValidationReport validation;

@@ -157,11 +157,18 @@ TEST(Cli, ConvertAndSimplifyKeepMaterialNames) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(read_file(deck).find("*ELEMENT, TYPE=C3D4, ELSET=SHIELD_4\n"), std::string::npos);
   const std::string simplified = out_dir() + "/named_simplified.msh";
-  r = run("simplify " + input + " -o " + simplified + " --size 2 --tolerance 0.01");
+  const std::string history = out_dir() + "/named.tlh";
+  r = run("simplify " + input + " -o " + simplified + " --size 2 --tolerance 0.01 --history " +
+          history);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(read_file(simplified).find(names), std::string::npos);
   EXPECT_NE(r.output.find("volume  name\n"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("46.9738  shield\n"), std::string::npos) << r.output;  // the input
+  // The history keeps them for lod.
+  const std::string level = out_dir() + "/named_level.msh";
+  r = run("lod " + history + " --elements 1000 -o " + level);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(read_file(level).find(names), std::string::npos);
   // stats names them too, in its table and its JSON.
   r = run("stats " + input);
   ASSERT_EQ(r.code, 0) << r.output;

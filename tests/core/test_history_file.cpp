@@ -207,6 +207,91 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
   EXPECT_NE(error_with(huge).find("truncated thresholds"), std::string::npos);
 }
 
+// The material names are saved last, with or without the thresholds: only those of
+// materials the base has, in order and not empty; a damaged list is refused, naming it.
+TEST(HistoryFile, MaterialNamesRoundTripAndAreChecked) {
+  const SimplifyResult& r = small_run();  // materials 1 and 2
+  SimplifyParams p;
+  p.sizing.uniform = 1.5;
+  const std::vector<MaterialName> names = {{0, "absent"}, {1, "iron"}, {1, "again"},
+                                           {2, ""},       {5, "gone"}, {2, "late"}};
+  const std::string with_params = out_path("names_params.tlh");
+  const std::string names_only = out_path("names_only.tlh");
+  const std::string plain = out_path("names_none.tlh");
+  ASSERT_TRUE(write_history(with_params, r.base, r.history, &p, &names).ok());
+  ASSERT_TRUE(write_history(names_only, r.base, r.history, nullptr, &names).ok());
+  ASSERT_TRUE(write_history(plain, r.base, r.history).ok());
+  TetMesh base;
+  CollapseHistory history;
+  std::optional<SimplifyParams> read_params;
+  std::vector<MaterialName> read_names = {{9, "stale"}};
+  Status s = read_history(with_params, &base, &history, &read_params, &read_names);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_TRUE(read_params.has_value());
+  // 0 and 5 are absent, "again" repeats 1, "" is empty.
+  ASSERT_EQ(read_names.size(), 2u);
+  EXPECT_EQ(read_names[0].material, 1);
+  EXPECT_EQ(read_names[0].name, "iron");
+  EXPECT_EQ(read_names[1].material, 2);
+  EXPECT_EQ(read_names[1].name, "late");
+  s = read_history(names_only, &base, &history, &read_params, &read_names);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_FALSE(read_params.has_value());
+  EXPECT_EQ(read_names.size(), 2u);
+  s = read_history(plain, &base, &history, &read_params, &read_names);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_TRUE(read_names.empty());
+
+  // Damage, after the 8-byte magic and the count: material (4), length (4), bytes.
+  const std::string whole = read_bytes(names_only);
+  const size_t at = read_bytes(plain).size();
+  ASSERT_EQ(whole.substr(at, 8), "TLNAMES1");
+  const std::string damaged = out_path("damaged_names.tlh");
+  auto error_with = [&](const std::string& bytes) {
+    write_bytes(damaged, bytes);
+    TetMesh b;
+    CollapseHistory h;
+    std::vector<MaterialName> n;
+    const Status status = read_history(damaged, &b, &h, nullptr, &n);
+    return status.ok() ? std::string("accepted") : status.message();
+  };
+  auto with_u32 = [&](size_t offset, uint32_t value) {
+    std::string bytes = whole;
+    std::memcpy(&bytes[at + offset], &value, sizeof value);
+    return bytes;
+  };
+  // "iron" is 4 bytes: the second name's material is at 28.
+  EXPECT_NE(error_with(with_u32(28, 7)).find("a name for material 7, which the mesh does not have"),
+            std::string::npos);
+  EXPECT_NE(error_with(with_u32(20, 0)).find("corrupt history: material name 0"),
+            std::string::npos);
+  EXPECT_NE(error_with(with_u32(20, 5000)).find("corrupt history: material name 0"),
+            std::string::npos);
+  EXPECT_NE(error_with(whole + "TLNAMES1").find("bytes after the thresholds or names"),
+            std::string::npos);
+  // Thresholds after the names are out of order.
+  std::string reordered =
+      read_bytes(plain) + whole.substr(at) +
+      read_bytes(with_params).substr(at, read_bytes(with_params).size() - (whole.size() - at) - at);
+  EXPECT_NE(error_with(reordered).find("bytes after the thresholds or names"), std::string::npos);
+  // Two names of one material: out of order.
+  {
+    const std::vector<MaterialName> two = {{1, "a"}, {2, "b"}};
+    ASSERT_TRUE(write_history(damaged, r.base, r.history, nullptr, &two).ok());
+    std::string bytes = read_bytes(damaged);
+    const int32_t one = 1;
+    std::memcpy(&bytes[at + 16 + 4 + 4 + 1], &one, sizeof one);  // the second name's material
+    EXPECT_NE(error_with(bytes).find("material names out of order"), std::string::npos)
+        << error_with(bytes);
+  }
+  for (size_t n = at + 1; n < whole.size(); ++n)
+    EXPECT_NE(error_with(whole.substr(0, n)).find("corrupt history"), std::string::npos) << n;
+  std::string huge = whole;
+  const uint64_t count = uint64_t(1) << 60;
+  std::memcpy(&huge[at + 8], &count, sizeof count);
+  EXPECT_NE(error_with(huge).find("truncated material names"), std::string::npos);
+}
+
 // A forged history: one field changed, each caught by the check that names it.
 TEST(HistoryFile, ForgedStepsAreNamed) {
   const SimplifyResult& r = small_run();

@@ -444,16 +444,25 @@ TEST(ViewerWindow, SaveKeepsTheInputsWholePairGroups) {
 TEST(ViewerWindow, SaveKeepsMaterialNames) {
   const fs::path dir = fresh_output_dir("viewer_save_material_names");
   std::ofstream(dir / "save.script") << "thresholds size=2 tolerance=0.01\nsimplify\n"
-                                        "save simplified.msh\nquit\n";
+                                        "save simplified.msh\nsave run.tlh\nquit\n";
   const std::string input = kSource + "/tests/data/gmsh/coax_order2.msh";
-  const ViewerRun run = run_viewer(dir, "'" + input + "' --size 320x240 --script save.script");
+  ViewerRun run = run_viewer(dir, "'" + input + "' --size 320x240 --script save.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  std::ifstream f(dir / "simplified.msh");
-  const std::string text{std::istreambuf_iterator<char>(f), {}};
-  EXPECT_NE(text.find("$PhysicalNames\n4\n3 1 \"inner_conductor\"\n3 2 \"dielectric_inner\"\n"
-                      "3 3 \"dielectric_outer\"\n3 4 \"shield\"\n"),
-            std::string::npos)
-      << text.substr(0, 300);
+  const std::string names =
+      "$PhysicalNames\n4\n3 1 \"inner_conductor\"\n3 2 \"dielectric_inner\"\n"
+      "3 3 \"dielectric_outer\"\n3 4 \"shield\"\n";
+  auto text_of = [&](const char* file) {
+    std::ifstream f(dir / file);
+    return std::string{std::istreambuf_iterator<char>(f), {}};
+  };
+  EXPECT_NE(text_of("simplified.msh").find(names), std::string::npos)
+      << text_of("simplified.msh").substr(0, 300);
+  // The history it saved keeps them: opened again, a level saved from it has them.
+  std::ofstream(dir / "again.script") << "save from_history.msh\nquit\n";
+  run = run_viewer(dir, "run.tlh --size 320x240 --script again.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(text_of("from_history.msh").find(names), std::string::npos)
+      << text_of("from_history.msh").substr(0, 300);
 }
 
 // A history keeps the thresholds it was made with: the viewer names them when it
