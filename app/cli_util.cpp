@@ -111,8 +111,7 @@ bool mesh_output_path_ok(const std::string& path, const char* command, const Wri
 }
 
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
-                         WriteOptions options, StagedMesh* staged,
-                         const std::vector<SurfaceGroupName>* names) {
+                         WriteOptions options, StagedMesh* staged, const SurfacePatches* patches) {
   staged->has_groups = options.surface_groups;
   if (!options.surface_groups && (has_extension(path, ".node") || has_extension(path, ".ele"))) {
     const std::string face =
@@ -121,46 +120,32 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
     if (std::filesystem::exists(face, ec)) staged->stale_face = face;
   }
   if (options.surface_groups) {
-    if (Status s = group_surface(mesh, &staged->groups, names); !s)
+    if (Status s = patches ? group_surface(mesh, &staged->groups, *patches)
+                           : group_surface(mesh, &staged->groups);
+        !s)
       return Status::error(path + ": " + s.message());
     options.groups = &staged->groups;
   }
   return stage_mesh(files, path, mesh, options);
 }
 
-std::vector<SurfaceGroupName> input_group_names(const TetMesh& input, const ReadInfo& info,
-                                                const WriteOptions& options, const char* command) {
-  if (!options.surface_groups || info.surface_groups.empty()) return {};
-  std::vector<const InputSurfaceGroup*> unmatched;
-  std::vector<SurfaceGroupName> names =
-      match_surface_groups(input, info.surface_groups, &unmatched);
-  auto label = [](const std::string& name, int32_t tag) {
-    return (name.empty() ? std::string("unnamed") : "'" + name + "'") + " (tag " +
-           std::to_string(tag) + ")";
-  };
-  for (const SurfaceGroupName& n : names) {
-    std::fprintf(
-        stderr,
-        "tetlod %s: note: surface group %s is all of %s: written under its own name "
-        "and tag\n",
-        command, label(n.name, n.tag).c_str(),
-        (n.other == kOutsideMaterial ? "material " + std::to_string(n.material) + "'s boundary"
-                                     : "the interface of materials " + std::to_string(n.material) +
-                                           " and " + std::to_string(n.other))
-            .c_str());
+void print_patch_notes(const SurfacePatches& patches, const char* command) {
+  for (const SurfacePatches::Group& g : patches.groups()) {
+    if (g.missing == 0) continue;
+    const std::string label = (g.name.empty() ? std::string("unnamed") : "'" + g.name + "'") +
+                              " (tag " + std::to_string(g.tag) + ")";
+    if (g.triangles == 0) {
+      std::fprintf(stderr,
+                   "tetlod %s: note: surface group %s is not on a boundary or interface of the "
+                   "mesh (an inner surface of one material?): not written\n",
+                   command, label.c_str());
+    } else {
+      std::fprintf(stderr,
+                   "tetlod %s: note: %zu of the %zu triangles of surface group %s are not on a "
+                   "boundary or interface of the mesh: written without them\n",
+                   command, g.missing, g.missing + g.triangles, label.c_str());
+    }
   }
-  if (!unmatched.empty()) {
-    std::string list;
-    for (const InputSurfaceGroup* g : unmatched)
-      list += (list.empty() ? "" : ", ") + label(g->name, g->tag);
-    std::fprintf(stderr,
-                 "tetlod %s: note: surface group%s %s %s not the whole boundary or interface "
-                 "of one material pair, so not written; %s triangles are in the groups by "
-                 "material pair\n",
-                 command, unmatched.size() > 1 ? "s" : "", list.c_str(),
-                 unmatched.size() > 1 ? "are" : "is", unmatched.size() > 1 ? "their" : "its");
-  }
-  return names;
 }
 
 void print_staged_mesh_notes(const StagedMesh& staged) {

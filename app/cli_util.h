@@ -51,17 +51,16 @@ struct StagedMesh {
   bool has_groups = false;
   std::string stale_face;  // the .face left beside a TetGen pair, or ""
 };
-// `names`: groups under the user's own names and tags (input_group_names()).
+// `patches`: the input file's surface groups, written under their own names and tags
+// (group_surface() with them), or null.
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
                          WriteOptions options, StagedMesh* staged,
-                         const std::vector<SurfaceGroupName>* names = nullptr);
+                         const SurfacePatches* patches = nullptr);
 
-// With surface groups asked for, the input's own groups (ReadInfo::surface_groups)
-// that are a whole material pair's boundary or interface of `input`, to be written
-// under their names and tags; prints a note for each, and one listing the groups
-// that are not (their triangles go into the groups by material pair).
-std::vector<SurfaceGroupName> input_group_names(const TetMesh& input, const ReadInfo& info,
-                                                const WriteOptions& options, const char* command);
+// Prints a note for each input surface group (SurfacePatches of the input) that
+// cannot be written as it is: its triangles, or some of them, are not on a boundary
+// or interface of the mesh (an inner surface of one material, or no such face).
+void print_patch_notes(const SurfacePatches& patches, const char* command);
 void print_staged_mesh_notes(const StagedMesh& staged);
 
 // A collapse history file opened to read levels from.

@@ -73,11 +73,16 @@ int cmd_convert(const Args& args) {
   TetMesh mesh;
   ReadInfo info;
   if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
-  const std::vector<SurfaceGroupName> names = input_group_names(mesh, info, options, "convert");
+  // The file's own surface groups, written under their names and tags.
+  SurfacePatches patches;
+  if (options.surface_groups && !info.surface_groups.empty()) {
+    patches = SurfacePatches(mesh, info.surface_groups);
+    print_patch_notes(patches, "convert");
+  }
   options.material_names = &info.material_names;
   OutputFiles files;
   StagedMesh staged;
-  Status status = stage_output_mesh(&files, out, mesh, options, &staged, &names);
+  Status status = stage_output_mesh(&files, out, mesh, options, &staged, &patches);
   if (status) status = files.commit();
   if (!status) {
     std::fprintf(stderr, "tetlod: %s\n", status.message().c_str());

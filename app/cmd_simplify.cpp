@@ -144,10 +144,11 @@ int cmd_simplify(const Args& args) {
   ReadInfo info;
   if (!load_mesh(in, &input, &info)) return kExitBadInput;
   if (!finish_simplify_options(input, "simplify", &options)) return kExitUsage;
-  // The simplifier keeps every material pair's boundary and interface (their topology):
-  // an input group that is one of them names it in the output too.
-  const std::vector<SurfaceGroupName> names =
-      input_group_names(input, info, write_options, "simplify");
+  // The file's own surface groups: the simplifier keeps their borders as it keeps
+  // those between materials, so that the output has them too (with --surfaces).
+  SurfacePatches patches;
+  if (!info.surface_groups.empty()) patches = SurfacePatches(input, info.surface_groups);
+  if (write_options.surface_groups) print_patch_notes(patches, "simplify");
   write_options.material_names = &info.material_names;  // no material disappears
   const SimplifyParams& params = options.params;
   const long long elements = options.elements;
@@ -159,7 +160,7 @@ int cmd_simplify(const Args& args) {
   std::printf("\nthresholds: %s\n", describe_thresholds(params).c_str());
 
   SimplifyResult result;
-  const Status status = simplify(input, params, &result);
+  const Status status = simplify(input, params, &result, {}, nullptr, &patches);
   if (!status) {
     std::fprintf(stderr, "tetlod simplify: %s\n", status.message().c_str());
     return kExitBadInput;
@@ -208,7 +209,7 @@ int cmd_simplify(const Args& args) {
   // The mesh and the history are written together, or neither.
   OutputFiles files;
   StagedMesh staged;
-  Status s = stage_output_mesh(&files, out, output, write_options, &staged, &names);
+  Status s = stage_output_mesh(&files, out, output, write_options, &staged, &patches);
   if (s && !history_path.empty())
     s = stage_history(&files, history_path, result.base, result.history, &params,
                       &info.material_names);

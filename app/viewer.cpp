@@ -75,9 +75,9 @@ struct Scene {
   std::string above_size_reason;                 // of the result ("" if nothing is above)
   SimplifyParams params;                         // of the result's run, if params_known
   bool params_known = false;                     // run here, or saved in the history file read
-  // The input file's own surface groups (ReadInfo::surface_groups): Save's boundary
-  // groups keep the names and tags of those that are a whole material pair's.
-  std::shared_ptr<const std::vector<InputSurfaceGroup>> input_groups;
+  // The input file's own surface groups (ReadInfo::surface_groups) on its surface:
+  // Simplify keeps their borders, and Save's boundary groups write them.
+  std::shared_ptr<const SurfacePatches> patches;
   // The input file's names of its materials (ReadInfo::material_names), for Save.
   std::shared_ptr<const std::vector<MaterialName>> material_names;
   bool from_history = false;  // the result was read from a history file, not run here
@@ -639,7 +639,7 @@ void Viewer::start_load(const std::string& path) {
     std::shared_ptr<const TetMesh> mesh;
     std::shared_ptr<SimplifyResult> history;
     std::optional<SimplifyParams> saved_params;
-    std::shared_ptr<const std::vector<InputSurfaceGroup>> input_groups;
+    std::shared_ptr<const SurfacePatches> patches;
     std::shared_ptr<const std::vector<MaterialName>> material_names;
     Status s;
     if (is_history_path(job->path)) {
@@ -664,10 +664,8 @@ void Viewer::start_load(const std::string& path) {
         std::lock_guard<std::mutex> lock(job->mutex);
         job->notes = std::move(info.notes);
       }
-      if (s && !info.surface_groups.empty()) {
-        input_groups =
-            std::make_shared<const std::vector<InputSurfaceGroup>>(std::move(info.surface_groups));
-      }
+      if (s && !info.surface_groups.empty())
+        patches = std::make_shared<const SurfacePatches>(*read, info.surface_groups);
       if (s && !info.material_names.empty()) {
         material_names =
             std::make_shared<const std::vector<MaterialName>>(std::move(info.material_names));
@@ -686,7 +684,7 @@ void Viewer::start_load(const std::string& path) {
       v.cut = false;  // the cut position belongs to the old model
       auto scene = make_scene(job->path, std::move(mesh), history, v);
       scene->from_history = history != nullptr;
-      scene->input_groups = std::move(input_groups);
+      scene->patches = std::move(patches);
       scene->material_names = std::move(material_names);
       if (saved_params) {
         scene->params = *saved_params;
@@ -716,10 +714,10 @@ void Viewer::start_simplify() {
   job_->path = scene_->path;
   Job* job = job_.get();
   std::shared_ptr<const TetMesh> input = scene_->input;  // always the loaded input
-  auto input_groups = scene_->input_groups;
+  auto patches = scene_->patches;
   auto material_names = scene_->material_names;
   const ui::ViewSettings view = view_;
-  job->thread = std::thread([job, input, input_groups, material_names, params, view] {
+  job->thread = std::thread([job, input, patches, material_names, params, view] {
     auto result = std::make_shared<SimplifyResult>();
     const Status s = simplify(
         *input, params, result.get(),
@@ -729,7 +727,7 @@ void Viewer::start_simplify() {
           job->fraction = p.fraction;
           job->collapses = p.collapses;
         },
-        &job->cancel);
+        &job->cancel, patches.get());
     if (!s) {
       std::lock_guard<std::mutex> lock(job->mutex);
       job->error = s.message();
@@ -748,7 +746,7 @@ void Viewer::start_simplify() {
       scene->above_size_reason = reason;
       scene->params = params;
       scene->params_known = true;
-      scene->input_groups = input_groups;
+      scene->patches = patches;
       scene->material_names = material_names;
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
@@ -1158,8 +1156,7 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
   if (Status s = check_mesh_path(path, options); !s) return s;
   save_path_ = path;
   save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
-                                                 input = scene_->input,
-                                                 input_groups = scene_->input_groups,
+                                                 input = scene_->input, patches = scene_->patches,
                                                  material_names = scene_->material_names,
                                                  mesh = scene_->lod->extract()]() mutable {
     Saved saved;
@@ -1183,21 +1180,21 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
       saved.status = write_mesh(path, mesh, options);
       return saved;
     }
-    // The input's own groups that are a whole material pair's keep their names and
-    // tags: the levels keep every pair's boundary and interface.
-    const std::vector<SurfaceGroupName> names =
-        input_groups ? match_surface_groups(*input, *input_groups, nullptr)
-                     : std::vector<SurfaceGroupName>();
+    // The input's own groups keep their names and tags: the levels keep their borders.
     SurfaceGroups groups;
-    if (Status s = group_surface(mesh, &groups, &names); !s) {
+    if (Status s = patches ? group_surface(mesh, &groups, *patches) : group_surface(mesh, &groups);
+        !s) {
       saved.status = Status::error(path + ": " + s.message());
       return saved;
     }
     options.groups = &groups;
     saved.status = write_mesh(path, mesh, options);
+    size_t own = 0;
+    if (patches)
+      for (const SurfaceGroup& g : groups.groups)
+        for (const SurfacePatches::Group& p : patches->groups()) own += g.tag == p.tag;
     saved.note += " (with " + std::to_string(groups.groups.size()) + " surface groups" +
-                  (names.empty() ? std::string()
-                                 : ", " + std::to_string(names.size()) + " of them the input's") +
+                  (own == 0 ? std::string() : ", " + std::to_string(own) + " of them the input's") +
                   ")";
     return saved;
   });

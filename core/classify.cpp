@@ -64,7 +64,8 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
 }  // namespace
 
 Classification classify_vertices(const TetMesh& mesh, const std::vector<SurfaceTriangle>& surface,
-                                 const ClassifyOptions& options) {
+                                 const ClassifyOptions& options,
+                                 const std::vector<uint32_t>* patch) {
   const size_t vertex_count = mesh.vertex_count();
   const double crease = options.crease_angle_degrees * M_PI / 180.0;
   Classification result;
@@ -86,12 +87,15 @@ Classification classify_vertices(const TetMesh& mesh, const std::vector<SurfaceT
   });
 
   std::vector<VertexFeatures> features(vertex_count);
-  std::vector<uint64_t> pairs;
+  std::vector<std::pair<uint64_t, uint32_t>> pairs;  // (material pair, patch)
   for (size_t i = 0; i < uses.size();) {
     size_t j = i + 1;
     while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
     pairs.clear();
-    for (size_t k = i; k < j; ++k) pairs.push_back(material_pair_key(surface[uses[k].triangle]));
+    for (size_t k = i; k < j; ++k) {
+      const uint32_t t = uses[k].triangle;
+      pairs.push_back({material_pair_key(surface[t]), patch ? (*patch)[t] : 0});
+    }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     bool feature = (j - i) != 2 || pairs.size() != 1;
@@ -102,7 +106,10 @@ Classification classify_vertices(const TetMesh& mesh, const std::vector<SurfaceT
     }
     if (feature) {
       uint64_t signature = 1469598103934665603ull;  // FNV-1a over the sorted pairs
-      for (uint64_t p : pairs) signature = (signature ^ p) * 1099511628211ull;
+      for (const auto& [p, id] : pairs) {
+        signature = (signature ^ p) * 1099511628211ull;
+        if (id != 0) signature = (signature ^ id) * 1099511628211ull;  // 0: as without patches
+      }
       result.feature_edges.push_back({uses[i].a, uses[i].b});
       add_feature(features[uses[i].a], uses[i].b, signature);
       add_feature(features[uses[i].b], uses[i].a, signature);

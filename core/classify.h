@@ -6,7 +6,8 @@
 // Feature edges are the surface edges (edges of boundary/interface triangles) where
 //  - a number of surface triangles other than two meet (three or more regions meet,
 //    the outside counting as a region), or
-//  - the two triangles separate different material pairs, or
+//  - the two triangles separate different material pairs (or lie in different
+//    patches: `patch` below), or
 //  - the two triangles make a sharp crease: their normals differ by more than the
 //    crease angle.
 // A surface vertex is
@@ -40,7 +41,11 @@ struct Classification {
   std::vector<std::array<uint32_t, 2>> feature_edges;  // (a, b) with a < b, sorted
 };
 
+// `patch`, if given: one id per surface triangle (an input file's surface group,
+// SurfacePatches); triangles of one material pair but different patches are then
+// separate surfaces, as two pairs are, so the borders between patches are curves.
 Classification classify_vertices(const TetMesh& mesh, const std::vector<SurfaceTriangle>& surface,
-                                 const ClassifyOptions& options = {});
+                                 const ClassifyOptions& options = {},
+                                 const std::vector<uint32_t>* patch = nullptr);
 
 }  // namespace tetlod

@@ -650,7 +650,17 @@ class Engine {
     const std::vector<SurfaceTriangle> surface = extract_surface(mesh, neighbors_of_tets);
     ClassifyOptions options;
     options.crease_angle_degrees = params_.crease_angle_degrees;
-    Classification c = classify_vertices(mesh, surface, options);
+    // The input's surface groups: each triangle's (1 + group, 0 for none).
+    std::vector<uint32_t> patch;
+    if (patches_ && patches_->any()) {
+      patch.resize(surface.size());
+      const auto& p = mesh.positions;
+      for (size_t i = 0; i < surface.size(); ++i) {
+        const SurfaceTriangle& t = surface[i];
+        patch[i] = patches_->locate(p[t.v[0]], p[t.v[1]], p[t.v[2]], t.inner, t.outer) + 1;
+      }
+    }
+    Classification c = classify_vertices(mesh, surface, options, patch.empty() ? nullptr : &patch);
     kind_ = std::move(c.kind);
     feature_neighbors_.assign(pos_.size(), {});
     for (const auto& e : c.feature_edges) {
@@ -672,11 +682,63 @@ class Engine {
       const Quadric q = Quadric::plane(n, -dot(n, p));
       for (uint32_t v : s.v) quadric_[v].add(q);
     }
+    if (!patch.empty()) add_border_quadrics(surface, patch);
     material_ids_ = mesh.materials;
     sort_unique(material_ids_);
     material_tets_.assign(material_ids_.size(), 0);
     for (int32_t m : mesh.materials) ++material_tets_[material_index(m)];
     across_ = std::move(neighbors_of_tets);
+  }
+
+  // The border between two surface groups of one material pair may lie on a smooth
+  // surface, where the triangles' planes do not hold it in place: each border edge
+  // adds the plane through it across the surface (normal: the edge x the mean of the
+  // two triangles' normals), so that the border, too, moves at most the tolerance
+  // (as Garland and Heckbert hold open boundaries).
+  void add_border_quadrics(const std::vector<SurfaceTriangle>& surface,
+                           const std::vector<uint32_t>& patch) {
+    struct Use {
+      uint32_t a, b, triangle;
+    };
+    std::vector<Use> uses;
+    uses.reserve(3 * surface.size());
+    for (uint32_t k = 0; k < surface.size(); ++k) {
+      const auto& v = surface[k].v;
+      for (int e = 0; e < 3; ++e) {
+        const uint32_t p = v[e], q = v[(e + 1) % 3];
+        uses.push_back({std::min(p, q), std::max(p, q), k});
+      }
+    }
+    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+      return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.triangle < y.triangle);
+    });
+    auto unit_normal = [&](const SurfaceTriangle& t) {
+      const Vec3& p = pos_[t.v[0]];
+      const Vec3 n = cross(pos_[t.v[1]] - p, pos_[t.v[2]] - p);
+      const double len = length(n);
+      return len > 0 ? n * (1.0 / len) : Vec3{};
+    };
+    for (size_t i = 0; i < uses.size();) {
+      size_t j = i + 1;
+      while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
+      if (j - i == 2) {
+        const SurfaceTriangle& s = surface[uses[i].triangle];
+        const SurfaceTriangle& t = surface[uses[i + 1].triangle];
+        if (s.inner == t.inner && s.outer == t.outer &&
+            patch[uses[i].triangle] != patch[uses[i + 1].triangle]) {
+          const Vec3& pa = pos_[uses[i].a];
+          const Vec3 across = cross(pos_[uses[i].b] - pa, unit_normal(s) + unit_normal(t));
+          const double len = length(across);
+          if (len > 0) {
+            const Vec3 n = across * (1.0 / len);
+            const Quadric q = Quadric::plane(n, -dot(n, pa));
+            quadric_[uses[i].a].add(q);
+            quadric_[uses[i].b].add(q);
+          }
+        }
+      }
+      i = j;
+    }
   }
 
   // ------------------------------------------------------------ evaluation
@@ -1481,6 +1543,12 @@ class Engine {
   const SimplifyParams& params_;
   const ProgressCallback& progress_;
   const std::atomic<bool>* cancel_;
+  const SurfacePatches* patches_ = nullptr;  // the input's surface groups, or none
+
+ public:
+  void set_patches(const SurfacePatches* patches) { patches_ = patches; }
+
+ private:
   double tolerance2_ = 0;
 
   std::vector<Vec3> pos_;
@@ -1541,11 +1609,13 @@ class Engine {
 }  // namespace
 
 Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
-                const ProgressCallback& progress, const std::atomic<bool>* cancel) {
+                const ProgressCallback& progress, const std::atomic<bool>* cancel,
+                const SurfacePatches* patches) {
   Status s = check_params(params);
   if (!s) return s;
   *result = SimplifyResult{};
   Engine engine(input, params, progress, cancel);
+  engine.set_patches(patches);
   return engine.run(result);
 }
 

@@ -20,6 +20,8 @@
 
 namespace tetlod {
 
+class SurfacePatches;  // surface.h
+
 struct SimplifyParams {
   double tolerance = 0.1;     // tau_TL: a length in model units; the quadric error of eq. (1),
                               // a sum of squared distances, must stay <= tau_TL^2
@@ -96,8 +98,12 @@ using ProgressCallback = std::function<void(const SimplifyProgress&)>;
 // thread every few thousand operations; `cancel`, if set, stops the run at the next
 // check and leaves a consistent result (result->cancelled). Same input and params
 // give the same result, byte for byte. No globals: runs may proceed in parallel.
+// `patches`, if given: the input file's surface groups (surface.h); their borders
+// are then kept as curves, as those between material pairs are, so that every level
+// can be grouped as the input was (group_surface() with them).
 Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
-                const ProgressCallback& progress = {}, const std::atomic<bool>* cancel = nullptr);
+                const ProgressCallback& progress = {}, const std::atomic<bool>* cancel = nullptr,
+                const SurfacePatches* patches = nullptr);
 
 // Why a result's final mesh still has tets above the size (violations.above_size > 0),
 // for the user: what stopped subdivision and what would let it reach the size.

@@ -1,6 +1,7 @@
 #include "core/surface.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -80,93 +81,227 @@ TriangleKey triangle_key(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 }  // namespace
 
-Status group_surface(const TetMesh& mesh, SurfaceGroups* groups,
-                     const std::vector<SurfaceGroupName>* names) {
-  SurfaceGroups result;
-  result.surface = extract_surface(mesh, build_adjacency(mesh).tet_neighbors);
-  std::map<PairKey, std::vector<uint32_t>> by_pair;
-  for (uint32_t i = 0; i < result.surface.size(); ++i)
-    by_pair[pair_key(result.surface[i])].push_back(i);
-  std::map<std::pair<int32_t, int32_t>, const SurfaceGroupName*> named;
-  std::set<int32_t> used_tags;
-  if (names) {
-    for (const SurfaceGroupName& n : *names) {
-      named[{n.material, n.other}] = &n;
-      used_tags.insert(n.tag);
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups) {
+  return group_surface(mesh, groups, SurfacePatches());
+}
+
+namespace {
+
+// Squared distance from p to the triangle t (Ericson, Real-Time Collision Detection,
+// 5.1.5: the closest point by the Voronoi region of p).
+double squared_distance(const Vec3& p, const std::array<Vec3, 3>& t) {
+  const Vec3 &a = t[0], &b = t[1], &c = t[2];
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return squared_length(ap);
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return squared_length(bp);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return squared_length(p - (a + ab * (d1 / (d1 - d3))));
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return squared_length(cp);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return squared_length(p - (a + ac * (d2 / (d2 - d6))));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+    return squared_length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+  const double sum = va + vb + vc;
+  if (!(sum > 0)) return std::min({squared_length(ap), squared_length(bp), squared_length(cp)});
+  return squared_length(p - (a + ab * (vb / sum) + ac * (vc / sum)));
+}
+
+}  // namespace
+
+SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups) {
+  const std::vector<SurfaceTriangle> surface =
+      extract_surface(input, build_adjacency(input).tet_neighbors);
+  const auto& p = input.positions;
+  std::map<TriangleKey, uint32_t> index;  // surface triangle -> its entry
+  entries_.reserve(surface.size());
+  for (const SurfaceTriangle& t : surface) {
+    index.emplace(triangle_key(p[t.v[0]], p[t.v[1]], p[t.v[2]]), uint32_t(entries_.size()));
+    entries_.push_back({{p[t.v[0]], p[t.v[1]], p[t.v[2]]}, t.inner, t.outer, kNone});
+  }
+  for (const InputSurfaceGroup& g : groups) {
+    Group group;
+    group.tag = g.tag;
+    group.name = g.name;
+    const uint32_t id = uint32_t(groups_.size());
+    for (const auto& t : g.triangles) {
+      const auto it = g.tag >= 1 ? index.find(triangle_key(t[0], t[1], t[2])) : index.end();
+      if (it == index.end()) {
+        ++group.missing;
+      } else if (entries_[it->second].group == kNone) {
+        entries_[it->second].group = id;  // the first group holding it
+        ++group.triangles;
+        any_ = true;
+      }
+    }
+    groups_.push_back(std::move(group));
+  }
+  if (entries_.empty()) return;
+  // The grid: cells about the mean triangle's size, at most ~2 entries' worth.
+  Vec3 lo = entries_[0].p[0], hi = lo;
+  double extent_sum = 0;
+  for (const Entry& e : entries_) {
+    Vec3 elo = e.p[0], ehi = e.p[0];
+    for (const Vec3& q : e.p) {
+      elo = {std::min(elo.x, q.x), std::min(elo.y, q.y), std::min(elo.z, q.z)};
+      ehi = {std::max(ehi.x, q.x), std::max(ehi.y, q.y), std::max(ehi.z, q.z)};
+    }
+    lo = {std::min(lo.x, elo.x), std::min(lo.y, elo.y), std::min(lo.z, elo.z)};
+    hi = {std::max(hi.x, ehi.x), std::max(hi.y, ehi.y), std::max(hi.z, ehi.z)};
+    extent_sum += length(ehi - elo);
+  }
+  const Vec3 span = hi - lo;
+  cell_ = std::max(extent_sum / double(entries_.size()), 1e-300);
+  const double limit = 2.0 * double(entries_.size()) + 8;
+  for (;;) {
+    double cells = 1;
+    for (int k = 0; k < 3; ++k) cells *= std::floor(span[k] / cell_) + 1;
+    if (cells <= limit) break;
+    cell_ *= 1.25;
+  }
+  origin_ = lo;
+  for (int k = 0; k < 3; ++k) dims_[k] = int(std::floor(span[k] / cell_)) + 1;
+  auto cell_range = [&](const Entry& e, int* from, int* to) {
+    for (int k = 0; k < 3; ++k) {
+      double a = e.p[0][k], b = a;
+      for (const Vec3& q : e.p) a = std::min(a, q[k]), b = std::max(b, q[k]);
+      from[k] = std::clamp(int(std::floor((a - origin_[k]) / cell_)), 0, dims_[k] - 1);
+      to[k] = std::clamp(int(std::floor((b - origin_[k]) / cell_)), 0, dims_[k] - 1);
+    }
+  };
+  cell_start_.assign(size_t(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<uint32_t> cursor;
+    if (pass == 1) {
+      for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+      cursor.assign(cell_start_.begin(), cell_start_.end() - 1);
+      cell_entries_.resize(cell_start_.back());
+    }
+    for (uint32_t i = 0; i < entries_.size(); ++i) {
+      int from[3], to[3];
+      cell_range(entries_[i], from, to);
+      for (int z = from[2]; z <= to[2]; ++z)
+        for (int y = from[1]; y <= to[1]; ++y)
+          for (int x = from[0]; x <= to[0]; ++x) {
+            if (pass == 0)
+              ++cell_start_[cell_of(x, y, z) + 1];
+            else
+              cell_entries_[cursor[cell_of(x, y, z)]++] = i;
+          }
     }
   }
+}
+
+uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner,
+                                int32_t outer) const {
+  if (!any_) return kNone;
+  if (outer != kOutsideMaterial && outer < inner) std::swap(inner, outer);
+  const Vec3 q = (a + b + c) * (1.0 / 3.0);
+  int center[3];
+  for (int k = 0; k < 3; ++k)
+    center[k] = std::clamp(int(std::floor((q[k] - origin_[k]) / cell_)), 0, dims_[k] - 1);
+  double best = INFINITY;
+  uint32_t found = kNone;
+  const int max_radius = std::max({dims_[0], dims_[1], dims_[2]});
+  for (int r = 0; r <= max_radius; ++r) {
+    for (int z = center[2] - r; z <= center[2] + r; ++z) {
+      if (z < 0 || z >= dims_[2]) continue;
+      for (int y = center[1] - r; y <= center[1] + r; ++y) {
+        if (y < 0 || y >= dims_[1]) continue;
+        for (int x = center[0] - r; x <= center[0] + r; ++x) {
+          if (x < 0 || x >= dims_[0]) continue;
+          if (std::max(
+                  {std::abs(x - center[0]), std::abs(y - center[1]), std::abs(z - center[2])}) != r)
+            continue;  // an inner shell, already seen
+          const size_t cell = cell_of(x, y, z);
+          for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+            const uint32_t i = cell_entries_[k];
+            const Entry& e = entries_[i];
+            if (e.inner != inner || e.outer != outer) continue;
+            const double d = squared_distance(q, e.p);
+            if (d < best || (d == best && i < found)) best = d, found = i;
+          }
+        }
+      }
+    }
+    // Every cell not yet seen lies beyond the box of shells 0..r around the centre
+    // cell: stop once the best is nearer than that box's faces.
+    double margin = INFINITY;
+    for (int k = 0; k < 3; ++k) {
+      const double low = origin_[k] + double(center[k] - r) * cell_;
+      const double high = origin_[k] + double(center[k] + r + 1) * cell_;
+      margin = std::min({margin, std::max(0.0, q[k] - low), std::max(0.0, high - q[k])});
+    }
+    if (found != kNone && best <= margin * margin) break;
+  }
+  return found == kNone ? kNone : entries_[found].group;
+}
+
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches) {
+  SurfaceGroups result;
+  result.surface = extract_surface(mesh, build_adjacency(mesh).tet_neighbors);
+  const auto& p = mesh.positions;
+  std::map<PairKey, std::vector<uint32_t>> by_pair, unlabelled;
+  std::vector<std::vector<uint32_t>> in_group(patches.groups().size());
+  std::vector<uint32_t> label(result.surface.size());
+  for (uint32_t i = 0; i < result.surface.size(); ++i) {
+    const SurfaceTriangle& t = result.surface[i];
+    const uint32_t g = label[i] = patches.locate(p[t.v[0]], p[t.v[1]], p[t.v[2]], t.inner, t.outer);
+    by_pair[pair_key(t)].push_back(i);
+    if (g == SurfacePatches::kNone)
+      unlabelled[pair_key(t)].push_back(i);
+    else
+      in_group[g].push_back(i);
+  }
+  std::set<int32_t> used_tags;
+  for (size_t g = 0; g < in_group.size(); ++g)
+    if (!in_group[g].empty()) used_tags.insert(patches.groups()[g].tag);
   const int64_t first = first_surface_tag(mesh);
   int64_t tag = first;
-  for (auto& [key, triangles] : by_pair) {
-    SurfaceGroup group;
-    group.material = std::get<1>(key);
-    group.other = std::get<2>(key);
-    group.name = pair_name(group.material, group.other);
-    const auto it = named.find({group.material, group.other});
-    if (it != named.end()) {
-      group.tag = it->second->tag;
-      if (!it->second->name.empty()) group.name = it->second->name;
-    } else {
+  std::vector<bool> placed(in_group.size(), false);
+  for (const auto& [key, triangles] : by_pair) {
+    const auto rest = unlabelled.find(key);
+    if (rest != unlabelled.end()) {
+      SurfaceGroup group;
+      group.material = std::get<1>(key);
+      group.other = std::get<2>(key);
+      group.name = pair_name(group.material, group.other);
       while (tag <= std::numeric_limits<int32_t>::max() && used_tags.count(int32_t(tag))) ++tag;
       if (tag > std::numeric_limits<int32_t>::max()) {
         return Status::error("material ids up to " + std::to_string(first - 1) +
-                             " leave no room to number the " + std::to_string(by_pair.size()) +
-                             " surface groups above them (tags end at 2147483647)");
+                             " leave no room to number the surface groups above them (tags "
+                             "end at 2147483647)");
       }
       group.tag = static_cast<int32_t>(tag++);
+      group.triangles = rest->second;
+      result.groups.push_back(std::move(group));
     }
-    group.triangles = std::move(triangles);
-    result.groups.push_back(std::move(group));
+    // The input groups that first appear on this pair, in the input's order.
+    std::vector<uint32_t> here;
+    for (uint32_t i : triangles) {
+      const uint32_t g = label[i];
+      if (g != SurfacePatches::kNone && !placed[g]) placed[g] = true, here.push_back(g);
+    }
+    std::sort(here.begin(), here.end());
+    for (uint32_t g : here) {
+      const SurfacePatches::Group& input = patches.groups()[g];
+      SurfaceGroup group;
+      const SurfaceTriangle& t = result.surface[in_group[g].front()];
+      group.material = t.inner;
+      group.other = t.outer;
+      group.tag = input.tag;
+      group.name = input.name.empty() ? "surface_" + std::to_string(input.tag) : input.name;
+      group.triangles = std::move(in_group[g]);
+      result.groups.push_back(std::move(group));
+    }
   }
   *groups = std::move(result);
   return Status();
-}
-
-std::vector<SurfaceGroupName> match_surface_groups(
-    const TetMesh& mesh, const std::vector<InputSurfaceGroup>& input,
-    std::vector<const InputSurfaceGroup*>* unmatched) {
-  // The pairs as group_surface() groups them (its tags are not used); if it cannot
-  // number them, no write can, and no group is matched.
-  SurfaceGroups groups;
-  if (!group_surface(mesh, &groups).ok()) {
-    if (unmatched)
-      for (const InputSurfaceGroup& group : input) unmatched->push_back(&group);
-    return {};
-  }
-  std::map<TriangleKey, size_t> pair_of;  // surface triangle -> its group
-  for (size_t g = 0; g < groups.groups.size(); ++g) {
-    for (uint32_t i : groups.groups[g].triangles) {
-      const auto& v = groups.surface[i].v;
-      const auto& p = mesh.positions;
-      pair_of[triangle_key(p[v[0]], p[v[1]], p[v[2]])] = g;
-    }
-  }
-  std::vector<SurfaceGroupName> names;
-  std::vector<bool> taken(groups.groups.size(), false);
-  for (const InputSurfaceGroup& group : input) {
-    std::set<TriangleKey> seen;
-    size_t pair = SIZE_MAX;
-    bool one_pair = !group.triangles.empty();
-    for (const auto& t : group.triangles) {
-      const TriangleKey key = triangle_key(t[0], t[1], t[2]);
-      const auto it = pair_of.find(key);
-      if (it == pair_of.end() || (pair != SIZE_MAX && it->second != pair)) {
-        one_pair = false;
-        break;
-      }
-      pair = it->second;
-      seen.insert(key);
-    }
-    if (one_pair && seen.size() == groups.groups[pair].triangles.size() && !taken[pair] &&
-        group.tag >= 1) {
-      taken[pair] = true;
-      names.push_back(
-          {groups.groups[pair].material, groups.groups[pair].other, group.tag, group.name});
-    } else if (unmatched) {
-      unmatched->push_back(&group);
-    }
-  }
-  return names;
 }
 
 }  // namespace tetlod

@@ -55,21 +55,19 @@ int32_t gmsh_material_zero_tag(const std::vector<int32_t>& materials);
 // material uses) if that is larger. At least 1; may exceed the int32 range.
 int64_t first_surface_tag(const TetMesh& mesh);
 
-// A material pair's group under a name and tag of the user's own (an input file's
-// surface group that is exactly that pair's boundary or interface).
-struct SurfaceGroupName {
-  int32_t material;  // the pair, as in SurfaceGroup
-  int32_t other;
-  int32_t tag;       // >= 1
-  std::string name;  // "" keeps the generated name
-};
+class SurfacePatches;
 
-// Precondition: the mesh passed validate_mesh(). The pairs in `names` take those
-// tags and names; the others are numbered as above, skipping the tags `names` uses.
-// An error, naming the largest material, when the tags would run past 2^31 - 1 (the
-// largest tag Gmsh and Medit take); `groups` is then left as it was.
-Status group_surface(const TetMesh& mesh, SurfaceGroups* groups,
-                     const std::vector<SurfaceGroupName>* names = nullptr);
+// Precondition: the mesh passed validate_mesh(). An error, naming the largest
+// material, when the tags would run past 2^31 - 1 (the largest tag Gmsh and Medit
+// take); `groups` is then left as it was.
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
+// With the input's groups: each surface triangle that SurfacePatches::locate() puts
+// in an input group goes to a group of that name and tag (in the order of the first
+// material pair it touches, then of the input); the others are grouped by material
+// pair as above, numbered around the input groups' tags (a pair whose triangles all
+// went to input groups has no group). An input group whose triangles are exactly
+// one pair's is so that pair's group under the input's name and tag.
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches);
 
 // A surface group of an input file (a Gmsh physical surface): its triangles by the
 // positions of their corners.
@@ -79,12 +77,49 @@ struct InputSurfaceGroup {
   std::vector<std::array<Vec3, 3>> triangles;
 };
 
-// The input groups that are exactly one material pair's whole boundary or interface
-// of `mesh` (every triangle of the pair, in any order and orientation, and no other),
-// as names for group_surface(); the first such group of a pair wins. The others are
-// listed in `unmatched` (e.g. a group covering part of a boundary, or several pairs).
-std::vector<SurfaceGroupName> match_surface_groups(
-    const TetMesh& mesh, const std::vector<InputSurfaceGroup>& input,
-    std::vector<const InputSurfaceGroup*>* unmatched);
+// The input file's surface groups laid on the surface of the mesh read with them, so
+// that they can be found again on any mesh made from it (subdivided, simplified, a
+// level of its history): every boundary and interface triangle of the input, with
+// the first input group that holds it (by the positions of its corners). locate()
+// gives a triangle of another mesh the group of the input triangle of the same
+// material pair nearest its centroid: exact for the input's own triangles and for
+// pieces of them, and right away from a group's border for a simplified surface,
+// whose border curves the simplifier keeps (simplify() with these patches).
+class SurfacePatches {
+ public:
+  static constexpr uint32_t kNone = 0xffffffffu;
+  struct Group {
+    int32_t tag = 0;
+    std::string name;
+    size_t triangles = 0;  // of the input surface
+    size_t missing = 0;    // triangles of the group that are not on it
+  };
+  SurfacePatches() = default;
+  // `input` passed validate_mesh().
+  SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups);
+  // Whether any input surface triangle is in a group.
+  bool any() const { return any_; }
+  const std::vector<Group>& groups() const { return groups_; }
+  // The group (index into groups()) of the triangle (a, b, c) between materials
+  // `inner` and `outer` (kOutsideMaterial on the boundary), or kNone.
+  uint32_t locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner, int32_t outer) const;
+
+ private:
+  struct Entry {
+    std::array<Vec3, 3> p;
+    int32_t inner, outer;  // inner < outer, or outer == kOutsideMaterial
+    uint32_t group;
+  };
+  size_t cell_of(int x, int y, int z) const {
+    return (size_t(z) * size_t(dims_[1]) + size_t(y)) * size_t(dims_[0]) + size_t(x);
+  }
+  std::vector<Group> groups_;
+  std::vector<Entry> entries_;
+  std::vector<uint32_t> cell_start_, cell_entries_;  // a uniform grid of entries (CSR)
+  Vec3 origin_;
+  double cell_ = 1;
+  int dims_[3] = {0, 0, 0};
+  bool any_ = false;
+};
 
 }  // namespace tetlod

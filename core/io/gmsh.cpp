@@ -1105,12 +1105,14 @@ class GmshParser {
     }
     if (surface_elements > 0) {
       out_->notes.push_back(
-          std::to_string(surface_elements) + " surface elements are not kept" +
+          std::to_string(surface_elements) + " surface elements are not kept as elements" +
           (surface_names.empty() ? std::string()
-                                 : ", nor the surface groups " + quoted_list(surface_names)) +
-          ": TetLOD keeps the tetrahedra and their volume groups (--surfaces, or the "
-          "viewer's boundary groups, writes the boundary and interface triangles again, a "
-          "group per material pair)");
+                                 : ", only as the surface groups " + quoted_list(surface_names)) +
+          ": TetLOD keeps the tetrahedra and their volume groups; --surfaces, or the viewer's "
+          "boundary groups, writes the boundary and interface triangles again" +
+          (surface_names.empty() ? std::string(", a group per material pair")
+                                 : std::string(", these groups under their names and tags "
+                                               "(simplified too), the rest by material pair")));
     }
     if (!volume_names.empty()) {
       out_->notes.push_back(

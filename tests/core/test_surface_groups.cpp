@@ -15,6 +15,7 @@
 
 #include "core/adjacency.h"
 #include "core/io/mesh_io.h"
+#include "core/simplify.h"
 #include "core/surface.h"
 #include "core/test_io_helpers.h"
 #include "core/test_meshes.h"
@@ -213,8 +214,8 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     test::expect_same_mesh(mesh, back);
     ASSERT_FALSE(info.notes.empty());
     EXPECT_NE(info.notes[0].find(std::to_string(groups.surface.size()) +
-                                 " surface elements are not kept, nor the surface groups "
-                                 "'boundary_1', 'boundary_2', 'interface_1_2'"),
+                                 " surface elements are not kept as elements, only as the "
+                                 "surface groups 'boundary_1', 'boundary_2', 'interface_1_2'"),
               std::string::npos)
         << info.notes[0];
   }
@@ -233,11 +234,19 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
   }
 }
 
+std::vector<std::string> names_and_tags(const SurfaceGroups& groups) {
+  std::vector<std::string> written;
+  for (const SurfaceGroup& g : groups.groups)
+    written.push_back(g.name + "=" + std::to_string(g.tag) + ":" +
+                      std::to_string(g.triangles.size()));
+  return written;
+}
+
 // A Gmsh file's own physical surfaces (tests/data/gmsh/groups.geo, in each of the
-// reader's paths): a group that is exactly one material pair's boundary or interface
-// keeps its name and tag, the others are listed as unmatched; the other pairs are
+// reader's paths) keep their names, tags and triangles: a whole boundary, an
+// interface, and one face of a boundary, whose other faces stay in the pair's group,
 // numbered around the tags taken.
-TEST(SurfaceGroups, InputGroupsThatAreWholePairsKeepTheirNamesAndTags) {
+TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   for (const char* file : {"groups41.msh", "groups41_bin.msh", "groups22.msh", "groups22_bin.msh",
                            "groups_order2.msh"}) {
     SCOPED_TRACE(file);
@@ -250,28 +259,48 @@ TEST(SurfaceGroups, InputGroupsThatAreWholePairsKeepTheirNamesAndTags) {
     EXPECT_EQ(info.surface_groups[0].name, "outer_left");
     EXPECT_EQ(info.surface_groups[1].name, "membrane");
     EXPECT_EQ(info.surface_groups[2].name, "right_end");
-    std::vector<const InputSurfaceGroup*> unmatched;
-    const std::vector<SurfaceGroupName> names =
-        match_surface_groups(mesh, info.surface_groups, &unmatched);
-    ASSERT_EQ(names.size(), 2u);
-    EXPECT_EQ(names[0].material, 1);
-    EXPECT_EQ(names[0].other, kOutsideMaterial);
-    EXPECT_EQ(names[0].tag, 100);
-    EXPECT_EQ(names[1].material, 1);
-    EXPECT_EQ(names[1].other, 2);
-    EXPECT_EQ(names[1].tag, 200);
-    ASSERT_EQ(unmatched.size(), 1u);
-    EXPECT_EQ(unmatched[0]->tag, 300);
+    const SurfacePatches patches(mesh, info.surface_groups);
+    ASSERT_TRUE(patches.any());
+    for (size_t g = 0; g < 3; ++g) {
+      EXPECT_EQ(patches.groups()[g].missing, 0u);
+      EXPECT_EQ(patches.groups()[g].triangles, info.surface_groups[g].triangles.size());
+    }
     SurfaceGroups groups;
-    ASSERT_TRUE(group_surface(mesh, &groups, &names).ok());
-    std::vector<std::string> written;
-    for (const SurfaceGroup& g : groups.groups)
-      written.push_back(g.name + "=" + std::to_string(g.tag));
-    EXPECT_EQ(written,
-              (std::vector<std::string>{"outer_left=100", "boundary_2=3", "membrane=200"}));
+    ASSERT_TRUE(group_surface(mesh, &groups, patches).ok());
+    const SurfaceGroups plain = groups_of(mesh);  // 3 boundary_1, 4 boundary_2, 5 interface
+    const size_t right_end = info.surface_groups[2].triangles.size();
+    EXPECT_EQ(names_and_tags(groups),
+              (std::vector<std::string>{
+                  "outer_left=100:" + std::to_string(plain.groups[0].triangles.size()),
+                  "boundary_2=3:" + std::to_string(plain.groups[1].triangles.size() - right_end),
+                  "right_end=300:" + std::to_string(right_end),
+                  "membrane=200:" + std::to_string(plain.groups[2].triangles.size())}));
+    // Each input triangle is in its group.
+    for (size_t g : {0, 2}) {
+      const std::string& name = info.surface_groups[g].name;
+      const auto it = std::find_if(groups.groups.begin(), groups.groups.end(),
+                                   [&](const SurfaceGroup& x) { return x.name == name; });
+      ASSERT_NE(it, groups.groups.end());
+      std::vector<std::array<double, 9>> want, got;
+      auto key = [](const Vec3& a, const Vec3& b, const Vec3& c) {
+        std::array<std::array<double, 3>, 3> k = {
+            {{a.x, a.y, a.z}, {b.x, b.y, b.z}, {c.x, c.y, c.z}}};
+        std::sort(k.begin(), k.end());
+        return std::array<double, 9>{k[0][0], k[0][1], k[0][2], k[1][0], k[1][1],
+                                     k[1][2], k[2][0], k[2][1], k[2][2]};
+      };
+      for (const auto& t : info.surface_groups[g].triangles) want.push_back(key(t[0], t[1], t[2]));
+      for (uint32_t i : it->triangles) {
+        const auto& v = groups.surface[i].v;
+        got.push_back(key(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]));
+      }
+      std::sort(want.begin(), want.end());
+      std::sort(got.begin(), got.end());
+      EXPECT_EQ(got, want) << name;
+    }
   }
-  // A group missing one triangle of its pair, or holding one of another pair, is no
-  // whole pair; generated tags skip a tag a name took.
+  // Unnamed groups are surface_<tag>; a triangle in two groups is the first one's;
+  // a triangle that is not on the surface is counted as missing.
   TetMesh mesh = box2();
   const SurfaceGroups plain = groups_of(mesh);
   auto input_of = [&](const SurfaceGroup& g, int32_t tag) {
@@ -287,21 +316,22 @@ TEST(SurfaceGroups, InputGroupsThatAreWholePairsKeepTheirNamesAndTags) {
       input_of(plain.groups[0], 4), input_of(plain.groups[1], 50), input_of(plain.groups[2], 60)};
   input[1].triangles.pop_back();
   input[2].triangles.push_back(input[0].triangles[0]);
-  std::vector<const InputSurfaceGroup*> unmatched;
-  const std::vector<SurfaceGroupName> names = match_surface_groups(mesh, input, &unmatched);
-  ASSERT_EQ(names.size(), 1u);  // the first, reversed triangles and all
-  EXPECT_EQ(names[0].tag, 4);
-  EXPECT_TRUE(names[0].name.empty());
-  EXPECT_EQ(unmatched.size(), 2u);
+  input[2].triangles.push_back({Vec3{0, 0, 0}, Vec3{9, 9, 9}, Vec3{1, 2, 3}});
+  const SurfacePatches patches(mesh, input);
+  EXPECT_EQ(patches.groups()[2].missing, 1u);
+  EXPECT_EQ(patches.groups()[2].triangles, plain.groups[2].triangles.size());
   SurfaceGroups groups;
-  ASSERT_TRUE(group_surface(mesh, &groups, &names).ok());
-  std::vector<std::string> written;
-  for (const SurfaceGroup& g : groups.groups)
-    written.push_back(g.name + "=" + std::to_string(g.tag));
-  EXPECT_EQ(written, (std::vector<std::string>{"boundary_1=4", "boundary_2=3", "interface_1_2=5"}));
+  ASSERT_TRUE(group_surface(mesh, &groups, patches).ok());
+  const size_t n2 = plain.groups[1].triangles.size();
+  EXPECT_EQ(names_and_tags(groups),
+            (std::vector<std::string>{
+                "surface_4=4:" + std::to_string(plain.groups[0].triangles.size()), "boundary_2=3:1",
+                "surface_50=50:" + std::to_string(n2 - 1),
+                "surface_60=60:" + std::to_string(plain.groups[2].triangles.size())}));
   // A user's name becomes a valid Abaqus label and stays inside Gmsh's quotes.
-  const std::vector<SurfaceGroupName> odd = {{1, kOutsideMaterial, 7, "1st \"outer\" wall"}};
-  ASSERT_TRUE(group_surface(mesh, &groups, &odd).ok());
+  std::vector<InputSurfaceGroup> odd = {input_of(plain.groups[0], 7)};
+  odd[0].name = "1st \"outer\" wall";
+  ASSERT_TRUE(group_surface(mesh, &groups, SurfacePatches(mesh, odd)).ok());
   WriteOptions options;
   options.surface_groups = true;
   options.groups = &groups;
@@ -318,6 +348,74 @@ TEST(SurfaceGroups, InputGroupsThatAreWholePairsKeepTheirNamesAndTags) {
   ASSERT_EQ(info.surface_groups.size(), 3u);  // by tag: 3, 5, 7
   EXPECT_EQ(info.surface_groups[2].tag, 7);
   EXPECT_EQ(info.surface_groups[2].name, "1st _outer_ wall");
+}
+
+// A round port on a flat face (tests/data/gmsh/port.geo): simplified with the
+// file's groups, the port's border stays within the tolerance of where it was, the
+// group is found again on the simplified surface with its area, and every triangle
+// of it lies inside the circle. Without the groups the simplifier moves the border
+// vertices far off it.
+TEST(SurfaceGroups, SimplificationKeepsAGroupsBorder) {
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/port.msh"), &mesh, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), 1u);
+  const SurfacePatches patches(mesh, info.surface_groups);
+  SimplifyParams params;
+  params.sizing.uniform = 0.5;
+  params.tolerance = 0.01;
+  const Vec3 center{1, 0.5, 1};
+  const double radius = 0.3;
+  // The input's border vertices: on the circle (Gmsh puts them there).
+  auto border_of = [&](const TetMesh& m, const SurfaceGroup& g, const SurfaceGroups& all) {
+    std::map<std::pair<uint32_t, uint32_t>, int> uses;
+    for (uint32_t i : g.triangles) {
+      const auto& v = all.surface[i].v;
+      for (int e = 0; e < 3; ++e)
+        ++uses[{std::min(v[e], v[(e + 1) % 3]), std::max(v[e], v[(e + 1) % 3])}];
+    }
+    std::vector<Vec3> border;
+    for (const auto& [edge, n] : uses)
+      if (n == 1)
+        border.push_back(m.positions[edge.first]), border.push_back(m.positions[edge.second]);
+    return border;
+  };
+  for (const bool with_patches : {true, false}) {
+    SCOPED_TRACE(with_patches);
+    SimplifyResult result;
+    ASSERT_TRUE(
+        simplify(mesh, params, &result, {}, nullptr, with_patches ? &patches : nullptr).ok());
+    EXPECT_LT(result.output.tet_count(), mesh.tet_count() / 3);
+    SurfaceGroups groups;
+    ASSERT_TRUE(group_surface(result.output, &groups, patches).ok());
+    const auto port = std::find_if(groups.groups.begin(), groups.groups.end(),
+                                   [](const SurfaceGroup& g) { return g.name == "port"; });
+    ASSERT_NE(port, groups.groups.end());
+    EXPECT_EQ(port->tag, 20);
+    double area = 0, off_circle = 0;
+    for (uint32_t i : port->triangles) {
+      const auto& v = groups.surface[i].v;
+      const Vec3 &a = result.output.positions[v[0]], &b = result.output.positions[v[1]],
+                 &c = result.output.positions[v[2]];
+      area += 0.5 * length(cross(b - a, c - a));
+      for (const Vec3* q : {&a, &b, &c}) {
+        EXPECT_NEAR(q->z, 1.0, 1e-9);
+        if (with_patches) {
+          EXPECT_LE(length(*q - center), radius + 1e-9);
+        }
+      }
+    }
+    for (const Vec3& q : border_of(result.output, *port, groups))
+      off_circle = std::max(off_circle, std::abs(length(q - center) - radius));
+    // The input's border is a polygon of ~19 vertices on the circle (its edges' midpoints
+    // 0.004 inside); the simplified one stays within the tolerance of it.
+    if (with_patches) {
+      EXPECT_LT(off_circle, params.tolerance + 0.005);
+      EXPECT_NEAR(area, M_PI * radius * radius, 0.05 * M_PI * radius * radius);
+    } else {
+      EXPECT_GT(off_circle, 0.05);  // the border was collapsed across
+    }
+  }
 }
 
 // Gmsh reads the physical surfaces: it saves them again (as 2.2 text) with the same

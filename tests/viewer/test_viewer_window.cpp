@@ -417,10 +417,10 @@ TEST(ViewerWindow, SaveWithSurfaceGroups) {
   EXPECT_EQ(saved.tet_count(), input.tet_count());
 }
 
-// The input's own surface groups that are a whole material pair's keep their names and
-// tags in what Save writes, after a simplification too, as `tetlod simplify
-// --surfaces` writes them.
-TEST(ViewerWindow, SaveKeepsTheInputsWholePairGroups) {
+// The input's own surface groups keep their names and tags in what Save writes, after
+// a simplification too, as `tetlod simplify --surfaces` writes them: whole pairs and
+// part of one (right_end, one face of box 2, whose other faces stay boundary_2).
+TEST(ViewerWindow, SaveKeepsTheInputsGroups) {
   const fs::path dir = fresh_output_dir("viewer_save_input_groups");
   std::ofstream(dir / "save.script") << "thresholds size=0.8 tolerance=0.01\nsimplify\n"
                                         "save simplified.msh surfaces\nquit\n";
@@ -429,7 +429,8 @@ TEST(ViewerWindow, SaveKeepsTheInputsWholePairGroups) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   std::ifstream f(dir / "simplified.msh");
   const std::string text{std::istreambuf_iterator<char>(f), {}};
-  EXPECT_NE(text.find("2 100 \"outer_left\"\n2 3 \"boundary_2\"\n2 200 \"membrane\"\n"),
+  EXPECT_NE(text.find("2 100 \"outer_left\"\n2 3 \"boundary_2\"\n2 300 \"right_end\"\n2 200 "
+                      "\"membrane\"\n"),
             std::string::npos)
       << text.substr(0, 300);
   TetMesh saved;

@@ -23,3 +23,5 @@ gmsh groups.geo -3 -clmax 0.5 -v 0 -format msh41 -bin -o groups41_bin.msh
 gmsh groups.geo -3 -clmax 0.5 -v 0 -format msh22 -o groups22.msh
 gmsh groups.geo -3 -clmax 0.5 -v 0 -format msh22 -bin -o groups22_bin.msh
 gmsh groups.geo -3 -clmax 0.5 -v 0 -order 2 -format msh41 -o groups_order2.msh
+# A block with a round port on its flat top face (a group whose border is no crease).
+gmsh port.geo -3 -clmax 0.1 -v 0 -format msh41 -o port.msh
