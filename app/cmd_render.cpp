@@ -98,6 +98,7 @@ int cmd_render(const Args& args) {
 
   TetMesh mesh;
   std::vector<std::pair<int32_t, std::string>> names;  // for the legend
+  SurfacePatches patches;                              // the file's surface groups
   if (history) {
     HistoryLevel level;
     if (!load_history_level(in, "render", -1, options.simplify_options.elements, &level))
@@ -112,11 +113,13 @@ int cmd_render(const Args& args) {
     ReadInfo info;
     if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
     for (const MaterialName& n : info.material_names) names.push_back({n.material, n.name});
+    if (options.simplify && !info.surface_groups.empty())
+      patches = SurfacePatches(mesh, info.surface_groups);
   }
   if (!resolve_materials(mesh, "render", &options)) return kExitBadInput;
   if (options.simplify && !history) {
     TetMesh simplified;
-    if (const int code = simplified_mesh(mesh, "render", &options, &simplified)) return code;
+    if (const int code = simplified_mesh(mesh, "render", &options, &simplified, &patches)) return code;
     mesh = std::move(simplified);
   }
   OffscreenRenderer offscreen;

@@ -204,6 +204,7 @@ int cmd_report(const Args& args) {
 
   TetMesh input;
   std::vector<MaterialName> names;  // of the input file's materials
+  SurfacePatches patches;           // the input file's surface groups
   OpenedHistory history;
   if (from_history) {
     // The levels of a saved run: its finest level (the subdivided input), those
@@ -217,6 +218,8 @@ int cmd_report(const Args& args) {
     ReadInfo info;
     if (!load_mesh(in, &input, &info)) return kExitBadInput;
     names = std::move(info.material_names);
+    if (options.simplify && !info.surface_groups.empty())
+      patches = SurfacePatches(input, info.surface_groups);
   }
   if (!resolve_materials(input, "report", &options)) return kExitBadInput;
   OffscreenRenderer offscreen;
@@ -254,7 +257,7 @@ int cmd_report(const Args& args) {
     SimplifyOptions& so = options.simplify_options;
     if (!finish_simplify_options(input, "report", &so)) return kExitUsage;
     SimplifyResult result;
-    const Status s = simplify(input, so.params, &result);
+    const Status s = simplify(input, so.params, &result, {}, nullptr, &patches);
     if (!s) {
       std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
       return kExitBadInput;

@@ -244,11 +244,11 @@ bool history_improve_params(const std::string& in, const char* command,
 }
 
 int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
-                    TetMesh* out) {
+                    TetMesh* out, const SurfacePatches* patches) {
   SimplifyOptions& so = options->simplify_options;
   if (!finish_simplify_options(input, command, &so)) return kExitUsage;
   SimplifyResult result;
-  const Status status = simplify(input, so.params, &result);
+  const Status status = simplify(input, so.params, &result, {}, nullptr, patches);
   if (!status) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, status.message().c_str());
     return kExitBadInput;

@@ -59,7 +59,9 @@ bool open_offscreen_renderer(const char* command, OffscreenRenderer* out);
 // mesh (or the level nearest --elements); --simplify needs a size, checked before.
 // 0, or the exit code with a message on stderr: kExitUsage for a --material-size the
 // mesh has no material for, kExitBadInput if the simplifier refuses the mesh.
+// `patches`: the input file's surface groups, whose borders the simplifier keeps (as
+// `tetlod simplify` does), or null.
 int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
-                    TetMesh* out);
+                    TetMesh* out, const SurfacePatches* patches = nullptr);
 
 }  // namespace tetlod::app

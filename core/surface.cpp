@@ -142,6 +142,9 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
     groups_.push_back(std::move(group));
   }
   if (entries_.empty()) return;
+  for (const Entry& e : entries_) pairs_.push_back({e.inner, e.outer});
+  std::sort(pairs_.begin(), pairs_.end());
+  pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
   // The grid: cells about the mean triangle's size, at most ~2 entries' worth.
   Vec3 lo = entries_[0].p[0], hi = lo;
   double extent_sum = 0;
@@ -158,20 +161,25 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
   const Vec3 span = hi - lo;
   cell_ = std::max(extent_sum / double(entries_.size()), 1e-300);
   const double limit = 2.0 * double(entries_.size()) + 8;
-  for (;;) {
+  // (Coordinates far apart can overflow the span: then one cell holds everything.)
+  const bool finite = is_finite(span) && std::isfinite(cell_);
+  for (int round = 0; finite && round < 4000; ++round) {
     double cells = 1;
     for (int k = 0; k < 3; ++k) cells *= std::floor(span[k] / cell_) + 1;
     if (cells <= limit) break;
     cell_ *= 1.25;
   }
   origin_ = lo;
-  for (int k = 0; k < 3; ++k) dims_[k] = int(std::floor(span[k] / cell_)) + 1;
+  for (int k = 0; k < 3; ++k) {
+    const double n = std::floor(span[k] / cell_) + 1;
+    dims_[k] = finite && n >= 1 && n <= limit ? int(n) : 1;
+  }
   auto cell_range = [&](const Entry& e, int* from, int* to) {
     for (int k = 0; k < 3; ++k) {
       double a = e.p[0][k], b = a;
       for (const Vec3& q : e.p) a = std::min(a, q[k]), b = std::max(b, q[k]);
-      from[k] = std::clamp(int(std::floor((a - origin_[k]) / cell_)), 0, dims_[k] - 1);
-      to[k] = std::clamp(int(std::floor((b - origin_[k]) / cell_)), 0, dims_[k] - 1);
+      from[k] = cell_index(a, k);
+      to[k] = cell_index(b, k);
     }
   };
   cell_start_.assign(size_t(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
@@ -201,10 +209,13 @@ uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int
                                 int32_t outer) const {
   if (!any_) return kNone;
   if (outer != kOutsideMaterial && outer < inner) std::swap(inner, outer);
+  // A pair the input does not have would search the whole grid for nothing.
+  if (!std::binary_search(pairs_.begin(), pairs_.end(), std::make_pair(inner, outer)))
+    return kNone;
   const Vec3 q = (a + b + c) * (1.0 / 3.0);
   int center[3];
   for (int k = 0; k < 3; ++k)
-    center[k] = std::clamp(int(std::floor((q[k] - origin_[k]) / cell_)), 0, dims_[k] - 1);
+    center[k] = cell_index(q[k], k);
   double best = INFINITY;
   uint32_t found = kNone;
   const int max_radius = std::max({dims_[0], dims_[1], dims_[2]});
