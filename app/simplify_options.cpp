@@ -27,11 +27,12 @@ const char* const kSimplifyFlagsHelp =
 
 const char* const kWriteFlagsHelp =
     "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n"
-    "  --surfaces        also write the boundary and interface triangles, a group per\n"
-    "                    material pair (boundary_<m>, interface_<a>_<b>, numbered above\n"
-    "                    the materials), for boundary conditions: .msh physical surfaces,\n"
-    "                    .mesh triangle references, a TetGen .face file, .inp node sets\n"
-    "                    and element-face surfaces\n";
+    "  --surfaces        also write the boundary and interface triangles, for boundary\n"
+    "                    conditions: a Gmsh input's own surface groups under their names\n"
+    "                    and tags, the rest a group per material pair (boundary_<m>,\n"
+    "                    interface_<a>_<b>, numbered above the materials): .msh physical\n"
+    "                    surfaces, .mesh triangle references, a TetGen .face file, .inp\n"
+    "                    node sets and element-face surfaces\n";
 
 OptionResult parse_write_option(const Args& args, size_t* i, const char* command,
                                 WriteOptions* options) {

@@ -1,13 +1,16 @@
 // libFuzzer target for one mesh reader, chosen at build time by TETLOD_FUZZ_FORMAT
 // (fuzz/CMakeLists.txt builds one executable per reader). The reader must never
 // crash, hang or allocate without bound, and a mesh it accepts must hold the
-// invariants of tet_mesh.h. For TetGen the input is "node text \0 ele text".
+// invariants of tet_mesh.h; the surface groups and material names it gives must be
+// usable (SurfacePatches and group_surface() over them, names sorted). For TetGen the
+// input is "node text \0 ele text".
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
 
 #include "core/io/mesh_io.h"
+#include "core/surface.h"
 
 namespace {
 
@@ -33,15 +36,28 @@ void check_invariants(const tetlod::TetMesh& mesh) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);
   tetlod::TetMesh mesh;
+  tetlod::ReadInfo info;
   tetlod::Status status;
   if constexpr (kFormat == tetlod::MeshFormat::kTetGen) {
     const size_t split = std::min(input.find('\0'), input.size());
     status = tetlod::read_tetgen_from_memory(input.substr(0, split),
                                              input.substr(std::min(split + 1, input.size())),
-                                             "fuzz.node", "fuzz.ele", &mesh);
+                                             "fuzz.node", "fuzz.ele", &mesh, &info);
   } else {
-    status = tetlod::read_mesh_from_memory(input, kFormat, "fuzz", &mesh);
+    status = tetlod::read_mesh_from_memory(input, kFormat, "fuzz", &mesh, &info);
   }
-  if (status.ok()) check_invariants(mesh);
+  if (!status.ok()) return 0;
+  check_invariants(mesh);
+  for (size_t i = 1; i < info.material_names.size(); ++i)
+    if (info.material_names[i].material <= info.material_names[i - 1].material) __builtin_trap();
+  if (!info.surface_groups.empty()) {
+    const tetlod::SurfacePatches patches(mesh, info.surface_groups);
+    tetlod::SurfaceGroups groups;
+    if (tetlod::group_surface(mesh, &groups, patches).ok()) {
+      size_t triangles = 0;
+      for (const tetlod::SurfaceGroup& g : groups.groups) triangles += g.triangles.size();
+      if (triangles != groups.surface.size()) __builtin_trap();  // each in one group
+    }
+  }
   return 0;
 }

@@ -371,8 +371,9 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::Checkbox("boundary groups", &panel->save_surfaces);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
-        "Also write the boundary and interface triangles, a group per material pair\n"
-        "(boundary_<m>, interface_<a>_<b>), for boundary conditions: .msh physical\n"
+        "Also write the boundary and interface triangles for boundary conditions: the\n"
+        "input file's own surface groups under their names and tags, the rest a group\n"
+        "per material pair (boundary_<m>, interface_<a>_<b>). In .msh physical\n"
         "surfaces, .mesh triangle references, a TetGen .face file, .inp node sets and\n"
         "element-face surfaces. Other formats have no place for them.");
   ImGui::SetNextItemWidth(-110);
