@@ -167,7 +167,8 @@ void print_staged_mesh_notes(const StagedMesh& staged) {
 bool open_history(const std::string& path, const char* command, OpenedHistory* opened) {
   TetMesh base;
   opened->path = path;
-  const Status s = read_history(path, &base, &opened->history, &opened->params, &opened->names);
+  const Status s = read_history(path, &base, &opened->history, &opened->params, &opened->names,
+                                &opened->patches);
   if (!s) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
     return false;
@@ -203,6 +204,7 @@ bool load_history_level(const std::string& path, const char* command, long long 
   const Lod& lod = *opened.lod;
   level->params = opened.params;
   level->names = opened.names;
+  level->patches = std::move(opened.patches);
   level->step_count = lod.step_count();
   level->step = step >= 0       ? std::min<size_t>(static_cast<size_t>(step), lod.step_count())
                 : elements >= 0 ? lod.step_for_elements(static_cast<size_t>(elements))

@@ -72,6 +72,7 @@ struct OpenedHistory {
   CollapseHistory history;
   std::optional<SimplifyParams> params;  // the thresholds saved with it, if any
   std::vector<MaterialName> names;       // the material names saved with it, if any
+  SurfacePatches patches;                // the input's surface groups saved with it, if any
   std::unique_ptr<Lod> lod;              // over `history`, from its base mesh
 };
 
@@ -92,6 +93,7 @@ struct HistoryLevel {
   double seek_seconds = 0;               // moving the Lod from step 0 to `step`
   std::optional<SimplifyParams> params;  // the thresholds saved with the history, if any
   std::vector<MaterialName> names;       // the material names saved with it, if any
+  SurfacePatches patches;                // the input's surface groups saved with it, if any
 };
 
 // Reads the history at `path` and extracts step `step` (clamped to the last) if

@@ -119,7 +119,8 @@ int cmd_render(const Args& args) {
   if (!resolve_materials(mesh, "render", &options)) return kExitBadInput;
   if (options.simplify && !history) {
     TetMesh simplified;
-    if (const int code = simplified_mesh(mesh, "render", &options, &simplified, &patches)) return code;
+    if (const int code = simplified_mesh(mesh, "render", &options, &simplified, &patches))
+      return code;
     mesh = std::move(simplified);
   }
   OffscreenRenderer offscreen;

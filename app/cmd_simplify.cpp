@@ -212,7 +212,7 @@ int cmd_simplify(const Args& args) {
   Status s = stage_output_mesh(&files, out, output, write_options, &staged, &patches);
   if (s && !history_path.empty())
     s = stage_history(&files, history_path, result.base, result.history, &params,
-                      &info.material_names);
+                      &info.material_names, &patches);
   if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
@@ -350,7 +350,7 @@ int cmd_lod(const Args& args) {
   write_options.material_names = &level.names;
   OutputFiles files;
   StagedMesh staged;
-  Status s = stage_output_mesh(&files, out, level.mesh, write_options, &staged);
+  Status s = stage_output_mesh(&files, out, level.mesh, write_options, &staged, &level.patches);
   if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());

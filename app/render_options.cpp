@@ -243,8 +243,8 @@ bool history_improve_params(const std::string& in, const char* command,
   return false;
 }
 
-int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
-                    TetMesh* out, const SurfacePatches* patches) {
+int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options, TetMesh* out,
+                    const SurfacePatches* patches) {
   SimplifyOptions& so = options->simplify_options;
   if (!finish_simplify_options(input, command, &so)) return kExitUsage;
   SimplifyResult result;

@@ -61,7 +61,7 @@ bool open_offscreen_renderer(const char* command, OffscreenRenderer* out);
 // mesh has no material for, kExitBadInput if the simplifier refuses the mesh.
 // `patches`: the input file's surface groups, whose borders the simplifier keeps (as
 // `tetlod simplify` does), or null.
-int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options,
-                    TetMesh* out, const SurfacePatches* patches = nullptr);
+int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options, TetMesh* out,
+                    const SurfacePatches* patches = nullptr);
 
 }  // namespace tetlod::app

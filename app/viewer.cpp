@@ -645,7 +645,11 @@ void Viewer::start_load(const std::string& path) {
     if (is_history_path(job->path)) {
       history = std::make_shared<SimplifyResult>();
       std::vector<MaterialName> saved_names;
-      s = read_history(job->path, &history->base, &history->history, &saved_params, &saved_names);
+      SurfacePatches saved_patches;
+      s = read_history(job->path, &history->base, &history->history, &saved_params, &saved_names,
+                       &saved_patches);
+      if (s && saved_patches.any())
+        patches = std::make_shared<const SurfacePatches>(std::move(saved_patches));
       if (s && !saved_names.empty())
         material_names = std::make_shared<const std::vector<MaterialName>>(std::move(saved_names));
       mesh = std::shared_ptr<const TetMesh>(history, &history->base);
@@ -1125,15 +1129,16 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
     save_path_ = path;
     const std::optional<SimplifyParams> params =
         scene_->params_known ? std::optional<SimplifyParams>(scene_->params) : std::nullopt;
-    save_future_ = std::async(std::launch::async, [path, params, result = scene_->result,
-                                                   names = scene_->material_names] {
-      Saved saved;
-      saved.status = write_history(path, result->base, result->history, params ? &*params : nullptr,
-                                   names.get());
-      saved.note =
-          " (the collapse history, " + std::to_string(result->history.step_count()) + " steps)";
-      return saved;
-    });
+    save_future_ =
+        std::async(std::launch::async, [path, params, result = scene_->result,
+                                        names = scene_->material_names, patches = scene_->patches] {
+          Saved saved;
+          saved.status = write_history(path, result->base, result->history,
+                                       params ? &*params : nullptr, names.get(), patches.get());
+          saved.note =
+              " (the collapse history, " + std::to_string(result->history.step_count()) + " steps)";
+          return saved;
+        });
     return Status();
   }
   // Improving uses the thresholds of the run that made the levels (here, or saved in

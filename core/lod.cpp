@@ -187,7 +187,8 @@ TetMesh Lod::extract() const {
 // ---------------------------------------------------------------------------------
 // History files: "TETLODH1", then counts and raw little-endian arrays; then,
 // optionally, "TLPARAM1" and the thresholds (write_params()); then, optionally,
-// "TLNAMES1" and the material names (write_names()).
+// "TLNAMES1" and the material names (write_names()); then, optionally, "TLGROUP1" and
+// the input's surface groups (write_patches()).
 
 namespace {
 
@@ -329,6 +330,71 @@ std::string read_names(std::FILE* f, uint64_t bytes, std::vector<MaterialName>* 
   return "";
 }
 
+constexpr char kGroupsMagic[8] = {'T', 'L', 'G', 'R', 'O', 'U', 'P', '1'};
+
+// The surface groups: a u64 count, per group i32 tag, u32 name length, the name, u64
+// triangles, u64 missing; then a u64 count of entries, each 9 f64 (the corners), i32
+// inner, i32 outer, u32 group.
+bool write_patches(std::FILE* f, const SurfacePatches& patches) {
+  if (std::fwrite(kGroupsMagic, 1, 8, f) != 8) return false;
+  ParamsWriter w{f};
+  w.put(uint64_t(patches.groups().size()));
+  for (const SurfacePatches::Group& g : patches.groups()) {
+    w.put(int32_t(g.tag));
+    const std::string name = g.name.substr(0, kMaxSavedNameBytes);
+    w.put(uint32_t(name.size()));
+    w.ok = w.ok && (name.empty() || std::fwrite(name.data(), 1, name.size(), f) == name.size());
+    w.put(uint64_t(g.triangles));
+    w.put(uint64_t(g.missing));
+  }
+  w.put(uint64_t(patches.entries().size()));
+  for (const SurfacePatches::Entry& e : patches.entries()) {
+    for (const Vec3& p : e.p) w.put(p);
+    w.put(int32_t(e.inner));
+    w.put(int32_t(e.outer));
+    w.put(uint32_t(e.group));
+  }
+  return w.ok;
+}
+
+// Reads the groups after "TLGROUP1"; an error message, or "" on success.
+std::string read_patches(std::FILE* f, uint64_t bytes, SurfacePatches* patches) {
+  ParamsReader r{f};
+  const uint64_t group_count = r.get_count(bytes, 24);
+  std::vector<SurfacePatches::Group> groups;
+  for (uint64_t i = 0; i < group_count && r.ok; ++i) {
+    SurfacePatches::Group g;
+    g.tag = r.get<int32_t>();
+    const uint32_t length = r.get<uint32_t>();
+    if (!r.ok) break;
+    if (length > kMaxSavedNameBytes) return "surface group " + std::to_string(i) + "'s name";
+    g.name.resize(length);
+    if (length > 0 && std::fread(g.name.data(), 1, length, f) != length) r.ok = false;
+    g.triangles = r.get<uint64_t>();
+    g.missing = r.get<uint64_t>();
+    if (g.triangles > bytes || g.missing > bytes) return "surface group " + std::to_string(i);
+    groups.push_back(std::move(g));
+  }
+  const uint64_t entry_count = r.get_count(bytes, 84);
+  std::vector<SurfacePatches::Entry> entries;
+  for (uint64_t i = 0; i < entry_count && r.ok; ++i) {
+    SurfacePatches::Entry e;
+    for (Vec3& p : e.p) p = r.get_vec3();
+    e.inner = r.get<int32_t>();
+    e.outer = r.get<int32_t>();
+    e.group = r.get<uint32_t>();
+    if (!r.ok) break;
+    if (!is_finite(e.p[0]) || !is_finite(e.p[1]) || !is_finite(e.p[2]) || e.inner < 0 ||
+        (e.outer != kOutsideMaterial && e.outer <= e.inner) ||
+        (e.group != SurfacePatches::kNone && e.group >= groups.size()))
+      return "surface group triangle " + std::to_string(i);
+    entries.push_back(e);
+  }
+  if (!r.ok) return "truncated surface groups, or a list longer than the file";
+  *patches = SurfacePatches(std::move(groups), std::move(entries));
+  return "";
+}
+
 // Reads the thresholds after "TLPARAM1"; an error message, or "" on success.
 std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
   ParamsReader r{f};
@@ -394,7 +460,7 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
 
 Status stage_history(OutputFiles* files, const std::string& path, const TetMesh& base,
                      const CollapseHistory& history, const SimplifyParams* params,
-                     const std::vector<MaterialName>* names) {
+                     const std::vector<MaterialName>* names, const SurfacePatches* patches) {
   // Only the names of the base's materials, in order, each once and not empty: what
   // the reader accepts.
   std::vector<MaterialName> kept;
@@ -412,19 +478,22 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
            write_array(f, base.tets) && write_array(f, base.materials) &&
            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
            write_array(f, history.rewired) && write_array(f, history.moved) &&
-           (!params || write_params(f, *params)) && (kept.empty() || write_names(f, kept));
+           (!params || write_params(f, *params)) && (kept.empty() || write_names(f, kept)) &&
+           (!patches || !patches->any() || write_patches(f, *patches));
   });
 }
 
 Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history,
-                     const SimplifyParams* params, const std::vector<MaterialName>* names) {
+                     const SimplifyParams* params, const std::vector<MaterialName>* names,
+                     const SurfacePatches* patches) {
   OutputFiles files;
-  if (Status s = stage_history(&files, path, base, history, params, names); !s) return s;
+  if (Status s = stage_history(&files, path, base, history, params, names, patches); !s) return s;
   return files.commit();
 }
 
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
-                    std::optional<SimplifyParams>* params, std::vector<MaterialName>* names) {
+                    std::optional<SimplifyParams>* params, std::vector<MaterialName>* names,
+                    SurfacePatches* patches) {
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   std::FILE* f = file.get();
   if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
@@ -442,28 +511,34 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
       !read_array(f, bytes, &history->moved)) {
     return Status::error(path + ": truncated or corrupt history file");
   }
-  // The thresholds and the material names, if saved (after the arrays, in this
-  // order, each at most once).
+  // The thresholds, the material names and the surface groups, if saved (after the
+  // arrays, in this order, each at most once).
   std::optional<SimplifyParams> saved_params;
   std::vector<MaterialName> saved_names;
-  bool names_read = false;
+  SurfacePatches saved_patches;
+  int last_block = 0;  // 1 thresholds, 2 names, 3 surface groups
   for (;;) {
     char block_magic[8] = {};
     const size_t magic_bytes = std::fread(block_magic, 1, 8, f);
     if (magic_bytes == 0) break;
+    const int block = magic_bytes != 8                                 ? 0
+                      : std::memcmp(block_magic, kParamsMagic, 8) == 0 ? 1
+                      : std::memcmp(block_magic, kNamesMagic, 8) == 0  ? 2
+                      : std::memcmp(block_magic, kGroupsMagic, 8) == 0 ? 3
+                                                                       : 0;
     std::string error;
-    if (magic_bytes == 8 && !saved_params && !names_read &&
-        std::memcmp(block_magic, kParamsMagic, 8) == 0) {
+    if (block <= last_block) {
+      error = last_block > 0 ? "bytes after the thresholds or names" : "bytes after the last step";
+    } else if (block == 1) {
       saved_params.emplace();
       error = read_params(f, bytes, &*saved_params);
-    } else if (magic_bytes == 8 && !names_read && std::memcmp(block_magic, kNamesMagic, 8) == 0) {
-      names_read = true;
+    } else if (block == 2) {
       error = read_names(f, bytes, &saved_names);
     } else {
-      error = saved_params || names_read ? "bytes after the thresholds or names"
-                                         : "bytes after the last step";
+      error = read_patches(f, bytes, &saved_patches);
     }
     if (!error.empty()) return Status::error(path + ": corrupt history: " + error);
+    last_block = block;
   }
   // Every index in range and every range well formed, so replay cannot go astray.
   const size_t vertex_count = base->positions.size();
@@ -586,6 +661,7 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   }
   if (params) *params = std::move(saved_params);
   if (names) *names = std::move(saved_names);
+  if (patches) *patches = std::move(saved_patches);
   return Status();
 }
 

@@ -15,6 +15,7 @@
 
 #include "core/io/output_files.h"
 #include "core/status.h"
+#include "core/surface.h"
 #include "core/tet_mesh.h"
 
 namespace tetlod {
@@ -115,23 +116,28 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // target_elements, which is about a level), saved after it so that a level can be
 // improved later within them (improve.h) without the user giving them again.
 // `names`, if given and not empty: the input file's names of the materials (sorted,
-// each of a material the base has), saved last, so that levels written later
-// carry them.
+// each of a material the base has), saved next, so that levels written later
+// carry them. `patches`, if given and any(): the input file's surface groups the run
+// kept (simplify()), saved last, so that levels written later can be grouped as the
+// input was.
 Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history,
                      const SimplifyParams* params = nullptr,
-                     const std::vector<MaterialName>* names = nullptr);
+                     const std::vector<MaterialName>* names = nullptr,
+                     const SurfacePatches* patches = nullptr);
 // The same, staged in `files` to be committed with the other outputs of a command.
 Status stage_history(OutputFiles* files, const std::string& path, const TetMesh& base,
                      const CollapseHistory& history, const SimplifyParams* params = nullptr,
-                     const std::vector<MaterialName>* names = nullptr);
+                     const std::vector<MaterialName>* names = nullptr,
+                     const SurfacePatches* patches = nullptr);
 // `params`, if given, receives the saved thresholds, or nullopt for a history saved
 // without them (as every one before 2026-11-24 was); saved thresholds that
 // check_params() refuses, or any byte after them, make the file corrupt. `names`, if
 // given, receives the saved material names (empty if none); a name list out of
 // order, of a material the base does not have, or with an empty or over-long name
-// makes the file corrupt.
+// makes the file corrupt. `patches`, if given, receives the saved surface groups (none:
+// !any()); a damaged block of them makes the file corrupt.
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
                     std::optional<SimplifyParams>* params = nullptr,
-                    std::vector<MaterialName>* names = nullptr);
+                    std::vector<MaterialName>* names = nullptr, SurfacePatches* patches = nullptr);
 
 }  // namespace tetlod

@@ -141,6 +141,16 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
     }
     groups_.push_back(std::move(group));
   }
+  build_index();
+}
+
+SurfacePatches::SurfacePatches(std::vector<Group> groups, std::vector<Entry> entries)
+    : groups_(std::move(groups)), entries_(std::move(entries)) {
+  for (const Entry& e : entries_) any_ = any_ || e.group != kNone;
+  build_index();
+}
+
+void SurfacePatches::build_index() {
   if (entries_.empty()) return;
   for (const Entry& e : entries_) pairs_.push_back({e.inner, e.outer});
   std::sort(pairs_.begin(), pairs_.end());
@@ -210,12 +220,10 @@ uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int
   if (!any_) return kNone;
   if (outer != kOutsideMaterial && outer < inner) std::swap(inner, outer);
   // A pair the input does not have would search the whole grid for nothing.
-  if (!std::binary_search(pairs_.begin(), pairs_.end(), std::make_pair(inner, outer)))
-    return kNone;
+  if (!std::binary_search(pairs_.begin(), pairs_.end(), std::make_pair(inner, outer))) return kNone;
   const Vec3 q = (a + b + c) * (1.0 / 3.0);
   int center[3];
-  for (int k = 0; k < 3; ++k)
-    center[k] = cell_index(q[k], k);
+  for (int k = 0; k < 3; ++k) center[k] = cell_index(q[k], k);
   double best = INFINITY;
   uint32_t found = kNone;
   const int max_radius = std::max({dims_[0], dims_[1], dims_[2]});

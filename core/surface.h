@@ -95,22 +95,28 @@ class SurfacePatches {
     size_t triangles = 0;  // of the input surface
     size_t missing = 0;    // triangles of the group that are not on it
   };
-  SurfacePatches() = default;
-  // `input` passed validate_mesh().
-  SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups);
-  // Whether any input surface triangle is in a group.
-  bool any() const { return any_; }
-  const std::vector<Group>& groups() const { return groups_; }
-  // The group (index into groups()) of the triangle (a, b, c) between materials
-  // `inner` and `outer` (kOutsideMaterial on the boundary), or kNone.
-  uint32_t locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner, int32_t outer) const;
-
- private:
+  // An input surface triangle and its group (kNone if in none).
   struct Entry {
     std::array<Vec3, 3> p;
     int32_t inner, outer;  // inner < outer, or outer == kOutsideMaterial
     uint32_t group;
   };
+  SurfacePatches() = default;
+  // `input` passed validate_mesh().
+  SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups);
+  // From the parts another one gave (a history file's): each entry's group < the
+  // number of groups or kNone, its positions finite.
+  SurfacePatches(std::vector<Group> groups, std::vector<Entry> entries);
+  // Whether any input surface triangle is in a group.
+  bool any() const { return any_; }
+  const std::vector<Group>& groups() const { return groups_; }
+  const std::vector<Entry>& entries() const { return entries_; }
+  // The group (index into groups()) of the triangle (a, b, c) between materials
+  // `inner` and `outer` (kOutsideMaterial on the boundary), or kNone.
+  uint32_t locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner, int32_t outer) const;
+
+ private:
+  void build_index();
   // The grid cell along axis k of coordinate x, clamped to the grid (any x, NaN too).
   int cell_index(double x, int k) const {
     const double f = std::floor((x - origin_[k]) / cell_);
@@ -121,7 +127,7 @@ class SurfacePatches {
   }
   std::vector<Group> groups_;
   std::vector<Entry> entries_;
-  std::vector<std::pair<int32_t, int32_t>> pairs_;  // the material pairs entries_ has, sorted
+  std::vector<std::pair<int32_t, int32_t>> pairs_;   // the material pairs entries_ has, sorted
   std::vector<uint32_t> cell_start_, cell_entries_;  // a uniform grid of entries (CSR)
   Vec3 origin_;
   double cell_ = 1;

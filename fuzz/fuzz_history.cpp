@@ -16,6 +16,7 @@
 
 #include "core/lod.h"
 #include "core/simplify.h"
+#include "core/validate.h"
 
 namespace {
 
@@ -41,7 +42,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   tetlod::CollapseHistory history;
   std::optional<tetlod::SimplifyParams> params;
   std::vector<tetlod::MaterialName> names;
-  if (!tetlod::read_history(path, &base, &history, &params, &names).ok()) return 0;
+  tetlod::SurfacePatches patches;
+  if (!tetlod::read_history(path, &base, &history, &params, &names, &patches).ok()) return 0;
   if (params && !tetlod::check_params(*params).ok()) __builtin_trap();  // accepted: valid
   for (size_t i = 0; i < names.size(); ++i) {  // accepted: sorted, not empty, of the mesh
     if (names[i].name.empty() || (i > 0 && names[i].material <= names[i - 1].material) ||
@@ -58,5 +60,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   lod.seek(lod.step_count() / 2, &delta);
   check_level(lod.extract());
   (void)lod.step_for_elements(1);
+  // The saved groups over a level (validated as the commands do): every triangle in
+  // one group.
+  tetlod::TetMesh level = lod.extract();
+  tetlod::ValidationReport report;
+  if (patches.any() && tetlod::validate_mesh(&level, "fuzz", {}, &report).ok()) {
+    tetlod::SurfaceGroups groups;
+    if (tetlod::group_surface(level, &groups, patches).ok()) {
+      size_t triangles = 0;
+      for (const tetlod::SurfaceGroup& g : groups.groups) triangles += g.triangles.size();
+      if (triangles != groups.surface.size()) __builtin_trap();
+    }
+  }
   return 0;
 }

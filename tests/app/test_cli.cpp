@@ -191,14 +191,23 @@ TEST(Cli, ConvertAndSimplifyKeepMaterialNames) {
 TEST(Cli, SimplifyKeepsTheInputsSurfaceGroups) {
   const std::string data = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/";
   const std::string port = out_dir() + "/port_simplified.msh";
+  const std::string history = out_dir() + "/port.tlh";
   CommandResult r = run("simplify " + data + "port.msh -o " + port +
-                        " --size 0.5 --tolerance 0.01 --surfaces");
+                        " --size 0.5 --tolerance 0.01 --surfaces --history " + history);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("surface groups (tag name: triangles): 2 boundary_1: "),
             std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find(", 20 port: "), std::string::npos) << r.output;
+  const size_t at = r.output.find(", 20 port: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string port_line = r.output.substr(at, r.output.find('\n', at) - at);
   EXPECT_NE(read_file(port).find("2 20 \"port\"\n"), std::string::npos);
+  // The history keeps the groups: lod writes the same level with the same groups.
+  const std::string level = out_dir() + "/port_level.msh";
+  r = run("lod " + history + " --step 1000000000 --surfaces -o " + level);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(port_line), std::string::npos) << port_line << "\n" << r.output;
+  EXPECT_EQ(read_file(level), read_file(port));
   const std::string coax = out_dir() + "/coax_simplified.msh";
   r = run("simplify " + data + "coax_order2.msh -o " + coax +
           " --size 2 --tolerance 0.01 --surfaces");

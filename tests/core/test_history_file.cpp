@@ -292,6 +292,95 @@ TEST(HistoryFile, MaterialNamesRoundTripAndAreChecked) {
   EXPECT_NE(error_with(huge).find("truncated material names"), std::string::npos);
 }
 
+// The input's surface groups are saved last: read back, they group a level as before;
+// damaged, out of range or out of order, the file is refused.
+TEST(HistoryFile, SurfaceGroupsRoundTripAndAreChecked) {
+  const SimplifyResult& r = small_run();
+  // A group of the first few boundary triangles of the base.
+  SurfaceGroups plain;
+  ASSERT_TRUE(group_surface(r.base, &plain).ok());
+  InputSurfaceGroup port;
+  port.tag = 40;
+  port.name = "port";
+  for (size_t i = 0; i < 6; ++i) {
+    const auto& v = plain.surface[plain.groups[0].triangles[i]].v;
+    port.triangles.push_back(
+        {r.base.positions[v[0]], r.base.positions[v[1]], r.base.positions[v[2]]});
+  }
+  const SurfacePatches patches(r.base, {port});
+  ASSERT_TRUE(patches.any());
+  const std::vector<MaterialName> names = {{1, "iron"}};
+  const std::string path = out_path("groups.tlh");
+  const std::string plain_path = out_path("groups_none.tlh");
+  ASSERT_TRUE(write_history(path, r.base, r.history, nullptr, &names, &patches).ok());
+  ASSERT_TRUE(write_history(plain_path, r.base, r.history, nullptr, &names).ok());
+  TetMesh base;
+  CollapseHistory history;
+  std::vector<MaterialName> read_names;
+  SurfacePatches read;
+  Status s = read_history(path, &base, &history, nullptr, &read_names, &read);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(read_names.size(), 1u);
+  ASSERT_EQ(read.groups().size(), 1u);
+  EXPECT_EQ(read.groups()[0].tag, 40);
+  EXPECT_EQ(read.groups()[0].name, "port");
+  EXPECT_EQ(read.groups()[0].triangles, 6u);
+  ASSERT_EQ(read.entries().size(), patches.entries().size());
+  for (size_t i = 0; i < read.entries().size(); ++i) {
+    const SurfacePatches::Entry &x = read.entries()[i], &y = patches.entries()[i];
+    EXPECT_EQ(std::memcmp(x.p.data(), y.p.data(), sizeof x.p), 0) << i;
+    EXPECT_EQ(x.inner, y.inner);
+    EXPECT_EQ(x.outer, y.outer);
+    EXPECT_EQ(x.group, y.group);
+  }
+  SurfaceGroups a, b;
+  ASSERT_TRUE(group_surface(r.output, &a, patches).ok());
+  ASSERT_TRUE(group_surface(r.output, &b, read).ok());
+  ASSERT_EQ(a.groups.size(), b.groups.size());
+  for (size_t g = 0; g < a.groups.size(); ++g) {
+    EXPECT_EQ(a.groups[g].tag, b.groups[g].tag);
+    EXPECT_EQ(a.groups[g].triangles, b.groups[g].triangles);
+  }
+  s = read_history(plain_path, &base, &history, nullptr, nullptr, &read);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_FALSE(read.any());
+
+  const std::string whole = read_bytes(path);
+  const size_t at = read_bytes(plain_path).size();
+  ASSERT_EQ(whole.substr(at, 8), "TLGROUP1");
+  const std::string damaged = out_path("damaged_groups.tlh");
+  auto error_with = [&](const std::string& bytes) {
+    write_bytes(damaged, bytes);
+    TetMesh m;
+    CollapseHistory h;
+    SurfacePatches p;
+    const Status status = read_history(damaged, &m, &h, nullptr, nullptr, &p);
+    return status.ok() ? std::string("accepted") : status.message();
+  };
+  // After the magic, the count and the group (4 + 4 + 4 "port" + 8 + 8): the entry
+  // count, then the first entry's corners (72 bytes), inner, outer and group.
+  const size_t first_entry = at + 8 + 8 + 28 + 8;
+  auto with = [&](size_t offset, const void* value, size_t n) {
+    std::string bytes = whole;
+    std::memcpy(&bytes[offset], value, n);
+    return bytes;
+  };
+  const uint32_t bad_group = 5;
+  EXPECT_NE(error_with(with(first_entry + 80, &bad_group, 4)).find("surface group triangle 0"),
+            std::string::npos);
+  const double inf = INFINITY;
+  EXPECT_NE(error_with(with(first_entry, &inf, 8)).find("surface group triangle 0"),
+            std::string::npos);
+  const int32_t outer = -7;
+  EXPECT_NE(error_with(with(first_entry + 76, &outer, 4)).find("surface group triangle 0"),
+            std::string::npos);
+  EXPECT_NE(error_with(whole + "TLNAMES1").find("bytes after the thresholds or names"),
+            std::string::npos);
+  for (size_t n = at + 1; n < whole.size(); n += 29)
+    EXPECT_NE(error_with(whole.substr(0, n)).find("corrupt history"), std::string::npos) << n;
+  EXPECT_EQ(error_with(whole), "accepted");
+}
+
 // A forged history: one field changed, each caught by the check that names it.
 TEST(HistoryFile, ForgedStepsAreNamed) {
   const SimplifyResult& r = small_run();

@@ -450,19 +450,22 @@ TEST(ViewerWindow, SaveKeepsMaterialNames) {
   ViewerRun run = run_viewer(dir, "'" + input + "' --size 320x240 --script save.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string names =
-      "$PhysicalNames\n4\n3 1 \"inner_conductor\"\n3 2 \"dielectric_inner\"\n"
-      "3 3 \"dielectric_outer\"\n3 4 \"shield\"\n";
+      "3 1 \"inner_conductor\"\n3 2 \"dielectric_inner\"\n"
+      "3 3 \"dielectric_outer\"\n3 4 \"shield\"\n$EndPhysicalNames\n";
   auto text_of = [&](const char* file) {
     std::ifstream f(dir / file);
     return std::string{std::istreambuf_iterator<char>(f), {}};
   };
   EXPECT_NE(text_of("simplified.msh").find(names), std::string::npos)
       << text_of("simplified.msh").substr(0, 300);
-  // The history it saved keeps them: opened again, a level saved from it has them.
-  std::ofstream(dir / "again.script") << "save from_history.msh\nquit\n";
+  // The history it saved keeps them, and the input's surface groups: opened again, a
+  // level saved from it has them.
+  std::ofstream(dir / "again.script") << "save from_history.msh surfaces\nquit\n";
   run = run_viewer(dir, "run.tlh --size 320x240 --script again.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(text_of("from_history.msh").find(names), std::string::npos)
+      << text_of("from_history.msh").substr(0, 300);
+  EXPECT_NE(text_of("from_history.msh").find("2 20 \"ends\"\n2 21 \"jacket\"\n"), std::string::npos)
       << text_of("from_history.msh").substr(0, 300);
 }
 
