@@ -180,10 +180,12 @@ void SurfacePatches::build_index() {
     cell_ *= 1.25;
   }
   origin_ = lo;
-  for (int k = 0; k < 3; ++k) {
-    const double n = std::floor(span[k] / cell_) + 1;
-    dims_[k] = finite && n >= 1 && n <= limit ? int(n) : 1;
-  }
+  auto set_dims = [&] {
+    for (int k = 0; k < 3; ++k) {
+      const double n = std::floor(span[k] / cell_) + 1;
+      dims_[k] = finite && n >= 1 && n <= limit ? int(n) : 1;
+    }
+  };
   auto cell_range = [&](const Entry& e, int* from, int* to) {
     for (int k = 0; k < 3; ++k) {
       double a = e.p[0][k], b = a;
@@ -192,6 +194,17 @@ void SurfacePatches::build_index() {
       to[k] = cell_index(b, k);
     }
   };
+  // A few triangles far larger than the mean would each fill many cells: coarser
+  // cells until the grid holds at most 16 entries' worth.
+  for (set_dims();; cell_ *= 2, set_dims()) {
+    double held = 0;
+    for (const Entry& e : entries_) {
+      int from[3], to[3];
+      cell_range(e, from, to);
+      held += double(to[0] - from[0] + 1) * (to[1] - from[1] + 1) * (to[2] - from[2] + 1);
+    }
+    if (held <= 16.0 * double(entries_.size()) + 1024 || dims_[0] * dims_[1] * dims_[2] == 1) break;
+  }
   cell_start_.assign(size_t(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<uint32_t> cursor;
@@ -226,37 +239,49 @@ uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int
   for (int k = 0; k < 3; ++k) center[k] = cell_index(q[k], k);
   double best = INFINITY;
   uint32_t found = kNone;
-  const int max_radius = std::max({dims_[0], dims_[1], dims_[2]});
-  for (int r = 0; r <= max_radius; ++r) {
-    for (int z = center[2] - r; z <= center[2] + r; ++z) {
-      if (z < 0 || z >= dims_[2]) continue;
-      for (int y = center[1] - r; y <= center[1] + r; ++y) {
-        if (y < 0 || y >= dims_[1]) continue;
-        for (int x = center[0] - r; x <= center[0] + r; ++x) {
-          if (x < 0 || x >= dims_[0]) continue;
-          if (std::max(
-                  {std::abs(x - center[0]), std::abs(y - center[1]), std::abs(z - center[2])}) != r)
-            continue;  // an inner shell, already seen
-          const size_t cell = cell_of(x, y, z);
-          for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-            const uint32_t i = cell_entries_[k];
-            const Entry& e = entries_[i];
-            if (e.inner != inner || e.outer != outer) continue;
-            const double d = squared_distance(q, e.p);
-            if (d < best || (d == best && i < found)) best = d, found = i;
-          }
+  auto visit = [&](int x, int y, int z) {
+    const size_t cell = cell_of(x, y, z);
+    for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+      const uint32_t i = cell_entries_[k];
+      const Entry& e = entries_[i];
+      if (e.inner != inner || e.outer != outer) continue;
+      const double d = squared_distance(q, e.p);
+      if (d < best || (d == best && i < found)) best = d, found = i;
+    }
+  };
+  // Shells of cells around the centre cell, outwards (only each shell's own cells),
+  // within a budget of cells: a triangle farther than that from every input triangle
+  // of its pair (none is, on a mesh made from the input) is in no group.
+  size_t visited = 0;
+  constexpr size_t kCellBudget = 1 << 14;
+  for (int r = 0; visited < kCellBudget; ++r) {
+    const int z0 = std::max(center[2] - r, 0), z1 = std::min(center[2] + r, dims_[2] - 1);
+    const int y0 = std::max(center[1] - r, 0), y1 = std::min(center[1] + r, dims_[1] - 1);
+    const int x0 = std::max(center[0] - r, 0), x1 = std::min(center[0] + r, dims_[0] - 1);
+    for (int z = z0; z <= z1; ++z) {
+      const bool z_face = std::abs(z - center[2]) == r;
+      for (int y = y0; y <= y1; ++y) {
+        if (z_face || std::abs(y - center[1]) == r) {
+          for (int x = x0; x <= x1; ++x) visit(x, y, z), ++visited;
+        } else {
+          if (center[0] - r >= 0) visit(center[0] - r, y, z), ++visited;
+          if (r > 0 && center[0] + r < dims_[0]) visit(center[0] + r, y, z), ++visited;
         }
       }
     }
     // Every cell not yet seen lies beyond the box of shells 0..r around the centre
-    // cell: stop once the best is nearer than that box's faces.
+    // cell, on a side where the grid goes on: stop once the best is nearer than
+    // those sides, or when there are none.
     double margin = INFINITY;
     for (int k = 0; k < 3; ++k) {
-      const double low = origin_[k] + double(center[k] - r) * cell_;
-      const double high = origin_[k] + double(center[k] + r + 1) * cell_;
-      margin = std::min({margin, std::max(0.0, q[k] - low), std::max(0.0, high - q[k])});
+      if (center[k] - r > 0)
+        margin =
+            std::min(margin, std::max(0.0, q[k] - (origin_[k] + double(center[k] - r) * cell_)));
+      if (center[k] + r < dims_[k] - 1)
+        margin =
+            std::min(margin, std::max(0.0, origin_[k] + double(center[k] + r + 1) * cell_ - q[k]));
     }
-    if (found != kNone && best <= margin * margin) break;
+    if (margin == INFINITY || (found != kNone && best <= margin * margin)) break;
   }
   return found == kNone ? kNone : entries_[found].group;
 }
