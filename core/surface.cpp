@@ -85,35 +85,6 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups) {
   return group_surface(mesh, groups, SurfacePatches());
 }
 
-namespace {
-
-// Squared distance from p to the triangle t (Ericson, Real-Time Collision Detection,
-// 5.1.5: the closest point by the Voronoi region of p).
-double squared_distance(const Vec3& p, const std::array<Vec3, 3>& t) {
-  const Vec3 &a = t[0], &b = t[1], &c = t[2];
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return squared_length(ap);
-  const Vec3 bp = p - b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return squared_length(bp);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return squared_length(p - (a + ab * (d1 / (d1 - d3))));
-  const Vec3 cp = p - c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return squared_length(cp);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return squared_length(p - (a + ac * (d2 / (d2 - d6))));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-    return squared_length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
-  const double sum = va + vb + vc;
-  if (!(sum > 0)) return std::min({squared_length(ap), squared_length(bp), squared_length(cp)});
-  return squared_length(p - (a + ab * (vb / sum) + ac * (vc / sum)));
-}
-
-}  // namespace
-
 SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups) {
   const std::vector<SurfaceTriangle> surface =
       extract_surface(input, build_adjacency(input).tet_neighbors);
@@ -151,80 +122,22 @@ SurfacePatches::SurfacePatches(std::vector<Group> groups, std::vector<Entry> ent
 }
 
 void SurfacePatches::build_index() {
-  if (entries_.empty()) return;
-  for (const Entry& e : entries_) pairs_.push_back({e.inner, e.outer});
-  std::sort(pairs_.begin(), pairs_.end());
-  pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
-  // The grid: cells about the mean triangle's size, at most ~2 entries' worth.
-  Vec3 lo = entries_[0].p[0], hi = lo;
-  double extent_sum = 0;
-  for (const Entry& e : entries_) {
-    Vec3 elo = e.p[0], ehi = e.p[0];
-    for (const Vec3& q : e.p) {
-      elo = {std::min(elo.x, q.x), std::min(elo.y, q.y), std::min(elo.z, q.z)};
-      ehi = {std::max(ehi.x, q.x), std::max(ehi.y, q.y), std::max(ehi.z, q.z)};
+  std::vector<std::pair<std::pair<int32_t, int32_t>, uint32_t>> by_pair(entries_.size());
+  for (uint32_t i = 0; i < entries_.size(); ++i)
+    by_pair[i] = {{entries_[i].inner, entries_[i].outer}, i};
+  std::sort(by_pair.begin(), by_pair.end());
+  for (size_t i = 0; i < by_pair.size();) {
+    size_t j = i;
+    std::vector<Triangle3> triangles;
+    std::vector<uint32_t> ids;
+    for (; j < by_pair.size() && by_pair[j].first == by_pair[i].first; ++j) {
+      triangles.push_back(entries_[by_pair[j].second].p);
+      ids.push_back(by_pair[j].second);
     }
-    lo = {std::min(lo.x, elo.x), std::min(lo.y, elo.y), std::min(lo.z, elo.z)};
-    hi = {std::max(hi.x, ehi.x), std::max(hi.y, ehi.y), std::max(hi.z, ehi.z)};
-    extent_sum += length(ehi - elo);
-  }
-  const Vec3 span = hi - lo;
-  cell_ = std::max(extent_sum / double(entries_.size()), 1e-300);
-  const double limit = 2.0 * double(entries_.size()) + 8;
-  // (Coordinates far apart can overflow the span: then one cell holds everything.)
-  const bool finite = is_finite(span) && std::isfinite(cell_);
-  for (int round = 0; finite && round < 4000; ++round) {
-    double cells = 1;
-    for (int k = 0; k < 3; ++k) cells *= std::floor(span[k] / cell_) + 1;
-    if (cells <= limit) break;
-    cell_ *= 1.25;
-  }
-  origin_ = lo;
-  auto set_dims = [&] {
-    for (int k = 0; k < 3; ++k) {
-      const double n = std::floor(span[k] / cell_) + 1;
-      dims_[k] = finite && n >= 1 && n <= limit ? int(n) : 1;
-    }
-  };
-  auto cell_range = [&](const Entry& e, int* from, int* to) {
-    for (int k = 0; k < 3; ++k) {
-      double a = e.p[0][k], b = a;
-      for (const Vec3& q : e.p) a = std::min(a, q[k]), b = std::max(b, q[k]);
-      from[k] = cell_index(a, k);
-      to[k] = cell_index(b, k);
-    }
-  };
-  // A few triangles far larger than the mean would each fill many cells: coarser
-  // cells until the grid holds at most 16 entries' worth.
-  for (set_dims();; cell_ *= 2, set_dims()) {
-    double held = 0;
-    for (const Entry& e : entries_) {
-      int from[3], to[3];
-      cell_range(e, from, to);
-      held += double(to[0] - from[0] + 1) * (to[1] - from[1] + 1) * (to[2] - from[2] + 1);
-    }
-    if (held <= 16.0 * double(entries_.size()) + 1024 || dims_[0] * dims_[1] * dims_[2] == 1) break;
-  }
-  cell_start_.assign(size_t(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<uint32_t> cursor;
-    if (pass == 1) {
-      for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-      cursor.assign(cell_start_.begin(), cell_start_.end() - 1);
-      cell_entries_.resize(cell_start_.back());
-    }
-    for (uint32_t i = 0; i < entries_.size(); ++i) {
-      int from[3], to[3];
-      cell_range(entries_[i], from, to);
-      for (int z = from[2]; z <= to[2]; ++z)
-        for (int y = from[1]; y <= to[1]; ++y)
-          for (int x = from[0]; x <= to[0]; ++x) {
-            if (pass == 0)
-              ++cell_start_[cell_of(x, y, z) + 1];
-            else
-              cell_entries_[cursor[cell_of(x, y, z)]++] = i;
-          }
-    }
+    pairs_.push_back(by_pair[i].first);
+    grids_.emplace_back(std::move(triangles));
+    grid_entries_.push_back(std::move(ids));
+    i = j;
   }
 }
 
@@ -232,58 +145,13 @@ uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int
                                 int32_t outer) const {
   if (!any_) return kNone;
   if (outer != kOutsideMaterial && outer < inner) std::swap(inner, outer);
-  // A pair the input does not have would search the whole grid for nothing.
-  if (!std::binary_search(pairs_.begin(), pairs_.end(), std::make_pair(inner, outer))) return kNone;
-  const Vec3 q = (a + b + c) * (1.0 / 3.0);
-  int center[3];
-  for (int k = 0; k < 3; ++k) center[k] = cell_index(q[k], k);
-  double best = INFINITY;
-  uint32_t found = kNone;
-  auto visit = [&](int x, int y, int z) {
-    const size_t cell = cell_of(x, y, z);
-    for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-      const uint32_t i = cell_entries_[k];
-      const Entry& e = entries_[i];
-      if (e.inner != inner || e.outer != outer) continue;
-      const double d = squared_distance(q, e.p);
-      if (d < best || (d == best && i < found)) best = d, found = i;
-    }
-  };
-  // Shells of cells around the centre cell, outwards (only each shell's own cells),
-  // within a budget of cells: a triangle farther than that from every input triangle
-  // of its pair (none is, on a mesh made from the input) is in no group.
-  size_t visited = 0;
-  constexpr size_t kCellBudget = 1 << 14;
-  for (int r = 0; visited < kCellBudget; ++r) {
-    const int z0 = std::max(center[2] - r, 0), z1 = std::min(center[2] + r, dims_[2] - 1);
-    const int y0 = std::max(center[1] - r, 0), y1 = std::min(center[1] + r, dims_[1] - 1);
-    const int x0 = std::max(center[0] - r, 0), x1 = std::min(center[0] + r, dims_[0] - 1);
-    for (int z = z0; z <= z1; ++z) {
-      const bool z_face = std::abs(z - center[2]) == r;
-      for (int y = y0; y <= y1; ++y) {
-        if (z_face || std::abs(y - center[1]) == r) {
-          for (int x = x0; x <= x1; ++x) visit(x, y, z), ++visited;
-        } else {
-          if (center[0] - r >= 0) visit(center[0] - r, y, z), ++visited;
-          if (r > 0 && center[0] + r < dims_[0]) visit(center[0] + r, y, z), ++visited;
-        }
-      }
-    }
-    // Every cell not yet seen lies beyond the box of shells 0..r around the centre
-    // cell, on a side where the grid goes on: stop once the best is nearer than
-    // those sides, or when there are none.
-    double margin = INFINITY;
-    for (int k = 0; k < 3; ++k) {
-      if (center[k] - r > 0)
-        margin =
-            std::min(margin, std::max(0.0, q[k] - (origin_[k] + double(center[k] - r) * cell_)));
-      if (center[k] + r < dims_[k] - 1)
-        margin =
-            std::min(margin, std::max(0.0, origin_[k] + double(center[k] + r + 1) * cell_ - q[k]));
-    }
-    if (margin == INFINITY || (found != kNone && best <= margin * margin)) break;
-  }
-  return found == kNone ? kNone : entries_[found].group;
+  const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), std::make_pair(inner, outer));
+  if (it == pairs_.end() || *it != std::make_pair(inner, outer)) return kNone;
+  const size_t pair = size_t(it - pairs_.begin());
+  // Within a budget of cells, far more than a mesh made from the input needs (its
+  // triangles lie within the tolerance of the input's).
+  const uint32_t i = grids_[pair].nearest((a + b + c) * (1.0 / 3.0), nullptr, 1 << 14);
+  return i == TriangleGrid::kNone ? kNone : entries_[grid_entries_[pair][i]].group;
 }
 
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches) {

@@ -11,6 +11,7 @@
 #include "core/adjacency.h"
 #include "core/status.h"
 #include "core/tet_mesh.h"
+#include "core/triangle_grid.h"
 
 namespace tetlod {
 
@@ -117,21 +118,12 @@ class SurfacePatches {
 
  private:
   void build_index();
-  // The grid cell along axis k of coordinate x, clamped to the grid (any x, NaN too).
-  int cell_index(double x, int k) const {
-    const double f = std::floor((x - origin_[k]) / cell_);
-    return f >= 0 ? (f < double(dims_[k] - 1) ? int(f) : dims_[k] - 1) : 0;
-  }
-  size_t cell_of(int x, int y, int z) const {
-    return (size_t(z) * size_t(dims_[1]) + size_t(y)) * size_t(dims_[0]) + size_t(x);
-  }
   std::vector<Group> groups_;
   std::vector<Entry> entries_;
-  std::vector<std::pair<int32_t, int32_t>> pairs_;   // the material pairs entries_ has, sorted
-  std::vector<uint32_t> cell_start_, cell_entries_;  // a uniform grid of entries (CSR)
-  Vec3 origin_;
-  double cell_ = 1;
-  int dims_[3] = {0, 0, 0};
+  // Per material pair (sorted): a grid of its entries' triangles, and their entries.
+  std::vector<std::pair<int32_t, int32_t>> pairs_;
+  std::vector<TriangleGrid> grids_;
+  std::vector<std::vector<uint32_t>> grid_entries_;
   bool any_ = false;
 };
 
