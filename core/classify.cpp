@@ -21,11 +21,6 @@ const char* feature_kind_name(FeatureKind kind) {
 
 namespace {
 
-struct EdgeUse {
-  uint32_t a, b;      // a < b
-  uint32_t triangle;  // index into the surface array
-};
-
 uint64_t material_pair_key(const SurfaceTriangle& t) {
   return (uint64_t{static_cast<uint32_t>(t.inner)} << 32) | static_cast<uint32_t>(t.outer);
 }
@@ -73,18 +68,7 @@ Classification classify_vertices(const TetMesh& mesh, const std::vector<SurfaceT
   for (const SurfaceTriangle& t : surface)
     for (uint32_t v : t.v) result.kind[v] = FeatureKind::kSurface;
 
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * surface.size());
-  for (uint32_t k = 0; k < surface.size(); ++k) {
-    const auto& v = surface[k].v;
-    for (int e = 0; e < 3; ++e) {
-      const uint32_t p = v[e], q = v[(e + 1) % 3];
-      uses.push_back({std::min(p, q), std::max(p, q), k});
-    }
-  }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.triangle < y.triangle);
-  });
+  const std::vector<SurfaceEdgeUse> uses = surface_edge_uses(surface);
 
   std::vector<VertexFeatures> features(vertex_count);
   std::vector<std::pair<uint64_t, uint32_t>> pairs;  // (material pair, patch)

@@ -697,21 +697,7 @@ class Engine {
   // (as Garland and Heckbert hold open boundaries).
   void add_border_quadrics(const std::vector<SurfaceTriangle>& surface,
                            const std::vector<uint32_t>& patch) {
-    struct Use {
-      uint32_t a, b, triangle;
-    };
-    std::vector<Use> uses;
-    uses.reserve(3 * surface.size());
-    for (uint32_t k = 0; k < surface.size(); ++k) {
-      const auto& v = surface[k].v;
-      for (int e = 0; e < 3; ++e) {
-        const uint32_t p = v[e], q = v[(e + 1) % 3];
-        uses.push_back({std::min(p, q), std::max(p, q), k});
-      }
-    }
-    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
-      return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.triangle < y.triangle);
-    });
+    const std::vector<SurfaceEdgeUse> uses = surface_edge_uses(surface);
     auto unit_normal = [&](const SurfaceTriangle& t) {
       const Vec3& p = pos_[t.v[0]];
       const Vec3 n = cross(pos_[t.v[1]] - p, pos_[t.v[2]] - p);

@@ -35,6 +35,22 @@ std::vector<SurfaceTriangle> extract_surface(const TetMesh& mesh,
   return triangles;
 }
 
+std::vector<SurfaceEdgeUse> surface_edge_uses(const std::vector<SurfaceTriangle>& surface) {
+  std::vector<SurfaceEdgeUse> uses;
+  uses.reserve(3 * surface.size());
+  for (uint32_t k = 0; k < surface.size(); ++k) {
+    const auto& v = surface[k].v;
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t p = v[e], q = v[(e + 1) % 3];
+      uses.push_back({std::min(p, q), std::max(p, q), k});
+    }
+  }
+  std::sort(uses.begin(), uses.end(), [](const SurfaceEdgeUse& x, const SurfaceEdgeUse& y) {
+    return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.triangle < y.triangle);
+  });
+  return uses;
+}
+
 int32_t gmsh_material_zero_tag(const std::vector<int32_t>& materials) {
   int32_t tag = 1;
   for (int32_t m : materials) {

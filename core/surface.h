@@ -28,6 +28,14 @@ struct SurfaceTriangle {
 std::vector<SurfaceTriangle> extract_surface(const TetMesh& mesh,
                                              const std::vector<uint32_t>& tet_neighbors);
 
+// An edge of a surface triangle: its ends (a < b) and the triangle (an index).
+struct SurfaceEdgeUse {
+  uint32_t a, b, triangle;
+};
+// Every edge of every triangle of `surface`, sorted by (a, b, triangle), so that the
+// triangles around an edge are consecutive.
+std::vector<SurfaceEdgeUse> surface_edge_uses(const std::vector<SurfaceTriangle>& surface);
+
 // The surface triangles grouped by material pair, as writers carry them for boundary
 // conditions (Gmsh physical surfaces, Medit triangle references, TetGen face
 // markers, Abaqus node sets and element-face surfaces). One group per pair that
