@@ -55,6 +55,19 @@ void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
 
+// Writes `bytes` to `path` and reads it as a history, asking for everything a history
+// can hold: "accepted", or the error.
+std::string read_error(const std::string& path, const std::string& bytes) {
+  write_bytes(path, bytes);
+  TetMesh base;
+  CollapseHistory history;
+  std::optional<SimplifyParams> params;
+  std::vector<MaterialName> names;
+  SurfacePatches patches;
+  const Status status = read_history(path, &base, &history, &params, &names, &patches);
+  return status.ok() ? std::string("accepted") : status.message();
+}
+
 // Every level of `history` over `base` has only positive tets: each step's changed
 // tets are checked right after it (the others keep their shape).
 void expect_positive_levels(const TetMesh& base, const CollapseHistory& history) {
@@ -158,14 +171,7 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
   const size_t at = read_bytes(plain).size();  // where the thresholds start
   ASSERT_EQ(whole.substr(at, 8), "TLPARAM1");
   const std::string damaged = out_path("damaged_params.tlh");
-  auto error_with = [&](const std::string& bytes) {
-    write_bytes(damaged, bytes);
-    TetMesh b;
-    CollapseHistory h;
-    std::optional<SimplifyParams> q;
-    const Status status = read_history(damaged, &b, &h, &q);
-    return status.ok() ? std::string("accepted") : status.message();
-  };
+  auto error_with = [&](const std::string& bytes) { return read_error(damaged, bytes); };
   auto with_double = [&](size_t offset, double value) {
     std::string bytes = whole;
     std::memcpy(&bytes[at + offset], &value, sizeof value);
@@ -247,14 +253,7 @@ TEST(HistoryFile, MaterialNamesRoundTripAndAreChecked) {
   const size_t at = read_bytes(plain).size();
   ASSERT_EQ(whole.substr(at, 8), "TLNAMES1");
   const std::string damaged = out_path("damaged_names.tlh");
-  auto error_with = [&](const std::string& bytes) {
-    write_bytes(damaged, bytes);
-    TetMesh b;
-    CollapseHistory h;
-    std::vector<MaterialName> n;
-    const Status status = read_history(damaged, &b, &h, nullptr, &n);
-    return status.ok() ? std::string("accepted") : status.message();
-  };
+  auto error_with = [&](const std::string& bytes) { return read_error(damaged, bytes); };
   auto with_u32 = [&](size_t offset, uint32_t value) {
     std::string bytes = whole;
     std::memcpy(&bytes[at + offset], &value, sizeof value);
@@ -349,14 +348,7 @@ TEST(HistoryFile, SurfaceGroupsRoundTripAndAreChecked) {
   const size_t at = read_bytes(plain_path).size();
   ASSERT_EQ(whole.substr(at, 8), "TLGROUP1");
   const std::string damaged = out_path("damaged_groups.tlh");
-  auto error_with = [&](const std::string& bytes) {
-    write_bytes(damaged, bytes);
-    TetMesh m;
-    CollapseHistory h;
-    SurfacePatches p;
-    const Status status = read_history(damaged, &m, &h, nullptr, nullptr, &p);
-    return status.ok() ? std::string("accepted") : status.message();
-  };
+  auto error_with = [&](const std::string& bytes) { return read_error(damaged, bytes); };
   // After the magic, the count and the group (4 + 4 + 4 "port" + 8 + 8): the entry
   // count, then the first entry's corners (72 bytes), inner, outer and group.
   const size_t first_entry = at + 8 + 8 + 28 + 8;
