@@ -1161,7 +1161,7 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
   if (Status s = check_mesh_path(path, options); !s) return s;
   save_path_ = path;
   save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
-                                                 input = scene_->input, patches = scene_->patches,
+                                                 patches = scene_->patches,
                                                  material_names = scene_->material_names,
                                                  mesh = scene_->lod->extract()]() mutable {
     Saved saved;

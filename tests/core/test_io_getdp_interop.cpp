@@ -7,11 +7,15 @@
 // same mesh), which holds only if every group carries exactly its triangles.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "core/electrostatics.h"
 #include "core/io/mesh_io.h"
+#include "core/simplify.h"
 #include "core/surface.h"
 #include "core/test_io_helpers.h"
 
@@ -19,19 +23,29 @@ namespace tetlod {
 namespace {
 
 // The formulation, after GetDP's electrostatics tutorials, with the physical tags of
-// the two electrodes' surfaces (Debian's GetDP reads Gmsh 2.2 files itself).
-std::string electrostatics_pro(int32_t inner, int32_t outer) {
+// the two electrodes' surfaces and the permittivity of each dielectric volume
+// (Debian's GetDP reads Gmsh 2.2 files itself).
+std::string electrostatics_pro(int32_t inner, int32_t outer,
+                               const std::vector<std::pair<int, double>>& eps) {
   const std::string in = std::to_string(inner), out = std::to_string(outer);
+  std::string volumes, functions;
+  for (const auto& [region, value] : eps) {
+    volumes += (volumes.empty() ? "" : ", ") + std::to_string(region);
+    std::ostringstream f;
+    f << "epsr[Region[" << region << "]] = " << value << "; ";
+    functions += f.str();
+  }
   return "Group {\n"
          "  Inner = Region[" +
-         in + "]; Outer = Region[" + out +
-         "];\n"
-         "  Shell2 = Region[2]; Shell3 = Region[3]; Vol = Region[{2, 3}];\n"
+         in + "]; Outer = Region[" + out + "]; Vol = Region[{" + volumes +
+         "}];\n"
          "  Dir = Region[{" +
          in + ", " + out +
          "}];\n"
          "}\n"
-         "Function { epsr[Shell2] = 2; epsr[Shell3] = 5; }\n"
+         "Function { " +
+         functions +
+         "}\n"
          "Constraint { { Name V; Case { { Region Inner; Value 1; }\n"
          "                              { Region Outer; Value 0; } } } }\n"
          "Jacobian { { Name Vol; Case { { Region All; Jacobian Vol; } } } }\n"
@@ -73,7 +87,7 @@ TEST(IoGetdpInterop, GetdpSolvesOnOurSurfaceGroups) {
   }
   ASSERT_GT(inner, 0);
   ASSERT_GT(outer, 0);
-  test::write_text(dir + "/spheres.pro", electrostatics_pro(inner, outer));
+  test::write_text(dir + "/spheres.pro", electrostatics_pro(inner, outer, {{2, 2.0}, {3, 5.0}}));
   std::remove((dir + "/W.txt").c_str());
   ASSERT_EQ(std::system(("cd '" + dir +
                          "' && getdp spheres.pro -msh spheres.msh -solve EleSta -pos Energy "
@@ -100,6 +114,78 @@ TEST(IoGetdpInterop, GetdpSolvesOnOurSurfaceGroups) {
   // RESULTS.md), above it as P1 energies are, by the bundled mesh's few per cent.
   EXPECT_GT(getdp_energy, 44.352 / 2);
   EXPECT_LT(getdp_energy, 1.1 * 44.352 / 2);
+}
+
+// Runs GetDP on `msh` (Gmsh 2.2) with `pro`; the energy it prints, or -1.
+double getdp_energy(const std::string& dir, const std::string& msh, const std::string& pro) {
+  test::write_text(dir + "/problem.pro", pro);
+  std::remove((dir + "/W.txt").c_str());
+  if (std::system(("cd '" + dir + "' && getdp problem.pro -msh '" + msh +
+                   "' -solve EleSta -pos Energy > getdp.log 2>&1")
+                      .c_str()) != 0)
+    return -1;
+  std::istringstream table(test::read_text(dir + "/W.txt"));
+  double zero = -1, energy = -1;
+  table >> zero >> energy;
+  return energy;
+}
+
+// A Gmsh coax (tests/data/gmsh/coax.geo) whose outer electrode is its own physical
+// surface "jacket", part of the shield's boundary: simplified by TetLOD, which keeps
+// the group, GetDP solves with V = 1 on the inner conductor's interface and V = 0 on
+// the jacket, and finds the energy it finds on the input mesh, and the exact one of
+// the three cylindrical layers (the ends are insulating, so the field is radial).
+TEST(IoGetdpInterop, GetdpSolvesOnAnInputGroupThroughSimplification) {
+  if (std::system("command -v getdp > /dev/null 2>&1") != 0) GTEST_SKIP() << "no getdp on PATH";
+  if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
+  const std::string dir = test::output_dir("getdp_coax");
+  ASSERT_EQ(std::system(("gmsh '" + std::string(TETLOD_SOURCE_DIR) +
+                         "/tests/data/gmsh/coax.geo' -3 -clmax 0.4 -v 0 -format msh41 -o '" + dir +
+                         "/coax.msh' > '" + dir + "/gmsh.log' 2>&1")
+                            .c_str()),
+            0)
+      << test::read_text(dir + "/gmsh.log");
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(dir + "/coax.msh", &input, &info).ok());
+  const SurfacePatches patches(input, info.surface_groups);
+  ASSERT_TRUE(patches.any());
+  SimplifyParams params;
+  params.sizing.uniform = 1.2;
+  params.tolerance = 0.02;
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(input, params, &result, {}, nullptr, &patches).ok());
+  ASSERT_LT(result.output.tet_count(), input.tet_count() / 2);
+
+  const std::vector<std::pair<int, double>> eps = {{2, 2.0}, {3, 4.0}, {4, 1.0}};
+  const double exact =
+      0.5 * 2 * M_PI * 4.0 / (std::log(2.0) / 2 + std::log(3.5 / 2) / 4 + std::log(4 / 3.5) / 1);
+  double energies[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    SCOPED_TRACE(k == 0 ? "input" : "simplified");
+    const TetMesh& mesh = k == 0 ? input : result.output;
+    SurfaceGroups groups;
+    ASSERT_TRUE(group_surface(mesh, &groups, patches).ok());
+    int32_t inner = 0, jacket = 0;
+    for (const SurfaceGroup& g : groups.groups) {
+      if (g.name == "interface_1_2") inner = g.tag;
+      if (g.name == "jacket") jacket = g.tag;
+    }
+    ASSERT_GT(inner, 0);
+    ASSERT_EQ(jacket, 21);
+    WriteOptions options;
+    options.gmsh_version = 22;
+    options.surface_groups = true;
+    options.groups = &groups;
+    const std::string msh = k == 0 ? "input22.msh" : "simplified22.msh";
+    ASSERT_TRUE(write_mesh(dir + "/" + msh, mesh, options).ok());
+    energies[k] = getdp_energy(dir, msh, electrostatics_pro(inner, jacket, eps));
+    ASSERT_GT(energies[k], 0) << test::read_text(dir + "/getdp.log");
+    // P1 energies lie above the exact one; the polygonal cylinders add a little.
+    EXPECT_GT(energies[k], 0.97 * exact);
+    EXPECT_LT(energies[k], 1.06 * exact);
+  }
+  EXPECT_NEAR(energies[1], energies[0], 0.03 * energies[0]);
 }
 
 }  // namespace
