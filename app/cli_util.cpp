@@ -131,10 +131,24 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
 
 void print_patch_notes(const SurfacePatches& patches, const char* command) {
   for (const SurfacePatches::Group& g : patches.groups()) {
-    if (g.missing == 0) continue;
     const std::string label = (g.name.empty() ? std::string("unnamed") : "'" + g.name + "'") +
                               " (tag " + std::to_string(g.tag) + ")";
-    if (g.triangles == 0) {
+    if (g.shared > 0) {
+      if (g.triangles == 0 && g.missing == 0) {
+        std::fprintf(stderr,
+                     "tetlod %s: note: every triangle of surface group %s is also in a smaller "
+                     "group, which holds it (a triangle is written in one group): not written\n",
+                     command, label.c_str());
+        continue;
+      }
+      std::fprintf(stderr,
+                   "tetlod %s: note: %zu of the triangles of surface group %s are also in a "
+                   "smaller group, which holds them (a triangle is written in one group): "
+                   "written without them\n",
+                   command, g.shared, label.c_str());
+    }
+    if (g.missing == 0) continue;
+    if (g.triangles == 0 && g.shared == 0) {
       std::fprintf(stderr,
                    "tetlod %s: note: surface group %s is not on a boundary or interface of the "
                    "mesh (an inner surface of one material?): not written\n",

@@ -111,22 +111,31 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
     index.emplace(triangle_key(p[t.v[0]], p[t.v[1]], p[t.v[2]]), uint32_t(entries_.size()));
     entries_.push_back({{p[t.v[0]], p[t.v[1]], p[t.v[2]]}, t.inner, t.outer, kNone});
   }
-  for (const InputSurfaceGroup& g : groups) {
-    Group group;
+  // A triangle in several groups goes to the smallest ("x0" rather than "all outer"),
+  // so that both are written; the first in the input's order among equals.
+  groups_.resize(groups.size());
+  std::vector<uint32_t> order(groups.size());
+  for (uint32_t g = 0; g < order.size(); ++g) order[g] = g;
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return groups[a].triangles.size() < groups[b].triangles.size();
+  });
+  for (const uint32_t id : order) {
+    const InputSurfaceGroup& g = groups[id];
+    Group& group = groups_[id];
     group.tag = g.tag;
     group.name = g.name;
-    const uint32_t id = uint32_t(groups_.size());
     for (const auto& t : g.triangles) {
       const auto it = g.tag >= 1 ? index.find(triangle_key(t[0], t[1], t[2])) : index.end();
       if (it == index.end()) {
         ++group.missing;
       } else if (entries_[it->second].group == kNone) {
-        entries_[it->second].group = id;  // the first group holding it
+        entries_[it->second].group = id;
         ++group.triangles;
         any_ = true;
+      } else if (entries_[it->second].group != id) {
+        ++group.shared;
       }
     }
-    groups_.push_back(std::move(group));
   }
   build_index();
 }

@@ -90,7 +90,8 @@ struct InputSurfaceGroup {
 // The input file's surface groups laid on the surface of the mesh read with them, so
 // that they can be found again on any mesh made from it (subdivided, simplified, a
 // level of its history): every boundary and interface triangle of the input, with
-// the first input group that holds it (by the positions of its corners). locate()
+// the smallest input group that holds it (by the positions of its corners; the first
+// in the input's order among groups of one size). locate()
 // gives a triangle of another mesh the group of the input triangle of the same
 // material pair nearest its centroid: exact for the input's own triangles and for
 // pieces of them, and right away from a group's border for a simplified surface,
@@ -103,6 +104,7 @@ class SurfacePatches {
     std::string name;
     size_t triangles = 0;  // of the input surface
     size_t missing = 0;    // triangles of the group that are not on it
+    size_t shared = 0;     // on it, but held by a smaller group (not saved in histories)
   };
   // An input surface triangle and its group (kNone if in none).
   struct Entry {

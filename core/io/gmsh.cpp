@@ -355,7 +355,9 @@ class GmshParser {
   // The rest of a binary (partitioned) entity after its tags: the coordinates or
   // bounding box, the physical tags (the first into `physical`, 0 if none), and for
   // curves, surfaces and volumes the bounding entities.
-  bool binary_entity_tail(BinaryCursor& c, int dimension, int32_t* physical) {
+  // `others`, if given, receives the physical tags after the first (at most 64).
+  bool binary_entity_tail(BinaryCursor& c, int dimension, int32_t* physical,
+                          std::vector<int64_t>* others = nullptr) {
     for (int k = 0; k < (dimension == 0 ? 3 : 6); ++k) c.f64();
     uint64_t physical_count = 0;
     if (!binary_count(c, &physical_count, "physical tag count", 4)) return false;
@@ -363,6 +365,7 @@ class GmshParser {
     for (uint64_t k = 0; k < physical_count; ++k) {
       const int32_t value = c.i32();
       if (k == 0) *physical = value;
+      if (k > 0 && others && others->size() < 64) others->push_back(value);
     }
     if (dimension > 0) {
       uint64_t bounding = 0;
@@ -416,9 +419,11 @@ class GmshParser {
       for (uint64_t i = 0; i < counts[dimension] && c.ok(); ++i) {
         const int32_t tag = c.i32();
         int32_t physical = 0;
-        if (!binary_entity_tail(c, dimension, &physical)) return false;
+        std::vector<int64_t> others;
+        if (!binary_entity_tail(c, dimension, &physical, &others)) return false;
         if (dimension == 3) volume_physical_[tag] = physical;
         if (dimension == 2) surface_physical_[tag] = physical;
+        if (dimension == 2 && !others.empty()) surface_other_physicals_[tag] = std::move(others);
       }
     }
     return end_binary(c, "$Entities") && expect_end("$EndEntities");
@@ -611,6 +616,8 @@ class GmshParser {
       }
       const int64_t surface_group =
           dimension == 2 && is_triangle_type(type) ? surface_physical_of(entity) : 0;
+      const std::vector<int64_t>* other_groups =
+          surface_group > 0 ? other_physicals_of(entity) : nullptr;
       for (uint64_t i = 0; i < block_size; ++i) {
         const uint64_t element_tag = c.u64();
         if (!is_tet) {
@@ -619,7 +626,11 @@ class GmshParser {
             const uint64_t node = c.u64();
             if (k < 3) corners[k] = as_tag(node);
           }
-          if (c.ok() && surface_group > 0) store_triangle(surface_group, corners);
+          if (c.ok() && surface_group > 0) {
+            store_triangle(surface_group, corners);
+            if (other_groups)
+              for (int64_t other : *other_groups) store_triangle(other, corners);
+          }
           continue;
         }
         int64_t corners[4];
@@ -688,7 +699,8 @@ class GmshParser {
   }
 
   // Reads "numPhysicalTags tag..." and returns the first tag (0 if none).
-  bool read_physical_tags(int64_t* first) {
+  // `others`, if given, receives the tags after the first (at most 64).
+  bool read_physical_tags(int64_t* first, std::vector<int64_t>* others = nullptr) {
     uint64_t count = 0;
     if (!scanner_.read_count(&count, "physical tag count", 2)) return false;
     *first = 0;
@@ -696,6 +708,7 @@ class GmshParser {
       int64_t tag = 0;
       if (!scanner_.read_int(&tag, "physical tag")) return false;
       if (i == 0) *first = tag;
+      if (i > 0 && others && others->size() < 64) others->push_back(tag);
     }
     return true;
   }
@@ -717,7 +730,8 @@ class GmshParser {
         for (int k = 0; k < (dimension == 0 ? 3 : 6); ++k) {
           if (!scanner_.read_double(&coordinate, "entity bounding box")) return false;
         }
-        if (!read_physical_tags(&physical)) return false;
+        std::vector<int64_t> others;
+        if (!read_physical_tags(&physical, &others)) return false;
         if (dimension > 0) {
           uint64_t bounding = 0;
           if (!scanner_.read_count(&bounding, "bounding entity count", 2) ||
@@ -727,6 +741,7 @@ class GmshParser {
         }
         if (dimension == 3) volume_physical_[tag] = physical;
         if (dimension == 2) surface_physical_[tag] = physical;
+        if (dimension == 2 && !others.empty()) surface_other_physicals_[tag] = std::move(others);
       }
     }
     return expect_end("$EndEntities");
@@ -934,6 +949,11 @@ class GmshParser {
     const auto it = surface_physical_.find(entity);
     return it != surface_physical_.end() ? it->second : 0;
   }
+  // Its other physical tags (a surface in several groups), or null.
+  const std::vector<int64_t>* other_physicals_of(int64_t entity) const {
+    const auto it = surface_other_physicals_.find(entity);
+    return it != surface_other_physicals_.end() ? &it->second : nullptr;
+  }
 
   // A triangle of the physical surface `physical`, by its corners' node tags, kept by
   // their positions for match_surface_groups(); one naming a node not in $Nodes is
@@ -949,12 +969,14 @@ class GmshParser {
   }
 
   // Reads a triangle element's node tags (of any order) and stores its corners.
-  bool read_triangle(int64_t type, int64_t physical) {
+  bool read_triangle(int64_t type, int64_t physical, const std::vector<int64_t>* others) {
     int64_t corners[3];
     for (int64_t& corner : corners) {
       if (!scanner_.read_int(&corner, "node tag")) return false;
     }
     store_triangle(physical, corners);
+    if (others)
+      for (int64_t other : *others) store_triangle(other, corners);
     return scanner_.skip_numbers(uint64_t(nodes_per_element(type) - 3), "node tags");
   }
 
@@ -993,7 +1015,7 @@ class GmshParser {
           return false;
         }
       } else if (physical > 0 && is_triangle_type(type)) {
-        if (!read_triangle(type, physical)) return false;
+        if (!read_triangle(type, physical, nullptr)) return false;
       } else if (!skip_element_nodes(type)) {
         return false;
       }
@@ -1035,11 +1057,13 @@ class GmshParser {
       }
       const int64_t surface_group =
           dimension == 2 && is_triangle_type(type) ? surface_physical_of(entity) : 0;
+      const std::vector<int64_t>* other_groups =
+          surface_group > 0 ? other_physicals_of(entity) : nullptr;
       for (uint64_t i = 0; i < block_size; ++i) {
         int64_t element_tag = 0;
         if (!scanner_.read_int(&element_tag, "element tag")) return false;
         const bool ok = is_tet              ? read_tet(element_tag, type, material, scanner_.line())
-                        : surface_group > 0 ? read_triangle(type, surface_group)
+                        : surface_group > 0 ? read_triangle(type, surface_group, other_groups)
                                             : skip_element_nodes(type);
         if (!ok) return false;
       }
@@ -1249,7 +1273,8 @@ class GmshParser {
   std::unordered_map<int64_t, int64_t> volume_physical_;   // volume entity -> first physical tag
   std::unordered_map<int64_t, int64_t> volume_parent_;     // partition volume -> model volume
   std::unordered_map<int64_t, int64_t> surface_physical_;  // surface entity -> first physical
-  std::map<int64_t, std::vector<std::array<Vec3, 3>>> surface_triangles_;  // by physical tag
+  std::unordered_map<int64_t, std::vector<int64_t>> surface_other_physicals_;  // -> the others
+  std::map<int64_t, std::vector<std::array<Vec3, 3>>> surface_triangles_;      // by physical tag
   // For the notes: physical names of surfaces and volumes other than "material_<n>"
   // ((dimension, tag) -> name), elements by type, tets by where their material came from.
   std::map<std::pair<int64_t, int64_t>, std::string> physical_names_;

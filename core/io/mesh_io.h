@@ -37,8 +37,8 @@
 //    names of 3D groups are kept as ReadInfo::material_names. Node and
 //    element tags may be sparse or huge: vertices come out ordered by node tag,
 //    tets by element tag. The triangles (of any order) of physical surfaces are kept
-//    by their corners' positions as ReadInfo::surface_groups (an entity's first
-//    physical tag; not followed through partitions).
+//    by their corners' positions as ReadInfo::surface_groups (in every physical
+//    group of their entity; not followed through partitions).
 //  - TetGen: `.node` header "n 3 nattr nmarker", `.ele` header "m 4|10 nattr";
 //    0- or 1-based numbering from the first index in .node, '#' comments; the
 //    first region attribute must be an integer (no attribute: material 0). Either

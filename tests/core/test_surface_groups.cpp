@@ -299,8 +299,9 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
       EXPECT_EQ(got, want) << name;
     }
   }
-  // Unnamed groups are surface_<tag>; a triangle in two groups is the first one's;
-  // a triangle that is not on the surface is counted as missing.
+  // Unnamed groups are surface_<tag>; a triangle in two groups is the smaller one's
+  // (so that both are written); a triangle that is not on the surface is counted as
+  // missing.
   TetMesh mesh = box2();
   const SurfaceGroups plain = groups_of(mesh);
   auto input_of = [&](const SurfaceGroup& g, int32_t tag) {
@@ -319,15 +320,16 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   input[2].triangles.push_back({Vec3{0, 0, 0}, Vec3{9, 9, 9}, Vec3{1, 2, 3}});
   const SurfacePatches patches(mesh, input);
   EXPECT_EQ(patches.groups()[2].missing, 1u);
-  EXPECT_EQ(patches.groups()[2].triangles, plain.groups[2].triangles.size());
+  EXPECT_EQ(patches.groups()[2].triangles, plain.groups[2].triangles.size() + 1);
+  EXPECT_EQ(patches.groups()[0].shared, 1u);  // its triangle went to the smaller group 60
   SurfaceGroups groups;
   ASSERT_TRUE(group_surface(mesh, &groups, patches).ok());
   const size_t n2 = plain.groups[1].triangles.size();
   EXPECT_EQ(names_and_tags(groups),
             (std::vector<std::string>{
-                "surface_4=4:" + std::to_string(plain.groups[0].triangles.size()), "boundary_2=3:1",
-                "surface_50=50:" + std::to_string(n2 - 1),
-                "surface_60=60:" + std::to_string(plain.groups[2].triangles.size())}));
+                "surface_4=4:" + std::to_string(plain.groups[0].triangles.size() - 1),
+                "surface_60=60:" + std::to_string(plain.groups[2].triangles.size() + 1),
+                "boundary_2=3:1", "surface_50=50:" + std::to_string(n2 - 1)}));
   // A user's name becomes a valid Abaqus label and stays inside Gmsh's quotes.
   std::vector<InputSurfaceGroup> odd = {input_of(plain.groups[0], 7)};
   odd[0].name = "1st \"outer\" wall";
@@ -348,6 +350,33 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   ASSERT_EQ(info.surface_groups.size(), 3u);  // by tag: 3, 5, 7
   EXPECT_EQ(info.surface_groups[2].tag, 7);
   EXPECT_EQ(info.surface_groups[2].name, "1st _outer_ wall");
+}
+
+// Overlapping groups (tests/data/gmsh/overlap.geo: "all outer" and one face of it,
+// "x0", each of whose surfaces is in both): the reader gives both groups the face's
+// triangles (text and binary 4.1: an entity's every physical tag), and both are
+// written, the face in the smaller group.
+TEST(SurfaceGroups, OverlappingGroupsAreBothWritten) {
+  for (const char* file : {"overlap41.msh", "overlap41_bin.msh"}) {
+    SCOPED_TRACE(file);
+    TetMesh mesh;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(test::data_path(std::string("gmsh/") + file), &mesh, &info).ok());
+    ASSERT_EQ(info.surface_groups.size(), 2u);
+    const size_t face = info.surface_groups[1].triangles.size();
+    ASSERT_GT(face, 0u);
+    const SurfacePatches patches(mesh, info.surface_groups);
+    EXPECT_EQ(patches.groups()[0].shared, face);
+    EXPECT_EQ(patches.groups()[1].triangles, face);
+    SurfaceGroups groups;
+    ASSERT_TRUE(group_surface(mesh, &groups, patches).ok());
+    const SurfaceGroups plain = groups_of(mesh);  // boundary_1, boundary_2, interface_1_2
+    const size_t outer = plain.groups[0].triangles.size() + plain.groups[1].triangles.size();
+    EXPECT_EQ(names_and_tags(groups),
+              (std::vector<std::string>{
+                  "all outer=30:" + std::to_string(outer - face), "x0=31:" + std::to_string(face),
+                  "interface_1_2=3:" + std::to_string(plain.groups[2].triangles.size())}));
+  }
 }
 
 // A round port on a flat face (tests/data/gmsh/port.geo): simplified with the

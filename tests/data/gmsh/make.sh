@@ -25,3 +25,6 @@ gmsh groups.geo -3 -clmax 0.5 -v 0 -format msh22 -bin -o groups22_bin.msh
 gmsh groups.geo -3 -clmax 0.5 -v 0 -order 2 -format msh41 -o groups_order2.msh
 # A block with a round port on its flat top face (a group whose border is no crease).
 gmsh port.geo -3 -clmax 0.1 -v 0 -format msh41 -o port.msh
+# Overlapping surface groups (a face in two groups), text and binary.
+gmsh overlap.geo -3 -clmax 0.5 -v 0 -format msh41 -o overlap41.msh
+gmsh overlap.geo -3 -clmax 0.5 -v 0 -format msh41 -bin -o overlap41_bin.msh
