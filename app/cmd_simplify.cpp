@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,16 @@ int cmd_simplify(const Args& args) {
   SurfacePatches patches;
   if (!info.surface_groups.empty()) patches = SurfacePatches(input, info.surface_groups);
   if (write_options.surface_groups) print_patch_notes(patches, "simplify");
+  // Material ids near the top of the tag range can leave no room to number the surface
+  // groups; the simplified mesh has the input's material pairs: say so before the work.
+  if (write_options.surface_groups &&
+      first_surface_tag(input) > std::numeric_limits<int32_t>::max() - (1 << 16)) {
+    SurfaceGroups probe;
+    if (const Status s = group_surface(input, &probe, patches); !s) {
+      std::fprintf(stderr, "tetlod simplify: %s: %s\n", out.c_str(), s.message().c_str());
+      return kExitBadInput;
+    }
+  }
   write_options.material_names = &info.material_names;  // no material disappears
   const SimplifyParams& params = options.params;
   const long long elements = options.elements;

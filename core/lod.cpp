@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -362,6 +363,7 @@ std::string read_patches(std::FILE* f, uint64_t bytes, SurfacePatches* patches) 
   ParamsReader r{f};
   const uint64_t group_count = r.get_count(bytes, 24);
   std::vector<SurfacePatches::Group> groups;
+  std::set<int32_t> tags;
   for (uint64_t i = 0; i < group_count && r.ok; ++i) {
     SurfacePatches::Group g;
     g.tag = r.get<int32_t>();
@@ -372,7 +374,9 @@ std::string read_patches(std::FILE* f, uint64_t bytes, SurfacePatches* patches) 
     if (length > 0 && std::fread(g.name.data(), 1, length, f) != length) r.ok = false;
     g.triangles = r.get<uint64_t>();
     g.missing = r.get<uint64_t>();
-    if (g.triangles > bytes || g.missing > bytes) return "surface group " + std::to_string(i);
+    if (g.triangles > bytes || g.missing > bytes || g.tag < 1)
+      return "surface group " + std::to_string(i);
+    if (!tags.insert(g.tag).second) return "surface groups with one tag, " + std::to_string(g.tag);
     groups.push_back(std::move(g));
   }
   const uint64_t entry_count = r.get_count(bytes, 84);

@@ -196,8 +196,12 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePa
       in_group[g].push_back(i);
   }
   std::set<int32_t> used_tags;
-  for (size_t g = 0; g < in_group.size(); ++g)
-    if (!in_group[g].empty()) used_tags.insert(patches.groups()[g].tag);
+  std::set<std::string> used_names;  // the input groups', which a generated one must not take
+  for (size_t g = 0; g < in_group.size(); ++g) {
+    if (in_group[g].empty()) continue;
+    used_tags.insert(patches.groups()[g].tag);
+    used_names.insert(patches.groups()[g].name);
+  }
   const int64_t first = first_surface_tag(mesh);
   int64_t tag = first;
   std::vector<bool> placed(in_group.size(), false);
@@ -209,6 +213,7 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePa
       group.other = std::get<2>(key);
       group.name = pair_name(group.material, group.other);
       while (tag <= std::numeric_limits<int32_t>::max() && used_tags.count(int32_t(tag))) ++tag;
+      if (used_names.count(group.name)) group.name += "_" + std::to_string(tag);  // an input's
       if (tag > std::numeric_limits<int32_t>::max()) {
         return Status::error("material ids up to " + std::to_string(first - 1) +
                              " leave no room to number the surface groups above them (tags "

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 #include "core/io/mesh_formats.h"
@@ -389,7 +390,7 @@ class AbaqusParser {
     for (size_t k = 0; k < keys_.size(); ++k) {
       if (used[k] && keys_[k] != "MATERIAL_" + std::to_string(id[k]) &&
           id[k] <= std::numeric_limits<int32_t>::max())
-        out_->material_names.push_back({int32_t(id[k]), keys_[k]});
+        out_->material_names.push_back({int32_t(id[k]), valid_utf8(keys_[k])});
     }
     std::sort(out_->material_names.begin(), out_->material_names.end(),
               [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
@@ -515,8 +516,15 @@ void write_abaqus_surfaces(const SurfaceGroups& surfaces, std::string* out) {
   // S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
   static constexpr const char* kFaceLabel[4] = {"S3", "S4", "S2", "S1"};
   std::vector<uint32_t> nodes;
+  std::set<std::string> used;  // labels are case-insensitive, and these are upper case
   for (const SurfaceGroup& group : surfaces.groups) {
-    const std::string name = abaqus_label(group.name, "S_");
+    // At most 80 characters with "_FACES", and one set per group: a name two groups
+    // share (or share once made a label) takes the group's tag.
+    std::string name = abaqus_label(group.name, "S_");
+    if (name.size() > 60) name.resize(60);
+    if (used.count(name)) name = name.substr(0, 48) + "_" + std::to_string(group.tag);
+    for (int k = 2; used.count(name); ++k) name = name.substr(0, 48) + "_" + std::to_string(k);
+    used.insert(name);
     nodes.clear();
     for (uint32_t i : group.triangles) {
       for (uint32_t v : surfaces.surface[i].v) nodes.push_back(v);

@@ -693,7 +693,7 @@ class GmshParser {
       const int64_t material = material_from_name(name);
       if (dimension == 3 && material >= 0) named_materials_[tag] = material;
       if ((dimension == 2 || dimension == 3) && material < 0 && physical_names_.size() < 1000)
-        physical_names_[{dimension, tag}] = std::string(name);
+        physical_names_[{dimension, tag}] = valid_utf8(name);
     }
     return expect_end("$EndPhysicalNames");
   }

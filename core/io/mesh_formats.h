@@ -73,6 +73,41 @@ inline int vtk_material_rank(std::string_view name) {
   return -1;
 }
 
+// A name from a file as valid UTF-8: each byte that does not start or continue a
+// well-formed sequence becomes '?' (so that JSON, meshio and Gmsh take what is
+// written from it).
+inline std::string valid_utf8(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size();) {
+    const auto byte = [&](size_t k) { return static_cast<uint8_t>(text[k]); };
+    const uint8_t c = byte(i);
+    const size_t n = c < 0x80           ? 1
+                     : (c >> 5) == 0x6  ? 2
+                     : (c >> 4) == 0xe  ? 3
+                     : (c >> 3) == 0x1e ? 4
+                                        : 0;
+    bool ok = n > 0 && i + n <= text.size() && !(n == 2 && c < 0xc2);
+    for (size_t k = 1; ok && k < n; ++k) ok = (byte(i + k) >> 6) == 0x2;
+    if (ok && n == 3) {  // no overlong forms or surrogates
+      const uint8_t d = byte(i + 1);
+      ok = !(c == 0xe0 && d < 0xa0) && !(c == 0xed && d >= 0xa0);
+    }
+    if (ok && n == 4) {  // no overlong forms, nothing past U+10FFFF
+      const uint8_t d = byte(i + 1);
+      ok = !(c == 0xf0 && d < 0x90) && !(c == 0xf4 && d >= 0x90) && c <= 0xf4;
+    }
+    if (ok) {
+      out.append(text.substr(i, n));
+      i += n;
+    } else {
+      out.push_back('?');
+      ++i;
+    }
+  }
+  return out;
+}
+
 // "2 C3D8, 1 C3D6": counts of the element kinds a reader skipped, for its note.
 inline std::string count_list(const std::map<std::string, size_t>& counts) {
   std::string list;

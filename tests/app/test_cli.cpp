@@ -217,6 +217,23 @@ TEST(Cli, SimplifyKeepsTheInputsSurfaceGroups) {
   EXPECT_EQ(r.output.find("note: surface group"), std::string::npos) << r.output;
 }
 
+// Material ids at the top of the tag range leave no room to number the surface
+// groups: simplify --surfaces says so before simplifying, and writes nothing.
+TEST(Cli, SimplifyRefusesSurfaceGroupsWithNoTagsLeftUpFront) {
+  TetMesh mesh = test::make_grid_mesh(
+      2, 1, 1, [](int i, int, int) { return i == 0 ? 1 : 2147483647; }, 0.5);
+  const std::string path = out_dir() + "/top_tags.mesh";
+  ASSERT_TRUE(write_mesh(path, mesh).ok());
+  const std::string out = out_dir() + "/top_tags_out.msh";
+  fs::remove(out);
+  const CommandResult r = run("simplify " + path + " -o " + out + " --size 1 --surfaces");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("leave no room to number the surface groups"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("thresholds:"), std::string::npos) << r.output;  // before the run
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // --surfaces and --msh-version on every command that writes a mesh: the groups are
 // printed and written; a format with no place for them is a usage error up front.
 TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {

@@ -368,6 +368,9 @@ TEST(HistoryFile, SurfaceGroupsRoundTripAndAreChecked) {
             std::string::npos);
   EXPECT_NE(error_with(whole + "TLNAMES1").find("bytes after the thresholds or names"),
             std::string::npos);
+  const int32_t tag0 = 0;  // the group's tag, after the magic and the count
+  EXPECT_NE(error_with(with(at + 16, &tag0, 4)).find("corrupt history: surface group 0"),
+            std::string::npos);
   for (size_t n = at + 1; n < whole.size(); n += 29)
     EXPECT_NE(error_with(whole.substr(0, n)).find("corrupt history"), std::string::npos) << n;
   EXPECT_EQ(error_with(whole), "accepted");

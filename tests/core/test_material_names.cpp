@@ -120,6 +120,21 @@ TEST(MaterialNames, GmshKeepsTheNamesWeWrite) {
   EXPECT_EQ(as_pairs(back_info.material_names), kCoaxNames);
 }
 
+// Names are valid UTF-8 whatever the file holds: a byte that is not part of a
+// well-formed sequence becomes '?', the rest (here "ü" and a 4-byte emoji) stays.
+TEST(MaterialNames, NamesAreValidUtf8) {
+  std::string text = test::read_text(test::data_path("gmsh/coax_order2.msh"));
+  const size_t at = text.find("\"inner_conductor\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 17, "\"co\xff\xc3il \xc3\xbc \xf0\x9f\x94\x8c \xed\xa0\x80\"");
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(text, MeshFormat::kGmsh41, "n.msh", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_FALSE(info.material_names.empty());
+  EXPECT_EQ(info.material_names[0].name, "co??il \xc3\xbc \xf0\x9f\x94\x8c ???");
+}
+
 // Abaqus: a section's material name, or the element set's, is the name; our own
 // MATERIAL_<id> is none.
 TEST(MaterialNames, AbaqusNamesAreRead) {

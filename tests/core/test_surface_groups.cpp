@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/adjacency.h"
@@ -350,6 +351,51 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   ASSERT_EQ(info.surface_groups.size(), 3u);  // by tag: 3, 5, 7
   EXPECT_EQ(info.surface_groups[2].tag, 7);
   EXPECT_EQ(info.surface_groups[2].name, "1st _outer_ wall");
+}
+
+// Names that would clash in what is written: two that make one Abaqus label, one too
+// long for Abaqus, and a user's group named as a generated one. Each .inp set and
+// surface name is distinct and at most 80 characters; the generated group takes its
+// tag after its name.
+TEST(SurfaceGroups, ClashingNamesStayDistinct) {
+  const TetMesh mesh = box2();
+  const SurfaceGroups plain = groups_of(mesh);  // boundary_1 (3), boundary_2 (4), interface (5)
+  auto part = [&](size_t g, size_t from, size_t to, int32_t tag, const std::string& name) {
+    InputSurfaceGroup in;
+    in.tag = tag;
+    in.name = name;
+    for (size_t k = from; k < to; ++k) {
+      const auto& v = plain.surface[plain.groups[g].triangles[k]].v;
+      in.triangles.push_back({mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]});
+    }
+    return in;
+  };
+  const std::string long_name(85, 'x');
+  const std::vector<InputSurfaceGroup> input = {
+      part(0, 0, 4, 40, "port a"), part(0, 4, 8, 41, "port-a"), part(0, 8, 12, 42, long_name),
+      part(1, 0, 4, 43, "boundary_2")};
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(mesh, &groups, SurfacePatches(mesh, input)).ok());
+  std::set<std::string> names;
+  for (const SurfaceGroup& g : groups.groups) EXPECT_TRUE(names.insert(g.name).second) << g.name;
+  EXPECT_EQ(names.count("boundary_2_4"), 1u);  // the rest of boundary_2, tag 4
+  WriteOptions options;
+  options.surface_groups = true;
+  options.groups = &groups;
+  const std::string dir = test::output_dir("surface_groups_clash");
+  ASSERT_TRUE(write_mesh(dir + "/clash.inp", mesh, options).ok());
+  std::istringstream lines(test::read_text(dir + "/clash.inp"));
+  std::set<std::string> sets;
+  for (std::string line; std::getline(lines, line);) {
+    for (const std::string key : {"NSET=", "NAME="}) {
+      const size_t at = line.find(key);
+      if (at == std::string::npos || line[0] != '*') continue;
+      const std::string set = line.substr(at + key.size());
+      EXPECT_LE(set.size(), 80u) << set;
+      EXPECT_TRUE(sets.insert(key + set).second) << set;
+    }
+  }
+  EXPECT_EQ(sets.size(), 2 * groups.groups.size());
 }
 
 // Overlapping groups (tests/data/gmsh/overlap.geo: "all outer" and one face of it,
