@@ -28,8 +28,8 @@ const char* const kSimplifyFlagsHelp =
 const char* const kWriteFlagsHelp =
     "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n"
     "  --surfaces        also write the boundary and interface triangles, for boundary\n"
-    "                    conditions: a Gmsh input's own surface groups under their names\n"
-    "                    and tags, the rest a group per material pair (boundary_<m>,\n"
+    "                    conditions: a Gmsh or Medit input's own surface groups under\n"
+    "                    their names and tags, the rest a group per material pair (boundary_<m>,\n"
     "                    interface_<a>_<b>, numbered above the materials): .msh physical\n"
     "                    surfaces, .mesh triangle references, a TetGen .face file, .inp\n"
     "                    node sets and element-face surfaces\n";

@@ -237,7 +237,15 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePa
       group.material = t.inner;
       group.other = t.outer;
       group.tag = input.tag;
-      group.name = input.name.empty() ? "surface_" + std::to_string(input.tag) : input.name;
+      group.name = input.name;
+      if (group.name.empty()) {
+        // Unnamed (a Medit reference): a whole pair's keeps the pair's name.
+        bool whole_pair = by_pair.at(key).size() == in_group[g].size();
+        for (uint32_t i : in_group[g])
+          whole_pair = whole_pair && pair_key(result.surface[i]) == key;
+        group.name = whole_pair ? pair_name(std::get<1>(key), std::get<2>(key))
+                                : "surface_" + std::to_string(input.tag);
+      }
       group.triangles = std::move(in_group[g]);
       result.groups.push_back(std::move(group));
     }

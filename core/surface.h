@@ -76,7 +76,8 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 // material pair it touches, then of the input); the others are grouped by material
 // pair as above, numbered around the input groups' tags (a pair whose triangles all
 // went to input groups has no group). An input group whose triangles are exactly
-// one pair's is so that pair's group under the input's name and tag.
+// one pair's is so that pair's group under the input's name and tag. An unnamed
+// input group is named after its pair if it is one pair's, else surface_<tag>.
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches);
 
 // A surface group of an input file (a Gmsh physical surface): its triangles by the

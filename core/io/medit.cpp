@@ -1,7 +1,10 @@
 // Medit / Gamma Mesh Format, ASCII (.mesh). Entry widths of the skipped keywords
 // follow the keyword table of libMeshb (L. Maréchal, INRIA), for Dimension 3.
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
+#include <map>
 
 #include "core/io/mesh_formats.h"
 #include "core/io/text_scanner.h"
@@ -18,7 +21,6 @@ struct SkippedKeyword {
 
 constexpr SkippedKeyword kSkippedKeywords[] = {
     {"Edges", true, 3},
-    {"Triangles", true, 4},
     {"Quadrilaterals", true, 5},
     {"Prisms", true, 7},
     {"Pentahedra", true, 7},
@@ -136,6 +138,25 @@ bool read_tets(TextScanner& scanner, ParsedMesh* out) {
   return true;
 }
 
+// A Triangles section's entries "a b c ref", kept with a reference >= 1 (a boundary
+// condition's id, as MMG and TetLOD write them) for ParsedMesh::surface_groups.
+struct PendingTriangle {
+  int64_t v[3];
+  int64_t ref;
+};
+bool read_triangles(TextScanner& scanner, std::vector<PendingTriangle>* out) {
+  uint64_t count = 0;
+  if (!scanner.read_count(&count, "triangle count", 8)) return false;
+  for (uint64_t i = 0; i < count; ++i) {
+    PendingTriangle t;
+    for (int64_t& v : t.v)
+      if (!scanner.read_int(&v, "triangle vertex index")) return false;
+    if (!scanner.read_int(&t.ref, "triangle reference")) return false;
+    if (t.ref >= 1 && t.ref <= std::numeric_limits<int32_t>::max()) out->push_back(t);
+  }
+  return true;
+}
+
 }  // namespace
 
 Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out) {
@@ -153,6 +174,7 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   bool seen_vertices = false;
   bool seen_tets = false;
   std::string skipped_volumes;  // "28 Prisms, 3 Hexahedra"
+  std::vector<PendingTriangle> triangles;
 
   while (!scanner.failed() && scanner.next_token(&keyword)) {
     auto is = [&](const char* word) { return TextScanner::equals_ignore_case(keyword, word); };
@@ -169,6 +191,8 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
     } else if (is("Tetrahedra")) {
       seen_tets = true;
       read_tets(scanner, out);
+    } else if (is("Triangles")) {
+      read_triangles(scanner, &triangles);
     } else if (const SkippedKeyword* skipped = find_skipped(keyword)) {
       uint64_t count = 1;
       const uint64_t width = uint64_t(skipped->numbers_per_entry);
@@ -195,6 +219,34 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
                          (skipped_volumes.empty() ? std::string()
                                                   : " (TetLOD reads 4-node tetrahedra only, not " +
                                                         skipped_volumes + ")"));
+  }
+  // The referenced triangles, by reference, as surface groups (positions: the indices
+  // are checked here, the vertices before validation may drop unused ones).
+  std::map<int64_t, size_t> group_of;
+  size_t outside = 0;
+  for (const PendingTriangle& t : triangles) {
+    std::array<Vec3, 3> corners;
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+      ok = ok && t.v[k] >= 1 && uint64_t(t.v[k]) <= out->mesh.positions.size();
+      if (ok) corners[size_t(k)] = out->mesh.positions[size_t(t.v[k] - 1)];
+    }
+    if (!ok) {
+      ++outside;
+      continue;
+    }
+    auto [it, added] = group_of.try_emplace(t.ref, out->surface_groups.size());
+    if (added) {
+      out->surface_groups.emplace_back();
+      out->surface_groups.back().tag = int32_t(t.ref);
+    }
+    out->surface_groups[it->second].triangles.push_back(corners);
+  }
+  std::sort(out->surface_groups.begin(), out->surface_groups.end(),
+            [](const InputSurfaceGroup& a, const InputSurfaceGroup& b) { return a.tag < b.tag; });
+  if (outside > 0) {
+    out->notes.push_back(std::to_string(outside) +
+                         " triangles name a vertex that is not in Vertices: not kept");
   }
   if (!skipped_volumes.empty()) {
     out->notes.push_back("skipped " + skipped_volumes +

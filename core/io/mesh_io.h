@@ -25,7 +25,8 @@
 //
 // Reading, format by format:
 //  - Medit: keywords are case-insensitive, '#' starts a comment. Vertices and
-//    Tetrahedra are read; the other sections of a 3D mesh (Triangles, Edges,
+//    Tetrahedra are read, and Triangles with a reference >= 1 as surface groups (one
+//    per reference, unnamed); the other sections of a 3D mesh (Edges,
 //    Corners, Ridges, Required*, Normals, Tangents, Prisms, Hexahedra, P2
 //    elements, ...) are skipped by their entry width; an unknown keyword is an
 //    error. `End` is optional.

@@ -84,7 +84,7 @@ TEST(IoMalformed, Medit) {
                       {{{10, "Tetrahedrons"}}, 10, "unknown keyword"},
                       {{{2, "Dimension 2"}}, 2, "3-dimensional"},
                       {{{1, "MeshVersion 2"}}, 1, "not a Medit file"},
-                      {{{3, "Triangles"}, {4, "6"}}, 10, "expected a number in Triangles"},
+                      {{{3, "Triangles"}, {4, "6"}}, 10, "triangle vertex index"},
                   });
 }
 

@@ -398,6 +398,42 @@ TEST(SurfaceGroups, ClashingNamesStayDistinct) {
   EXPECT_EQ(sets.size(), 2 * groups.groups.size());
 }
 
+// A Medit file's referenced triangles (as MMG and TetLOD write them) are read as
+// groups by reference: written again, a whole pair's keeps its pair's name and every
+// group its tag; a reference covering part of a pair is surface_<ref>.
+TEST(SurfaceGroups, MeditTriangleReferencesAreGroups) {
+  const TetMesh mesh = box2();
+  WriteOptions options;
+  options.surface_groups = true;
+  const std::string dir = test::output_dir("surface_groups_medit");
+  ASSERT_TRUE(write_mesh(dir + "/box2.mesh", mesh, options).ok());
+  TetMesh back;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(dir + "/box2.mesh", &back, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), 3u);
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(back, &groups, SurfacePatches(back, info.surface_groups)).ok());
+  const SurfaceGroups plain = groups_of(mesh);
+  std::vector<std::string> expected;
+  for (const SurfaceGroup& g : plain.groups)
+    expected.push_back(g.name + "=" + std::to_string(g.tag) + ":" +
+                       std::to_string(g.triangles.size()));
+  EXPECT_EQ(names_and_tags(groups), expected);
+  // Two of boundary_1's triangles under reference 9 instead.
+  std::string text = test::read_text(dir + "/box2.mesh");
+  for (int n = 0; n < 2; ++n) {
+    const size_t at = text.find(" 3\n", text.find("\nTriangles\n"));
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 3, " 9\n");
+  }
+  ASSERT_TRUE(read_mesh_from_memory(text, MeshFormat::kMedit, "r.mesh", &back, &info).ok());
+  ASSERT_TRUE(group_surface(back, &groups, SurfacePatches(back, info.surface_groups)).ok());
+  const size_t n1 = plain.groups[0].triangles.size();
+  EXPECT_EQ(names_and_tags(groups),
+            (std::vector<std::string>{"surface_3=3:" + std::to_string(n1 - 2), "surface_9=9:2",
+                                      expected[1], expected[2]}));
+}
+
 // Overlapping groups (tests/data/gmsh/overlap.geo: "all outer" and one face of it,
 // "x0", each of whose surfaces is in both): the reader gives both groups the face's
 // triangles (text and binary 4.1: an entity's every physical tag), and both are
