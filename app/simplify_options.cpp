@@ -29,10 +29,10 @@ const char* const kWriteFlagsHelp =
     "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n"
     "  --surfaces        also write the boundary and interface triangles, for boundary\n"
     "                    conditions: a Gmsh or Medit input's own surface groups under\n"
-    "                    their names and tags, the rest a group per material pair (boundary_<m>,\n"
-    "                    interface_<a>_<b>, numbered above the materials): .msh physical\n"
-    "                    surfaces, .mesh triangle references, a TetGen .face file, .inp\n"
-    "                    node sets and element-face surfaces\n";
+    "                    their names and tags, the rest a group per material pair\n"
+    "                    (boundary_<m>, interface_<a>_<b>, numbered above the materials):\n"
+    "                    .msh physical surfaces, .mesh triangle references, a TetGen\n"
+    "                    .face file, .inp node sets and element-face surfaces\n";
 
 OptionResult parse_write_option(const Args& args, size_t* i, const char* command,
                                 WriteOptions* options) {
