@@ -227,11 +227,8 @@ bool load_history_level(const std::string& path, const char* command, long long 
 }
 
 std::string material_name_of(const std::vector<MaterialName>* names, int32_t m) {
-  if (!names) return "";
-  const auto it =
-      std::lower_bound(names->begin(), names->end(), m,
-                       [](const MaterialName& n, int32_t id) { return n.material < id; });
-  return it != names->end() && it->material == m ? it->name : "";
+  const std::string* name = find_material_name(names, m);
+  return name ? *name : "";
 }
 
 void print_property_table(const MeshStats& stats, const std::vector<MaterialName>* names) {

@@ -97,14 +97,14 @@ int cmd_render(const Args& args) {
   }
 
   TetMesh mesh;
-  std::vector<std::pair<int32_t, std::string>> names;  // for the legend
-  SurfacePatches patches;                              // the file's surface groups
+  std::vector<MaterialName> names;  // for the legend
+  SurfacePatches patches;           // the file's surface groups
   if (history) {
     HistoryLevel level;
     if (!load_history_level(in, "render", -1, options.simplify_options.elements, &level))
       return kExitBadInput;
     mesh = std::move(level.mesh);
-    for (const MaterialName& n : level.names) names.push_back({n.material, n.name});
+    names = level.names;
     if (options.simplify_options.improve) {
       if (!history_improve_params(in, "render", level.params)) return kExitUsage;
       improve_mesh(&mesh, *level.params);
@@ -112,7 +112,7 @@ int cmd_render(const Args& args) {
   } else {
     ReadInfo info;
     if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
-    for (const MaterialName& n : info.material_names) names.push_back({n.material, n.name});
+    names = info.material_names;
     if (options.simplify && !info.surface_groups.empty())
       patches = SurfacePatches(mesh, info.surface_groups);
   }

@@ -224,11 +224,7 @@ int cmd_report(const Args& args) {
   if (!resolve_materials(input, "report", &options)) return kExitBadInput;
   OffscreenRenderer offscreen;
   if (!open_offscreen_renderer("report", &offscreen)) return kExitBadInput;
-  {
-    std::vector<std::pair<int32_t, std::string>> legend;
-    for (const MaterialName& n : names) legend.push_back({n.material, n.name});
-    offscreen.renderer->set_material_names(std::move(legend));
-  }
+  offscreen.renderer->set_material_names(names);
 
   std::vector<Level> meshes;
   std::string thresholds, run_summary;

@@ -845,10 +845,8 @@ void Viewer::upload_all() {
     if (!std::binary_search(view_.hidden_materials.begin(), view_.hidden_materials.end(), m))
       shown.push_back(m);
   renderer_->set_legend_materials(std::move(shown));
-  std::vector<std::pair<int32_t, std::string>> names;
-  if (scene_->material_names)
-    for (const MaterialName& n : *scene_->material_names) names.push_back({n.material, n.name});
-  renderer_->set_material_names(std::move(names));
+  renderer_->set_material_names(scene_->material_names ? *scene_->material_names
+                                                       : std::vector<MaterialName>());
   renderer_->update_triangles(scene_->surface.triangles(), scene_->surface.take_triangle_dirty());
   renderer_->update_highlight(scene_->surface.highlight(), scene_->surface.take_highlight_dirty(),
                               scene_->surface.highlighted_tets());
@@ -1427,10 +1425,7 @@ void Viewer::fill_status() {
   s.default_size = scene.default_size;
   s.default_tolerance = scene.default_tolerance;
   s.materials = scene.materials;
-  s.material_names.clear();
-  if (scene.material_names)
-    for (const MaterialName& n : *scene.material_names)
-      s.material_names.push_back({n.material, n.name});
+  s.material_names = scene.material_names ? *scene.material_names : std::vector<MaterialName>();
   for (int k = 0; k < 3; ++k) {
     s.bounds_min[k] = static_cast<float>(k == 0 ? scene.lo.x : k == 1 ? scene.lo.y : scene.lo.z);
     s.bounds_max[k] = static_cast<float>(k == 0 ? scene.hi.x : k == 1 ? scene.hi.y : scene.hi.z);

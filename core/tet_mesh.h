@@ -47,6 +47,20 @@ struct MaterialName {
   std::string name;
 };
 
+// The name of material m in `names` (sorted by material; may be null), or null.
+inline const std::string* find_material_name(const std::vector<MaterialName>* names, int32_t m) {
+  if (!names) return nullptr;
+  size_t lo = 0, hi = names->size();
+  while (lo < hi) {
+    const size_t mid = (lo + hi) / 2;
+    if ((*names)[mid].material < m)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < names->size() && (*names)[lo].material == m ? &(*names)[lo].name : nullptr;
+}
+
 // Whether vertex v is a corner of tet t (branch-free: the simplifier's hot loops use it).
 inline bool tet_has(const Tet& t, uint32_t v) {
   return (t[0] == v) | (t[1] == v) | (t[2] == v) | (t[3] == v);

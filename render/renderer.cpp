@@ -398,12 +398,10 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
   std::vector<std::pair<Rgb, std::string>> key;
   if (settings.color_mode == ColorMode::kMaterial)
     for (const int32_t m : visible_materials_) {
-      const auto it = std::lower_bound(material_names_.begin(), material_names_.end(), m,
-                                       [](const auto& n, int32_t id) { return n.first < id; });
       std::string text = "material " + std::to_string(m);
-      if (it != material_names_.end() && it->first == m) {
-        text = std::to_string(m) + " " + it->second.substr(0, 32);
-        if (it->second.size() > 32) text += "...";
+      if (const std::string* name = find_material_name(&material_names_, m)) {
+        text = std::to_string(m) + " " + name->substr(0, 32);
+        if (name->size() > 32) text += "...";
         for (char& c : text) c = c < 32 || c > 126 ? '?' : c;  // the font's glyphs
       }
       key.push_back({material_rgb(m), text});

@@ -62,9 +62,7 @@ class Renderer {
   }
   // Names for the legend's materials, sorted by id ("3 shield" instead of "material
   // 3"); materials not listed keep their number. Kept until set again.
-  void set_material_names(std::vector<std::pair<int32_t, std::string>> names) {
-    material_names_ = std::move(names);
-  }
+  void set_material_names(std::vector<MaterialName> names) { material_names_ = std::move(names); }
 
   // Draws the uploaded surface (and highlight, and legend) at width x height. False
   // (see last_error()) if the framebuffer cannot be made or GL reports an error.
@@ -99,7 +97,7 @@ class Renderer {
   size_t triangle_vertices_ = 0, highlight_vertices_ = 0, highlighted_tets_ = 0;
   size_t triangle_capacity_ = 0, highlight_capacity_ = 0;  // in vertices
   std::vector<int32_t> visible_materials_;
-  std::vector<std::pair<int32_t, std::string>> material_names_;  // sorted by id
+  std::vector<MaterialName> material_names_;  // sorted by id
   std::string last_error_;
 };
 

@@ -14,10 +14,7 @@ namespace {
 
 // The input file's name of material m, or null.
 const std::string* material_name(const ViewerStatus& status, int32_t m) {
-  const auto& names = status.material_names;
-  const auto it = std::lower_bound(names.begin(), names.end(), m,
-                                   [](const auto& n, int32_t id) { return n.first < id; });
-  return it != names.end() && it->first == m ? &it->second : nullptr;
+  return find_material_name(&status.material_names, m);
 }
 
 // "3 shield" for a named material, else `unnamed` ("3" or "mat 3"); a long name is

@@ -142,7 +142,7 @@ struct ViewerStatus {
   std::vector<int32_t> materials;  // ids present in the input
   // The input file's names of its materials (a Gmsh physical volume's, an Abaqus
   // section's), sorted by id; materials without a name are not listed.
-  std::vector<std::pair<int32_t, std::string>> material_names;
+  std::vector<MaterialName> material_names;
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {1, 1, 1};  // of the input
   std::string load_error;  // last failed load or action, shown until replaced
   std::string message;     // last success message (saved, screenshot, ...)

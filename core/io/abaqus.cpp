@@ -493,20 +493,14 @@ std::string abaqus_label(const std::string& name, const char* prefix) {
 // material_names) ending in m, so that the reader gives the tets m again.
 std::string material_set_name(int32_t m, const std::vector<MaterialName>* names) {
   const std::string number = std::to_string(m);
-  if (names) {
-    const auto it =
-        std::lower_bound(names->begin(), names->end(), m,
-                         [](const MaterialName& n, int32_t value) { return n.material < value; });
-    if (it != names->end() && it->material == m && !it->name.empty()) {
-      std::string label = abaqus_label(it->name, "M_");
-      if (label.size() > 60) label.resize(60);  // Abaqus labels: at most 80 characters
-      size_t digits = label.size();
-      while (digits > 0 && std::isdigit(uint8_t(label[digits - 1]))) --digits;
-      const std::string_view tail = std::string_view(label).substr(digits);
-      const bool ends_in_m =
-          !tail.empty() && tail.size() <= 18 && std::stoll(std::string(tail)) == m;
-      return ends_in_m ? label : label + "_" + number;
-    }
+  if (const std::string* name = find_material_name(names, m); name && !name->empty()) {
+    std::string label = abaqus_label(*name, "M_");
+    if (label.size() > 60) label.resize(60);  // Abaqus labels: at most 80 characters
+    size_t digits = label.size();
+    while (digits > 0 && std::isdigit(uint8_t(label[digits - 1]))) --digits;
+    const std::string_view tail = std::string_view(label).substr(digits);
+    const bool ends_in_m = !tail.empty() && tail.size() <= 18 && std::stoll(std::string(tail)) == m;
+    return ends_in_m ? label : label + "_" + number;
   }
   return "MATERIAL_" + number;
 }

@@ -1320,15 +1320,10 @@ void append_physical_names(const std::vector<int32_t>& materials,
     out->append(" \"");
     // A name of its own, unless it is empty, would read as another material's
     // number, or the tag is not the id (material 0).
-    const std::string* name = nullptr;
-    if (names && materials[i] > 0) {
-      const auto it =
-          std::lower_bound(names->begin(), names->end(), materials[i],
-                           [](const MaterialName& n, int32_t m) { return n.material < m; });
-      if (it != names->end() && it->material == materials[i] && !it->name.empty() &&
-          (material_from_name(it->name) < 0 || material_from_name(it->name) == materials[i]))
-        name = &it->name;
-    }
+    const std::string* name = materials[i] > 0 ? find_material_name(names, materials[i]) : nullptr;
+    if (name && (name->empty() ||
+                 (material_from_name(*name) >= 0 && material_from_name(*name) != materials[i])))
+      name = nullptr;
     if (name) {
       out->append(quotable(*name));
     } else {

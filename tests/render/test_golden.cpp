@@ -259,7 +259,7 @@ TEST(GoldenSensitivity, HighlightChangeIsCaught) {
 // nothing else in the picture changes; an unnamed material keeps its number.
 TEST(GoldenSensitivity, MaterialNamesAreInTheKeyOnly) {
   const Image plain = render_case("box2.mesh", box2_wireframe());
-  Offscreen::get().renderer()->set_material_names({{2, "air gap"}});
+  Offscreen::get().renderer()->set_material_names({MaterialName{2, "air gap"}});
   const Image named = render_case("box2.mesh", box2_wireframe());
   Offscreen::get().renderer()->set_material_names({});  // the renderer is shared
   ASSERT_EQ(plain.width, kSize);
