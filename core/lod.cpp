@@ -186,14 +186,26 @@ TetMesh Lod::extract() const {
 }
 
 // ---------------------------------------------------------------------------------
-// History files: "TETLODH1", then counts and raw little-endian arrays; then,
+// History files: "TETLODH2", then counts and raw little-endian arrays; then,
 // optionally, "TLPARAM1" and the thresholds (write_params()); then, optionally,
 // "TLNAMES1" and the material names (write_names()); then, optionally, "TLGROUP1" and
-// the input's surface groups (write_patches()).
+// the input's surface groups (write_patches()); then "TLENDOF1" and the file's length
+// in bytes (u64), so that a file cut anywhere, even between two blocks, is an error.
+// "TETLODH1" files (before 2026-11-24) are the same without the end block.
 
 namespace {
 
-constexpr char kHistoryMagic[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '1'};
+constexpr char kHistoryMagic[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '2'};
+constexpr char kHistoryMagicV1[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '1'};
+constexpr char kEndMagic[8] = {'T', 'L', 'E', 'N', 'D', 'O', 'F', '1'};
+
+// The end block: its magic and the length of the whole file, itself included.
+bool write_end(std::FILE* f) {
+  const long at = std::ftell(f);
+  if (at < 0) return false;
+  const uint64_t length = static_cast<uint64_t>(at) + 16;
+  return std::fwrite(kEndMagic, 1, 8, f) == 8 && std::fwrite(&length, sizeof length, 1, f) == 1;
+}
 
 struct FileCloser {
   void operator()(std::FILE* f) const {
@@ -483,7 +495,7 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
            write_array(f, history.rewired) && write_array(f, history.moved) &&
            (!params || write_params(f, *params)) && (kept.empty() || write_names(f, kept)) &&
-           (!patches || !patches->any() || write_patches(f, *patches));
+           (!patches || !patches->any() || write_patches(f, *patches)) && write_end(f);
   });
 }
 
@@ -506,9 +518,11 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   std::fseek(f, 0, SEEK_SET);
   const uint64_t bytes = size > 0 ? static_cast<uint64_t>(size) : 0;
   char magic[8] = {};
-  if (std::fread(magic, 1, 8, f) != 8 || std::memcmp(magic, kHistoryMagic, 8) != 0) {
+  if (std::fread(magic, 1, 8, f) != 8 ||
+      (std::memcmp(magic, kHistoryMagic, 8) != 0 && std::memcmp(magic, kHistoryMagicV1, 8) != 0)) {
     return Status::error(path + ": not a TetLOD history file");
   }
+  const bool has_end = std::memcmp(magic, kHistoryMagic, 8) == 0;
   if (!read_array(f, bytes, &base->positions) || !read_array(f, bytes, &base->tets) ||
       !read_array(f, bytes, &base->materials) || !read_array(f, bytes, &history->steps) ||
       !read_array(f, bytes, &history->removed_tets) || !read_array(f, bytes, &history->rewired) ||
@@ -520,19 +534,33 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   std::optional<SimplifyParams> saved_params;
   std::vector<MaterialName> saved_names;
   SurfacePatches saved_patches;
-  int last_block = 0;  // 1 thresholds, 2 names, 3 surface groups
+  int last_block = 0;  // 1 thresholds, 2 names, 3 surface groups, 4 the end
   for (;;) {
     char block_magic[8] = {};
     const size_t magic_bytes = std::fread(block_magic, 1, 8, f);
-    if (magic_bytes == 0) break;
+    if (magic_bytes == 0) {
+      if (has_end && last_block != 4)
+        return Status::error(path + ": truncated history file (it ends before its end block)");
+      break;
+    }
     const int block = magic_bytes != 8                                 ? 0
                       : std::memcmp(block_magic, kParamsMagic, 8) == 0 ? 1
                       : std::memcmp(block_magic, kNamesMagic, 8) == 0  ? 2
                       : std::memcmp(block_magic, kGroupsMagic, 8) == 0 ? 3
+                      : std::memcmp(block_magic, kEndMagic, 8) == 0    ? (has_end ? 4 : 0)
                                                                        : 0;
     std::string error;
     if (block <= last_block) {
-      error = last_block > 0 ? "bytes after the thresholds or names" : "bytes after the last step";
+      error = last_block == 4  ? "bytes after the end block"
+              : last_block > 0 ? "a block out of order, or unknown bytes, after the thresholds, "
+                                 "names or surface groups"
+                               : "bytes after the last step";
+    } else if (block == 4) {
+      uint64_t length = 0;
+      const bool read = std::fread(&length, sizeof length, 1, f) == 1;
+      const long at = std::ftell(f);
+      if (!read || at < 0 || length != static_cast<uint64_t>(at))
+        error = "the end block does not match the file's length";
     } else if (block == 1) {
       saved_params.emplace();
       error = read_params(f, bytes, &*saved_params);

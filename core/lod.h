@@ -111,7 +111,9 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // reader checks every count and index (a hostile file gives an error, never a crash),
 // and replays the steps once to check that they are collapses of the base mesh that
 // leave every tet positive, so every level of an accepted history is made of
-// positive tets (not that they never overlap: a forged file can still do that).
+// positive tets (not that they never overlap: a forged file can still do that). The
+// file ends with a block giving its length, so a file cut anywhere is refused (files
+// written before 2026-11-24 have none and still read).
 // `params`, if given: the thresholds the history was made with (all but
 // target_elements, which is about a level), saved after it so that a level can be
 // improved later within them (improve.h) without the user giving them again.

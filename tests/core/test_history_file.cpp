@@ -51,6 +51,12 @@ std::string read_bytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+// A history's bytes without its end block (the last 16 bytes): where the optional
+// blocks of a longer file written from the same history start.
+std::string body(const std::string& bytes) {
+  return bytes.substr(0, bytes.size() - 16);
+}
+
 void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
@@ -168,7 +174,7 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
       << s.message();
 
   const std::string whole = read_bytes(path);
-  const size_t at = read_bytes(plain).size();  // where the thresholds start
+  const size_t at = body(read_bytes(plain)).size();  // where the thresholds start
   ASSERT_EQ(whole.substr(at, 8), "TLPARAM1");
   const std::string damaged = out_path("damaged_params.tlh");
   auto error_with = [&](const std::string& bytes) { return read_error(damaged, bytes); };
@@ -182,7 +188,9 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
   EXPECT_NE(error_with(with_double(40, std::nan(""))).find("size is not a number"),
             std::string::npos);
   EXPECT_NE(error_with(with_double(8, -1)).find("thresholds: tolerance -1"), std::string::npos);
-  EXPECT_NE(error_with(whole + "x").find("bytes after the thresholds"), std::string::npos);
+  EXPECT_NE(error_with(whole + "x").find("bytes after the end block"), std::string::npos);
+  EXPECT_NE(error_with(body(whole) + "x").find("after the thresholds, names or surface groups"),
+            std::string::npos);
   // The first material size's id (after the 48 fixed bytes and the count): 1 -> 0.
   {
     std::string bytes = whole;
@@ -199,12 +207,15 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
   // vector, as parse_size_field() leaves it.
   EXPECT_NE(error_with(with_double(48 + 8 + 32 + 8 + 24 + 16, 2)).find("radial rule 0"),
             std::string::npos);
-  EXPECT_NE(error_with(read_bytes(plain) + "TLPARAM2").find("bytes after the last step"),
+  EXPECT_NE(error_with(body(read_bytes(plain)) + "TLPARAM2").find("bytes after the last step"),
             std::string::npos);
-  // Cut anywhere inside the thresholds: refused. (Cut exactly where they start, the
-  // file is a history saved without them, which it then is.)
-  for (size_t n = at + 1; n < whole.size(); ++n) {
-    EXPECT_NE(error_with(whole.substr(0, n)).find("corrupt history"), std::string::npos) << n;
+  // Cut anywhere from where the thresholds start: refused, inside them as damage,
+  // at their end (or start) for want of the end block.
+  for (size_t n = at; n < whole.size(); ++n) {
+    const std::string error = error_with(whole.substr(0, n));
+    EXPECT_TRUE(error.find("corrupt history") != std::string::npos ||
+                error.find("ends before its end block") != std::string::npos)
+        << n << ": " << error;
   }
   // A count no file could hold.
   std::string huge = whole;
@@ -250,7 +261,7 @@ TEST(HistoryFile, MaterialNamesRoundTripAndAreChecked) {
 
   // Damage, after the 8-byte magic and the count: material (4), length (4), bytes.
   const std::string whole = read_bytes(names_only);
-  const size_t at = read_bytes(plain).size();
+  const size_t at = body(read_bytes(plain)).size();
   ASSERT_EQ(whole.substr(at, 8), "TLNAMES1");
   const std::string damaged = out_path("damaged_names.tlh");
   auto error_with = [&](const std::string& bytes) { return read_error(damaged, bytes); };
@@ -266,13 +277,21 @@ TEST(HistoryFile, MaterialNamesRoundTripAndAreChecked) {
             std::string::npos);
   EXPECT_NE(error_with(with_u32(20, 5000)).find("corrupt history: material name 0"),
             std::string::npos);
-  EXPECT_NE(error_with(whole + "TLNAMES1").find("bytes after the thresholds or names"),
-            std::string::npos);
+  EXPECT_NE(error_with(body(whole) + "TLNAMES1").find("a block out of order"), std::string::npos);
   // Thresholds after the names are out of order.
-  std::string reordered =
-      read_bytes(plain) + whole.substr(at) +
-      read_bytes(with_params).substr(at, read_bytes(with_params).size() - (whole.size() - at) - at);
-  EXPECT_NE(error_with(reordered).find("bytes after the thresholds or names"), std::string::npos);
+  const std::string params_block =
+      body(read_bytes(with_params))
+          .substr(at, body(read_bytes(with_params)).size() - body(whole).size());
+  ASSERT_EQ(params_block.substr(0, 8), "TLPARAM1");
+  EXPECT_NE(error_with(body(whole) + params_block).find("a block out of order"), std::string::npos);
+  // The end block must give the file's length.
+  {
+    std::string bytes = whole;
+    bytes[bytes.size() - 8] ^= 1;
+    EXPECT_NE(error_with(bytes).find("the end block does not match the file's length"),
+              std::string::npos)
+        << error_with(bytes);
+  }
   // Two names of one material: out of order.
   {
     const std::vector<MaterialName> two = {{1, "a"}, {2, "b"}};
@@ -283,8 +302,8 @@ TEST(HistoryFile, MaterialNamesRoundTripAndAreChecked) {
     EXPECT_NE(error_with(bytes).find("material names out of order"), std::string::npos)
         << error_with(bytes);
   }
-  for (size_t n = at + 1; n < whole.size(); ++n)
-    EXPECT_NE(error_with(whole.substr(0, n)).find("corrupt history"), std::string::npos) << n;
+  for (size_t n = at; n < whole.size(); ++n)
+    EXPECT_NE(error_with(whole.substr(0, n)), "accepted") << n;
   std::string huge = whole;
   const uint64_t count = uint64_t(1) << 60;
   std::memcpy(&huge[at + 8], &count, sizeof count);
@@ -345,7 +364,7 @@ TEST(HistoryFile, SurfaceGroupsRoundTripAndAreChecked) {
   EXPECT_FALSE(read.any());
 
   const std::string whole = read_bytes(path);
-  const size_t at = read_bytes(plain_path).size();
+  const size_t at = body(read_bytes(plain_path)).size();
   ASSERT_EQ(whole.substr(at, 8), "TLGROUP1");
   const std::string damaged = out_path("damaged_groups.tlh");
   auto error_with = [&](const std::string& bytes) { return read_error(damaged, bytes); };
@@ -366,13 +385,12 @@ TEST(HistoryFile, SurfaceGroupsRoundTripAndAreChecked) {
   const int32_t outer = -7;
   EXPECT_NE(error_with(with(first_entry + 76, &outer, 4)).find("surface group triangle 0"),
             std::string::npos);
-  EXPECT_NE(error_with(whole + "TLNAMES1").find("bytes after the thresholds or names"),
-            std::string::npos);
+  EXPECT_NE(error_with(body(whole) + "TLNAMES1").find("a block out of order"), std::string::npos);
   const int32_t tag0 = 0;  // the group's tag, after the magic and the count
   EXPECT_NE(error_with(with(at + 16, &tag0, 4)).find("corrupt history: surface group 0"),
             std::string::npos);
-  for (size_t n = at + 1; n < whole.size(); n += 29)
-    EXPECT_NE(error_with(whole.substr(0, n)).find("corrupt history"), std::string::npos) << n;
+  for (size_t n = at; n < whole.size(); n += n + 17 < whole.size() ? 29 : 1)
+    EXPECT_NE(error_with(whole.substr(0, n)), "accepted") << n;
   EXPECT_EQ(error_with(whole), "accepted");
 }
 
@@ -443,11 +461,47 @@ TEST(HistoryFile, TruncatedAndDamagedFilesNeverReplayBadly) {
   ASSERT_TRUE(write_history(path, r.base, r.history).ok());
   const std::string whole = read_bytes(path);
   const std::string cut_path = out_path("cut.tlh");
-  for (size_t n = 0; n < whole.size(); n += n < 64 ? 1 : 37) {
+  for (size_t n = 0; n < whole.size(); n += n < 64 || n + 64 > whole.size() ? 1 : 37) {
     write_bytes(cut_path, whole.substr(0, n));
     TetMesh base;
     CollapseHistory history;
     EXPECT_FALSE(read_history(cut_path, &base, &history).ok()) << "cut at " << n;
+  }
+  // With every optional block, each cut between or inside them is refused too, even
+  // by a caller that asks for none of them.
+  {
+    SimplifyParams p;
+    p.sizing.uniform = 1.5;
+    const std::vector<MaterialName> names = {{1, "iron"}, {2, "air"}};
+    SurfaceGroups plain;
+    ASSERT_TRUE(group_surface(r.base, &plain).ok());
+    InputSurfaceGroup port;
+    port.tag = 40;
+    const auto& v = plain.surface[plain.groups[0].triangles[0]].v;
+    port.triangles.push_back(
+        {r.base.positions[v[0]], r.base.positions[v[1]], r.base.positions[v[2]]});
+    const SurfacePatches patches(r.base, {port});
+    const std::string full_path = out_path("full.tlh");
+    ASSERT_TRUE(write_history(full_path, r.base, r.history, &p, &names, &patches).ok());
+    const std::string full = read_bytes(full_path);
+    ASSERT_EQ(read_error(cut_path, full), "accepted");
+    const size_t blocks = whole.size() - 16;
+    ASSERT_EQ(full.substr(blocks, 8), "TLPARAM1");
+    for (size_t n = blocks; n < full.size(); ++n) {
+      write_bytes(cut_path, full.substr(0, n));
+      TetMesh base;
+      CollapseHistory history;
+      EXPECT_FALSE(read_history(cut_path, &base, &history).ok()) << "cut at " << n;
+    }
+    // A history written before the end block existed ("TETLODH1", none) still reads.
+    std::string old = body(full);
+    old[7] = '1';
+    EXPECT_EQ(read_error(cut_path, old), "accepted");
+    EXPECT_NE(
+        read_error(cut_path, old + full.substr(full.size() - 16)).find("a block out of order"),
+        std::string::npos);
+    EXPECT_NE(read_error(cut_path, body(full)).find("ends before its end block"),
+              std::string::npos);
   }
   std::mt19937 random(7);
   size_t accepted = 0;
