@@ -423,6 +423,8 @@ class GmshParser {
         if (!binary_entity_tail(c, dimension, &physical, &others)) return false;
         if (dimension == 3) volume_physical_[tag] = physical;
         if (dimension == 2) surface_physical_[tag] = physical;
+        if (dimension == 3)
+          for (int64_t other : others) read_in_groups_[other].insert(physical);
         if (dimension == 2 && !others.empty()) surface_other_physicals_[tag] = std::move(others);
       }
     }
@@ -741,6 +743,8 @@ class GmshParser {
         }
         if (dimension == 3) volume_physical_[tag] = physical;
         if (dimension == 2) surface_physical_[tag] = physical;
+        if (dimension == 3)
+          for (int64_t other : others) read_in_groups_[other].insert(physical);
         if (dimension == 2 && !others.empty()) surface_other_physicals_[tag] = std::move(others);
       }
     }
@@ -1121,8 +1125,28 @@ class GmshParser {
         const bool has_tets = key.second >= 0 &&
                               key.second <= std::numeric_limits<int32_t>::max() &&
                               present.count(int32_t(key.second)) > 0;
+        // A group without tets of its own may share a volume with the group its tets
+        // were read in (a second physical tag of a 4.1 volume entity; a 2.2 element
+        // listed again).
+        std::vector<std::string> holders;
+        if (const auto in = read_in_groups_.find(key.second); in != read_in_groups_.end()) {
+          for (int64_t group : in->second) {
+            const auto named = named_materials_.find(group);
+            const int64_t material = named != named_materials_.end() ? named->second : group;
+            if (material >= 0 && material <= std::numeric_limits<int32_t>::max() &&
+                present.count(int32_t(material)) > 0 && holders.size() < 10)
+              holders.push_back(std::to_string(group));
+          }
+        }
+        const std::string why = holders.empty()
+                                    ? " (no tetrahedra: not in the mesh)"
+                                    : " (no tetrahedra of its own: they are read in group" +
+                                          std::string(holders.size() > 1 ? "s " : " ") +
+                                          quoted_list(holders) +
+                                          (holders.size() > 1 ? ", which hold the same volumes)"
+                                                              : ", which holds the same volume)");
         volume_names.push_back("'" + name + "' = " + std::to_string(key.second) +
-                               (has_tets ? "" : " (no tetrahedra: not in the mesh)"));
+                               (has_tets ? "" : why));
         // Sorted by tag, so by material; a group's name is its material's.
         if (has_tets) out_->material_names.push_back({int32_t(key.second), name});
       }
@@ -1189,6 +1213,7 @@ class GmshParser {
         const uint32_t kept = order[j];
         if (!drop[kept] && tet_elementary_[kept] == tet_elementary_[t]) {
           drop[t] = 1;
+          read_in_groups_[mesh.materials[t]].insert(mesh.materials[kept]);
           ++dropped;
           if (dropped_materials.size() < 10) dropped_materials.insert(mesh.materials[t]);
           break;
@@ -1274,7 +1299,9 @@ class GmshParser {
   std::unordered_map<int64_t, int64_t> volume_parent_;     // partition volume -> model volume
   std::unordered_map<int64_t, int64_t> surface_physical_;  // surface entity -> first physical
   std::unordered_map<int64_t, std::vector<int64_t>> surface_other_physicals_;  // -> the others
-  std::map<int64_t, std::vector<std::array<Vec3, 3>>> surface_triangles_;      // by physical tag
+  // A volume group's tag -> the groups its tets were read in instead (for the notes).
+  std::map<int64_t, std::set<int64_t>> read_in_groups_;
+  std::map<int64_t, std::vector<std::array<Vec3, 3>>> surface_triangles_;  // by physical tag
   // For the notes: physical names of surfaces and volumes other than "material_<n>"
   // ((dimension, tag) -> name), elements by type, tets by where their material came from.
   std::map<std::pair<int64_t, int64_t>, std::string> physical_names_;

@@ -95,6 +95,28 @@ TEST(IoGmshFiles, ElementsInTwoGroupsAreReadOnce) {
   EXPECT_TRUE(has_note(info, "620 tetrahedra are listed again in another physical group"))
       << all_notes(info);
   EXPECT_TRUE(has_note(info, "not in group(s) 100")) << all_notes(info);
+  // The group of both conductors is not said to have no tets: they are in 1 and 4.
+  EXPECT_TRUE(has_note(info,
+                       "'conductors' = 100 (no tetrahedra of its own: they are read in "
+                       "groups 1, 4, which hold the same volumes)"))
+      << all_notes(info);
+  // Gmsh 4.1 writes a volume in two groups once, with both tags: its tets go to the
+  // first, and the second is said to hold them too.
+  const std::string two_tags =
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n3 1 \"iron\"\n"
+      "3 2 \"all\"\n$EndPhysicalNames\n$Entities\n0 0 0 1\n1 0 0 0 1 1 1 2 1 2 0\n"
+      "$EndEntities\n$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n"
+      "0 0 1\n$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n";
+  {
+    TetMesh mesh;
+    ReadInfo two;
+    ASSERT_TRUE(read_mesh_from_memory(two_tags, MeshFormat::kGmsh41, "two.msh", &mesh, &two).ok());
+    EXPECT_EQ(mesh.materials, std::vector<int32_t>{1});
+    EXPECT_TRUE(has_note(two,
+                         "'iron' = 1, 'all' = 2 (no tetrahedra of its own: they are read in "
+                         "group 1, which holds the same volume)"))
+        << all_notes(two);
+  }
   // The same nodes in two elementary entities are not a repeat but a broken mesh.
   const std::string two_entities =
       "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
