@@ -39,15 +39,23 @@ bool resolve_links(const std::string& path, std::string* target) {
   return false;
 }
 
+// The permission bits and owner of a file being replaced.
+struct Keep {
+  mode_t mode;
+  uid_t owner;
+  gid_t group;
+};
+
 // What is wrong with replacing an existing `target` by a new file, or "" if nothing
-// (it does not exist, or it is a regular file). `mode`, if given, gets the
-// permission bits of a regular file there, and stays untouched if there is none.
-std::string unreplaceable(const std::string& target, mode_t* mode) {
+// (it does not exist, or it is a regular file). `keep`, if given, gets the
+// permission bits and owner of a regular file there, and stays untouched if there is
+// none.
+std::string unreplaceable(const std::string& target, Keep* keep) {
   struct stat info;
   if (stat(target.c_str(), &info) != 0) return "";
   if (S_ISDIR(info.st_mode)) return "it is a directory";
   if (!S_ISREG(info.st_mode)) return "it is not a regular file (a device, FIFO or socket)";
-  if (mode) *mode = info.st_mode & 07777;
+  if (keep) *keep = {info.st_mode & 07777, info.st_uid, info.st_gid};
   return "";
 }
 
@@ -107,13 +115,17 @@ Status OutputFiles::stage(const std::string& path, const std::function<bool(std:
     if (same_file(other.target, staged.target))
       return fail("the same file as " + other.path + ", written by the same command");
   }
-  mode_t mode = kNoMode;  // a new file: the umask's
-  if (const std::string why = unreplaceable(staged.target, &mode); !why.empty()) return fail(why);
+  Keep keep{kNoMode, 0, 0};  // a new file: the umask's mode, the writer's owner
+  if (const std::string why = unreplaceable(staged.target, &keep); !why.empty()) return fail(why);
   FILE* file = create_temporary(staged.target, &staged.temporary);
   if (!file) return fail(reason(errno));
-  // The old file's permissions before any byte is written (a 0600 file's contents
-  // are never readable by others, not even in the temporary).
-  bool ok = mode == kNoMode || fchmod(fileno(file), mode) == 0;
+  // The old file's owner, where the writer may give it (root, or a group the writer
+  // is in; else the new file is the writer's, as any editor's save makes it), then
+  // its permissions, before any byte is written (a 0600 file's contents are never
+  // readable by others, not even in the temporary).
+  if (keep.mode != kNoMode && fchown(fileno(file), keep.owner, keep.group) != 0)
+    (void)!fchown(fileno(file), static_cast<uid_t>(-1), keep.group);
+  bool ok = keep.mode == kNoMode || fchmod(fileno(file), keep.mode) == 0;
   int error_number = ok ? 0 : errno;
   if (ok) {
     ok = write(file) && std::fflush(file) == 0 && !std::ferror(file);

@@ -21,7 +21,9 @@ namespace tetlod {
 // that fails anywhere before commit() leaves every output as it was.
 //  - A target that is a symbolic link is written through it: the file it points to
 //    is replaced, the link stays.
-//  - A target that exists keeps its permission bits (a new one gets 0666 & ~umask).
+//  - A target that exists keeps its permission bits (a new one gets 0666 & ~umask),
+//    and its owner and group where the writer may give them (as root; else the
+//    group if the writer is in it).
 //  - A target that exists and is not a regular file (a directory, a device such as
 //    /dev/null, a FIFO) is an error at stage(), as is a target staged twice (a
 //    history given the output mesh's path).

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -97,6 +98,30 @@ TEST(IoAtomicWrite, ReplacedFileKeepsItsPermissions) {
     EXPECT_EQ(fs::status(path).permissions(), mode);
     EXPECT_NE(test::read_text(path), "old");
   }
+}
+
+// A file that is replaced keeps its owner where the writer may give it: root, as
+// TetLOD often runs in containers, does not take over a user's files (the setuid bit
+// a chown would clear is restored with the mode).
+TEST(IoAtomicWrite, ReplacedFileKeepsItsOwnerWhenRootWrites) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to give a file to another user";
+  const std::string path = test::output_dir("atomic_owner") + "/m.mesh";
+  test::write_text(path, "old");
+  ASSERT_EQ(chown(path.c_str(), 4321, 8765), 0);
+  ASSERT_EQ(chmod(path.c_str(), 0640), 0);
+  ASSERT_TRUE(write_mesh(path, test::make_single_tet()).ok());
+  struct stat info;
+  ASSERT_EQ(stat(path.c_str(), &info), 0);
+  EXPECT_EQ(info.st_uid, 4321u);
+  EXPECT_EQ(info.st_gid, 8765u);
+  EXPECT_EQ(info.st_mode & 07777, 0640u);
+  EXPECT_NE(test::read_text(path), "old");
+  // A new file is the writer's.
+  const std::string fresh = test::output_dir("atomic_owner") + "/new.mesh";
+  std::remove(fresh.c_str());
+  ASSERT_TRUE(write_mesh(fresh, test::make_single_tet()).ok());
+  ASSERT_EQ(stat(fresh.c_str(), &info), 0);
+  EXPECT_EQ(info.st_uid, 0u);
 }
 
 // A symbolic link is written through: the file it points to is replaced (or made,
