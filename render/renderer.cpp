@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "render/embedded_shaders.h"
+#include "render/image.h"
 
 namespace tetlod::render {
 namespace {
@@ -400,9 +401,7 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     for (const int32_t m : visible_materials_) {
       std::string text = "material " + std::to_string(m);
       if (const std::string* name = find_material_name(&material_names_, m)) {
-        text = std::to_string(m) + " " + name->substr(0, 32);
-        if (name->size() > 32) text += "...";
-        for (char& c : text) c = c < 32 || c > 126 ? '?' : c;  // the font's glyphs
+        text = std::to_string(m) + " " + ascii_label(*name, 32);  // the font's glyphs
       }
       key.push_back({material_rgb(m), text});
     }
