@@ -7,6 +7,18 @@
 // a name ending in digits is that number ("material_7", "Volume2") unless an earlier
 // name has it ("Rotor1" then "Stator1"), other names get the next free numbers in
 // order of appearance.
+//
+// Surface groups (ParsedMesh::surface_groups): each element-based *SURFACE
+// (TYPE=ELEMENT, the default) whose data lines read "element or element set, Sn"
+// is a group named after the surface, tagged 1, 2, ... in the order of the file (a
+// name given again adds to the first). Tet faces, as the Abaqus and CalculiX manuals
+// number them: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1 (C3D10: the
+// same corners). A surface <X>_FACES is named X when the file has a node set X and
+// no surface X: TetLOD writes each group as *NSET X and *SURFACE X_FACES, so that a
+// file written from one read back keeps the names. Faces of elements that are not
+// tetrahedra are dropped with a note; node surfaces (TYPE=NODE), COMBINE and CROP
+// surfaces, and a data line without a face (all exposed faces) skip their surface
+// with a note.
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -15,6 +27,7 @@
 #include <map>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/io/mesh_formats.h"
 #include "core/io/text_lines.h"
@@ -28,6 +41,11 @@ std::string upper(std::string_view s) {
   for (char& c : u) c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
   return u;
 }
+
+// The corners (0-based) of the faces S1 to S4 of a C3D4 (and of a C3D10's corners),
+// after the Abaqus and CalculiX manuals: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3,
+// S4 = 3-4-1.
+constexpr int kAbaqusTetFace[4][3] = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
 
 std::vector<std::string_view> split_commas(std::string_view line) {
   std::vector<std::string_view> parts;
@@ -87,8 +105,10 @@ class AbaqusParser {
       // A data line ending in a comma goes on to the next line.
       std::string record(content);
       const size_t first_line = line_;
-      // (Gmsh ends every line of a set with a comma: never into a keyword line.)
-      while (!record.empty() && record.back() == ',' && mode_ != Mode::kSkip) {
+      // (Gmsh ends every line of a set with a comma: never into a keyword line. A
+      // surface's line is one face.)
+      while (!record.empty() && record.back() == ',' && mode_ != Mode::kSkip &&
+             mode_ != Mode::kSurface) {
         const size_t saved_pos = pos_, saved_line = line_;
         std::string_view more;
         if (!next_line(&more)) break;
@@ -101,7 +121,7 @@ class AbaqusParser {
       }
       if (!data(record, first_line)) return error_;
     }
-    if (!resolve()) return error_;
+    if (!resolve() || !resolve_surfaces()) return error_;
     if (!skipped_solids_.empty()) {
       out_->notes.push_back("skipped the elements " + count_list(skipped_solids_) +
                             ": TetLOD reads tetrahedra only, so a region meshed with other "
@@ -111,7 +131,7 @@ class AbaqusParser {
   }
 
  private:
-  enum class Mode { kSkip, kNodes, kElements, kElset, kElsetGenerate, kInstance };
+  enum class Mode { kSkip, kNodes, kElements, kElset, kElsetGenerate, kInstance, kSurface };
 
   bool next_line(std::string_view* line) { return next_text_line(text_, &pos_, &line_, line); }
 
@@ -154,7 +174,12 @@ class AbaqusParser {
       instance_line_ = line_;
       mode_ = Mode::kInstance;
     } else if (k.name == "NODE") {
+      if (!k.get("NSET").empty()) node_sets_.insert(upper(k.get("NSET")));
       mode_ = Mode::kNodes;
+    } else if (k.name == "NSET") {
+      if (!k.get("NSET").empty()) node_sets_.insert(upper(k.get("NSET")));
+    } else if (k.name == "SURFACE") {
+      return start_surface(k);
     } else if (k.name == "ELEMENT") {
       const std::string type = upper(k.get("TYPE"));
       if (type.empty()) return fail(line_, "*ELEMENT needs TYPE=");
@@ -197,7 +222,63 @@ class AbaqusParser {
         return elset(record, line);
       case Mode::kInstance:
         return fail(line, "*INSTANCE with a translation or rotation is not supported");
+      case Mode::kSurface:
+        return surface_face(record, line);
     }
+    return true;
+  }
+
+  // *SURFACE: an element-based one is read (data lines "element or set, Sn"), others
+  // are skipped with a note.
+  bool start_surface(const Keyword& k) {
+    const std::string name = k.get("NAME");
+    if (name.empty()) return fail(line_, "*SURFACE needs NAME=");
+    const std::string type = upper(k.get("TYPE"));
+    std::string form;  // why it is not read
+    if (!type.empty() && type != "ELEMENT") {
+      form = "TYPE=" + type;
+    } else if (k.has("COMBINE")) {
+      form = "COMBINE=" + upper(k.get("COMBINE"));
+    } else if (k.has("CROP")) {
+      form = "CROP";
+    }
+    if (!form.empty()) {
+      unread_surfaces_.push_back(name + " (" + form + ")");
+      return true;
+    }
+    const auto [it, added] = surface_index_.try_emplace(upper(name), surfaces_.size());
+    if (added) surfaces_.push_back({name, {}, false});
+    current_surface_ = it->second;
+    mode_ = Mode::kSurface;
+    return true;
+  }
+
+  bool surface_face(const std::string& record, size_t line) {
+    Surface& surface = surfaces_[current_surface_];
+    std::vector<std::string_view> f = split_commas(record);
+    if (f.size() > 1 && f.back().empty()) f.pop_back();  // a trailing comma
+    if (f.size() == 1) {  // all exposed faces of the elements (or, blank, of the model)
+      if (!surface.skipped) {
+        unread_surfaces_.push_back(surface.name + " (line " + std::to_string(line) +
+                                   ": an element or set without a face, for all its exposed "
+                                   "faces)");
+      }
+      surface.skipped = true;
+      return true;
+    }
+    if (f.size() != 2 || f[0].empty() || f[1].empty()) {
+      return fail(line, "*SURFACE " + surface.name +
+                            ": expected 'element or element set, face' such as '12, S3', found '" +
+                            record + "'");
+    }
+    const std::string face = upper(f[1]);
+    SurfaceFace entry;
+    entry.label = std::string(f[0]);
+    entry.face =
+        face.size() == 2 && face[0] == 'S' && face[1] >= '1' && face[1] <= '4' ? face[1] - '0' : 0;
+    entry.face_text = std::string(f[1]);
+    entry.line = line;
+    surface.faces.push_back(std::move(entry));
     return true;
   }
 
@@ -247,6 +328,8 @@ class AbaqusParser {
     }
     if (element_nodes_ == 0) {  // not a tet
       if (!skipped_type_.empty() && skipped_solids_.size() < 100) ++skipped_solids_[skipped_type_];
+      other_elements_.insert(id);  // for the faces of surfaces, which are dropped
+      if (!element_set_name_.empty()) element_sets_[element_set_name_].push_back(id);
       return true;
     }
     if (f.size() != size_t(element_nodes_) + 1) {
@@ -421,6 +504,117 @@ class AbaqusParser {
     return true;
   }
 
+  // The surfaces' faces as surface groups, after resolve(): their tets are in the mesh.
+  bool resolve_surfaces() {
+    // Faces visited (set members included) stay within a bound proportional to the
+    // input, as set members do, so that no file can exhaust memory or time.
+    const uint64_t limit = 4 * uint64_t(text_.size()) + (uint64_t(1) << 16);
+    uint64_t visited = 0;
+    size_t dropped = 0;           // faces on elements that are not tets read
+    std::string dropped_from;     // the surfaces that had them
+    std::vector<uint32_t> seen;   // per tet face: the last group + 1 it was added to
+    std::vector<uint64_t> faces;  // of the current group: tet * 4 + face - 1
+    for (Surface& surface : surfaces_) {
+      if (surface.skipped) continue;
+      const uint32_t stamp = uint32_t(out_->surface_groups.size()) + 1;
+      faces.clear();
+      size_t dropped_here = 0;
+      for (const SurfaceFace& entry : surface.faces) {
+        std::vector<int64_t> single;
+        const std::vector<int64_t>* members = &single;
+        int64_t element = 0;
+        const bool is_number = integer(entry.label, &element);
+        if (is_number) {
+          if (tet_of_element_.count(element) == 0 && other_elements_.count(element) == 0) {
+            return fail(entry.line, "*SURFACE " + surface.name + ": element " +
+                                        std::to_string(element) + " is not defined");
+          }
+          single.push_back(element);
+        } else {
+          members = surface_set(upper(entry.label));
+          if (members == nullptr) {
+            return fail(entry.line, "*SURFACE " + surface.name + ": '" + entry.label +
+                                        "' is neither an element id nor an element set");
+          }
+        }
+        if (members->size() > limit - visited) {
+          return fail(entry.line, "the surfaces hold more faces than an input of this size can (" +
+                                      std::to_string(limit) + ")");
+        }
+        visited += members->size();
+        for (int64_t e : *members) {
+          const auto it = tet_of_element_.find(e);
+          if (it == tet_of_element_.end()) {
+            ++dropped_here;
+            continue;
+          }
+          if (entry.face == 0) {
+            return fail(entry.line, "*SURFACE " + surface.name + ": element " + std::to_string(e) +
+                                        " is a tetrahedron, whose faces are S1 to S4, not '" +
+                                        entry.face_text + "'");
+          }
+          if (seen.empty()) seen.assign(tets_.size() * 4, 0);
+          const uint64_t face = uint64_t(it->second) * 4 + uint64_t(entry.face - 1);
+          if (seen[face] == stamp) continue;  // listed twice
+          seen[face] = stamp;
+          faces.push_back(face);
+        }
+      }
+      if (dropped_here > 0) {
+        dropped += dropped_here;
+        dropped_from += (dropped_from.empty() ? "" : ", ") + surface.name;
+      }
+      if (faces.empty()) continue;
+      InputSurfaceGroup group;
+      group.tag = int32_t(stamp);
+      group.name = valid_utf8(group_name(surface.name));
+      group.triangles.reserve(faces.size());
+      const TetMesh& mesh = out_->mesh;
+      for (uint64_t face : faces) {
+        const Tet& tet = mesh.tets[face / 4];
+        const int* corners = kAbaqusTetFace[face % 4];
+        group.triangles.push_back({mesh.positions[tet[size_t(corners[0])]],
+                                   mesh.positions[tet[size_t(corners[1])]],
+                                   mesh.positions[tet[size_t(corners[2])]]});
+      }
+      out_->surface_groups.push_back(std::move(group));
+    }
+    if (dropped > 0) {
+      out_->notes.push_back(std::to_string(dropped) + " faces of *SURFACE " + dropped_from +
+                            " are on elements that are not tetrahedra (or not defined): not "
+                            "kept in the surface groups");
+    }
+    if (!unread_surfaces_.empty()) {
+      std::string list;
+      for (const std::string& s : unread_surfaces_) list += (list.empty() ? "" : ", ") + s;
+      out_->notes.push_back("not read as surface groups: *SURFACE " + list +
+                            "; TetLOD reads element-face surfaces given as 'element or element "
+                            "set, Sn'");
+    }
+    return true;
+  }
+
+  // The element set a surface's line names: as written, or, qualified by an
+  // instance ("Part-1-1.Set-1"), the set of the one part.
+  const std::vector<int64_t>* surface_set(const std::string& name) const {
+    if (const std::vector<int64_t>* members = members_of(name)) return members;
+    const size_t dot = name.find('.');
+    return dot == std::string::npos ? nullptr : members_of(name.substr(dot + 1));
+  }
+
+  // A surface's group name: its own, but X for X_FACES when the file has a node set
+  // X and no surface X (what write_abaqus() writes for a group X).
+  std::string group_name(const std::string& surface) const {
+    const std::string u = upper(surface);
+    constexpr std::string_view kSuffix = "_FACES";
+    if (u.size() <= kSuffix.size() ||
+        u.compare(u.size() - kSuffix.size(), kSuffix.size(), kSuffix.data(), kSuffix.size()) != 0)
+      return surface;
+    const std::string stripped = u.substr(0, u.size() - kSuffix.size());
+    if (node_sets_.count(stripped) == 0 || surface_index_.count(stripped) > 0) return surface;
+    return surface.substr(0, surface.size() - kSuffix.size());
+  }
+
   // The members of a set defined by *ELSET or by *ELEMENT's ELSET, or null.
   const std::vector<int64_t>* members_of(const std::string& name) const {
     const auto it = sets_.find(name);
@@ -444,6 +638,18 @@ class AbaqusParser {
     std::string set;
     int material = -1;  // key
     size_t line = 0;
+  };
+  // A data line of a *SURFACE: an element id or set name, and a face.
+  struct SurfaceFace {
+    std::string label;
+    int face = 0;  // 1 to 4 for S1 to S4, else 0
+    std::string face_text;
+    size_t line = 0;
+  };
+  struct Surface {
+    std::string name;  // as written
+    std::vector<SurfaceFace> faces;
+    bool skipped = false;  // for a form that is not read (in unread_surfaces_)
   };
 
   std::string_view text_;
@@ -471,6 +677,12 @@ class AbaqusParser {
   std::vector<Section> sections_;
   std::vector<std::string> keys_;  // material and set names, upper case
   std::unordered_map<std::string, int> key_index_;
+  std::unordered_set<int64_t> other_elements_;             // ids of elements that are not tets
+  std::unordered_set<std::string> node_sets_;              // names, upper case
+  std::vector<Surface> surfaces_;                          // element-based, in order of the file
+  std::unordered_map<std::string, size_t> surface_index_;  // by upper-case name
+  size_t current_surface_ = 0;
+  std::vector<std::string> unread_surfaces_;  // "NAME (reason)", for the note
 };
 
 // Per surface group, a *NSET of its nodes (for *BOUNDARY) and a *SURFACE of element

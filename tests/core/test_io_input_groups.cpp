@@ -1,0 +1,340 @@
+// Surface groups read from Abaqus / CalculiX element-face *SURFACE
+// (ReadInfo::surface_groups): hand-written files (by element, by element set, 4-
+// and 10-node tets, the forms skipped with a note), what TetLOD's writer writes
+// reading back as the same groups, the groups through SurfacePatches and
+// group_surface(), malformed files naming the line, and CalculiX loading the very
+// faces the reader gives.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/io/mesh_io.h"
+#include "core/surface.h"
+#include "core/test_io_helpers.h"
+
+namespace tetlod {
+namespace {
+
+TetMesh box2() {
+  TetMesh mesh;
+  const Status s = read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &mesh);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return mesh;
+}
+
+SurfaceGroups groups_of(const TetMesh& mesh) {
+  SurfaceGroups groups;
+  const Status s = group_surface(mesh, &groups);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return groups;
+}
+
+std::vector<std::string> names_and_tags(const SurfaceGroups& groups) {
+  std::vector<std::string> result;
+  for (const SurfaceGroup& g : groups.groups)
+    result.push_back(g.name + "=" + std::to_string(g.tag) + ":" +
+                     std::to_string(g.triangles.size()));
+  return result;
+}
+
+// A triangle by its corners, rotated to start at the smallest (orientation kept).
+using Triangle = std::array<std::array<double, 3>, 3>;
+Triangle canonical(const std::array<Vec3, 3>& t) {
+  Triangle c;
+  for (int k = 0; k < 3; ++k) c[k] = {t[k].x, t[k].y, t[k].z};
+  std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+  return c;
+}
+std::vector<Triangle> canonical(const std::vector<std::array<Vec3, 3>>& triangles) {
+  std::vector<Triangle> result;
+  for (const auto& t : triangles) result.push_back(canonical(t));
+  std::sort(result.begin(), result.end());
+  return result;
+}
+// The triangles of each group the writers wrote, by tag.
+std::vector<std::vector<Triangle>> written_triangles(const TetMesh& mesh,
+                                                     const SurfaceGroups& groups) {
+  std::vector<std::vector<Triangle>> result;
+  for (const SurfaceGroup& g : groups.groups) {
+    std::vector<std::array<Vec3, 3>> list;
+    for (uint32_t i : g.triangles) {
+      const auto& v = groups.surface[i].v;
+      list.push_back({mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]});
+    }
+    result.push_back(canonical(list));
+  }
+  return result;
+}
+
+std::string join(const std::vector<std::string>& notes) {
+  std::string all;
+  for (const std::string& n : notes) all += n + "\n";
+  return all;
+}
+
+// ---- Abaqus / CalculiX ----------------------------------------------------------
+
+// Nodes A(0,0,0) B(1,0,0) C(0,1,0) D(0,0,1) E(1,1,1) F(0,0,-1) G(0,-1,0).
+const char* const kNodes =
+    "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
+    "7, 0, -1, 0\n";  // lines 1-8
+
+const std::string kDeck = std::string(kNodes) +
+                          "*ELEMENT, TYPE=C3D4, ELSET=UPPER\n"
+                          "1, 1, 2, 3, 4\n"
+                          "2, 2, 3, 4, 5\n"
+                          "*ELEMENT, TYPE=C3D10, ELSET=LOWER\n"
+                          "3, 1, 2, 3, 6, 1, 1, 1, 1, 1, 1\n"
+                          "*ELEMENT, TYPE=C3D4, ELSET=LOWER\n"
+                          "4, 1, 2, 4, 7\n"
+                          "*ELEMENT, TYPE=C3D8\n"
+                          "20, 1, 2, 3, 4, 5, 6, 7, 1\n"
+                          "*ELEMENT, TYPE=S3, ELSET=SKIN\n"
+                          "30, 1, 2, 3\n"
+                          "*ELSET, ELSET=PAIR, GENERATE\n"
+                          "1, 2\n"
+                          "*NSET, NSET=Cap\n"
+                          "2, 3, 5\n"
+                          "** our writer's pair: node set Cap, surface Cap_FACES\n"
+                          "*SURFACE, TYPE=ELEMENT, NAME=Cap_FACES\n"
+                          "2, S2\n"
+                          "*Surface, name=Lower\n"
+                          "LOWER, s4\n"
+                          "*SURFACE, NAME=Mixed\n"
+                          "1, S1\n"
+                          "1, S1\n"  // twice: once in the group
+                          "SKIN, SPOS\n"
+                          "20, S5\n"
+                          "*SURFACE, TYPE=NODE, NAME=Points\n"
+                          "Cap\n"
+                          "*SURFACE, NAME=Exposed\n"
+                          "PAIR\n"
+                          "*SURFACE, NAME=Pair_FACES\n"  // no node set Pair: keeps its name
+                          "Part-1-1.PAIR, S3\n"
+                          "*SURFACE, NAME=Lower\n"  // adds to the first Lower
+                          "4, S1\n";
+
+TEST(IoInputGroups, AbaqusSurfacesByElementAndBySet) {
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(kDeck, MeshFormat::kAbaqus, "a.inp", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_EQ(mesh.tet_count(), 4u);
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0}, d{0, 0, 1}, e{1, 1, 1}, f{0, 0, -1}, g{0, -1, 0};
+  // Faces: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
+  struct Expected {
+    int32_t tag;
+    const char* name;
+    std::vector<std::array<Vec3, 3>> triangles;
+  };
+  const std::vector<Expected> expected = {
+      {1, "Cap", {{b, e, c}}},                          // element 2 (B C D E), S2
+      {2, "Lower", {{c, f, a}, {d, g, a}, {a, b, d}}},  // 3 (A B C F) and 4 (A B D G), S4; 4, S1
+      {3, "Mixed", {{a, b, c}}},                  // element 1, S1 (the shell and the hex dropped)
+      {4, "Pair_FACES", {{b, d, c}, {c, e, d}}},  // elements 1 and 2, S3
+  };
+  ASSERT_EQ(info.surface_groups.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) {
+    SCOPED_TRACE(expected[i].name);
+    EXPECT_EQ(info.surface_groups[i].tag, expected[i].tag);
+    EXPECT_EQ(info.surface_groups[i].name, expected[i].name);
+    EXPECT_EQ(canonical(info.surface_groups[i].triangles), canonical(expected[i].triangles));
+  }
+  const std::string notes = join(info.notes);
+  EXPECT_NE(notes.find("2 faces of *SURFACE Mixed are on elements that are not tetrahedra"),
+            std::string::npos)
+      << notes;
+  EXPECT_NE(notes.find("not read as surface groups: *SURFACE Points (TYPE=NODE), Exposed (line "
+                       "37: an element or set without a face"),
+            std::string::npos)
+      << notes;
+}
+
+// Each malformed form names the file and line and says what is wrong.
+TEST(IoInputGroups, AbaqusBrokenSurfacesNameTheLine) {
+  const std::string mesh =
+      std::string(kNodes) + "*ELEMENT, TYPE=C3D4, ELSET=UPPER\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n";
+  // The *SURFACE line is line 12, its first data line 13.
+  const struct {
+    std::string surface;
+    int line;
+    const char* words;
+  } cases[] = {
+      {"*SURFACE, TYPE=ELEMENT\n1, S1\n", 12, "*SURFACE needs NAME="},
+      {"*SURFACE, NAME=X\n1, S5\n", 13, "element 1 is a tetrahedron, whose faces are S1 to S4"},
+      {"*SURFACE, NAME=X\n1, S0\n", 13, "not 'S0'"},
+      {"*SURFACE, NAME=X\n1, 7\n", 13, "not '7'"},
+      {"*SURFACE, NAME=X\n2, S1\nUPPER, SNEG\n", 14, "element 1 is a tetrahedron"},
+      {"*SURFACE, NAME=X\n1, S1\n99, S1\n", 14, "*SURFACE X: element 99 is not defined"},
+      {"*SURFACE, NAME=X\nNOPE, S1\n", 13, "'NOPE' is neither an element id nor an element set"},
+      {"*SURFACE, NAME=X\n1, S1, 2\n", 13, "expected 'element or element set, face'"},
+      {"*SURFACE, NAME=X\n, S1\n", 13, "expected 'element or element set, face'"},
+  };
+  for (const auto& c : cases) {
+    TetMesh read;
+    const Status s = read_mesh_from_memory(mesh + c.surface, MeshFormat::kAbaqus, "a.inp", &read);
+    ASSERT_FALSE(s.ok()) << c.surface;
+    EXPECT_EQ(s.message().rfind("a.inp:" + std::to_string(c.line) + ": ", 0), 0u) << s.message();
+    EXPECT_NE(s.message().find(c.words), std::string::npos) << s.message();
+  }
+  // A set that generates more faces than an input of this size can hold.
+  const std::string flood = mesh +
+                            "*ELSET, ELSET=MANY, GENERATE\n1, 1000000\n"
+                            "*SURFACE, NAME=X\nMANY, S1\nMANY, S2\nMANY, S3\n";
+  TetMesh read;
+  const Status s = read_mesh_from_memory(flood, MeshFormat::kAbaqus, "a.inp", &read);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.message().rfind("a.inp:15: the surfaces hold more faces", 0), 0u) << s.message();
+}
+
+TEST(IoInputGroups, AbaqusRandomDamageNeverCrashes) {
+  std::mt19937 random(7);
+  const char alphabet[] = "0123456789,*.-= \nSNEGLTabc";
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::string data = kDeck;
+    for (int k = 0; k <= trial % 3; ++k)
+      data[random() % data.size()] = alphabet[random() % (sizeof alphabet - 1)];
+    if (trial % 5 == 0) data.resize(random() % data.size());
+    test::expect_error_or_valid_mesh(data, MeshFormat::kAbaqus, "a.inp");
+    if (testing::Test::HasFatalFailure()) return;
+  }
+}
+
+// What write_abaqus() writes reads back as the same groups, named as written (our
+// <NAME>_FACES is NAME again), tagged in order; written again, the file is the same.
+TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
+  const std::string dir = test::output_dir("input_groups_abaqus");
+  WriteOptions options;
+  options.surface_groups = true;
+  // box2: a group per material pair.
+  const TetMesh mesh = box2();
+  const SurfaceGroups plain = groups_of(mesh);
+  ASSERT_TRUE(write_mesh(dir + "/box2.inp", mesh, options).ok());
+  TetMesh back;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(dir + "/box2.inp", &back, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), plain.groups.size());
+  const auto written = written_triangles(mesh, plain);
+  for (size_t i = 0; i < plain.groups.size(); ++i) {
+    EXPECT_EQ(info.surface_groups[i].tag, int32_t(i + 1));
+    std::string upper = plain.groups[i].name;
+    for (char& ch : upper) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+    EXPECT_EQ(info.surface_groups[i].name, upper);
+    // A face's corners in the order of its Abaqus face, not of the writer's
+    // triangle: compare them as sets of corners.
+    auto corners = [](std::vector<Triangle> list) {
+      for (Triangle& t : list) std::sort(t.begin(), t.end());
+      std::sort(list.begin(), list.end());
+      return list;
+    };
+    EXPECT_EQ(corners(canonical(info.surface_groups[i].triangles)), corners(written[i]));
+  }
+  // End to end: each is a whole pair's, so group_surface() keeps it under its name.
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(back, &groups, SurfacePatches(back, info.surface_groups)).ok());
+  std::vector<std::string> expected;
+  for (size_t i = 0; i < plain.groups.size(); ++i)
+    expected.push_back(info.surface_groups[i].name + "=" + std::to_string(i + 1) + ":" +
+                       std::to_string(plain.groups[i].triangles.size()));
+  EXPECT_EQ(names_and_tags(groups), expected);
+
+  // A Gmsh file's own groups: .msh -> .inp -> .inp keeps the names, and the second
+  // .inp is the first.
+  TetMesh input;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/groups41.msh"), &input, &info).ok());
+  ASSERT_TRUE(group_surface(input, &groups, SurfacePatches(input, info.surface_groups)).ok());
+  options.groups = &groups;
+  ASSERT_TRUE(write_mesh(dir + "/groups.inp", input, options).ok());
+  ASSERT_TRUE(read_mesh(dir + "/groups.inp", &back, &info).ok());
+  std::vector<std::string> names;
+  for (const InputSurfaceGroup& g : info.surface_groups)
+    names.push_back(g.name + ":" + std::to_string(g.triangles.size()));
+  EXPECT_EQ(names, (std::vector<std::string>{"OUTER_LEFT:332", "BOUNDARY_2:264", "RIGHT_END:68",
+                                             "MEMBRANE:66"}));
+  ASSERT_TRUE(group_surface(back, &groups, SurfacePatches(back, info.surface_groups)).ok());
+  ASSERT_TRUE(write_mesh(dir + "/again.inp", back, options).ok());
+  EXPECT_EQ(test::read_text(dir + "/again.inp"), test::read_text(dir + "/groups.inp"));
+}
+
+// CalculiX loads the faces the reader gives: four disjoint copies of one scalene
+// tet, copy k with face Sk under a unit pressure and the corners of another face
+// held. A linear tet passes a third of a uniform pressure to each corner of the
+// face, and CalculiX's reaction is the force the element passes to the held nodes
+// (not the load put on them directly): the free corner's third, so the reaction
+// is a third of the loaded face's area vector, outward from the tet. Each face of
+// this tet has a different one.
+TEST(IoInputGroups, CalculixLoadsTheFacesTheReaderGives) {
+  if (std::system("command -v ccx > /dev/null 2>&1") != 0) GTEST_SKIP() << "no ccx on PATH";
+  const std::string dir = test::output_dir("input_groups_calculix");
+  const Vec3 corner[4] = {{0, 0, 0}, {2, 0, 0}, {0.5, 3, 0}, {0.3, 0.2, 5}};
+  std::ostringstream deck;
+  deck << "*NODE\n";
+  for (int copy = 0; copy < 4; ++copy)
+    for (int k = 0; k < 4; ++k)
+      deck << copy * 4 + k + 1 << ", " << corner[k].x + 10 * copy << ", " << corner[k].y << ", "
+           << corner[k].z << "\n";
+  deck << "*ELEMENT, TYPE=C3D4, ELSET=SOLID\n";
+  for (int copy = 0; copy < 4; ++copy)
+    deck << copy + 1 << ", " << copy * 4 + 1 << ", " << copy * 4 + 2 << ", " << copy * 4 + 3 << ", "
+         << copy * 4 + 4 << "\n";
+  // The corners (0-based) of S1..S4 (Abaqus and CalculiX manuals).
+  const int face_corners[4][3] = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+  for (int copy = 0; copy < 4; ++copy) {
+    const int* held = face_corners[(copy + 1) % 4];
+    deck << "*NSET, NSET=N" << copy + 1 << "\n"
+         << copy * 4 + held[0] + 1 << ", " << copy * 4 + held[1] + 1 << ", "
+         << copy * 4 + held[2] + 1 << "\n";
+    deck << "*SURFACE, NAME=F" << copy + 1 << "\n" << copy + 1 << ", S" << copy + 1 << "\n";
+  }
+  const std::string mesh_text = deck.str();
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh_from_memory(mesh_text, MeshFormat::kAbaqus, "four.inp", &mesh, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), 4u);
+  deck << "*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n"
+          "*SOLID SECTION, ELSET=SOLID, MATERIAL=STEEL\n"
+          "*STEP\n*STATIC\n*BOUNDARY\n";
+  for (int copy = 0; copy < 4; ++copy) deck << "N" << copy + 1 << ", 1, 3\n";
+  deck << "*DLOAD\n";
+  for (int copy = 0; copy < 4; ++copy) deck << "F" << copy + 1 << ", P, 1.0\n";
+  for (int copy = 0; copy < 4; ++copy)
+    deck << "*NODE PRINT, NSET=N" << copy + 1 << ", TOTALS=ONLY\nRF\n";
+  deck << "*END STEP\n";
+  test::write_text(dir + "/job.inp", deck.str());
+  ASSERT_EQ(std::system(("cd '" + dir + "' && ccx job > ccx.log 2>&1").c_str()), 0)
+      << test::read_text(dir + "/ccx.log");
+  const std::string dat = test::read_text(dir + "/job.dat");
+  for (int copy = 0; copy < 4; ++copy) {
+    SCOPED_TRACE("S" + std::to_string(copy + 1));
+    const size_t at = dat.find("total force (fx,fy,fz) for set N" + std::to_string(copy + 1));
+    ASSERT_NE(at, std::string::npos) << dat;
+    std::istringstream in(dat.substr(dat.find('\n', at)));
+    Vec3 reaction;
+    in >> reaction.x >> reaction.y >> reaction.z;
+    // The group's one triangle, its area vector turned away from the copy's other
+    // corner.
+    const InputSurfaceGroup& group = info.surface_groups[size_t(copy)];
+    ASSERT_EQ(group.triangles.size(), 1u);
+    const auto& t = group.triangles[0];
+    Vec3 area = cross(t[1] - t[0], t[2] - t[0]) * 0.5;
+    Vec3 centre{0, 0, 0};
+    for (int k = 0; k < 4; ++k)
+      centre = centre + Vec3{corner[k].x + 10 * copy, corner[k].y, corner[k].z} * 0.25;
+    if (dot(area, t[0] - centre) < 0) area = area * -1.0;
+    EXPECT_NEAR(3 * reaction.x, area.x, 1e-5);
+    EXPECT_NEAR(3 * reaction.y, area.y, 1e-5);
+    EXPECT_NEAR(3 * reaction.z, area.z, 1e-5);
+  }
+}
+
+}  // namespace
+}  // namespace tetlod
