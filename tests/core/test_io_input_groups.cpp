@@ -159,6 +159,22 @@ TEST(IoInputGroups, AbaqusSurfacesByElementAndBySet) {
       << notes;
 }
 
+// A section or *ELSET may name the element set of a block of other elements (a
+// mixed deck): it holds no tet, but it is defined.
+TEST(IoInputGroups, AbaqusSetsOfOtherElementsAreDefined) {
+  const std::string deck = std::string(kNodes) +
+                           "*ELEMENT, TYPE=C3D4, ELSET=TETS\n1, 1, 2, 3, 4\n"
+                           "*ELEMENT, TYPE=C3D8, ELSET=HEX\n2, 1, 2, 3, 4, 5, 6, 7, 1\n"
+                           "*ELSET, ELSET=BOTH\nTETS, HEX\n"
+                           "*SOLID SECTION, ELSET=HEX, MATERIAL=Steel7\n"
+                           "*SOLID SECTION, ELSET=BOTH, MATERIAL=Air3\n";
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(deck, MeshFormat::kAbaqus, "a.inp", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(mesh.materials, std::vector<int32_t>{3});
+}
+
 // Each malformed form names the file and line and says what is wrong.
 TEST(IoInputGroups, AbaqusBrokenSurfacesNameTheLine) {
   const std::string mesh =
