@@ -3,7 +3,7 @@
 // crash, hang or allocate without bound, and a mesh it accepts must hold the
 // invariants of tet_mesh.h; the surface groups and material names it gives must be
 // usable (SurfacePatches and group_surface() over them, names sorted). For TetGen the
-// input is "node text \0 ele text".
+// input is "node text \0 ele text", or "node text \0 ele text \0 face text".
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -40,9 +40,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   tetlod::Status status;
   if constexpr (kFormat == tetlod::MeshFormat::kTetGen) {
     const size_t split = std::min(input.find('\0'), input.size());
-    status = tetlod::read_tetgen_from_memory(input.substr(0, split),
-                                             input.substr(std::min(split + 1, input.size())),
-                                             "fuzz.node", "fuzz.ele", &mesh, &info);
+    const std::string_view rest = input.substr(std::min(split + 1, input.size()));
+    const size_t face_split = rest.find('\0');
+    if (face_split == std::string_view::npos) {
+      status = tetlod::read_tetgen_from_memory(input.substr(0, split), rest, "fuzz.node",
+                                               "fuzz.ele", &mesh, &info);
+    } else {
+      status = tetlod::read_tetgen_from_memory(input.substr(0, split), rest.substr(0, face_split),
+                                               rest.substr(face_split + 1), "fuzz.node", "fuzz.ele",
+                                               "fuzz.face", &mesh, &info);
+    }
   } else {
     status = tetlod::read_mesh_from_memory(input, kFormat, "fuzz", &mesh, &info);
   }

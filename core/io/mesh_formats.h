@@ -22,15 +22,17 @@ struct ParsedMesh {
   TetMesh mesh;
   std::vector<uint32_t> tet_lines;                // 1-based line of each tet in the file
   std::vector<std::string> notes;                 // what a user should know of how it was read
-  std::vector<InputSurfaceGroup> surface_groups;  // Gmsh physical surfaces (ReadInfo)
+  std::vector<InputSurfaceGroup> surface_groups;  // the file's own (ReadInfo)
   std::vector<MaterialName> material_names;       // ReadInfo's: sorted, present materials
 };
 
 Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out);
 // `version` receives 22 or 41.
 Status parse_gmsh(std::string_view text, const std::string& name, ParsedMesh* out, int* version);
+// `face_name`: of the .face file beside them (`face_text`), or null for none.
 Status parse_tetgen(std::string_view node_text, const std::string& node_name,
-                    std::string_view ele_text, const std::string& ele_name, ParsedMesh* out);
+                    std::string_view ele_text, const std::string& ele_name, ParsedMesh* out,
+                    std::string_view face_text = {}, const std::string* face_name = nullptr);
 Status parse_vtk_legacy(std::string_view text, const std::string& name, ParsedMesh* out);
 Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out);
 Status parse_nastran(std::string_view text, const std::string& name, ParsedMesh* out);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 #include <utility>
 
 #include "core/io/file_access.h"
@@ -173,6 +175,17 @@ Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_
   return finish_read(&parsed, MeshFormat::kTetGen, ele_name, mesh, info);
 }
 
+Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_data,
+                               std::string_view face_data, const std::string& node_name,
+                               const std::string& ele_name, const std::string& face_name,
+                               TetMesh* mesh, ReadInfo* info) {
+  io::ParsedMesh parsed;
+  Status status =
+      io::parse_tetgen(node_data, node_name, ele_data, ele_name, &parsed, face_data, &face_name);
+  if (!status.ok()) return status;
+  return finish_read(&parsed, MeshFormat::kTetGen, ele_name, mesh, info);
+}
+
 Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   FileKind kind;
   Status status = file_kind(path, &kind);
@@ -182,7 +195,15 @@ Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
     std::string node_text, ele_text;
     if (!(status = io::read_file(base + ".node", &node_text)).ok()) return status;
     if (!(status = io::read_file(base + ".ele", &ele_text)).ok()) return status;
-    return read_tetgen_from_memory(node_text, ele_text, base + ".node", base + ".ele", mesh, info);
+    // The .face file beside them, if any, for its surface groups.
+    std::error_code error;
+    if (!std::filesystem::exists(base + ".face", error))
+      return read_tetgen_from_memory(node_text, ele_text, base + ".node", base + ".ele", mesh,
+                                     info);
+    std::string face_text;
+    if (!(status = io::read_file(base + ".face", &face_text)).ok()) return status;
+    return read_tetgen_from_memory(node_text, ele_text, face_text, base + ".node", base + ".ele",
+                                   base + ".face", mesh, info);
   }
   std::string text;
   if (!(status = io::read_file(path, &text)).ok()) return status;

@@ -5,7 +5,8 @@
 //                  byte order; write: ASCII 4.1 unless WriteOptions::gmsh_version ==
 //                  22); material = physical tag, else the elementary tag
 //   .node / .ele   TetGen pair (either name selects both); material = first region
-//                  attribute; 0- or 1-based numbering
+//                  attribute; 0- or 1-based numbering; a .face file of the same
+//                  base name beside them, if any, gives surface groups
 //   .vtk           VTK legacy unstructured grid (read: ASCII or binary; write: ASCII),
 //                  cell data "material", "stretch"
 //   .vtu           VTK XML unstructured grid (read: ASCII, binary or appended data,
@@ -16,8 +17,9 @@
 //                  form fits, else 10 or more significant digits; after BEGIN BULK)
 //   .inp           Abaqus / CalculiX input: *NODE, tetrahedral *ELEMENT types, element
 //                  sets and *SOLID SECTION (see io/abaqus.cpp for how materials are
-//                  found); written with one set MATERIAL_<id> per material. The
-//                  format has no end marker: a file cut between lines reads as less
+//                  found), element-face *SURFACE as surface groups; written with one
+//                  set MATERIAL_<id> per material. The format has no end marker: a
+//                  file cut between lines reads as less
 // Every read ends with validate_mesh(); every error reads "path:line: message"
 // ("path: byte N: message" past the header of a binary .msh or .vtk).
 // Writes go to a temporary file in the same directory that is renamed over the
@@ -43,7 +45,18 @@
 //  - TetGen: `.node` header "n 3 nattr nmarker", `.ele` header "m 4|10 nattr";
 //    0- or 1-based numbering from the first index in .node, '#' comments; the
 //    first region attribute must be an integer (no attribute: material 0). Either
-//    orientation is accepted.
+//    orientation is accepted. A `.face` file beside them (read_mesh(): same base
+//    name; none is fine), header "f 0|1", one face a line "i a b c [marker]"
+//    numbered as .node (6 nodes after a 10-node .ele; TetGen -nn's two adjacent
+//    tets after the marker are skipped): faces with a marker >= 1 are surface
+//    groups by marker (tag = marker, unnamed), as Medit references are; marker 0,
+//    or no markers, none. A malformed .face is an error naming it.
+//  - Abaqus: each element-based *SURFACE ("element or element set, Sn"; S1 = nodes
+//    1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1) is a surface group named after it,
+//    tags 1, 2, ... in the order of the file; <X>_FACES is named X when a node set
+//    X exists and no surface X (as TetLOD writes a group X). Node surfaces and
+//    other forms are skipped, and faces of elements that are not tets dropped,
+//    with a note (io/abaqus.cpp).
 //  - VTK legacy (3.0 and 5.1 cell layouts) and VTK XML: cell type 10 (tet) and 24
 //    (quadratic tet: its four corners) are read, other cells skipped; material =
 //    cell data array "material" (legacy: SCALARS or FIELD), else 0. Binary,
@@ -90,8 +103,10 @@ struct ReadInfo {
   // What a user should know of how the file was read, e.g. that no array of a .vtu
   // held the material (callers print them as notes).
   std::vector<std::string> notes;
-  // The file's own surface groups (Gmsh physical surfaces of triangles; other formats
-  // none), for match_surface_groups() (core/surface.h) when writing surface groups.
+  // The file's own surface groups (Gmsh physical surfaces of triangles, Medit
+  // triangles with a reference >= 1, TetGen .face markers >= 1, Abaqus element-face
+  // *SURFACE; other formats none), for SurfacePatches (core/surface.h) when writing
+  // surface groups.
   std::vector<InputSurfaceGroup> surface_groups;
   // The names the file gives the materials of its tets, by material id (none for a
   // name that only says the number, such as Gmsh's "material_<n>"; formats without
@@ -110,6 +125,11 @@ Status read_mesh_from_memory(std::string_view data, MeshFormat format, const std
                              TetMesh* mesh, ReadInfo* info = nullptr);
 Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_data,
                                const std::string& node_name, const std::string& ele_name,
+                               TetMesh* mesh, ReadInfo* info = nullptr);
+// The same with the .face file beside them, for its surface groups.
+Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_data,
+                               std::string_view face_data, const std::string& node_name,
+                               const std::string& ele_name, const std::string& face_name,
                                TetMesh* mesh, ReadInfo* info = nullptr);
 
 struct WriteOptions {

@@ -2,7 +2,16 @@
 // (file formats). TetGen writes tets positively oriented in TetLOD's convention
 // (dot(b-a, cross(c-a, d-a)) > 0; checked with libtet 1.5), so the pair is
 // written in the orientation the mesh has.
+//
+// A .face file beside the pair: "count markers(0|1)" then one face per line,
+// "index a b c [marker]", numbered like the .node file; after a 10-node .ele a face
+// has 6 nodes (TetGen -o2: its corners first), and TetGen -nn adds the two tets
+// beside it, which are skipped. Faces with a marker >= 1 are surface groups by
+// marker (unnamed), as TetGen writes facet markers and TetLOD group tags.
+#include <algorithm>
+#include <array>
 #include <limits>
+#include <map>
 
 #include "core/io/mesh_formats.h"
 #include "core/io/text_scanner.h"
@@ -73,9 +82,10 @@ bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
   return expect_end_of_file(scanner, "point");
 }
 
-bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out) {
+// Reads the .ele file; `nodes_per_tet` receives 4 or 10.
+bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out, int64_t* nodes_per_tet) {
   uint64_t count = 0, attributes = 0;
-  int64_t corners = 0;
+  int64_t& corners = *nodes_per_tet;
   if (!scanner.read_count(&count, "tetrahedron count", 10) ||
       !scanner.read_int(&corners, "nodes per tetrahedron")) {
     return false;
@@ -120,15 +130,112 @@ bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out) {
   return expect_end_of_file(scanner, "tetrahedron");
 }
 
+// Reads the .face file into out->surface_groups (see the top of the file).
+// `nodes_per_tet`: of the .ele file (4 or 10).
+Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, ParsedMesh* out) {
+  uint64_t count = 0, markers = 0;
+  // A face line "i a b c\n" takes at least 8 bytes.
+  if (!scanner.read_count(&count, "face count", 8) ||
+      !scanner.read_count(&markers, "boundary marker count", 2)) {
+    return scanner.status();
+  }
+  if (markers > 1) {
+    scanner.fail("boundary marker count must be 0 or 1");
+    return scanner.status();
+  }
+  const std::vector<Vec3>& positions = out->mesh.positions;
+  const int nodes_per_face = nodes_per_tet == 10 ? 6 : 3;
+  const std::string form = std::string("'index a b c") + (nodes_per_face == 6 ? " d e f" : "") +
+                           (markers == 1 ? " marker" : "") + "'";
+  std::map<int64_t, size_t> group_of;  // marker -> index in out->surface_groups
+  for (uint64_t i = 0; i < count; ++i) {
+    int64_t index = 0;
+    if (!scanner.read_int(&index, "face index")) return scanner.status();
+    if (index != base + int64_t(i)) {
+      scanner.fail("expected face index " + std::to_string(base + int64_t(i)) + ", found " +
+                   std::to_string(index));
+      return scanner.status();
+    }
+    // The rest of the face's line; a number at its end is cut off only if the text
+    // ends there.
+    const size_t line = scanner.line();
+    const bool line_ends = scanner.remaining_text().find('\n') != std::string_view::npos;
+    TextScanner fields(scanner.rest_of_line(), scanner.name(), '#', line);
+    fields.set_number_may_end_text(line_ends);
+    auto read_field = [&](int64_t* value, const char* what) {
+      if (fields.at_end()) {
+        return fields.fail("face " + std::to_string(index) + " ends before its " + what +
+                           " (one face per line: " + form + ")");
+      }
+      return fields.read_int(value, what);
+    };
+    std::array<Vec3, 3> corners;
+    int64_t vertex[3] = {0, 0, 0};
+    for (int k = 0; k < nodes_per_face; ++k) {
+      int64_t v = 0;
+      if (!read_field(&v, "vertex index")) return fields.status();
+      if (v < base || v - base >= int64_t(positions.size())) {
+        fields.fail("vertex index " + std::to_string(v) + " is out of range (the points are " +
+                    "numbered from " + std::to_string(base) + " to " +
+                    std::to_string(base + int64_t(positions.size()) - 1) +
+                    "; is the .face file another mesh's?)");
+        return fields.status();
+      }
+      if (k < 3) {
+        vertex[k] = v;
+        corners[size_t(k)] = positions[size_t(v - base)];
+      }
+    }
+    if (vertex[0] == vertex[1] || vertex[1] == vertex[2] || vertex[0] == vertex[2]) {
+      fields.fail("face " + std::to_string(index) + " repeats a vertex");
+      return fields.status();
+    }
+    int64_t marker = 0;
+    if (markers == 1 && !read_field(&marker, "boundary marker")) return fields.status();
+    // Nothing more, or the two tets beside the face (TetGen -nn).
+    if (!fields.at_end()) {
+      int64_t tet = 0;
+      std::string_view extra;
+      if (!fields.read_int(&tet, "adjacent tetrahedron") ||
+          !read_field(&tet, "second adjacent tetrahedron")) {
+        return fields.status();
+      }
+      if (fields.next_token(&extra)) {
+        fields.fail("unexpected " + TextScanner::quote(extra) + " after face " +
+                    std::to_string(index) + " (one face per line: " + form +
+                    ", then at most the two tets beside it)");
+        return fields.status();
+      }
+    }
+    if (marker < 1 || marker > std::numeric_limits<int32_t>::max()) continue;
+    const auto [it, added] = group_of.try_emplace(marker, out->surface_groups.size());
+    if (added) {
+      out->surface_groups.emplace_back();
+      out->surface_groups.back().tag = int32_t(marker);
+    }
+    out->surface_groups[it->second].triangles.push_back(corners);
+  }
+  std::sort(out->surface_groups.begin(), out->surface_groups.end(),
+            [](const InputSurfaceGroup& a, const InputSurfaceGroup& b) { return a.tag < b.tag; });
+  expect_end_of_file(scanner, "face");
+  return scanner.status();
+}
+
 }  // namespace
 
 Status parse_tetgen(std::string_view node_text, const std::string& node_name,
-                    std::string_view ele_text, const std::string& ele_name, ParsedMesh* out) {
+                    std::string_view ele_text, const std::string& ele_name, ParsedMesh* out,
+                    std::string_view face_text, const std::string* face_name) {
   TextScanner nodes(node_text, node_name, '#');
   int64_t base = 0;
   if (!read_nodes(nodes, out->mesh, &base)) return nodes.status();
   TextScanner elements(ele_text, ele_name, '#');
-  if (!read_elements(elements, base, out)) return elements.status();
+  int64_t nodes_per_tet = 4;
+  if (!read_elements(elements, base, out, &nodes_per_tet)) return elements.status();
+  if (face_name) {
+    TextScanner faces(face_text, *face_name, '#');
+    if (Status status = read_faces(faces, base, nodes_per_tet, out); !status) return status;
+  }
   return Status();
 }
 
