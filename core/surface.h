@@ -80,7 +80,8 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 // input group is named after its pair if it is one pair's, else surface_<tag>.
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches);
 
-// A surface group of an input file (a Gmsh physical surface): its triangles by the
+// A surface group of an input file (a Gmsh physical surface, a Medit triangle
+// reference, a TetGen .face marker, an Abaqus *SURFACE): its triangles by the
 // positions of their corners.
 struct InputSurfaceGroup {
   int32_t tag = 0;
