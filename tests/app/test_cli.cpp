@@ -525,11 +525,13 @@ TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
                           "history, but --valence given here)"),
             std::string::npos)
       << m.output;
-  // One saved without them (as before 2026-11-24: the file up to the thresholds) needs
-  // them given.
-  const std::string bytes = file_bytes(history);
+  // One saved without them (as before 2026-11-24: the file up to the thresholds, with
+  // the first version's magic and no end block) needs them given.
+  std::string bytes = file_bytes(history);
   const size_t at = bytes.find("TLPARAM1");
   ASSERT_NE(at, std::string::npos);
+  ASSERT_EQ(bytes.substr(0, 8), "TETLODH2");
+  bytes[7] = '1';
   const std::string legacy = out_dir() + "/improve_legacy.tlh";
   std::ofstream(legacy, std::ios::binary) << bytes.substr(0, at);
   const CommandResult b = run("lod " + legacy + " --elements 20000 -o " + saved + " --improve");

@@ -145,7 +145,8 @@ TEST(CliRender, RendersALevelOfASavedHistory) {
   EXPECT_EQ(file_bytes(from_history), file_bytes(from_level));
   r = run("render " + history + " --elements 40000" + view + from_level);
   EXPECT_NE(file_bytes(from_history), file_bytes(from_level)) << "--improve changed nothing";
-  const std::string bytes = file_bytes(history);
+  std::string bytes = file_bytes(history);
+  bytes[7] = '1';  // a history of the first version, saved without its thresholds
   const std::string legacy = out_dir() + "/render_history_legacy.tlh";
   std::ofstream(legacy, std::ios::binary) << bytes.substr(0, bytes.find("TLPARAM1"));
   r = run("render " + legacy + " --improve" + view + from_level);
