@@ -257,10 +257,19 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       if (!(status = files->stage(base + ".node", text)).ok()) return status;
       text.clear();
       io::write_tetgen_ele(mesh, &text);
-      if (!surfaces) return files->stage(base + ".ele", text);
       if (!(status = files->stage(base + ".ele", text)).ok()) return status;
       text.clear();
-      io::write_tetgen_face(*surfaces, &text);
+      // A .face beside the pair is read with it: one from an earlier write is
+      // replaced by this mesh's faces, without markers when no groups are asked for.
+      std::error_code error;
+      if (surfaces) {
+        io::write_tetgen_face(*surfaces, &text);
+      } else if (std::filesystem::exists(base + ".face", error)) {
+        if (!group_surface(mesh, &computed).ok()) computed = {};  // ids past the tag range
+        io::write_tetgen_face(computed, &text, false);
+      } else {
+        return Status();
+      }
       return files->stage(base + ".face", text);
     }
     case FileKind::kVtkLegacy:

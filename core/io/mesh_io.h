@@ -79,6 +79,9 @@
 //    maps back, unless WriteOptions::material_names gives it a name (m > 0 only).
 //    4.1 files carry $Entities with bounding boxes, one volume entity per material.
 //  - TetGen: the pair is written 1-based with one region attribute (the material).
+//    With surface groups, a .face file too (boundary markers: the groups' tags);
+//    without, a .face already beside the pair (an earlier write's, which the reader
+//    would take with the pair) is replaced by this mesh's faces without markers.
 #pragma once
 
 #include <string>

@@ -257,14 +257,17 @@ void write_tetgen_ele(const TetMesh& mesh, std::string* out) {
   }
 }
 
-void write_tetgen_face(const SurfaceGroups& surfaces, std::string* out) {
+void write_tetgen_face(const SurfaceGroups& surfaces, std::string* out, bool markers) {
   out->reserve(out->size() + surfaces.surface.size() * 32);
-  append_line(out, surfaces.surface.size(), 1);  // count, boundary markers
+  append_line(out, surfaces.surface.size(), markers ? 1 : 0);  // count, boundary markers
   size_t face = 0;
   for (const SurfaceGroup& group : surfaces.groups) {
     for (uint32_t i : group.triangles) {
       const auto& v = surfaces.surface[i].v;
-      append_line(out, ++face, v[0] + 1, v[1] + 1, v[2] + 1, group.tag);
+      if (markers)
+        append_line(out, ++face, v[0] + 1, v[1] + 1, v[2] + 1, group.tag);
+      else
+        append_line(out, ++face, v[0] + 1, v[1] + 1, v[2] + 1);
     }
   }
 }

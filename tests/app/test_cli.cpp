@@ -263,7 +263,9 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("tetlod convert: note"), std::string::npos) << r.output;
-  // A TetGen pair with its .face; written again without, the old .face is named.
+  // A TetGen pair with its .face; written again without, the old .face is replaced by
+  // the faces of the mesh written, without markers, so the pair reads back without
+  // groups, as written.
   const std::string node = out_dir() + "/surf_pair.node";
   fs::remove(out_dir() + "/surf_pair.face");
   r = run("convert " + path + " " + node + " --surfaces");
@@ -271,9 +273,18 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   EXPECT_EQ(read_file(out_dir() + "/surf_pair.face").rfind("88 1\n", 0), 0u);
   r = run("convert " + path + " " + node);
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("note: " + out_dir() + "/surf_pair.face is left from an earlier write"),
+  EXPECT_NE(r.output.find("note: " + out_dir() +
+                          "/surf_pair.face, left from an earlier write, "
+                          "now lists this mesh's faces without group markers"),
             std::string::npos)
       << r.output;
+  EXPECT_EQ(read_file(out_dir() + "/surf_pair.face").rfind("88 0\n1 ", 0), 0u);
+  {
+    TetMesh pair;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(node, &pair, &info).ok());
+    EXPECT_TRUE(info.surface_groups.empty());
+  }
   r = run("convert " + path + " " + converted + " --msh-version 3");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("--msh-version must be 2.2 or 4.1, not '3'"), std::string::npos);
