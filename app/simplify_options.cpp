@@ -28,8 +28,10 @@ const char* const kSimplifyFlagsHelp =
 const char* const kWriteFlagsHelp =
     "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n"
     "  --surfaces        also write the boundary and interface triangles, for boundary\n"
-    "                    conditions: a Gmsh or Medit input's own surface groups under\n"
-    "                    their names and tags, the rest a group per material pair\n"
+    "                    conditions: the input's own surface groups (Gmsh physical\n"
+    "                    surfaces, Medit triangle references, TetGen .face markers,\n"
+    "                    Abaqus element-face *SURFACEs) under their names and tags,\n"
+    "                    the rest a group per material pair\n"
     "                    (boundary_<m>, interface_<a>_<b>, numbered above the materials):\n"
     "                    .msh physical surfaces, .mesh triangle references, a TetGen\n"
     "                    .face file, .inp node sets and element-face surfaces\n";

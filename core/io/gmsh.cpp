@@ -960,7 +960,7 @@ class GmshParser {
   }
 
   // A triangle of the physical surface `physical`, by its corners' node tags, kept by
-  // their positions for match_surface_groups(); one naming a node not in $Nodes is
+  // their positions for SurfacePatches; one naming a node not in $Nodes is
   // left out (its group then matches nothing).
   void store_triangle(int64_t physical, const int64_t corners[3]) {
     std::array<Vec3, 3> triangle;

@@ -1,6 +1,6 @@
 // Two boxes side by side (materials 1 and 2). Surface groups: all of box 1's outer
 // boundary (= boundary_1), the interface (= interface_1_2), and one face of box 2
-// (part of boundary_2), for the tests of match_surface_groups().
+// (part of boundary_2), for the tests of SurfacePatches.
 SetFactory("OpenCASCADE");
 Box(1) = {0, 0, 0, 1, 1, 1};
 Box(2) = {1, 0, 0, 1, 1, 1};
