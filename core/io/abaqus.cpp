@@ -3,7 +3,8 @@
 // (*ELEMENT's ELSET, *ELSET with or without GENERATE) and *SOLID SECTION, after the
 // Abaqus Keywords Reference. A flat input or one with a single *PART. The material
 // of a tet: the section that covers it (by material name), else the first *ELSET
-// holding it (Gmsh writes its physical groups so), else its *ELEMENT's ELSET, else 0;
+// holding it (Gmsh writes its physical groups so; not an INTERNAL one, which Abaqus/CAE
+// makes for surfaces), else its *ELEMENT's ELSET, else 0;
 // a name ending in digits is that number ("material_7", "Volume2") unless an earlier
 // name has it ("Rotor1" then "Stator1"), other names get the next free numbers in
 // order of appearance.
@@ -196,7 +197,10 @@ class AbaqusParser {
       const std::string set = k.get("ELSET");
       if (set.empty()) return fail(line_, "*ELSET needs ELSET=");
       current_set_ = upper(set);
-      if (sets_.find(current_set_) == sets_.end()) set_order_.push_back(current_set_);
+      // An INTERNAL set is one Abaqus/CAE makes for a surface or a load
+      // ("_Surf-1_S2"): never a material.
+      if (sets_.find(current_set_) == sets_.end() && !k.has("INTERNAL"))
+        set_order_.push_back(current_set_);
       sets_[current_set_];  // defined, even if empty
       mode_ = k.has("GENERATE") ? Mode::kElsetGenerate : Mode::kElset;
     } else if (k.name == "SOLID SECTION") {

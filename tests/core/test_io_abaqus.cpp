@@ -97,6 +97,28 @@ TEST(IoAbaqus, ElsetsWinOverTheElementSet) {
   test::expect_same_mesh(expected(5, 9, 5, 2), mesh);
 }
 
+// Abaqus/CAE's INTERNAL element sets (made for surfaces and loads) are not materials,
+// even in a deck without sections, where the first *ELSET holding a tet gives its
+// material; a *SURFACE still finds them.
+TEST(IoAbaqus, InternalSetsAreNotMaterials) {
+  const std::string deck =
+      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
+      "7, 0, -1, 0\n"
+      "*ELEMENT, type=C3D4\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
+      "*Elset, elset=_Surf-1_S1, internal\n1, 3\n"
+      "*ELSET, ELSET=Core2\n1, 2\n"
+      "*ELSET, ELSET=Air7\n3, 4\n"
+      "*Surface, type=ELEMENT, name=Surf-1\n_Surf-1_S1, S1\n";
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(deck, MeshFormat::kAbaqus, "a.inp", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  test::expect_same_mesh(expected(2, 2, 7, 7), mesh);
+  ASSERT_EQ(info.surface_groups.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].name, "Surf-1");
+  EXPECT_EQ(info.surface_groups[0].triangles.size(), 2u);
+}
+
 // Two names with the same number are two materials: the first keeps it, the later
 // one takes the next free number (as a name without digits does), after every
 // number a name gives ("Coil7").
