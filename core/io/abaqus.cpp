@@ -437,12 +437,33 @@ class AbaqusParser {
       }
     }
     if (sections_.empty()) {
+      // Tets in two sets take the first: said in a note, naming the sets passed over.
+      uint64_t overlapping = 0;
+      std::vector<std::string> passed_over;
       for (const std::string& set_name : set_order_) {  // in the order they were defined
         const int k = key_of(set_name);
+        bool passed = false;
         for (int64_t e : sets_.at(set_name)) {
           const auto it = tet_of_element_.find(e);
-          if (it != tet_of_element_.end() && key[it->second] < 0) key[it->second] = k;
+          if (it == tet_of_element_.end()) continue;
+          int& tet_key = key[it->second];
+          if (tet_key < 0) {
+            tet_key = k;
+          } else if (tet_key != k) {
+            ++overlapping;
+            passed = true;
+          }
         }
+        if (passed && passed_over.size() < 10) passed_over.push_back(set_name);
+      }
+      if (overlapping > 0) {
+        std::string list;
+        for (const std::string& s : passed_over) list += (list.empty() ? "" : ", ") + s;
+        out_->notes.push_back(
+            std::to_string(overlapping) +
+            " times a tetrahedron is in a second *ELSET, and no *SOLID SECTION says which "
+            "is its material: each takes the first set in the file that holds it, not " +
+            list);
       }
     }
     for (size_t t = 0; t < tets_.size(); ++t) {

@@ -119,6 +119,39 @@ TEST(IoAbaqus, InternalSetsAreNotMaterials) {
   EXPECT_EQ(info.surface_groups[0].triangles.size(), 2u);
 }
 
+// Without sections, a tet in two *ELSETs takes the first; a note names the sets passed
+// over (an "all elements" set listed first makes one material of everything).
+TEST(IoAbaqus, OverlappingSetsWithoutSectionsAreNamedInANote) {
+  const std::string deck =
+      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
+      "7, 0, -1, 0\n"
+      "*ELEMENT, type=C3D4\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
+      "*ELSET, ELSET=Eall, GENERATE\n1, 4\n"
+      "*ELSET, ELSET=Core2\n1, 2, 1\n"  // 1 twice: one set, no overlap with itself
+      "*ELSET, ELSET=Air7\n3, 4\n";
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(deck, MeshFormat::kAbaqus, "a.inp", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{1, 1, 1, 1}));
+  std::string notes;
+  for (const std::string& note : info.notes) notes += note + "\n";
+  EXPECT_NE(notes.find("5 times a tetrahedron is in a second *ELSET, and no *SOLID SECTION says "
+                       "which is its material: each takes the first set in the file that holds "
+                       "it, not CORE2, AIR7"),
+            std::string::npos)
+      << notes;
+  // Disjoint sets: no note.
+  const std::string disjoint = deck.substr(0, deck.find("*ELSET, ELSET=Eall"));
+  ASSERT_TRUE(read_mesh_from_memory(disjoint + "*ELSET, ELSET=Core2\n1, 2\n*ELSET, "
+                                               "ELSET=Air7\n3, 4\n",
+                                    MeshFormat::kAbaqus, "a.inp", &mesh, &info)
+                  .ok());
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{2, 2, 7, 7}));
+  for (const std::string& note : info.notes)
+    EXPECT_EQ(note.find("second *ELSET"), std::string::npos) << note;
+}
+
 // Two names with the same number are two materials: the first keeps it, the later
 // one takes the next free number (as a name without digits does), after every
 // number a name gives ("Coil7").
