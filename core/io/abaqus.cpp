@@ -417,6 +417,7 @@ class AbaqusParser {
     if (it != key_index_.end()) return it->second;
     key_index_.emplace(u, int(keys_.size()));
     keys_.push_back(u);
+    spellings_.push_back(name);
     return int(keys_.size()) - 1;
   }
 
@@ -498,7 +499,7 @@ class AbaqusParser {
     for (size_t k = 0; k < keys_.size(); ++k) {
       if (used[k] && keys_[k] != "MATERIAL_" + std::to_string(id[k]) &&
           id[k] <= std::numeric_limits<int32_t>::max())
-        out_->material_names.push_back({int32_t(id[k]), valid_utf8(keys_[k])});
+        out_->material_names.push_back({int32_t(id[k]), valid_utf8(spellings_[k])});
     }
     std::sort(out_->material_names.begin(), out_->material_names.end(),
               [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
@@ -700,7 +701,8 @@ class AbaqusParser {
   std::vector<std::string> set_order_;
   uint64_t set_members_ = 0;  // in all *ELSET sets
   std::vector<Section> sections_;
-  std::vector<std::string> keys_;  // material and set names, upper case
+  std::vector<std::string> keys_;       // material and set names, upper case
+  std::vector<std::string> spellings_;  // the same as first written (material names)
   std::unordered_map<std::string, int> key_index_;
   std::unordered_set<int64_t> other_elements_;             // ids of elements that are not tets
   std::unordered_set<std::string> node_sets_;              // names, upper case
@@ -711,15 +713,15 @@ class AbaqusParser {
 };
 
 // Per surface group, a *NSET of its nodes (for *BOUNDARY) and a *SURFACE of element
-// faces (for *DLOAD, *DFLUX, contact), both named after the group in upper case.
+// faces (for *DLOAD, *DFLUX, contact), both named after the group.
 // The faces are those of the group's tets of the smaller material; element ids are
 // the tets' positions + 1, as write_abaqus() numbers them.
-// A user's name made a valid Abaqus label: upper case, letters, digits and '_',
-// starting with a letter (else after `prefix`).
+// A user's name made a valid Abaqus label: letters (in their case; Abaqus compares
+// labels case-insensitively), digits and '_', starting with a letter (else after
+// `prefix`).
 std::string abaqus_label(const std::string& name, const char* prefix) {
   std::string label = name;
   for (char& c : label) {
-    c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
     if (!std::isalnum(uint8_t(c)) && c != '_') c = '_';
   }
   if (label.empty() || !std::isalpha(uint8_t(label[0]))) label = prefix + label;
@@ -747,15 +749,16 @@ void write_abaqus_surfaces(const SurfaceGroups& surfaces, std::string* out) {
   // S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
   static constexpr const char* kFaceLabel[4] = {"S3", "S4", "S2", "S1"};
   std::vector<uint32_t> nodes;
-  std::set<std::string> used;  // labels are case-insensitive, and these are upper case
+  std::set<std::string> used;  // upper case: labels are case-insensitive
   for (const SurfaceGroup& group : surfaces.groups) {
     // At most 80 characters with "_FACES", and one set per group: a name two groups
     // share (or share once made a label) takes the group's tag.
     std::string name = abaqus_label(group.name, "S_");
     if (name.size() > 60) name.resize(60);
-    if (used.count(name)) name = name.substr(0, 48) + "_" + std::to_string(group.tag);
-    for (int k = 2; used.count(name); ++k) name = name.substr(0, 48) + "_" + std::to_string(k);
-    used.insert(name);
+    if (used.count(upper(name))) name = name.substr(0, 48) + "_" + std::to_string(group.tag);
+    for (int k = 2; used.count(upper(name)); ++k)
+      name = name.substr(0, 48) + "_" + std::to_string(k);
+    used.insert(upper(name));
     nodes.clear();
     for (uint32_t i : group.triangles) {
       for (uint32_t v : surfaces.surface[i].v) nodes.push_back(v);

@@ -155,7 +155,7 @@ TEST(Cli, ConvertAndSimplifyKeepMaterialNames) {
   const std::string deck = out_dir() + "/named.inp";
   r = run("convert " + converted + " " + deck);
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(read_file(deck).find("*ELEMENT, TYPE=C3D4, ELSET=SHIELD_4\n"), std::string::npos);
+  EXPECT_NE(read_file(deck).find("*ELEMENT, TYPE=C3D4, ELSET=shield_4\n"), std::string::npos);
   const std::string simplified = out_dir() + "/named_simplified.msh";
   const std::string history = out_dir() + "/named.tlh";
   r = run("simplify " + input + " -o " + simplified + " --size 2 --tolerance 0.01 --history " +

@@ -152,7 +152,8 @@ TEST(MaterialNames, AbaqusNamesAreRead) {
   const Status s = read_mesh_from_memory(deck, MeshFormat::kAbaqus, "a.inp", &mesh, &info);
   ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_EQ(mesh.materials, (std::vector<int32_t>{8, 7, 5, 5}));
-  EXPECT_EQ(as_pairs(info.material_names), (Names{{7, "COPPER_7"}, {8, "IRON"}}));
+  // As first written (Abaqus compares names case-insensitively).
+  EXPECT_EQ(as_pairs(info.material_names), (Names{{7, "Copper_7"}, {8, "Iron"}}));
 }
 
 // Written to .inp, each named material's element set is its name ending in its id, so
@@ -169,15 +170,15 @@ TEST(MaterialNames, AbaqusElementSetsCarryThem) {
   const std::string path = dir + "/named.inp";
   ASSERT_TRUE(write_mesh(path, mesh, options).ok());
   const std::string text = test::read_text(path);
-  for (const char* set : {"ELSET=INNER_CONDUCTOR_1\n", "ELSET=ROTOR2\n", "ELSET=M_3PHASE_3\n",
-                          "ELSET=COIL_2_4\n", "ELSET=MATERIAL_5\n"})
+  for (const char* set : {"ELSET=inner_conductor_1\n", "ELSET=Rotor2\n", "ELSET=M_3phase_3\n",
+                          "ELSET=coil_2_4\n", "ELSET=MATERIAL_5\n"})
     EXPECT_NE(text.find(set), std::string::npos) << set;
   TetMesh back;
   ReadInfo info;
   ASSERT_TRUE(read_mesh(path, &back, &info).ok());
   test::expect_same_mesh(mesh, back);
   EXPECT_EQ(as_pairs(info.material_names),
-            (Names{{1, "INNER_CONDUCTOR_1"}, {2, "ROTOR2"}, {3, "M_3PHASE_3"}, {4, "COIL_2_4"}}));
+            (Names{{1, "inner_conductor_1"}, {2, "Rotor2"}, {3, "M_3phase_3"}, {4, "coil_2_4"}}));
   options.material_names = &info.material_names;
   ASSERT_TRUE(write_mesh(dir + "/again.inp", back, options).ok());
   EXPECT_EQ(test::read_text(dir + "/again.inp"), text);

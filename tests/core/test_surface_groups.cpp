@@ -340,7 +340,7 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   options.groups = &groups;
   const std::string dir = test::output_dir("surface_groups_names");
   ASSERT_TRUE(write_mesh(dir + "/odd.inp", mesh, options).ok());
-  EXPECT_NE(test::read_text(dir + "/odd.inp").find("*NSET, NSET=S_1ST__OUTER__WALL\n"),
+  EXPECT_NE(test::read_text(dir + "/odd.inp").find("*NSET, NSET=S_1st__outer__wall\n"),
             std::string::npos);
   ASSERT_TRUE(write_mesh(dir + "/odd.msh", mesh, options).ok());
   EXPECT_NE(test::read_text(dir + "/odd.msh").find("2 7 \"1st _outer_ wall\"\n"),
