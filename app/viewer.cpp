@@ -463,6 +463,11 @@ bool Viewer::init() {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
   ImGui::StyleColorsDark();
+  if (!ui::add_name_glyphs(ui::kNameGlyphFont))
+    std::fprintf(stderr,
+                 "tetlod view: note: %s cannot be read (Debian's fonts-dejavu-core): names "
+                 "show Latin-1 letters only\n",
+                 ui::kNameGlyphFont);
   imgui_glfw_ = ImGui_ImplGlfw_InitForOpenGL(glfw_window, true);
   imgui_gl_ = imgui_glfw_ && ImGui_ImplOpenGL3_Init("#version 330");
   if (!imgui_gl_) {

@@ -11,8 +11,9 @@ packages=(build-essential cmake pkg-config libeigen3-dev libtet1.5-dev libgtest-
 packages+=(libgl-dev libglfw3-dev libstb-dev libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb
   xauth)
 # Viewer: Dear ImGui with its GLFW and OpenGL 3 backends; XTest for the tests that
-# drag the mouse over the window under Xvfb.
-packages+=(libimgui-dev libxtst-dev)
+# drag the mouse over the window under Xvfb; DejaVu Sans for the Greek, Cyrillic and
+# Latin Extended letters of names (ImGui's own font has Latin-1 only).
+packages+=(libimgui-dev libxtst-dev fonts-dejavu-core)
 # Extra packages a caller needs (scripts/test.sh adds gmsh for the interoperability test).
 read -r -a extra <<<"${TETLOD_EXTRA_PACKAGES:-}"
 packages+=("${extra[@]}")

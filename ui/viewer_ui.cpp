@@ -8,6 +8,8 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 namespace tetlod::ui {
 namespace {
@@ -806,6 +808,23 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   ImGui::End();
   stats_window(status, panel);
   empty_view_note(status, *view, panel->show_stats);
+}
+
+bool add_name_glyphs(const std::string& path) {
+  ImFontAtlas* fonts = ImGui::GetIO().Fonts;
+  fonts->AddFontDefault();
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) return false;
+  if (bytes.size() < 12 || bytes.size() > (64u << 20)) return false;  // not a font
+  // The atlas frees the data it owns with ImGui's allocator.
+  void* data = ImGui::MemAlloc(bytes.size());
+  std::memcpy(data, bytes.data(), bytes.size());
+  static const ImWchar kRanges[] = {0x0100, 0x024F, 0x0370, 0x03FF, 0x0400, 0x04FF, 0};
+  ImFontConfig config;
+  config.MergeMode = true;
+  config.PixelSnapH = true;
+  return fonts->AddFontFromMemoryTTF(data, int(bytes.size()), 13.0f, &config, kRanges) != nullptr;
 }
 
 }  // namespace tetlod::ui

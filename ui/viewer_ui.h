@@ -226,4 +226,13 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
                         ThresholdSettings* thresholds, AnalysisSettings* analysis,
                         PanelState* panel, std::vector<Command>* commands);
 
+// Dear ImGui's default font has Latin-1 only. Names from mesh files (a "mu-metal" with a
+// Greek mu, Cyrillic or Polish names) need more: add_name_glyphs() adds the default font and
+// merges into it the Latin Extended-A/B, Greek and Cyrillic glyphs of the TrueType
+// font at `path` (kNameGlyphFont: DejaVu Sans, Debian's fonts-dejavu-core, which
+// scripts/setup.sh installs), to the current context's atlas, before its first frame.
+// False, with the default font alone, if the file cannot be read.
+inline constexpr const char* kNameGlyphFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+bool add_name_glyphs(const std::string& path);
+
 }  // namespace tetlod::ui
