@@ -18,9 +18,13 @@
 // no surface X: TetLOD writes each group as *NSET X and *SURFACE X_FACES, so that a
 // file written from one read back keeps the names. Faces of elements that are not
 // tetrahedra are dropped with a note; node surfaces (TYPE=NODE), COMBINE and CROP
-// surfaces, and a data line without a face (all exposed faces) skip their surface
-// with a note.
+// surfaces, a data line without a face (all exposed faces), and a reference to an
+// element or set that is not there (or a face a tet does not have) skip their surface
+// with a note. Then each *ELSET holding triangle elements (CPS3, S3, ...: Gmsh's .inp
+// export writes a physical surface so) is a group named after it, or, without such
+// sets, each triangle *ELEMENT block's ELSET.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -71,6 +75,17 @@ int tet_nodes(const std::string& type) {
   return 0;
 }
 
+// Whether an element type is a triangle (plane, shell, membrane, surface or rigid
+// elements of 3 or 6 nodes: Gmsh writes a physical surface's triangles as CPS3 or
+// CPS6 in an *ELSET named after it): its first three nodes are its corners.
+bool is_triangle_type(const std::string& type) {
+  for (const char* t :
+       {"CPS3", "CPE3", "CAX3", "S3", "S3R", "STRI3", "M3D3", "SFM3D3", "R3D3", "DS3", "CPS6",
+        "CPE6", "CAX6", "S6", "STRI65", "M3D6", "SFM3D6", "DC2D3", "DC2D6"})
+    if (type == t) return true;
+  return false;
+}
+
 struct Keyword {
   std::string name;                            // upper case, without '*'
   std::map<std::string, std::string> options;  // upper-case keys; values as written
@@ -107,9 +122,10 @@ class AbaqusParser {
       std::string record(content);
       const size_t first_line = line_;
       // (Gmsh ends every line of a set with a comma: never into a keyword line. A
-      // surface's line is one face.)
+      // node's line and a surface's line are one record each; CalculiX takes a node
+      // line's trailing comma.)
       while (!record.empty() && record.back() == ',' && mode_ != Mode::kSkip &&
-             mode_ != Mode::kSurface) {
+             mode_ != Mode::kSurface && mode_ != Mode::kNodes) {
         const size_t saved_pos = pos_, saved_line = line_;
         std::string_view more;
         if (!next_line(&more)) break;
@@ -192,11 +208,17 @@ class AbaqusParser {
               : std::string();
       element_set_ = k.has("ELSET") ? key_of(k.get("ELSET")) : -1;
       element_set_name_ = upper(k.get("ELSET"));
+      triangle_block_ = is_triangle_type(type);
+      if (triangle_block_ && !element_set_name_.empty() &&
+          std::find(triangle_sets_.begin(), triangle_sets_.end(), k.get("ELSET")) ==
+              triangle_sets_.end())
+        triangle_sets_.push_back(k.get("ELSET"));
       mode_ = Mode::kElements;
     } else if (k.name == "ELSET") {
       const std::string set = k.get("ELSET");
       if (set.empty()) return fail(line_, "*ELSET needs ELSET=");
       current_set_ = upper(set);
+      set_spellings_.try_emplace(current_set_, set);  // a material's name, as first written
       // An INTERNAL set is one Abaqus/CAE makes for a surface or a load
       // ("_Surf-1_S2"): never a material.
       if (sets_.find(current_set_) == sets_.end() && !k.has("INTERNAL"))
@@ -286,6 +308,13 @@ class AbaqusParser {
     return true;
   }
 
+  // An element number, plain or qualified by the (one) instance: "12", "Part-1-1.12".
+  bool element_label(std::string_view s, int64_t* value) const {
+    if (integer(s, value)) return true;
+    const size_t dot = s.rfind('.');
+    return dot != std::string_view::npos && dot > 0 && integer(s.substr(dot + 1), value);
+  }
+
   bool integer(std::string_view s, int64_t* value) const {
     const auto r = std::from_chars(s.data(), s.data() + s.size(), *value);
     return !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
@@ -333,6 +362,11 @@ class AbaqusParser {
     if (element_nodes_ == 0) {  // not a tet
       if (!skipped_type_.empty() && skipped_solids_.size() < 100) ++skipped_solids_[skipped_type_];
       other_elements_.insert(id);  // for the faces of surfaces, which are dropped
+      // A triangle's corners, for the surface groups of the sets that hold it.
+      std::array<int64_t, 3> corners{};
+      if (triangle_block_ && f.size() >= 4 && integer(f[1], &corners[0]) &&
+          integer(f[2], &corners[1]) && integer(f[3], &corners[2]))
+        triangles_.emplace(id, corners);
       if (!element_set_name_.empty()) element_sets_[element_set_name_].push_back(id);
       return true;
     }
@@ -378,7 +412,7 @@ class AbaqusParser {
     }
     for (std::string_view item : f) {
       int64_t e = 0;
-      if (integer(item, &e)) {
+      if (element_label(item, &e)) {
         if (!room_for(1, line)) return false;
         members.push_back(e);
       } else {
@@ -438,11 +472,16 @@ class AbaqusParser {
       }
     }
     if (sections_.empty()) {
+      // A set that holds every tet ("EALL", as CalculiX decks have) says nothing of
+      // materials when other sets tell the tets apart: it is not one.
+      const std::vector<std::string> all_sets = sets_holding_every_tet();
       // Tets in two sets take the first: said in a note, naming the sets passed over.
-      uint64_t overlapping = 0;
+      uint64_t overlapping = 0;  // tets
+      std::vector<uint8_t> in_two(tets_.size(), 0);
       std::vector<std::string> passed_over;
       for (const std::string& set_name : set_order_) {  // in the order they were defined
-        const int k = key_of(set_name);
+        if (std::find(all_sets.begin(), all_sets.end(), set_name) != all_sets.end()) continue;
+        const int k = key_of(set_spellings_.at(set_name));
         bool passed = false;
         for (int64_t e : sets_.at(set_name)) {
           const auto it = tet_of_element_.find(e);
@@ -451,19 +490,19 @@ class AbaqusParser {
           if (tet_key < 0) {
             tet_key = k;
           } else if (tet_key != k) {
-            ++overlapping;
+            if (!in_two[it->second]) in_two[it->second] = 1, ++overlapping;
             passed = true;
           }
         }
-        if (passed && passed_over.size() < 10) passed_over.push_back(set_name);
+        if (passed && passed_over.size() < 10) passed_over.push_back(set_spellings_.at(set_name));
       }
       if (overlapping > 0) {
         std::string list;
         for (const std::string& s : passed_over) list += (list.empty() ? "" : ", ") + s;
         out_->notes.push_back(
             std::to_string(overlapping) +
-            " times a tetrahedron is in a second *ELSET, and no *SOLID SECTION says which "
-            "is its material: each takes the first set in the file that holds it, not " +
+            " tetrahedra are in more than one *ELSET, and no *SOLID SECTION says which is "
+            "their material: each takes the first set in the file that holds it, not " +
             list);
       }
     }
@@ -530,6 +569,39 @@ class AbaqusParser {
     return true;
   }
 
+  // The *ELSETs (upper-case names) that hold every tet, when other sets (*ELSETs or
+  // the *ELEMENT blocks' ELSETs) tell the tets apart; a note names them.
+  std::vector<std::string> sets_holding_every_tet() {
+    if (tets_.empty()) return {};
+    std::vector<std::string> all;
+    std::vector<uint32_t> stamp(tets_.size(), 0);
+    uint32_t round = 0;
+    bool others_split = false;  // another *ELSET holds some tets but not all
+    for (const std::string& set_name : set_order_) {
+      ++round;
+      size_t held = 0;
+      for (int64_t e : sets_.at(set_name)) {
+        const auto it = tet_of_element_.find(e);
+        if (it != tet_of_element_.end() && stamp[it->second] != round)
+          stamp[it->second] = round, ++held;
+      }
+      if (held == tets_.size())
+        all.push_back(set_name);
+      else if (held > 0)
+        others_split = true;
+    }
+    if (all.empty()) return {};
+    for (const PendingTet& t : tets_)
+      if (t.element_set != tets_[0].element_set) others_split = true;
+    if (!others_split) return {};  // the one material there is
+    std::string list;
+    for (const std::string& s : all) list += (list.empty() ? "" : ", ") + set_spellings_.at(s);
+    out_->notes.push_back("*ELSET " + list +
+                          " holds every tetrahedron, and no *SOLID SECTION says which sets are "
+                          "materials: the materials are the other sets, not it");
+    return all;
+  }
+
   // The surfaces' faces as surface groups, after resolve(): their tets are in the mesh.
   bool resolve_surfaces() {
     // Faces visited (set members included) stay within a bound proportional to the
@@ -538,29 +610,33 @@ class AbaqusParser {
     uint64_t visited = 0;
     size_t dropped = 0;           // faces on elements that are not tets read
     std::string dropped_from;     // the surfaces that had them
-    std::vector<uint32_t> seen;   // per tet face: the last group + 1 it was added to
+    std::vector<uint32_t> seen;   // per tet face: the last surface (stamp) it was added to
     std::vector<uint64_t> faces;  // of the current group: tet * 4 + face - 1
+    uint32_t stamp = 0;
     for (Surface& surface : surfaces_) {
       if (surface.skipped) continue;
-      const uint32_t stamp = uint32_t(out_->surface_groups.size()) + 1;
+      ++stamp;
       faces.clear();
       size_t dropped_here = 0;
+      // A reference TetLOD cannot follow skips the surface (with a note), not the mesh.
+      std::string unresolved;
       for (const SurfaceFace& entry : surface.faces) {
         std::vector<int64_t> single;
         const std::vector<int64_t>* members = &single;
         int64_t element = 0;
-        const bool is_number = integer(entry.label, &element);
-        if (is_number) {
+        const std::string where = "line " + std::to_string(entry.line) + ": ";
+        if (integer(entry.label, &element) ||
+            (!surface_set(upper(entry.label)) && element_label(entry.label, &element))) {
           if (tet_of_element_.count(element) == 0 && other_elements_.count(element) == 0) {
-            return fail(entry.line, "*SURFACE " + surface.name + ": element " +
-                                        std::to_string(element) + " is not defined");
+            unresolved = where + "element " + std::to_string(element) + " is not defined";
+            break;
           }
           single.push_back(element);
         } else {
           members = surface_set(upper(entry.label));
           if (members == nullptr) {
-            return fail(entry.line, "*SURFACE " + surface.name + ": '" + entry.label +
-                                        "' is neither an element id nor an element set");
+            unresolved = where + "'" + entry.label + "' is neither an element nor an element set";
+            break;
           }
         }
         if (members->size() > limit - visited) {
@@ -575,9 +651,10 @@ class AbaqusParser {
             continue;
           }
           if (entry.face == 0) {
-            return fail(entry.line, "*SURFACE " + surface.name + ": element " + std::to_string(e) +
-                                        " is a tetrahedron, whose faces are S1 to S4, not '" +
-                                        entry.face_text + "'");
+            unresolved = where + "element " + std::to_string(e) +
+                         " is a tetrahedron, whose faces are S1 to S4, not '" + entry.face_text +
+                         "'";
+            break;
           }
           if (seen.empty()) seen.assign(tets_.size() * 4, 0);
           const uint64_t face = uint64_t(it->second) * 4 + uint64_t(entry.face - 1);
@@ -585,6 +662,11 @@ class AbaqusParser {
           seen[face] = stamp;
           faces.push_back(face);
         }
+        if (!unresolved.empty()) break;
+      }
+      if (!unresolved.empty()) {
+        unread_surfaces_.push_back(surface.name + " (" + unresolved + ")");
+        continue;
       }
       if (dropped_here > 0) {
         dropped += dropped_here;
@@ -592,7 +674,7 @@ class AbaqusParser {
       }
       if (faces.empty()) continue;
       InputSurfaceGroup group;
-      group.tag = int32_t(stamp);
+      group.tag = int32_t(out_->surface_groups.size() + 1);
       group.name = valid_utf8(group_name(surface.name));
       group.triangles.reserve(faces.size());
       const TetMesh& mesh = out_->mesh;
@@ -605,6 +687,7 @@ class AbaqusParser {
       }
       out_->surface_groups.push_back(std::move(group));
     }
+    add_triangle_groups();
     if (dropped > 0) {
       out_->notes.push_back(std::to_string(dropped) + " faces of *SURFACE " + dropped_from +
                             " are on elements that are not tetrahedra (or not defined): not "
@@ -618,6 +701,52 @@ class AbaqusParser {
                             "set, Sn'");
     }
     return true;
+  }
+
+  // The sets of triangle elements (as Gmsh writes a physical surface: CPS3 elements in
+  // an *ELSET named after it) as surface groups, tagged after the *SURFACEs': the
+  // *ELSETs that hold triangles, else the triangle *ELEMENT blocks' ELSETs.
+  void add_triangle_groups() {
+    if (triangles_.empty()) return;
+    std::vector<std::pair<std::string, const std::vector<int64_t>*>> sets;  // name, members
+    for (const std::string& set_name : set_order_) {
+      const std::vector<int64_t>& members = sets_.at(set_name);
+      if (std::any_of(members.begin(), members.end(),
+                      [&](int64_t e) { return triangles_.count(e) > 0; }))
+        sets.push_back({set_spellings_.at(set_name), &members});
+    }
+    if (sets.empty())
+      for (const std::string& name : triangle_sets_)
+        if (const std::vector<int64_t>* members = members_of(upper(name)))
+          sets.push_back({name, members});
+    size_t unknown_nodes = 0;
+    for (const auto& [name, members] : sets) {
+      InputSurfaceGroup group;
+      group.tag = int32_t(out_->surface_groups.size() + 1);
+      group.name = valid_utf8(name);
+      std::unordered_set<int64_t> listed;  // an element listed twice is one triangle
+      for (int64_t e : *members) {
+        const auto it = triangles_.find(e);
+        if (it == triangles_.end() || !listed.insert(e).second) continue;
+        std::array<Vec3, 3> corners;
+        bool known = true;
+        for (size_t k = 0; k < 3 && known; ++k) {
+          const auto node = node_index_.find(it->second[k]);
+          known = node != node_index_.end();
+          if (known) corners[k] = out_->mesh.positions[node->second];
+        }
+        if (!known) {
+          ++unknown_nodes;
+          continue;
+        }
+        group.triangles.push_back(corners);
+      }
+      if (!group.triangles.empty()) out_->surface_groups.push_back(std::move(group));
+    }
+    if (unknown_nodes > 0)
+      out_->notes.push_back(std::to_string(unknown_nodes) +
+                            " triangle elements name a node that is not defined: not kept in "
+                            "the surface groups");
   }
 
   // The element set a surface's line names: as written, or, qualified by an
@@ -688,7 +817,10 @@ class AbaqusParser {
   int parts_ = 0;
   size_t instance_line_ = 0;
   int element_nodes_ = 0;
-  std::string skipped_type_;                      // of the *ELEMENT block: a non-tet solid
+  std::string skipped_type_;     // of the *ELEMENT block: a non-tet solid
+  bool triangle_block_ = false;  // the *ELEMENT block's are triangles
+  std::unordered_map<int64_t, std::array<int64_t, 3>> triangles_;  // by element id: corners
+  std::vector<std::string> triangle_sets_;        // ELSETs of triangle *ELEMENT blocks, as written
   std::map<std::string, size_t> skipped_solids_;  // by type
   int element_set_ = -1;
   std::string element_set_name_;
@@ -699,7 +831,8 @@ class AbaqusParser {
   std::vector<PendingTet> tets_;
   std::unordered_map<std::string, std::vector<int64_t>> sets_;
   std::vector<std::string> set_order_;
-  uint64_t set_members_ = 0;  // in all *ELSET sets
+  std::unordered_map<std::string, std::string> set_spellings_;  // upper case -> as written
+  uint64_t set_members_ = 0;                                    // in all *ELSET sets
   std::vector<Section> sections_;
   std::vector<std::string> keys_;       // material and set names, upper case
   std::vector<std::string> spellings_;  // the same as first written (material names)

@@ -120,36 +120,73 @@ TEST(IoAbaqus, InternalSetsAreNotMaterials) {
 }
 
 // Without sections, a tet in two *ELSETs takes the first; a note names the sets passed
-// over (an "all elements" set listed first makes one material of everything).
+// over. A set holding every tet ("Eall") is no material when other sets tell the tets
+// apart (it made one material of everything); a note says so.
 TEST(IoAbaqus, OverlappingSetsWithoutSectionsAreNamedInANote) {
-  const std::string deck =
+  const std::string mesh =
       "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
       "7, 0, -1, 0\n"
-      "*ELEMENT, type=C3D4\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
-      "*ELSET, ELSET=Eall, GENERATE\n1, 4\n"
-      "*ELSET, ELSET=Core2\n1, 2, 1\n"  // 1 twice: one set, no overlap with itself
-      "*ELSET, ELSET=Air7\n3, 4\n";
-  TetMesh mesh;
-  ReadInfo info;
-  const Status s = read_mesh_from_memory(deck, MeshFormat::kAbaqus, "a.inp", &mesh, &info);
-  ASSERT_TRUE(s.ok()) << s.message();
-  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{1, 1, 1, 1}));
+      "*ELEMENT, type=C3D4\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n";
+  auto read_deck = [&](const std::string& sets, TetMesh* out, std::string* notes) {
+    ReadInfo info;
+    const Status s = read_mesh_from_memory(mesh + sets, MeshFormat::kAbaqus, "a.inp", out, &info);
+    EXPECT_TRUE(s.ok()) << s.message();
+    notes->clear();
+    for (const std::string& note : info.notes) *notes += note + "\n";
+    return info;
+  };
+  TetMesh read;
   std::string notes;
-  for (const std::string& note : info.notes) notes += note + "\n";
-  EXPECT_NE(notes.find("5 times a tetrahedron is in a second *ELSET, and no *SOLID SECTION says "
-                       "which is its material: each takes the first set in the file that holds "
-                       "it, not CORE2, AIR7"),
+  // Core2 and Air7 share tet 2: it takes Core2, listed first.
+  read_deck(
+      "*ELSET, ELSET=Core2\n1, 2, 1\n"  // 1 twice: one set, no overlap with itself
+      "*ELSET, ELSET=Air7\n2, 3, 4\n",
+      &read, &notes);
+  EXPECT_EQ(read.materials, (std::vector<int32_t>{2, 2, 7, 7}));
+  EXPECT_NE(notes.find("1 tetrahedra are in more than one *ELSET, and no *SOLID SECTION says "
+                       "which is their material: each takes the first set in the file that holds "
+                       "it, not Air7"),
             std::string::npos)
       << notes;
-  // Disjoint sets: no note.
-  const std::string disjoint = deck.substr(0, deck.find("*ELSET, ELSET=Eall"));
-  ASSERT_TRUE(read_mesh_from_memory(disjoint + "*ELSET, ELSET=Core2\n1, 2\n*ELSET, "
-                                               "ELSET=Air7\n3, 4\n",
-                                    MeshFormat::kAbaqus, "a.inp", &mesh, &info)
-                  .ok());
-  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{2, 2, 7, 7}));
-  for (const std::string& note : info.notes)
-    EXPECT_EQ(note.find("second *ELSET"), std::string::npos) << note;
+  // Eall first: not a material, said once; the others do not overlap.
+  read_deck(
+      "*ELSET, ELSET=Eall, GENERATE\n1, 4\n*ELSET, ELSET=Core2\n1, 2\n"
+      "*ELSET, ELSET=Air7\n3, 4\n",
+      &read, &notes);
+  EXPECT_EQ(read.materials, (std::vector<int32_t>{2, 2, 7, 7}));
+  EXPECT_NE(notes.find("*ELSET Eall holds every tetrahedron, and no *SOLID SECTION says which "
+                       "sets are materials: the materials are the other sets, not it"),
+            std::string::npos)
+      << notes;
+  EXPECT_EQ(notes.find("more than one *ELSET"), std::string::npos) << notes;
+  // The same against the *ELEMENT blocks' sets.
+  const std::string blocks =
+      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
+      "7, 0, -1, 0\n*ELEMENT, type=C3D4, ELSET=Lower1\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n"
+      "*ELEMENT, type=C3D4, ELSET=Upper2\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
+      "*ELSET, ELSET=EALL\nLower1, Upper2\n";
+  ASSERT_TRUE(read_mesh_from_memory(blocks, MeshFormat::kAbaqus, "a.inp", &read).ok());
+  EXPECT_EQ(read.materials, (std::vector<int32_t>{1, 1, 2, 2}));
+  // A set holding every tet with nothing else to tell them apart is the material.
+  const ReadInfo one = read_deck("*ELSET, ELSET=Steel\n1, 2, 3, 4\n", &read, &notes);
+  EXPECT_EQ(read.materials, (std::vector<int32_t>{1, 1, 1, 1}));
+  ASSERT_EQ(one.material_names.size(), 1u);
+  EXPECT_EQ(one.material_names[0].name, "Steel");  // as written
+  EXPECT_EQ(notes.find("*ELSET"), std::string::npos) << notes;
+}
+
+// A node line ending in a comma is one node (CalculiX reads it so), not continued on
+// the next line.
+TEST(IoAbaqus, NodeLinesWithATrailingCommaAreOneNodeEach) {
+  const std::string deck =
+      "*NODE\n1, 0, 0, 0,\n2, 1, 0, 0,\n3, 0, 1, 0,\n4, 0, 0, 1,\n5, 1, 1, 1,\n6, 0, 0, -1,\n"
+      "7, 0, -1, 0,\n"
+      "*ELEMENT, type=C3D4, ELSET=M1\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n3, 1, 2, 3, 6\n"
+      "4, 1, 2, 4, 7\n";
+  TetMesh mesh;
+  const Status s = read(deck, &mesh);
+  ASSERT_TRUE(s.ok()) << s.message();
+  test::expect_same_mesh(expected(1, 1, 1, 1), mesh);
 }
 
 // Two names with the same number are two materials: the first keeps it, the later

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 #include "core/io/mesh_io.h"
@@ -128,6 +129,43 @@ TEST(IoGmshInterop, WeReadGmshAbaqusInput) {
   const Status status = read_mesh(theirs, &back);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+}
+
+// Gmsh's .inp export writes a physical surface as CPS3 elements in an *ELSET named
+// after it: read, it is the same group, of the same triangles, as in the .msh.
+TEST(IoGmshInterop, GmshAbaqusPhysicalSurfacesAreGroups) {
+  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  const std::string dir = test::output_dir("gmsh_inp_groups");
+  const std::string theirs = dir + "/port.inp";
+  const std::string log = dir + "/inp.log";
+  ASSERT_TRUE(run_gmsh(
+      "'" + test::data_path("gmsh/port.msh") + "' -0 -format inp -o '" + theirs + "'", log))
+      << test::read_text(log);
+  TetMesh from_msh, from_inp;
+  ReadInfo msh_info, inp_info;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/port.msh"), &from_msh, &msh_info).ok());
+  const Status status = read_mesh(theirs, &from_inp, &inp_info);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(msh_info.surface_groups.size(), 1u);
+  ASSERT_EQ(inp_info.surface_groups.size(), 1u);
+  EXPECT_EQ(inp_info.surface_groups[0].name, msh_info.surface_groups[0].name);
+  EXPECT_EQ(inp_info.surface_groups[0].triangles.size(), 79u);
+  auto sorted = [](std::vector<std::array<Vec3, 3>> triangles) {
+    std::vector<std::array<double, 9>> out;
+    for (const auto& t : triangles) {
+      std::array<std::array<double, 3>, 3> c;
+      // Gmsh's .inp has coordinates to about 9 digits: rounded to 1e-6.
+      auto round = [](double v) { return std::round(v * 1e6) / 1e6; };
+      for (size_t k = 0; k < 3; ++k) c[k] = {round(t[k].x), round(t[k].y), round(t[k].z)};
+      std::sort(c.begin(), c.end());
+      out.push_back(
+          {c[0][0], c[0][1], c[0][2], c[1][0], c[1][1], c[1][2], c[2][0], c[2][1], c[2][2]});
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_EQ(sorted(inp_info.surface_groups[0].triangles),
+            sorted(msh_info.surface_groups[0].triangles));
 }
 
 TEST(IoGmshInterop, GmshFindsNoInvertedTets) {

@@ -141,6 +141,7 @@ TEST(IoInputGroups, AbaqusSurfacesByElementAndBySet) {
       {2, "Lower", {{c, f, a}, {d, g, a}, {a, b, d}}},  // 3 (A B C F) and 4 (A B D G), S4; 4, S1
       {3, "Mixed", {{a, b, c}}},                  // element 1, S1 (the shell and the hex dropped)
       {4, "Pair_FACES", {{b, d, c}, {c, e, d}}},  // elements 1 and 2, S3
+      {5, "SKIN", {{a, b, c}}},                   // the shell S3's set, after the surfaces
   };
   ASSERT_EQ(info.surface_groups.size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i) {
@@ -175,7 +176,41 @@ TEST(IoInputGroups, AbaqusSetsOfOtherElementsAreDefined) {
   EXPECT_EQ(mesh.materials, std::vector<int32_t>{3});
 }
 
-// Each malformed form names the file and line and says what is wrong.
+// Triangle elements in an *ELSET, as Gmsh's .inp export writes a physical surface
+// (CPS3 elements in a set named after it, besides the block's own ELSET), are a
+// group named after the set; without such a set, the triangle blocks' ELSETs are.
+TEST(IoInputGroups, AbaqusTriangleElementSetsAreGroups) {
+  using Corners = std::vector<std::array<Vec3, 3>>;
+  const std::string mesh = std::string(kNodes) +
+                           "*ELEMENT, type=CPS3, ELSET=Surface1\n10, 1, 2, 3\n11, 1, 2, 4\n"
+                           "12, 1, 2, 99\n"
+                           "*ELEMENT, type=C3D4, ELSET=Volume1\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n";
+  TetMesh read;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh_from_memory(mesh + "*SURFACE, NAME=Side\n1, S2\n*ELSET,ELSET=port\n10, "
+                                           "10\n*ELSET,ELSET=Vol\n1, 2\n",
+                                    MeshFormat::kAbaqus, "a.inp", &read, &info)
+                  .ok());
+  EXPECT_EQ(read.tet_count(), 2u);
+  ASSERT_EQ(info.surface_groups.size(), 2u);
+  EXPECT_EQ(info.surface_groups[0].name, "Side");  // the *SURFACE first
+  EXPECT_EQ(info.surface_groups[1].name, "port");
+  EXPECT_EQ(info.surface_groups[1].tag, 2);
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0}, d{0, 0, 1};
+  EXPECT_EQ(canonical(info.surface_groups[1].triangles), canonical(Corners{{a, b, c}}));
+  // No *ELSET holds triangles: the block's set, its triangle with an unknown node left out.
+  ASSERT_TRUE(read_mesh_from_memory(mesh, MeshFormat::kAbaqus, "a.inp", &read, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].name, "Surface1");
+  EXPECT_EQ(canonical(info.surface_groups[0].triangles), canonical(Corners{{a, b, c}, {a, b, d}}));
+  EXPECT_NE(join(info.notes).find("1 triangle elements name a node that is not defined"),
+            std::string::npos)
+      << join(info.notes);
+}
+
+// Each malformed line names the file and line and says what is wrong. A surface whose
+// references TetLOD cannot follow (an element or set not defined, a face a tet does
+// not have) is left out with a note naming the line: the mesh still reads.
 TEST(IoInputGroups, AbaqusBrokenSurfacesNameTheLine) {
   const std::string mesh =
       std::string(kNodes) + "*ELEMENT, TYPE=C3D4, ELSET=UPPER\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n";
@@ -186,12 +221,6 @@ TEST(IoInputGroups, AbaqusBrokenSurfacesNameTheLine) {
     const char* words;
   } cases[] = {
       {"*SURFACE, TYPE=ELEMENT\n1, S1\n", 12, "*SURFACE needs NAME="},
-      {"*SURFACE, NAME=X\n1, S5\n", 13, "element 1 is a tetrahedron, whose faces are S1 to S4"},
-      {"*SURFACE, NAME=X\n1, S0\n", 13, "not 'S0'"},
-      {"*SURFACE, NAME=X\n1, 7\n", 13, "not '7'"},
-      {"*SURFACE, NAME=X\n2, S1\nUPPER, SNEG\n", 14, "element 1 is a tetrahedron"},
-      {"*SURFACE, NAME=X\n1, S1\n99, S1\n", 14, "*SURFACE X: element 99 is not defined"},
-      {"*SURFACE, NAME=X\nNOPE, S1\n", 13, "'NOPE' is neither an element id nor an element set"},
       {"*SURFACE, NAME=X\n1, S1, 2\n", 13, "expected 'element or element set, face'"},
       {"*SURFACE, NAME=X\n, S1\n", 13, "expected 'element or element set, face'"},
   };
@@ -201,6 +230,49 @@ TEST(IoInputGroups, AbaqusBrokenSurfacesNameTheLine) {
     ASSERT_FALSE(s.ok()) << c.surface;
     EXPECT_EQ(s.message().rfind("a.inp:" + std::to_string(c.line) + ": ", 0), 0u) << s.message();
     EXPECT_NE(s.message().find(c.words), std::string::npos) << s.message();
+  }
+  const struct {
+    std::string surface;
+    const char* note;
+  } skipped[] = {
+      {"*SURFACE, NAME=X\n1, S5\n",
+       "X (line 13: element 1 is a tetrahedron, whose faces are S1 to S4, not 'S5')"},
+      {"*SURFACE, NAME=X\n1, S0\n", "X (line 13: element 1 is a tetrahedron, whose faces"},
+      {"*SURFACE, NAME=X\n1, 7\n",
+       "X (line 13: element 1 is a tetrahedron, whose faces are S1 to S4, not '7')"},
+      {"*SURFACE, NAME=X\n2, S1\nUPPER, SNEG\n", "X (line 14: element 1 is a tetrahedron"},
+      {"*SURFACE, NAME=X\n1, S1\n99, S1\n", "X (line 14: element 99 is not defined)"},
+      {"*SURFACE, NAME=X\nPart-1-1.99, S1\n", "X (line 13: element 99 is not defined)"},
+      {"*SURFACE, NAME=X\nNOPE, S1\n",
+       "X (line 13: 'NOPE' is neither an element nor an element set)"},
+  };
+  for (const auto& c : skipped) {
+    // A good surface after the skipped one keeps every face it names.
+    TetMesh read;
+    ReadInfo info;
+    const Status s = read_mesh_from_memory(mesh + c.surface + "*SURFACE, NAME=Y\n1, S1\n2, S1\n",
+                                           MeshFormat::kAbaqus, "a.inp", &read, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(read.tet_count(), 2u);
+    ASSERT_EQ(info.surface_groups.size(), 1u) << c.surface;
+    EXPECT_EQ(info.surface_groups[0].name, "Y");
+    EXPECT_EQ(info.surface_groups[0].tag, 1);
+    EXPECT_EQ(info.surface_groups[0].triangles.size(), 2u) << c.surface;
+    const std::string notes = join(info.notes);
+    EXPECT_NE(notes.find("not read as surface groups: *SURFACE " + std::string(c.note)),
+              std::string::npos)
+        << notes;
+  }
+  // An element qualified by its instance, as at assembly level, is that element.
+  {
+    TetMesh read;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh_from_memory(mesh + "*ELSET, ELSET=Q\nPart-1-1.2\n*SURFACE, NAME=X\n"
+                                             "Part-1-1.1, S1\nQ, S2\n",
+                                      MeshFormat::kAbaqus, "a.inp", &read, &info)
+                    .ok());
+    ASSERT_EQ(info.surface_groups.size(), 1u);
+    EXPECT_EQ(info.surface_groups[0].triangles.size(), 2u);
   }
   // A set that generates more faces than an input of this size can hold.
   const std::string flood = mesh +
