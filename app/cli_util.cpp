@@ -165,8 +165,8 @@ void print_patch_notes(const SurfacePatches& patches, const char* command) {
 void print_staged_mesh_notes(const StagedMesh& staged) {
   if (!staged.stale_face.empty()) {
     std::fprintf(stderr,
-                 "tetlod: note: %s, left from an earlier write, now lists this mesh's faces "
-                 "without group markers (--surfaces writes them with markers)\n",
+                 "tetlod: note: %s, which was beside the pair written, now lists this mesh's "
+                 "faces without group markers (--surfaces writes them with markers)\n",
                  staged.stale_face.c_str());
   }
   if (!staged.has_groups) return;

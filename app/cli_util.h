@@ -45,7 +45,7 @@ bool mesh_output_path_ok(const std::string& path, const char* command,
 // the files are committed, print_staged_mesh_notes() prints the surface groups
 // written, a line "surface groups (tag name: triangles): 5 boundary_1: 1200, ...",
 // and, on stderr, a note when a TetGen .face file beside the .node/.ele written
-// without surface groups was left from an earlier write (stage_mesh() replaces it by
+// without surface groups was already there (stage_mesh() replaces it by
 // this mesh's faces without markers).
 struct StagedMesh {
   SurfaceGroups groups;  // group_surface(mesh) when asked for

@@ -283,7 +283,9 @@ class AbaqusParser {
     Surface& surface = surfaces_[current_surface_];
     std::vector<std::string_view> f = split_commas(record);
     if (f.size() > 1 && f.back().empty()) f.pop_back();  // a trailing comma
-    if (f.size() == 1) {  // all exposed faces of the elements (or, blank, of the model)
+    // All exposed faces of the elements (or, blank, of the model); "12 S1", a face
+    // without its comma, is not that.
+    if (f.size() == 1 && f[0].find_first_of(" \t") == std::string_view::npos) {
       if (!surface.skipped) {
         unread_surfaces_.push_back(surface.name + " (line " + std::to_string(line) +
                                    ": an element or set without a face, for all its exposed "

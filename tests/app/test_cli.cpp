@@ -274,8 +274,8 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   r = run("convert " + path + " " + node);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("note: " + out_dir() +
-                          "/surf_pair.face, left from an earlier write, "
-                          "now lists this mesh's faces without group markers"),
+                          "/surf_pair.face, which was beside the pair written, now lists this "
+                          "mesh's faces without group markers"),
             std::string::npos)
       << r.output;
   EXPECT_EQ(read_file(out_dir() + "/surf_pair.face").rfind("88 0\n1 ", 0), 0u);

@@ -223,6 +223,7 @@ TEST(IoInputGroups, AbaqusBrokenSurfacesNameTheLine) {
       {"*SURFACE, TYPE=ELEMENT\n1, S1\n", 12, "*SURFACE needs NAME="},
       {"*SURFACE, NAME=X\n1, S1, 2\n", 13, "expected 'element or element set, face'"},
       {"*SURFACE, NAME=X\n, S1\n", 13, "expected 'element or element set, face'"},
+      {"*SURFACE, NAME=X\n1 S1\n", 13, "expected 'element or element set, face'"},
   };
   for (const auto& c : cases) {
     TetMesh read;
