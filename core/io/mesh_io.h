@@ -54,9 +54,11 @@
 //  - Abaqus: each element-based *SURFACE ("element or element set, Sn"; S1 = nodes
 //    1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1) is a surface group named after it,
 //    tags 1, 2, ... in the order of the file; <X>_FACES is named X when a node set
-//    X exists and no surface X (as TetLOD writes a group X). Node surfaces and
-//    other forms are skipped, and faces of elements that are not tets dropped,
-//    with a note (io/abaqus.cpp).
+//    X exists and no surface X (as TetLOD writes a group X). Node surfaces, other
+//    forms and references to elements or sets that are not there are skipped, and
+//    faces of elements that are not tets dropped, with a note. Then the *ELSETs of
+//    triangle elements (CPS3, S3, ...; as Gmsh exports physical surfaces) are
+//    groups too (io/abaqus.cpp).
 //  - VTK legacy (3.0 and 5.1 cell layouts) and VTK XML: cell type 10 (tet) and 24
 //    (quadratic tet: its four corners) are read, other cells skipped; material =
 //    cell data array "material" (legacy: SCALARS or FIELD), else 0. Binary,
@@ -80,7 +82,7 @@
 //    4.1 files carry $Entities with bounding boxes, one volume entity per material.
 //  - TetGen: the pair is written 1-based with one region attribute (the material).
 //    With surface groups, a .face file too (boundary markers: the groups' tags);
-//    without, a .face already beside the pair (an earlier write's, which the reader
+//    without, a .face already beside the pair (which the reader
 //    would take with the pair) is replaced by this mesh's faces without markers.
 #pragma once
 
@@ -108,7 +110,8 @@ struct ReadInfo {
   std::vector<std::string> notes;
   // The file's own surface groups (Gmsh physical surfaces of triangles, Medit
   // triangles with a reference >= 1, TetGen .face markers >= 1, Abaqus element-face
-  // *SURFACE; other formats none), for SurfacePatches (core/surface.h) when writing
+  // *SURFACE and triangle element sets; other formats none), for SurfacePatches
+  // (core/surface.h) when writing
   // surface groups.
   std::vector<InputSurfaceGroup> surface_groups;
   // The names the file gives the materials of its tets, by material id (none for a
