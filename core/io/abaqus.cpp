@@ -4,7 +4,8 @@
 // Abaqus Keywords Reference. A flat input or one with a single *PART. The material
 // of a tet: the section that covers it (by material name), else the first *ELSET
 // holding it (Gmsh writes its physical groups so; not an INTERNAL one, which Abaqus/CAE
-// makes for surfaces), else its *ELEMENT's ELSET, else 0;
+// makes for surfaces), else its *ELEMENT's ELSET, else 0; a set holding every tet
+// ("Eall") comes last, after the *ELEMENT's ELSET, when other sets tell tets apart;
 // a name ending in digits is that number ("material_7", "Volume2") unless an earlier
 // name has it ("Rotor1" then "Stator1"), other names get the next free numbers in
 // order of appearance.
@@ -473,10 +474,12 @@ class AbaqusParser {
         if (it != tet_of_element_.end() && key[it->second] < 0) key[it->second] = s.material;
       }
     }
+    // A set that holds every tet ("EALL", as CalculiX decks have) says nothing of
+    // materials when other sets tell the tets apart: it only gives the tets no other
+    // set holds their material, last.
+    std::vector<std::string> all_sets;
     if (sections_.empty()) {
-      // A set that holds every tet ("EALL", as CalculiX decks have) says nothing of
-      // materials when other sets tell the tets apart: it is not one.
-      const std::vector<std::string> all_sets = sets_holding_every_tet();
+      all_sets = sets_holding_every_tet();
       // Tets in two sets take the first: said in a note, naming the sets passed over.
       uint64_t overlapping = 0;  // tets
       std::vector<uint8_t> in_two(tets_.size(), 0);
@@ -510,6 +513,7 @@ class AbaqusParser {
     }
     for (size_t t = 0; t < tets_.size(); ++t) {
       if (key[t] < 0) key[t] = tets_[t].element_set;
+      if (key[t] < 0 && !all_sets.empty()) key[t] = key_of(set_spellings_.at(all_sets[0]));
     }
     // Key -> material id, for the keys in use: the trailing number of the name, else
     // the next free numbers after the largest such, in order of appearance. Two names
@@ -600,7 +604,8 @@ class AbaqusParser {
     for (const std::string& s : all) list += (list.empty() ? "" : ", ") + set_spellings_.at(s);
     out_->notes.push_back("*ELSET " + list +
                           " holds every tetrahedron, and no *SOLID SECTION says which sets are "
-                          "materials: the materials are the other sets, not it");
+                          "materials: the materials are the other sets, and it only that of the "
+                          "tetrahedra no other set holds");
     return all;
   }
 

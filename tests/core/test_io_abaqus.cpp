@@ -155,10 +155,14 @@ TEST(IoAbaqus, OverlappingSetsWithoutSectionsAreNamedInANote) {
       &read, &notes);
   EXPECT_EQ(read.materials, (std::vector<int32_t>{2, 2, 7, 7}));
   EXPECT_NE(notes.find("*ELSET Eall holds every tetrahedron, and no *SOLID SECTION says which "
-                       "sets are materials: the materials are the other sets, not it"),
+                       "sets are materials: the materials are the other sets, and it only that of "
+                       "the tetrahedra no other set holds"),
             std::string::npos)
       << notes;
   EXPECT_EQ(notes.find("more than one *ELSET"), std::string::npos) << notes;
+  // Tets no other set holds keep Eall's material (the next free number, 3).
+  read_deck("*ELSET, ELSET=Eall, GENERATE\n1, 4\n*ELSET, ELSET=Core2\n1, 2\n", &read, &notes);
+  EXPECT_EQ(read.materials, (std::vector<int32_t>{2, 2, 3, 3}));
   // The same against the *ELEMENT blocks' sets.
   const std::string blocks =
       "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
