@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "core/io/output_files.h"
+#include "core/utf8.h"
 
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -140,29 +141,6 @@ const char* const kLatin1Folded[64] = {
     "D", "N", "O", "O", "O", "O", "O",  "x", "O", "U", "U", "U", "U", "Y", "TH", "ss",
     "a", "a", "a", "a", "a", "a", "ae", "c", "e", "e", "e", "e", "i", "i", "i",  "i",
     "d", "n", "o", "o", "o", "o", "o",  "/", "o", "u", "u", "u", "u", "y", "th", "y"};
-
-// The code point of the UTF-8 sequence at text[*at], advancing *at; -1 (and one byte)
-// if it is not a valid sequence.
-long next_code_point(const std::string& text, size_t* at) {
-  const auto byte = [&](size_t i) { return static_cast<unsigned char>(text[i]); };
-  const unsigned char lead = byte(*at);
-  const int length = lead < 0x80                   ? 1
-                     : lead >= 0xc2 && lead < 0xe0 ? 2
-                     : lead >= 0xe0 && lead < 0xf0 ? 3
-                     : lead >= 0xf0 && lead < 0xf5 ? 4
-                                                   : 0;
-  if (length == 0 || *at + size_t(length) > text.size()) return ++*at, -1;
-  long code = length == 1 ? lead : lead & (0x7f >> length);
-  for (int k = 1; k < length; ++k) {
-    if ((byte(*at + size_t(k)) & 0xc0) != 0x80) return ++*at, -1;
-    code = code << 6 | (byte(*at + size_t(k)) & 0x3f);
-  }
-  const long smallest[5] = {0, 0, 0x80, 0x800, 0x10000};
-  if (code < smallest[length] || code > 0x10ffff || (code >= 0xd800 && code < 0xe000))
-    return ++*at, -1;
-  *at += size_t(length);
-  return code;
-}
 
 }  // namespace
 

@@ -15,6 +15,7 @@
 #include "core/status.h"
 #include "core/surface.h"
 #include "core/tet_mesh.h"
+#include "core/utf8.h"
 
 namespace tetlod::io {
 
@@ -84,30 +85,11 @@ inline std::string valid_utf8(std::string_view text) {
   std::string out;
   out.reserve(text.size());
   for (size_t i = 0; i < text.size();) {
-    const auto byte = [&](size_t k) { return static_cast<uint8_t>(text[k]); };
-    const uint8_t c = byte(i);
-    const size_t n = c < 0x80           ? 1
-                     : (c >> 5) == 0x6  ? 2
-                     : (c >> 4) == 0xe  ? 3
-                     : (c >> 3) == 0x1e ? 4
-                                        : 0;
-    bool ok = n > 0 && i + n <= text.size() && !(n == 2 && c < 0xc2);
-    for (size_t k = 1; ok && k < n; ++k) ok = (byte(i + k) >> 6) == 0x2;
-    if (ok && n == 3) {  // no overlong forms or surrogates
-      const uint8_t d = byte(i + 1);
-      ok = !(c == 0xe0 && d < 0xa0) && !(c == 0xed && d >= 0xa0);
-    }
-    if (ok && n == 4) {  // no overlong forms, nothing past U+10FFFF
-      const uint8_t d = byte(i + 1);
-      ok = !(c == 0xf0 && d < 0x90) && !(c == 0xf4 && d >= 0x90) && c <= 0xf4;
-    }
-    if (ok) {
-      out.append(text.substr(i, n));
-      i += n;
-    } else {
+    const size_t start = i;
+    if (next_code_point(text, &i) < 0)
       out.push_back('?');
-      ++i;
-    }
+    else
+      out.append(text.substr(start, i - start));
   }
   return out;
 }
