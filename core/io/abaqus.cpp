@@ -628,23 +628,23 @@ class AbaqusParser {
       // A reference TetLOD cannot follow skips the surface (with a note), not the mesh.
       std::string unresolved;
       for (const SurfaceFace& entry : surface.faces) {
-        std::vector<int64_t> single;
-        const std::vector<int64_t>* members = &single;
-        int64_t element = 0;
         const std::string where = "line " + std::to_string(entry.line) + ": ";
-        if (integer(entry.label, &element) ||
-            (!surface_set(upper(entry.label)) && element_label(entry.label, &element))) {
+        // An element number, else a set, else an instance-qualified element number.
+        int64_t element = 0;
+        const std::vector<int64_t>* members =
+            integer(entry.label, &element) ? nullptr : surface_set(upper(entry.label));
+        std::vector<int64_t> single;
+        if (members == nullptr) {
+          if (!element_label(entry.label, &element)) {
+            unresolved = where + "'" + entry.label + "' is neither an element nor an element set";
+            break;
+          }
           if (tet_of_element_.count(element) == 0 && other_elements_.count(element) == 0) {
             unresolved = where + "element " + std::to_string(element) + " is not defined";
             break;
           }
           single.push_back(element);
-        } else {
-          members = surface_set(upper(entry.label));
-          if (members == nullptr) {
-            unresolved = where + "'" + entry.label + "' is neither an element nor an element set";
-            break;
-          }
+          members = &single;
         }
         if (members->size() > limit - visited) {
           return fail(entry.line, "the surfaces hold more faces than an input of this size can (" +

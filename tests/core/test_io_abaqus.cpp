@@ -27,6 +27,11 @@ TetMesh expected(int m1, int m2, int m3, int m4) {
   return mesh;
 }
 
+// kMedit's points as an Abaqus *NODE block.
+const char* const kNodes =
+    "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
+    "7, 0, -1, 0\n";
+
 Status read(const std::string& text, TetMesh* mesh) {
   return read_mesh_from_memory(text, MeshFormat::kAbaqus, "a.inp", mesh);
 }
@@ -84,13 +89,11 @@ TEST(IoAbaqus, ReadsACaeDeckWithPartsSetsAndSections) {
 
 // Gmsh: elementary sets on *ELEMENT, physical groups as *ELSET: the latter win.
 TEST(IoAbaqus, ElsetsWinOverTheElementSet) {
-  const std::string deck =
-      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
-      "7, 0, -1, 0\n"
-      "*ELEMENT, type=C3D4, ELSET=Volume1\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n"
-      "*ELEMENT, type=C3D4, ELSET=Volume2\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
-      "*ELSET,ELSET=material_5\n1, 3, \n"
-      "*ELSET,ELSET=material_9\n2, \n";
+  const std::string deck = std::string(kNodes) +
+                           "*ELEMENT, type=C3D4, ELSET=Volume1\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n"
+                           "*ELEMENT, type=C3D4, ELSET=Volume2\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
+                           "*ELSET,ELSET=material_5\n1, 3, \n"
+                           "*ELSET,ELSET=material_9\n2, \n";
   TetMesh mesh;
   const Status s = read(deck, &mesh);
   ASSERT_TRUE(s.ok()) << s.message();
@@ -102,8 +105,7 @@ TEST(IoAbaqus, ElsetsWinOverTheElementSet) {
 // material; a *SURFACE still finds them.
 TEST(IoAbaqus, InternalSetsAreNotMaterials) {
   const std::string deck =
-      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
-      "7, 0, -1, 0\n"
+      std::string(kNodes) +
       "*ELEMENT, type=C3D4\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
       "*Elset, elset=_Surf-1_S1, internal\n1, 3\n"
       "*ELSET, ELSET=Core2\n1, 2\n"
@@ -120,12 +122,11 @@ TEST(IoAbaqus, InternalSetsAreNotMaterials) {
 }
 
 // Without sections, a tet in two *ELSETs takes the first; a note names the sets passed
-// over. A set holding every tet ("Eall") is no material when other sets tell the tets
+// over. A set holding every tet ("Eall") counts last when other sets tell the tets
 // apart (it made one material of everything); a note says so.
 TEST(IoAbaqus, OverlappingSetsWithoutSectionsAreNamedInANote) {
   const std::string mesh =
-      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
-      "7, 0, -1, 0\n"
+      std::string(kNodes) +
       "*ELEMENT, type=C3D4\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n";
   auto read_deck = [&](const std::string& sets, TetMesh* out, std::string* notes) {
     ReadInfo info;
@@ -148,7 +149,7 @@ TEST(IoAbaqus, OverlappingSetsWithoutSectionsAreNamedInANote) {
                        "it, not Air7"),
             std::string::npos)
       << notes;
-  // Eall first: not a material, said once; the others do not overlap.
+  // Eall first: the others give every tet its material, said once; no overlap note.
   read_deck(
       "*ELSET, ELSET=Eall, GENERATE\n1, 4\n*ELSET, ELSET=Core2\n1, 2\n"
       "*ELSET, ELSET=Air7\n3, 4\n",
@@ -164,11 +165,10 @@ TEST(IoAbaqus, OverlappingSetsWithoutSectionsAreNamedInANote) {
   read_deck("*ELSET, ELSET=Eall, GENERATE\n1, 4\n*ELSET, ELSET=Core2\n1, 2\n", &read, &notes);
   EXPECT_EQ(read.materials, (std::vector<int32_t>{2, 2, 3, 3}));
   // The same against the *ELEMENT blocks' sets.
-  const std::string blocks =
-      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
-      "7, 0, -1, 0\n*ELEMENT, type=C3D4, ELSET=Lower1\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n"
-      "*ELEMENT, type=C3D4, ELSET=Upper2\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
-      "*ELSET, ELSET=EALL\nLower1, Upper2\n";
+  const std::string blocks = std::string(kNodes) +
+                             "*ELEMENT, type=C3D4, ELSET=Lower1\n1, 1, 2, 3, 4\n2, 2, 3, 4, 5\n"
+                             "*ELEMENT, type=C3D4, ELSET=Upper2\n3, 1, 2, 3, 6\n4, 1, 2, 4, 7\n"
+                             "*ELSET, ELSET=EALL\nLower1, Upper2\n";
   ASSERT_TRUE(read_mesh_from_memory(blocks, MeshFormat::kAbaqus, "a.inp", &read).ok());
   EXPECT_EQ(read.materials, (std::vector<int32_t>{1, 1, 2, 2}));
   // A set holding every tet with nothing else to tell them apart is the material.
@@ -197,13 +197,11 @@ TEST(IoAbaqus, NodeLinesWithATrailingCommaAreOneNodeEach) {
 // one takes the next free number (as a name without digits does), after every
 // number a name gives ("Coil7").
 TEST(IoAbaqus, NamesWithTheSameNumberAreDifferentMaterials) {
-  const std::string deck =
-      "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n6, 0, 0, -1\n"
-      "7, 0, -1, 0\n"
-      "*ELEMENT, type=C3D4, ELSET=Rotor1\n1, 1, 2, 3, 4\n"
-      "*ELEMENT, type=C3D4, ELSET=Stator1\n2, 2, 3, 4, 5\n"
-      "*ELEMENT, type=C3D4, ELSET=Vol01\n3, 1, 2, 3, 6\n"
-      "*ELEMENT, type=C3D4, ELSET=Coil7\n4, 1, 2, 4, 7\n";
+  const std::string deck = std::string(kNodes) +
+                           "*ELEMENT, type=C3D4, ELSET=Rotor1\n1, 1, 2, 3, 4\n"
+                           "*ELEMENT, type=C3D4, ELSET=Stator1\n2, 2, 3, 4, 5\n"
+                           "*ELEMENT, type=C3D4, ELSET=Vol01\n3, 1, 2, 3, 6\n"
+                           "*ELEMENT, type=C3D4, ELSET=Coil7\n4, 1, 2, 4, 7\n";
   TetMesh mesh;
   const Status s = read(deck, &mesh);
   ASSERT_TRUE(s.ok()) << s.message();
