@@ -7,7 +7,11 @@
 // "index a b c [marker]", numbered like the .node file; after a 10-node .ele a face
 // has 6 nodes (TetGen -o2: its corners first), and TetGen -nn adds the two tets
 // beside it, which are skipped. Faces with a marker >= 1 are surface groups by
-// marker (unnamed), as TetGen writes facet markers and TetLOD group tags.
+// marker (unnamed), as TetGen writes facet markers and TetLOD group tags; a note
+// counts the faces with markers below 0 or above 2^31 - 1 (0 is no marker).
+//
+// As TetGen does, a header's trailing fields may be left out ("5" is "5 3 0 0" in a
+// .node file, "5 4 0" in a .ele, "5 0" in a .face).
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -32,6 +36,33 @@ bool read_material(TextScanner& scanner, int32_t* material) {
   return true;
 }
 
+// The rest of a header's line after its first number (the count). TetGen reads a
+// header line and gives missing trailing fields their defaults ("5" is "5 3 0 0" in
+// a .node file), so the optional fields are read from this line only.
+TextScanner rest_of_header(TextScanner& scanner) {
+  const size_t line = scanner.line();
+  const bool line_ends = scanner.remaining_text().find('\n') != std::string_view::npos;
+  TextScanner fields(scanner.rest_of_line(), scanner.name(), '#', line);
+  fields.set_number_may_end_text(line_ends);
+  return fields;
+}
+
+// Reads an optional non-negative header field; `value` keeps its default when the
+// line has ended.
+bool read_header_field(TextScanner& fields, int64_t* value, const char* what) {
+  if (fields.at_end()) return true;
+  if (!fields.read_int(value, what)) return false;
+  if (*value >= 0) return true;
+  return fields.fail(std::string(what) + " " + std::to_string(*value) + " is negative");
+}
+
+bool expect_end_of_header(TextScanner& fields, const char* fields_text) {
+  std::string_view token;
+  if (!fields.next_token(&token)) return true;
+  return fields.fail("unexpected " + TextScanner::quote(token) + " in the header (" + fields_text +
+                     ")");
+}
+
 bool expect_end_of_file(TextScanner& scanner, const char* items) {
   std::string_view token;
   if (!scanner.next_token(&token)) return true;
@@ -41,20 +72,26 @@ bool expect_end_of_file(TextScanner& scanner, const char* items) {
 
 // Reads the .node file; `base` receives the first index (0 or 1).
 bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
-  uint64_t count = 0, attributes = 0, markers = 0;
-  int64_t dimension = 0;
+  uint64_t count = 0;
+  int64_t dimension = 3, attributes = 0, markers = 0;
   // A point line "i x y z\n" takes at least 8 bytes.
   if (!scanner.read_count(&count, "point count", 8)) return false;
-  if (!scanner.read_int(&dimension, "dimension")) return false;
+  TextScanner header = rest_of_header(scanner);
+  if (!read_header_field(header, &dimension, "dimension") ||
+      !read_header_field(header, &attributes, "attribute count") ||
+      !read_header_field(header, &markers, "boundary marker count") ||
+      !expect_end_of_header(header, "'points dimension attributes markers'")) {
+    return scanner.adopt_failure(header);
+  }
   if (dimension != 3) {
-    return scanner.fail("only 3-dimensional points are supported (dimension " +
-                        std::to_string(dimension) + ")");
+    header.fail("only 3-dimensional points are supported (dimension " + std::to_string(dimension) +
+                ")");
+    return scanner.adopt_failure(header);
   }
-  if (!scanner.read_count(&attributes, "attribute count", 2) ||
-      !scanner.read_count(&markers, "boundary marker count", 2)) {
-    return false;
+  if (markers > 1) {
+    header.fail("boundary marker count must be 0 or 1");
+    return scanner.adopt_failure(header);
   }
-  if (markers > 1) return scanner.fail("boundary marker count must be 0 or 1");
   if (count == 0) return scanner.fail("no points (points in a .poly file are not supported)");
   if (count >= kInvalidIndex) return scanner.fail("too many points");
   mesh.positions.reserve(count);
@@ -74,7 +111,7 @@ bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
     Vec3 p;
     if (!scanner.read_double(&p.x, "x coordinate") || !scanner.read_double(&p.y, "y coordinate") ||
         !scanner.read_double(&p.z, "z coordinate") ||
-        !scanner.skip_numbers(attributes + markers, "point attributes")) {
+        !scanner.skip_numbers(uint64_t(attributes) + uint64_t(markers), "point attributes")) {
       return false;
     }
     mesh.positions.push_back(p);
@@ -84,16 +121,21 @@ bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
 
 // Reads the .ele file; `nodes_per_tet` receives 4 or 10.
 bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out, int64_t* nodes_per_tet) {
-  uint64_t count = 0, attributes = 0;
+  uint64_t count = 0;
+  int64_t attributes = 0;
   int64_t& corners = *nodes_per_tet;
-  if (!scanner.read_count(&count, "tetrahedron count", 10) ||
-      !scanner.read_int(&corners, "nodes per tetrahedron")) {
-    return false;
+  corners = 4;
+  if (!scanner.read_count(&count, "tetrahedron count", 10)) return false;
+  TextScanner header = rest_of_header(scanner);
+  if (!read_header_field(header, &corners, "nodes per tetrahedron") ||
+      !read_header_field(header, &attributes, "attribute count") ||
+      !expect_end_of_header(header, "'tetrahedra nodes-per-tetrahedron attributes'")) {
+    return scanner.adopt_failure(header);
   }
   if (corners != 4 && corners != 10) {
-    return scanner.fail("nodes per tetrahedron must be 4 or 10, found " + std::to_string(corners));
+    header.fail("nodes per tetrahedron must be 4 or 10, found " + std::to_string(corners));
+    return scanner.adopt_failure(header);
   }
-  if (!scanner.read_count(&attributes, "attribute count", 2)) return false;
   if (count >= kInvalidIndex) return scanner.fail("too many tetrahedra");
   TetMesh& mesh = out->mesh;
   mesh.tets.reserve(count);
@@ -121,7 +163,7 @@ bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out, int64_t*
     int32_t material = 0;
     if (!scanner.skip_numbers(uint64_t(corners - 4), "vertex indices") ||
         (attributes > 0 && !read_material(scanner, &material)) ||
-        !scanner.skip_numbers(attributes > 0 ? attributes - 1 : 0, "attributes")) {
+        !scanner.skip_numbers(uint64_t(attributes > 0 ? attributes - 1 : 0), "attributes")) {
       return false;
     }
     mesh.tets.push_back(tet);
@@ -133,14 +175,19 @@ bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out, int64_t*
 // Reads the .face file into out->surface_groups (see the top of the file).
 // `nodes_per_tet`: of the .ele file (4 or 10).
 Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, ParsedMesh* out) {
-  uint64_t count = 0, markers = 0;
+  uint64_t count = 0;
+  int64_t markers = 0;
   // A face line "i a b c\n" takes at least 8 bytes.
-  if (!scanner.read_count(&count, "face count", 8) ||
-      !scanner.read_count(&markers, "boundary marker count", 2)) {
+  if (!scanner.read_count(&count, "face count", 8)) return scanner.status();
+  TextScanner header = rest_of_header(scanner);
+  if (!read_header_field(header, &markers, "boundary marker count") ||
+      !expect_end_of_header(header, "'faces markers'")) {
+    scanner.adopt_failure(header);
     return scanner.status();
   }
   if (markers > 1) {
-    scanner.fail("boundary marker count must be 0 or 1");
+    header.fail("boundary marker count must be 0 or 1");
+    scanner.adopt_failure(header);
     return scanner.status();
   }
   const std::vector<Vec3>& positions = out->mesh.positions;
@@ -148,6 +195,8 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
   const std::string form = std::string("'index a b c") + (nodes_per_face == 6 ? " d e f" : "") +
                            (markers == 1 ? " marker" : "") + "'";
   std::map<int64_t, size_t> group_of;  // marker -> index in out->surface_groups
+  uint64_t unkept = 0;                 // faces whose marker is not a group tag
+  std::string first_unkept;
   for (uint64_t i = 0; i < count; ++i) {
     int64_t index = 0;
     if (!scanner.read_int(&index, "face index")) return scanner.status();
@@ -207,13 +256,24 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
         return fields.status();
       }
     }
-    if (marker < 1 || marker > std::numeric_limits<int32_t>::max()) continue;
+    if (marker == 0) continue;  // no marker
+    if (marker < 0 || marker > std::numeric_limits<int32_t>::max()) {
+      if (unkept++ == 0)
+        first_unkept = "line " + std::to_string(line) + ", marker " + std::to_string(marker);
+      continue;
+    }
     const auto [it, added] = group_of.try_emplace(marker, out->surface_groups.size());
     if (added) {
       out->surface_groups.emplace_back();
       out->surface_groups.back().tag = int32_t(marker);
     }
     out->surface_groups[it->second].triangles.push_back(corners);
+  }
+  if (unkept > 0) {
+    out->notes.push_back(std::to_string(unkept) + (unkept == 1 ? " face of " : " faces of ") +
+                         scanner.name() + (unkept == 1 ? " has a marker" : " have markers") +
+                         " outside 1 to 2147483647 (the first at " + first_unkept +
+                         "); no surface group holds " + (unkept == 1 ? "it" : "them"));
   }
   std::sort(out->surface_groups.begin(), out->surface_groups.end(),
             [](const InputSurfaceGroup& a, const InputSurfaceGroup& b) { return a.tag < b.tag; });

@@ -228,6 +228,14 @@ bool TextScanner::fail_at_line(size_t line, std::string_view message) {
   return false;
 }
 
+bool TextScanner::adopt_failure(const TextScanner& other) {
+  if (!failed_) {
+    failed_ = true;
+    error_ = other.error_;
+  }
+  return false;
+}
+
 bool TextScanner::fail_missing(const char* what) {
   return fail(std::string("unexpected end of file, expected ") + what);
 }

@@ -77,6 +77,9 @@ class TextScanner {
   // Records "name:line: message" (the first error wins) and returns false.
   bool fail(std::string_view message);
   bool fail_at_line(size_t line, std::string_view message);
+  // Records the error of `other` (a scanner over part of this text) as this one's,
+  // unless this one has failed already, and returns false.
+  bool adopt_failure(const TextScanner& other);
   bool failed() const { return failed_; }
   Status status() const { return failed_ ? Status::error(error_) : Status(); }
 

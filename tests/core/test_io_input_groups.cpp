@@ -475,6 +475,36 @@ TEST(IoInputGroups, TetGenFaceMarkersAreGroups) {
     EXPECT_TRUE(info.surface_groups.empty()) << face;
   }
 
+  // As TetGen reads them, a header's missing trailing fields take their defaults:
+  // here no markers, and no .node attributes, markers or .ele region attribute.
+  for (const char* face : {"2\n1 1 2 3\n2 2 5 3\n", "0\n", "0 # no faces\n"}) {
+    s = read_tetgen(face, &mesh, &info,
+                    "6\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1\n6 0 0 -1\n",
+                    "3\n1 1 2 3 4\n2 2 3 4 5\n3 1 3 2 6\n");
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_TRUE(info.surface_groups.empty()) << face;
+    EXPECT_EQ(mesh.tet_count(), 3u);
+    EXPECT_EQ(mesh.materials, std::vector<int32_t>(3, 0));
+  }
+
+  // Markers no group tag can hold are in no group, and a note says so.
+  s = read_tetgen("4 1\n1 1 2 3 -1\n2 2 5 3 7\n3 1 3 6 2147483648\n4 1 6 2 -3\n", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_EQ(info.surface_groups.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].tag, 7);
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_EQ(info.notes[0],
+            "3 faces of m.face have markers outside 1 to 2147483647 (the first at line 2, "
+            "marker -1); no surface group holds them");
+  s = read_tetgen("1 1\n1 1 2 3 2147483648\n", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_TRUE(info.surface_groups.empty());
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_NE(info.notes[0].find("1 face of m.face has a marker outside 1 to 2147483647 (the first "
+                               "at line 2, marker 2147483648); no surface group holds it"),
+            std::string::npos)
+      << info.notes[0];
+
   // After a 10-node .ele, TetGen -o2 faces have 6 nodes (the corners first).
   const std::string node10 = std::string("7 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n") +
                              "5 1 1 1\n6 0 0 -1\n7 0.5 0 0\n";
@@ -525,7 +555,10 @@ TEST(IoInputGroups, TetGenBrokenFacesNameTheLine) {
       {"1 1\n1 1 2 3 1", 2, "truncated"},
       {"1 1\n1 1 2 3 1 4 5", 2, "truncated"},
       {"-1 1\n", 1, "negative"},
-      {"0\n", 1, "end of file"},
+      {"1 -1\n1 1 2 3\n", 1, "boundary marker count -1 is negative"},
+      {"1 1 0\n1 1 2 3 1\n", 1, "unexpected '0' in the header ('faces markers')"},
+      {"1\n1 1 2 3 1\n", 2, "face 1 ends before its second adjacent tetrahedron"},
+      {"0", 1, "truncated"},
   };
   TetMesh mesh;
   for (const auto& c : cases) {

@@ -232,6 +232,12 @@ TEST(IoMalformed, TetGen) {
       {{{2, "2 0 0 0"}}, {}, "m.node", 2, "must be 0 or 1"},
       {{{1, "5 2 0 0"}}, {}, "m.node", 1, "3-dimensional"},
       {{}, {{1, "2 6 1"}}, "m.ele", 1, "4 or 10"},
+      {{{1, "5 3 0 0 0"}}, {}, "m.node", 1, "unexpected '0' in the header"},
+      {{{1, "5 3 0 x"}}, {}, "m.node", 1, "boundary marker count 'x' is not an integer"},
+      {{}, {{1, "2 4 -1"}}, "m.ele", 1, "attribute count -1 is negative"},
+      // A header without its optional fields: no region attribute, so the 1 and 2
+      // at the ends of the lines are read as the next tetrahedra's indices.
+      {{}, {{1, "2"}}, "m.ele", 2, "expected tetrahedron index 2, found 1"},
   };
   TetMesh mesh;
   ASSERT_TRUE(read_tetgen_from_memory(kTetGenNode, kTetGenEle, "m.node", "m.ele", &mesh).ok());
