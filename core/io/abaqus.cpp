@@ -857,12 +857,12 @@ class AbaqusParser {
 // The faces are those of the group's tets of the smaller material; element ids are
 // the tets' positions + 1, as write_abaqus() numbers them.
 // A user's name made a valid Abaqus label: letters (in their case; Abaqus compares
-// labels case-insensitively), digits and '_', starting with a letter (else after
-// `prefix`).
+// labels case-insensitively), digits, '_' and '-' (as in Abaqus/CAE's "Set-1";
+// CalculiX 2.20 reads them), starting with a letter (else after `prefix`).
 std::string abaqus_label(const std::string& name, const char* prefix) {
   std::string label = name;
   for (char& c : label) {
-    if (!std::isalnum(uint8_t(c)) && c != '_') c = '_';
+    if (!std::isalnum(uint8_t(c)) && c != '_' && c != '-') c = '_';
   }
   if (label.empty() || !std::isalpha(uint8_t(label[0]))) label = prefix + label;
   return label;

@@ -1,6 +1,8 @@
 // CalculiX (`ccx`, when it is on PATH) runs a frequency analysis on the .inp TetLOD
 // writes: the solver reads every node, element and material set, and a free body
-// has six rigid-body modes (eigenvalues near 0) below its first elastic one.
+// has six rigid-body modes (eigenvalues near 0) below its first elastic one. A
+// section on a set that does not exist is an error in CalculiX, so a set name it
+// cannot read (as one with a hyphen could be) fails the test.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,13 +20,17 @@ TEST(IoCalculixInterop, CcxRunsAFrequencyAnalysisOnOurMesh) {
   const std::string dir = test::output_dir("calculix");
   TetMesh mesh;
   ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &mesh).ok());
-  ASSERT_TRUE(write_mesh(dir + "/mesh.inp", mesh).ok());
+  // Material 2 named as Abaqus/CAE names sets, with a hyphen.
+  const std::vector<MaterialName> names = {{2, "Iron-Core"}};
+  WriteOptions options;
+  options.material_names = &names;
+  ASSERT_TRUE(write_mesh(dir + "/mesh.inp", mesh, options).ok());
   // Steel in both materials' sets, which must exist for the sections to apply.
   test::write_text(dir + "/job.inp",
                    "*INCLUDE, INPUT=mesh.inp\n"
                    "*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n*DENSITY\n7.8e-9\n"
                    "*SOLID SECTION, ELSET=MATERIAL_1, MATERIAL=STEEL\n"
-                   "*SOLID SECTION, ELSET=MATERIAL_2, MATERIAL=STEEL\n"
+                   "*SOLID SECTION, ELSET=Iron-Core_2, MATERIAL=STEEL\n"
                    "*STEP\n*FREQUENCY\n8\n*END STEP\n");
   const std::string log = dir + "/ccx.log";
   ASSERT_EQ(std::system(("cd '" + dir + "' && ccx job > ccx.log 2>&1").c_str()), 0)

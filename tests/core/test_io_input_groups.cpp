@@ -350,6 +350,20 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
   ASSERT_TRUE(group_surface(back, &groups, SurfacePatches(back, info.surface_groups)).ok());
   ASSERT_TRUE(write_mesh(dir + "/again.inp", back, options).ok());
   EXPECT_EQ(test::read_text(dir + "/again.inp"), test::read_text(dir + "/groups.inp"));
+
+  // Names keep their hyphens, as Abaqus/CAE writes them ("Surf-Load"); other
+  // characters a label cannot hold become '_'.
+  groups.groups[0].name = "Surf-Load";
+  groups.groups[1].name = "port 1";
+  ASSERT_TRUE(write_mesh(dir + "/hyphen.inp", back, options).ok());
+  const std::string text = test::read_text(dir + "/hyphen.inp");
+  for (const char* line :
+       {"*NSET, NSET=Surf-Load\n", "NAME=Surf-Load_FACES\n", "*NSET, NSET=port_1\n"})
+    EXPECT_NE(text.find(line), std::string::npos) << line;
+  ASSERT_TRUE(read_mesh(dir + "/hyphen.inp", &back, &info).ok());
+  ASSERT_GE(info.surface_groups.size(), 2u);
+  EXPECT_EQ(info.surface_groups[0].name, "Surf-Load");
+  EXPECT_EQ(info.surface_groups[1].name, "port_1");
 }
 
 // CalculiX loads the faces the reader gives: four disjoint copies of one scalene

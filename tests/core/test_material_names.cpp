@@ -158,27 +158,30 @@ TEST(MaterialNames, AbaqusNamesAreRead) {
 
 // Written to .inp, each named material's element set is its name ending in its id, so
 // that reading gives every tet its material again; written again from what was read,
-// the deck is the same.
+// the deck is the same. Hyphens stay (Abaqus labels allow them).
 TEST(MaterialNames, AbaqusElementSetsCarryThem) {
   const std::string dir = test::output_dir("material_names_abaqus");
   const TetMesh mesh = test::make_grid_mesh(
       5, 1, 1, [](int i, int, int) { return i + 1; }, 0.5);  // materials 1..5
   const std::vector<MaterialName> names = {
-      {1, "inner conductor"}, {2, "Rotor2"}, {3, "3phase"}, {4, "coil_2"}};
+      {1, "inner conductor"}, {2, "Rotor2"}, {3, "3phase"}, {4, "coil_2"}, {5, "Iron-Core"}};
   WriteOptions options;
   options.material_names = &names;
   const std::string path = dir + "/named.inp";
   ASSERT_TRUE(write_mesh(path, mesh, options).ok());
   const std::string text = test::read_text(path);
   for (const char* set : {"ELSET=inner_conductor_1\n", "ELSET=Rotor2\n", "ELSET=M_3phase_3\n",
-                          "ELSET=coil_2_4\n", "ELSET=MATERIAL_5\n"})
+                          "ELSET=coil_2_4\n", "ELSET=Iron-Core_5\n"})
     EXPECT_NE(text.find(set), std::string::npos) << set;
   TetMesh back;
   ReadInfo info;
   ASSERT_TRUE(read_mesh(path, &back, &info).ok());
   test::expect_same_mesh(mesh, back);
-  EXPECT_EQ(as_pairs(info.material_names),
-            (Names{{1, "inner_conductor_1"}, {2, "Rotor2"}, {3, "M_3phase_3"}, {4, "coil_2_4"}}));
+  EXPECT_EQ(as_pairs(info.material_names), (Names{{1, "inner_conductor_1"},
+                                                  {2, "Rotor2"},
+                                                  {3, "M_3phase_3"},
+                                                  {4, "coil_2_4"},
+                                                  {5, "Iron-Core_5"}}));
   options.material_names = &info.material_names;
   ASSERT_TRUE(write_mesh(dir + "/again.inp", back, options).ok());
   EXPECT_EQ(test::read_text(dir + "/again.inp"), text);
