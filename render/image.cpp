@@ -142,6 +142,44 @@ const char* const kLatin1Folded[64] = {
     "a", "a", "a", "a", "a", "a", "ae", "c", "e", "e", "e", "e", "i", "i", "i",  "i",
     "d", "n", "o", "o", "o", "o", "o",  "/", "o", "u", "u", "u", "u", "y", "th", "y"};
 
+// Latin letters for U+0410..U+044F (the Russian alphabet, upper case then lower),
+// by code point, as in the usual romanisation (BGN/PCGN without diacritics).
+const char* const kCyrillic[64] = {
+    "A", "B", "V", "G", "D", "E",  "Zh", "Z",  "I",  "Y",    "K", "L", "M", "N", "O",  "P",
+    "R", "S", "T", "U", "F", "Kh", "Ts", "Ch", "Sh", "Shch", "'", "Y", "'", "E", "Yu", "Ya",
+    "a", "b", "v", "g", "d", "e",  "zh", "z",  "i",  "y",    "k", "l", "m", "n", "o",  "p",
+    "r", "s", "t", "u", "f", "kh", "ts", "ch", "sh", "shch", "'", "y", "'", "e", "yu", "ya"};
+
+// Latin letters for U+0391..U+03A9 (the Greek capitals; U+03A2 is unassigned), by
+// code point; the small letters U+03B1..U+03C9 are 0x20 above their capitals
+// (final sigma, U+03C2, too).
+const char* const kGreek[25] = {"A", "B", "G", "D", "E", "Z", "I", "Th", "I", "K",  "L",  "M", "N",
+                                "X", "O", "P", "R", "S", "S", "T", "Y",  "F", "Ch", "Ps", "O"};
+
+// `letters` in lower case.
+std::string lower(std::string letters) {
+  for (char& c : letters)
+    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
+  return letters;
+}
+
+// The ASCII spelling of a code point outside printable ASCII, or "?".
+std::string fold(long c) {
+  if (c >= 0xc0 && c <= 0xff) return kLatin1Folded[c - 0xc0];
+  if (c == 0xb5 || c == 0x3bc) return "u";  // micro sign, Greek mu ("um")
+  if (c >= 0x410 && c <= 0x44f) return kCyrillic[c - 0x410];
+  if (c == 0x401) return "Yo";  // Ukrainian and Belarusian letters, and Yo
+  if (c == 0x451) return "yo";
+  if (c == 0x404 || c == 0x454) return c == 0x404 ? "Ye" : "ye";
+  if (c == 0x406 || c == 0x456) return c == 0x406 ? "I" : "i";
+  if (c == 0x407 || c == 0x457) return c == 0x407 ? "Yi" : "yi";
+  if (c == 0x40e || c == 0x45e) return c == 0x40e ? "U" : "u";
+  if (c == 0x490 || c == 0x491) return c == 0x490 ? "G" : "g";
+  if (c >= 0x391 && c <= 0x3a9 && c != 0x3a2) return kGreek[c - 0x391];
+  if (c >= 0x3b1 && c <= 0x3c9) return lower(kGreek[c - 0x3b1]);
+  return "?";
+}
+
 }  // namespace
 
 std::string ascii_label(const std::string& utf8, size_t max_chars) {
@@ -152,12 +190,8 @@ std::string ascii_label(const std::string& utf8, size_t max_chars) {
     const long c = next_code_point(utf8, &at);
     if (c >= 32 && c <= 126)
       out += char(c);
-    else if (c >= 0xc0 && c <= 0xff)
-      out += kLatin1Folded[c - 0xc0];
-    else if (c == 0xb5 || c == 0x3bc)
-      out += 'u';
     else
-      out += '?';
+      out += fold(c);
     ++chars;
   }
   return out;

@@ -17,8 +17,15 @@ TEST(AsciiLabel, FoldsLatinLettersAndMarksOthersOncePerCharacter) {
                         32),
             "Strasse AEO");                                            // sharp s
   EXPECT_EQ(ascii_label("\xce\xbc-metal \xc2\xb5", 32), "u-metal u");  // Greek mu, micro
-  EXPECT_EQ(ascii_label("\xe7\x94\xb5\xe6\x9c\xba", 32), "??");        // two CJK characters
-  EXPECT_EQ(ascii_label("\xf0\x9f\x94\xa9 bolt", 32), "? bolt");       // four bytes, one '?'
+  // Cyrillic and Greek are romanised: "Медь" (copper), "Щит-Ёж", "Ωμέγα" has an
+  // accented epsilon, which is not in the table.
+  EXPECT_EQ(ascii_label("\xd0\x9c\xd0\xb5\xd0\xb4\xd1\x8c", 32), "Med'");
+  EXPECT_EQ(ascii_label("\xd0\xa9\xd0\xb8\xd1\x82-\xd0\x81\xd0\xb6", 32), "Shchit-Yozh");
+  EXPECT_EQ(ascii_label("\xd0\xaf\xd0\xbc\xd0\xb0 \xd0\x87\xd1\x96", 32), "Yama Yii");
+  EXPECT_EQ(ascii_label("\xce\xa9\xce\xbc\xce\xad\xce\xb3\xce\xb1", 32), "Ou?ga");
+  EXPECT_EQ(ascii_label("\xce\xb5_r \xce\x98\xcf\x88\xcf\x82", 32), "e_r Thpss");
+  EXPECT_EQ(ascii_label("\xe7\x94\xb5\xe6\x9c\xba", 32), "??");   // two CJK characters
+  EXPECT_EQ(ascii_label("\xf0\x9f\x94\xa9 bolt", 32), "? bolt");  // four bytes, one '?'
   EXPECT_EQ(ascii_label("tab\there", 32), "tab?here");
   // Not UTF-8: a stray continuation byte, an overlong '/', a cut sequence.
   EXPECT_EQ(ascii_label("a\x80"
