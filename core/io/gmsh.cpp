@@ -694,8 +694,16 @@ class GmshParser {
       }
       const int64_t material = material_from_name(name);
       if (dimension == 3 && material >= 0) named_materials_[tag] = material;
-      if ((dimension == 2 || dimension == 3) && material < 0 && physical_names_.size() < 1000)
-        physical_names_[{dimension, tag}] = valid_utf8(name);
+      if ((dimension == 2 || dimension == 3) && material < 0 && physical_names_.size() < 1000) {
+        std::string& kept = physical_names_[{dimension, tag}];
+        std::string named = valid_utf8(name);
+        if (!kept.empty() && kept != named && renamed_.size() < 10) {
+          renamed_.push_back("the " + std::string(dimension == 3 ? "volume" : "surface") +
+                             " group " + std::to_string(tag) + " is named '" + kept + "', then '" +
+                             named + "'");
+        }
+        kept = std::move(named);
+      }
     }
     return expect_end("$EndPhysicalNames");
   }
@@ -1162,6 +1170,8 @@ class GmshParser {
                                  : std::string(", these groups under their names and tags "
                                                "(simplified too), the rest by material pair")));
     }
+    for (const std::string& renamed : renamed_)
+      out_->notes.push_back(renamed + " in $PhysicalNames: the last name is kept");
     if (!volume_names.empty()) {
       out_->notes.push_back(
           "volume groups are materials by their number (.msh and .inp "
@@ -1305,6 +1315,7 @@ class GmshParser {
   // For the notes: physical names of surfaces and volumes other than "material_<n>"
   // ((dimension, tag) -> name), elements by type, tets by where their material came from.
   std::map<std::pair<int64_t, int64_t>, std::string> physical_names_;
+  std::vector<std::string> renamed_;  // groups named twice, for a note (at most 10)
   std::map<int64_t, uint64_t> element_counts_;
   bool from_elementary_ = false;  // of the last resolve_material()
   uint64_t physical_tets_ = 0, elementary_tets_ = 0;

@@ -4,6 +4,7 @@
 // tet's material; Gmsh itself sees the names we write.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -41,6 +42,29 @@ TEST(MaterialNames, GmshPhysicalVolumeNamesAreRead) {
   ReadInfo info;
   ASSERT_TRUE(read_mesh(test::data_path("gmsh/groups41.msh"), &mesh, &info).ok());
   EXPECT_TRUE(info.material_names.empty());
+}
+
+// A group named twice in $PhysicalNames takes the last name, and a note says so.
+TEST(MaterialNames, GmshGroupNamedTwiceTakesTheLastName) {
+  std::string text = test::read_text(test::data_path("gmsh/coax_part3.msh"));
+  const std::string names = "$PhysicalNames\n6\n";
+  ASSERT_EQ(text.find(names), text.find("$PhysicalNames"));
+  text.replace(text.find(names), names.size(),
+               "$PhysicalNames\n8\n3 4 \"screen\"\n2 21 \"outer\"\n");
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(text, MeshFormat::kGmsh41, "c.msh", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(as_pairs(info.material_names), kCoaxNames);  // "shield" came last
+  const auto has = [&](const std::string& note) {
+    return std::find(info.notes.begin(), info.notes.end(), note) != info.notes.end();
+  };
+  EXPECT_TRUE(
+      has("the volume group 4 is named 'screen', then 'shield' in $PhysicalNames: the "
+          "last name is kept"));
+  EXPECT_TRUE(
+      has("the surface group 21 is named 'outer', then 'jacket' in $PhysicalNames: the "
+          "last name is kept"));
 }
 
 TEST(MaterialNames, GmshWritesThemAndReadsThemBack) {
