@@ -112,7 +112,7 @@ void LodSurface::FaceTable::grow() {
 bool LodSurface::tet_visible(const LodState& state, uint32_t tet) const {
   if (!(*state.alive)[tet]) return false;
   const int32_t material = (*state.materials)[tet];
-  if (material >= 0 && size_t(material) < hidden_.size() && hidden_[size_t(material)]) return false;
+  if (hidden_.contains(material)) return false;
   if (!filter_.cut) return true;
   const Tet& t = (*state.tets)[tet];
   const std::vector<Vec3>& p = *state.positions;
@@ -260,12 +260,7 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
   state_ = &state;
   filter_ = filter;
   values_.clear();
-  hidden_.clear();
-  for (const int32_t m : filter.hidden_materials) {
-    if (m < 0) continue;
-    if (size_t(m) >= hidden_.size()) hidden_.resize(size_t(m) + 1, 0);
-    hidden_[size_t(m)] = 1;
-  }
+  hidden_ = MaterialSet(filter.hidden_materials);
   const size_t n = state.tets->size();
   in_.assign(n, 0);
   corners_.resize(n);

@@ -114,7 +114,7 @@ class LodSurface {
                                              size_t vertex_count);
 
   SurfaceFilter filter_;
-  std::vector<uint8_t> hidden_;      // by material id
+  MaterialSet hidden_;
   const LodState* state_ = nullptr;  // valid during reset()/update()
 
   // Per tet: whether it is in (visible), and the corners, stretch and material it

@@ -397,14 +397,23 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
   }
   // The key at the top left: a swatch and a name per line.
   std::vector<std::pair<Rgb, std::string>> key;
-  if (settings.color_mode == ColorMode::kMaterial)
-    for (const int32_t m : visible_materials_) {
+  if (settings.color_mode == ColorMode::kMaterial) {
+    // At most kKeyMaterials lines of materials: a mesh can have thousands.
+    constexpr size_t kKeyMaterials = 12;
+    const size_t shown =
+        visible_materials_.size() <= kKeyMaterials ? visible_materials_.size() : kKeyMaterials - 1;
+    for (size_t i = 0; i < shown; ++i) {
+      const int32_t m = visible_materials_[i];
       std::string text = "material " + std::to_string(m);
       if (const std::string* name = find_material_name(&material_names_, m)) {
         text = std::to_string(m) + " " + ascii_label(*name, 32);  // the font's glyphs
       }
       key.push_back({material_rgb(m), text});
     }
+    if (shown < visible_materials_.size())
+      key.push_back({Rgb{1, 1, 1}, "and " + std::to_string(visible_materials_.size() - shown) +
+                                       " more materials"});
+  }
   if (highlight_vertices_ > 0 || settings.highlight_below > 0)
     key.push_back({kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
                                       std::to_string(highlighted_tets_) + " tets"});

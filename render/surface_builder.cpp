@@ -25,6 +25,15 @@ void emit_face(const SurfaceInput& input, uint32_t tet, int corner,
 
 }  // namespace
 
+MaterialSet::MaterialSet(std::vector<int32_t> ids) : ids_(std::move(ids)) {
+  std::sort(ids_.begin(), ids_.end());
+  ids_.erase(std::unique(ids_.begin(), ids_.end()), ids_.end());
+}
+
+bool MaterialSet::lookup(int32_t material) const {
+  return std::binary_search(ids_.begin(), ids_.end(), material);
+}
+
 void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, SurfaceBuffers* out) {
   out->triangles.clear();
   out->highlight.clear();
@@ -34,14 +43,9 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
   out->visible_materials.clear();
   out->visible.assign(input.tet_count, 0);
 
-  // Hidden materials as a lookup table over the ids that are hidden.
-  int32_t max_hidden = -1;
-  for (const int32_t m : filter.hidden_materials) max_hidden = std::max(max_hidden, m);
-  std::vector<uint8_t> hidden(static_cast<size_t>(max_hidden + 1), 0);
-  for (const int32_t m : filter.hidden_materials)
-    if (m >= 0) hidden[static_cast<size_t>(m)] = 1;
-  // Materials seen, over a table grown on demand (material ids are small in practice).
-  std::vector<uint8_t> seen;
+  const MaterialSet hidden(filter.hidden_materials);
+  // The materials of the visible tets, one entry per run of a material.
+  std::vector<int32_t>& seen = out->visible_materials;
 
   const Vec3 n = filter.cut_plane.normal;
   // The cut compares 4 * dot(n, centroid) with 4 * offset: no division per tet.
@@ -51,7 +55,7 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
   for (size_t i = 0; i < input.tet_count; ++i) {
     if (input.alive && !input.alive[i]) continue;
     const int32_t material = input.materials[i];
-    if (material >= 0 && material <= max_hidden && hidden[static_cast<size_t>(material)]) continue;
+    if (hidden.contains(material)) continue;
     const Tet& t = input.tets[i];
     const Vec3& a = input.positions[t[0]];
     const Vec3& b = input.positions[t[1]];
@@ -69,9 +73,8 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
         flags |= kHighlighted;
         ++out->highlighted_tets;
       }
-      const auto m = static_cast<size_t>(std::max(material, 0));
-      if (m >= seen.size()) seen.resize(m + 1, 0);
-      seen[m] = 1;
+      const int32_t m = std::max(material, 0);
+      if (seen.empty() || seen.back() != m) seen.push_back(m);
     }
     visible[i] = flags;
   }
@@ -80,8 +83,8 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
     out->bounds_min = lo;
     out->bounds_max = hi;
   }
-  for (size_t m = 0; m < seen.size(); ++m)
-    if (seen[m]) out->visible_materials.push_back(static_cast<int32_t>(m));
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
 
   for (size_t i = 0; i < input.tet_count; ++i) {
     const uint8_t flags = visible[i];

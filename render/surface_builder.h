@@ -20,6 +20,32 @@ struct CutPlane {
   double offset = 0;
 };
 
+// A set of material ids looked up once per tet: a sorted list and the last answer
+// (a mesh's tets come in runs of one material). Ids go up to 2^31 - 1, so there is
+// no table by id.
+class MaterialSet {
+ public:
+  MaterialSet() = default;
+  explicit MaterialSet(std::vector<int32_t> ids);
+  bool contains(int32_t material) const {
+    if (material != last_ || !has_last_) {
+      last_ = material;
+      has_last_ = true;
+      last_in_ = lookup(material);
+    }
+    return last_in_;
+  }
+  bool empty() const { return ids_.empty(); }
+
+ private:
+  bool lookup(int32_t material) const;
+
+  std::vector<int32_t> ids_;
+  mutable int32_t last_ = 0;
+  mutable bool has_last_ = false;
+  mutable bool last_in_ = false;
+};
+
 // Which tets are visible, and which are highlighted.
 struct SurfaceFilter {
   std::vector<int32_t> hidden_materials;

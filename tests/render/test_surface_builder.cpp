@@ -1,6 +1,8 @@
 // Exact tests of the drawn faces on a hand-built two-material grid.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "core/adjacency.h"
 #include "core/test_meshes.h"
 #include "render/snapshot.h"
@@ -55,6 +57,27 @@ TEST(SurfaceBuilder, HidingAMaterialShowsTheInterface) {
     EXPECT_LE(v.position[0], 2.0f);
   }
   EXPECT_EQ(b.bounds_max.x, 2);  // framing follows the shown materials
+}
+
+// The largest material id is as good as any: no table is sized by the ids (one
+// was, and hiding 2^31 - 1 asked for 2^63 bytes).
+TEST(SurfaceBuilder, AnyMaterialIdCanBeHiddenAndListed) {
+  constexpr int32_t kLargest = std::numeric_limits<int32_t>::max();
+  TetMesh mesh =
+      test::make_grid_mesh(4, 2, 2, [](int i, int, int) { return i < 2 ? 1 : kLargest; });
+  const PreparedMesh prepared = prepare_mesh(mesh);
+  SurfaceBuffers b;
+  build_surface(prepared.surface_input(), {}, &b);
+  EXPECT_EQ(b.visible_materials, (std::vector<int32_t>{1, kLargest}));
+  SurfaceFilter filter;
+  filter.hidden_materials = {kLargest, 7, kLargest};
+  build_surface(prepared.surface_input(), filter, &b);
+  EXPECT_EQ(triangles(b), 48u);
+  EXPECT_EQ(b.visible_materials, (std::vector<int32_t>{1}));
+  filter.hidden_materials = {1};
+  build_surface(prepared.surface_input(), filter, &b);
+  EXPECT_EQ(triangles(b), 48u);
+  EXPECT_EQ(b.visible_materials, (std::vector<int32_t>{kLargest}));
 }
 
 TEST(SurfaceBuilder, RetiredTetsAreNotDrawn) {
