@@ -110,6 +110,12 @@ bool mesh_output_path_ok(const std::string& path, const char* command, const Wri
   return false;
 }
 
+bool output_directory_ok(const std::string& path, bool make_directories) {
+  const Status status = check_output_directory(path, make_directories);
+  if (!status) std::fprintf(stderr, "tetlod: %s\n", status.message().c_str());
+  return bool(status);
+}
+
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
                          WriteOptions options, StagedMesh* staged, const SurfacePatches* patches) {
   staged->has_groups = options.surface_groups;

@@ -41,6 +41,11 @@ bool is_history_path(const std::string& path);
 bool mesh_output_path_ok(const std::string& path, const char* command,
                          const WriteOptions& options = {}, const char* flag = "-o");
 
+// Checks, before any work, that the directory `path` goes in can be written
+// (check_output_directory(), core/io/output_files.h); if not prints the error and
+// returns false (bad input: exit 1, as the failed write would have been).
+bool output_directory_ok(const std::string& path, bool make_directories = false);
+
 // Writes `mesh` to `path` with `options` as stage_mesh() (core/io/mesh_io.h). Once
 // the files are committed, print_staged_mesh_notes() prints the surface groups
 // written, a line "surface groups (tag name: triangles): 5 boundary_1: 1200, ...",

@@ -70,6 +70,7 @@ int cmd_convert(const Args& args) {
     return kExitUsage;
   }
   if (!mesh_output_path_ok(out, "convert", options, "")) return kExitUsage;
+  if (!output_directory_ok(out)) return kExitBadInput;
   TetMesh mesh;
   ReadInfo info;
   if (!load_mesh(in, &mesh, &info)) return kExitBadInput;

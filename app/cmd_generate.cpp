@@ -111,6 +111,7 @@ int cmd_generate(const Args& args) {
     return usage_error("give --max-volume or --tets, not both");
   }
   if (Status s = check_generate_options(model, options); !s) return usage_error(s.message());
+  if (!output_directory_ok(output)) return kExitBadInput;
 
   const auto start = std::chrono::steady_clock::now();
   TetMesh mesh;

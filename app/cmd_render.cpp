@@ -24,7 +24,8 @@ constexpr const char* kRenderUsageHead =
     "through OSMesa: no display or GPU needed) and writes a PNG. FILE may be a collapse\n"
     "history (.tlh, from 'tetlod simplify --history'): then --elements N picks its level\n"
     "(default: the last), without simplifying again, and --improve improves it within the\n"
-    "thresholds saved in the history.\n";
+    "thresholds saved in the history. The picture is 800 x 800 unless --width and --height\n"
+    "say otherwise.\n";
 constexpr const char* kRenderUsageTail =
     "  --simplify        render the simplified mesh; takes the flags of 'tetlod simplify':\n"
     "                    --size, --stretch, --valence, --tolerance, --material-size,\n"
@@ -75,6 +76,7 @@ int cmd_render(const Args& args) {
                  out.c_str());
     return kExitUsage;
   }
+  if (!output_directory_ok(out)) return kExitBadInput;
   const bool history = is_history_path(in);
   if (history && !history_flags_ok(in, "render", options,
                                    "--elements N to choose its level (default: the last)"))

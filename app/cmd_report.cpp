@@ -189,6 +189,7 @@ int cmd_report(const Args& args) {
     print_usage(stderr);
     return kExitUsage;
   }
+  if (!output_directory_ok(dir, true)) return kExitBadInput;
   const bool from_history = is_history_path(in);
   if (from_history && !history_flags_ok(in, "report", options,
                                         "--levels N,... (and --elements N) to choose its levels"))
@@ -290,14 +291,8 @@ int cmd_report(const Args& args) {
     meshes.push_back({"input", std::move(input)});
   }
 
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) {
-    std::fprintf(stderr, "tetlod report: %s: cannot create the directory: %s\n", dir.c_str(),
-                 ec.message().c_str());
-    return kExitBadInput;
-  }
-
+  // Every file is made in memory first, then all are written together (or none).
+  std::vector<std::pair<std::string, std::vector<uint8_t>>> pictures;  // name, PNG
   std::string summary, figures;
   for (size_t k = 0; k < meshes.size(); ++k) {
     const Level& level = meshes[k];
@@ -315,14 +310,8 @@ int cmd_report(const Args& args) {
         stats.stretch_histogram, options.snapshot.draw.color_map, 480, 260,
         "stretch histogram, " + std::to_string(stats.whole.elements) + " tets");
     const std::string stem = "level" + std::to_string(k);
-    for (const auto& [image, name] :
-         {std::pair{&picture, stem + ".png"}, std::pair{&chart, stem + "_histogram.png"}}) {
-      const Status s = render::write_png(dir + "/" + name, *image);
-      if (!s) {
-        std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
-        return kExitBadInput;
-      }
-    }
+    pictures.push_back({stem + ".png", render::encode_png(picture)});
+    pictures.push_back({stem + "_histogram.png", render::encode_png(chart)});
     std::string materials = "<table>\n" + std::string(kTableHead);
     for (const MaterialRow& m : stats.per_material) {
       const std::string name = material_name_of(&names, m.material);
@@ -331,8 +320,8 @@ int cmd_report(const Args& args) {
     }
     materials += "</table>\n";
     figures += "<section><h2>" + html_escape(level.label) + "</h2>\n<div class=\"figs\">" +
-               img(render::encode_png(picture), level.label) +
-               img(render::encode_png(chart), "stretch histogram") + "</div>\n" + materials +
+               img(pictures[pictures.size() - 2].second, level.label) +
+               img(pictures.back().second, "stretch histogram") + "</div>\n" + materials +
                "</section>\n";
   }
 
@@ -353,8 +342,23 @@ int cmd_report(const Args& args) {
                     : std::string()) +
       "</p>\n<h2>Properties (Table I)</h2>\n<table>\n" + kTableHead + summary + "</table>\n" +
       figures + "</body></html>\n";
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    std::fprintf(stderr, "tetlod report: %s: cannot create the directory: %s\n", dir.c_str(),
+                 ec.message().c_str());
+    return kExitBadInput;
+  }
   const std::string path = dir + "/report.html";
-  const Status s = write_file_atomically(path, html);
+  OutputFiles files;
+  Status s;
+  for (const auto& [name, png] : pictures) {
+    if (s)
+      s = files.stage(dir + "/" + name,
+                      std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  }
+  if (s) s = files.stage(path, html);
+  if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
     return kExitBadInput;

@@ -140,6 +140,8 @@ int cmd_simplify(const Args& args) {
                  history_path.c_str());
     return kExitUsage;
   }
+  if (!output_directory_ok(out) || (!history_path.empty() && !output_directory_ok(history_path)))
+    return kExitBadInput;
 
   TetMesh input;
   ReadInfo info;
@@ -295,6 +297,7 @@ int cmd_lod(const Args& args) {
     return kExitUsage;
   }
   if (!mesh_output_path_ok(out, "lod", write_options)) return kExitUsage;
+  if (!output_directory_ok(out)) return kExitBadInput;
   if (thresholds_given && !improve) {
     std::fprintf(stderr, "tetlod lod: thresholds are only used with --improve\n\n%s", kLodUsage);
     return kExitUsage;

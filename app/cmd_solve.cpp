@@ -101,13 +101,6 @@ bool parse_ground(const std::string& text, ElectrostaticsProblem* problem) {
   return true;
 }
 
-bool ends_with(const std::string& text, const std::string& suffix) {
-  if (text.size() < suffix.size()) return false;
-  return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(), [](char a, char b) {
-    return std::tolower(static_cast<unsigned char>(a)) == b;
-  });
-}
-
 }  // namespace
 
 int cmd_solve(const Args& args) {
@@ -124,7 +117,7 @@ int cmd_solve(const Args& args) {
     std::string v;
     if (a == "-o" || a == "--output") {
       if (!next_value(args, &i, &out)) return kExitUsage;
-      if (!ends_with(out, ".vtu")) {
+      if (!has_extension(out, ".vtu")) {
         std::fprintf(stderr, "tetlod solve: -o '%s': the field is written as .vtu only\n",
                      out.c_str());
         return kExitUsage;
@@ -194,6 +187,8 @@ int cmd_solve(const Args& args) {
                  kSolveUsage);
     return kExitUsage;
   }
+
+  if (!out.empty() && !output_directory_ok(out)) return kExitBadInput;
 
   TetMesh mesh;
   ReadInfo info;

@@ -1,9 +1,11 @@
 // tetlod: the command-line tool.
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <string>
 
 #include "app/commands.h"
+#include "core/io/output_files.h"
 
 namespace {
 
@@ -26,10 +28,20 @@ constexpr const char* kUsage =
     "Run 'tetlod COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 1 bad input, 2 bad usage.\n";
 
+// Ctrl-C, `timeout`, a closed terminal: remove the temporaries of the files being
+// written, then end as the signal would have ended the process.
+extern "C" void remove_temporaries_and_reraise(int signal_number) {
+  tetlod::remove_output_temporaries();
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace tetlod::app;
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT})
+    std::signal(signal_number, remove_temporaries_and_reraise);
   if (argc < 2) {
     std::fputs(kUsage, stderr);
     return kExitUsage;

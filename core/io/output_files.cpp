@@ -61,6 +61,33 @@ std::string unreplaceable(const std::string& target, Keep* keep) {
 
 constexpr mode_t kNoMode = ~mode_t(0);
 
+// The temporaries that exist now, for remove_output_temporaries() (which a signal
+// handler may call, so slots are atomic pointers to C strings: no locks, no
+// allocation there). A temporary that finds no free slot is only not removed on a
+// signal.
+constexpr int kSlots = 64;
+std::atomic<char*> live_temporaries[kSlots];
+
+void add_live(const std::string& temporary) {
+  char* copy = strdup(temporary.c_str());
+  if (!copy) return;
+  for (std::atomic<char*>& slot : live_temporaries) {
+    char* expected = nullptr;
+    if (slot.compare_exchange_strong(expected, copy)) return;
+  }
+  std::free(copy);
+}
+
+void remove_live(const std::string& temporary) {
+  for (std::atomic<char*>& slot : live_temporaries) {
+    char* held = slot.load();
+    if (held && temporary == held && slot.compare_exchange_strong(held, nullptr)) {
+      std::free(held);
+      return;
+    }
+  }
+}
+
 // Creates a new file next to `target` with a name no other writer uses ("x": fail
 // if it exists).
 FILE* create_temporary(const std::string& target, std::string* temp_path) {
@@ -94,8 +121,43 @@ OutputFiles::~OutputFiles() {
 }
 
 void OutputFiles::discard() {
-  for (const Staged& s : staged_) std::remove(s.temporary.c_str());
+  for (const Staged& s : staged_) {
+    std::remove(s.temporary.c_str());
+    remove_live(s.temporary);
+  }
   staged_.clear();
+}
+
+Status check_output_directory(const std::string& path, bool make_directories) {
+  struct stat info;
+  if (!make_directories && lstat(path.c_str(), &info) == 0 && S_ISLNK(info.st_mode))
+    return Status();
+  // The directory the file goes in, or for a directory to be made, the nearest one
+  // that is there.
+  std::string directory = make_directories ? path : directory_of(path);
+  while (!directory.empty() && directory.size() > 1 && directory.back() == '/')
+    directory.pop_back();
+  if (directory.empty()) directory = ".";
+  while (make_directories && directory != "." && directory != "/" &&
+         stat(directory.c_str(), &info) != 0 && (errno == ENOENT || errno == ENOTDIR)) {
+    const std::string parent = directory_of(directory);
+    directory = parent.empty() ? "." : parent == "/" ? "/" : parent.substr(0, parent.size() - 1);
+  }
+  const std::string shown = directory + (directory.back() == '/' ? "" : "/");
+  if (stat(directory.c_str(), &info) != 0) {
+    return Status::error(path + ": cannot write: " + shown + ": " + reason(errno));
+  }
+  if (!S_ISDIR(info.st_mode))
+    return Status::error(path + ": cannot write: " + shown + " is not a directory");
+  if (access(directory.c_str(), W_OK | X_OK) != 0)
+    return Status::error(path + ": cannot write in " + shown + ": " + reason(errno));
+  return Status();
+}
+
+void remove_output_temporaries() {
+  for (std::atomic<char*>& slot : live_temporaries) {
+    if (const char* temporary = slot.load()) unlink(temporary);
+  }
 }
 
 Status OutputFiles::stage(const std::string& path, std::string_view contents) {
@@ -119,6 +181,7 @@ Status OutputFiles::stage(const std::string& path, const std::function<bool(std:
   if (const std::string why = unreplaceable(staged.target, &keep); !why.empty()) return fail(why);
   FILE* file = create_temporary(staged.target, &staged.temporary);
   if (!file) return fail(reason(errno));
+  add_live(staged.temporary);
   // The old file's owner, where the writer may give it (root, or a group the writer
   // is in; else the new file is the writer's, as any editor's save makes it), then
   // its permissions, before any byte is written (a 0600 file's contents are never
@@ -134,6 +197,7 @@ Status OutputFiles::stage(const std::string& path, const std::function<bool(std:
   if (std::fclose(file) != 0 && ok) ok = false, error_number = errno;
   if (!ok) {
     std::remove(staged.temporary.c_str());
+    remove_live(staged.temporary);
     return fail(error_number != 0 ? reason(error_number) : "write failed");
   }
   staged_.push_back(std::move(staged));
@@ -159,6 +223,7 @@ Status OutputFiles::commit() {
       discard();
       return Status::error(message);
     }
+    remove_live(staged_[i].temporary);
     replaced += (replaced.empty() ? "" : ", ") + staged_[i].path;
   }
   staged_.clear();

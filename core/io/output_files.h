@@ -55,6 +55,18 @@ class OutputFiles {
   std::vector<Staged> staged_;
 };
 
+// Checks, before any work, that a file can be made at `path`: the directory it
+// goes in exists and is a directory the process may write in (a path through a
+// symbolic link is left to stage()). With `make_directories`, `path` is a directory
+// to be made with its parents: the nearest one that exists is checked. Errors read
+// "path: cannot write: ...".
+Status check_output_directory(const std::string& path, bool make_directories = false);
+
+// Removes the temporaries of every OutputFiles in the process that has not
+// committed them. Async-signal-safe (only unlink()): for a handler of SIGINT or
+// SIGTERM, so that a run stopped by Ctrl-C or `timeout` leaves no temporary behind.
+void remove_output_temporaries();
+
 // stage() and commit() of one file.
 Status write_file_atomically(const std::string& path, std::string_view contents);
 

@@ -1,6 +1,12 @@
 // The real `tetlod` binary: exit codes, messages, and the simplify -> lod flow.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -397,6 +403,8 @@ TEST(Cli, OutputsAreWrittenTogetherOrNotAtAll) {
                         "/no_such_dir/h.tlh");
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("no_such_dir/h.tlh: cannot write"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("whole mesh"), std::string::npos) << "found before any work\n"
+                                                            << r.output;
   std::ifstream kept(out);
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "old");
 
@@ -673,6 +681,47 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
     EXPECT_EQ(r.code, c.code) << c.flags << "\n" << r.output;
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.flags << "\n" << r.output;
     EXPECT_FALSE(fs::exists(field)) << c.flags;
+  }
+}
+
+// Ctrl-C, `timeout` or a closed terminal while an output is being written: the
+// process ends as the signal ends it, and its temporary file goes with it.
+TEST(Cli, ASignalDuringAWriteLeavesNoTemporary) {
+  const std::string dir = out_dir() + "/signal";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // 384,000 tets: their ASCII .vtk takes a good part of a second to write.
+  const std::string in = dir + "/in.mesh", out = dir + "/out.vtk";
+  ASSERT_TRUE(
+      write_mesh(in, test::make_grid_mesh(40, 40, 40, [](int, int, int) { return 1; })).ok());
+  const auto temporaries = [&] {
+    size_t n = 0;
+    for (const auto& entry : fs::directory_iterator(dir))
+      n += entry.path().filename().string().find(".tmp") != std::string::npos;
+    return n;
+  };
+  for (const int signal_number : {SIGTERM, SIGINT}) {
+    SCOPED_TRACE(signal_number);
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      execl(TETLOD_BINARY, "tetlod", "convert", in.c_str(), out.c_str(), nullptr);
+      _exit(127);
+    }
+    // Wait for the temporary to appear, then stop the process.
+    const auto start = std::chrono::steady_clock::now();
+    int status = 0;
+    bool ended = false;
+    while (temporaries() == 0 &&
+           std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+      if ((ended = waitpid(pid, &status, WNOHANG) == pid)) break;
+    ASSERT_FALSE(ended) << "the write ended before a signal could be sent";
+    kill(pid, signal_number);
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << status;
+    EXPECT_EQ(WTERMSIG(status), signal_number);
+    EXPECT_EQ(temporaries(), 0u);
+    EXPECT_FALSE(fs::exists(out));
   }
 }
 

@@ -252,6 +252,8 @@ TEST(CliRender, FailuresNameTheProblemAndWriteNothing) {
   r = run("render " + asset("box2.mesh") + " --width 32 --height 32 -o " + blocked);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.output.find("cannot write"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("faces drawn"), std::string::npos) << "found before drawing\n"
+                                                             << r.output;
   EXPECT_FALSE(fs::exists(out_dir() + "/no_such_dir"));
 }
 
@@ -290,6 +292,22 @@ TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
   EXPECT_EQ(png_size(dir + "/level0.png"), std::make_pair(96, 96));
   EXPECT_EQ(png_size(dir + "/level3_histogram.png"), std::make_pair(480, 260));
   EXPECT_EQ(html.rfind("</html>"), html.size() - 8);
+}
+
+// A report's files are written together or not at all: here report.html cannot
+// be (a directory is in its place), so no picture is written either.
+TEST(CliReport, WritesEveryFileOrNone) {
+  const std::string dir = out_dir() + "/report_none";
+  fs::remove_all(dir);
+  fs::create_directories(dir + "/report.html");
+  CommandResult r = run("report " + asset("box2.mesh") + " --width 32 --height 32 -o " + dir);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("report.html: cannot write: it is a directory"), std::string::npos)
+      << r.output;
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir))
+    names.push_back(entry.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"report.html"});
 }
 
 // A Gmsh input's material names label the per-material rows of every level.
@@ -442,12 +460,14 @@ TEST(CliReport, ErrorsAreClear) {
   EXPECT_EQ(run("report " + asset("box2.mesh")).code, 2);                        // no -o
   EXPECT_EQ(run("report " + asset("box2.mesh") + " --levels 10 -o x").code, 2);  // no size
   EXPECT_EQ(run("report " + asset("box2.mesh") + " --levels 0 -o x").code, 2);   // bad level
-  // The output directory cannot be made under a regular file.
+  // The output directory cannot be made under a regular file: found before any work.
   const std::string file = out_dir() + "/plain_file";
   std::ofstream(file) << "x";
   const CommandResult r = run("report " + asset("box2.mesh") + " -o " + file + "/dir");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.output.find("cannot create the directory"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("plain_file/dir: cannot write: " + file + "/ is not a directory"),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace

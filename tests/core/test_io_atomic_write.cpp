@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/io/mesh_io.h"
+#include "core/io/output_files.h"
 #include "core/test_io_helpers.h"
 #include "core/test_meshes.h"
 
@@ -216,6 +217,64 @@ TEST(IoAtomicWrite, ReadingADeviceIsAnErrorAndAPipeIsRead) {
   ASSERT_TRUE(piped.ok()) << piped.message();
   EXPECT_EQ(mesh.tet_count(), 1u);
   EXPECT_EQ(mesh.materials[0], 7);
+}
+
+// What a signal handler calls (app/main.cpp): the temporaries of every set not yet
+// committed go; a committed file and the targets stay.
+TEST(IoAtomicWrite, RemoveOutputTemporariesLeavesOnlyCommittedFiles) {
+  const std::string dir = test::output_dir("atomic_signal");
+  for (const auto& entry : fs::directory_iterator(dir)) fs::remove(entry.path());
+  test::write_text(dir + "/old.txt", "old");
+  {
+    OutputFiles done;
+    ASSERT_TRUE(done.stage(dir + "/done.txt", "done").ok());
+    ASSERT_TRUE(done.commit().ok());
+    OutputFiles first, second;
+    ASSERT_TRUE(first.stage(dir + "/old.txt", "new").ok());
+    ASSERT_TRUE(first.stage(dir + "/a.txt", "a").ok());
+    ASSERT_TRUE(second.stage(dir + "/b.txt", "b").ok());
+    EXPECT_EQ(directory_entries(dir).size(), 5u);  // done, old and three temporaries
+    remove_output_temporaries();
+    EXPECT_EQ(directory_entries(dir), (std::vector<std::string>{"done.txt", "old.txt"}));
+    EXPECT_EQ(test::read_text(dir + "/old.txt"), "old");
+  }  // the destructors find their temporaries gone: nothing to do
+  EXPECT_EQ(directory_entries(dir), (std::vector<std::string>{"done.txt", "old.txt"}));
+  // Committed and discarded sets leave nothing for a later call to remove.
+  OutputFiles later;
+  ASSERT_TRUE(later.stage(dir + "/c.txt", "c").ok());
+  ASSERT_TRUE(later.commit().ok());
+  remove_output_temporaries();
+  EXPECT_EQ(test::read_text(dir + "/c.txt"), "c");
+}
+
+// Checked before any work: the directory an output goes in.
+TEST(IoAtomicWrite, CheckOutputDirectory) {
+  const std::string dir = test::output_dir("atomic_check_dir");
+  test::write_text(dir + "/file", "x");
+  EXPECT_TRUE(check_output_directory(dir + "/m.mesh").ok());
+  EXPECT_TRUE(check_output_directory("m.mesh").ok());  // the working directory
+  Status s = check_output_directory(dir + "/no/such/m.mesh");
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.message(),
+            dir + "/no/such/m.mesh: cannot write: " + dir + "/no/such/: No such file or directory");
+  s = check_output_directory(dir + "/file/m.mesh");
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.message(), dir + "/file/m.mesh: cannot write: " + dir + "/file/ is not a directory");
+  // A directory to be made: its nearest existing ancestor must be a directory.
+  EXPECT_TRUE(check_output_directory(dir + "/new/deeper/report", true).ok());
+  EXPECT_FALSE(fs::exists(dir + "/new"));
+  s = check_output_directory(dir + "/file/report", true);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("is not a directory"), std::string::npos) << s.message();
+  if (geteuid() != 0) {  // root may write anywhere
+    const std::string locked = dir + "/locked";
+    fs::create_directories(locked);
+    chmod(locked.c_str(), 0555);
+    s = check_output_directory(locked + "/m.mesh");
+    chmod(locked.c_str(), 0755);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.message().find("Permission denied"), std::string::npos) << s.message();
+  }
 }
 
 }  // namespace
