@@ -12,7 +12,7 @@
 namespace tetlod::app {
 
 const char* const kRenderFlagsHelp =
-    "  --width W --height H   image size in pixels, 16 to 4096 (default 800 x 800)\n"
+    "  --width W --height H   image size in pixels, 16 to 4096\n"
     "  --color stretch|material   face colour: the tet's stretch (default) or material\n"
     "  --colormap viridis|turbo   colour map for stretch (default viridis)\n"
     "  --range LO,HI          stretch at the ends of the colour map (default 0,1)\n"

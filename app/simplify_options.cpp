@@ -21,7 +21,8 @@ const char* const kSimplifyFlagsHelp =
     "  --material-size M=S,...   a size per material (the smaller one on an interface)\n"
     "  --size-field SPEC         region sizes, ';'-separated: radial:cx,cy,cz,s0,growth\n"
     "                            axis:cx,cy,cz,dx,dy,dz,s0,growth  box:x0,y0,z0,x1,y1,z1,s\n"
-    "                    the size of a tet is the smallest of --size and every rule above\n"
+    "                    the size of a tet is the smallest of --size and every rule above,\n"
+    "                    taken at its centroid (a box holds the tets whose centroid it holds)\n"
     "  --no-subdivide    skip the subdivision step\n"
     "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
 
