@@ -38,7 +38,7 @@ namespace tetlod {
 
 struct ElectrostaticsProblem {
   // (material, potential): every node of a tet of that material is held at the
-  // potential, in [-1e30, 1e30]. At least one is needed.
+  // potential, 0 or of magnitude in [1e-30, 1e30]. At least one is needed.
   std::vector<std::pair<int32_t, double>> conductors;
   // Materials whose nodes are held at 0.
   std::vector<int32_t> ground_materials;

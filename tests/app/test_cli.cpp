@@ -671,6 +671,8 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
       // Beyond these the energy overflowed ("a non-finite solution", naming nothing).
       {"--conductor 1=1e308 --ground boundary", 1,
        "potential 1e+308 is not a number in [-1e30, 1e30]"},
+      {"--conductor 1=1e-170 --ground boundary", 1,
+       "potential 9.9999999999999998e-171 is too small: give 0, or a magnitude of at least 1e-30"},
       {"--conductor 1=1 --ground boundary --eps 2=1e300", 1,
        "permittivity of material 2 is 1.0000000000000001e+300, not a number in [1e-30, 1e30]"},
       {"--conductor 1=1 --ground 2", 1, "conductor material 1 (held at 1) touches material 2"},
