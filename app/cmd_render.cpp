@@ -119,6 +119,10 @@ int cmd_render(const Args& args) {
       patches = SurfacePatches(mesh, info.surface_groups);
   }
   if (!resolve_materials(mesh, "render", &options)) return kExitBadInput;
+  if (const Status s = render::check_drawable(mesh); !s) {
+    std::fprintf(stderr, "tetlod render: %s: %s\n", in.c_str(), s.message().c_str());
+    return kExitBadInput;
+  }
   if (options.simplify && !history) {
     TetMesh simplified;
     if (const int code = simplified_mesh(mesh, "render", &options, &simplified, &patches))

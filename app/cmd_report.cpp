@@ -223,6 +223,10 @@ int cmd_report(const Args& args) {
       patches = SurfacePatches(input, info.surface_groups);
   }
   if (!resolve_materials(input, "report", &options)) return kExitBadInput;
+  if (const Status s = render::check_drawable(input); !s) {
+    std::fprintf(stderr, "tetlod report: %s: %s\n", in.c_str(), s.message().c_str());
+    return kExitBadInput;
+  }
   OffscreenRenderer offscreen;
   if (!open_offscreen_renderer("report", &offscreen)) return kExitBadInput;
   offscreen.renderer->set_material_names(names);

@@ -7,6 +7,9 @@ namespace tetlod::render {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// A box of no size (one point) is framed as one of this radius; any model the
+// readers accept (edges from 1e-60) is larger.
+constexpr double kMinRadius = 1e-100;
 
 Vec3 normalized(const Vec3& v) {
   const double l = length(v);
@@ -15,7 +18,7 @@ Vec3 normalized(const Vec3& v) {
 
 void set_clip_distances(Camera* camera, const Vec3& lo, const Vec3& hi) {
   const Vec3 center = 0.5 * (lo + hi);
-  const double radius = std::max(0.5 * length(hi - lo), 1e-12);
+  const double radius = std::max(0.5 * length(hi - lo), kMinRadius);
   const double distance = length(camera->eye - center);
   camera->near_distance = std::max(distance - 1.5 * radius, 1e-3 * radius);
   camera->far_distance = distance + 1.5 * radius;
@@ -26,7 +29,7 @@ void set_clip_distances(Camera* camera, const Vec3& lo, const Vec3& hi) {
 Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view) {
   Camera camera;
   const Vec3 center = 0.5 * (lo + hi);
-  const double radius = std::max(0.5 * length(hi - lo), 1e-12);
+  const double radius = std::max(0.5 * length(hi - lo), kMinRadius);
   Vec3 direction{1, 1, 1};
   camera.up = {0, 0, 1};
   switch (view) {
@@ -62,10 +65,10 @@ Camera look_at_camera(const Vec3& eye, const Vec3& target, const Vec3& lo, const
   return camera;
 }
 
-Mat4 view_matrix(const Camera& camera) {
-  const Vec3 f = normalized(camera.target - camera.eye);
-  const Vec3 s = normalized(cross(f, camera.up));
-  const Vec3 u = cross(s, f);
+Mat4 view_matrix(const Camera& camera, double scale) {
+  const Vec3 f = normalized(camera.target - camera.eye) * scale;
+  const Vec3 s = normalized(cross(f, camera.up)) * scale;
+  const Vec3 u = normalized(cross(s, f)) * scale;
   Mat4 m{};
   m[0] = float(s.x), m[4] = float(s.y), m[8] = float(s.z);
   m[1] = float(u.x), m[5] = float(u.y), m[9] = float(u.z);
@@ -77,12 +80,12 @@ Mat4 view_matrix(const Camera& camera) {
   return m;
 }
 
-Mat4 projection_matrix(const Camera& camera, double aspect) {
+Mat4 projection_matrix(const Camera& camera, double aspect, double scale) {
   const double f = 1.0 / std::tan(0.5 * camera.fov_y_degrees * kPi / 180);
   // Fit the smaller image side: on a tall image, narrow the vertical field.
   const double fx = aspect >= 1 ? f / aspect : f;
   const double fy = aspect >= 1 ? f : f * aspect;
-  const double n = camera.near_distance, d = camera.far_distance;
+  const double n = camera.near_distance * scale, d = camera.far_distance * scale;
   Mat4 m{};
   m[0] = float(fx);
   m[5] = float(fy);

@@ -32,8 +32,13 @@ Camera look_at_camera(const Vec3& eye, const Vec3& target, const Vec3& lo, const
 
 // Column-major 4x4 matrices for OpenGL.
 using Mat4 = std::array<float, 16>;
-Mat4 view_matrix(const Camera& camera);
-Mat4 projection_matrix(const Camera& camera, double aspect);
+// The view transform, its result multiplied by `scale`. The renderer passes 1 over
+// the camera's distance to its target, so that view-space positions are of order 1
+// at any model size (the shader's lighting squares them: in float, a model of
+// 1e-9 or 1e20 units drew black faces).
+Mat4 view_matrix(const Camera& camera, double scale = 1);
+// The projection of a view space scaled by `scale`, as view_matrix() scales it.
+Mat4 projection_matrix(const Camera& camera, double aspect, double scale = 1);
 Mat4 multiply(const Mat4& a, const Mat4& b);
 
 }  // namespace tetlod::render

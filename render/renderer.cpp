@@ -3,6 +3,7 @@
 #include <stb_easy_font.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 
@@ -296,9 +297,12 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
   gl_.Disable(GL_BLEND);
   gl_.Disable(GL_CULL_FACE);
 
-  const Mat4 view = view_matrix(camera);
+  // View space in units of the camera's distance to its target (camera.h).
+  const double distance = length(camera.target - camera.eye);
+  const double scale = distance > 0 && std::isfinite(1 / distance) ? 1 / distance : 1;
+  const Mat4 view = view_matrix(camera, scale);
   const Mat4 view_projection =
-      multiply(projection_matrix(camera, double(width) / double(height)), view);
+      multiply(projection_matrix(camera, double(width) / double(height), scale), view);
   const GLuint p = surface_program_;
   gl_.UseProgram(p);
   gl_.UniformMatrix4fv(gl_.GetUniformLocation(p, "u_view"), 1, GL_FALSE, view.data());

@@ -1,6 +1,8 @@
 #include "render/snapshot.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include "core/adjacency.h"
 
@@ -38,6 +40,25 @@ Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
   }
   if (view.custom) return look_at_camera(view.eye, view.target, lo, hi);
   return frame_camera(lo, hi, view.direction);
+}
+
+Status check_drawable(const TetMesh& mesh) {
+  double largest = 0;
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0};
+  if (!mesh.positions.empty()) lo = hi = mesh.positions[0];
+  for (const Vec3& p : mesh.positions) {
+    largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const double extent = length(hi - lo);
+  if (largest <= 1e30 && (extent >= 1e-30 || mesh.positions.empty())) return Status();
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "cannot draw a mesh %.3g across with coordinates up to %.3g: pictures hold "
+                "coordinates within 1e30 and meshes at least 1e-30 across (rescale it)",
+                extent, largest);
+  return Status::error(text);
 }
 
 Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,

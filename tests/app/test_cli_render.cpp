@@ -9,6 +9,7 @@
 
 #include "app/cli_runner.h"
 #include "core/io/mesh_io.h"
+#include "render/image.h"
 
 namespace tetlod {
 namespace {
@@ -207,6 +208,46 @@ TEST(CliRender, CutPlaneNormalsOfAnyMagnitude) {
   const CommandResult far =
       run("render " + asset("box2.mesh") + " --cut-plane 1e-300,0,0,1e300 -o " + out);
   EXPECT_EQ(far.code, 2) << far.output;
+}
+
+// The picture does not depend on the model's unit: box2 in units a 1e25th or 1e25
+// times as large draws as box2 does (in float, lighting squared view positions: at
+// 1e-9 or 1e20 the faces came out black, at 1e-15 nothing was drawn). Beyond what
+// float positions hold, a clear error.
+TEST(CliRender, AnyModelSizeDrawsTheSamePicture) {
+  TetMesh mesh;
+  ASSERT_TRUE(read_mesh(asset("box2.mesh"), &mesh).ok());
+  render::Image first;
+  for (const double scale : {1.0, 1e-25, 1e25}) {
+    SCOPED_TRACE(scale);
+    TetMesh scaled = mesh;
+    for (Vec3& p : scaled.positions) p = p * scale;
+    const std::string in = out_dir() + "/scaled.mesh", out = out_dir() + "/scaled.png";
+    ASSERT_TRUE(write_mesh(in, scaled).ok());
+    const CommandResult r = run("render " + in + " --width 96 --height 96 -o " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    render::Image image;
+    ASSERT_TRUE(render::read_png(out, &image).ok());
+    if (scale == 1.0) {
+      first = image;
+      continue;
+    }
+    const render::ImageDifference d = render::compare_images(first, image, 8, nullptr);
+    EXPECT_LE(d.differing_pixels, 20u) << "max difference " << d.max_channel_difference;
+  }
+  for (const double scale : {1e-40, 1e40}) {
+    TetMesh scaled = mesh;
+    for (Vec3& p : scaled.positions) p = p * scale;
+    const std::string in = out_dir() + "/out_of_range.mesh";
+    ASSERT_TRUE(write_mesh(in, scaled).ok());
+    const CommandResult r = run("render " + in + " -o " + out_dir() + "/out_of_range.png");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("pictures hold coordinates within 1e30 and meshes at least 1e-30 "
+                            "across (rescale it)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out_dir() + "/out_of_range.png"));
+  }
 }
 
 // A picture with nothing in it is still written, with a note that says why.
