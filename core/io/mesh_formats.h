@@ -66,16 +66,25 @@ inline constexpr int64_t kVtkQuadraticTetra = 24;
 // The cell array of a .vtk or .vtu that holds the material, by name, best first:
 // TetLOD's "material"; what meshio writes for a mesh it read from Gmsh, Medit,
 // TetGen or Nastran; VTK's Exodus reader's; TetGen's -k output; last, Gmsh's
-// elementary entity, which meshio writes besides the physical group. -1 for other
-// names. Only "material" is read whatever its type; the others only when their type
-// is an integer one.
+// elementary entity, which meshio writes besides the physical group, and Gmsh's
+// own VTK export writes alone (CellEntityIds). -1 for other names. Only "material"
+// is read whatever its type; the others only when their type is an integer one.
 inline constexpr std::string_view kVtkMaterialNames[] = {
-    "material",    "gmsh:physical", "medit:ref",    "tetgen:ref",
-    "nastran:ref", "MaterialIds",   "cell_scalars", "gmsh:geometrical"};
+    "material",    "gmsh:physical", "medit:ref",        "tetgen:ref",   "nastran:ref",
+    "MaterialIds", "cell_scalars",  "gmsh:geometrical", "CellEntityIds"};
 inline int vtk_material_rank(std::string_view name) {
   for (int i = 0; i < int(std::size(kVtkMaterialNames)); ++i)
     if (name == kVtkMaterialNames[i]) return i;
   return -1;
+}
+// A note for a material read from Gmsh's elementary entities, which are no
+// physical groups: `rank` is the array's vtk_material_rank().
+inline void add_vtk_material_note(int rank, ParsedMesh* out) {
+  if (rank == vtk_material_rank("CellEntityIds")) {
+    out->notes.push_back(
+        "the materials are Gmsh's elementary entity tags (cell array CellEntityIds, which "
+        "Gmsh's VTK export writes instead of physical groups)");
+  }
 }
 
 // A name from a file as valid UTF-8: each byte that does not start or continue a

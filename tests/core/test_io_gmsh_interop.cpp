@@ -95,12 +95,13 @@ TEST(IoGmshInterop, NastranBothWays) {
   }
 }
 
-// Gmsh's binary legacy VTK (points and cells, no cell data: material 0).
+// Gmsh's binary legacy VTK: points, cells and its elementary entities as cell data
+// CellEntityIds, read as the materials (TetLOD's .msh makes an entity per material).
 TEST(IoGmshInterop, WeReadGmshBinaryVtk) {
   if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
   const std::string dir = test::output_dir("gmsh_vtk");
-  TetMesh mesh = test::make_grid_mesh(
-      3, 2, 2, [](int, int, int) { return 1; }, 0.25);
+  const TetMesh mesh = test::make_grid_mesh(
+      3, 2, 2, [](int i, int, int) { return i == 0 ? 4 : 1; }, 0.25);
   ASSERT_TRUE(write_mesh(dir + "/ours.msh", mesh).ok());
   const std::string theirs = dir + "/gmsh.vtk";
   const std::string log = dir + "/vtk.log";
@@ -108,10 +109,14 @@ TEST(IoGmshInterop, WeReadGmshBinaryVtk) {
       << test::read_text(log);
   ASSERT_NE(test::read_text(theirs).find("\nBINARY\n"), std::string::npos);
   TetMesh back;
-  const Status status = read_mesh(theirs, &back);
+  ReadInfo info;
+  const Status status = read_mesh(theirs, &back, &info);
   ASSERT_TRUE(status.ok()) << status.message();
-  mesh.materials.assign(mesh.tet_count(), 0);
   EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_NE(info.notes[0].find("Gmsh's elementary entity tags (cell array CellEntityIds"),
+            std::string::npos)
+      << info.notes[0];
 }
 
 // Gmsh's Abaqus input: its physical groups (our materials) as *ELSET material_<n>.
