@@ -54,13 +54,16 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   // leave their vertices unused).
   for (const std::string& note : info->notes)
     std::fprintf(stderr, "tetlod: %s: note: %s\n", path.c_str(), note.c_str());
-  if (info->validation.reoriented_tets > 0) {
-    std::fprintf(stderr, "tetlod: %s: note: %zu negatively oriented tetrahedra were reoriented\n",
-                 path.c_str(), info->validation.reoriented_tets);
+  const size_t reoriented = info->validation.reoriented_tets;
+  if (reoriented > 0) {
+    std::fprintf(stderr, "tetlod: %s: note: %zu negatively oriented %s reoriented\n", path.c_str(),
+                 reoriented, reoriented == 1 ? "tetrahedron was" : "tetrahedra were");
   }
-  if (info->validation.removed_unused_vertices > 0) {
-    std::fprintf(stderr, "tetlod: %s: note: %zu vertices used by no tetrahedron were dropped\n",
-                 path.c_str(), info->validation.removed_unused_vertices);
+  const size_t unused = info->validation.removed_unused_vertices;
+  if (unused > 0) {
+    std::fprintf(stderr, "tetlod: %s: note: %zu %s used by no tetrahedron %s dropped\n",
+                 path.c_str(), unused, unused == 1 ? "vertex" : "vertices",
+                 unused == 1 ? "was" : "were");
   }
   return true;
 }

@@ -686,6 +686,32 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
   }
 }
 
+// What the reader repaired, in words that agree with the count.
+TEST(Cli, RepairNotesCountInWords) {
+  const std::string path = out_dir() + "/repaired.mesh";
+  // One tet, negatively oriented, and a vertex no tet uses.
+  std::ofstream(path) << "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 0\n1 0 0 0\n"
+                         "0 1 0 0\n0 0 1 0\n9 9 9 0\nTetrahedra\n1\n1 3 2 4 1\nEnd\n";
+  CommandResult r = run("stats " + path);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: 1 negatively oriented tetrahedron was reoriented"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("note: 1 vertex used by no tetrahedron was dropped"), std::string::npos)
+      << r.output;
+  std::ofstream(path) << "MeshVersionFormatted 2\nDimension 3\nVertices\n7\n0 0 0 0\n1 0 0 0\n"
+                         "0 1 0 0\n0 0 1 0\n1 1 1 0\n8 8 8 0\n9 9 9 0\nTetrahedra\n2\n"
+                         "1 3 2 4 1\n2 4 3 5 1\nEnd\n";
+  r = run("stats " + path);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: 2 negatively oriented tetrahedra were reoriented"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("note: 2 vertices used by no tetrahedron were dropped"),
+            std::string::npos)
+      << r.output;
+}
+
 // Ctrl-C, `timeout` or a closed terminal while an output is being written: the
 // process ends as the signal ends it, and its temporary file goes with it.
 TEST(Cli, ASignalDuringAWriteLeavesNoTemporary) {
