@@ -59,6 +59,15 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
     std::fprintf(stderr, "tetlod: %s: note: %zu negatively oriented %s reoriented\n", path.c_str(),
                  reoriented, reoriented == 1 ? "tetrahedron was" : "tetrahedra were");
   }
+  if (const size_t n = info->validation.coincident_vertices; n > 0) {
+    const Vec3& at = info->validation.coincident_position;
+    std::fprintf(stderr,
+                 "tetlod: %s: note: %zu %s at the position of another (the first at (%g, %g, "
+                 "%g)): the mesh is not conforming there, so its parts are simplified as "
+                 "separate bodies (in Gmsh, BooleanFragments or Coherence makes the volumes "
+                 "share their faces)\n",
+                 path.c_str(), n, n == 1 ? "vertex is" : "vertices are", at.x, at.y, at.z);
+  }
   const size_t unused = info->validation.removed_unused_vertices;
   if (unused > 0) {
     std::fprintf(stderr, "tetlod: %s: note: %zu %s used by no tetrahedron %s dropped\n",

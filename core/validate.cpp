@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
+#include <tuple>
 #include <utility>
 
 namespace tetlod {
@@ -18,6 +20,19 @@ std::string where(const std::string& source, const std::vector<uint32_t>& tet_li
 
 std::string tet_name(size_t tet) {
   return "tetrahedron " + std::to_string(tet + 1);
+}
+
+// Equal for equal positions (-0 is 0), scattered otherwise.
+uint64_t position_hash(const Vec3& p) {
+  uint64_t h = 0x9e3779b97f4a7c15ull;
+  for (const double c : {p.x, p.y, p.z}) {
+    uint64_t bits;
+    const double value = c == 0 ? 0.0 : c;
+    std::memcpy(&bits, &value, sizeof bits);
+    h = (h ^ bits) * 0xff51afd7ed558ccdull;
+    h ^= h >> 29;
+  }
+  return h;
 }
 
 }  // namespace
@@ -146,6 +161,23 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
     mesh->positions.resize(next);
     for (Tet& tet : mesh->tets)
       for (uint32_t& v : tet) v = remap[v];
+  }
+
+  // Vertices at exactly the position of another: the mesh is not conforming there
+  // (two regions meshed apart). Counted, with the first such position, for a note.
+  // Sorted by a hash of the position, then by the position where hashes are equal.
+  const std::vector<Vec3>& p = mesh->positions;
+  std::vector<std::pair<uint64_t, uint32_t>> keys(p.size());
+  for (uint32_t v = 0; v < p.size(); ++v) keys[v] = {position_hash(p[v]), v};
+  std::sort(keys.begin(), keys.end(), [&](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first < b.first;
+    const Vec3 &pa = p[a.second], &pb = p[b.second];
+    return std::tie(pa.x, pa.y, pa.z) < std::tie(pb.x, pb.y, pb.z);
+  });
+  for (size_t i = 1; i < keys.size(); ++i) {
+    if (keys[i].first != keys[i - 1].first || !(p[keys[i].second] == p[keys[i - 1].second]))
+      continue;
+    if (rep.coincident_vertices++ == 0) rep.coincident_position = p[keys[i].second];
   }
   return Status();
 }

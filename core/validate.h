@@ -15,6 +15,10 @@ namespace tetlod {
 struct ValidationReport {
   size_t reoriented_tets = 0;          // negatively oriented tets that were flipped
   size_t removed_unused_vertices = 0;  // vertices no tet used, dropped
+  // Vertices at exactly the position of an other vertex (not repaired: the mesh is
+  // not conforming there, e.g. two volumes meshed apart), and the first position.
+  size_t coincident_vertices = 0;
+  Vec3 coincident_position;
 };
 
 // Checks and repairs `mesh` in place:
@@ -24,7 +28,8 @@ struct ValidationReport {
 //    tet of zero volume (|6V| <= 1e-12 * longest_edge^3), two tets with the same vertex set, a
 //    face shared by three or more tets, two tets overlapping across a shared face;
 //  - repairs (counted in `report`): negatively oriented tets are reoriented by
-//    swapping their last two vertices; unused vertices are removed and tets renumbered.
+//    swapping their last two vertices; unused vertices are removed and tets renumbered;
+//  - counted only: vertices at the position of another.
 // `source` names the input in messages ("path"); `tet_lines`, when not empty, holds
 // the 1-based line of each tet in the file so that messages read "path:line: ...".
 // On error the mesh is left in an unspecified but destructible state.

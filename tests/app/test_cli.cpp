@@ -710,6 +710,16 @@ TEST(Cli, RepairNotesCountInWords) {
   EXPECT_NE(r.output.find("note: 2 vertices used by no tetrahedron were dropped"),
             std::string::npos)
       << r.output;
+  // Two tets meshed apart that touch at a face: its three vertices are there twice.
+  std::ofstream(path) << "MeshVersionFormatted 2\nDimension 3\nVertices\n8\n0 0 0 0\n1 0 0 0\n"
+                         "0 1 0 0\n0 0 1 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n"
+                         "Tetrahedra\n2\n1 2 3 4 1\n5 7 6 8 2\nEnd\n";
+  r = run("stats " + path);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: 3 vertices are at the position of another (the first at ("),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("the mesh is not conforming there"), std::string::npos) << r.output;
 }
 
 // Ctrl-C, `timeout` or a closed terminal while an output is being written: the

@@ -24,6 +24,34 @@ TEST(Validate, AcceptsGridAndKeepsIt) {
   EXPECT_EQ(mesh.positions.size(), before.positions.size());
 }
 
+// Two cubes meshed apart: the vertices of the face they touch at are there twice.
+// The mesh is valid (each cube is), and the repeated vertices are counted.
+TEST(Validate, CountsVerticesAtThePositionOfAnother) {
+  TetMesh mesh = test::make_grid_mesh(2, 1, 1, [](int, int, int) { return 1; });
+  ValidationReport report;
+  ASSERT_TRUE(validate(&mesh, &report));
+  EXPECT_EQ(report.coincident_vertices, 0u);
+
+  TetMesh apart = test::make_grid_mesh(1, 1, 1, [](int, int, int) { return 1; });
+  const size_t n = apart.positions.size();
+  const size_t tets = apart.tet_count();
+  // The second cube at x in [-1, 0], its face x = 0 written as -0.
+  for (size_t v = 0; v < n; ++v) {
+    Vec3 p = apart.positions[v] - Vec3{1, 0, 0};
+    if (p.x == 0) p.x = -0.0;
+    apart.positions.push_back(p);
+  }
+  for (size_t t = 0; t < tets; ++t) {
+    Tet tet = apart.tets[t];
+    for (uint32_t& v : tet) v += uint32_t(n);
+    apart.tets.push_back(tet);
+    apart.materials.push_back(2);
+  }
+  ASSERT_TRUE(validate(&apart, &report));
+  EXPECT_EQ(report.coincident_vertices, 4u);  // the four corners of the face x = 0
+  EXPECT_EQ(report.coincident_position.x, 0);
+}
+
 TEST(Validate, ReorientsNegativeTets) {
   TetMesh mesh = test::make_grid_mesh(1, 1, 1, [](int, int, int) { return 0; });
   std::swap(mesh.tets[0][0], mesh.tets[0][1]);
