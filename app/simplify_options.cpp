@@ -64,8 +64,22 @@ bool parse_option_value(const Args& args, size_t* i, const char* name, std::stri
     std::fprintf(stderr, "tetlod: %s needs a value\n", name);
     return false;
   }
+  if (args[*i + 1].rfind("--", 0) == 0) {
+    std::fprintf(stderr, "tetlod: %s needs a value, not the option '%s'\n", name,
+                 args[*i + 1].c_str());
+    return false;
+  }
   *value = args[++*i];
   return true;
+}
+
+bool parse_output_value(const Args& args, size_t* i, const char* name, std::string* path) {
+  if (!path->empty()) {
+    std::fprintf(stderr, "tetlod: give %s once (%s, then %s)\n", name, path->c_str(),
+                 *i + 1 < args.size() ? args[*i + 1].c_str() : "nothing");
+    return false;
+  }
+  return parse_option_value(args, i, name, path);
 }
 
 OptionResult parse_simplify_option(const Args& args, size_t* i, const char* command,

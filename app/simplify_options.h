@@ -41,8 +41,12 @@ extern const char* const kWriteFlagsHelp;
 OptionResult parse_write_option(const Args& args, size_t* i, const char* command,
                                 WriteOptions* options);
 
-// Reads "--flag VALUE": false with a message if VALUE is missing.
+// Reads "--flag VALUE": false with a message if VALUE is missing (or is another
+// option, "--...": "-o --size 5" lacks its file).
 bool parse_option_value(const Args& args, size_t* i, const char* name, std::string* value);
+// The same for an output file, which may be given once: false with a message if
+// `*path` is already set.
+bool parse_output_value(const Args& args, size_t* i, const char* name, std::string* path);
 
 // Fills in the defaults that depend on the input (the tolerance), and checks that
 // every material of --material-size is in the input: false, with a message to

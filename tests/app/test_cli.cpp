@@ -686,6 +686,29 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
   }
 }
 
+// An output given twice, or an option where a file should be, is a usage error that
+// says so (it used to take the last file, or read "--size" as the output's name).
+TEST(Cli, OutputsAreGivenOnce) {
+  const std::string in = write_grid("once.mesh");
+  const std::string a = out_dir() + "/once_a.mesh", b = out_dir() + "/once_b.mesh";
+  for (const std::string& args :
+       {"simplify " + in + " -o " + a + " -o " + b + " --size 2",
+        "simplify " + in + " -o " + a + " --size 2 --history " + out_dir() + "/h1.tlh --history " +
+            out_dir() + "/h2.tlh",
+        "generate box2 -o " + a + " -o " + b,
+        "render " + in + " -o " + out_dir() + "/a.png -o " + out_dir() + "/b.png"}) {
+    const CommandResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(" once ("), std::string::npos) << r.output;
+  }
+  const CommandResult r = run("simplify " + in + " -o --size 2");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("-o needs a value, not the option '--size'"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(a));
+  EXPECT_FALSE(fs::exists(b));
+}
+
 // What the reader repaired, in words that agree with the count.
 TEST(Cli, RepairNotesCountInWords) {
   const std::string path = out_dir() + "/repaired.mesh";
