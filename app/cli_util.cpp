@@ -249,6 +249,40 @@ std::string material_name_of(const std::vector<MaterialName>* names, int32_t m) 
   return name ? *name : "";
 }
 
+bool material_by_name(const std::string& name, const std::vector<MaterialName>& names,
+                      const char* command, const std::string& option, int32_t* id) {
+  const MaterialName* found = nullptr;
+  int folded = 0;
+  for (const MaterialName& m : names) {
+    if (m.name == name) {
+      *id = m.material;
+      return true;
+    }
+    if (m.name.size() == name.size() &&
+        std::equal(name.begin(), name.end(), m.name.begin(), [](char a, char b) {
+          return std::tolower(static_cast<unsigned char>(a)) ==
+                 std::tolower(static_cast<unsigned char>(b));
+        })) {
+      found = &m;
+      ++folded;
+    }
+  }
+  if (folded == 1) {
+    *id = found->material;
+    return true;
+  }
+  std::string list;
+  for (const MaterialName& m : names)
+    list += (list.empty() ? "" : ", ") + std::to_string(m.material) + " " + m.name;
+  const std::string why =
+      list.empty()
+          ? std::string("its materials have no names: give their numbers")
+          : (folded > 1 ? "several names differ from it only in case: " : "its names: ") + list;
+  std::fprintf(stderr, "tetlod %s: %s: the mesh has no material named '%s' (%s)\n", command,
+               option.c_str(), name.c_str(), why.c_str());
+  return false;
+}
+
 void print_property_table(const MeshStats& stats, const std::vector<MaterialName>* names) {
   const bool named = names && !names->empty();
   std::printf("%-14s %9s %9s %10s %9s %9s %8s %11s %12s%s\n", "", "#nodes", "#edges", "#elements",

@@ -123,6 +123,14 @@ void print_property_table(const MeshStats& stats, const std::vector<MaterialName
 // The input file's name of material m ("" if none); `names` may be null.
 std::string material_name_of(const std::vector<MaterialName>* names, int32_t m);
 
+// Where an option takes a material, its name in the input is taken too
+// ("--conductor inner_conductor=1"): options are read before the mesh, so a name is
+// kept as written and looked up here once the mesh is read. The id of the material
+// named `name` (exactly, else ignoring ASCII case if only one matches); if there is
+// none, prints "tetlod <command>: <option>: ..." listing the names and returns false.
+bool material_by_name(const std::string& name, const std::vector<MaterialName>& names,
+                      const char* command, const std::string& option, int32_t* id);
+
 // Escapes a string for a JSON string literal (without the quotes).
 std::string json_escape(const std::string& text);
 

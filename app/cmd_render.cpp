@@ -118,14 +118,14 @@ int cmd_render(const Args& args) {
     if (options.simplify && !info.surface_groups.empty())
       patches = SurfacePatches(mesh, info.surface_groups);
   }
-  if (!resolve_materials(mesh, "render", &options)) return kExitBadInput;
+  if (!resolve_materials(mesh, names, "render", &options)) return kExitBadInput;
   if (const Status s = render::check_drawable(mesh); !s) {
     std::fprintf(stderr, "tetlod render: %s: %s\n", in.c_str(), s.message().c_str());
     return kExitBadInput;
   }
   if (options.simplify && !history) {
     TetMesh simplified;
-    if (const int code = simplified_mesh(mesh, "render", &options, &simplified, &patches))
+    if (const int code = simplified_mesh(mesh, names, "render", &options, &simplified, &patches))
       return code;
     mesh = std::move(simplified);
   }

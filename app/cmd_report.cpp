@@ -222,7 +222,7 @@ int cmd_report(const Args& args) {
     if (options.simplify && !info.surface_groups.empty())
       patches = SurfacePatches(input, info.surface_groups);
   }
-  if (!resolve_materials(input, "report", &options)) return kExitBadInput;
+  if (!resolve_materials(input, names, "report", &options)) return kExitBadInput;
   if (const Status s = render::check_drawable(input); !s) {
     std::fprintf(stderr, "tetlod report: %s: %s\n", in.c_str(), s.message().c_str());
     return kExitBadInput;
@@ -256,7 +256,7 @@ int cmd_report(const Args& args) {
     }
   } else if (options.simplify) {
     SimplifyOptions& so = options.simplify_options;
-    if (!finish_simplify_options(input, "report", &so)) return kExitUsage;
+    if (!finish_simplify_options(input, names, "report", &so)) return kExitUsage;
     SimplifyResult result;
     const Status s = simplify(input, so.params, &result, {}, nullptr, &patches);
     if (!s) {

@@ -146,7 +146,7 @@ int cmd_simplify(const Args& args) {
   TetMesh input;
   ReadInfo info;
   if (!load_mesh(in, &input, &info)) return kExitBadInput;
-  if (!finish_simplify_options(input, "simplify", &options)) return kExitUsage;
+  if (!finish_simplify_options(input, info.material_names, "simplify", &options)) return kExitUsage;
   // The file's own surface groups: the simplifier keeps their borders as it keeps
   // those between materials, so that the output has them too (with --surfaces).
   SurfacePatches patches;
@@ -353,7 +353,8 @@ int cmd_lod(const Args& args) {
                                  : beyond_levels_note(elements, level.step, level.step_count,
                                                       level.mesh.tet_count());
   if (!beyond.empty()) beyond = " (" + beyond + ")";
-  if (improve && !finish_simplify_options(level.mesh, "lod", &options)) return kExitUsage;
+  if (improve && !finish_simplify_options(level.mesh, level.names, "lod", &options))
+    return kExitUsage;
   ImproveResult improved;
   double seconds_improve = 0;
   if (improve) {

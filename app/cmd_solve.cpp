@@ -27,9 +27,11 @@ constexpr const char* kSolveUsage =
     "potential), the solver's iterations and residual, and the time. C is in the units\n"
     "of eps times length: with relative permittivities, in eps0 times the mesh's unit.\n"
     "  --conductor M=V,...  conductor materials and their potentials\n"
-    "  --ground G,...       'boundary' and/or material ids held at 0 (needed unless the\n"
+    "  --ground G,...       'boundary' and/or materials held at 0 (needed unless the\n"
     "                       conductors hold two potentials)\n"
     "  --eps M=E,...        permittivity per material, E > 0 (default 1 for the rest)\n"
+    "  a material M is its id or its name in the input (a Gmsh physical group, an\n"
+    "  Abaqus set): --conductor inner_conductor=1 --ground shield\n"
     "  -o FIELD.vtu         write the potential (point data) and |E| (cell data) for ParaView\n"
     "  --solver S           auto (direct up to 2000 unknowns, else cg), direct, cg\n"
     "  --preconditioner P   for cg: jacobi (default) or ic (incomplete Cholesky)\n"
@@ -63,42 +65,65 @@ std::optional<int32_t> parse_material(const std::string& text) {
   return static_cast<int32_t>(*n);
 }
 
-// "M=X,M=X": material ids and finite numbers. On error prints a message naming the
-// flag and the item.
+// A material as given: an id ("3") or the input's name for it ("shield"), looked up
+// once the mesh is read (resolve()).
+using MaterialText = std::string;
+
+// Whether `text` can be a material: an id >= 0, or a name (anything that does not
+// start like a number).
+bool material_text_ok(const std::string& text) {
+  if (text.empty()) return false;
+  const char c = text[0];
+  const bool numeric = (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
+  return !numeric || parse_material(text).has_value();
+}
+
+// "M=X,M=X": materials (ids or names) and finite numbers. On error prints a message
+// naming the flag and the item.
 bool parse_pairs(const std::string& flag, const std::string& text,
-                 std::vector<std::pair<int32_t, double>>* pairs) {
+                 std::vector<std::pair<MaterialText, double>>* pairs) {
   for (const std::string& item : split(text, ',')) {
     const size_t equals = item.find('=');
-    const auto material =
-        equals == std::string::npos ? std::nullopt : parse_material(item.substr(0, equals));
+    const std::string material = equals == std::string::npos ? "" : item.substr(0, equals);
     const auto value =
         equals == std::string::npos ? std::nullopt : parse_double(item.substr(equals + 1));
-    if (!material || !value) {
+    if (!material_text_ok(material) || !value) {
       std::fprintf(stderr,
-                   "tetlod solve: %s '%s': '%s' is not MATERIAL=NUMBER (a material id >= 0 and "
-                   "a finite number)\n",
+                   "tetlod solve: %s '%s': '%s' is not MATERIAL=NUMBER (a material id >= 0 or "
+                   "name, and a finite number)\n",
                    flag.c_str(), text.c_str(), item.c_str());
       return false;
     }
-    pairs->push_back({*material, *value});
+    pairs->push_back({material, *value});
   }
   return true;
 }
 
-bool parse_ground(const std::string& text, ElectrostaticsProblem* problem) {
+bool parse_ground(const std::string& text, bool* boundary, std::vector<MaterialText>* materials) {
   for (const std::string& item : split(text, ',')) {
     if (item == "boundary") {
-      problem->ground_boundary = true;
-    } else if (const auto material = parse_material(item)) {
-      problem->ground_materials.push_back(*material);
+      *boundary = true;
+    } else if (material_text_ok(item)) {
+      materials->push_back(item);
     } else {
       std::fprintf(stderr,
-                   "tetlod solve: --ground '%s': '%s' is neither 'boundary' nor a material id\n",
+                   "tetlod solve: --ground '%s': '%s' is neither 'boundary' nor a material id or "
+                   "name\n",
                    text.c_str(), item.c_str());
       return false;
     }
   }
   return true;
+}
+
+// The id of material `text` (an id, or a name in `names`); false with a message.
+bool resolve(const MaterialText& text, const std::vector<MaterialName>& names,
+             const std::string& option, int32_t* id) {
+  if (const auto number = parse_material(text)) {
+    *id = *number;
+    return true;
+  }
+  return material_by_name(text, names, "solve", option, id);
 }
 
 }  // namespace
@@ -110,6 +135,9 @@ int cmd_solve(const Args& args) {
   }
   std::string in, out;
   ElectrostaticsProblem problem;
+  // As given (ids or names): resolved into `problem` once the mesh is read.
+  std::vector<std::pair<MaterialText, double>> conductors, permittivities;
+  std::vector<MaterialText> grounds;
   SolveOptions options;
   bool ground_given = false;
   for (size_t i = 0; i < args.size(); ++i) {
@@ -123,13 +151,14 @@ int cmd_solve(const Args& args) {
         return kExitUsage;
       }
     } else if (a == "--conductor") {
-      if (!next_value(args, &i, &v) || !parse_pairs(a, v, &problem.conductors)) return kExitUsage;
+      if (!next_value(args, &i, &v) || !parse_pairs(a, v, &conductors)) return kExitUsage;
     } else if (a == "--eps") {
-      if (!next_value(args, &i, &v) || !parse_pairs(a, v, &problem.permittivities)) {
+      if (!next_value(args, &i, &v) || !parse_pairs(a, v, &permittivities)) {
         return kExitUsage;
       }
     } else if (a == "--ground") {
-      if (!next_value(args, &i, &v) || !parse_ground(v, &problem)) return kExitUsage;
+      if (!next_value(args, &i, &v) || !parse_ground(v, &problem.ground_boundary, &grounds))
+        return kExitUsage;
       ground_given = true;
     } else if (a == "--solver") {
       if (!next_value(args, &i, &v)) return kExitUsage;
@@ -178,9 +207,9 @@ int cmd_solve(const Args& args) {
   // A ground is not needed when the conductors hold two potentials (a two-conductor
   // capacitor: --conductor 1=1,4=0).
   bool two_potentials = false;
-  for (const auto& c : problem.conductors)
-    two_potentials = two_potentials || c.second != problem.conductors.front().second;
-  if (in.empty() || problem.conductors.empty() || (!ground_given && !two_potentials)) {
+  for (const auto& c : conductors)
+    two_potentials = two_potentials || c.second != conductors.front().second;
+  if (in.empty() || conductors.empty() || (!ground_given && !two_potentials)) {
     std::fprintf(stderr,
                  "tetlod solve: need MESH, --conductor and --ground (or conductors at two "
                  "potentials)\n\n%s",
@@ -193,6 +222,22 @@ int cmd_solve(const Args& args) {
   TetMesh mesh;
   ReadInfo info;
   if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
+  // The materials given by name, now that the names are read.
+  for (const auto& [text, potential] : conductors) {
+    int32_t id = 0;
+    if (!resolve(text, info.material_names, "--conductor", &id)) return kExitBadInput;
+    problem.conductors.push_back({id, potential});
+  }
+  for (const auto& [text, eps] : permittivities) {
+    int32_t id = 0;
+    if (!resolve(text, info.material_names, "--eps", &id)) return kExitBadInput;
+    problem.permittivities.push_back({id, eps});
+  }
+  for (const MaterialText& text : grounds) {
+    int32_t id = 0;
+    if (!resolve(text, info.material_names, "--ground", &id)) return kExitBadInput;
+    problem.ground_materials.push_back(id);
+  }
   const auto start = std::chrono::steady_clock::now();
   ElectrostaticsSolution solution;
   const Status status = solve_electrostatics(mesh, problem, options, &solution);

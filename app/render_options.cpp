@@ -1,6 +1,7 @@
 #include "app/render_options.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -16,8 +17,8 @@ const char* const kRenderFlagsHelp =
     "  --color stretch|material   face colour: the tet's stretch (default) or material\n"
     "  --colormap viridis|turbo   colour map for stretch (default viridis)\n"
     "  --range LO,HI          stretch at the ends of the colour map (default 0,1)\n"
-    "  --materials 1,2,3      show only these materials\n"
-    "  --hide 1,2             hide these materials (e.g. the air)\n"
+    "  --materials 1,2,3      show only these materials (ids, or the input's names)\n"
+    "  --hide 1,air           hide these materials (e.g. the air)\n"
     "  --cut AXIS=VALUE       keep whole tets with centroid AXIS <= VALUE (AXIS x, y or z;\n"
     "                         -x=V keeps x >= V); the faces the cut exposes are drawn\n"
     "  --cut-plane NX,NY,NZ,D keep whole tets with centroid c where dot(n, c) <= D\n"
@@ -42,17 +43,28 @@ std::optional<std::vector<double>> parse_doubles(const std::string& text) {
   return values;
 }
 
-std::optional<std::vector<int32_t>> parse_materials(const std::string& text) {
-  std::vector<int32_t> ids;
+// "1,copper,3": ids into `ids`, names (items that do not start like a number) into
+// `names`. False for an empty item or a number that is not an id.
+bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
+                     std::vector<std::string>* names) {
+  ids->clear();
+  names->clear();
   size_t start = 0;
   while (start <= text.size()) {
     const size_t comma = std::min(text.find(',', start), text.size());
-    const auto n = parse_integer(text.substr(start, comma - start));
-    if (!n || *n < 0 || *n > 0x7fffffff) return std::nullopt;
-    ids.push_back(static_cast<int32_t>(*n));
+    const std::string item = text.substr(start, comma - start);
+    const char first = item.empty() ? '0' : item[0];
+    if (!item.empty() && !(std::isdigit(static_cast<unsigned char>(first)) || first == '-' ||
+                           first == '+' || first == '.')) {
+      names->push_back(item);
+    } else {
+      const auto n = parse_integer(item);
+      if (!n || *n < 0 || *n > 0x7fffffff) return false;
+      ids->push_back(static_cast<int32_t>(*n));
+    }
     start = comma + 1;
   }
-  return ids;
+  return true;
 }
 
 }  // namespace
@@ -110,9 +122,10 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
     s.draw.range_max = (*d)[1];
   } else if (a == "--materials" || a == "--hide") {
     if (!value()) return OptionResult::kError;
-    const auto ids = parse_materials(v);
-    if (!ids) return bad_value("a comma-separated list of material ids >= 0");
-    (a == "--materials" ? options->shown_materials : options->hidden_materials) = *ids;
+    const bool shown = a == "--materials";
+    if (!parse_materials(v, shown ? &options->shown_materials : &options->hidden_materials,
+                         shown ? &options->shown_names : &options->hidden_names))
+      return bad_value("a comma-separated list of material ids >= 0 or names");
   } else if (a == "--cut") {
     if (!value()) return OptionResult::kError;
     const size_t eq = v.find('=');
@@ -179,7 +192,18 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
   return OptionResult::kParsed;
 }
 
-bool resolve_materials(const TetMesh& mesh, const char* command, RenderOptions* options) {
+bool resolve_materials(const TetMesh& mesh, const std::vector<MaterialName>& names,
+                       const char* command, RenderOptions* options) {
+  for (const bool shown : {true, false}) {
+    for (const std::string& name : shown ? options->shown_names : options->hidden_names) {
+      int32_t id = 0;
+      if (!material_by_name(name, names, command, shown ? "--materials" : "--hide", &id))
+        return false;
+      (shown ? options->shown_materials : options->hidden_materials).push_back(id);
+    }
+  }
+  options->shown_names.clear();
+  options->hidden_names.clear();
   std::vector<int32_t> present = mesh.materials;
   std::sort(present.begin(), present.end());
   present.erase(std::unique(present.begin(), present.end()), present.end());
@@ -243,10 +267,11 @@ bool history_improve_params(const std::string& in, const char* command,
   return false;
 }
 
-int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options, TetMesh* out,
+int simplified_mesh(const TetMesh& input, const std::vector<MaterialName>& names,
+                    const char* command, RenderOptions* options, TetMesh* out,
                     const SurfacePatches* patches) {
   SimplifyOptions& so = options->simplify_options;
-  if (!finish_simplify_options(input, command, &so)) return kExitUsage;
+  if (!finish_simplify_options(input, names, command, &so)) return kExitUsage;
   SimplifyResult result;
   const Status status = simplify(input, so.params, &result, {}, nullptr, patches);
   if (!status) {

@@ -19,6 +19,8 @@ struct RenderOptions {
   render::SnapshotSettings snapshot;
   std::vector<int32_t> shown_materials;   // --materials: only these (empty: all)
   std::vector<int32_t> hidden_materials;  // --hide
+  // The materials of --materials and --hide given by name, for resolve_materials().
+  std::vector<std::string> shown_names, hidden_names;
   bool simplify = false;                  // --simplify, or any simplifier flag
   bool simplify_beyond_elements = false;  // ... other than --elements and --improve
   SimplifyOptions simplify_options;
@@ -43,9 +45,11 @@ bool history_improve_params(const std::string& in, const char* command,
 OptionResult parse_render_option(const Args& args, size_t* i, const char* command,
                                  RenderOptions* options);
 
-// Turns --materials / --hide into the filter's hidden list for `mesh`. False with a
-// message if a named material is not in the mesh.
-bool resolve_materials(const TetMesh& mesh, const char* command, RenderOptions* options);
+// Turns --materials / --hide into the filter's hidden list for `mesh`, whose
+// materials have `names` (the input's). False with a message if a material given by
+// id or name is not in the mesh.
+bool resolve_materials(const TetMesh& mesh, const std::vector<MaterialName>& names,
+                       const char* command, RenderOptions* options);
 
 // An offscreen context with an initialised renderer.
 struct OffscreenRenderer {
@@ -61,7 +65,8 @@ bool open_offscreen_renderer(const char* command, OffscreenRenderer* out);
 // mesh has no material for, kExitBadInput if the simplifier refuses the mesh.
 // `patches`: the input file's surface groups, whose borders the simplifier keeps (as
 // `tetlod simplify` does), or null.
-int simplified_mesh(const TetMesh& input, const char* command, RenderOptions* options, TetMesh* out,
+int simplified_mesh(const TetMesh& input, const std::vector<MaterialName>& names,
+                    const char* command, RenderOptions* options, TetMesh* out,
                     const SurfacePatches* patches = nullptr);
 
 }  // namespace tetlod::app

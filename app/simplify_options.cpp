@@ -1,6 +1,7 @@
 #include "app/simplify_options.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -18,7 +19,8 @@ const char* const kSimplifyFlagsHelp =
     "  --tolerance T     tau_TL: boundaries and interfaces kept within T (a length; the\n"
     "                    quadric error, a sum of squared distances, stays <= T^2)\n"
     "                    (default 0.001 x the bounding-box diagonal)\n"
-    "  --material-size M=S,...   a size per material (the smaller one on an interface)\n"
+    "  --material-size M=S,...   a size per material (the smaller one on an interface); M is\n"
+    "                            its id or its name in the input (copper=2)\n"
     "  --size-field SPEC         region sizes, ';'-separated: radial:cx,cy,cz,s0,growth\n"
     "                            axis:cx,cy,cz,dx,dy,dz,s0,growth  box:x0,y0,z0,x1,y1,z1,s\n"
     "                    the size of a tet is the smallest of --size and every rule above,\n"
@@ -123,6 +125,38 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
     params.subdivide = false;
   } else if (a == "--material-size" || a == "--size-field") {
     if (!value()) return OptionResult::kError;
+    if (a == "--material-size") {
+      // Items that name their material wait for the names (finish_simplify_options()).
+      std::string ids;
+      size_t start = 0;
+      while (start <= v.size()) {
+        size_t end = v.find(',', start);
+        if (end == std::string::npos) end = v.size();
+        const std::string item = v.substr(start, end - start);
+        const size_t equals = item.find('=');
+        const char first = item.empty() ? '0' : item[0];
+        const bool named = equals != std::string::npos && equals > 0 &&
+                           !(std::isdigit(static_cast<unsigned char>(first)) || first == '-' ||
+                             first == '+' || first == '.');
+        if (named) {
+          const auto size = parse_double(item.substr(equals + 1));
+          if (!size || !(*size > 0) || !std::isfinite(*size)) {
+            std::fprintf(stderr, "tetlod %s: --material-size %s: '%s' is not a size > 0\n", command,
+                         item.c_str(), item.substr(equals + 1).c_str());
+            return OptionResult::kError;
+          }
+          options->named_material_sizes.push_back({item.substr(0, equals), *size});
+        } else {
+          ids += (ids.empty() ? "" : ",") + item;
+        }
+        start = end + 1;
+      }
+      v = ids;
+      if (v.empty()) {
+        options->size_given = true;
+        return OptionResult::kParsed;
+      }
+    }
     const Status s = a == "--material-size" ? parse_material_sizes(v, &params.sizing)
                                             : parse_size_field(v, &params.sizing);
     if (!s) {
@@ -143,8 +177,23 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   return OptionResult::kParsed;
 }
 
-bool finish_simplify_options(const TetMesh& input, const char* command, SimplifyOptions* options) {
-  const std::vector<std::pair<int32_t, double>>& sizes = options->params.sizing.material_sizes;
+bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
+                             const char* command, SimplifyOptions* options) {
+  std::vector<std::pair<int32_t, double>>& sizes = options->params.sizing.material_sizes;
+  for (const auto& [name, size] : options->named_material_sizes) {
+    int32_t id = 0;
+    if (!material_by_name(name, names, command, "--material-size " + name, &id)) return false;
+    for (const auto& given : sizes) {
+      if (given.first == id) {
+        std::fprintf(stderr, "tetlod %s: --material-size: material %d (%s) is given twice\n",
+                     command, id, name.c_str());
+        return false;
+      }
+    }
+    sizes.push_back({id, size});
+  }
+  options->named_material_sizes.clear();
+  std::sort(sizes.begin(), sizes.end());
   if (!sizes.empty()) {
     const std::set<int32_t> present(input.materials.begin(), input.materials.end());
     for (const auto& [material, size] : sizes) {

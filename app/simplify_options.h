@@ -17,6 +17,9 @@ struct SimplifyOptions {
   bool tolerance_given = false;  // else 1e-3 x the bounding-box diagonal
   long long elements = -1;       // --elements N, or -1
   bool improve = false;          // --improve: improve_mesh() on the level written
+  // --material-size items that name their material ("copper=2"): added to
+  // params.sizing by finish_simplify_options(), once the names are read.
+  std::vector<std::pair<std::string, double>> named_material_sizes;
 };
 
 // The flag lines of the usage text (the thresholds and sizing, without --elements).
@@ -48,11 +51,13 @@ bool parse_option_value(const Args& args, size_t* i, const char* name, std::stri
 // `*path` is already set.
 bool parse_output_value(const Args& args, size_t* i, const char* name, std::string* path);
 
-// Fills in the defaults that depend on the input (the tolerance), and checks that
-// every material of --material-size is in the input: false, with a message to
-// stderr prefixed with "tetlod <command>: ", if one is not (a mistyped id would
-// otherwise be ignored without a word).
-bool finish_simplify_options(const TetMesh& input, const char* command, SimplifyOptions* options);
+// Fills in the defaults that depend on the input (the tolerance), looks up the
+// materials --material-size names in `names` (the input's), and checks that every
+// material of --material-size is in the input: false, with a message to stderr
+// prefixed with "tetlod <command>: ", if one is not (a mistyped id would otherwise
+// be ignored without a word).
+bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
+                             const char* command, SimplifyOptions* options);
 
 // The size threshold in words: "12", "12, less where the local sizing asks", or
 // "from the local sizing" (no uniform size: --material-size or --size-field alone).

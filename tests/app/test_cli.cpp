@@ -709,6 +709,45 @@ TEST(Cli, OutputsAreGivenOnce) {
   EXPECT_FALSE(fs::exists(b));
 }
 
+// Where an option takes a material, the input's name for it does as well as its
+// id: the same capacitance, the same simplified mesh, the same picture.
+TEST(Cli, MaterialsByName) {
+  const std::string coax = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_part3.msh";
+  const auto line_with = [](const std::string& text, const std::string& what) {
+    const size_t at = text.find(what);
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  const CommandResult by_id = run("solve " + coax + " --conductor 1=1 --ground 4 --eps 2=3");
+  const CommandResult by_name = run("solve " + coax +
+                                    " --conductor inner_conductor=1 --ground SHIELD "
+                                    "--eps dielectric_inner=3");
+  ASSERT_EQ(by_id.code, 0) << by_id.output;
+  ASSERT_EQ(by_name.code, 0) << by_name.output;
+  EXPECT_NE(line_with(by_id.output, "capacitance"), "");
+  EXPECT_EQ(line_with(by_name.output, "capacitance"), line_with(by_id.output, "capacitance"));
+
+  const std::string a = out_dir() + "/by_id.mesh", b = out_dir() + "/by_name.mesh";
+  ASSERT_EQ(run("simplify " + coax + " -o " + a + " --size 2 --material-size 4=0.5,1=0.4").code, 0);
+  ASSERT_EQ(
+      run("simplify " + coax + " -o " + b + " --size 2 --material-size shield=0.5,1=0.4").code, 0);
+  EXPECT_EQ(read_file(a), read_file(b));
+
+  // Unknown names list the names there are; a name and an id of one material clash.
+  CommandResult r = run("solve " + coax + " --conductor copper=1 --ground 4");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("--conductor: the mesh has no material named 'copper' (its names: 1 "
+                          "inner_conductor, 2 dielectric_inner, 3 dielectric_outer, 4 shield)"),
+            std::string::npos)
+      << r.output;
+  r = run("simplify " + coax + " -o " + a + " --size 2 --material-size shield=0.5,4=0.4");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("material 4 (shield) is given twice"), std::string::npos) << r.output;
+  r = run("simplify " + write_grid("unnamed.mesh") + " -o " + a +
+          " --size 2 --material-size air=1");
+  EXPECT_NE(r.output.find("its materials have no names: give their numbers"), std::string::npos)
+      << r.output;
+}
+
 // What the reader repaired, in words that agree with the count.
 TEST(Cli, RepairNotesCountInWords) {
   const std::string path = out_dir() + "/repaired.mesh";

@@ -250,6 +250,29 @@ TEST(CliRender, AnyModelSizeDrawsTheSamePicture) {
   }
 }
 
+// --materials and --hide take the input's names as well as ids.
+TEST(CliRender, MaterialsByName) {
+  const std::string coax = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_part3.msh";
+  const std::string out = out_dir() + "/by_name.png";
+  std::string first;
+  for (const char* flags :
+       {"--hide 4,3", "--hide shield,dielectric_outer", "--materials 1,dielectric_inner"}) {
+    const CommandResult r =
+        run("render " + coax + " --width 64 --height 64 " + flags + " -o " + out);
+    ASSERT_EQ(r.code, 0) << flags << "\n" << r.output;
+    const size_t at = r.output.find(" faces drawn");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const size_t start = r.output.rfind(' ', at - 1) + 1;
+    const std::string faces = r.output.substr(start, at - start);
+    if (first.empty()) first = faces;
+    EXPECT_EQ(faces, first) << flags;
+  }
+  const CommandResult r = run("render " + coax + " --hide air -o " + out);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("--hide: the mesh has no material named 'air'"), std::string::npos)
+      << r.output;
+}
+
 // A picture with nothing in it is still written, with a note that says why.
 TEST(CliRender, AnEmptyPictureSaysWhy) {
   const std::string out = out_dir() + "/empty.png";
