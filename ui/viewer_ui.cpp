@@ -34,6 +34,16 @@ std::string material_label(const ViewerStatus& status, int32_t m, const char* un
 constexpr float kPanelWidth = 380;   // the side panel
 constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
 constexpr float kMargin = 6;
+// Lists of materials (shown, sized, analysed) hold at most this many, the lowest ids:
+// a mesh can have thousands of materials (one per CAD volume), and a panel of
+// thousands of rows would be unusable and slow every frame.
+constexpr size_t kListedMaterials = 256;
+
+// The materials the panels list: the first kListedMaterials of status.materials.
+std::vector<int32_t> listed_materials(const ViewerStatus& status) {
+  const size_t n = std::min(status.materials.size(), kListedMaterials);
+  return {status.materials.begin(), status.materials.begin() + static_cast<long>(n)};
+}
 
 // TextDisabled, wrapped at the panel's edge.
 void text_disabled_wrapped(const char* format, ...) IM_FMTARGS(1);
@@ -48,6 +58,13 @@ void text_disabled_wrapped(const char* format, ...) {
 
 void copy_path(const std::string& from, char* to, size_t capacity) {
   std::snprintf(to, capacity, "%s", from.c_str());
+}
+
+// Under a list that was cut: how many materials it leaves out.
+void unlisted_note(const ViewerStatus& status) {
+  if (status.materials.size() > kListedMaterials)
+    text_disabled_wrapped("and %zu more materials, not listed",
+                          status.materials.size() - kListedMaterials);
 }
 
 void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Command>* commands) {
@@ -151,7 +168,7 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
     // The boxes flow onto further lines rather than past the panel's edge.
     const ImGuiStyle& style = ImGui::GetStyle();
     const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
-    for (const int32_t m : status.materials) {
+    for (const int32_t m : listed_materials(status)) {
       const bool was_hidden =
           std::binary_search(view->hidden_materials.begin(), view->hidden_materials.end(), m);
       bool shown = !was_hidden;
@@ -173,6 +190,7 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
           hidden.insert(std::lower_bound(hidden.begin(), hidden.end(), m), m);
       }
     }
+    unlisted_note(status);
   }
   ImGui::Text("Camera:");
   const char* names[] = {"Fit", "Iso", "X", "Y", "Z"};
@@ -241,7 +259,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       ImGui::TextDisabled("no size cap");
     }
     auto& sizes = t->material_sizes;
-    for (const int32_t m : status.materials) {
+    for (const int32_t m : listed_materials(status)) {
       auto it =
           std::find_if(sizes.begin(), sizes.end(), [m](const auto& p) { return p.first == m; });
       ImGui::PushID(m);
@@ -270,6 +288,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       }
       ImGui::PopID();
     }
+    unlisted_note(status);
   }
   ImGui::Checkbox("Subdivide first", &t->subdivide);
 
@@ -398,13 +417,14 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
   auto& materials = settings->materials;
   // The materials of the loaded mesh: a role kept for a material of another mesh would
   // make the solver fail on an id that is not there.
+  const std::vector<int32_t> listed = listed_materials(status);
   materials.erase(std::remove_if(materials.begin(), materials.end(),
                                  [&](const MaterialAnalysis& x) {
-                                   return !std::binary_search(status.materials.begin(),
-                                                              status.materials.end(), x.material);
+                                   return !std::binary_search(listed.begin(), listed.end(),
+                                                              x.material);
                                  }),
                   materials.end());
-  for (const int32_t m : status.materials) {
+  for (const int32_t m : listed) {
     const auto it =
         std::lower_bound(materials.begin(), materials.end(), m,
                          [](const MaterialAnalysis& x, int32_t id) { return x.material < id; });
@@ -437,6 +457,9 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
     }
     ImGui::EndTable();
   }
+  if (status.materials.size() > kListedMaterials)
+    text_disabled_wrapped("and %zu more materials, not listed: dielectrics of eps 1",
+                          status.materials.size() - kListedMaterials);
   ImGui::Checkbox("Ground the outer boundary", &settings->ground_boundary);
 
   if (!a.solving) {
@@ -546,11 +569,18 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
     ImGui::TableNextColumn();
     ImGui::Text("whole");
     row_cells(status.stats.whole);
-    for (const MaterialRow& m : status.stats.per_material) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(material_label(status, m.material, "mat ").c_str());
-      row_cells(m.row);
+    // Only the rows in sight are drawn: a mesh may have thousands of materials.
+    const auto& rows = status.stats.per_material;
+    ImGuiListClipper clipper;
+    clipper.Begin(static_cast<int>(rows.size()));
+    while (clipper.Step()) {
+      for (int i = clipper.DisplayStart; i < clipper.DisplayEnd; ++i) {
+        const MaterialRow& m = rows[static_cast<size_t>(i)];
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(material_label(status, m.material, "mat ").c_str());
+        row_cells(m.row);
+      }
     }
     ImGui::EndTable();
   }
