@@ -149,8 +149,9 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
 
 void print_patch_notes(const SurfacePatches& patches, const char* command) {
   for (const SurfacePatches::Group& g : patches.groups()) {
-    const std::string label = (g.name.empty() ? std::string("unnamed") : "'" + g.name + "'") +
-                              " (tag " + std::to_string(g.tag) + ")";
+    const std::string label = g.name.empty()
+                                  ? "with tag " + std::to_string(g.tag) + " (unnamed)"
+                                  : "'" + g.name + "' (tag " + std::to_string(g.tag) + ")";
     if (g.shared > 0) {
       if (g.triangles == 0 && g.missing == 0) {
         std::fprintf(stderr,

@@ -1,5 +1,7 @@
 #include "core/lod.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -513,6 +515,12 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   std::FILE* f = file.get();
   if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
+  struct stat info;
+  if (fstat(fileno(f), &info) == 0 && !S_ISREG(info.st_mode)) {
+    return Status::error(path + ": cannot read: " +
+                         (S_ISDIR(info.st_mode) ? "it is a directory"
+                                                : "it is not a regular file (a history is one)"));
+  }
   std::fseek(f, 0, SEEK_END);
   const long size = std::ftell(f);
   std::fseek(f, 0, SEEK_SET);

@@ -125,6 +125,19 @@ TEST(HistoryFile, RoundTripIsExact) {
 // The thresholds saved after the history (for `lod --improve` and the viewer): they
 // come back as written, a file without them reads as before, and damaged ones are
 // refused with what is wrong.
+// A directory or a device given as a history says what it is.
+TEST(HistoryFile, ADirectoryOrDeviceIsNamed) {
+  TetMesh base;
+  CollapseHistory history;
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  Status s = read_history(dir, &base, &history);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.message(), dir + ": cannot read: it is a directory");
+  s = read_history("/dev/null", &base, &history);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.message(), "/dev/null: cannot read: it is not a regular file (a history is one)");
+}
+
 TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
   const SimplifyResult& r = small_run();
   SimplifyParams p;
