@@ -1,4 +1,6 @@
 // tetlod: the command-line tool.
+#include <signal.h>
+
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -40,8 +42,16 @@ extern "C" void remove_temporaries_and_reraise(int signal_number) {
 
 int main(int argc, char** argv) {
   using namespace tetlod::app;
-  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT})
-    std::signal(signal_number, remove_temporaries_and_reraise);
+  // Signals the caller chose to ignore (nohup, a shell's background job) stay ignored.
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+    struct sigaction old_action;
+    if (sigaction(signal_number, nullptr, &old_action) != 0 || old_action.sa_handler == SIG_IGN)
+      continue;
+    struct sigaction action = {};
+    action.sa_handler = remove_temporaries_and_reraise;
+    sigemptyset(&action.sa_mask);
+    sigaction(signal_number, &action, nullptr);
+  }
   if (argc < 2) {
     std::fputs(kUsage, stderr);
     return kExitUsage;

@@ -823,6 +823,26 @@ TEST(Cli, ASignalDuringAWriteLeavesNoTemporary) {
     EXPECT_EQ(temporaries(), 0u);
     EXPECT_FALSE(fs::exists(out));
   }
+  // A signal the caller ignores (nohup) stays ignored: the run goes on and writes.
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    signal(SIGHUP, SIG_IGN);
+    execl(TETLOD_BINARY, "tetlod", "convert", in.c_str(), out.c_str(), nullptr);
+    _exit(127);
+  }
+  int status = 0;
+  bool ended = false;
+  const auto start = std::chrono::steady_clock::now();
+  while (temporaries() == 0 && std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+    if ((ended = waitpid(pid, &status, WNOHANG) == pid)) break;
+  if (!ended) {
+    kill(pid, SIGHUP);
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  }
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "status " << status;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_EQ(temporaries(), 0u);
 }
 
 }  // namespace
