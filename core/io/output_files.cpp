@@ -61,42 +61,55 @@ std::string unreplaceable(const std::string& target, Keep* keep) {
 
 constexpr mode_t kNoMode = ~mode_t(0);
 
-// The temporaries that exist now, for remove_output_temporaries() (which a signal
-// handler may call, so slots are atomic pointers to C strings: no locks, no
-// allocation there). A temporary that finds no free slot is only not removed on a
-// signal.
-constexpr int kSlots = 64;
-std::atomic<char*> live_temporaries[kSlots];
+// The temporaries that may exist now, for remove_output_temporaries(), which a
+// signal handler calls: fixed slots (no allocation, no locks), each a path buffer
+// and a state. A slot is claimed (kFree -> kClaimed) by the thread that writes its
+// path, then published (kLive); the handler only reads kLive slots; the owner frees
+// its slot by index (kFree). The buffers are never freed, so a handler racing a
+// thread that frees and claims a slot reads a path, at worst a newer one of this
+// process's temporaries. A temporary that finds no free slot (more than kSlots at
+// once) is only not removed on a signal.
+constexpr int kSlots = 256;
+enum SlotState : int { kFree = 0, kClaimed = 1, kLive = 2 };
+struct LiveSlot {
+  std::atomic<int> state{kFree};
+  char path[PATH_MAX];
+};
+LiveSlot live_temporaries[kSlots];
 
-void add_live(const std::string& temporary) {
-  char* copy = strdup(temporary.c_str());
-  if (!copy) return;
-  for (std::atomic<char*>& slot : live_temporaries) {
-    char* expected = nullptr;
-    if (slot.compare_exchange_strong(expected, copy)) return;
+// Publishes `temporary` (before the file is made); its slot, or -1.
+int add_live(const std::string& temporary) {
+  if (temporary.size() >= PATH_MAX) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = kFree;
+    if (!live_temporaries[i].state.compare_exchange_strong(expected, kClaimed)) continue;
+    std::memcpy(live_temporaries[i].path, temporary.c_str(), temporary.size() + 1);
+    live_temporaries[i].state.store(kLive);
+    return i;
   }
-  std::free(copy);
+  return -1;
 }
 
-void remove_live(const std::string& temporary) {
-  for (std::atomic<char*>& slot : live_temporaries) {
-    char* held = slot.load();
-    if (held && temporary == held && slot.compare_exchange_strong(held, nullptr)) {
-      std::free(held);
-      return;
-    }
-  }
+void remove_live(int slot) {
+  if (slot >= 0) live_temporaries[slot].state.store(kFree);
 }
 
 // Creates a new file next to `target` with a name no other writer uses ("x": fail
 // if it exists).
-FILE* create_temporary(const std::string& target, std::string* temp_path) {
+FILE* create_temporary(const std::string& target, std::string* temp_path, int* slot) {
   static std::atomic<unsigned> counter{0};
   constexpr int kAttempts = 100;
   for (int attempt = 0; attempt < kAttempts; ++attempt) {
     *temp_path = target + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+    // Published first, so that no signal finds the file made but not listed.
+    *slot = add_live(*temp_path);
     FILE* file = std::fopen(temp_path->c_str(), "wbx");
-    if (file || errno != EEXIST) return file;
+    if (file) return file;
+    const int error_number = errno;
+    remove_live(*slot);
+    *slot = -1;
+    errno = error_number;
+    if (error_number != EEXIST) return nullptr;
   }
   return nullptr;
 }
@@ -123,7 +136,7 @@ OutputFiles::~OutputFiles() {
 void OutputFiles::discard() {
   for (const Staged& s : staged_) {
     std::remove(s.temporary.c_str());
-    remove_live(s.temporary);
+    remove_live(s.slot);
   }
   staged_.clear();
 }
@@ -132,6 +145,11 @@ Status check_output_directory(const std::string& path, bool make_directories) {
   struct stat info;
   if (!make_directories && lstat(path.c_str(), &info) == 0 && S_ISLNK(info.st_mode))
     return Status();
+  // What is there already: a directory or a device is never replaced (stage()).
+  if (!make_directories) {
+    if (const std::string why = unreplaceable(path, nullptr); !why.empty())
+      return Status::error(path + ": cannot write: " + why);
+  }
   // The directory the file goes in, or for a directory to be made, the nearest one
   // that is there.
   std::string directory = make_directories ? path : directory_of(path);
@@ -155,8 +173,8 @@ Status check_output_directory(const std::string& path, bool make_directories) {
 }
 
 void remove_output_temporaries() {
-  for (std::atomic<char*>& slot : live_temporaries) {
-    if (const char* temporary = slot.load()) unlink(temporary);
+  for (LiveSlot& slot : live_temporaries) {
+    if (slot.state.load() == kLive) unlink(slot.path);
   }
 }
 
@@ -179,9 +197,8 @@ Status OutputFiles::stage(const std::string& path, const std::function<bool(std:
   }
   Keep keep{kNoMode, 0, 0};  // a new file: the umask's mode, the writer's owner
   if (const std::string why = unreplaceable(staged.target, &keep); !why.empty()) return fail(why);
-  FILE* file = create_temporary(staged.target, &staged.temporary);
+  FILE* file = create_temporary(staged.target, &staged.temporary, &staged.slot);
   if (!file) return fail(reason(errno));
-  add_live(staged.temporary);
   // The old file's owner, where the writer may give it (root, or a group the writer
   // is in; else the new file is the writer's, as any editor's save makes it), then
   // its permissions, before any byte is written (a 0600 file's contents are never
@@ -197,7 +214,7 @@ Status OutputFiles::stage(const std::string& path, const std::function<bool(std:
   if (std::fclose(file) != 0 && ok) ok = false, error_number = errno;
   if (!ok) {
     std::remove(staged.temporary.c_str());
-    remove_live(staged.temporary);
+    remove_live(staged.slot);
     return fail(error_number != 0 ? reason(error_number) : "write failed");
   }
   staged_.push_back(std::move(staged));
@@ -223,7 +240,7 @@ Status OutputFiles::commit() {
       discard();
       return Status::error(message);
     }
-    remove_live(staged_[i].temporary);
+    remove_live(staged_[i].slot);
     replaced += (replaced.empty() ? "" : ", ") + staged_[i].path;
   }
   staged_.clear();

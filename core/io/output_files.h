@@ -50,16 +50,17 @@ class OutputFiles {
     std::string path;       // as given, for messages
     std::string target;     // the file to replace: `path`, or what its link points to
     std::string temporary;  // in target's directory
+    int slot = -1;          // where remove_output_temporaries() finds it, or -1
   };
   void discard();
   std::vector<Staged> staged_;
 };
 
-// Checks, before any work, that a file can be made at `path`: the directory it
-// goes in exists and is a directory the process may write in (a path through a
-// symbolic link is left to stage()). With `make_directories`, `path` is a directory
-// to be made with its parents: the nearest one that exists is checked. Errors read
-// "path: cannot write: ...".
+// Checks, before any work, that a file can be made at `path`: it is not a
+// directory or a device, and the directory it goes in exists and is a directory the
+// process may write in (a path through a symbolic link is left to stage()). With
+// `make_directories`, `path` is a directory to be made with its parents: the nearest one that
+// exists is checked. Errors read "path: cannot write: ...".
 Status check_output_directory(const std::string& path, bool make_directories = false);
 
 // Removes the temporaries of every OutputFiles in the process that has not

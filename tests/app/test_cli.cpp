@@ -657,7 +657,10 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
       {"--conductor 1=abc --ground boundary", 2, "--conductor '1=abc'"},
       {"--conductor 1 --ground boundary", 2, "'1' is not MATERIAL=NUMBER"},
       {"--conductor -3=1 --ground boundary", 2, "'-3=1'"},
-      {"--conductor 1=1 --ground somewhere", 2, "--ground 'somewhere'"},
+      {"--conductor 1=1 --ground 1.5", 2, "--ground '1.5'"},
+      // A name is looked up in the mesh, which names no material.
+      {"--conductor 1=1 --ground somewhere", 1,
+       "--ground: the mesh has no material named 'somewhere' (its materials have no names"},
       {"--conductor 1=1 --ground boundary --eps 2=nan", 2, "--eps '2=nan'"},
       {"--conductor 1=1 --ground boundary --solver magic", 2, "--solver 'magic'"},
       {"--conductor 1=1 --ground boundary --tolerance 2", 2, "--tolerance '2'"},

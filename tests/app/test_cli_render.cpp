@@ -164,7 +164,7 @@ TEST(CliRender, BadValuesAreUsageErrors) {
   for (const char* flags :
        {"--width 0", "--width 5000", "--width abc", "--color hue", "--colormap jet", "--cut w=1",
         "--cut x", "--cut-plane 0,0,0,1", "--cut-plane 1,2", "--view top", "--camera 1,2,3,1,2,3",
-        "--highlight-below 2", "--range 1,0", "--materials a,b", "--bogus", "--simplify",
+        "--highlight-below 2", "--range 1,0", "--materials 1,-2", "--bogus", "--simplify",
         "--size -1"}) {
     const CommandResult r = run("render " + in + " -o " + out + " " + flags);
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;

@@ -260,6 +260,11 @@ TEST(IoAtomicWrite, CheckOutputDirectory) {
   s = check_output_directory(dir + "/file/m.mesh");
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.message(), dir + "/file/m.mesh: cannot write: " + dir + "/file/ is not a directory");
+  fs::create_directories(dir + "/d.vtk");
+  s = check_output_directory(dir + "/d.vtk");
+  EXPECT_EQ(s.message(), dir + "/d.vtk: cannot write: it is a directory");
+  s = check_output_directory("/dev/null");
+  EXPECT_NE(s.message().find("it is not a regular file"), std::string::npos) << s.message();
   // A directory to be made: its nearest existing ancestor must be a directory.
   EXPECT_TRUE(check_output_directory(dir + "/new/deeper/report", true).ok());
   EXPECT_FALSE(fs::exists(dir + "/new"));
