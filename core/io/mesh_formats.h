@@ -65,10 +65,11 @@ inline constexpr int64_t kVtkQuadraticTetra = 24;
 
 // The cell array of a .vtk or .vtu that holds the material, by name, best first:
 // TetLOD's "material"; what meshio writes for a mesh it read from Gmsh, Medit,
-// TetGen or Nastran; VTK's Exodus reader's; TetGen's -k output; last, Gmsh's
-// elementary entity, which meshio writes besides the physical group, and Gmsh's
-// own VTK export writes alone (CellEntityIds). -1 for other names. Only "material"
-// is read whatever its type; the others only when their type is an integer one.
+// TetGen or Nastran; VTK's Exodus reader's; TetGen's -k output; Gmsh's elementary
+// entity, which meshio writes besides the physical group; last, the physical group
+// Gmsh's own VTK export writes (CellEntityIds, -1 for an element in none). -1 for
+// other names. Only "material" is read whatever its type; the others only when
+// their type is an integer one.
 inline constexpr std::string_view kVtkMaterialNames[] = {
     "material",    "gmsh:physical", "medit:ref",        "tetgen:ref",   "nastran:ref",
     "MaterialIds", "cell_scalars",  "gmsh:geometrical", "CellEntityIds"};
@@ -77,14 +78,23 @@ inline int vtk_material_rank(std::string_view name) {
     if (name == kVtkMaterialNames[i]) return i;
   return -1;
 }
-// A note for a material read from Gmsh's elementary entities, which are no
-// physical groups: `rank` is the array's vtk_material_rank().
-inline void add_vtk_material_note(int rank, ParsedMesh* out) {
-  if (rank == vtk_material_rank("CellEntityIds")) {
-    out->notes.push_back(
-        "the materials are Gmsh's elementary entity tags (cell array CellEntityIds, which "
-        "Gmsh's VTK export writes instead of physical groups)");
+// After the materials were read from the array of rank `rank` (vtk_material_rank()):
+// Gmsh's CellEntityIds give -1 to the tets in no physical group, which become
+// material 0, with a note.
+inline void finish_vtk_materials(int rank, ParsedMesh* out) {
+  if (rank != vtk_material_rank("CellEntityIds")) return;
+  size_t ungrouped = 0;
+  for (int32_t& m : out->mesh.materials) {
+    if (m < 0) {
+      m = 0;
+      ++ungrouped;
+    }
   }
+  std::string note =
+      "the materials are Gmsh's physical groups (cell array CellEntityIds of its VTK export)";
+  if (ungrouped > 0)
+    note += "; " + std::to_string(ungrouped) + " tetrahedra in none (-1) are material 0";
+  out->notes.push_back(note);
 }
 
 // A name from a file as valid UTF-8: each byte that does not start or continue a

@@ -647,7 +647,7 @@ class VtkLegacyParser {
       if (!binary_) out_->tet_lines.push_back(cell_lines_[c]);
     }
     add_vtk_cell_notes(counts_by_type, out_);
-    if (has_materials_) add_vtk_material_note(material_rank_, out_);
+    if (has_materials_) finish_vtk_materials(material_rank_, out_);
     if (!has_materials_ && !cell_arrays_.empty())
       out_->notes.push_back(no_material_note(cell_arrays_));
     return true;

@@ -782,7 +782,7 @@ class VtuParser {
       start = end;
     }
     add_vtk_cell_notes(counts_by_type, out_);
-    if (has_materials_) add_vtk_material_note(material_rank_, out_);
+    if (has_materials_) finish_vtk_materials(material_rank_, out_);
     if (!has_materials_ && !cell_arrays_.empty())
       out_->notes.push_back(no_material_note(cell_arrays_));
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 
 #include "core/io/mesh_io.h"
 #include "core/test_io_helpers.h"
@@ -95,8 +96,8 @@ TEST(IoGmshInterop, NastranBothWays) {
   }
 }
 
-// Gmsh's binary legacy VTK: points, cells and its elementary entities as cell data
-// CellEntityIds, read as the materials (TetLOD's .msh makes an entity per material).
+// Gmsh's binary legacy VTK: points, cells and, as cell data CellEntityIds, each
+// element's physical group, read as the materials; -1 (in no group) is material 0.
 TEST(IoGmshInterop, WeReadGmshBinaryVtk) {
   if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
   const std::string dir = test::output_dir("gmsh_vtk");
@@ -114,9 +115,30 @@ TEST(IoGmshInterop, WeReadGmshBinaryVtk) {
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
   ASSERT_EQ(info.notes.size(), 1u);
-  EXPECT_NE(info.notes[0].find("Gmsh's elementary entity tags (cell array CellEntityIds"),
-            std::string::npos)
-      << info.notes[0];
+  EXPECT_EQ(info.notes[0],
+            "the materials are Gmsh's physical groups (cell array CellEntityIds of its VTK "
+            "export)");
+
+  // Two volumes, one in a physical group (7): saved with -save_all, the other's tets
+  // are -1.
+  test::write_text(dir + "/two.geo",
+                   "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                   "Box(2) = {1, 0, 0, 1, 1, 1};\nCoherence;\nPhysical Volume(7) = {1};\n"
+                   "Mesh.MeshSizeMax = 0.5;\n");
+  ASSERT_TRUE(
+      run_gmsh("'" + dir + "/two.geo' -3 -save_all -format vtk -o '" + dir + "/two.vtk'", log))
+      << test::read_text(log);
+  ASSERT_TRUE(read_mesh(dir + "/two.vtk", &back, &info).ok());
+  std::map<int32_t, size_t> counts;
+  for (const int32_t m : back.materials) ++counts[m];
+  ASSERT_EQ(counts.size(), 2u);
+  EXPECT_GT(counts[0], 0u);
+  EXPECT_GT(counts[7], 0u);
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_EQ(info.notes[0],
+            "the materials are Gmsh's physical groups (cell array CellEntityIds of its VTK "
+            "export); " +
+                std::to_string(counts[0]) + " tetrahedra in none (-1) are material 0");
 }
 
 // Gmsh's Abaqus input: its physical groups (our materials) as *ELSET material_<n>.
