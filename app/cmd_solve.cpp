@@ -10,6 +10,7 @@
 
 #include "app/cli_util.h"
 #include "app/commands.h"
+#include "app/simplify_options.h"
 #include "core/electrostatics.h"
 
 namespace tetlod::app {
@@ -144,7 +145,7 @@ int cmd_solve(const Args& args) {
     const std::string& a = args[i];
     std::string v;
     if (a == "-o" || a == "--output") {
-      if (!next_value(args, &i, &out)) return kExitUsage;
+      if (!parse_output_value(args, &i, "-o", &out)) return kExitUsage;
       if (!has_extension(out, ".vtu")) {
         std::fprintf(stderr, "tetlod solve: -o '%s': the field is written as .vtu only\n",
                      out.c_str());

@@ -66,7 +66,8 @@ bool parse_option_value(const Args& args, size_t* i, const char* name, std::stri
     std::fprintf(stderr, "tetlod: %s needs a value\n", name);
     return false;
   }
-  if (args[*i + 1].rfind("--", 0) == 0) {
+  // Values may start with '-' ("--cut -x=0.5", "-1"); "--..." and "-o" are options.
+  if (args[*i + 1].rfind("--", 0) == 0 || args[*i + 1] == "-o") {
     std::fprintf(stderr, "tetlod: %s needs a value, not the option '%s'\n", name,
                  args[*i + 1].c_str());
     return false;

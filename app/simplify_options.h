@@ -45,7 +45,7 @@ OptionResult parse_write_option(const Args& args, size_t* i, const char* command
                                 WriteOptions* options);
 
 // Reads "--flag VALUE": false with a message if VALUE is missing (or is another
-// option, "--...": "-o --size 5" lacks its file).
+// option, "--..." or "-o": "-o --size 5" lacks its file).
 bool parse_option_value(const Args& args, size_t* i, const char* name, std::string* value);
 // The same for an output file, which may be given once: false with a message if
 // `*path` is already set.

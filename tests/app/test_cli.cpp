@@ -699,14 +699,20 @@ TEST(Cli, OutputsAreGivenOnce) {
         "simplify " + in + " -o " + a + " --size 2 --history " + out_dir() + "/h1.tlh --history " +
             out_dir() + "/h2.tlh",
         "generate box2 -o " + a + " -o " + b,
-        "render " + in + " -o " + out_dir() + "/a.png -o " + out_dir() + "/b.png"}) {
+        "render " + in + " -o " + out_dir() + "/a.png -o " + out_dir() + "/b.png",
+        "solve " + in + " --conductor 1=1 --ground boundary -o " + out_dir() + "/a.vtu -o " +
+            out_dir() + "/b.vtu"}) {
     const CommandResult r = run(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find(" once ("), std::string::npos) << r.output;
   }
-  const CommandResult r = run("simplify " + in + " -o --size 2");
+  CommandResult r = run("simplify " + in + " -o --size 2");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("-o needs a value, not the option '--size'"), std::string::npos)
+      << r.output;
+  r = run("simplify " + in + " --history -o " + a + " --size 2");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--history needs a value, not the option '-o'"), std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(a));
   EXPECT_FALSE(fs::exists(b));
