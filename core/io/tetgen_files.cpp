@@ -63,6 +63,24 @@ bool expect_end_of_header(TextScanner& fields, const char* fields_text) {
                      ")");
 }
 
+// TetGen reads the fields a line's header declares and ignores any after them (a
+// marker column the header leaves out): so does this, for numbers. Anything else
+// after them is an error.
+bool skip_extra_fields(TextScanner& scanner, const char* item) {
+  const size_t line = scanner.line();
+  const std::string_view rest = scanner.rest_of_line();
+  if (rest.find_first_not_of(" \t\r") == std::string_view::npos) return true;
+  TextScanner fields(rest, scanner.name(), '#', line);
+  std::string_view token;
+  while (fields.next_token(&token)) {
+    if (!TextScanner::looks_numeric(token)) {
+      return scanner.fail_at_line(line, "unexpected " + TextScanner::quote(token) + " after the " +
+                                            item + " (wrong count in the header?)");
+    }
+  }
+  return true;
+}
+
 bool expect_end_of_file(TextScanner& scanner, const char* items) {
   std::string_view token;
   if (!scanner.next_token(&token)) return true;
@@ -111,7 +129,8 @@ bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
     Vec3 p;
     if (!scanner.read_double(&p.x, "x coordinate") || !scanner.read_double(&p.y, "y coordinate") ||
         !scanner.read_double(&p.z, "z coordinate") ||
-        !scanner.skip_numbers(uint64_t(attributes) + uint64_t(markers), "point attributes")) {
+        !scanner.skip_numbers(uint64_t(attributes) + uint64_t(markers), "point attributes") ||
+        !skip_extra_fields(scanner, "point")) {
       return false;
     }
     mesh.positions.push_back(p);
@@ -163,7 +182,8 @@ bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out, int64_t*
     int32_t material = 0;
     if (!scanner.skip_numbers(uint64_t(corners - 4), "vertex indices") ||
         (attributes > 0 && !read_material(scanner, &material)) ||
-        !scanner.skip_numbers(uint64_t(attributes > 0 ? attributes - 1 : 0), "attributes")) {
+        !scanner.skip_numbers(uint64_t(attributes > 0 ? attributes - 1 : 0), "attributes") ||
+        !skip_extra_fields(scanner, "tetrahedron")) {
       return false;
     }
     mesh.tets.push_back(tet);
@@ -197,6 +217,8 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
   std::map<int64_t, size_t> group_of;  // marker -> index in out->surface_groups
   uint64_t unkept = 0;                 // faces whose marker is not a group tag
   std::string first_unkept;
+  uint64_t undeclared = 0;  // faces with a marker column the header does not declare
+  size_t first_undeclared = 0;
   for (uint64_t i = 0; i < count; ++i) {
     int64_t index = 0;
     if (!scanner.read_int(&index, "face index")) return scanner.status();
@@ -241,14 +263,18 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
     }
     int64_t marker = 0;
     if (markers == 1 && !read_field(&marker, "boundary marker")) return fields.status();
-    // Nothing more, or the two tets beside the face (TetGen -nn).
+    // Nothing more, or the two tets beside the face (TetGen -nn); without markers in
+    // the header, one number there is a marker column the header leaves out: TetGen
+    // ignores it, and a note says so.
     if (!fields.at_end()) {
       int64_t tet = 0;
       std::string_view extra;
-      if (!fields.read_int(&tet, "adjacent tetrahedron") ||
-          !read_field(&tet, "second adjacent tetrahedron")) {
-        return fields.status();
+      if (!fields.read_int(&tet, "adjacent tetrahedron")) return fields.status();
+      if (markers == 0 && fields.at_end()) {
+        if (undeclared++ == 0) first_undeclared = line;
+        continue;
       }
+      if (!read_field(&tet, "second adjacent tetrahedron")) return fields.status();
       if (fields.next_token(&extra)) {
         fields.fail("unexpected " + TextScanner::quote(extra) + " after face " +
                     std::to_string(index) + " (one face per line: " + form +
@@ -268,6 +294,15 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
       out->surface_groups.back().tag = int32_t(marker);
     }
     out->surface_groups[it->second].triangles.push_back(corners);
+  }
+  if (undeclared > 0) {
+    out->notes.push_back(std::to_string(undeclared) +
+                         (undeclared == 1 ? " face of " : " faces of ") + scanner.name() +
+                         " (the first at line " + std::to_string(first_undeclared) + ") " +
+                         (undeclared == 1 ? "has" : "have") +
+                         " a number after the corners, but the header declares no boundary "
+                         "markers ('count 0' or 'count'): ignored, as TetGen ignores it (make "
+                         "the header 'count 1' to read the markers as surface groups)");
   }
   if (unkept > 0) {
     out->notes.push_back(std::to_string(unkept) + (unkept == 1 ? " face of " : " faces of ") +

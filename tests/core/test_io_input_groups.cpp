@@ -501,6 +501,19 @@ TEST(IoInputGroups, TetGenFaceMarkersAreGroups) {
     EXPECT_EQ(mesh.materials, std::vector<int32_t>(3, 0));
   }
 
+  // A marker column the header does not declare ("2" or "2 0"): ignored, as TetGen
+  // ignores it, with a note that says how to read it.
+  for (const char* face : {"2\n1 1 2 3 4\n2 2 5 3 7\n", "2 0\n1 1 2 3 4\n2 2 5 3 7\n"}) {
+    s = read_tetgen(face, &mesh, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_TRUE(info.surface_groups.empty());
+    ASSERT_EQ(info.notes.size(), 1u);
+    EXPECT_EQ(info.notes[0],
+              "2 faces of m.face (the first at line 2) have a number after the corners, but the "
+              "header declares no boundary markers ('count 0' or 'count'): ignored, as TetGen "
+              "ignores it (make the header 'count 1' to read the markers as surface groups)");
+  }
+
   // Markers no group tag can hold are in no group, and a note says so.
   s = read_tetgen("4 1\n1 1 2 3 -1\n2 2 5 3 7\n3 1 3 6 2147483648\n4 1 6 2 -3\n", &mesh, &info);
   ASSERT_TRUE(s.ok()) << s.message();
@@ -562,7 +575,7 @@ TEST(IoInputGroups, TetGenBrokenFacesNameTheLine) {
       {"1 1\n1 1 2 1 1\n", 2, "face 1 repeats a vertex"},
       {"1 1\n1 1 2 3\n", 2, "face 1 ends before its boundary marker"},
       {"1 1\n1 1 2\n3 1\n", 2, "face 1 ends before its vertex index"},
-      {"1 0\n1 1 2 3 4\n", 2, "face 1 ends before its second adjacent tetrahedron"},
+      {"1 0\n1 1 2 3 4 5 6\n", 2, "unexpected '6' after face 1"},
       {"1 1\n1 1 2 3 1 5 6 7\n", 2, "unexpected '7' after face 1"},
       {"1 1\n1 1 2 3 x\n", 2, "boundary marker 'x' is not an integer"},
       {"1 1\n1 1 2 3.5 1\n", 2, "vertex index '3.5' is not an integer"},
@@ -571,7 +584,6 @@ TEST(IoInputGroups, TetGenBrokenFacesNameTheLine) {
       {"-1 1\n", 1, "negative"},
       {"1 -1\n1 1 2 3\n", 1, "boundary marker count -1 is negative"},
       {"1 1 0\n1 1 2 3 1\n", 1, "unexpected '0' in the header ('faces markers')"},
-      {"1\n1 1 2 3 1\n", 2, "face 1 ends before its second adjacent tetrahedron"},
       {"0", 1, "truncated"},
   };
   TetMesh mesh;

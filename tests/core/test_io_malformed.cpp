@@ -235,12 +235,18 @@ TEST(IoMalformed, TetGen) {
       {{{1, "5 3 0 0 0"}}, {}, "m.node", 1, "unexpected '0' in the header"},
       {{{1, "5 3 0 x"}}, {}, "m.node", 1, "boundary marker count 'x' is not an integer"},
       {{}, {{1, "2 4 -1"}}, "m.ele", 1, "attribute count -1 is negative"},
-      // A header without its optional fields: no region attribute, so the 1 and 2
-      // at the ends of the lines are read as the next tetrahedra's indices.
-      {{}, {{1, "2"}}, "m.ele", 2, "expected tetrahedron index 2, found 1"},
+      {{}, {{2, "1 1 2 3 4 1 x"}}, "m.ele", 2, "unexpected 'x' after the tetrahedron"},
+      {{{3, "2 1 0 0 7 z"}}, {}, "m.node", 3, "unexpected 'z' after the point"},
   };
   TetMesh mesh;
   ASSERT_TRUE(read_tetgen_from_memory(kTetGenNode, kTetGenEle, "m.node", "m.ele", &mesh).ok());
+  // As TetGen does, numbers after the fields a header declares are ignored: a header
+  // "2" (no region attribute) over lines that have one reads material 0.
+  ASSERT_TRUE(read_tetgen_from_memory(edit_lines(kTetGenNode, {{3, "2 1 0 0 1"}}),
+                                      edit_lines(kTetGenEle, {{1, "2"}}), "m.node", "m.ele", &mesh)
+                  .ok());
+  EXPECT_EQ(mesh.tet_count(), 2u);
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{0, 0}));
   for (const TetGenCase& c : cases) {
     const std::string node = edit_lines(kTetGenNode, c.node_edits);
     const std::string ele = edit_lines(kTetGenEle, c.ele_edits);
