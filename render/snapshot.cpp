@@ -52,11 +52,14 @@ Status check_drawable(const TetMesh& mesh) {
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
   }
   const double extent = length(hi - lo);
-  if (largest <= 1e30 && (extent >= 1e-30 || mesh.positions.empty())) return Status();
-  char text[160];
+  if (mesh.positions.empty() || (largest <= 1e30 && extent >= 1e-30 && extent >= 1e-5 * largest))
+    return Status();
+  char text[320];
   std::snprintf(text, sizeof text,
                 "cannot draw a mesh %.3g across with coordinates up to %.3g: pictures hold "
-                "coordinates within 1e30 and meshes at least 1e-30 across (rescale it)",
+                "coordinates within 1e30, meshes at least 1e-30 across, and at least 1e-5 of "
+                "their distance from the origin (GPU positions have 7 digits; rescale or "
+                "move it)",
                 extent, largest);
   return Status::error(text);
 }

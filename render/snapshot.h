@@ -45,9 +45,10 @@ Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
                        const ViewSpec& view);
 
 // Whether the GPU's float positions can hold `mesh`: every coordinate within
-// +-1e30 and a bounding box at least 1e-30 across (the readers accept edges from
-// 1e-60 to 1e60; beyond this range a picture comes out empty). The error names
-// the mesh's extent and what to do.
+// +-1e30, and a bounding box at least 1e-30 across and at least 1e-5 of the largest
+// coordinate (the readers accept edges from 1e-60 to 1e60, anywhere; beyond this a
+// picture comes out empty or in pieces). The error names the mesh's extent and
+// what to do.
 Status check_drawable(const TetMesh& mesh);
 
 // Builds the surface, uploads it, draws it and reads it back. `renderer` must be

@@ -235,15 +235,16 @@ TEST(CliRender, AnyModelSizeDrawsTheSamePicture) {
     const render::ImageDifference d = render::compare_images(first, image, 8, nullptr);
     EXPECT_LE(d.differing_pixels, 20u) << "max difference " << d.max_channel_difference;
   }
-  for (const double scale : {1e-40, 1e40}) {
+  for (const double scale : {1e-40, 1e40, 1e-9}) {
     TetMesh scaled = mesh;
-    for (Vec3& p : scaled.positions) p = p * scale;
+    // 1e-9: a nanometre part 1000 units from the origin.
+    for (Vec3& p : scaled.positions) p = p * scale + Vec3{scale == 1e-9 ? 1000.0 : 0.0, 0, 0};
     const std::string in = out_dir() + "/out_of_range.mesh";
     ASSERT_TRUE(write_mesh(in, scaled).ok());
     const CommandResult r = run("render " + in + " -o " + out_dir() + "/out_of_range.png");
     EXPECT_EQ(r.code, 1) << r.output;
-    EXPECT_NE(r.output.find("pictures hold coordinates within 1e30 and meshes at least 1e-30 "
-                            "across (rescale it)"),
+    EXPECT_NE(r.output.find("pictures hold coordinates within 1e30, meshes at least 1e-30 "
+                            "across, and at least 1e-5 of their distance from the origin"),
               std::string::npos)
         << r.output;
     EXPECT_FALSE(fs::exists(out_dir() + "/out_of_range.png"));
