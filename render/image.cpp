@@ -177,22 +177,64 @@ std::string fold(long c) {
   if (c == 0x490 || c == 0x491) return c == 0x490 ? "G" : "g";
   if (c >= 0x391 && c <= 0x3a9 && c != 0x3a2) return kGreek[c - 0x391];
   if (c >= 0x3b1 && c <= 0x3c9) return lower(kGreek[c - 0x3b1]);
-  return "?";
+  // Greek letters with tonos or dialytika (most Greek words have one).
+  switch (c) {
+    case 0x386:
+      return "A";
+    case 0x388:
+      return "E";
+    case 0x389:
+    case 0x38a:
+    case 0x3aa:
+      return "I";
+    case 0x38c:
+    case 0x38f:
+      return "O";
+    case 0x38e:
+    case 0x3ab:
+      return "Y";
+    case 0x3ac:
+      return "a";
+    case 0x3ad:
+      return "e";
+    case 0x3ae:
+    case 0x3af:
+    case 0x390:
+    case 0x3ca:
+      return "i";
+    case 0x3cc:
+    case 0x3ce:
+      return "o";
+    case 0x3cd:
+    case 0x3b0:
+    case 0x3cb:
+      return "y";
+    default:
+      return "?";
+  }
+}
+
+bool is_greek(long c) {
+  return c >= 0x370 && c <= 0x3ff;
 }
 
 }  // namespace
 
 std::string ascii_label(const std::string& utf8, size_t max_chars) {
   std::string out;
-  size_t at = 0, chars = 0;
+  size_t at = 0;
+  long previous = 0;
   while (at < utf8.size()) {
-    if (chars == max_chars) return out + "...";
     const long c = next_code_point(utf8, &at);
-    if (c >= 32 && c <= 126)
-      out += char(c);
-    else
-      out += fold(c);
-    ++chars;
+    std::string piece = c >= 32 && c <= 126 ? std::string(1, char(c)) : fold(c);
+    if (c == 0x3bc) {  // mu: "m" in a Greek word, else "u" (the micro prefix)
+      size_t ahead = at;
+      const long next = ahead < utf8.size() ? next_code_point(utf8, &ahead) : 0;
+      if (is_greek(previous) || (next != 0x3bc && is_greek(next))) piece = "m";
+    }
+    if (out.size() + piece.size() > max_chars) return out + "...";
+    out += piece;
+    previous = c;
   }
   return out;
 }

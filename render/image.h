@@ -45,11 +45,12 @@ ImageDifference compare_images(const Image& expected, const Image& actual, int t
 void fill_rect(Image* image, int x0, int y0, int x1, int y1, uint32_t rgba);
 // Text with stb_easy_font at (x, y) top-left, each font pixel `scale` image pixels.
 void draw_text(Image* image, int x, int y, const std::string& text, uint32_t rgba, int scale);
-// `utf8` in the font's characters (printable ASCII), cut after `max_chars`
-// characters with "...": accented Latin letters lose their accents (u for u-umlaut,
-// ss for sharp s), the micro sign and Greek mu become u, other Greek letters and
-// Cyrillic ones (Russian, Ukrainian, Belarusian) are romanised (Zh, Shch, Th), any
-// other character is one '?'. Bytes that are not valid UTF-8 are '?' each.
+// `utf8` in the font's characters (printable ASCII), at most `max_chars` of them,
+// then "...": accented Latin letters lose their accents (u for u-umlaut, ss for
+// sharp s), the micro sign and a mu outside Greek words become u, Greek letters
+// (accented too) and Cyrillic ones (Russian, Ukrainian, Belarusian) are romanised
+// (Zh, Shch, Th), any other character is one '?'. Bytes that are not valid UTF-8
+// are '?' each.
 std::string ascii_label(const std::string& utf8, size_t max_chars);
 // Width and height in pixels of `text` at `scale`.
 int text_width(const std::string& text, int scale);

@@ -17,12 +17,12 @@ TEST(AsciiLabel, FoldsLatinLettersAndMarksOthersOncePerCharacter) {
                         32),
             "Strasse AEO");                                            // sharp s
   EXPECT_EQ(ascii_label("\xce\xbc-metal \xc2\xb5", 32), "u-metal u");  // Greek mu, micro
-  // Cyrillic and Greek are romanised: "Медь" (copper), "Щит-Ёж", "Ωμέγα" has an
-  // accented epsilon, which is not in the table.
+  // Cyrillic and Greek are romanised: "Медь" (copper), "Щит-Ёж", "Ωμέγα" (a mu in a
+  // Greek word is m, an accented epsilon e).
   EXPECT_EQ(ascii_label("\xd0\x9c\xd0\xb5\xd0\xb4\xd1\x8c", 32), "Med'");
   EXPECT_EQ(ascii_label("\xd0\xa9\xd0\xb8\xd1\x82-\xd0\x81\xd0\xb6", 32), "Shchit-Yozh");
   EXPECT_EQ(ascii_label("\xd0\xaf\xd0\xbc\xd0\xb0 \xd0\x87\xd1\x96", 32), "Yama Yii");
-  EXPECT_EQ(ascii_label("\xce\xa9\xce\xbc\xce\xad\xce\xb3\xce\xb1", 32), "Ou?ga");
+  EXPECT_EQ(ascii_label("\xce\xa9\xce\xbc\xce\xad\xce\xb3\xce\xb1", 32), "Omega");
   EXPECT_EQ(ascii_label("\xce\xb5_r \xce\x98\xcf\x88\xcf\x82", 32), "e_r Thpss");
   EXPECT_EQ(ascii_label("\xe7\x94\xb5\xe6\x9c\xba", 32), "??");   // two CJK characters
   EXPECT_EQ(ascii_label("\xf0\x9f\x94\xa9 bolt", 32), "? bolt");  // four bytes, one '?'
@@ -37,6 +37,9 @@ TEST(AsciiLabel, FoldsLatinLettersAndMarksOthersOncePerCharacter) {
 }
 
 TEST(AsciiLabel, CutsByCharactersNotBytes) {
+  // By the characters drawn: a romanised letter may be several.
+  EXPECT_EQ(ascii_label("\xd0\xa9\xd0\xa9\xd0\xa9", 8), "ShchShch...");
+  EXPECT_EQ(ascii_label("\xd0\xa9\xd0\xa9", 8), "ShchShch");
   EXPECT_EQ(ascii_label("abcdef", 6), "abcdef");
   EXPECT_EQ(ascii_label("abcdefg", 6), "abcdef...");
   // Six two-byte letters fit in six characters; a byte cut would have split one.
