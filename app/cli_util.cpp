@@ -250,6 +250,12 @@ std::string material_name_of(const std::vector<MaterialName>* names, int32_t m) 
   return name ? *name : "";
 }
 
+bool is_material_name(const std::string& text) {
+  if (text.empty()) return false;
+  const char c = text[0];
+  return !(std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.');
+}
+
 bool material_by_name(const std::string& name, const std::vector<MaterialName>& names,
                       const char* command, const std::string& option, int32_t* id) {
   const MaterialName* found = nullptr;

@@ -73,10 +73,7 @@ using MaterialText = std::string;
 // Whether `text` can be a material: an id >= 0, or a name (anything that does not
 // start like a number).
 bool material_text_ok(const std::string& text) {
-  if (text.empty()) return false;
-  const char c = text[0];
-  const bool numeric = (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
-  return !numeric || parse_material(text).has_value();
+  return is_material_name(text) || parse_material(text).has_value();
 }
 
 // "M=X,M=X": materials (ids or names) and finite numbers. On error prints a message

@@ -1,7 +1,6 @@
 #include "app/render_options.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -53,9 +52,7 @@ bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
   while (start <= text.size()) {
     const size_t comma = std::min(text.find(',', start), text.size());
     const std::string item = text.substr(start, comma - start);
-    const char first = item.empty() ? '0' : item[0];
-    if (!item.empty() && !(std::isdigit(static_cast<unsigned char>(first)) || first == '-' ||
-                           first == '+' || first == '.')) {
+    if (is_material_name(item)) {
       names->push_back(item);
     } else {
       const auto n = parse_integer(item);

@@ -1,7 +1,6 @@
 #include "app/simplify_options.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -135,10 +134,7 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
         if (end == std::string::npos) end = v.size();
         const std::string item = v.substr(start, end - start);
         const size_t equals = item.find('=');
-        const char first = item.empty() ? '0' : item[0];
-        const bool named = equals != std::string::npos && equals > 0 &&
-                           !(std::isdigit(static_cast<unsigned char>(first)) || first == '-' ||
-                             first == '+' || first == '.');
+        const bool named = equals != std::string::npos && is_material_name(item.substr(0, equals));
         if (named) {
           const auto size = parse_double(item.substr(equals + 1));
           if (!size || !(*size > 0) || !std::isfinite(*size)) {

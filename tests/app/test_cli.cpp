@@ -760,37 +760,31 @@ TEST(Cli, MaterialsByName) {
 // What the reader repaired, in words that agree with the count.
 TEST(Cli, RepairNotesCountInWords) {
   const std::string path = out_dir() + "/repaired.mesh";
+  // `stats` of a Medit file with these vertex and tetrahedron sections.
+  const auto stats = [&](const std::string& vertices, const std::string& tets) {
+    std::ofstream(path) << "MeshVersionFormatted 2\nDimension 3\nVertices\n"
+                        << vertices << "Tetrahedra\n"
+                        << tets << "End\n";
+    return run("stats " + path);
+  };
+  const auto expect_notes = [](const CommandResult& r, std::initializer_list<const char*> notes) {
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* note : notes) EXPECT_NE(r.output.find(note), std::string::npos) << r.output;
+  };
   // One tet, negatively oriented, and a vertex no tet uses.
-  std::ofstream(path) << "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 0\n1 0 0 0\n"
-                         "0 1 0 0\n0 0 1 0\n9 9 9 0\nTetrahedra\n1\n1 3 2 4 1\nEnd\n";
-  CommandResult r = run("stats " + path);
-  ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("note: 1 negatively oriented tetrahedron was reoriented"),
-            std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("note: 1 vertex used by no tetrahedron was dropped"), std::string::npos)
-      << r.output;
-  std::ofstream(path) << "MeshVersionFormatted 2\nDimension 3\nVertices\n7\n0 0 0 0\n1 0 0 0\n"
-                         "0 1 0 0\n0 0 1 0\n1 1 1 0\n8 8 8 0\n9 9 9 0\nTetrahedra\n2\n"
-                         "1 3 2 4 1\n2 4 3 5 1\nEnd\n";
-  r = run("stats " + path);
-  ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("note: 2 negatively oriented tetrahedra were reoriented"),
-            std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("note: 2 vertices used by no tetrahedron were dropped"),
-            std::string::npos)
-      << r.output;
+  expect_notes(stats("5\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n9 9 9 0\n", "1\n1 3 2 4 1\n"),
+               {"note: 1 negatively oriented tetrahedron was reoriented",
+                "note: 1 vertex used by no tetrahedron was dropped"});
+  expect_notes(stats("7\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n8 8 8 0\n9 9 9 0\n",
+                     "2\n1 3 2 4 1\n2 4 3 5 1\n"),
+               {"note: 2 negatively oriented tetrahedra were reoriented",
+                "note: 2 vertices used by no tetrahedron were dropped"});
   // Two tets meshed apart that touch at a face: its three vertices are there twice.
-  std::ofstream(path) << "MeshVersionFormatted 2\nDimension 3\nVertices\n8\n0 0 0 0\n1 0 0 0\n"
-                         "0 1 0 0\n0 0 1 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n"
-                         "Tetrahedra\n2\n1 2 3 4 1\n5 7 6 8 2\nEnd\n";
-  r = run("stats " + path);
-  ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("note: 3 vertices are at the position of another (the first at ("),
-            std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("the mesh is not conforming there"), std::string::npos) << r.output;
+  expect_notes(stats("8\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
+                     "1 1 1 0\n",
+                     "2\n1 2 3 4 1\n5 7 6 8 2\n"),
+               {"note: 3 vertices are at the position of another (the first at (",
+                "the mesh is not conforming there"});
 }
 
 // Ctrl-C, `timeout` or a closed terminal while an output is being written: the
