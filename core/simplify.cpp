@@ -419,13 +419,22 @@ class Engine {
     return n;
   }
 
+  // Without branches on the marks (whether a corner was seen is not predictable):
+  // every corner is written, and kept if it is new.
   void neighbors(uint32_t v, std::vector<uint32_t>* out) {
-    out->clear();
+    const auto& star = star_[v];
+    out->resize(4 * star.size());
     const uint32_t s = next_stamp();
     mark_[v] = s;
-    for (uint32_t t : star_[v])
-      for (uint32_t w : tet_[t].v)
-        if (mark_[w] != s) mark_[w] = s, out->push_back(w);
+    size_t n = 0;
+    for (uint32_t t : star) {
+      for (uint32_t w : tet_[t].v) {
+        (*out)[n] = w;
+        n += mark_[w] != s;
+        mark_[w] = s;
+      }
+    }
+    out->resize(n);
   }
 
   double size_limit(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
@@ -1035,20 +1044,29 @@ class Engine {
   // go to their mean.
   void gather_first_end(uint32_t a, uint32_t b) {
     const auto& star = star_[a];
-    if (first_end_ != a) {
+    const bool fresh = first_end_ != a;
+    if (fresh) {
       first_end_ = a;
       first_blocks_ = (star.size() + kLanes - 1) / kLanes;
       reserve_blocks(first_blocks_);
       std::fill(block_built_.begin(), block_built_.begin() + first_blocks_, 0);
       first_sum_ = 0;
-      for (uint32_t t : star) first_sum_ += tet_[t].stretch;
     }
-    ring_tets_.clear();
-    for (size_t n = 0; n < first_blocks_ * kLanes; ++n) {
-      const bool ring = n >= star.size() || tet_has(tet_[star[n]].v, b);
-      if (ring && n < star.size()) ring_tets_.push_back(star[n]);
-      moving_[n / kLanes].skip[n % kLanes] = ring ? 1 : 0;
+    // Branch-free: every star tet is written to the ring list, which keeps it only if
+    // it holds b (whether it does is not predictable).
+    ring_tets_.resize(star.size());
+    size_t ring_size = 0;
+    for (size_t n = 0; n < star.size(); ++n) {
+      const TetRecord& r = tet_[star[n]];
+      if (fresh) first_sum_ += r.stretch;
+      const bool ring = tet_has(r.v, b);
+      ring_tets_[ring_size] = star[n];
+      ring_size += ring;
+      moving_[n / kLanes].skip[n % kLanes] = static_cast<double>(ring);
     }
+    for (size_t n = star.size(); n < first_blocks_ * kLanes; ++n)
+      moving_[n / kLanes].skip[n % kLanes] = 1;
+    ring_tets_.resize(ring_size);
   }
 
   // ... then b's, once the ring passed the topology and valence rules. Returns the
@@ -1057,14 +1075,19 @@ class Engine {
     double sum = first_sum_;
     size_t count = star_[a].size();
     second_end_ = b;
-    second_tets_.clear();
-    for (uint32_t t : star_[b]) {
+    // Branch-free, as the ring above: the tets holding a add +0 and are overwritten.
+    const auto& star = star_[b];
+    second_tets_.resize(star.size());
+    size_t kept = 0;
+    for (uint32_t t : star) {
       const TetRecord& r = tet_[t];
-      if (tet_has(r.v, a)) continue;
-      sum += r.stretch;
-      ++count;
-      second_tets_.push_back(t);
+      const bool ring = tet_has(r.v, a);
+      sum += r.stretch * static_cast<double>(!ring);  // exact: x 1 or x 0
+      second_tets_[kept] = t;
+      kept += !ring;
     }
+    second_tets_.resize(kept);
+    count += kept;
     moving_count_ = star_[a].size() - ring_tets_.size() + second_tets_.size();
     moving_blocks_ = first_blocks_ + (second_tets_.size() + kLanes - 1) / kLanes;
     reserve_blocks(moving_blocks_);
@@ -1086,38 +1109,26 @@ class Engine {
     const auto& tets = first ? star_[first_end_] : second_tets_;
     const size_t begin = (first ? k : k - first_blocks_) * kLanes;
     const uint32_t v = first ? first_end_ : second_end_;
-    int lanes = 0;
-    for (size_t n = begin; n < std::min(tets.size(), begin + kLanes); ++n, ++lanes) {
-      const TetRecord& r = tet_[tets[n]];
-      int slot = 0;
-      while (r.v[slot] != v) ++slot;
+    const double side = first ? 0 : 1;
+    // Every lane is filled the same way, without branches: lanes past the last tet
+    // (skipped) hold a harmless copy of the first.
+    for (int l = 0; l < kLanes; ++l) {
+      const bool real = begin + l < tets.size();
+      const TetRecord& r = tet_[tets[real ? begin + l : begin]];
+      const int slot = (r.v[1] == v) | (r.v[2] == v) << 1 | (-static_cast<int>(r.v[3] == v) & 3);
       const int* f = kTetFace[slot];  // outward: its normal points away from slot
       const Vec3 &p0 = pos_[r.v[f[0]]], &p1 = pos_[r.v[f[1]]], &p2 = pos_[r.v[f[2]]];
-      const int l = lanes;
       b.f0x[l] = p0.x, b.f0y[l] = p0.y, b.f0z[l] = p0.z;
       b.f1x[l] = p1.x, b.f1y[l] = p1.y, b.f1z[l] = p1.z;
       b.f2x[l] = p2.x, b.f2y[l] = p2.y, b.f2z[l] = p2.z;
-      b.side[l] = first ? 0 : 1;
-      b.steady[l] = r.allowance == 0 ? 1 : 0;
+      b.side[l] = side;
+      b.steady[l] = static_cast<double>(r.allowance == 0);
       b.material[l] = r.material;
       b.stretch_now[l] = r.stretch;
+      if (!first) b.skip[l] = static_cast<double>(!real);
     }
-    // Lanes past the last tet (skipped): a harmless copy of the first.
-    for (int l = lanes; l < kLanes; ++l) {
-      copy_lane(b, 0, l);
-      if (!first) b.skip[l] = 1;
-    }
-    if (!first)
-      for (int l = 0; l < lanes; ++l) b.skip[l] = 0;
     kernels_.fixed_faces(b);
     block_built_[k] = 1;
-  }
-
-  static void copy_lane(TetBlock& b, int from, int to) {
-    for (double* field : {b.f0x, b.f0y, b.f0z, b.f1x, b.f1y, b.f1z, b.f2x, b.f2y, b.f2z, b.side,
-                          b.steady, b.stretch_now})
-      field[to] = field[from];
-    b.material[to] = b.material[from];
   }
 
   // Geometry of candidate position k for collapse (a, b), with q the sum of their
@@ -1193,8 +1204,13 @@ class Engine {
     // The paper's valence of the new node, |v*(i)| + |v*(j)| - (|f*(i,j)| + 2), with
     // f*(i,j) the triangles (i, j, x) around the edge. It is the exact valence when
     // the link condition holds and an overestimate otherwise, so never too low.
-    if (valence_[a] + valence_[b] - triangle_count(ring_tets_, a, b) - 2 > params_.max_valence)
-      return Reject::kValence;
+    // With an interior end, every face (a, b, x) is shared by two ring tets: the x's
+    // form closed cycles, as many as the ring's tets.
+    const uint32_t triangles = ka == FeatureKind::kInterior || kb == FeatureKind::kInterior
+                                   ? static_cast<uint32_t>(ring_tets_.size())
+                                   : triangle_count(ring_tets_, a, b);
+    assert(triangles == triangle_count(ring_tets_, a, b));
+    if (valence_[a] + valence_[b] - triangles - 2 > params_.max_valence) return Reject::kValence;
     const double old_mean = gather_second_end(a, b);
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
