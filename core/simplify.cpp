@@ -1125,6 +1125,7 @@ class Engine {
       b.steady[l] = static_cast<double>(r.allowance == 0);
       b.material[l] = r.material;
       b.stretch_now[l] = r.stretch;
+      b.limit[l] = params_.sizing.uniform;  // the size field's, per candidate: check_position()
       if (!first) b.skip[l] = static_cast<double>(!real);
     }
     kernels_.fixed_faces(b);
@@ -1150,11 +1151,11 @@ class Engine {
     for (size_t k_block = 0; k_block < moving_blocks_; ++k_block) {
       if (!block_built_[k_block]) build_block(k_block);
       TetBlock& b = moving_[k_block];
-      for (int l = 0; l < kLanes; ++l) {
-        b.limit[l] = uniform_sizing_ ? params_.sizing.uniform
-                                     : size_limit({b.f0x[l], b.f0y[l], b.f0z[l]},
-                                                  {b.f1x[l], b.f1y[l], b.f1z[l]},
-                                                  {b.f2x[l], b.f2y[l], b.f2z[l]}, k, b.material[l]);
+      if (!uniform_sizing_) {  // else set by build_block()
+        for (int l = 0; l < kLanes; ++l) {
+          b.limit[l] = size_limit({b.f0x[l], b.f0y[l], b.f0z[l]}, {b.f1x[l], b.f1y[l], b.f1z[l]},
+                                  {b.f2x[l], b.f2y[l], b.f2z[l]}, k, b.material[l]);
+        }
       }
       kernels_.first_pass(b, k.x, k.y, k.z, unmoved, floor2);
       for (int l = 0; l < kLanes; ++l)
@@ -1281,6 +1282,19 @@ class Engine {
       case Reject::kNone:
         break;
     }
+  }
+
+  // Starts loading what evaluating edge (a, b) reads, when its stars are cold (a stale
+  // queue entry, far from the last collapse): the records of both stars, then the
+  // corners' positions, each level requested at once rather than one by one.
+  void load_edge(uint32_t a, uint32_t b) {
+    for (uint32_t v : {a, b}) {
+      __builtin_prefetch(&quadric_[v]);
+      for (uint32_t t : star_[v]) __builtin_prefetch(&tet_[t]);
+    }
+    for (uint32_t v : {a, b})
+      for (uint32_t t : star_[v])
+        for (uint32_t w : tet_[t].v) __builtin_prefetch(&pos_[w]);
   }
 
   // Evaluates collapse (a, b), counted in *evaluations, and queues it if valid.
@@ -1486,8 +1500,10 @@ class Engine {
       if (!vertex_alive_[q.kept] || !vertex_alive_[q.removed]) continue;
       if (q.version_kept != version_[q.kept] || q.version_removed != version_[q.removed]) {
         // Stale: evaluate again now unless a sweep already did.
-        if (dirty_[q.kept] || dirty_[q.removed])
+        if (dirty_[q.kept] || dirty_[q.removed]) {
+          load_edge(q.kept, q.removed);
           evaluate_and_push(q.kept, q.removed, &evaluations_.stale);
+        }
         continue;
       }
       // Current: neither end moved since the evaluation.
