@@ -1238,8 +1238,11 @@ class Engine {
       positions[2] = pos_[b];
       options = 3;
     }
-    Quadric quadric = quadric_[a];
-    quadric.add(quadric_[b]);
+    // An interior node's quadric is zero (it lies on no boundary or interface triangle,
+    // and only ever absorbs another interior node's): not read, it adds nothing.
+    Quadric quadric;
+    if (ka != FeatureKind::kInterior) quadric = quadric_[a];
+    if (kb != FeatureKind::kInterior) quadric.add(quadric_[b]);
     Reject first = Reject::kNone;
     for (int c = 0; c < options; ++c) {
       double priority = 0;
