@@ -24,7 +24,8 @@ constexpr const char* kViewUsage =
     "                         thresholds, simplify, scrub, cut, hide, color, screenshot, save,\n"
     "                         bench-scrub, quit); a bad line is an error naming SCRIPT:LINE\n"
     "  --size WxH             window size (default 1280x800)\n"
-    "  --hide M,M,...         materials hidden at start (e.g. the motor's air: --hide 1)\n"
+    "  --hide M,M,...         materials hidden at start, by id or by the file's name for them\n"
+    "                         (e.g. the motor's air: --hide 1; a Gmsh volume: --hide shield)\n"
     "  --interactive-scale F  resolution of the 3D view while it moves, in (0, 1] (0.5)\n"
     "Mouse: left drag orbits, right/middle or shift-left drag pans, the wheel zooms;\n"
     "keys F (fit), 0 (iso), 1/2/3 (x/y/z views).\n";
@@ -78,13 +79,19 @@ int cmd_view(const Args& args) {
       size_t begin = 0;
       while (begin <= value.size()) {
         const size_t comma = std::min(value.find(',', begin), value.size());
-        const auto m = parse_integer(value.substr(begin, comma - begin));
+        const std::string item = value.substr(begin, comma - begin);
+        begin = comma + 1;
+        if (is_material_name(item)) {
+          options.hidden_names.push_back(item);
+          continue;
+        }
+        const auto m = parse_integer(item);
         if (!m || *m < 0 || *m > INT32_MAX) {
-          std::fprintf(stderr, "tetlod view: --hide needs material ids, got '%s'\n", value.c_str());
+          std::fprintf(stderr, "tetlod view: --hide needs material ids or names, got '%s'\n",
+                       value.c_str());
           return kExitUsage;
         }
         hidden.push_back(static_cast<int32_t>(*m));
-        begin = comma + 1;
       }
     } else if (a == "--interactive-scale") {
       if (!parse_option_value(args, &i, "--interactive-scale", &value)) return kExitUsage;

@@ -291,7 +291,8 @@ struct FrameRecord {
 
 class Viewer {
  public:
-  explicit Viewer(const ViewerOptions& options) : options_(options) {
+  explicit Viewer(const ViewerOptions& options)
+      : options_(options), hidden_names_(options.hidden_names) {
     view_.hidden_materials = options.hidden_materials;
     std::sort(view_.hidden_materials.begin(), view_.hidden_materials.end());
   }
@@ -308,6 +309,7 @@ class Viewer {
   void start_simplify();
   void poll_job();
   void swap_in(std::unique_ptr<Scene> scene, bool is_load);
+  void hide_by_name();
   void execute(const ui::Command& command);
   void handle_camera_input();
   void apply_view_changes();
@@ -339,6 +341,8 @@ class Viewer {
   void fail_script(int line, const std::string& message);
 
   ViewerOptions options_;
+  std::vector<std::string> hidden_names_;  // --hide by name, until the first mesh is read
+  std::string hide_note_;                  // the names it lacked, for the status line
   std::unique_ptr<render::WindowContext> window_;
   std::unique_ptr<render::Renderer> renderer_;
   bool imgui_glfw_ = false, imgui_gl_ = false;
@@ -787,6 +791,8 @@ void Viewer::poll_job() {
   if (job->is_load) {
     std::snprintf(text, sizeof(text), " in %.2f s", total);
     status_.message = "loaded " + job->path + text;
+    if (!hide_note_.empty()) status_.message += "; " + hide_note_;
+    hide_note_.clear();
     for (const std::string& note : job->notes) {
       status_.message += "; note: " + note;
       std::fprintf(stderr, "tetlod view: %s: note: %s\n", job->path.c_str(), note.c_str());
@@ -798,6 +804,24 @@ void Viewer::poll_job() {
                   run_seconds(*scene_->result));
     status_.message = text;
   }
+}
+
+// --hide by name: looked up in the first mesh opened, whose names they are. A name it
+// lacks is said on stderr (with the names it has) and in the status line.
+void Viewer::hide_by_name() {
+  static const std::vector<MaterialName> kNoNames;
+  const auto& names = scene_->material_names ? *scene_->material_names : kNoNames;
+  for (const std::string& name : hidden_names_) {
+    int32_t m = 0;
+    if (material_by_name(name, names, "view", "--hide", &m)) {
+      auto& hidden = view_.hidden_materials;
+      if (!std::binary_search(hidden.begin(), hidden.end(), m))
+        hidden.insert(std::lower_bound(hidden.begin(), hidden.end(), m), m);
+    } else {
+      hide_note_ += (hide_note_.empty() ? "--hide: no material named '" : ", '") + name + "'";
+    }
+  }
+  hidden_names_.clear();
 }
 
 void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
@@ -814,6 +838,7 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   if (is_load) {
     // Keep the hidden materials that this mesh has; centre the cut; frame the model.
     auto& hidden = view_.hidden_materials;
+    hide_by_name();
     hidden.erase(std::remove_if(hidden.begin(), hidden.end(),
                                 [&](int32_t m) {
                                   return !std::binary_search(scene_->materials.begin(),

@@ -20,6 +20,8 @@ struct ViewerOptions {
   double interactive_scale = 0.5;         // resolution of the 3D view while it changes (1: full)
   bool remember_recent = true;            // keep the recent-files list in ~/.config/tetlod
   std::vector<int32_t> hidden_materials;  // hidden at start
+  // Hidden at start by the name the first mesh opened gives them (looked up once it is read).
+  std::vector<std::string> hidden_names;
 };
 
 // Runs the window until it is closed (or the script quits). Returns the exit code:

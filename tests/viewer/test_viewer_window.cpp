@@ -618,6 +618,42 @@ TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
                                  << " orange pixels)";
 }
 
+// --hide takes the input file's names for its materials, as render and report do:
+// Gmsh's coax with its shield and outer dielectric hidden by name (the second in
+// another case) draws the same picture as by id, and one hidden by a name the mesh
+// lacks is said on stderr and in the status line, the other names still applying.
+TEST(ViewerWindow, HideTakesMaterialNames) {
+  const fs::path dir = fresh_output_dir("viewer_hide_names");
+  const std::string mesh = "'" + kSource + "/tests/data/gmsh/coax_part3.msh' --size 400x300 ";
+  for (const char* name : {"by_id", "by_name", "shown", "unknown"})
+    std::ofstream(dir / (std::string(name) + ".script"))
+        << "screenshot " << name << ".png width=240 height=240\nquit\n";
+  const ViewerRun by_id = run_viewer(dir, mesh + "--hide 4,3 --script by_id.script");
+  const ViewerRun by_name =
+      run_viewer(dir, mesh + "--hide shield,Dielectric_Outer --script by_name.script");
+  const ViewerRun shown = run_viewer(dir, mesh + "--hide 4 --script shown.script");
+  const ViewerRun unknown = run_viewer(dir, mesh + "--hide copper,shield --script unknown.script");
+  for (const ViewerRun* run : {&by_id, &by_name, &shown, &unknown})
+    ASSERT_EQ(run->exit_code, 0) << run->output;
+  const render::Image id_image = load_png(dir / "by_id.png");
+  const render::ImageDifference same =
+      render::compare_images(id_image, load_png(dir / "by_name.png"), 0, nullptr);
+  EXPECT_EQ(same.differing_pixels, 0u);
+  // Only the shield hidden, the outer dielectric drawn: another picture, the same as
+  // the one with an unknown name beside the shield.
+  const render::Image shown_image = load_png(dir / "shown.png");
+  EXPECT_GT(render::compare_images(id_image, shown_image, 8, nullptr).differing_pixels, 1000u);
+  EXPECT_EQ(render::compare_images(shown_image, load_png(dir / "unknown.png"), 0, nullptr)
+                .differing_pixels,
+            0u);
+  EXPECT_NE(
+      unknown.output.find("--hide: the mesh has no material named 'copper' (its names: 1 "
+                          "inner_conductor, 2 dielectric_inner, 3 dielectric_outer, 4 shield)"),
+      std::string::npos)
+      << unknown.output;
+  EXPECT_EQ(by_name.output.find("no material named"), std::string::npos) << by_name.output;
+}
+
 // A file of no known extension: the message lists what the viewer opens, collapse
 // histories (.tlh) included.
 TEST(ViewerWindow, UnknownExtensionNamesHistoriesToo) {
