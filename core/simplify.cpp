@@ -343,7 +343,6 @@ class Engine {
       tet_[t].v = input.tets[t];
       tet_[t].material = input.materials[t];
     }
-    vertex_alive_.assign(pos_.size(), 1);
     star_.resize(pos_.size());
     mark_.assign(pos_.size(), 0);
     reorder_for_locality();  // builds the stars
@@ -616,7 +615,6 @@ class Engine {
 
       const uint32_t mid = static_cast<uint32_t>(pos_.size());
       pos_.push_back(m);
-      vertex_alive_.push_back(1);
       star_.emplace_back();
       mark_.push_back(0);
       input_valence_.push_back(0);
@@ -675,19 +673,19 @@ class Engine {
       }
     }
     Classification c = classify_vertices(mesh, surface, options, patch.empty() ? nullptr : &patch);
-    kind_ = std::move(c.kind);
+    state_.assign(pos_.size(), VertexState{});
+    for (uint32_t v = 0; v < pos_.size(); ++v) state_[v].kind = c.kind[v];
     feature_neighbors_.assign(pos_.size(), {});
     for (const auto& e : c.feature_edges) {
       feature_neighbors_[e[0]].push_back(e[1]);
       feature_neighbors_[e[1]].push_back(e[0]);
     }
-    outer_.assign(pos_.size(), 0);
     ring_mark_.assign(pos_.size(), 0);
     ring_slot_.assign(pos_.size(), 0);
     quadric_.assign(pos_.size(), Quadric());
     for (const SurfaceTriangle& s : surface) {
       if (s.outer == kOutsideMaterial)
-        for (uint32_t v : s.v) outer_[v] = 1;
+        for (uint32_t v : s.v) state_[v].outer = 1;
       const Vec3& p = pos_[s.v[0]];
       Vec3 n = cross(pos_[s.v[1]] - p, pos_[s.v[2]] - p);
       const double len = length(n);
@@ -925,7 +923,7 @@ class Engine {
     // edges on the boundary are the surface complex's. It stays as the paper's rule
     // and a guard; no test can isolate it for the same reason.
     if (!link_condition(
-            i, j, [](uint32_t) { return true; }, outer_[i], outer_[j]))
+            i, j, [](uint32_t) { return true; }, state_[i].outer, state_[j].outer))
       return false;
     // The materials of the ring, one entry per ring tet; and whether each end has
     // tets of a single material (then which).
@@ -956,8 +954,8 @@ class Engine {
       while (k < edge_materials_.size() && edge_materials_[k] == m) ++k, ++removed;
       if (!one_material) {
         auto in_m = [&](uint32_t t) { return tet_[t].material == m; };
-        if (!link_condition(i, j, in_m, outer_[i] || touches_other(0, m),
-                            outer_[j] || touches_other(1, m)))
+        if (!link_condition(i, j, in_m, state_[i].outer || touches_other(0, m),
+                            state_[j].outer || touches_other(1, m)))
           return false;
       }
       // No region may vanish: keep at least one tet of every material.
@@ -1187,7 +1185,7 @@ class Engine {
 
   // Full evaluation of collapsing edge (a, b). Returns kNone and fills `out` if valid.
   Reject evaluate(uint32_t a, uint32_t b, Collapse* out) {
-    const FeatureKind ka = kind_[a], kb = kind_[b];
+    const FeatureKind ka = state_[a].kind, kb = state_[b].kind;
     const bool a_on = ka != FeatureKind::kInterior, b_on = kb != FeatureKind::kInterior;
     bool surface_edge = false;
     if (a_on && b_on && ka == FeatureKind::kCorner && kb == FeatureKind::kCorner)
@@ -1211,7 +1209,8 @@ class Engine {
                                    ? static_cast<uint32_t>(ring_tets_.size())
                                    : triangle_count(ring_tets_, a, b);
     assert(triangles == triangle_count(ring_tets_, a, b));
-    if (valence_[a] + valence_[b] - triangles - 2 > params_.max_valence) return Reject::kValence;
+    if (state_[a].valence + state_[b].valence - triangles - 2 > params_.max_valence)
+      return Reject::kValence;
     const double old_mean = gather_second_end(a, b);
 
     // Candidates: the more constrained end if the dimensions differ, else the midpoint
@@ -1256,8 +1255,8 @@ class Engine {
         out->removed = out->kept == a ? b : a;
         out->position = positions[c];
         out->midpoint = unmoved[c] == -1;
-        out->version_kept = version_[out->kept];
-        out->version_removed = version_[out->removed];
+        out->version_kept = state_[out->kept].version;
+        out->version_removed = state_[out->removed].version;
         return Reject::kNone;
       }
       if (first == Reject::kNone) first = r;
@@ -1336,13 +1335,13 @@ class Engine {
       for (uint32_t x : q) {
         if (x == i || x == j) continue;  // loaded by topology_ok()
         __builtin_prefetch(&star_[x]);
-        __builtin_prefetch(&valence_[x]);
+        __builtin_prefetch(&state_[x]);
       }
     }
     // Valences: i gets the neighbours of both ends (the paper's formula, exact under the
     // link condition); each vertex x of a triangle (i, j, x) loses one (j).
     const uint32_t triangles = triangle_count(retired_tets_, i, j);
-    valence_[i] = valence_[i] + valence_[j] - triangles - 2;
+    state_[i].valence = state_[i].valence + state_[j].valence - triangles - 2;
     const uint32_t around_edge = stamp_;  // triangle_count() marked the x's
     // Then what those point to: the ring vertices' stars, and the neighbours of the
     // ring's faces (i, x, y) and (j, x, y), glued below.
@@ -1375,7 +1374,7 @@ class Engine {
     for (uint32_t t : retired_tets_) {
       const Tet& q = tet_[t].v;
       for (uint32_t x : q)
-        if (mark_[x] == around_edge) mark_[x] = 0, --valence_[x];
+        if (mark_[x] == around_edge) mark_[x] = 0, --state_[x].valence;
       history->removed_tets.push_back(t);
       tet_[t].alive = 0;
       --material_tets_[material_index(tet_[t].material)];
@@ -1413,9 +1412,9 @@ class Engine {
     for (uint32_t t : rewired_tets_) tet_[t].stretch = shape(t).stretch;
     star_[j].clear();
     star_[j].shrink_to_fit();
-    vertex_alive_[j] = 0;
+    state_[j].alive = 0;
     quadric_[i].add(quadric_[j]);
-    outer_[i] |= outer_[j];
+    state_[i].outer |= state_[j].outer;
     // Curves: j's feature neighbours become i's.
     for (uint32_t x : feature_neighbors_[j]) {
       if (x == i) continue;
@@ -1440,9 +1439,9 @@ class Engine {
     neighbors(k, &ring_);
     ring_.push_back(k);
     for (uint32_t v : ring_) {
-      ++version_[v];
-      if (!dirty_[v]) {
-        dirty_[v] = 1;
+      ++state_[v].version;
+      if (!state_[v].dirty) {
+        state_[v].dirty = 1;
         dirty_list_.push_back(v);
       }
     }
@@ -1457,25 +1456,22 @@ class Engine {
     list.swap(dirty_list_);
     std::sort(list.begin(), list.end());
     for (uint32_t v : list) {
-      if (!vertex_alive_[v]) continue;
+      if (!state_[v].alive) continue;
       neighbors(v, &around_);
       std::sort(around_.begin(), around_.end());
       for (uint32_t w : around_) {
-        if (w < v && dirty_[w]) continue;  // done from w's side
+        if (w < v && state_[w].dirty) continue;  // done from w's side
         evaluate_and_push(v, w, &evaluations_.sweep);
       }
     }
-    for (uint32_t v : list) dirty_[v] = 0;
+    for (uint32_t v : list) state_[v].dirty = 0;
   }
 
   void simplify(SimplifyResult* result) {
-    version_.assign(pos_.size(), 0);
-    dirty_.assign(pos_.size(), 0);
     dirty_list_.clear();
     alive_tets_ = tet_.size();
     const size_t initial_tets = alive_tets_;
-    valence_.resize(pos_.size());
-    for (uint32_t v = 0; v < pos_.size(); ++v) valence_[v] = valence(v);
+    for (uint32_t v = 0; v < pos_.size(); ++v) state_[v].valence = valence(v);
     std::vector<uint32_t> nb;
     for (uint32_t v = 0; v < pos_.size(); ++v) {
       neighbors(v, &nb);
@@ -1500,10 +1496,11 @@ class Engine {
       std::pop_heap(heap_.begin(), heap_.end(), CollapseLess());
       const QueuedCollapse q = heap_.back();
       heap_.pop_back();
-      if (!vertex_alive_[q.kept] || !vertex_alive_[q.removed]) continue;
-      if (q.version_kept != version_[q.kept] || q.version_removed != version_[q.removed]) {
+      if (!state_[q.kept].alive || !state_[q.removed].alive) continue;
+      if (q.version_kept != state_[q.kept].version ||
+          q.version_removed != state_[q.removed].version) {
         // Stale: evaluate again now unless a sweep already did.
-        if (dirty_[q.kept] || dirty_[q.removed]) {
+        if (state_[q.kept].dirty || state_[q.removed].dirty) {
           load_edge(q.kept, q.removed);
           evaluate_and_push(q.kept, q.removed, &evaluations_.stale);
         }
@@ -1557,7 +1554,7 @@ class Engine {
         ++v->created;
     }
     for (uint32_t x = 0; x < pos_.size(); ++x) {
-      if (!vertex_alive_[x] || star_[x].empty()) continue;
+      if (!state_[x].alive || star_[x].empty()) continue;
       const uint32_t n = valence(x);
       if (n > params_.max_valence) {
         ++v->above_valence;
@@ -1580,18 +1577,26 @@ class Engine {
   std::vector<Vec3> pos_;
   std::vector<TetRecord> tet_;
   std::vector<std::vector<uint32_t>> star_;  // sorted tet ids per vertex
-  std::vector<uint8_t> vertex_alive_;
   std::vector<uint32_t> input_valence_;
   std::vector<int32_t> material_ids_;  // sorted
   std::vector<size_t> material_tets_;  // alive tets per material, by index in material_ids_
 
-  std::vector<FeatureKind> kind_;
+  // What the queue and the evaluations read of each vertex, in one record (classify()
+  // on): both ends of every popped entry and every evaluation are read at random, so
+  // one cache line instead of one per array.
+  struct VertexState {
+    uint32_t version = 0;  // bumped whenever its star changes: its queued entries go stale
+    uint32_t valence = 0;  // |v*(v)|, kept up to date by apply()
+    FeatureKind kind = FeatureKind::kInterior;
+    uint8_t alive = 1;
+    uint8_t dirty = 0;  // its star changed since the last sweep
+    uint8_t outer = 0;  // on the boundary of the whole mesh
+  };
+  std::vector<VertexState> state_;
   std::vector<std::vector<uint32_t>> feature_neighbors_;
   std::vector<Quadric> quadric_;
 
   std::vector<QueuedCollapse> heap_;
-  std::vector<uint32_t> version_;
-  std::vector<uint8_t> dirty_;
   std::vector<uint32_t> dirty_list_;
   RejectionCounts rejections_;
   EvaluationCounts evaluations_;
@@ -1603,7 +1608,6 @@ class Engine {
   uint32_t stamp_ = 0;
   std::vector<uint32_t> ring_mark_;
   uint32_t ring_stamp_ = 0;
-  std::vector<uint8_t> outer_;  // on the boundary of the whole mesh
   std::vector<int32_t> edge_materials_;
   std::vector<uint32_t> ring_, around_, ring_others_;
   // The tets of t*(a) U t*(b) that survive the collapse (see gather_first_end()).
@@ -1614,7 +1618,6 @@ class Engine {
   double first_sum_ = 0;               // stretches of the star of first_end_
   std::vector<uint32_t> second_tets_;  // the tets of b off the ring
   std::vector<uint32_t> ring_tets_;    // the tets around the edge evaluated
-  std::vector<uint32_t> valence_;      // per vertex, kept up to date by apply()
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
   const VectorKernels& kernels_ = vector_kernels();
