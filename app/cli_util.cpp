@@ -256,6 +256,28 @@ bool is_material_name(const std::string& text) {
   return !(std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.');
 }
 
+// "1,copper,3": ids into `ids`, names (items that do not start like a number) into
+// `names`. False for an empty item or a number that is not an id.
+bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
+                     std::vector<std::string>* names) {
+  ids->clear();
+  names->clear();
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    if (is_material_name(item)) {
+      names->push_back(item);
+    } else {
+      const auto n = parse_integer(item);
+      if (!n || *n < 0 || *n > 0x7fffffff) return false;
+      ids->push_back(static_cast<int32_t>(*n));
+    }
+    start = comma + 1;
+  }
+  return true;
+}
+
 bool material_by_name(const std::string& name, const std::vector<MaterialName>& names,
                       const char* command, const std::string& option, int32_t* id) {
   const MaterialName* found = nullptr;

@@ -133,6 +133,10 @@ bool material_by_name(const std::string& name, const std::vector<MaterialName>& 
 // Whether `text`, where an option takes a material, is a name for material_by_name():
 // not empty and not starting like a number (a digit, a sign or '.'), which is an id.
 bool is_material_name(const std::string& text);
+// "1,copper,3", where an option takes materials: ids into `ids`, names into `names`
+// (both cleared first). False for an empty item or a number that is not an id.
+bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
+                     std::vector<std::string>* names);
 
 // Escapes a string for a JSON string literal (without the quotes).
 std::string json_escape(const std::string& text);

@@ -76,23 +76,15 @@ int cmd_view(const Args& args) {
       options.height = static_cast<int>(*h);
     } else if (a == "--hide") {
       if (!parse_option_value(args, &i, "--hide", &value)) return kExitUsage;
-      size_t begin = 0;
-      while (begin <= value.size()) {
-        const size_t comma = std::min(value.find(',', begin), value.size());
-        const std::string item = value.substr(begin, comma - begin);
-        begin = comma + 1;
-        if (is_material_name(item)) {
-          options.hidden_names.push_back(item);
-          continue;
-        }
-        const auto m = parse_integer(item);
-        if (!m || *m < 0 || *m > INT32_MAX) {
-          std::fprintf(stderr, "tetlod view: --hide needs material ids or names, got '%s'\n",
-                       value.c_str());
-          return kExitUsage;
-        }
-        hidden.push_back(static_cast<int32_t>(*m));
+      std::vector<int32_t> ids;
+      std::vector<std::string> names;
+      if (!parse_materials(value, &ids, &names)) {
+        std::fprintf(stderr, "tetlod view: --hide needs material ids or names, got '%s'\n",
+                     value.c_str());
+        return kExitUsage;
       }
+      hidden.insert(hidden.end(), ids.begin(), ids.end());
+      options.hidden_names.insert(options.hidden_names.end(), names.begin(), names.end());
     } else if (a == "--interactive-scale") {
       if (!parse_option_value(args, &i, "--interactive-scale", &value)) return kExitUsage;
       const auto f = parse_double(value);

@@ -42,28 +42,6 @@ std::optional<std::vector<double>> parse_doubles(const std::string& text) {
   return values;
 }
 
-// "1,copper,3": ids into `ids`, names (items that do not start like a number) into
-// `names`. False for an empty item or a number that is not an id.
-bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
-                     std::vector<std::string>* names) {
-  ids->clear();
-  names->clear();
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
-    if (is_material_name(item)) {
-      names->push_back(item);
-    } else {
-      const auto n = parse_integer(item);
-      if (!n || *n < 0 || *n > 0x7fffffff) return false;
-      ids->push_back(static_cast<int32_t>(*n));
-    }
-    start = comma + 1;
-  }
-  return true;
-}
-
 }  // namespace
 
 OptionResult parse_render_option(const Args& args, size_t* i, const char* command,
