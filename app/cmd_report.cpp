@@ -367,6 +367,25 @@ int cmd_report(const Args& args) {
     std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
     return kExitBadInput;
   }
+  // Pictures of an earlier, longer report in the same directory (levelN.png and
+  // levelN_histogram.png past this report's last level) would read as part of this
+  // one: removed. Nothing else in the directory is touched.
+  std::vector<std::filesystem::path> stale;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    size_t digits = 5;  // after "level"
+    while (digits < name.size() && name[digits] >= '0' && name[digits] <= '9') ++digits;
+    const std::string tail = name.substr(std::min(digits, name.size()));
+    if (name.compare(0, 5, "level") != 0 || digits == 5 || digits > 12 ||
+        (tail != ".png" && tail != "_histogram.png") || !entry.is_regular_file(ec))
+      continue;
+    if (std::stoull(name.substr(5, digits - 5)) < meshes.size()) continue;
+    stale.push_back(entry.path());
+  }
+  size_t removed = 0;
+  for (const auto& p : stale) removed += std::filesystem::remove(p, ec);
+  if (removed > 0)
+    std::printf("removed %zu picture(s) of an earlier report with more levels\n", removed);
   std::printf("%s: %zu level(s)\n", path.c_str(), meshes.size());
   return kExitOk;
 }

@@ -2,10 +2,12 @@
 // errors, and failures (unreadable input, no GL, unwritable output) leave no file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "app/cli_runner.h"
 #include "core/io/mesh_io.h"
@@ -361,6 +363,38 @@ TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
   EXPECT_EQ(png_size(dir + "/level0.png"), std::make_pair(96, 96));
   EXPECT_EQ(png_size(dir + "/level3_histogram.png"), std::make_pair(480, 260));
   EXPECT_EQ(html.rfind("</html>"), html.size() - 8);
+}
+
+// A shorter report into the directory of a longer one removes the longer one's
+// extra pictures (they would read as levels of this report) and nothing else.
+TEST(CliReport, RemovesThePicturesOfALongerEarlierReport) {
+  const std::string dir = out_dir() + "/report_shorter";
+  fs::remove_all(dir);
+  CommandResult r = run("report " + asset("box2.mesh") +
+                        " --simplify --size 10 --no-subdivide --levels 100,60 --width 32 "
+                        "--height 32 -o " +
+                        dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(dir + "/level3_histogram.png"));
+  for (const char* keep : {"level12.txt", "level4.png.bak", "levelx.png", "notes.png"})
+    std::ofstream(dir + "/" + keep) << "user's file\n";
+  r = run("report " + asset("box2.mesh") + " --width 32 --height 32 -o " + dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("removed 6 picture(s) of an earlier report with more levels"),
+            std::string::npos)
+      << r.output;
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"level0.png", "level0_histogram.png", "level12.txt",
+                                      "level4.png.bak", "levelx.png", "notes.png", "report.html"}));
+  // Written again: the same report leaves every file in place and says nothing.
+  r = run("report " + asset("box2.mesh") + " --width 32 --height 32 -o " + dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("removed"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir + "/level0_histogram.png"));
 }
 
 // A report's files are written together or not at all: here report.html cannot
