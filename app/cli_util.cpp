@@ -278,8 +278,8 @@ bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
   return true;
 }
 
-bool material_by_name(const std::string& name, const std::vector<MaterialName>& names,
-                      const char* command, const std::string& option, int32_t* id) {
+bool find_material(const std::string& name, const std::vector<MaterialName>& names, int32_t* id,
+                   std::string* why) {
   const MaterialName* found = nullptr;
   int folded = 0;
   for (const MaterialName& m : names) {
@@ -303,12 +303,20 @@ bool material_by_name(const std::string& name, const std::vector<MaterialName>& 
   std::string list;
   for (const MaterialName& m : names)
     list += (list.empty() ? "" : ", ") + std::to_string(m.material) + " " + m.name;
-  const std::string why =
-      list.empty()
-          ? std::string("its materials have no names: give their numbers")
-          : (folded > 1 ? "several names differ from it only in case: " : "its names: ") + list;
-  std::fprintf(stderr, "tetlod %s: %s: the mesh has no material named '%s' (%s)\n", command,
-               option.c_str(), name.c_str(), why.c_str());
+  *why =
+      "the mesh has no material named '" + name + "' (" +
+      (list.empty()
+           ? std::string("its materials have no names: give their numbers")
+           : (folded > 1 ? "several names differ from it only in case: " : "its names: ") + list) +
+      ")";
+  return false;
+}
+
+bool material_by_name(const std::string& name, const std::vector<MaterialName>& names,
+                      const char* command, const std::string& option, int32_t* id) {
+  std::string why;
+  if (find_material(name, names, id, &why)) return true;
+  std::fprintf(stderr, "tetlod %s: %s: %s\n", command, option.c_str(), why.c_str());
   return false;
 }
 

@@ -130,6 +130,9 @@ std::string material_name_of(const std::vector<MaterialName>* names, int32_t m);
 // none, prints "tetlod <command>: <option>: ..." listing the names and returns false.
 bool material_by_name(const std::string& name, const std::vector<MaterialName>& names,
                       const char* command, const std::string& option, int32_t* id);
+// The same lookup without printing: on failure *why says so and lists the names.
+bool find_material(const std::string& name, const std::vector<MaterialName>& names, int32_t* id,
+                   std::string* why);
 // Whether `text`, where an option takes a material, is a name for material_by_name():
 // not empty and not starting like a number (a digit, a sign or '.'), which is an id.
 bool is_material_name(const std::string& text);

@@ -1623,7 +1623,14 @@ Status Viewer::run_action(const ScriptAction& a) {
       break;
     case Kind::kHide:
     case Kind::kShow: {
-      const int32_t m = static_cast<int32_t>(a.count);
+      int32_t m = static_cast<int32_t>(a.count);
+      if (!a.word.empty()) {
+        static const std::vector<MaterialName> kNoNames;
+        std::string why;
+        if (!find_material(a.word, scene_->material_names ? *scene_->material_names : kNoNames, &m,
+                           &why))
+          return Status::error(why);
+      }
       if (!std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
         return Status::error("material " + std::to_string(a.count) + " is not in the mesh");
       auto& hidden = view_.hidden_materials;

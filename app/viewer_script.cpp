@@ -230,7 +230,11 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
   } else if (command == "hide" || command == "show") {
     a->kind = command == "hide" ? Kind::kHide : Kind::kShow;
     if (Status s = p.arg_count(1, 1); !s) return s;
-    if (Status s = p.integer("material", w[1], &a->count); !s) return s;
+    if (is_material_name(w[1])) {
+      a->word = w[1];
+    } else if (Status s = p.integer("material", w[1], &a->count); !s) {
+      return s;
+    }
   } else if (command == "color") {
     a->kind = Kind::kColor;
     if (Status s = p.arg_count(1, 1); !s) return s;

@@ -18,7 +18,8 @@
 //                                    stays)
 //   scrub step=K | elements=N | end  move the LOD to a step / nearest level (waits)
 //   cut x|y|z=VALUE [flip] | cut off
-//   hide M | show M                  material visibility
+//   hide M | show M                  material visibility, by id or by the mesh's name for
+//                                    it (looked up when the line runs)
 //   color stretch|material|field     range MIN MAX          colormap viridis|turbo
 //                                    (field: |E| of the last solve while it matches the
 //                                    displayed level; stretch otherwise)
@@ -101,7 +102,7 @@ struct ScriptAction {
   Kind kind = Kind::kQuit;
   int line = 0;
   std::string path;       // open, screenshot, save, bench-scrub out, report-analysis
-  std::string word;       // color, colormap, view
+  std::string word;       // color, colormap, view; hide, show: a material's name
   long long count = 0;    // step, elements, material, frames, solve: wait (1) or not (0)
   double value = 0;       // cut offset, highlight, range min, field-range percentile
   double value2 = 0;      // range max

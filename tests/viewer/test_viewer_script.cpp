@@ -31,6 +31,18 @@ std::string parse_error(const std::string& text) {
   return s.message();
 }
 
+// hide and show take a material by id or by name (looked up when the line runs).
+TEST(ViewerScript, HideAndShowTakeIdsOrNames) {
+  const auto a = parse_ok("hide shield\nshow 3\nhide Dielectric_Outer\n");
+  ASSERT_EQ(a.size(), 3u);
+  EXPECT_EQ(a[0].kind, Kind::kHide);
+  EXPECT_EQ(a[0].word, "shield");
+  EXPECT_EQ(a[1].kind, Kind::kShow);
+  EXPECT_EQ(a[1].word, "");
+  EXPECT_EQ(a[1].count, 3);
+  EXPECT_EQ(a[2].word, "Dielectric_Outer");
+}
+
 TEST(ViewerScript, ParsesEveryCommand) {
   const auto a = parse_ok(
       "# comment\n"
@@ -261,7 +273,8 @@ TEST(ViewerScript, RejectsBadValues) {
            "cut z=0 flop\n",
            "cut off now\n",
            "hide\n",
-           "hide one\n",
+           "hide 1.5\n",
+           "show shield 2\n",
            "color blue\n",
            "colormap jet\n",
            "range 1 0\n",

@@ -652,6 +652,24 @@ TEST(ViewerWindow, HideTakesMaterialNames) {
       std::string::npos)
       << unknown.output;
   EXPECT_EQ(by_name.output.find("no material named"), std::string::npos) << by_name.output;
+  // A script's hide and show take names too (the same picture once the view is fitted
+  // to what is shown, as --hide fits it); a name the mesh lacks fails at its line.
+  std::ofstream(dir / "script_names.script")
+      << "hide SHIELD\nhide 3\nhide 1\nshow inner_conductor\nview fit\n"
+         "screenshot script_names.png width=240 height=240\nquit\n";
+  std::ofstream(dir / "script_unknown.script") << "hide 4\nhide copper\nquit\n";
+  const ViewerRun script_names = run_viewer(dir, mesh + "--script script_names.script");
+  ASSERT_EQ(script_names.exit_code, 0) << script_names.output;
+  EXPECT_EQ(render::compare_images(id_image, load_png(dir / "script_names.png"), 0, nullptr)
+                .differing_pixels,
+            0u);
+  const ViewerRun script_unknown = run_viewer(dir, mesh + "--script script_unknown.script");
+  EXPECT_EQ(script_unknown.exit_code, 1) << script_unknown.output;
+  EXPECT_NE(script_unknown.output.find(
+                "script_unknown.script:2: the mesh has no material named 'copper' (its names: 1 "
+                "inner_conductor, 2 dielectric_inner, 3 dielectric_outer, 4 shield)"),
+            std::string::npos)
+      << script_unknown.output;
 }
 
 // A file of no known extension: the message lists what the viewer opens, collapse
