@@ -206,10 +206,12 @@ int cmd_simplify(const Args& args) {
   const EvaluationCounts& e = result.evaluations;
   std::printf(
       "evaluations: %llu of every edge at the start, %llu of new nodes' edges, %llu of stale "
-      "queue entries, %llu in %llu sweeps (%llu in all)\n",
+      "queue entries, %llu in %llu sweeps (%llu in all; %llu more not made again, as made "
+      "already on the same mesh)\n",
       static_cast<unsigned long long>(e.initial), static_cast<unsigned long long>(e.new_node),
       static_cast<unsigned long long>(e.stale), static_cast<unsigned long long>(e.sweep),
-      static_cast<unsigned long long>(e.sweeps), static_cast<unsigned long long>(e.total()));
+      static_cast<unsigned long long>(e.sweeps), static_cast<unsigned long long>(e.total()),
+      static_cast<unsigned long long>(e.repeated));
   const ThresholdViolations& v = result.violations;
   std::printf("final mesh%s, breaking a threshold: %s\n", improve ? " (before --improve)" : "",
               describe_violations(v).c_str());

@@ -57,12 +57,13 @@ int main(int argc, char** argv) {
               kernels);
   std::printf(
       "evaluations: %llu at the start, %llu of new nodes' edges, %llu stale, %llu in sweeps "
-      "(%llu in all)\n",
+      "(%llu in all; %llu repeats skipped)\n",
       static_cast<unsigned long long>(evaluations.initial),
       static_cast<unsigned long long>(evaluations.new_node),
       static_cast<unsigned long long>(evaluations.stale),
       static_cast<unsigned long long>(evaluations.sweep),
-      static_cast<unsigned long long>(evaluations.total()));
+      static_cast<unsigned long long>(evaluations.total()),
+      static_cast<unsigned long long>(evaluations.repeated));
   std::printf(
       "median of %d: pipeline %.3f s (subdivide %.3f, classify %.3f, simplify %.3f); "
       "%.0f collapses/s\n",

@@ -354,6 +354,10 @@ class Engine {
       : params_(params), progress_(progress), cancel_(cancel), pos_(input.positions) {
     tolerance2_ = params.tolerance * params.tolerance;
     uniform_sizing_ = !params.sizing.has_local_rules();
+    // For a test: TETLOD_REPEAT_EVALUATIONS (other than 0) makes every repeat again,
+    // which must not change the result (evaluated_as_is()).
+    const char* repeat = std::getenv("TETLOD_REPEAT_EVALUATIONS");
+    skip_repeats_ = repeat == nullptr || *repeat == '\0' || std::string(repeat) == "0";
     tet_.resize(input.tets.size());
     for (uint32_t t = 0; t < tet_.size(); ++t) {
       tet_[t].v = input.tets[t];
@@ -690,6 +694,7 @@ class Engine {
     }
     Classification c = classify_vertices(mesh, surface, options, patch.empty() ? nullptr : &patch);
     state_.assign(pos_.size(), VertexState{});
+    redone_.assign(pos_.size(), Redone{});
     for (uint32_t v = 0; v < pos_.size(); ++v) state_[v].kind = c.kind[v];
     feature_neighbors_.assign(pos_.size(), {});
     for (const auto& e : c.feature_edges) {
@@ -1454,8 +1459,11 @@ class Engine {
     first_end_ = kInvalidIndex;  // the mesh changed: the cached star blocks are gone
     neighbors(k, &ring_);
     ring_.push_back(k);
+    // The versions say which collapse last changed a vertex, and whether it was made
+    // by it (the centre, bit 0); see the stale entries in simplify().
+    const uint32_t stamp = static_cast<uint32_t>(2 * collapses_);
     for (uint32_t v : ring_) {
-      ++state_[v].version;
+      state_[v].version = stamp | (v == k);
       if (!state_[v].dirty) {
         state_[v].dirty = 1;
         dirty_list_.push_back(v);
@@ -1463,6 +1471,23 @@ class Engine {
     }
     ring_.pop_back();
     for (uint32_t w : ring_) evaluate_and_push(k, w, &evaluations_.new_node);
+  }
+
+  // Whether evaluate(a, b) was already called on the mesh as it is now (neither end
+  // changed since). Its result is then known: if valid, its entry is in the queue, or
+  // was popped and refused by topology_ok(), which would refuse it again (it reads the
+  // two stars, unchanged, and how many tets each material has left, which only falls);
+  // so evaluating it again would change nothing but the counts. Two such cases are
+  // recognised: the collapse that last changed both ends made a, so refresh_around()
+  // evaluated (a, b) right after it (the versions say so); or it is the last stale entry
+  // of a evaluated again (redone_). Not (b, a): the result may differ in its last bits
+  // (the sums run in another order) or in the end kept.
+  bool evaluated_as_is(uint32_t a, uint32_t b) const {
+    if (!skip_repeats_) return false;
+    const uint32_t va = state_[a].version, vb = state_[b].version;
+    const Redone& r = redone_[a];
+    return ((va & 1) && vb == va - 1) ||
+           (r.removed == b && r.version_kept == va && r.version_removed == vb);
   }
 
   // Re-evaluates every edge with a dirty end, once.
@@ -1477,6 +1502,10 @@ class Engine {
       std::sort(around_.begin(), around_.end());
       for (uint32_t w : around_) {
         if (w < v && state_[w].dirty) continue;  // done from w's side
+        if (evaluated_as_is(v, w)) {
+          ++evaluations_.repeated;
+          continue;
+        }
         evaluate_and_push(v, w, &evaluations_.sweep);
       }
     }
@@ -1516,10 +1545,16 @@ class Engine {
       if (!state_[q.kept].alive || !state_[q.removed].alive) continue;
       if (q.version_kept != state_[q.kept].version ||
           q.version_removed != state_[q.removed].version) {
-        // Stale: evaluate again now unless a sweep already did.
+        // Stale: evaluate again now, unless a sweep already did or this very evaluation
+        // was already made on the mesh as it is.
+        if (evaluated_as_is(q.kept, q.removed)) {
+          ++evaluations_.repeated;
+          continue;
+        }
         if (state_[q.kept].dirty || state_[q.removed].dirty) {
           load_edge(q.kept, q.removed);
           evaluate_and_push(q.kept, q.removed, &evaluations_.stale);
+          redone_[q.kept] = {q.removed, state_[q.kept].version, state_[q.removed].version};
         }
         continue;
       }
@@ -1602,7 +1637,9 @@ class Engine {
   // on): both ends of every popped entry and every evaluation are read at random, so
   // one cache line instead of one per array.
   struct VertexState {
-    uint32_t version = 0;  // bumped whenever its star changes: its queued entries go stale
+    // Changed whenever its star changes (its queued entries go stale): twice the number
+    // of the collapse that last changed it, plus 1 if that collapse made it.
+    uint32_t version = 0;
     uint32_t valence = 0;  // |v*(v)|, kept up to date by apply()
     FeatureKind kind = FeatureKind::kInterior;
     uint8_t alive = 1;
@@ -1610,6 +1647,15 @@ class Engine {
     uint8_t outer = 0;  // on the boundary of the whole mesh
   };
   std::vector<VertexState> state_;
+  // The last stale entry of each vertex (as `kept`) evaluated again, and at which
+  // versions: another entry of the same edge, popped while neither end changed, would
+  // give the same result again (see simplify()).
+  struct Redone {
+    uint32_t removed = kInvalidIndex;
+    uint32_t version_kept = 0, version_removed = 0;
+  };
+  std::vector<Redone> redone_;
+  bool skip_repeats_ = true;
   std::vector<std::vector<uint32_t>> feature_neighbors_;
   std::vector<Quadric> quadric_;
 

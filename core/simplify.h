@@ -54,6 +54,8 @@ struct EvaluationCounts {
   uint64_t stale = 0;     // queued collapses popped after a neighbouring collapse
   uint64_t sweep = 0;     // the edges of the nodes collapses touched, when the queue ran dry
   uint64_t sweeps = 0;    // how many times the queue ran dry with such nodes left
+  uint64_t repeated = 0;  // not made again (stale entries, sweeps): the same evaluation was
+                          // already made on the mesh as it is, so its result is known
   uint64_t total() const { return initial + new_node + stale + sweep; }
 };
 

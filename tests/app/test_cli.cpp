@@ -605,6 +605,46 @@ TEST(Cli, SimplifyKernelsAgreeBitForBit) {
   }
 }
 
+// A stale queue entry or a sweep skips an evaluation already made on the mesh as it
+// is (its result is known). Making every one of them again (TETLOD_REPEAT_EVALUATIONS)
+// must give the same mesh and history, byte for byte: here with a uniform size, a size
+// field and material sizes, on the motor and the spheres.
+TEST(Cli, SkippedRepeatEvaluationsChangeNothing) {
+  const std::string assets = std::string(TETLOD_SOURCE_DIR) + "/assets/";
+  const char* settings[] = {
+      "motor.mesh --size 8 --tolerance 0.05",
+      "motor.mesh --size 14 --tolerance 0.05 --size-field axis:0,0,0,0,0,1,3,0.3",
+      "motor.mesh --size 20 --tolerance 0.05 --material-size 1=20,2=4,3=10,4=10,5=6,6=10,7=10",
+      "spheres.mesh --size 30 --tolerance 0.05 --size-field radial:0,0,0,2,0.3"};
+  int n = 0;
+  for (const char* flags : settings) {
+    std::string out[2], history[2];
+    for (int repeat = 0; repeat < 2; ++repeat) {
+      const std::string name =
+          out_dir() + "/repeats_" + std::to_string(n) + "_" + std::to_string(repeat);
+      out[repeat] = name + ".mesh";
+      history[repeat] = name + ".tlh";
+      const CommandResult r =
+          run("simplify " + assets + flags + " -o " + out[repeat] + " --history " + history[repeat],
+              repeat ? "TETLOD_REPEAT_EVALUATIONS=1" : "");
+      ASSERT_EQ(r.code, 0) << r.output;
+      const size_t at = r.output.find(" more not made again");
+      ASSERT_NE(at, std::string::npos) << r.output;
+      const size_t from = r.output.rfind(' ', at - 1) + 1;
+      const long long skipped = std::stoll(r.output.substr(from, at - from));
+      if (repeat) {
+        EXPECT_EQ(skipped, 0) << flags;
+      } else {
+        EXPECT_GT(skipped, 0) << flags;
+      }
+    }
+    EXPECT_GT(file_bytes(out[0]).size(), 1000u);
+    EXPECT_TRUE(file_bytes(out[0]) == file_bytes(out[1])) << flags;
+    EXPECT_TRUE(file_bytes(history[0]) == file_bytes(history[1])) << flags;
+    ++n;
+  }
+}
+
 TEST(Cli, SolveSpheresPrintsCapacitanceAndWritesTheField) {
   const std::string spheres = std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh";
   const std::string field = out_dir() + "/spheres_field.vtu";
