@@ -1,0 +1,87 @@
+// libFuzzer target for the simplifier: the first 8 bytes choose the thresholds (size
+// relative to the mesh's bounding box, stretch, valence, tolerance, subdivision, a
+// size field, an element target), the rest is a Medit mesh. Whatever the reader and
+// the validation accept, the pipeline must not crash or hang, and must keep its
+// guarantee: every output tet positively oriented, no threshold broken by anything the
+// run made (violations.created == 0), and the history replaying to the output and back
+// to the subdivided base exactly.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/metrics.h"
+#include "core/simplify.h"
+
+namespace {
+
+void check_mesh(const tetlod::TetMesh& mesh) {
+  if (mesh.materials.size() != mesh.tets.size()) __builtin_trap();
+  for (const tetlod::Tet& t : mesh.tets) {
+    for (uint32_t v : t)
+      if (v >= mesh.vertex_count()) __builtin_trap();
+    if (!(tetlod::signed_volume6(mesh, t) > 0)) __builtin_trap();
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  constexpr size_t kParamBytes = 8;
+  if (size < kParamBytes) return 0;
+  const uint8_t* p = data;
+  const std::string_view text(reinterpret_cast<const char*>(data + kParamBytes),
+                              size - kParamBytes);
+  tetlod::TetMesh mesh;
+  if (!tetlod::read_mesh_from_memory(text, tetlod::MeshFormat::kMedit, "fuzz", &mesh, nullptr)
+           .ok())
+    return 0;
+  if (mesh.tet_count() > 2000) return 0;  // small meshes: many runs a second
+  tetlod::Vec3 low = mesh.positions[0], high = low;
+  for (const tetlod::Vec3& q : mesh.positions) {
+    low = {std::min(low.x, q.x), std::min(low.y, q.y), std::min(low.z, q.z)};
+    high = {std::max(high.x, q.x), std::max(high.y, q.y), std::max(high.z, q.z)};
+  }
+  const double diagonal = tetlod::length(high - low);
+
+  tetlod::SimplifyParams params;
+  // Size from a fifth of the diagonal to twice it; with subdivision at the small end,
+  // the run stays within a few thousand tets for the meshes above.
+  params.sizing.uniform = diagonal * (0.2 + 1.8 * p[0] / 255.0);
+  params.min_stretch = 0.01 + 0.9 * p[1] / 255.0;
+  params.max_valence = 4 + p[2] % 40;
+  params.tolerance = diagonal * std::pow(10.0, -(p[3] % 8));
+  params.subdivide = (p[4] & 1) != 0;
+  if (p[4] & 2) {  // a radial field around the box's centre
+    tetlod::SizingField::Radial r;
+    r.center = (low + high) * 0.5;
+    r.size0 = params.sizing.uniform * (0.25 + p[5] / 255.0);
+    r.growth = (p[5] & 15) / 8.0;
+    params.sizing.radial.push_back(r);
+  }
+  if (p[4] & 4) {  // a smaller size for material 1
+    params.sizing.material_sizes.push_back({1, params.sizing.uniform * 0.5});
+  }
+  params.target_elements = (p[4] & 8) ? p[6] : 0;
+  params.crease_angle_degrees = 10 + p[7] % 170;
+  if (!tetlod::check_params(params).ok()) __builtin_trap();  // chosen valid above
+
+  tetlod::SimplifyResult result;
+  if (!tetlod::simplify(mesh, params, &result).ok()) return 0;  // e.g. too many tets
+  check_mesh(result.base);
+  check_mesh(result.output);
+  if (result.violations.created != 0) __builtin_trap();
+  tetlod::Lod lod(result.base, &result.history);
+  lod.seek(lod.step_count());
+  const tetlod::TetMesh last = lod.extract();
+  if (last.tets != result.output.tets || last.positions != result.output.positions ||
+      last.materials != result.output.materials)
+    __builtin_trap();
+  lod.seek(0);
+  if (lod.tets() != result.base.tets || lod.positions() != result.base.positions)
+    __builtin_trap();
+  return 0;
+}
