@@ -279,6 +279,15 @@ class Improver {
     }
     if (best_index < 0) return false;
     const auto& triangles = all[best_index];
+    // New faces: each triangle, seen from a and from b. With a diagonal it is new if
+    // the diagonal is (below); the one triangle of a 3-2 flip has none, and must not
+    // be a face already: in a mesh whose tets overlap without sharing faces (which
+    // validation cannot see), a tet elsewhere may have it, and would then share it with
+    // both new tets.
+    if (n == 3) {
+      for (uint32_t t : star_[r[0]])
+        if (tet_has(mesh_.tets[t], r[1]) && tet_has(mesh_.tets[t], r[2])) return false;
+    }
     for (const auto& tri : triangles)
       for (int e = 0; e < 3; ++e) {
         const int i = tri[e], j = tri[(e + 1) % 3];

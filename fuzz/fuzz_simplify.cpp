@@ -4,17 +4,24 @@
 // the validation accept, the pipeline must not crash or hang, and must keep its
 // guarantee: every output tet positively oriented, no threshold broken by anything the
 // run made (violations.created == 0), and the history replaying to the output and back
-// to the subdivided base exactly.
+// to the subdivided base exactly. Then `--improve` on the output must keep its own
+// guarantee: positive tets, no more tets or nodes over a threshold than before, the same
+// vertices, and the same boundary and interface triangles.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
+#include "core/adjacency.h"
+#include "core/improve.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/metrics.h"
 #include "core/simplify.h"
+#include "core/surface.h"
 
 namespace {
 
@@ -27,6 +34,23 @@ void check_mesh(const tetlod::TetMesh& mesh) {
   }
 }
 
+// The boundary and interface triangles as sorted vertex triples with their materials,
+// sorted: equal for two meshes with the same surface, whatever their tets.
+std::vector<std::array<int64_t, 5>> surface_of(const tetlod::TetMesh& mesh) {
+  // Also a check of its own: no face shared by three tets, no two tets overlapping.
+  std::vector<uint32_t> neighbors;
+  if (tetlod::build_face_neighbors(mesh, &neighbors).kind != tetlod::FaceProblem::Kind::kNone)
+    __builtin_trap();
+  std::vector<std::array<int64_t, 5>> out;
+  for (const tetlod::SurfaceTriangle& t : tetlod::extract_surface(mesh, neighbors)) {
+    std::array<uint32_t, 3> v = t.v;
+    std::sort(v.begin(), v.end());
+    out.push_back({v[0], v[1], v[2], t.inner, t.outer});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -36,8 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data + kParamBytes),
                               size - kParamBytes);
   tetlod::TetMesh mesh;
-  if (!tetlod::read_mesh_from_memory(text, tetlod::MeshFormat::kMedit, "fuzz", &mesh, nullptr)
-           .ok())
+  if (!tetlod::read_mesh_from_memory(text, tetlod::MeshFormat::kMedit, "fuzz", &mesh, nullptr).ok())
     return 0;
   if (mesh.tet_count() > 2000) return 0;  // small meshes: many runs a second
   tetlod::Vec3 low = mesh.positions[0], high = low;
@@ -81,7 +104,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       last.materials != result.output.materials)
     __builtin_trap();
   lod.seek(0);
-  if (lod.tets() != result.base.tets || lod.positions() != result.base.positions)
+  if (lod.tets() != result.base.tets || lod.positions() != result.base.positions) __builtin_trap();
+
+  tetlod::TetMesh improved = result.output;
+  const tetlod::ImproveResult ir = tetlod::improve_mesh(&improved, params);
+  check_mesh(improved);
+  if (improved.positions.size() != result.output.positions.size()) __builtin_trap();
+  if (ir.breaks_after.below_stretch > ir.breaks_before.below_stretch ||
+      ir.breaks_after.above_size > ir.breaks_before.above_size ||
+      ir.breaks_after.above_valence > ir.breaks_before.above_valence)
     __builtin_trap();
+  if (surface_of(improved) != surface_of(result.output)) __builtin_trap();
   return 0;
 }

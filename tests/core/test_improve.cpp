@@ -117,6 +117,26 @@ TEST(Improve, FlipsThreeTetsAroundAnEdgeIntoTwo) {
   EXPECT_NEAR(r.min_stretch_after, min_stretch(mesh), 1e-15);
 }
 
+// A 3-2 flip makes the triangle of the ring; if a tet elsewhere already has that face,
+// the flip would leave it in three tets (a mesh nothing reads back). In an embedded
+// mesh the triangle cannot be a face elsewhere (the edge pierces it), but an input
+// whose tets overlap without sharing faces passes validation (found by
+// fuzz_simplify): here a fourth tet on the triangle, over the upper apex.
+TEST(Improve, NeverMakesAFaceThatIsAlreadyThere) {
+  TetMesh mesh = make_bipyramid(1.41, true);
+  mesh.positions.push_back({0, 0, 3});  // 5
+  mesh.tets.push_back({0, 1, 2, 5});
+  mesh.materials.push_back(1);
+  test::orient_positively(&mesh);
+  std::vector<uint32_t> neighbors;
+  ASSERT_EQ(build_face_neighbors(mesh, &neighbors).kind, FaceProblem::Kind::kNone);
+  // Without that tet, the flip is made (FlipsThreeTetsAroundAnEdgeIntoTwo).
+  const ImproveResult r = improve_mesh(&mesh, loose());
+  EXPECT_EQ(r.edge_removals, 0u);
+  EXPECT_EQ(build_face_neighbors(mesh, &neighbors).kind, FaceProblem::Kind::kNone);
+  EXPECT_EQ(mesh.tet_count(), 4u);
+}
+
 // Four tets around the axis of a tall octahedron (apexes (0, 0, +-1.5) over the unit
 // square's diagonal corners): removing the axis leaves four tets on one of the
 // square's diagonals, better shaped.
