@@ -4,9 +4,10 @@
 // the validation accept, the pipeline must not crash or hang, and must keep its
 // guarantee: every output tet positively oriented, no threshold broken by anything the
 // run made (violations.created == 0), and the history replaying to the output and back
-// to the subdivided base exactly. Then `--improve` on the output must keep its own
-// guarantee: positive tets, no more tets or nodes over a threshold than before, the same
-// vertices, and the same boundary and interface triangles.
+// to the subdivided base exactly, with deltas that say everything a seek changed.
+// Then `--improve` on the output must keep its own guarantee: positive tets, no more
+// tets or nodes over a threshold than before, the same vertices, and the same boundary
+// and interface triangles.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -105,6 +106,35 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     __builtin_trap();
   lod.seek(0);
   if (lod.tets() != result.base.tets || lod.positions() != result.base.positions) __builtin_trap();
+  // Seeks with a delta, as the renderer makes them: the delta must say every tet that
+  // appeared, vanished, or changed its corners or their positions.
+  uint64_t state = size * 0x9E3779B97F4A7C15ull;
+  for (int k = 0; k < 8; ++k) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const size_t step = (state >> 33) % (lod.step_count() + 1);
+    const std::vector<uint8_t> alive = lod.alive();
+    const std::vector<tetlod::Tet> tets = lod.tets();
+    const std::vector<tetlod::Vec3> positions = lod.positions();
+    tetlod::LodDelta delta;
+    lod.seek(step, &delta);
+    std::vector<uint8_t> expected = alive, reported(alive.size(), 0);
+    for (uint32_t t : delta.vanished) {
+      if (!expected[t]) __builtin_trap();
+      expected[t] = 0;
+    }
+    for (uint32_t t : delta.appeared) {
+      if (expected[t]) __builtin_trap();
+      expected[t] = 1, reported[t] = 1;
+    }
+    for (uint32_t t : delta.changed) reported[t] = 1;
+    if (expected != lod.alive()) __builtin_trap();
+    for (size_t t = 0; t < tets.size(); ++t) {
+      if (!lod.alive()[t] || reported[t]) continue;
+      if (lod.tets()[t] != tets[t]) __builtin_trap();
+      for (uint32_t v : tets[t])
+        if (!(lod.positions()[v] == positions[v])) __builtin_trap();
+    }
+  }
 
   tetlod::TetMesh improved = result.output;
   const tetlod::ImproveResult ir = tetlod::improve_mesh(&improved, params);
