@@ -5,6 +5,8 @@
 // guarantee: every output tet positively oriented, no threshold broken by anything the
 // run made (violations.created == 0), and the history replaying to the output and back
 // to the subdivided base exactly, with deltas that say everything a seek changed.
+// Per material the same number of regions, per material pair the same interface Euler
+// characteristic (tests/core/topology_checks.h), after subdivision and at the end.
 // Then `--improve` on the output must keep its own guarantee: positive tets, no more
 // tets or nodes over a threshold than before, the same vertices, and the same boundary
 // and interface triangles.
@@ -13,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string_view>
 #include <vector>
 
@@ -23,6 +26,7 @@
 #include "core/metrics.h"
 #include "core/simplify.h"
 #include "core/surface.h"
+#include "core/topology_checks.h"  // tests/
 
 namespace {
 
@@ -50,6 +54,16 @@ std::vector<std::array<int64_t, 5>> surface_of(const tetlod::TetMesh& mesh) {
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::map<int32_t, int> regions_per_material(const tetlod::TetMesh& mesh) {
+  int region_count = 0;
+  const std::vector<int> label = tetlod::test::region_labels(mesh, &region_count);
+  std::vector<int32_t> material_of(region_count);
+  for (size_t t = 0; t < mesh.tet_count(); ++t) material_of[label[t]] = mesh.materials[t];
+  std::map<int32_t, int> count;
+  for (int32_t m : material_of) ++count[m];
+  return count;
 }
 
 }  // namespace
@@ -98,6 +112,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   check_mesh(result.base);
   check_mesh(result.output);
   if (result.violations.created != 0) __builtin_trap();
+  if (regions_per_material(result.output) != regions_per_material(result.base) ||
+      tetlod::test::interface_euler(result.output) != tetlod::test::interface_euler(result.base))
+    __builtin_trap();
   tetlod::Lod lod(result.base, &result.history);
   lod.seek(lod.step_count());
   const tetlod::TetMesh last = lod.extract();
