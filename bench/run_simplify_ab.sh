@@ -14,16 +14,8 @@ size=${4:-9.8}
 [ -x build/bench/bench_simplify ] || bash scripts/setup.sh
 cmake --build build --target bench_simplify tetlod >/dev/null
 
-# The old build: a worktree of REV, its bench_simplify only.
-commit=$(git rev-parse --verify "$rev^{commit}")
-old=build/ab/${commit:0:12}
-if [ ! -x "$old/build/bench/bench_simplify" ]; then
-  rm -rf "$old"
-  git worktree prune
-  git worktree add --detach "$old" "$commit" >/dev/null
-  cmake -S "$old" -B "$old/build" -DCMAKE_BUILD_TYPE=Release -DTETLOD_BUILD_TESTS=OFF >/dev/null
-  cmake --build "$old/build" -j"$(nproc)" --target bench_simplify tetlod >/dev/null
-fi
+# The old build: a worktree of REV.
+old=$(bash bench/build_rev.sh "$rev")
 
 mkdir -p build/bench-data
 mesh=build/bench-data/motor_${tets}.mesh
