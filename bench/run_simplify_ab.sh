@@ -3,7 +3,8 @@
 # in alternating runs, so that the load of a shared machine falls on both alike.
 # Prints each pair's simplify-phase medians, the median of their ratios (new / old)
 # and, where `perf` can count them, instructions and branch misses of one run each
-# (these do not depend on the load). Also checks that both give the same output.
+# (these do not depend on the load). Also checks that both give the same output
+# (bench/check_same_output.sh).
 #   bash bench/run_simplify_ab.sh REV [ROUNDS] [TETS] [SIZE]     # defaults 5 200000 9.8
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,16 +23,8 @@ mesh=build/bench-data/motor_${tets}.mesh
 [ -f "$mesh" ] || ./build/app/tetlod generate motor --tets "$tets" -o "$mesh"
 args=("$mesh" --size "$size" --tolerance 0.05 --stretch 0.15 --valence 25)
 
-# The same output, byte for byte (mesh and history).
-out=build/ab/out
-mkdir -p "$out"
-"$old/build/app/tetlod" simplify "${args[@]}" -o "$out/old.mesh" --history "$out/old.tlh" >/dev/null
-./build/app/tetlod simplify "${args[@]}" -o "$out/new.mesh" --history "$out/new.tlh" >/dev/null
-if cmp -s "$out/old.mesh" "$out/new.mesh" && cmp -s "$out/old.tlh" "$out/new.tlh"; then
-  echo "output: the same mesh and history, byte for byte"
-else
-  echo "output: DIFFERENT meshes or histories ($out)"
-fi
+# The same output, byte for byte (meshes and histories, seven settings).
+bash bench/check_same_output.sh "$rev" || echo "output: DIFFERENT (see above)"
 
 simplify_median() { # BINARY
   "$1" "${args[@]}" --repeat 3 | sed -n -E 's/^median of .*simplify ([0-9.]+)\).*/\1/p'
