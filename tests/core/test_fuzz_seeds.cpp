@@ -1,11 +1,13 @@
 // The simplifier's fuzz harness (fuzz/fuzz_simplify.cpp) on its seeds, in every test
-// run (and under ASan + UBSan in CI): the small bundled and test meshes behind the same
-// four sets of threshold bytes as scripts/fuzz_simplify_seeds.sh. So the harness's
+// run (and under ASan + UBSan in CI): the small bundled and test meshes behind four
+// sets of threshold bytes. It also writes them, as the fuzzer's seeds, to
+// tests/out/fuzz_simplify_seeds/ in the build directory. So the harness's
 // checks (positive tets, no created violation, regions and interfaces kept, exact
 // replay, complete seek deltas, and --improve's guarantees) run on every change, and
 // the harness keeps compiling without clang.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -31,12 +33,16 @@ TEST(FuzzSeeds, SimplifyHarnessHoldsOnEverySeed) {
                                      {0xff, 0x05, 0x10, 0x00, 0x00, 0x00, 0x00, 0x1e},
                                      {0x10, 0x30, 0x19, 0x03, 0x07, 0x80, 0x00, 0x1e},
                                      {0x80, 0x20, 0x15, 0x01, 0x0e, 0x40, 0x30, 0xa0}};
+  const std::string seeds = std::string(TETLOD_TEST_OUTPUT_DIR) + "/fuzz_simplify_seeds";
+  std::filesystem::create_directories(seeds);
+  int seed_count = 0;
   for (const char* name : meshes) {
     std::ifstream in(std::string(TETLOD_SOURCE_DIR) + "/" + name, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     ASSERT_FALSE(text.empty()) << name;
     for (const auto& p : params) {
       const std::string input = std::string(reinterpret_cast<const char*>(p), 8) + text;
+      std::ofstream(seeds + "/seed_" + std::to_string(seed_count++), std::ios::binary) << input;
       EXPECT_NO_THROW(
           LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(input.data()), input.size()))
           << name << " with thresholds byte " << int(p[0]);
