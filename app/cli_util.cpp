@@ -68,6 +68,13 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
                  "share their faces)\n",
                  path.c_str(), n, n == 1 ? "vertex is" : "vertices are", at.x, at.y, at.z);
   }
+  if (info->validation.overlap_check_cut_short) {
+    std::fprintf(stderr,
+                 "tetlod: %s: note: the check for tetrahedra that overlap with no face between "
+                 "them stopped early (too many boundary faces close together); the part it saw "
+                 "passed\n",
+                 path.c_str());
+  }
   const size_t unused = info->validation.removed_unused_vertices;
   if (unused > 0) {
     std::fprintf(stderr, "tetlod: %s: note: %zu %s used by no tetrahedron %s dropped\n",

@@ -1,6 +1,7 @@
 #include "core/validate.h"
 
 #include "core/adjacency.h"
+#include "core/overlap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -141,6 +142,23 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
       return Status::error(where(source, tet_lines, problem.tet_b) + tet_name(problem.tet_b) +
                            " overlaps " + tet_name(problem.tet_a) +
                            " (both lie on the same side of their shared face)");
+    }
+    // Tets that overlap with no face between them (see core/overlap.h).
+    const OverlapFinding overlap = find_overlap(*mesh, neighbors);
+    rep.overlap_check_cut_short = overlap.cut_short;
+    if (overlap.kind == OverlapFinding::Kind::kCrossing) {
+      return Status::error(where(source, tet_lines, overlap.tet_b) + tet_name(overlap.tet_b) +
+                           " overlaps " + tet_name(overlap.tet_a) +
+                           ": boundary faces of the two cross, so the mesh folds over itself " +
+                           "(as when a vertex number is wrong)");
+    }
+    if (overlap.kind == OverlapFinding::Kind::kInside) {
+      const uint32_t first = std::min(overlap.tet_a, overlap.tet_b);
+      const uint32_t second = std::max(overlap.tet_a, overlap.tet_b);
+      return Status::error(where(source, tet_lines, second) + tet_name(second) + " overlaps " +
+                           tet_name(first) +
+                           " with no face between them: the mesh covers that space twice " +
+                           "(as when a vertex number is wrong, or a body is written twice)");
     }
   }
 

@@ -19,6 +19,9 @@ struct ValidationReport {
   // not conforming there, e.g. two volumes meshed apart), and the first position.
   size_t coincident_vertices = 0;
   Vec3 coincident_position;
+  // The search for tets that overlap with no face between them stopped early (see
+  // core/overlap.h): the part it saw passed.
+  bool overlap_check_cut_short = false;
 };
 
 // Checks and repairs `mesh` in place:
@@ -26,7 +29,8 @@ struct ValidationReport {
 //    repeated vertex, a non-finite coordinate, a negative material id, a tet whose
 //    longest edge is outside [1e-60, 1e60] (the metrics would under- or overflow), a
 //    tet of zero volume (|6V| <= 1e-12 * longest_edge^3), two tets with the same vertex set, a
-//    face shared by three or more tets, two tets overlapping across a shared face;
+//    face shared by three or more tets, two tets overlapping across a shared face,
+//    tets overlapping with no face between them (find_overlap(), core/overlap.h);
 //  - repairs (counted in `report`): negatively oriented tets are reoriented by
 //    swapping their last two vertices; unused vertices are removed and tets renumbered;
 //  - counted only: vertices at the position of another.

@@ -827,6 +827,55 @@ TEST(Cli, RepairNotesCountInWords) {
                 "the mesh is not conforming there"});
 }
 
+// Writes `mesh` as Medit text: tet t (0-based) on line 71 + t when it has 64 vertices.
+void write_medit_text(const std::string& path, const TetMesh& mesh) {
+  std::ofstream out(path);
+  out << "MeshVersionFormatted 2\nDimension 3\nVertices\n" << mesh.positions.size() << "\n";
+  for (const Vec3& p : mesh.positions) out << p.x << " " << p.y << " " << p.z << " 0\n";
+  out << "Tetrahedra\n" << mesh.tets.size() << "\n";
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    const Tet& q = mesh.tets[t];
+    out << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1 << " " << q[3] + 1 << " "
+        << mesh.materials[t] << "\n";
+  }
+  out << "End\n";
+}
+
+// A tet whose vertex number is wrong reaches across the mesh, through other tets: the
+// file is refused with that tet's line, and `convert` writes nothing.
+TEST(Cli, OverlappingTetsAreRefusedWithTheirLine) {
+  TetMesh grid = test::make_grid_mesh(3, 3, 3, [](int, int, int) { return 1; });
+  ASSERT_EQ(grid.positions.size(), 64u);
+  grid.tets[0][3] = 63;  // (1, 1, 1) -> (3, 3, 3)
+  const std::string path = out_dir() + "/reaching.mesh", out = out_dir() + "/reaching.vtu";
+  write_medit_text(path, grid);
+  fs::remove(out);
+  const CommandResult r = run("convert " + path + " -o " + out);
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  const size_t at = r.output.find(path + ":");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  unsigned line = 0, n = 0, m = 0;
+  ASSERT_EQ(std::sscanf(r.output.c_str() + at + path.size(),
+                        ":%u: tetrahedron %u overlaps tetrahedron %u", &line, &n, &m),
+            3)
+      << r.output;
+  EXPECT_EQ(line, 70 + n);
+  EXPECT_TRUE(n == 1 || m == 1) << r.output;  // the tet that reaches across is one of them
+}
+
+// A valid mesh on which the check for overlapping tets stops early says so.
+TEST(Cli, AnOverlapCheckCutShortIsNoted) {
+  const std::string path = out_dir() + "/star.mesh";
+  write_medit_text(path, test::make_needle_star(1500, 3));
+  const CommandResult r = run("stats " + path);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(path + ": note: the check for tetrahedra that overlap with no face "
+                                 "between them stopped early"),
+            std::string::npos)
+      << r.output;
+}
+
 // Ctrl-C, `timeout` or a closed terminal while an output is being written: the
 // process ends as the signal ends it, and its temporary file goes with it.
 TEST(Cli, ASignalDuringAWriteLeavesNoTemporary) {

@@ -2,7 +2,10 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <functional>
+#include <random>
 #include <utility>
 
 #include "core/tet_mesh.h"
@@ -48,6 +51,34 @@ inline TetMesh make_single_tet() {
   mesh.tets = {{0, 1, 2, 3}};
   mesh.materials = {1};
   return mesh;
+}
+
+// `needles` thin tets that all have their tip at the origin and point every way (at
+// random, from `seed`), ten units long: they touch only there. A valid mesh whose
+// boundary triangles all share the cell of the origin.
+inline TetMesh make_needle_star(int needles, uint32_t seed) {
+  TetMesh star;
+  star.positions.push_back({0, 0, 0});
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  for (int n = 0; n < needles; ++n) {
+    Vec3 axis{normal(rng), normal(rng), normal(rng)};
+    axis = axis * (1 / length(axis));
+    Vec3 side = std::fabs(axis.x) < 0.9 ? cross(axis, {1, 0, 0}) : cross(axis, {0, 1, 0});
+    side = side * (1 / length(side));
+    const Vec3 other = cross(axis, side);
+    const uint32_t base = static_cast<uint32_t>(star.positions.size());
+    for (int k = 0; k < 3; ++k) {
+      const double angle = 2.0943951023931953 * k;  // 120 degrees
+      star.positions.push_back(axis * 10 +
+                               (side * std::cos(angle) + other * std::sin(angle)) * 0.01);
+    }
+    Tet t{0, base, base + 1, base + 2};
+    if (signed_volume6(star, t) < 0) std::swap(t[2], t[3]);
+    star.tets.push_back(t);
+    star.materials.push_back(1);
+  }
+  return star;
 }
 
 }  // namespace tetlod::test

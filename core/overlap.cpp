@@ -1,0 +1,475 @@
+#include "core/overlap.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+#include "core/triangle_grid.h"
+
+namespace tetlod {
+namespace {
+
+// A face that belongs to one tet, outward (kTetFace).
+struct BoundaryFace {
+  uint32_t v[3];
+  uint32_t tet;
+};
+
+// A boundary triangle's plane (unit normal, through its first corner) and the
+// tolerance of a clear crossing: 1e-8 of its longest edge, plus what rounding far
+// from the origin can reach.
+struct Plane {
+  Vec3 normal;
+  double offset = 0;  // dot(normal, corner)
+  double delta = 0;
+};
+
+Plane plane_of(const Triangle3& t) {
+  Plane p;
+  const Vec3 n = cross(t[1] - t[0], t[2] - t[0]);
+  const double length2 = length(n);
+  p.normal = length2 > 0 ? n * (1 / length2) : Vec3{};
+  p.offset = dot(p.normal, t[0]);
+  double longest2 = 0, far = 0;
+  for (int k = 0; k < 3; ++k) {
+    longest2 = std::max(longest2, squared_length(t[(k + 1) % 3] - t[k]));
+    far = std::max({far, std::fabs(t[k].x), std::fabs(t[k].y), std::fabs(t[k].z)});
+  }
+  p.delta = 1e-8 * std::sqrt(longest2) + 1e-13 * far;
+  return p;
+}
+
+// Whether triangle t has corners clearly on both sides of plane `p`: more than
+// `delta` away on each. A triangle that does not cannot cross p's triangle.
+bool straddles(const Triangle3& t, const Plane& p, double delta, double* distance) {
+  bool above = false, below = false;
+  for (int k = 0; k < 3; ++k) {
+    distance[k] = dot(p.normal, t[k]) - p.offset;
+    above |= distance[k] > delta;
+    below |= distance[k] < -delta;
+  }
+  return above && below;
+}
+
+// Whether edge k of triangle `t` (its corners' distances from the plane of `s` in
+// `distance`) clearly passes through the inside of s: its ends more than `delta` from
+// the plane on either side, and the point where it crosses the plane more than
+// `delta` inside each edge of s.
+bool edge_pierces(const Triangle3& t, const double* distance, int k, const Triangle3& s,
+                  const Plane& plane, double delta) {
+  const double dp = distance[k], dq = distance[(k + 1) % 3];
+  if (!((dp > delta && dq < -delta) || (dp < -delta && dq > delta))) return false;
+  const Vec3 x = t[k] + (t[(k + 1) % 3] - t[k]) * (dp / (dp - dq));
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 edge = s[(e + 1) % 3] - s[e];
+    // The distance from x to the edge's line, in the plane, positive inside.
+    if (!(dot(cross(edge, x - s[e]), plane.normal) > delta * length(edge))) return false;
+  }
+  return true;
+}
+
+// Whether triangles s and t clearly cross: an edge of one pierces the other.
+bool cross_each_other(const Triangle3& s, const Plane& ps, const Triangle3& t, const Plane& pt) {
+  const double delta = std::max(ps.delta, pt.delta);
+  double from_s[3], from_t[3];  // t's corners from the plane of s, and s's from t's
+  if (!straddles(t, ps, delta, from_s) || !straddles(s, pt, delta, from_t)) return false;
+  for (int k = 0; k < 3; ++k) {
+    if (edge_pierces(t, from_s, k, s, ps, delta)) return true;
+    if (edge_pierces(s, from_t, k, t, pt, delta)) return true;
+  }
+  return false;
+}
+
+// The solid angle of triangle abc seen from the origin, signed: positive if the
+// origin lies behind it (Van Oosterom and Strackee, IEEE Trans. Biomed. Eng. 30(2),
+// 1983).
+double solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double la = length(a), lb = length(b), lc = length(c);
+  const double numerator = dot(a, cross(b, c));
+  const double denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+  return 2 * std::atan2(numerator, denominator);
+}
+
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+// Sorts (key, value) pairs by key, keeping the order of equal keys: a least
+// significant digit radix sort, 11 bits a pass, as many passes as the largest key needs.
+void sort_by_key(std::vector<std::pair<uint64_t, uint32_t>>* items) {
+  uint64_t bits_used = 0;
+  for (const auto& item : *items) bits_used |= item.first;
+  std::vector<std::pair<uint64_t, uint32_t>> sorted(items->size());
+  constexpr int kDigit = 11;
+  constexpr uint64_t kMask = (1u << kDigit) - 1;
+  for (int shift = 0; shift < 64 && (bits_used >> shift) != 0; shift += kDigit) {
+    std::vector<size_t> start(kMask + 2, 0);
+    for (const auto& item : *items) ++start[(item.first >> shift & kMask) + 1];
+    for (size_t d = 0; d <= kMask; ++d) start[d + 1] += start[d];
+    for (const auto& item : *items) sorted[start[item.first >> shift & kMask]++] = item;
+    items->swap(sorted);
+  }
+}
+
+// Calls visit(i, j), i < j, once for each pair of triangles whose bounding boxes overlap
+// (closed boxes), until it returns false. The triangles go into the cells of a sparse
+// grid, cells about the mean triangle's size (coarser if a few large triangles would
+// fill too many), listed by sorting (cell, triangle) keys. Every pair that shares a
+// cell counts against `pair_budget`; returns false if it ran out.
+template <class Visit>
+bool for_each_overlapping_pair(const std::vector<Triangle3>& triangles, size_t pair_budget,
+                               Visit visit) {
+  const size_t count = triangles.size();
+  if (count < 2) return true;
+  std::vector<Vec3> lo(count), hi(count);
+  Vec3 all_lo{INFINITY, INFINITY, INFINITY}, all_hi{-INFINITY, -INFINITY, -INFINITY};
+  double extent_sum = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const Triangle3& t = triangles[i];
+    double extent = 0;
+    for (int k = 0; k < 3; ++k) {
+      lo[i][k] = std::min({t[0][k], t[1][k], t[2][k]});
+      hi[i][k] = std::max({t[0][k], t[1][k], t[2][k]});
+      all_lo[k] = std::min(all_lo[k], lo[i][k]);
+      all_hi[k] = std::max(all_hi[k], hi[i][k]);
+      extent = std::max(extent, hi[i][k] - lo[i][k]);
+    }
+    extent_sum += extent;
+  }
+  // Cells: at most 2^20 along an axis, and at most 16 per triangle on average.
+  constexpr double kMaxCells = 1 << 20;
+  double cell = std::max(extent_sum / double(count), 1e-300);
+  for (int k = 0; k < 3; ++k) cell = std::max(cell, (all_hi[k] - all_lo[k]) / (kMaxCells - 1));
+  auto index = [&](double x, int k) {
+    const double f = std::floor((x - all_lo[k]) / cell);
+    return f >= 0 ? (f < kMaxCells - 1 ? uint64_t(f) : uint64_t(kMaxCells - 1)) : uint64_t{0};
+  };
+  auto cells_of = [&](size_t i, uint64_t* from, uint64_t* to) {
+    uint64_t n = 1;
+    for (int k = 0; k < 3; ++k) {
+      from[k] = index(lo[i][k], k);
+      to[k] = index(hi[i][k], k);
+      n *= to[k] - from[k] + 1;
+    }
+    return n;
+  };
+  uint64_t from[3], to[3];
+  for (;;) {
+    double entries = 0;
+    for (size_t i = 0; i < count; ++i) entries += double(cells_of(i, from, to));
+    if (entries <= 16.0 * double(count) + 1024 || !std::isfinite(cell)) break;
+    cell *= 2;
+  }
+  // Cell keys: x, then y, then z in as few bits as the grid needs (fewer sort passes).
+  const auto bits_for = [](uint64_t n) {
+    int bits = 1;
+    while ((uint64_t{1} << bits) <= n) ++bits;
+    return bits;
+  };
+  const int shift_y = bits_for(index(all_hi[0], 0));
+  const int shift_z = shift_y + bits_for(index(all_hi[1], 1));
+  std::vector<std::pair<uint64_t, uint32_t>> keys;  // (cell, triangle)
+  std::vector<std::array<uint32_t, 3>> first_cell(count);
+  for (size_t i = 0; i < count; ++i) {
+    cells_of(i, from, to);
+    for (int k = 0; k < 3; ++k) first_cell[i][k] = static_cast<uint32_t>(from[k]);
+    for (uint64_t z = from[2]; z <= to[2]; ++z)
+      for (uint64_t y = from[1]; y <= to[1]; ++y)
+        for (uint64_t x = from[0]; x <= to[0]; ++x)
+          keys.push_back({x | y << shift_y | z << shift_z, static_cast<uint32_t>(i)});
+  }
+  sort_by_key(&keys);  // (cell, triangle): triangles in order within a cell
+  // Each cell's boxes are copied together first: the pairs then read them from cache.
+  struct Box {
+    Vec3 lo, hi;
+    std::array<uint32_t, 3> first_cell;
+    uint32_t triangle;
+  };
+  std::vector<Box> boxes;
+  size_t pairs = 0;
+  for (size_t begin = 0, end = 0; begin < keys.size(); begin = end) {
+    const uint64_t key = keys[begin].first;
+    while (end < keys.size() && keys[end].first == key) ++end;
+    pairs += (end - begin) * (end - begin - 1) / 2;
+    if (pairs > pair_budget) return false;
+    const uint32_t here[3] = {uint32_t(key & ((uint64_t{1} << shift_y) - 1)),
+                              uint32_t(key >> shift_y & ((uint64_t{1} << (shift_z - shift_y)) - 1)),
+                              uint32_t(key >> shift_z)};
+    boxes.clear();
+    for (size_t e = begin; e < end; ++e) {
+      const uint32_t i = keys[e].second;
+      boxes.push_back({lo[i], hi[i], first_cell[i], i});
+    }
+    for (size_t a = 0; a < boxes.size(); ++a) {
+      const Box& s = boxes[a];
+      for (size_t b = a + 1; b < boxes.size(); ++b) {
+        const Box& t = boxes[b];  // t.triangle > s.triangle
+        // The first cell both boxes cover is this one (the cell index is monotone).
+        bool visit_here = true;
+        for (int k = 0; k < 3; ++k) {
+          visit_here &= s.lo[k] <= t.hi[k] && t.lo[k] <= s.hi[k];
+          visit_here &= std::max(s.first_cell[k], t.first_cell[k]) == here[k];
+        }
+        if (visit_here && !visit(s.triangle, t.triangle)) return true;
+      }
+    }
+  }
+  return true;
+}
+
+// Pieces: tets joined through shared vertices, numbered in the order of their first
+// tet; piece_of[t] is the piece of tet t. Returns the first tet of each piece.
+std::vector<uint32_t> number_pieces(const TetMesh& mesh, std::vector<uint32_t>* piece_of) {
+  std::vector<uint32_t> root(mesh.positions.size());  // stays in cache, unlike tets
+  std::iota(root.begin(), root.end(), 0u);
+  for (const Tet& q : mesh.tets) {
+    for (int k = 1; k < 4; ++k) {
+      const uint32_t a = find_root(root, q[0]), b = find_root(root, q[k]);
+      if (a != b) root[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  std::vector<uint32_t> piece_of_root(root.size(), kInvalidIndex), first_tet;
+  piece_of->resize(mesh.tets.size());
+  for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
+    uint32_t& p = piece_of_root[find_root(root, mesh.tets[t][0])];
+    if (p == kInvalidIndex) {
+      p = static_cast<uint32_t>(first_tet.size());
+      first_tet.push_back(t);
+    }
+    (*piece_of)[t] = p;
+  }
+  return first_tet;
+}
+
+// Boundary faces in groups (surfaces, pieces): the faces of each group and its box.
+struct FaceGroups {
+  std::vector<uint32_t> start, faces;  // faces[start[g] .. start[g + 1]) are group g's
+  std::vector<Vec3> lo, hi;
+
+  FaceGroups(const std::vector<BoundaryFace>& all, const std::vector<uint32_t>& group_of,
+             size_t group_count, const std::vector<Vec3>& pos)
+      : start(group_count + 1, 0),
+        faces(all.size()),
+        lo(group_count, Vec3{INFINITY, INFINITY, INFINITY}),
+        hi(group_count, Vec3{-INFINITY, -INFINITY, -INFINITY}) {
+    for (uint32_t g : group_of) ++start[g + 1];
+    for (size_t g = 0; g < group_count; ++g) start[g + 1] += start[g];
+    std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
+    for (uint32_t f = 0; f < all.size(); ++f) {
+      const uint32_t g = group_of[f];
+      faces[cursor[g]++] = f;
+      for (uint32_t v : all[f].v) {
+        for (int k = 0; k < 3; ++k) {
+          lo[g][k] = std::min(lo[g][k], pos[v][k]);
+          hi[g][k] = std::max(hi[g][k], pos[v][k]);
+        }
+      }
+    }
+  }
+  size_t size(size_t g) const { return start[g + 1] - start[g]; }
+  bool box_holds(size_t g, const Vec3& p) const {
+    return lo[g].x <= p.x && p.x <= hi[g].x && lo[g].y <= p.y && p.y <= hi[g].y && lo[g].z <= p.z &&
+           p.z <= hi[g].z;
+  }
+  // How many times group g's faces wind around p: the sum of their solid angles over
+  // 4 pi (the generalised winding number; an integer for a closed surface).
+  double winding(size_t g, const Vec3& p, const std::vector<BoundaryFace>& all,
+                 const std::vector<Vec3>& pos) const {
+    double angle = 0;
+    for (uint32_t n = start[g]; n < start[g + 1]; ++n) {
+      const BoundaryFace& f = all[faces[n]];
+      angle += solid_angle(pos[f.v[0]] - p, pos[f.v[1]] - p, pos[f.v[2]] - p);
+    }
+    return angle / (4 * M_PI);
+  }
+};
+
+// A tet other than `except` that holds p, the deepest inside if several do (by the
+// smallest of p's four barycentric coordinates); `except` if none holds it.
+uint32_t tet_holding(const TetMesh& mesh, const Vec3& p, uint32_t except) {
+  uint32_t best = except;
+  double best_depth = 0;
+  const std::vector<Vec3>& pos = mesh.positions;
+  for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
+    if (t == except) continue;
+    const Tet& q = mesh.tets[t];
+    const Vec3 &a = pos[q[0]], &b = pos[q[1]], &c = pos[q[2]], &d = pos[q[3]];
+    const double whole = signed_volume6(a, b, c, d);
+    const double depth = std::min({signed_volume6(p, b, c, d), signed_volume6(a, p, c, d),
+                                   signed_volume6(a, b, p, d), signed_volume6(a, b, c, p)}) /
+                         whole;
+    if (depth > best_depth) best_depth = depth, best = t;
+  }
+  return best;
+}
+
+}  // namespace
+
+OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& neighbors) {
+  OverlapFinding found;
+  const size_t tet_count = mesh.tets.size();
+  const std::vector<Vec3>& pos = mesh.positions;
+
+  std::vector<BoundaryFace> faces;
+  for (uint32_t t = 0; t < tet_count; ++t) {
+    for (int c = 0; c < 4; ++c) {
+      if (neighbors[4 * size_t{t} + c] != kInvalidIndex) continue;
+      const Tet& q = mesh.tets[t];
+      faces.push_back({{q[kTetFace[c][0]], q[kTetFace[c][1]], q[kTetFace[c][2]]}, t});
+    }
+  }
+  // Budgets: pairs of faces that share a cell, and solid angles (about 100 ns each).
+  const size_t pair_budget = 64 * faces.size() + (size_t{1} << 22);
+  const size_t winding_budget = 8 * faces.size() + (size_t{1} << 20);
+  size_t work = 0;
+
+  // Surfaces: boundary faces joined through shared vertices, numbered in face order.
+  std::vector<uint32_t> surface_of(faces.size()), first_face;  // first_face: of each
+  {
+    std::vector<uint32_t> root(pos.size());
+    std::iota(root.begin(), root.end(), 0u);
+    for (const BoundaryFace& f : faces) {
+      for (int k = 1; k < 3; ++k) {
+        const uint32_t a = find_root(root, f.v[0]), b = find_root(root, f.v[k]);
+        if (a != b) root[std::max(a, b)] = std::min(a, b);
+      }
+    }
+    std::vector<uint32_t> surface_of_root(pos.size(), kInvalidIndex);
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+      uint32_t& s = surface_of_root[find_root(root, faces[f].v[0])];
+      if (s == kInvalidIndex) {
+        s = static_cast<uint32_t>(first_face.size());
+        first_face.push_back(f);
+      }
+      surface_of[f] = s;
+    }
+  }
+  // Pieces are vertex-disjoint and each has a surface of its own: with one surface
+  // the mesh is one piece, and its tets are not numbered.
+  std::vector<uint32_t> piece, first_tet;
+  if (first_face.size() > 1) first_tet = number_pieces(mesh, &piece);
+  auto piece_of = [&](uint32_t t) { return piece.empty() ? 0u : piece[t]; };
+
+  // Crossings within a piece.
+  {
+    std::vector<Triangle3> tri(faces.size());
+    std::vector<Plane> planes(faces.size());
+    for (size_t f = 0; f < faces.size(); ++f) {
+      for (int k = 0; k < 3; ++k) tri[f][k] = pos[faces[f].v[k]];
+      planes[f] = plane_of(tri[f]);
+    }
+    const bool complete = for_each_overlapping_pair(tri, pair_budget, [&](uint32_t i, uint32_t j) {
+      const BoundaryFace &s = faces[i], &t = faces[j];
+      int shared = 0;
+      for (uint32_t v : s.v) shared += v == t.v[0] || v == t.v[1] || v == t.v[2];
+      if (shared >= 2 || !cross_each_other(tri[i], planes[i], tri[j], planes[j])) return true;
+      if (piece_of(s.tet) != piece_of(t.tet)) return true;
+      found.kind = OverlapFinding::Kind::kCrossing;
+      found.tet_a = std::min(s.tet, t.tet);
+      found.tet_b = std::max(s.tet, t.tet);
+      return false;
+    });
+    found.cut_short = !complete;
+    if (found.kind != OverlapFinding::Kind::kNone) return found;
+  }
+
+  // Parts of the boundary inside others of the same piece. With no crossings, the
+  // number of times the piece's boundary winds around a point just inside a face is
+  // the same for every face of its sheet (faces joined through edges that have no
+  // other boundary face), and is 1 where no tets overlap: one point per sheet.
+  {
+    std::vector<std::pair<uint64_t, uint32_t>> edges;  // (edge, face)
+    edges.reserve(3 * faces.size());
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const uint64_t u = faces[f].v[k], v = faces[f].v[(k + 1) % 3];
+        edges.push_back({std::min(u, v) << 32 | std::max(u, v), f});
+      }
+    }
+    sort_by_key(&edges);
+    std::vector<uint32_t> sheet(faces.size());
+    std::iota(sheet.begin(), sheet.end(), 0u);
+    for (size_t e = 0; e + 1 < edges.size(); ++e) {
+      const bool two = edges[e].first == edges[e + 1].first &&
+                       (e == 0 || edges[e - 1].first != edges[e].first) &&
+                       (e + 2 == edges.size() || edges[e + 2].first != edges[e].first);
+      if (!two) continue;
+      const uint32_t a = find_root(sheet, edges[e].second),
+                     b = find_root(sheet, edges[e + 1].second);
+      if (a != b) sheet[std::max(a, b)] = std::min(a, b);
+    }
+    const FaceGroups surfaces(faces, surface_of, first_face.size(), pos);
+    for (uint32_t first = 0; first < faces.size(); ++first) {
+      if (find_root(sheet, first) != first) continue;  // not the first face of its sheet
+      const BoundaryFace& f = faces[first];
+      const Vec3 &a = pos[f.v[0]], &b = pos[f.v[1]], &c = pos[f.v[2]];
+      const Vec3 normal = cross(b - a, c - a);  // outward, |normal| = twice the area
+      const double edge = std::sqrt(
+          std::max({squared_length(b - a), squared_length(c - b), squared_length(a - c)}));
+      const Vec3 point = (a + b + c) * (1.0 / 3) - normal * (1e-6 * edge / length(normal));
+      double winding = 0;
+      for (size_t other = 0; other < first_face.size(); ++other) {
+        const uint32_t other_tet = faces[first_face[other]].tet;
+        const bool near =
+            piece_of(other_tet) == piece_of(f.tet) && surfaces.box_holds(other, point);
+        work += 1 + (near ? surfaces.size(other) : 0);
+        if (work > winding_budget) {
+          found.cut_short = true;
+          return found;
+        }
+        if (near) winding += surfaces.winding(other, point, faces, pos);
+      }
+      if (winding > 1.5) {
+        found.kind = OverlapFinding::Kind::kInside;
+        found.tet_a = f.tet;
+        found.tet_b = tet_holding(mesh, point, f.tet);
+        return found;
+      }
+    }
+  }
+
+  // A piece inside another: a point well inside it, the centroid of its first tet
+  // with no vertex on the boundary (else of its first tet), around which another
+  // piece winds.
+  const size_t piece_count = first_tet.size();
+  if (piece_count < 2) return found;
+  std::vector<uint32_t> piece_of_face(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) piece_of_face[f] = piece[faces[f].tet];
+  const FaceGroups pieces(faces, piece_of_face, piece_count, pos);
+  std::vector<char> on_boundary(pos.size(), 0);
+  for (const BoundaryFace& f : faces)
+    for (uint32_t v : f.v) on_boundary[v] = 1;
+  std::vector<uint32_t> inner_tet(first_tet);
+  std::vector<char> has_inner(piece_count, 0);
+  for (uint32_t t = 0; t < tet_count; ++t) {
+    const Tet& q = mesh.tets[t];
+    if (has_inner[piece[t]] || on_boundary[q[0]] || on_boundary[q[1]] || on_boundary[q[2]] ||
+        on_boundary[q[3]])
+      continue;
+    has_inner[piece[t]] = 1;
+    inner_tet[piece[t]] = t;
+  }
+  for (size_t p = 0; p < piece_count; ++p) {
+    const Tet& q = mesh.tets[inner_tet[p]];
+    const Vec3 point = (pos[q[0]] + pos[q[1]] + pos[q[2]] + pos[q[3]]) * 0.25;
+    for (size_t other = 0; other < piece_count; ++other) {
+      const bool near = other != p && pieces.box_holds(other, point);
+      work += 1 + (near ? pieces.size(other) : 0);
+      if (work > winding_budget) {
+        found.cut_short = true;
+        return found;
+      }
+      if (near && pieces.winding(other, point, faces, pos) > 0.5) {
+        found.kind = OverlapFinding::Kind::kInside;
+        found.tet_a = inner_tet[p];
+        found.tet_b = tet_holding(mesh, point, inner_tet[p]);
+        return found;
+      }
+    }
+  }
+  return found;
+}
+
+}  // namespace tetlod
