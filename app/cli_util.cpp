@@ -37,6 +37,36 @@ std::optional<long long> parse_integer(const std::string& text) {
   return value;
 }
 
+std::vector<std::string> validation_notes(const ValidationReport& report) {
+  std::vector<std::string> notes;
+  char text[512];
+  if (const size_t n = report.reoriented_tets; n > 0) {
+    std::snprintf(text, sizeof text, "%zu negatively oriented %s reoriented", n,
+                  n == 1 ? "tetrahedron was" : "tetrahedra were");
+    notes.push_back(text);
+  }
+  if (const size_t n = report.coincident_vertices; n > 0) {
+    const Vec3& at = report.coincident_position;
+    std::snprintf(text, sizeof text,
+                  "%zu %s at the position of another (the first at (%g, %g, %g)): the mesh is "
+                  "not conforming there, so its parts are simplified as separate bodies (in "
+                  "Gmsh, BooleanFragments or Coherence makes the volumes share their faces)",
+                  n, n == 1 ? "vertex is" : "vertices are", at.x, at.y, at.z);
+    notes.push_back(text);
+  }
+  if (report.overlap_check_cut_short) {
+    notes.push_back(
+        "the check for tetrahedra that overlap with no face between them stopped early (too "
+        "many boundary faces close together); the part it saw passed");
+  }
+  if (const size_t n = report.removed_unused_vertices; n > 0) {
+    std::snprintf(text, sizeof text, "%zu %s used by no tetrahedron %s dropped", n,
+                  n == 1 ? "vertex" : "vertices", n == 1 ? "was" : "were");
+    notes.push_back(text);
+  }
+  return notes;
+}
+
 bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   if (is_history_path(path)) {
     std::fprintf(stderr,
@@ -54,33 +84,8 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   // leave their vertices unused).
   for (const std::string& note : info->notes)
     std::fprintf(stderr, "tetlod: %s: note: %s\n", path.c_str(), note.c_str());
-  const size_t reoriented = info->validation.reoriented_tets;
-  if (reoriented > 0) {
-    std::fprintf(stderr, "tetlod: %s: note: %zu negatively oriented %s reoriented\n", path.c_str(),
-                 reoriented, reoriented == 1 ? "tetrahedron was" : "tetrahedra were");
-  }
-  if (const size_t n = info->validation.coincident_vertices; n > 0) {
-    const Vec3& at = info->validation.coincident_position;
-    std::fprintf(stderr,
-                 "tetlod: %s: note: %zu %s at the position of another (the first at (%g, %g, "
-                 "%g)): the mesh is not conforming there, so its parts are simplified as "
-                 "separate bodies (in Gmsh, BooleanFragments or Coherence makes the volumes "
-                 "share their faces)\n",
-                 path.c_str(), n, n == 1 ? "vertex is" : "vertices are", at.x, at.y, at.z);
-  }
-  if (info->validation.overlap_check_cut_short) {
-    std::fprintf(stderr,
-                 "tetlod: %s: note: the check for tetrahedra that overlap with no face between "
-                 "them stopped early (too many boundary faces close together); the part it saw "
-                 "passed\n",
-                 path.c_str());
-  }
-  const size_t unused = info->validation.removed_unused_vertices;
-  if (unused > 0) {
-    std::fprintf(stderr, "tetlod: %s: note: %zu %s used by no tetrahedron %s dropped\n",
-                 path.c_str(), unused, unused == 1 ? "vertex" : "vertices",
-                 unused == 1 ? "was" : "were");
-  }
+  for (const std::string& note : validation_notes(info->validation))
+    std::fprintf(stderr, "tetlod: %s: note: %s\n", path.c_str(), note.c_str());
   return true;
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "core/io/mesh_io.h"
@@ -24,7 +25,12 @@ std::optional<long long> parse_integer(const std::string& text);
 
 // Reads a mesh; on failure prints "tetlod: <message>" to stderr and returns false
 // (for a collapse history, what to do with it instead).
-// Notes about repairs (reoriented tets, dropped vertices) go to stderr too.
+// The reader's notes and validation_notes() go to stderr too.
+// What validation repaired or could not check in a mesh it accepted, one note each
+// (reoriented tets, vertices at the position of another, an overlap check cut short,
+// dropped vertices), in words that agree with the counts.
+std::vector<std::string> validation_notes(const ValidationReport& report);
+
 bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info);
 
 // Whether `path` ends in `extension` (lower case, with the dot), ignoring case.

@@ -676,6 +676,8 @@ void Viewer::start_load(const std::string& path) {
       if (s) {
         std::lock_guard<std::mutex> lock(job->mutex);
         job->notes = std::move(info.notes);
+        for (std::string& note : validation_notes(info.validation))
+          job->notes.push_back(std::move(note));
       }
       if (s && !info.surface_groups.empty())
         patches = std::make_shared<const SurfacePatches>(*read, info.surface_groups);

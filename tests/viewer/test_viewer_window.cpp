@@ -549,6 +549,26 @@ TEST(ViewerWindow, ReadmeExampleScriptRuns) {
   }
 }
 
+// What the reader's validation repaired is noted when the viewer opens a mesh, as
+// `tetlod` notes it: here two tets turned round, and two bodies meshed apart that touch
+// at a face (its three vertices are there twice).
+TEST(ViewerWindow, RepairNotesAreShownOnLoad) {
+  const fs::path dir = fresh_output_dir("viewer_repair_notes");
+  std::ofstream(dir / "apart.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n8\n"
+                                       "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
+                                       "1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n"
+                                       "Tetrahedra\n2\n1 3 2 4 1\n5 7 6 8 2\nEnd\n";
+  std::ofstream(dir / "quit.script") << "quit\n";
+  const ViewerRun run = run_viewer(dir, "apart.mesh --size 320x240 --script quit.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("apart.mesh: note: 2 negatively oriented tetrahedra were reoriented"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("apart.mesh: note: 3 vertices are at the position of another"),
+            std::string::npos)
+      << run.output;
+}
+
 // A forged history whose mesh has positive tets that overlap (three on one face): the
 // reader's replay passes it and the viewer shows it, but its levels are checked as a
 // mesh file would be before they are saved (as `tetlod lod` does), and nothing is
