@@ -11,7 +11,7 @@
 // counts the faces with markers below 0 or above 2^31 - 1 (0 is no marker).
 //
 // As TetGen does, a header's trailing fields may be left out ("5" is "5 3 0 0" in a
-// .node file, "5 4 0" in a .ele, "5 0" in a .face).
+// .node file, "5 4 0" in a .ele, "5 0" in a .face), and numbers after them are ignored.
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -56,11 +56,18 @@ bool read_header_field(TextScanner& fields, int64_t* value, const char* what) {
   return fields.fail(std::string(what) + " " + std::to_string(*value) + " is negative");
 }
 
+// After the fields a header declares, TetGen ignores the rest of its line: so does this,
+// for numbers ("5 3 0 0 0" is "5 3 0 0"), as on the data lines below. Anything else is
+// an error.
 bool expect_end_of_header(TextScanner& fields, const char* fields_text) {
   std::string_view token;
-  if (!fields.next_token(&token)) return true;
-  return fields.fail("unexpected " + TextScanner::quote(token) + " in the header (" + fields_text +
-                     ")");
+  while (fields.next_token(&token)) {
+    if (!TextScanner::looks_numeric(token)) {
+      return fields.fail("unexpected " + TextScanner::quote(token) + " in the header (" +
+                         fields_text + ")");
+    }
+  }
+  return true;
 }
 
 // TetGen reads the fields a line's header declares and ignores any after them (a

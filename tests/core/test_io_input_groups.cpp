@@ -583,7 +583,7 @@ TEST(IoInputGroups, TetGenBrokenFacesNameTheLine) {
       {"1 1\n1 1 2 3 1 4 5", 2, "truncated"},
       {"-1 1\n", 1, "negative"},
       {"1 -1\n1 1 2 3\n", 1, "boundary marker count -1 is negative"},
-      {"1 1 0\n1 1 2 3 1\n", 1, "unexpected '0' in the header ('faces markers')"},
+      {"1 1 q\n1 1 2 3 1\n", 1, "unexpected 'q' in the header ('faces markers')"},
       {"0", 1, "truncated"},
   };
   TetMesh mesh;

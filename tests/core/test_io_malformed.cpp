@@ -232,7 +232,7 @@ TEST(IoMalformed, TetGen) {
       {{{2, "2 0 0 0"}}, {}, "m.node", 2, "must be 0 or 1"},
       {{{1, "5 2 0 0"}}, {}, "m.node", 1, "3-dimensional"},
       {{}, {{1, "2 6 1"}}, "m.ele", 1, "4 or 10"},
-      {{{1, "5 3 0 0 0"}}, {}, "m.node", 1, "unexpected '0' in the header"},
+      {{{1, "5 3 0 0 z"}}, {}, "m.node", 1, "unexpected 'z' in the header"},
       {{{1, "5 3 0 x"}}, {}, "m.node", 1, "boundary marker count 'x' is not an integer"},
       {{}, {{1, "2 4 -1"}}, "m.ele", 1, "attribute count -1 is negative"},
       {{}, {{2, "1 1 2 3 4 1 x"}}, "m.ele", 2, "unexpected 'x' after the tetrahedron"},
@@ -247,6 +247,15 @@ TEST(IoMalformed, TetGen) {
                   .ok());
   EXPECT_EQ(mesh.tet_count(), 2u);
   EXPECT_EQ(mesh.materials, (std::vector<int32_t>{0, 0}));
+  // So are numbers after the fields of a header itself, as TetGen ignores them.
+  TetMesh extra;
+  ASSERT_TRUE(read_tetgen_from_memory(edit_lines(kTetGenNode, {{1, "5 3 0 0 0 9"}}),
+                                      edit_lines(kTetGenEle, {{1, "2 4 1 7"}}), "m.node", "m.ele",
+                                      &extra)
+                  .ok());
+  ASSERT_TRUE(read_tetgen_from_memory(kTetGenNode, kTetGenEle, "m.node", "m.ele", &mesh).ok());
+  EXPECT_EQ(extra.tets, mesh.tets);
+  EXPECT_EQ(extra.materials, mesh.materials);
   for (const TetGenCase& c : cases) {
     const std::string node = edit_lines(kTetGenNode, c.node_edits);
     const std::string ele = edit_lines(kTetGenEle, c.ele_edits);
