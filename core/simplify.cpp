@@ -879,7 +879,8 @@ class Engine {
       const Tet& q = tet_[t].v;
       bool common = false;
       for (uint32_t w : q)
-        common |= (w != i) & (w != j) & (mark_[w] == near_i) & (ring_mark_[w] != in_ring);
+        common |= static_cast<bool>(int{w != i} & int{w != j} & int{mark_[w] == near_i} &
+                                    int{ring_mark_[w] != in_ring});
       if (cone) {
         for_faces_at(t, j, [&](uint32_t x, uint32_t y, uint32_t across) {
           if (across != kInvalidIndex && in(across)) return;

@@ -63,7 +63,7 @@ inline const std::string* find_material_name(const std::vector<MaterialName>* na
 
 // Whether vertex v is a corner of tet t (branch-free: the simplifier's hot loops use it).
 inline bool tet_has(const Tet& t, uint32_t v) {
-  return (t[0] == v) | (t[1] == v) | (t[2] == v) | (t[3] == v);
+  return static_cast<bool>(int{t[0] == v} | int{t[1] == v} | int{t[2] == v} | int{t[3] == v});
 }
 
 // Six times the signed volume of the tet (a, b, c, d).
