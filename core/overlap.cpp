@@ -10,10 +10,11 @@
 namespace tetlod {
 namespace {
 
-// A face that belongs to one tet, outward (kTetFace).
+// A face that belongs to one tet, outward (kTetFace): the face opposite `corner`.
 struct BoundaryFace {
   uint32_t v[3];
   uint32_t tet;
+  int corner;
 };
 
 // A boundary triangle's plane (unit normal, through its first corner) and the
@@ -219,6 +220,41 @@ bool for_each_overlapping_pair(const std::vector<Triangle3>& triangles, size_t p
   return true;
 }
 
+// The angle the tets around boundary edge (a, b) fill, from boundary face f through
+// each tet's dihedral angle at the edge to the other boundary face there: less than a
+// full turn, unless they wrap round the edge and overlap. `*steps` counts the tets;
+// the walk stops at `max_steps`. `*past_turn` is the first tet that takes the sum
+// past a full turn (kInvalidIndex if none).
+double angle_around(const TetMesh& mesh, const std::vector<uint32_t>& neighbors,
+                    const BoundaryFace& f, uint32_t a, uint32_t b, size_t max_steps, size_t* steps,
+                    uint32_t* past_turn) {
+  const std::vector<Vec3>& pos = mesh.positions;
+  const Vec3 &pa = pos[a], edge = pos[b] - pos[a];
+  uint32_t t = f.tet;
+  int came = f.corner;  // the corner opposite the face the walk came in through
+  double sum = 0;
+  *past_turn = kInvalidIndex;
+  while (*steps < max_steps) {
+    ++*steps;
+    const Tet& q = mesh.tets[t];
+    int other[2], n = 0;
+    for (int k = 0; k < 4; ++k)
+      if (q[k] != a && q[k] != b && n < 2) other[n++] = k;
+    const Vec3 n1 = cross(edge, pos[q[other[0]]] - pa), n2 = cross(edge, pos[q[other[1]]] - pa);
+    sum += std::atan2(length(cross(n1, n2)), dot(n1, n2));
+    if (sum > 2 * M_PI * (1 + 1e-9) && *past_turn == kInvalidIndex) *past_turn = t;
+    const int out = other[0] == came ? other[1] : other[0];
+    const uint32_t next = neighbors[4 * size_t{t} + out];
+    if (next == kInvalidIndex) break;  // the other boundary face
+    const uint32_t shared = q[came];   // the face left through is (a, b, shared)
+    const Tet& r = mesh.tets[next];
+    came = 0;
+    while (r[came] == a || r[came] == b || r[came] == shared) ++came;
+    t = next;
+  }
+  return sum;
+}
+
 // Pieces: tets joined through shared vertices, numbered in the order of their first
 // tet; piece_of[t] is the piece of tet t. Returns the first tet of each piece.
 std::vector<uint32_t> number_pieces(const TetMesh& mesh, std::vector<uint32_t>* piece_of) {
@@ -317,7 +353,7 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
     for (int c = 0; c < 4; ++c) {
       if (neighbors[4 * size_t{t} + c] != kInvalidIndex) continue;
       const Tet& q = mesh.tets[t];
-      faces.push_back({{q[kTetFace[c][0]], q[kTetFace[c][1]], q[kTetFace[c][2]]}, t});
+      faces.push_back({{q[kTetFace[c][0]], q[kTetFace[c][1]], q[kTetFace[c][2]]}, t, c});
     }
   }
   // Budgets: pairs of faces that share a cell, and solid angles (about 100 ns each).
@@ -392,6 +428,12 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
     std::vector<uint32_t> sheet(faces.size());
     std::iota(sheet.begin(), sheet.end(), 0u);
     for (size_t e = 0; e + 1 < edges.size(); ++e) {
+      // The walks round the edges below start at random tets: load a few ahead.
+      if (e + 16 < edges.size()) {
+        const uint32_t ahead = faces[edges[e + 16].second].tet;
+        __builtin_prefetch(&mesh.tets[ahead]);
+        __builtin_prefetch(&neighbors[4 * size_t{ahead}]);
+      }
       const bool two = edges[e].first == edges[e + 1].first &&
                        (e == 0 || edges[e - 1].first != edges[e].first) &&
                        (e + 2 == edges.size() || edges[e + 2].first != edges[e].first);
@@ -399,6 +441,22 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
       const uint32_t a = find_root(sheet, edges[e].second),
                      b = find_root(sheet, edges[e + 1].second);
       if (a != b) sheet[std::max(a, b)] = std::min(a, b);
+      // Tets that wrap round the edge overlap there, and the sheet goes through itself
+      // along it, where no face crosses another.
+      const BoundaryFace& f = faces[edges[e].second];
+      uint32_t past_turn = kInvalidIndex;
+      angle_around(mesh, neighbors, f, uint32_t(edges[e].first >> 32), uint32_t(edges[e].first),
+                   winding_budget, &work, &past_turn);
+      if (work >= winding_budget) {
+        found.cut_short = true;
+        return found;
+      }
+      if (past_turn != kInvalidIndex) {
+        found.kind = OverlapFinding::Kind::kInside;
+        found.tet_a = f.tet;
+        found.tet_b = past_turn;
+        return found;
+      }
     }
     const FaceGroups surfaces(faces, surface_of, first_face.size(), pos);
     for (uint32_t first = 0; first < faces.size(); ++first) {

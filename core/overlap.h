@@ -20,6 +20,10 @@
 //    one and a half, tets overlap. One point per sheet (a tet whose vertex number is
 //    wrong usually reaches through the mesh with its faces touching the boundary only
 //    at vertices, so that nothing crosses: this finds it);
+//  - at each boundary edge with two boundary faces, the tets around it fill less than a
+//    full turn (the sum of their dihedral angles there): tets that wrap round the edge
+//    overlap, and the sheet goes through itself along the edge, where no face crosses
+//    another and the winding number just inside the sheet changes;
 //  - for each piece, a point well inside it (the centroid of its first tet with no
 //    vertex on the boundary, else of its first tet) around which another piece
 //    winds more than one half.

@@ -4,7 +4,8 @@
 // the validation accept, the pipeline must not crash or hang, and must keep its
 // guarantee: every output tet positively oriented, no threshold broken by anything the
 // run made (violations.created == 0), and the history replaying to the output and back
-// to the subdivided base exactly, with deltas that say everything a seek changed.
+// to the subdivided base exactly, with deltas that say everything a seek changed, and
+// the output passing validation as a file read back would (no overlapping tets).
 // Per material the same number of regions, per material pair the same interface Euler
 // characteristic (tests/core/topology_checks.h), after subdivision and at the end.
 // Then `--improve` on the output must keep its own guarantee: positive tets, no more
@@ -27,6 +28,7 @@
 #include "core/simplify.h"
 #include "core/surface.h"
 #include "core/topology_checks.h"  // tests/
+#include "core/validate.h"
 
 // A failed check: a crash for libFuzzer; tests/core/test_fuzz_seeds.cpp, which runs
 // this harness on the seeds, defines it to throw instead.
@@ -121,6 +123,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!tetlod::simplify(mesh, params, &result).ok()) return 0;  // e.g. too many tets
   check_mesh(result.base);
   check_mesh(result.output);
+  // The output reads back: validation, which refuses overlapping tets too (the input
+  // passed it), accepts it.
+  tetlod::TetMesh reread = result.output;
+  tetlod::ValidationReport report;
+  if (!tetlod::validate_mesh(&reread, "output", {}, &report).ok()) TETLOD_FUZZ_FAIL();
   if (result.violations.created != 0) TETLOD_FUZZ_FAIL();
   if (regions_per_material(result.output) != regions_per_material(result.base) ||
       tetlod::test::interface_euler(result.output) != tetlod::test::interface_euler(result.base))

@@ -240,6 +240,49 @@ TEST(Overlap, VolumesMeshedApartMayOverlapBySlivers) {
   EXPECT_NE(s.message().find("the mesh folds over itself"), std::string::npos) << s.message();
 }
 
+// `tets` tets around the edge from (0, 0, 0) to (0, 0, 1), each filling a fifth of a
+// half turn: tet k from angle 0.2 pi k to 0.2 pi (k + 1), through ring vertices k and
+// k + 1. Past a full turn the ring's vertices are at the positions of its first ones
+// (with vertex numbers of their own). The tets are listed from k = 5 on, so that the
+// first boundary face is half a turn from where tets wrap.
+TetMesh fan_around_edge(int tets) {
+  TetMesh mesh;
+  mesh.positions = {{0, 0, 0}, {0, 0, 1}};
+  for (int k = 0; k <= tets; ++k) {
+    const double angle = 0.2 * M_PI * (k % 10);
+    mesh.positions.push_back({std::cos(angle), std::sin(angle), 0.5});
+  }
+  for (int n = 0; n < tets; ++n) {
+    const int k = (n + 5) % tets;  // starting half a turn round: see below
+    Tet t{0, 1, uint32_t(2 + k), uint32_t(3 + k)};
+    if (signed_volume6(mesh, t) < 0) std::swap(t[2], t[3]);
+    mesh.tets.push_back(t);
+    mesh.materials.push_back(1);
+  }
+  return mesh;
+}
+
+// Ten tets make a full turn round the edge with a slit where the first and last meet
+// (a crack: their faces there lie on one another, with vertices of their own): valid.
+// Twelve wrap past the full turn and cover the first two tets' place again; no face
+// crosses another (those that meet lie on one another), so only the angle the tets
+// fill round the boundary edge, 2.4 pi, shows the overlap.
+TEST(Overlap, TetsWrappingRoundABoundaryEdgeAreRefused) {
+  TetMesh crack = fan_around_edge(10);
+  ValidationReport report;
+  ASSERT_TRUE(validate(&crack, {}, &report).ok()) << validate(&crack).message();
+  EXPECT_EQ(report.coincident_vertices, 1u);
+
+  TetMesh wrapped = fan_around_edge(12);
+  const Status s = validate(&wrapped, {}, &report);
+  ASSERT_FALSE(s.ok());
+  // Tet k = 11 (listed 7th) holds the last face at the edge; from it, the angle passes
+  // a full turn at tet k = 1 (listed 9th).
+  EXPECT_NE(s.message().find("tetrahedron 9 overlaps tetrahedron 7 with no face between them"),
+            std::string::npos)
+      << s.message();
+}
+
 // Every tet touches the others at one vertex, in every direction: their boundary
 // triangles all share the cell of that vertex. The check stops after its budget and
 // says so, instead of testing the ~4.5e7 pairs; the mesh is valid.
