@@ -114,110 +114,152 @@ void sort_by_key(std::vector<std::pair<uint64_t, uint32_t>>* items) {
   }
 }
 
-// Calls visit(i, j), i < j, once for each pair of triangles whose bounding boxes overlap
-// (closed boxes), until it returns false. The triangles go into the cells of a sparse
-// grid, cells about the mean triangle's size (coarser if a few large triangles would
-// fill too many), listed by sorting (cell, triangle) keys. Every pair that shares a
-// cell counts against `pair_budget`; returns false if it ran out.
-template <class Visit>
-bool for_each_overlapping_pair(const std::vector<Triangle3>& triangles, size_t pair_budget,
-                               Visit visit) {
-  const size_t count = triangles.size();
-  if (count < 2) return true;
-  std::vector<Vec3> lo(count), hi(count);
-  Vec3 all_lo{INFINITY, INFINITY, INFINITY}, all_hi{-INFINITY, -INFINITY, -INFINITY};
-  double extent_sum = 0;
-  for (size_t i = 0; i < count; ++i) {
-    const Triangle3& t = triangles[i];
-    double extent = 0;
-    for (int k = 0; k < 3; ++k) {
-      lo[i][k] = std::min({t[0][k], t[1][k], t[2][k]});
-      hi[i][k] = std::max({t[0][k], t[1][k], t[2][k]});
-      all_lo[k] = std::min(all_lo[k], lo[i][k]);
-      all_hi[k] = std::max(all_hi[k], hi[i][k]);
-      extent = std::max(extent, hi[i][k] - lo[i][k]);
+// Boxes in the cells of a sparse grid: cells about the mean box's size (coarser if a
+// few large boxes would fill too many: at most 16 cells a box on average), each box in
+// every cell it covers, listed by sorting (cell, box) keys. For the pairs of boxes that
+// overlap, and the boxes that hold a point.
+class BoxGrid {
+ public:
+  BoxGrid(std::vector<Vec3> lo, std::vector<Vec3> hi) : lo_(std::move(lo)), hi_(std::move(hi)) {
+    const size_t count = lo_.size();
+    if (count == 0) return;
+    all_lo_ = lo_[0];
+    Vec3 all_hi = hi_[0];
+    double extent_sum = 0;
+    for (size_t i = 0; i < count; ++i) {
+      double extent = 0;
+      for (int k = 0; k < 3; ++k) {
+        all_lo_[k] = std::min(all_lo_[k], lo_[i][k]);
+        all_hi[k] = std::max(all_hi[k], hi_[i][k]);
+        extent = std::max(extent, hi_[i][k] - lo_[i][k]);
+      }
+      extent_sum += extent;
     }
-    extent_sum += extent;
+    cell_ = std::max(extent_sum / double(count), 1e-300);
+    for (int k = 0; k < 3; ++k) cell_ = std::max(cell_, (all_hi[k] - all_lo_[k]) / (kMaxCells - 1));
+    uint64_t from[3], to[3];
+    for (;;) {
+      double entries = 0;
+      for (size_t i = 0; i < count; ++i) entries += double(cells_of(i, from, to));
+      if (entries <= 16.0 * double(count) + 1024 || !std::isfinite(cell_)) break;
+      cell_ *= 2;
+    }
+    // Keys: x, then y, then z, in as few bits as the grid needs (fewer sort passes).
+    const auto bits_for = [](uint64_t n) {
+      int bits = 1;
+      while ((uint64_t{1} << bits) <= n) ++bits;
+      return bits;
+    };
+    shift_y_ = bits_for(index(all_hi[0], 0));
+    shift_z_ = shift_y_ + bits_for(index(all_hi[1], 1));
+    first_cell_.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+      cells_of(i, from, to);
+      for (int k = 0; k < 3; ++k) first_cell_[i][k] = static_cast<uint32_t>(from[k]);
+      for (uint64_t z = from[2]; z <= to[2]; ++z)
+        for (uint64_t y = from[1]; y <= to[1]; ++y)
+          for (uint64_t x = from[0]; x <= to[0]; ++x)
+            keys_.push_back({key(x, y, z), static_cast<uint32_t>(i)});
+    }
+    sort_by_key(&keys_);  // (cell, box): boxes in order within a cell
   }
-  // Cells: at most 2^20 along an axis, and at most 16 per triangle on average.
-  constexpr double kMaxCells = 1 << 20;
-  double cell = std::max(extent_sum / double(count), 1e-300);
-  for (int k = 0; k < 3; ++k) cell = std::max(cell, (all_hi[k] - all_lo[k]) / (kMaxCells - 1));
-  auto index = [&](double x, int k) {
-    const double f = std::floor((x - all_lo[k]) / cell);
+
+  // Calls visit(i, j), with i < j, once for each pair of boxes that overlap (closed
+  // boxes), in the first cell they share, until it returns false. Every pair that shares
+  // a cell counts against `pair_budget`; returns false if it ran out.
+  template <class Visit>
+  bool for_each_overlapping_pair(size_t pair_budget, Visit visit) const {
+    // Each cell's boxes are copied together first: the pairs then read them from cache.
+    struct Box {
+      Vec3 lo, hi;
+      std::array<uint32_t, 3> first_cell;
+      uint32_t index;
+    };
+    std::vector<Box> boxes;
+    size_t pairs = 0;
+    for (size_t begin = 0, end = 0; begin < keys_.size(); begin = end) {
+      const uint64_t key = keys_[begin].first;
+      while (end < keys_.size() && keys_[end].first == key) ++end;
+      pairs += (end - begin) * (end - begin - 1) / 2;
+      if (pairs > pair_budget) return false;
+      const uint32_t here[3] = {
+          uint32_t(key & ((uint64_t{1} << shift_y_) - 1)),
+          uint32_t(key >> shift_y_ & ((uint64_t{1} << (shift_z_ - shift_y_)) - 1)),
+          uint32_t(key >> shift_z_)};
+      boxes.clear();
+      for (size_t e = begin; e < end; ++e) {
+        const uint32_t i = keys_[e].second;
+        boxes.push_back({lo_[i], hi_[i], first_cell_[i], i});
+      }
+      for (size_t a = 0; a < boxes.size(); ++a) {
+        const Box& s = boxes[a];
+        for (size_t b = a + 1; b < boxes.size(); ++b) {
+          const Box& t = boxes[b];  // t.index > s.index
+          // The first cell both boxes cover is this one (the cell index is monotone).
+          bool visit_here = true;
+          for (int k = 0; k < 3; ++k) {
+            visit_here &= s.lo[k] <= t.hi[k] && t.lo[k] <= s.hi[k];
+            visit_here &= std::max(s.first_cell[k], t.first_cell[k]) == here[k];
+          }
+          if (visit_here && !visit(s.index, t.index)) return true;
+        }
+      }
+    }
+    return true;
+  }
+
+  // Calls visit(i) for each box i that holds p (closed boxes), in increasing order of i.
+  template <class Visit>
+  void for_each_holding(const Vec3& p, Visit visit) const {
+    if (keys_.empty()) return;
+    const uint64_t at = key(index(p.x, 0), index(p.y, 1), index(p.z, 2));
+    auto it = std::lower_bound(keys_.begin(), keys_.end(), std::make_pair(at, uint32_t{0}));
+    for (; it != keys_.end() && it->first == at; ++it) {
+      const Vec3 &lo = lo_[it->second], &hi = hi_[it->second];
+      if (lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z)
+        visit(it->second);
+    }
+  }
+
+ private:
+  static constexpr double kMaxCells = 1 << 20;  // along an axis
+
+  uint64_t index(double x, int k) const {
+    const double f = std::floor((x - all_lo_[k]) / cell_);
     return f >= 0 ? (f < kMaxCells - 1 ? uint64_t(f) : uint64_t(kMaxCells - 1)) : uint64_t{0};
-  };
-  auto cells_of = [&](size_t i, uint64_t* from, uint64_t* to) {
+  }
+  uint64_t key(uint64_t x, uint64_t y, uint64_t z) const {
+    return x | y << shift_y_ | z << shift_z_;
+  }
+  uint64_t cells_of(size_t i, uint64_t* from, uint64_t* to) const {
     uint64_t n = 1;
     for (int k = 0; k < 3; ++k) {
-      from[k] = index(lo[i][k], k);
-      to[k] = index(hi[i][k], k);
+      from[k] = index(lo_[i][k], k);
+      to[k] = index(hi_[i][k], k);
       n *= to[k] - from[k] + 1;
     }
     return n;
-  };
-  uint64_t from[3], to[3];
-  for (;;) {
-    double entries = 0;
-    for (size_t i = 0; i < count; ++i) entries += double(cells_of(i, from, to));
-    if (entries <= 16.0 * double(count) + 1024 || !std::isfinite(cell)) break;
-    cell *= 2;
   }
-  // Cell keys: x, then y, then z in as few bits as the grid needs (fewer sort passes).
-  const auto bits_for = [](uint64_t n) {
-    int bits = 1;
-    while ((uint64_t{1} << bits) <= n) ++bits;
-    return bits;
-  };
-  const int shift_y = bits_for(index(all_hi[0], 0));
-  const int shift_z = shift_y + bits_for(index(all_hi[1], 1));
-  std::vector<std::pair<uint64_t, uint32_t>> keys;  // (cell, triangle)
-  std::vector<std::array<uint32_t, 3>> first_cell(count);
-  for (size_t i = 0; i < count; ++i) {
-    cells_of(i, from, to);
-    for (int k = 0; k < 3; ++k) first_cell[i][k] = static_cast<uint32_t>(from[k]);
-    for (uint64_t z = from[2]; z <= to[2]; ++z)
-      for (uint64_t y = from[1]; y <= to[1]; ++y)
-        for (uint64_t x = from[0]; x <= to[0]; ++x)
-          keys.push_back({x | y << shift_y | z << shift_z, static_cast<uint32_t>(i)});
-  }
-  sort_by_key(&keys);  // (cell, triangle): triangles in order within a cell
-  // Each cell's boxes are copied together first: the pairs then read them from cache.
-  struct Box {
-    Vec3 lo, hi;
-    std::array<uint32_t, 3> first_cell;
-    uint32_t triangle;
-  };
-  std::vector<Box> boxes;
-  size_t pairs = 0;
-  for (size_t begin = 0, end = 0; begin < keys.size(); begin = end) {
-    const uint64_t key = keys[begin].first;
-    while (end < keys.size() && keys[end].first == key) ++end;
-    pairs += (end - begin) * (end - begin - 1) / 2;
-    if (pairs > pair_budget) return false;
-    const uint32_t here[3] = {uint32_t(key & ((uint64_t{1} << shift_y) - 1)),
-                              uint32_t(key >> shift_y & ((uint64_t{1} << (shift_z - shift_y)) - 1)),
-                              uint32_t(key >> shift_z)};
-    boxes.clear();
-    for (size_t e = begin; e < end; ++e) {
-      const uint32_t i = keys[e].second;
-      boxes.push_back({lo[i], hi[i], first_cell[i], i});
-    }
-    for (size_t a = 0; a < boxes.size(); ++a) {
-      const Box& s = boxes[a];
-      for (size_t b = a + 1; b < boxes.size(); ++b) {
-        const Box& t = boxes[b];  // t.triangle > s.triangle
-        // The first cell both boxes cover is this one (the cell index is monotone).
-        bool visit_here = true;
-        for (int k = 0; k < 3; ++k) {
-          visit_here &= s.lo[k] <= t.hi[k] && t.lo[k] <= s.hi[k];
-          visit_here &= std::max(s.first_cell[k], t.first_cell[k]) == here[k];
-        }
-        if (visit_here && !visit(s.triangle, t.triangle)) return true;
-      }
+
+  std::vector<Vec3> lo_, hi_;
+  Vec3 all_lo_;
+  double cell_ = 1;
+  int shift_y_ = 1, shift_z_ = 2;
+  std::vector<std::array<uint32_t, 3>> first_cell_;
+  std::vector<std::pair<uint64_t, uint32_t>> keys_;
+};
+
+// The bounding boxes of triangles.
+BoxGrid triangle_grid(const std::vector<Triangle3>& triangles) {
+  std::vector<Vec3> lo(triangles.size()), hi(triangles.size());
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const Triangle3& t = triangles[i];
+    for (int k = 0; k < 3; ++k) {
+      lo[i][k] = std::min({t[0][k], t[1][k], t[2][k]});
+      hi[i][k] = std::max({t[0][k], t[1][k], t[2][k]});
     }
   }
-  return true;
+  return BoxGrid(std::move(lo), std::move(hi));
 }
 
 // The angle the tets around boundary edge (a, b) fill, from boundary face f through
@@ -305,10 +347,6 @@ struct FaceGroups {
     }
   }
   size_t size(size_t g) const { return start[g + 1] - start[g]; }
-  bool box_holds(size_t g, const Vec3& p) const {
-    return lo[g].x <= p.x && p.x <= hi[g].x && lo[g].y <= p.y && p.y <= hi[g].y && lo[g].z <= p.z &&
-           p.z <= hi[g].z;
-  }
   // How many times group g's faces wind around p: the sum of their solid angles over
   // 4 pi (the generalised winding number; an integer for a closed surface).
   double winding(size_t g, const Vec3& p, const std::vector<BoundaryFace>& all,
@@ -396,7 +434,8 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
       for (int k = 0; k < 3; ++k) tri[f][k] = pos[faces[f].v[k]];
       planes[f] = plane_of(tri[f]);
     }
-    const bool complete = for_each_overlapping_pair(tri, pair_budget, [&](uint32_t i, uint32_t j) {
+    const BoxGrid grid = triangle_grid(tri);
+    const bool complete = grid.for_each_overlapping_pair(pair_budget, [&](uint32_t i, uint32_t j) {
       const BoundaryFace &s = faces[i], &t = faces[j];
       int shared = 0;
       for (uint32_t v : s.v) shared += v == t.v[0] || v == t.v[1] || v == t.v[2];
@@ -459,6 +498,7 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
       }
     }
     const FaceGroups surfaces(faces, surface_of, first_face.size(), pos);
+    const BoxGrid surface_grid(surfaces.lo, surfaces.hi);  // which surfaces a point may be in
     for (uint32_t first = 0; first < faces.size(); ++first) {
       if (find_root(sheet, first) != first) continue;  // not the first face of its sheet
       const BoundaryFace& f = faces[first];
@@ -468,16 +508,16 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
           std::max({squared_length(b - a), squared_length(c - b), squared_length(a - c)}));
       const Vec3 point = (a + b + c) * (1.0 / 3) - normal * (1e-6 * edge / length(normal));
       double winding = 0;
-      for (size_t other = 0; other < first_face.size(); ++other) {
-        const uint32_t other_tet = faces[first_face[other]].tet;
-        const bool near =
-            piece_of(other_tet) == piece_of(f.tet) && surfaces.box_holds(other, point);
-        work += 1 + (near ? surfaces.size(other) : 0);
-        if (work > winding_budget) {
-          found.cut_short = true;
-          return found;
-        }
-        if (near) winding += surfaces.winding(other, point, faces, pos);
+      bool over_budget = false;
+      surface_grid.for_each_holding(point, [&](uint32_t other) {
+        if (over_budget || piece_of(faces[first_face[other]].tet) != piece_of(f.tet)) return;
+        work += 1 + surfaces.size(other);
+        over_budget = work > winding_budget;
+        if (!over_budget) winding += surfaces.winding(other, point, faces, pos);
+      });
+      if (over_budget) {
+        found.cut_short = true;
+        return found;
       }
       if (winding > 1.5) {
         found.kind = OverlapFinding::Kind::kInside;
@@ -496,6 +536,7 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
   std::vector<uint32_t> piece_of_face(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) piece_of_face[f] = piece[faces[f].tet];
   const FaceGroups pieces(faces, piece_of_face, piece_count, pos);
+  const BoxGrid piece_grid(pieces.lo, pieces.hi);
   std::vector<char> on_boundary(pos.size(), 0);
   for (const BoundaryFace& f : faces)
     for (uint32_t v : f.v) on_boundary[v] = 1;
@@ -512,19 +553,22 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
   for (size_t p = 0; p < piece_count; ++p) {
     const Tet& q = mesh.tets[inner_tet[p]];
     const Vec3 point = (pos[q[0]] + pos[q[1]] + pos[q[2]] + pos[q[3]]) * 0.25;
-    for (size_t other = 0; other < piece_count; ++other) {
-      const bool near = other != p && pieces.box_holds(other, point);
-      work += 1 + (near ? pieces.size(other) : 0);
-      if (work > winding_budget) {
-        found.cut_short = true;
-        return found;
-      }
-      if (near && pieces.winding(other, point, faces, pos) > 0.5) {
-        found.kind = OverlapFinding::Kind::kInside;
-        found.tet_a = inner_tet[p];
-        found.tet_b = tet_holding(mesh, point, inner_tet[p]);
-        return found;
-      }
+    bool over_budget = false, inside = false;
+    piece_grid.for_each_holding(point, [&](uint32_t other) {
+      if (over_budget || inside || other == p) return;
+      work += 1 + pieces.size(other);
+      over_budget = work > winding_budget;
+      inside = !over_budget && pieces.winding(other, point, faces, pos) > 0.5;
+    });
+    if (over_budget) {
+      found.cut_short = true;
+      return found;
+    }
+    if (inside) {
+      found.kind = OverlapFinding::Kind::kInside;
+      found.tet_a = inner_tet[p];
+      found.tet_b = tet_holding(mesh, point, inner_tet[p]);
+      return found;
     }
   }
   return found;

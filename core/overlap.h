@@ -31,8 +31,10 @@
 // curved surface overlap by a sliver by design (the chords of their two
 // triangulations cut each other), and TetLOD reads such meshes as separate bodies.
 // The cost is linear in the number of tets (a pass or two) and about linear in the
-// number of boundary triangles (a sparse grid of cells about their size, and the
-// windings at one point for each of the few sheets a mesh has), within a budget.
+// number of boundary triangles: sparse grids of cells about the size of what they
+// hold find the faces that may cross and the surfaces and pieces whose boxes hold a
+// point, and a mesh has few sheets, each wound round one point. A work budget bounds
+// the rest (faces crowding by the thousand into one cell, many nested surfaces).
 #pragma once
 
 #include <cstdint>

@@ -299,6 +299,35 @@ TEST(Overlap, StopsEarlyWhenTooManyBoundaryTrianglesShareACell) {
   EXPECT_TRUE(report.overlap_check_cut_short);
 }
 
+// 8,000 separate small tets on a lattice: every one is its own piece and its own
+// surface, and each is checked against those whose boxes hold its points, not against
+// all the others (which would run out of the budget). One more tet, moved a little off
+// one of them, overlaps it.
+TEST(Overlap, ManySeparateBodiesAreCheckedInFull) {
+  TetMesh lattice;
+  for (int n = 0; n < 8000; ++n) {
+    const Vec3 at{double(n % 20), double(n / 20 % 20), double(n / 400)};
+    const uint32_t base = static_cast<uint32_t>(lattice.positions.size());
+    for (const Vec3& d : {Vec3{0, 0, 0}, Vec3{0.3, 0, 0}, Vec3{0, 0.3, 0}, Vec3{0, 0, 0.3}})
+      lattice.positions.push_back(at + d);
+    lattice.tets.push_back({base, base + 1, base + 2, base + 3});
+    lattice.materials.push_back(1);
+  }
+  TetMesh valid = lattice;
+  ValidationReport report;
+  ASSERT_TRUE(validate(&valid, {}, &report).ok()) << validate(&valid).message();
+  EXPECT_FALSE(report.overlap_check_cut_short);
+
+  TetMesh one_more = lattice;
+  append(&one_more, moved(test::make_single_tet(), {7.05, 3.05, 11.05}, 0.3), 1);
+  const Status s = validate(&one_more);
+  ASSERT_FALSE(s.ok());
+  // The lattice's tet at (7, 3, 11) is number 11 * 400 + 3 * 20 + 7 + 1 = 4468.
+  EXPECT_NE(s.message().find("tetrahedron 8001 overlaps tetrahedron 4468 with no face"),
+            std::string::npos)
+      << s.message();
+}
+
 // Meshes that touch themselves are valid: two cubes sharing an edge, or a vertex.
 TEST(Overlap, MeshesThatTouchThemselvesAreValid) {
   TetMesh edge = test::make_grid_mesh(2, 2, 1, [](int i, int j, int) { return i == j ? 1 : 0; });
