@@ -394,10 +394,12 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
       faces.push_back({{q[kTetFace[c][0]], q[kTetFace[c][1]], q[kTetFace[c][2]]}, t, c});
     }
   }
-  // Budgets: pairs of faces that share a cell, and solid angles (about 100 ns each).
+  // Budgets: pairs of faces that share a cell, tets passed round boundary edges (a
+  // boundary edge has about three), and solid angles (about 100 ns each).
   const size_t pair_budget = 64 * faces.size() + (size_t{1} << 22);
+  const size_t walk_budget = 32 * faces.size() + (size_t{1} << 20);
   const size_t winding_budget = 8 * faces.size() + (size_t{1} << 20);
-  size_t work = 0;
+  size_t work = 0, walked = 0;
 
   // Surfaces: boundary faces joined through shared vertices, numbered in face order.
   std::vector<uint32_t> surface_of(faces.size()), first_face;  // first_face: of each
@@ -485,8 +487,8 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
       const BoundaryFace& f = faces[edges[e].second];
       uint32_t past_turn = kInvalidIndex;
       angle_around(mesh, neighbors, f, uint32_t(edges[e].first >> 32), uint32_t(edges[e].first),
-                   winding_budget, &work, &past_turn);
-      if (work >= winding_budget) {
+                   walk_budget, &walked, &past_turn);
+      if (walked >= walk_budget) {
         found.cut_short = true;
         return found;
       }
