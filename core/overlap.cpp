@@ -92,9 +92,15 @@ double solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 2 * std::atan2(numerator, denominator);
 }
 
+// Union-find with path halving; the root of a set is its smallest member.
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
   while (parent[v] != v) v = parent[v] = parent[parent[v]];
   return v;
+}
+
+void unite(std::vector<uint32_t>& parent, uint32_t u, uint32_t v) {
+  const uint32_t a = find_root(parent, u), b = find_root(parent, v);
+  if (a != b) parent[std::max(a, b)] = std::min(a, b);
 }
 
 // Sorts (key, value) pairs by key, keeping the order of equal keys: a least
@@ -250,7 +256,7 @@ class BoxGrid {
 };
 
 // The bounding boxes of triangles.
-BoxGrid triangle_grid(const std::vector<Triangle3>& triangles) {
+BoxGrid grid_of_triangles(const std::vector<Triangle3>& triangles) {
   std::vector<Vec3> lo(triangles.size()), hi(triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i) {
     const Triangle3& t = triangles[i];
@@ -262,20 +268,19 @@ BoxGrid triangle_grid(const std::vector<Triangle3>& triangles) {
   return BoxGrid(std::move(lo), std::move(hi));
 }
 
-// The angle the tets around boundary edge (a, b) fill, from boundary face f through
-// each tet's dihedral angle at the edge to the other boundary face there: less than a
-// full turn, unless they wrap round the edge and overlap. `*steps` counts the tets;
-// the walk stops at `max_steps`. `*past_turn` is the first tet that takes the sum
-// past a full turn (kInvalidIndex if none).
-double angle_around(const TetMesh& mesh, const std::vector<uint32_t>& neighbors,
-                    const BoundaryFace& f, uint32_t a, uint32_t b, size_t max_steps, size_t* steps,
-                    uint32_t* past_turn) {
+// Whether the tets around boundary edge (a, b) fill more than a full turn there, summing
+// their dihedral angles at the edge from boundary face f to the other boundary face
+// (they then wrap round the edge and overlap): the first tet that takes the sum past a
+// full turn, else kInvalidIndex. `*steps` counts the tets; the walk stops at
+// `max_steps`.
+uint32_t tet_past_a_turn(const TetMesh& mesh, const std::vector<uint32_t>& neighbors,
+                         const BoundaryFace& f, uint32_t a, uint32_t b, size_t max_steps,
+                         size_t* steps) {
   const std::vector<Vec3>& pos = mesh.positions;
   const Vec3 &pa = pos[a], edge = pos[b] - pos[a];
   uint32_t t = f.tet;
   int came = f.corner;  // the corner opposite the face the walk came in through
   double sum = 0;
-  *past_turn = kInvalidIndex;
   while (*steps < max_steps) {
     ++*steps;
     const Tet& q = mesh.tets[t];
@@ -284,7 +289,7 @@ double angle_around(const TetMesh& mesh, const std::vector<uint32_t>& neighbors,
       if (q[k] != a && q[k] != b && n < 2) other[n++] = k;
     const Vec3 n1 = cross(edge, pos[q[other[0]]] - pa), n2 = cross(edge, pos[q[other[1]]] - pa);
     sum += std::atan2(length(cross(n1, n2)), dot(n1, n2));
-    if (sum > 2 * M_PI * (1 + 1e-9) && *past_turn == kInvalidIndex) *past_turn = t;
+    if (sum > 2 * M_PI * (1 + 1e-9)) return t;
     const int out = other[0] == came ? other[1] : other[0];
     const uint32_t next = neighbors[4 * size_t{t} + out];
     if (next == kInvalidIndex) break;  // the other boundary face
@@ -294,7 +299,7 @@ double angle_around(const TetMesh& mesh, const std::vector<uint32_t>& neighbors,
     while (r[came] == a || r[came] == b || r[came] == shared) ++came;
     t = next;
   }
-  return sum;
+  return kInvalidIndex;
 }
 
 // Pieces: tets joined through shared vertices, numbered in the order of their first
@@ -303,10 +308,7 @@ std::vector<uint32_t> number_pieces(const TetMesh& mesh, std::vector<uint32_t>* 
   std::vector<uint32_t> root(mesh.positions.size());  // stays in cache, unlike tets
   std::iota(root.begin(), root.end(), 0u);
   for (const Tet& q : mesh.tets) {
-    for (int k = 1; k < 4; ++k) {
-      const uint32_t a = find_root(root, q[0]), b = find_root(root, q[k]);
-      if (a != b) root[std::max(a, b)] = std::min(a, b);
-    }
+    for (int k = 1; k < 4; ++k) unite(root, q[0], q[k]);
   }
   std::vector<uint32_t> piece_of_root(root.size(), kInvalidIndex), first_tet;
   piece_of->resize(mesh.tets.size());
@@ -407,10 +409,7 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
     std::vector<uint32_t> root(pos.size());
     std::iota(root.begin(), root.end(), 0u);
     for (const BoundaryFace& f : faces) {
-      for (int k = 1; k < 3; ++k) {
-        const uint32_t a = find_root(root, f.v[0]), b = find_root(root, f.v[k]);
-        if (a != b) root[std::max(a, b)] = std::min(a, b);
-      }
+      for (int k = 1; k < 3; ++k) unite(root, f.v[0], f.v[k]);
     }
     std::vector<uint32_t> surface_of_root(pos.size(), kInvalidIndex);
     for (uint32_t f = 0; f < faces.size(); ++f) {
@@ -436,7 +435,7 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
       for (int k = 0; k < 3; ++k) tri[f][k] = pos[faces[f].v[k]];
       planes[f] = plane_of(tri[f]);
     }
-    const BoxGrid grid = triangle_grid(tri);
+    const BoxGrid grid = grid_of_triangles(tri);
     const bool complete = grid.for_each_overlapping_pair(pair_budget, [&](uint32_t i, uint32_t j) {
       const BoundaryFace &s = faces[i], &t = faces[j];
       int shared = 0;
@@ -479,15 +478,12 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
                        (e == 0 || edges[e - 1].first != edges[e].first) &&
                        (e + 2 == edges.size() || edges[e + 2].first != edges[e].first);
       if (!two) continue;
-      const uint32_t a = find_root(sheet, edges[e].second),
-                     b = find_root(sheet, edges[e + 1].second);
-      if (a != b) sheet[std::max(a, b)] = std::min(a, b);
+      unite(sheet, edges[e].second, edges[e + 1].second);
       // Tets that wrap round the edge overlap there, and the sheet goes through itself
       // along it, where no face crosses another.
       const BoundaryFace& f = faces[edges[e].second];
-      uint32_t past_turn = kInvalidIndex;
-      angle_around(mesh, neighbors, f, uint32_t(edges[e].first >> 32), uint32_t(edges[e].first),
-                   walk_budget, &walked, &past_turn);
+      const uint32_t past_turn = tet_past_a_turn(mesh, neighbors, f, uint32_t(edges[e].first >> 32),
+                                                 uint32_t(edges[e].first), walk_budget, &walked);
       if (walked >= walk_budget) {
         found.cut_short = true;
         return found;
