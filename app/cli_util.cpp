@@ -67,7 +67,31 @@ std::vector<std::string> validation_notes(const ValidationReport& report) {
   return notes;
 }
 
-bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
+std::vector<std::string> reader_notes(const ReadInfo& info, bool surfaces_written) {
+  std::vector<std::string> notes = info.notes;
+  if (info.surface_elements_not_kept == 0 || surfaces_written) return notes;
+  std::string groups;
+  const size_t shown = std::min<size_t>(info.surface_groups.size(), 10);
+  for (size_t g = 0; g < shown; ++g) {
+    const InputSurfaceGroup& group = info.surface_groups[g];
+    groups += (g == 0 ? "" : ", ") +
+              (group.name.empty() ? std::to_string(group.tag) : "'" + group.name + "'");
+  }
+  if (info.surface_groups.size() > shown)
+    groups += " and " + std::to_string(info.surface_groups.size() - shown) + " more";
+  notes.push_back(
+      std::to_string(info.surface_elements_not_kept) +
+      " surface elements are not kept as elements" +
+      (groups.empty() ? std::string() : ", only as the surface groups " + groups) +
+      ": TetLOD keeps the tetrahedra and their volume groups; --surfaces, or the viewer's "
+      "boundary groups, writes the boundary and interface triangles again" +
+      (groups.empty() ? std::string(", a group per material pair")
+                      : std::string(", these groups under their names and tags (simplified "
+                                    "too), the rest by material pair")));
+  return notes;
+}
+
+bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info, bool surfaces_written) {
   if (is_history_path(path)) {
     std::fprintf(stderr,
                  "tetlod: %s is a collapse history, not a mesh: write one of its levels with "
@@ -82,7 +106,7 @@ bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   }
   // The reader's notes first: they may explain the validation's (skipped elements
   // leave their vertices unused).
-  for (const std::string& note : info->notes)
+  for (const std::string& note : reader_notes(*info, surfaces_written))
     std::fprintf(stderr, "tetlod: %s: note: %s\n", path.c_str(), note.c_str());
   for (const std::string& note : validation_notes(info->validation))
     std::fprintf(stderr, "tetlod: %s: note: %s\n", path.c_str(), note.c_str());

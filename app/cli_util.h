@@ -25,13 +25,19 @@ std::optional<long long> parse_integer(const std::string& text);
 
 // Reads a mesh; on failure prints "tetlod: <message>" to stderr and returns false
 // (for a collapse history, what to do with it instead).
-// The reader's notes and validation_notes() go to stderr too.
+// reader_notes() and validation_notes() go to stderr too.
 // What validation repaired or could not check in a mesh it accepted, one note each
 // (reoriented tets, vertices at the position of another, an overlap check cut short,
 // dropped vertices), in words that agree with the counts.
 std::vector<std::string> validation_notes(const ValidationReport& report);
 
-bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info);
+// The reader's notes (info.notes), and, unless the caller writes the surface groups
+// again (`surfaces_written`), one that the file's surface elements were not kept as
+// elements.
+std::vector<std::string> reader_notes(const ReadInfo& info, bool surfaces_written);
+
+bool load_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info,
+               bool surfaces_written = false);
 
 // Whether `path` ends in `extension` (lower case, with the dot), ignoring case.
 bool has_extension(const std::string& path, const char* extension);

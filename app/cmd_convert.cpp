@@ -73,7 +73,7 @@ int cmd_convert(const Args& args) {
   if (!output_directory_ok(out)) return kExitBadInput;
   TetMesh mesh;
   ReadInfo info;
-  if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
+  if (!load_mesh(in, &mesh, &info, options.surface_groups)) return kExitBadInput;
   // The file's own surface groups, written under their names and tags.
   SurfacePatches patches;
   if (options.surface_groups && !info.surface_groups.empty()) {

@@ -145,7 +145,7 @@ int cmd_simplify(const Args& args) {
 
   TetMesh input;
   ReadInfo info;
-  if (!load_mesh(in, &input, &info)) return kExitBadInput;
+  if (!load_mesh(in, &input, &info, write_options.surface_groups)) return kExitBadInput;
   if (!finish_simplify_options(input, info.material_names, "simplify", &options)) return kExitUsage;
   // The file's own surface groups: the simplifier keeps their borders as it keeps
   // those between materials, so that the output has them too (with --surfaces).

@@ -675,7 +675,7 @@ void Viewer::start_load(const std::string& path) {
         s = Status::error(s.message() + "; the viewer also opens .tlh collapse histories");
       if (s) {
         std::lock_guard<std::mutex> lock(job->mutex);
-        job->notes = std::move(info.notes);
+        job->notes = reader_notes(info, false);
         for (std::string& note : validation_notes(info.validation))
           job->notes.push_back(std::move(note));
       }

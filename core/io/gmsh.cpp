@@ -313,6 +313,21 @@ class GmshParser {
     volume_physical_[tag] = physical;
     volume_parent_[tag] = parent;
   }
+  // A partition surface, likewise: its own physical tags, else its parent surface's.
+  // One between two partitions (a volume as parent) is in no surface group, though
+  // Gmsh gives it its volume's physical tag.
+  void add_partition_surface(int64_t tag, int64_t parent_dimension, int64_t parent,
+                             int64_t physical, std::vector<int64_t> others) {
+    if (parent_dimension != 2) {
+      physical = 0;
+      others.clear();
+    } else if (physical == 0) {
+      physical = surface_physical_of(parent);
+      if (const std::vector<int64_t>* inherited = other_physicals_of(parent)) others = *inherited;
+    }
+    surface_physical_[tag] = physical;
+    if (!others.empty()) surface_other_physicals_[tag] = std::move(others);
+  }
 
   bool parse_partitioned_entities() {
     uint64_t partitions = 0, ghosts = 0;
@@ -330,13 +345,14 @@ class GmshParser {
       for (uint64_t i = 0; i < counts[dimension]; ++i) {
         int64_t tag = 0, parent_dimension = 0, parent = 0, physical = 0;
         uint64_t partition_count = 0;
+        std::vector<int64_t> others;
         if (!scanner_.read_int(&tag, "entity tag") ||
             !scanner_.read_int(&parent_dimension, "parent dimension") ||
             !scanner_.read_int(&parent, "parent tag") ||
             !scanner_.read_count(&partition_count, "partition count", 2) ||
             !scanner_.skip_numbers(partition_count, "partition tags") ||
             !scanner_.skip_numbers(dimension == 0 ? 3 : 6, "entity bounding box") ||
-            !read_physical_tags(&physical)) {
+            !read_physical_tags(&physical, &others)) {
           return false;
         }
         if (dimension > 0) {
@@ -347,6 +363,8 @@ class GmshParser {
           }
         }
         if (dimension == 3) add_partition_volume(tag, parent_dimension, parent, physical);
+        if (dimension == 2)
+          add_partition_surface(tag, parent_dimension, parent, physical, std::move(others));
       }
     }
     return expect_end("$EndPartitionedEntities");
@@ -398,8 +416,11 @@ class GmshParser {
         if (!binary_count(c, &partition_count, "partition count", 4)) return false;
         for (uint64_t k = 0; k < partition_count; ++k) c.i32();
         int32_t physical = 0;
-        if (!binary_entity_tail(c, dimension, &physical)) return false;
+        std::vector<int64_t> others;
+        if (!binary_entity_tail(c, dimension, &physical, &others)) return false;
         if (dimension == 3 && c.ok()) add_partition_volume(tag, parent_dimension, parent, physical);
+        if (dimension == 2 && c.ok())
+          add_partition_surface(tag, parent_dimension, parent, physical, std::move(others));
       }
     }
     return end_binary(c, "$PartitionedEntities") && expect_end("$EndPartitionedEntities");
@@ -955,8 +976,8 @@ class GmshParser {
     return true;
   }
 
-  // The first physical tag of a 4.1 surface entity, 0 if none (or a partition's:
-  // partitioned surfaces are not followed to their parents).
+  // The first physical tag of a 4.1 surface entity (a partition's: its own, else its
+  // parent's), 0 if none.
   int64_t surface_physical_of(int64_t entity) const {
     const auto it = surface_physical_.find(entity);
     return it != surface_physical_.end() ? it->second : 0;
@@ -1121,14 +1142,13 @@ class GmshParser {
                             " higher-order tetrahedra (10 nodes or more) were read as 4-node "
                             "ones (by their corners; their other nodes are dropped)");
     }
-    std::vector<std::string> surface_names, volume_names;
+    std::vector<std::string> volume_names;
     // The materials the tets have, for the volume groups left without tets (one pass,
     // not one per group).
     std::unordered_set<int32_t> present;
     if (!physical_names_.empty())
       present.insert(out_->mesh.materials.begin(), out_->mesh.materials.end());
     for (const auto& [key, name] : physical_names_) {
-      if (key.first == 2) surface_names.push_back("'" + name + "'");
       if (key.first == 3) {
         const bool has_tets = key.second >= 0 &&
                               key.second <= std::numeric_limits<int32_t>::max() &&
@@ -1159,17 +1179,7 @@ class GmshParser {
         if (has_tets) out_->material_names.push_back({int32_t(key.second), name});
       }
     }
-    if (surface_elements > 0) {
-      out_->notes.push_back(
-          std::to_string(surface_elements) + " surface elements are not kept as elements" +
-          (surface_names.empty() ? std::string()
-                                 : ", only as the surface groups " + quoted_list(surface_names)) +
-          ": TetLOD keeps the tetrahedra and their volume groups; --surfaces, or the viewer's "
-          "boundary groups, writes the boundary and interface triangles again" +
-          (surface_names.empty() ? std::string(", a group per material pair")
-                                 : std::string(", these groups under their names and tags "
-                                               "(simplified too), the rest by material pair")));
-    }
+    out_->surface_elements_not_kept = surface_elements;
     for (const std::string& renamed : renamed_)
       out_->notes.push_back(renamed + " in $PhysicalNames: the last name is kept");
     if (!volume_names.empty()) {

@@ -25,6 +25,7 @@ struct ParsedMesh {
   std::vector<std::string> notes;                 // what a user should know of how it was read
   std::vector<InputSurfaceGroup> surface_groups;  // the file's own (ReadInfo)
   std::vector<MaterialName> material_names;       // ReadInfo's: sorted, present materials
+  uint64_t surface_elements_not_kept = 0;         // ReadInfo's
 };
 
 Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out);

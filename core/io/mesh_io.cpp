@@ -80,6 +80,7 @@ Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string&
     info->notes = std::move(parsed->notes);
     info->surface_groups = std::move(parsed->surface_groups);
     info->material_names = std::move(parsed->material_names);
+    info->surface_elements_not_kept = parsed->surface_elements_not_kept;
   }
   return Status();
 }

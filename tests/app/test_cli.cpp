@@ -223,6 +223,32 @@ TEST(Cli, SimplifyKeepsTheInputsSurfaceGroups) {
   EXPECT_EQ(r.output.find("note: surface group"), std::string::npos) << r.output;
 }
 
+// A Gmsh file's surface elements are read as its surface groups only: a note says so,
+// except where the command writes the groups again (--surfaces).
+TEST(Cli, SurfaceElementsNoteOnlyWhereTheGroupsAreNotWritten) {
+  const std::string coax = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_part3.msh";
+  const std::string note =
+      "coax_part3.msh: note: 552 surface elements are not kept as elements, only as the "
+      "surface groups 'ends', 'jacket': TetLOD keeps the tetrahedra";
+  const std::string out = out_dir() + "/coax_note.msh";
+  for (const std::string& command : {"stats " + coax, "convert " + coax + " " + out,
+                                     "simplify " + coax + " -o " + out + " --size 2"}) {
+    const CommandResult r = run(command);
+    EXPECT_EQ(r.code, 0) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find(note), std::string::npos) << command << "\n" << r.output;
+  }
+  for (const std::string& command : {"convert " + coax + " " + out + " --surfaces",
+                                     "simplify " + coax + " -o " + out + " --size 2 --surfaces"}) {
+    const CommandResult r = run(command);
+    EXPECT_EQ(r.code, 0) << command << "\n" << r.output;
+    EXPECT_EQ(r.output.find("surface elements are not kept"), std::string::npos) << command << "\n"
+                                                                                 << r.output;
+    EXPECT_NE(r.output.find("surface groups (tag name: triangles): "), std::string::npos)
+        << command << "\n"
+        << r.output;
+  }
+}
+
 // Material ids at the top of the tag range leave no room to number the surface
 // groups: simplify --surfaces says so before simplifying, and writes nothing.
 TEST(Cli, SimplifyRefusesSurfaceGroupsWithNoTagsLeftUpFront) {
