@@ -1,8 +1,10 @@
 #include "core/surface.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <set>
@@ -95,6 +97,29 @@ TriangleKey triangle_key(const Vec3& a, const Vec3& b, const Vec3& c) {
   return key;
 }
 
+// The face neighbours of a valid mesh's tets (build_face_neighbors()), without the
+// vertex -> tets lists build_adjacency() makes too.
+std::vector<uint32_t> face_neighbors(const TetMesh& mesh) {
+  std::vector<uint32_t> neighbors;
+  const FaceProblem problem = build_face_neighbors(mesh, &neighbors);
+  assert(problem.kind == FaceProblem::Kind::kNone);
+  (void)problem;
+  return neighbors;
+}
+
+// A hash of a key's coordinates (-0 as 0, so that equal keys hash alike).
+uint64_t corner_hash(const TriangleKey& key) {
+  uint64_t h = 0x9e3779b97f4a7c15ull;
+  for (double x : key) {
+    uint64_t bits;
+    const double value = x + 0.0;
+    std::memcpy(&bits, &value, sizeof bits);
+    h = (h ^ bits) * 0xff51afd7ed558ccdull;
+    h ^= h >> 32;
+  }
+  return h;
+}
+
 }  // namespace
 
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups) {
@@ -102,15 +127,12 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups) {
 }
 
 SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups) {
-  const std::vector<SurfaceTriangle> surface =
-      extract_surface(input, build_adjacency(input).tet_neighbors);
+  const std::vector<SurfaceTriangle> surface = extract_surface(input, face_neighbors(input));
   const auto& p = input.positions;
-  std::map<TriangleKey, uint32_t> index;  // surface triangle -> its entry
   entries_.reserve(surface.size());
-  for (const SurfaceTriangle& t : surface) {
-    index.emplace(triangle_key(p[t.v[0]], p[t.v[1]], p[t.v[2]]), uint32_t(entries_.size()));
+  for (const SurfaceTriangle& t : surface)
     entries_.push_back({{p[t.v[0]], p[t.v[1]], p[t.v[2]]}, t.inner, t.outer, kNone});
-  }
+  build_index();
   // A triangle in several groups goes to the smallest ("x0" rather than "all outer"),
   // so that both are written; the first in the input's order among equals.
   groups_.resize(groups.size());
@@ -125,19 +147,18 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
     group.tag = g.tag;
     group.name = g.name;
     for (const auto& t : g.triangles) {
-      const auto it = g.tag >= 1 ? index.find(triangle_key(t[0], t[1], t[2])) : index.end();
-      if (it == index.end()) {
+      const uint32_t e = g.tag >= 1 ? find_exact(t[0], t[1], t[2]) : kNone;
+      if (e == kNone) {
         ++group.missing;
-      } else if (entries_[it->second].group == kNone) {
-        entries_[it->second].group = id;
+      } else if (entries_[e].group == kNone) {
+        entries_[e].group = id;
         ++group.triangles;
         any_ = true;
-      } else if (entries_[it->second].group != id) {
+      } else if (entries_[e].group != id) {
         ++group.shared;
       }
     }
   }
-  build_index();
 }
 
 SurfacePatches::SurfacePatches(std::vector<Group> groups, std::vector<Entry> entries)
@@ -147,6 +168,12 @@ SurfacePatches::SurfacePatches(std::vector<Group> groups, std::vector<Entry> ent
 }
 
 void SurfacePatches::build_index() {
+  exact_.resize(entries_.size());
+  for (uint32_t i = 0; i < entries_.size(); ++i) {
+    const Entry& e = entries_[i];
+    exact_[i] = {corner_hash(triangle_key(e.p[0], e.p[1], e.p[2])), i};
+  }
+  std::sort(exact_.begin(), exact_.end());
   std::vector<std::pair<std::pair<int32_t, int32_t>, uint32_t>> by_pair(entries_.size());
   for (uint32_t i = 0; i < entries_.size(); ++i)
     by_pair[i] = {{entries_[i].inner, entries_[i].outer}, i};
@@ -166,10 +193,26 @@ void SurfacePatches::build_index() {
   }
 }
 
+uint32_t SurfacePatches::find_exact(const Vec3& a, const Vec3& b, const Vec3& c) const {
+  const TriangleKey key = triangle_key(a, b, c);
+  const uint64_t hash = corner_hash(key);
+  auto it = std::lower_bound(exact_.begin(), exact_.end(), std::make_pair(hash, uint32_t(0)));
+  for (; it != exact_.end() && it->first == hash; ++it) {
+    const Entry& e = entries_[it->second];
+    if (triangle_key(e.p[0], e.p[1], e.p[2]) == key) return it->second;
+  }
+  return kNone;
+}
+
 uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner,
                                 int32_t outer) const {
   if (!any_) return kNone;
   if (outer != kOutsideMaterial && outer < inner) std::swap(inner, outer);
+  // An input triangle itself: the nearest to its centroid, found at once (on a valid
+  // surface no other triangle of the pair holds that point).
+  if (const uint32_t e = find_exact(a, b, c);
+      e != kNone && entries_[e].inner == inner && entries_[e].outer == outer)
+    return entries_[e].group;
   const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), std::make_pair(inner, outer));
   if (it == pairs_.end() || *it != std::make_pair(inner, outer)) return kNone;
   const size_t pair = size_t(it - pairs_.begin());
@@ -181,7 +224,7 @@ uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int
 
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches) {
   SurfaceGroups result;
-  result.surface = extract_surface(mesh, build_adjacency(mesh).tet_neighbors);
+  result.surface = extract_surface(mesh, face_neighbors(mesh));
   const auto& p = mesh.positions;
   std::map<PairKey, std::vector<uint32_t>> by_pair, unlabelled;
   std::vector<std::vector<uint32_t>> in_group(patches.groups().size());

@@ -130,8 +130,14 @@ class SurfacePatches {
 
  private:
   void build_index();
+  // The entry whose corners are exactly a, b, c (in any order), or kNone.
+  uint32_t find_exact(const Vec3& a, const Vec3& b, const Vec3& c) const;
   std::vector<Group> groups_;
   std::vector<Entry> entries_;
+  // (hash of an entry's sorted corners, entry), sorted: the input's own triangles,
+  // and the pieces of a mesh made from it that kept their corners, are found here
+  // without a search of the grids.
+  std::vector<std::pair<uint64_t, uint32_t>> exact_;
   // Per material pair (sorted): a grid of its entries' triangles, and their entries.
   std::vector<std::pair<int32_t, int32_t>> pairs_;
   std::vector<TriangleGrid> grids_;
