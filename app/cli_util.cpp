@@ -71,6 +71,8 @@ std::vector<std::string> reader_notes(const ReadInfo& info, bool surfaces_writte
   std::vector<std::string> notes = info.notes;
   if (info.surface_elements_not_kept == 0 || surfaces_written) return notes;
   std::string groups;
+  bool named = false;
+  for (const InputSurfaceGroup& group : info.surface_groups) named = named || !group.name.empty();
   const size_t shown = std::min<size_t>(info.surface_groups.size(), 10);
   for (size_t g = 0; g < shown; ++g) {
     const InputSurfaceGroup& group = info.surface_groups[g];
@@ -85,9 +87,10 @@ std::vector<std::string> reader_notes(const ReadInfo& info, bool surfaces_writte
       (groups.empty() ? std::string() : ", only as the surface groups " + groups) +
       ": TetLOD keeps the tetrahedra and their volume groups; --surfaces, or the viewer's "
       "boundary groups, writes the boundary and interface triangles again" +
-      (groups.empty() ? std::string(", a group per material pair")
-                      : std::string(", these groups under their names and tags (simplified "
-                                    "too), the rest by material pair")));
+      (groups.empty()
+           ? std::string(", a group per material pair")
+           : std::string(", these groups under their ") + (named ? "names and tags" : "tags") +
+                 " (simplified too), the rest by material pair"));
   return notes;
 }
 

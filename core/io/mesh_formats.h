@@ -4,6 +4,7 @@
 // file text to `out`; they expect a mesh whose indices and materials were checked.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <iterator>
 #include <map>
@@ -63,6 +64,29 @@ void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out);
 // VTK cell types read as tets (vtk.cpp, vtu.cpp): the quadratic tet gives its corners.
 inline constexpr int64_t kVtkTetra = 10;
 inline constexpr int64_t kVtkQuadraticTetra = 24;
+
+// The surface cells of a .vtk or .vtu: triangles and quadrilaterals of any order
+// (and strips, polygons, pixels). Each is counted (ParsedMesh::surface_elements_not_kept);
+// a triangle whose value in the material array is >= 1 is kept, by its corners (the
+// first three points of every triangle type), in the surface group of that number, as
+// Gmsh's VTK export and meshio write a physical surface's number there.
+bool is_vtk_surface_cell(int64_t type);
+// The number of points a triangle cell of `type` has (0: any >= 3, for the Lagrange
+// and Bezier kinds), or -1 if `type` is not a triangle.
+int vtk_triangle_points(int64_t type);
+class VtkSurfaceCells {
+ public:
+  void count() { ++cells_; }
+  void add_triangle(int32_t tag, const Vec3& a, const Vec3& b, const Vec3& c) {
+    triangles_[tag].push_back({a, b, c});
+  }
+  // The count, and the groups by increasing tag (unnamed).
+  void finish(ParsedMesh* out);
+
+ private:
+  uint64_t cells_ = 0;
+  std::map<int32_t, std::vector<std::array<Vec3, 3>>> triangles_;
+};
 
 // The cell array of a .vtk or .vtu that holds the material, by name, best first:
 // TetLOD's "material"; what meshio writes for a mesh it read from Gmsh, Medit,
@@ -124,7 +148,8 @@ inline std::string count_list(const std::map<std::string, size_t>& counts) {
 
 // The notes a .vtk or .vtu reader gives of its cells by VTK type (`counts`, every
 // cell): volume cells other than tets that it skipped, and quadratic tets read by
-// their corners. Surface, line and vertex cells are skipped without a note.
+// their corners. Surface cells are counted by VtkSurfaceCells instead (the CLI's
+// note); line and vertex cells are skipped without a note.
 void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh* out);
 
 // The note a reader gives when a file has cell arrays but none of them is read as

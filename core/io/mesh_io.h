@@ -110,7 +110,8 @@ struct ReadInfo {
   std::vector<std::string> notes;
   // The file's own surface groups (Gmsh physical surfaces of triangles, Medit
   // triangles with a reference >= 1, TetGen .face markers >= 1, Abaqus element-face
-  // *SURFACE and triangle element sets; other formats none), for SurfacePatches
+  // *SURFACE and triangle element sets, .vtk and .vtu triangle cells by their number
+  // >= 1 in the material array; Nastran none), for SurfacePatches
   // (core/surface.h) when writing
   // surface groups.
   std::vector<InputSurfaceGroup> surface_groups;
@@ -118,9 +119,9 @@ struct ReadInfo {
   // name that only says the number, such as Gmsh's "material_<n>"; formats without
   // names give none).
   std::vector<MaterialName> material_names;
-  // Gmsh elements of a surface (triangles, quadrangles) the file holds: TetLOD keeps
-  // only their groups (surface_groups), not the elements (callers say so unless they
-  // write the surface groups again).
+  // Gmsh elements or VTK cells of a surface (triangles, quadrangles) the file holds:
+  // TetLOD keeps only their groups (surface_groups), not the elements (callers say so
+  // unless they write the surface groups again).
   uint64_t surface_elements_not_kept = 0;
 };
 

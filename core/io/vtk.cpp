@@ -621,19 +621,24 @@ class VtkLegacyParser {
     if (!seen_types_) return scanner_.fail("no CELL_TYPES section");
     TetMesh& mesh = out_->mesh;
     std::vector<uint64_t> counts_by_type(128, 0);
+    VtkSurfaceCells surface;
     for (size_t c = 0; c < cell_count(); ++c) {
       const uint64_t size = cell_starts_[c + 1] - cell_starts_[c];
       const int64_t type = cell_types_[c];
       if (type >= 0 && type < 128) ++counts_by_type[size_t(type)];
-      if (type != kVtkTetra && type != kVtkQuadraticTetra) continue;
-      if (size != (type == kVtkTetra ? 4u : 10u)) {
+      const bool tet = type == kVtkTetra || type == kVtkQuadraticTetra;
+      const int triangle = vtk_triangle_points(type);
+      if (is_vtk_surface_cell(type)) surface.count();
+      if (!tet && triangle < 0) continue;
+      const uint64_t points = tet ? (type == kVtkTetra ? 4u : 10u) : uint64_t(triangle);
+      if (points > 0 ? size != points : size < 3) {
         return scanner_.fail_at_line(binary_ ? 0 : cell_lines_[c],
                                      "cell " + std::to_string(c) + " of type " +
                                          std::to_string(type) + " has " + std::to_string(size) +
                                          " points");
       }
       const uint32_t* v = connectivity_.data() + cell_starts_[c];
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < (tet ? 4 : 3); ++k) {
         if (v[k] >= mesh.positions.size()) {
           return scanner_.fail_at_line(binary_ ? 0 : cell_lines_[c],
                                        "cell " + std::to_string(c) + " uses point " +
@@ -642,10 +647,18 @@ class VtkLegacyParser {
                                            " points (numbered from 0)");
         }
       }
+      if (!tet) {
+        if (has_materials_ && cell_materials_[c] >= 1) {
+          surface.add_triangle(cell_materials_[c], mesh.positions[v[0]], mesh.positions[v[1]],
+                               mesh.positions[v[2]]);
+        }
+        continue;
+      }
       mesh.tets.push_back({v[0], v[1], v[2], v[3]});
       mesh.materials.push_back(has_materials_ ? cell_materials_[c] : 0);
       if (!binary_) out_->tet_lines.push_back(cell_lines_[c]);
     }
+    surface.finish(out_);
     add_vtk_cell_notes(counts_by_type, out_);
     if (has_materials_) finish_vtk_materials(material_rank_, out_);
     if (!has_materials_ && !cell_arrays_.empty())
@@ -676,6 +689,55 @@ class VtkLegacyParser {
 };
 
 }  // namespace
+
+bool is_vtk_surface_cell(int64_t type) {
+  switch (type) {
+    case 5:   // triangle
+    case 6:   // triangle strip
+    case 7:   // polygon
+    case 8:   // pixel
+    case 9:   // quad
+    case 22:  // quadratic triangle
+    case 23:  // quadratic quad
+    case 28:  // biquadratic quad
+    case 30:  // quadratic-linear quad
+    case 34:  // biquadratic triangle
+    case 69:  // Lagrange triangle
+    case 70:  // Lagrange quadrilateral
+    case 75:  // Bezier triangle
+    case 76:  // Bezier quadrilateral
+      return true;
+    default:
+      return false;
+  }
+}
+
+int vtk_triangle_points(int64_t type) {
+  switch (type) {
+    case 5:
+      return 3;
+    case 22:
+      return 6;
+    case 34:
+      return 7;
+    case 69:
+    case 75:
+      return 0;
+    default:
+      return -1;
+  }
+}
+
+void VtkSurfaceCells::finish(ParsedMesh* out) {
+  out->surface_elements_not_kept = cells_;
+  for (auto& [tag, triangles] : triangles_) {
+    InputSurfaceGroup group;
+    group.tag = tag;
+    group.triangles = std::move(triangles);
+    out->surface_groups.push_back(std::move(group));
+  }
+  triangles_.clear();
+}
 
 void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh* out) {
   auto count = [&](std::initializer_list<int> types) {

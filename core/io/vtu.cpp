@@ -748,6 +748,7 @@ class VtuParser {
     }
     TetMesh& mesh = out_->mesh;
     std::vector<uint64_t> counts_by_type(128, 0);
+    VtkSurfaceCells surface;
     uint64_t start = 0;
     for (size_t c = 0; c < cell_count_; ++c) {
       const uint64_t end = offsets_[c];
@@ -758,16 +759,20 @@ class VtuParser {
         return;
       }
       const int64_t type = types_[c];
-      if (type == kVtkTetra || type == kVtkQuadraticTetra) {
+      const bool tet = type == kVtkTetra || type == kVtkQuadraticTetra;
+      const int triangle = vtk_triangle_points(type);
+      if (is_vtk_surface_cell(type)) surface.count();
+      if (tet || triangle >= 0) {
         const uint64_t size = end - start;
         const size_t line = start < connectivity_lines_.size() ? connectivity_lines_[start] : 0;
-        if (size != (type == kVtkTetra ? 4u : 10u)) {
+        const uint64_t points = tet ? (type == kVtkTetra ? 4u : 10u) : uint64_t(triangle);
+        if (points > 0 ? size != points : size < 3) {
           fail_at(line, "cell " + std::to_string(c) + " of type " + std::to_string(type) + " has " +
                             std::to_string(size) + " points");
           return;
         }
         const uint32_t* v = connectivity_.data() + start;
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < (tet ? 4 : 3); ++k) {
           if (v[k] >= mesh.positions.size()) {
             fail_at(line, "cell " + std::to_string(c) + " uses point " + std::to_string(v[k]) +
                               ", but there are only " + std::to_string(mesh.positions.size()) +
@@ -775,12 +780,20 @@ class VtuParser {
             return;
           }
         }
-        mesh.tets.push_back({v[0], v[1], v[2], v[3]});
-        mesh.materials.push_back(has_materials_ ? materials_[c] : 0);
-        out_->tet_lines.push_back(line_number(line));
+        if (!tet) {
+          if (has_materials_ && materials_[c] >= 1) {
+            surface.add_triangle(materials_[c], mesh.positions[v[0]], mesh.positions[v[1]],
+                                 mesh.positions[v[2]]);
+          }
+        } else {
+          mesh.tets.push_back({v[0], v[1], v[2], v[3]});
+          mesh.materials.push_back(has_materials_ ? materials_[c] : 0);
+          out_->tet_lines.push_back(line_number(line));
+        }
       }
       start = end;
     }
+    surface.finish(out_);
     add_vtk_cell_notes(counts_by_type, out_);
     if (has_materials_) finish_vtk_materials(material_rank_, out_);
     if (!has_materials_ && !cell_arrays_.empty())

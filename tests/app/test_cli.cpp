@@ -247,6 +247,20 @@ TEST(Cli, SurfaceElementsNoteOnlyWhereTheGroupsAreNotWritten) {
         << command << "\n"
         << r.output;
   }
+  // Gmsh's VTK export of the same model: its triangles are the groups by number.
+  const std::string vtk = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax.vtk";
+  CommandResult r = run("convert " + vtk + " " + out);
+  EXPECT_NE(r.output.find("coax.vtk: note: 426 surface elements are not kept as elements, only "
+                          "as the surface groups 20, 21: TetLOD keeps the tetrahedra and their "
+                          "volume groups; --surfaces, or the viewer's boundary groups, writes the "
+                          "boundary and interface triangles again, these groups under their tags"),
+            std::string::npos)
+      << r.output;
+  r = run("convert " + vtk + " " + out + " --surfaces");
+  EXPECT_NE(r.output.find("surface groups (tag name: triangles): 20 surface_20: 246, 21 "
+                          "surface_21: 180, "),
+            std::string::npos)
+      << r.output;
 }
 
 // Material ids at the top of the tag range leave no room to number the surface

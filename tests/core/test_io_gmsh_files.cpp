@@ -3,6 +3,8 @@
 // names. What is read is right, and what is not read is said in the reader's notes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <string>
 
@@ -75,6 +77,67 @@ TEST(IoGmshFiles, PartitionedMeshesKeepTheirPhysicalGroups) {
   EXPECT_TRUE(has_note(order2_info,
                        "1386 higher-order tetrahedra (10 nodes or more) were read as 4-node ones"))
       << all_notes(order2_info);
+}
+
+// The triangles of a surface group by their corners, each sorted, for comparisons.
+std::vector<std::array<std::array<double, 3>, 3>> sorted_triangles(const InputSurfaceGroup& g) {
+  std::vector<std::array<std::array<double, 3>, 3>> out;
+  for (const auto& t : g.triangles) {
+    std::array<std::array<double, 3>, 3> c;
+    for (size_t k = 0; k < 3; ++k) c[k] = {t[k].x, t[k].y, t[k].z};
+    std::sort(c.begin(), c.end());
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Gmsh's own VTK export writes the physical surfaces' triangles with their group's
+// number (CellEntityIds): they are read as those surface groups, unnamed, the same
+// triangles as the .msh's 'ends' (20) and 'jacket' (21); triangles in no group (-1)
+// and of tag 0 are in none.
+TEST(IoGmshFiles, VtkExportKeepsThePhysicalSurfaces) {
+  TetMesh msh, vtk;
+  ReadInfo msh_info, vtk_info;
+  ASSERT_TRUE(read_mesh(gmsh_file("coax_order2.msh"), &msh, &msh_info).ok());
+  ASSERT_TRUE(read_mesh(gmsh_file("coax.vtk"), &vtk, &vtk_info).ok());
+  EXPECT_EQ(tets_per_material(vtk), tets_per_material(msh));
+  EXPECT_EQ(vtk_info.surface_elements_not_kept, 426u);
+  ASSERT_EQ(vtk_info.surface_groups.size(), 2u);
+  ASSERT_EQ(msh_info.surface_groups.size(), 2u);
+  for (size_t g = 0; g < 2; ++g) {
+    const InputSurfaceGroup &a = vtk_info.surface_groups[g], &b = msh_info.surface_groups[g];
+    EXPECT_EQ(a.tag, g == 0 ? 20 : 21);
+    EXPECT_EQ(a.tag, b.tag);
+    EXPECT_EQ(a.name, "");
+    EXPECT_EQ(a.triangles.size(), g == 0 ? 246u : 180u);
+    EXPECT_EQ(sorted_triangles(a), sorted_triangles(b));
+  }
+
+  // The same by hand in a .vtu: a triangle of group 7, one in none (-1), one of tag
+  // 0, and a quad; all four counted as surface cells.
+  const std::string vtu =
+      "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n<UnstructuredGrid>\n"
+      "<Piece NumberOfPoints=\"5\" NumberOfCells=\"6\">\n<Points>\n"
+      "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\n</DataArray>\n</Points>\n<Cells>\n"
+      "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">"
+      "0 1 2 3 1 2 3 4 0 1 2 0 2 3 0 1 3 0 1 4 2</DataArray>\n"
+      "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4 8 11 14 17 21</DataArray>\n"
+      "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10 10 5 5 5 9</DataArray>\n"
+      "</Cells>\n<CellData>\n"
+      "<DataArray type=\"Int32\" Name=\"CellEntityIds\" format=\"ascii\">1 2 7 -1 0 7"
+      "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(vtu, MeshFormat::kVtu, "m.vtu", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(mesh.tet_count(), 2u);
+  EXPECT_EQ(info.surface_elements_not_kept, 4u);
+  ASSERT_EQ(info.surface_groups.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].tag, 7);
+  ASSERT_EQ(info.surface_groups[0].triangles.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].triangles[0][2], (Vec3{0, 1, 0}));
 }
 
 // Third-order (20-node) tets are read by their corners: the same mesh as Gmsh's

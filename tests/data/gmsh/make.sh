@@ -7,6 +7,9 @@ opts="-3 -clmax 2.5 -v 0"
 # (text and binary): the elements are in partition entities.
 gmsh coax.geo $opts -part 3 -format msh41 -o coax_part3.msh
 gmsh coax.geo $opts -part 3 -format msh41 -bin -o coax_part3_bin.msh
+# Gmsh's own VTK export: tets and the physical surfaces' triangles, each with its
+# physical group in the cell array CellEntityIds.
+gmsh coax.geo $opts -format vtk -o coax.vtk
 # Second-order (10-node) tets.
 gmsh coax.geo $opts -order 2 -format msh41 -o coax_order2.msh
 # Tets and prisms.
