@@ -144,9 +144,10 @@ struct PendingTriangle {
   int64_t v[3];
   int64_t ref;
 };
-bool read_triangles(TextScanner& scanner, std::vector<PendingTriangle>* out) {
+bool read_triangles(TextScanner& scanner, std::vector<PendingTriangle>* out, uint64_t* entries) {
   uint64_t count = 0;
   if (!scanner.read_count(&count, "triangle count", 8)) return false;
+  *entries += count;
   for (uint64_t i = 0; i < count; ++i) {
     PendingTriangle t;
     for (int64_t& v : t.v)
@@ -192,12 +193,15 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
       seen_tets = true;
       read_tets(scanner, out);
     } else if (is("Triangles")) {
-      read_triangles(scanner, &triangles);
+      read_triangles(scanner, &triangles, &out->surface_elements_not_kept);
     } else if (const SkippedKeyword* skipped = find_skipped(keyword)) {
       uint64_t count = 1;
       const uint64_t width = uint64_t(skipped->numbers_per_entry);
       if (skipped->has_count) scanner.read_count(&count, "entry count", 2 * width);
       if (!scanner.failed()) scanner.skip_numbers(count * width, skipped->name);
+      // Surface elements are kept only as groups (Triangles), and the CLI says so.
+      for (const char* surface : {"Quadrilaterals", "TrianglesP2", "QuadrilateralsQ2"})
+        if (std::string_view(skipped->name) == surface) out->surface_elements_not_kept += count;
       // Volume elements other than 4-node tets are not read: say so.
       for (const char* volume : {"Prisms", "Pyramids", "Hexahedra", "HexahedraQ2", "TetrahedraP2"})
         if (count > 0 && std::string_view(skipped->name) == volume)

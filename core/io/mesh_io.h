@@ -119,9 +119,10 @@ struct ReadInfo {
   // name that only says the number, such as Gmsh's "material_<n>"; formats without
   // names give none).
   std::vector<MaterialName> material_names;
-  // Gmsh elements or VTK cells of a surface (triangles, quadrangles) the file holds:
-  // TetLOD keeps only their groups (surface_groups), not the elements (callers say so
-  // unless they write the surface groups again).
+  // The surface elements the file holds (Gmsh and VTK triangles and quadrangles,
+  // Medit Triangles and Quadrilaterals, TetGen faces with a marker >= 1): TetLOD keeps
+  // only their groups (surface_groups), not the elements (callers say so unless they
+  // write the surface groups again).
   uint64_t surface_elements_not_kept = 0;
 };
 

@@ -301,6 +301,7 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
       out->surface_groups.back().tag = int32_t(marker);
     }
     out->surface_groups[it->second].triangles.push_back(corners);
+    ++out->surface_elements_not_kept;  // kept only in its group (the CLI says so)
   }
   if (undeclared > 0) {
     out->notes.push_back(std::to_string(undeclared) +

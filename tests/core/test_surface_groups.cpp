@@ -173,8 +173,12 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     for (auto& [tag, list] : read) std::sort(list.begin(), list.end());
     EXPECT_EQ(read, triangles_by_tag(mesh, groups));
     TetMesh back;
-    ASSERT_TRUE(read_mesh(dir + "/box2.mesh", &back).ok());
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(dir + "/box2.mesh", &back, &info).ok());
     test::expect_same_mesh(mesh, back);
+    // The triangles are read as the groups, not kept as elements (the CLI says so).
+    EXPECT_EQ(info.surface_elements_not_kept, groups.surface.size());
+    EXPECT_EQ(info.surface_groups.size(), 3u);
   }
 
   // TetGen: a .face file beside .node/.ele, boundary marker = tag.
@@ -197,6 +201,12 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     }
     for (auto& [tag, list] : read) std::sort(list.begin(), list.end());
     EXPECT_EQ(read, triangles_by_tag(mesh, groups));
+    TetMesh back;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(dir + "/box2.node", &back, &info).ok());
+    test::expect_same_mesh(mesh, back);
+    EXPECT_EQ(info.surface_elements_not_kept, groups.surface.size());
+    EXPECT_EQ(info.surface_groups.size(), 3u);
   }
 
   // Gmsh, both versions: physical surfaces named after the groups; our reader keeps
@@ -245,6 +255,22 @@ std::vector<std::string> names_and_tags(const SurfaceGroups& groups) {
 // reader's paths) keep their names, tags and triangles: a whole boundary, an
 // interface, and one face of a boundary, whose other faces stay in the pair's group,
 // numbered around the tags taken.
+// Every surface element of a Medit file is counted as not kept (the CLI's note):
+// triangles with a reference (a group), without one (none), and quadrilaterals.
+TEST(SurfaceGroups, MeditSurfaceElementsAreCounted) {
+  const std::string text =
+      "MeshVersionFormatted 2\nDimension 3\nVertices 5\n"
+      "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\n"
+      "Tetrahedra 2\n1 2 3 4 1\n2 3 4 5 2\n"
+      "Triangles 2\n1 2 3 7\n1 2 4 0\nQuadrilaterals 1\n1 2 3 4 0\nEnd\n";
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh_from_memory(text, MeshFormat::kMedit, "m.mesh", &mesh, &info).ok());
+  EXPECT_EQ(info.surface_elements_not_kept, 3u);
+  ASSERT_EQ(info.surface_groups.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].tag, 7);
+}
+
 TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   for (const char* file : {"groups41.msh", "groups41_bin.msh", "groups22.msh", "groups22_bin.msh",
                            "groups_order2.msh"}) {
