@@ -715,6 +715,7 @@ class AbaqusParser {
   // *ELSETs that hold triangles, else the triangle *ELEMENT blocks' ELSETs.
   void add_triangle_groups() {
     if (triangles_.empty()) return;
+    out_->surface_elements_not_kept = triangles_.size();  // kept only in groups (the CLI says so)
     std::vector<std::pair<std::string, const std::vector<int64_t>*>> sets;  // name, members
     for (const std::string& set_name : set_order_) {
       const std::vector<int64_t>& members = sets_.at(set_name);

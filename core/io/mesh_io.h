@@ -120,7 +120,8 @@ struct ReadInfo {
   // names give none).
   std::vector<MaterialName> material_names;
   // The surface elements the file holds (Gmsh and VTK triangles and quadrangles,
-  // Medit Triangles and Quadrilaterals, TetGen faces with a marker >= 1): TetLOD keeps
+  // Medit Triangles and Quadrilaterals, TetGen faces with a marker >= 1, Abaqus
+  // triangle elements): TetLOD keeps
   // only their groups (surface_groups), not the elements (callers say so unless they
   // write the surface groups again).
   uint64_t surface_elements_not_kept = 0;

@@ -177,6 +177,9 @@ TEST(IoGmshInterop, GmshAbaqusPhysicalSurfacesAreGroups) {
   ASSERT_EQ(inp_info.surface_groups.size(), 1u);
   EXPECT_EQ(inp_info.surface_groups[0].name, msh_info.surface_groups[0].name);
   EXPECT_EQ(inp_info.surface_groups[0].triangles.size(), 79u);
+  // Its triangle elements are counted as kept only in the group, as in the .msh.
+  EXPECT_EQ(inp_info.surface_elements_not_kept, 79u);
+  EXPECT_EQ(msh_info.surface_elements_not_kept, 79u);
   auto sorted = [](std::vector<std::array<Vec3, 3>> triangles) {
     std::vector<std::array<double, 9>> out;
     for (const auto& t : triangles) {
