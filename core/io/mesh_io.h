@@ -111,19 +111,17 @@ struct ReadInfo {
   // The file's own surface groups (Gmsh physical surfaces of triangles, Medit
   // triangles with a reference >= 1, TetGen .face markers >= 1, Abaqus element-face
   // *SURFACE and triangle element sets, .vtk and .vtu triangle cells by their number
-  // >= 1 in the material array; Nastran none), for SurfacePatches
-  // (core/surface.h) when writing
-  // surface groups.
+  // >= 1 in the material array, Nastran CTRIA3/CTRIA6/CTRIAR by their PID >= 1), for
+  // SurfacePatches (core/surface.h) when writing surface groups.
   std::vector<InputSurfaceGroup> surface_groups;
   // The names the file gives the materials of its tets, by material id (none for a
   // name that only says the number, such as Gmsh's "material_<n>"; formats without
   // names give none).
   std::vector<MaterialName> material_names;
-  // The surface elements the file holds (Gmsh and VTK triangles and quadrangles,
-  // Medit Triangles and Quadrilaterals, TetGen faces with a marker >= 1, Abaqus
-  // triangle elements): TetLOD keeps
-  // only their groups (surface_groups), not the elements (callers say so unless they
-  // write the surface groups again).
+  // The surface elements the file holds (Gmsh, VTK and Nastran triangles and
+  // quadrangles, Medit Triangles and Quadrilaterals, TetGen faces with a marker >= 1,
+  // Abaqus triangle elements): TetLOD keeps only their groups (surface_groups), not
+  // the elements (callers say so unless they write the surface groups again).
   uint64_t surface_elements_not_kept = 0;
 };
 

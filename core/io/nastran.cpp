@@ -1,8 +1,10 @@
 // Nastran bulk data (.bdf, .nas): GRID and CTETRA entries, after the MSC Nastran Quick
 // Reference Guide, "Format of Bulk Data Entries": small field (8 characters), large
 // field (16, the entry name ending in '*') and free field (commas), with continuation
-// lines. The material of a tet is its property id (PID). Other entries are skipped.
+// lines. The material of a tet is its property id (PID); CTRIA3/CTRIA6/CTRIAR are
+// surface groups by their PID. Other entries are skipped.
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -39,6 +41,15 @@ struct PendingTet {
   int64_t property = 0;
   int64_t grids[4] = {};
   size_t line = 0;
+};
+
+// A CTRIA3, CTRIA6 or CTRIAR: its corners, and its PID, the surface group it is in.
+struct PendingTriangle {
+  int64_t element = 0;
+  int64_t property = 0;
+  int64_t grids[3] = {};
+  size_t line = 0;
+  std::string card;
 };
 
 class NastranParser {
@@ -237,6 +248,11 @@ class NastranParser {
     card_open_ = false;
     if (card_name_ == "GRID") return grid();
     if (card_name_ == "CTETRA") return ctetra();
+    if (card_name_ == "CTRIA3" || card_name_ == "CTRIA6" || card_name_ == "CTRIAR") return ctria();
+    if (card_name_ == "CQUAD4" || card_name_ == "CQUAD8" || card_name_ == "CQUADR") {
+      ++quads_;
+      return true;
+    }
     if (card_name_ == "CHEXA" || card_name_ == "CPENTA" || card_name_ == "CPYRAM" ||
         card_name_ == "CPYRA") {
       ++skipped_solids_[card_name_];
@@ -330,6 +346,22 @@ class NastranParser {
     return true;
   }
 
+  // A surface element: kept in the surface group of its PID when that is >= 1 (as a
+  // group tag must be; blank is 0: in none).
+  bool ctria() {
+    PendingTriangle t;
+    t.line = card_line_;
+    t.card = card_name_;
+    if (!integer_field(0, "element id", 1, &t.element)) return false;
+    if (!field(1).empty() && !integer_field(1, "property id (PID)", 0, &t.property)) return false;
+    for (int k = 0; k < 3; ++k) {
+      if (!integer_field(2 + k, "grid", 1, &t.grids[k])) return false;
+    }
+    if (triangles_.size() + 1 >= kInvalidIndex) return fail(card_line_, "too many " + t.card + "s");
+    triangles_.push_back(std::move(t));
+    return true;
+  }
+
   // GRIDs may come after the CTETRAs that use them: corners are resolved at the end.
   bool resolve() {
     if (!index_grids()) return false;
@@ -349,6 +381,28 @@ class NastranParser {
       out_->mesh.materials.push_back(t.property == zero_pid_ ? 0 : int32_t(t.property));
       out_->tet_lines.push_back(line_number(t.line));
     }
+    // The surface elements, kept only as groups (the CLI says so).
+    std::map<int32_t, std::vector<std::array<Vec3, 3>>> groups;
+    for (const PendingTriangle& t : triangles_) {
+      std::array<Vec3, 3> corners;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = find_grid(t.grids[k]);
+        if (v == kInvalidIndex) {
+          return fail(t.line, t.card + " " + std::to_string(t.element) + " uses GRID " +
+                                  std::to_string(t.grids[k]) + ", which is not defined");
+        }
+        corners[size_t(k)] = out_->mesh.positions[v];
+      }
+      if (t.property >= 1 && t.property <= std::numeric_limits<int32_t>::max())
+        groups[int32_t(t.property)].push_back(corners);
+    }
+    for (auto& [tag, triangles] : groups) {
+      InputSurfaceGroup group;
+      group.tag = tag;
+      group.triangles = std::move(triangles);
+      out_->surface_groups.push_back(std::move(group));
+    }
+    out_->surface_elements_not_kept = triangles_.size() + quads_;
     return true;
   }
 
@@ -375,7 +429,9 @@ class NastranParser {
   std::string card_name_;
   std::vector<std::string> fields_;  // the first field_count_ are the entry's (reused)
   size_t field_count_ = 0;
-  std::string expanded_;              // the current line, tabs expanded
+  std::string expanded_;  // the current line, tabs expanded
+  std::vector<PendingTriangle> triangles_;
+  uint64_t quads_ = 0;                // CQUAD4, CQUAD8, CQUADR entries
   std::vector<int64_t> grid_ids_;     // per vertex, in file order
   std::vector<uint32_t> grid_lines_;  // per vertex
   int64_t first_id_ = 0;

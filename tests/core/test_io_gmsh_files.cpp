@@ -140,6 +140,44 @@ TEST(IoGmshFiles, VtkExportKeepsThePhysicalSurfaces) {
   EXPECT_EQ(info.surface_groups[0].triangles[0][2], (Vec3{0, 1, 0}));
 }
 
+// Gmsh's Nastran export with physical tags (Mesh.SaveElementTagType 2) writes the
+// physical surfaces' triangles as CTRIA3 with their group's number as PID: read as
+// those surface groups, the same triangles as the .msh's (to the 8-character fields'
+// precision); CQUAD4 are counted, and a blank PID is in no group.
+TEST(IoGmshFiles, NastranExportKeepsThePhysicalSurfaces) {
+  TetMesh msh, bdf;
+  ReadInfo msh_info, bdf_info;
+  ASSERT_TRUE(read_mesh(gmsh_file("coax_order2.msh"), &msh, &msh_info).ok());
+  ASSERT_TRUE(read_mesh(gmsh_file("coax.bdf"), &bdf, &bdf_info).ok());
+  EXPECT_EQ(tets_per_material(bdf), tets_per_material(msh));
+  EXPECT_EQ(bdf_info.surface_elements_not_kept, 426u);
+  ASSERT_EQ(bdf_info.surface_groups.size(), 2u);
+  for (size_t g = 0; g < 2; ++g) {
+    const InputSurfaceGroup &a = bdf_info.surface_groups[g], &b = msh_info.surface_groups[g];
+    EXPECT_EQ(a.tag, b.tag);
+    EXPECT_EQ(a.triangles.size(), b.triangles.size());
+    // Each triangle is one of the .msh's group, its corners within the fields' rounding.
+    for (const auto& t : a.triangles) {
+      const Vec3 centroid = (t[0] + t[1] + t[2]) * (1.0 / 3);
+      double nearest = 1e300;
+      for (const auto& u : b.triangles)
+        nearest = std::min(nearest, length((u[0] + u[1] + u[2]) * (1.0 / 3) - centroid));
+      EXPECT_LT(nearest, 1e-4);
+    }
+  }
+  TetMesh mesh;
+  ReadInfo info;
+  const std::string text =
+      "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n"
+      "CTETRA,1,3,1,2,3,4\nCTRIA3,2,5,1,2,3\nCTRIA3,3,,1,2,4\nCQUAD4,4,5,1,2,3,4\nENDDATA\n";
+  const Status s = read_mesh_from_memory(text, MeshFormat::kNastran, "m.bdf", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(info.surface_elements_not_kept, 3u);
+  ASSERT_EQ(info.surface_groups.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].tag, 5);
+  EXPECT_EQ(info.surface_groups[0].triangles.size(), 1u);
+}
+
 // Third-order (20-node) tets are read by their corners: the same mesh as Gmsh's
 // first-order one (they were skipped, leaving no tets).
 TEST(IoGmshFiles, HigherOrderTetsAreReadByTheirCorners) {

@@ -430,6 +430,10 @@ TEST(IoMalformed, Nastran) {
           {{{8, "CTETRA,2,7,2,3,4,1"}}, 8, "duplicates"},
           {{{8, "CTETRA,2,7,2,3,4,4"}}, 8, "repeats vertex"},
           {{{6, "INCLUDE 'grids.bdf'"}}, 6, "INCLUDE is not followed"},
+          // Surface elements (kept as surface groups) are checked as tets are.
+          {{{1, "CTRIA3,9,20,1,2,99"}}, 1, "CTRIA3 9 uses GRID 99, which is not defined"},
+          {{{1, "CTRIA6,9,20,1,x,3,4,5,6"}}, 1, "CTRIA6 9: grid 'x' is not an integer >= 1"},
+          {{{1, "CTRIA3,9,-2,1,2,3"}}, 1, "property id (PID) '-2'"},
       });
 }
 

@@ -10,6 +10,8 @@ gmsh coax.geo $opts -part 3 -format msh41 -bin -o coax_part3_bin.msh
 # Gmsh's own VTK export: tets and the physical surfaces' triangles, each with its
 # physical group in the cell array CellEntityIds.
 gmsh coax.geo $opts -format vtk -o coax.vtk
+# Its Nastran export with physical tags as PIDs (CTRIA3 for the physical surfaces).
+gmsh coax.geo $opts -format bdf -setnumber Mesh.SaveElementTagType 2 -o coax.bdf
 # Second-order (10-node) tets.
 gmsh coax.geo $opts -order 2 -format msh41 -o coax_order2.msh
 # Tets and prisms.
