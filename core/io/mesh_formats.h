@@ -66,17 +66,21 @@ inline constexpr int64_t kVtkTetra = 10;
 inline constexpr int64_t kVtkQuadraticTetra = 24;
 
 // The surface cells of a .vtk or .vtu: triangles and quadrilaterals of any order
-// (and strips, polygons, pixels). Each is counted (ParsedMesh::surface_elements_not_kept);
-// a triangle whose value in the material array is >= 1 is kept, by its corners (the
-// first three points of every triangle type), in the surface group of that number, as
-// Gmsh's VTK export and meshio write a physical surface's number there.
+// (and strips, polygons, pixels). Each is counted (SurfaceElements); a triangle whose
+// value in the material array is >= 1 is kept, by its corners (the first three
+// points of every triangle type), in the surface group of that number, as Gmsh's VTK
+// export and meshio write a physical surface's number there.
 bool is_vtk_surface_cell(int64_t type);
 // The number of points a triangle cell of `type` has (0: any >= 3, for the Lagrange
 // and Bezier kinds), or -1 if `type` is not a triangle.
 int vtk_triangle_points(int64_t type);
-class VtkSurfaceCells {
+
+// A reader's surface elements: counted (ParsedMesh::surface_elements_not_kept), and
+// the triangles of those in a group kept by their corners, by group tag.
+class SurfaceElements {
  public:
-  void count() { ++cells_; }
+  void count(uint64_t n = 1) { elements_ += n; }
+  // A triangle of the group `tag` (>= 1); count() it too.
   void add_triangle(int32_t tag, const Vec3& a, const Vec3& b, const Vec3& c) {
     triangles_[tag].push_back({a, b, c});
   }
@@ -84,7 +88,7 @@ class VtkSurfaceCells {
   void finish(ParsedMesh* out);
 
  private:
-  uint64_t cells_ = 0;
+  uint64_t elements_ = 0;
   std::map<int32_t, std::vector<std::array<Vec3, 3>>> triangles_;
 };
 

@@ -382,8 +382,10 @@ class NastranParser {
       out_->tet_lines.push_back(line_number(t.line));
     }
     // The surface elements, kept only as groups (the CLI says so).
-    std::map<int32_t, std::vector<std::array<Vec3, 3>>> groups;
+    SurfaceElements surface;
+    surface.count(quads_);
     for (const PendingTriangle& t : triangles_) {
+      surface.count();
       std::array<Vec3, 3> corners;
       for (int k = 0; k < 3; ++k) {
         const uint32_t v = find_grid(t.grids[k]);
@@ -394,15 +396,9 @@ class NastranParser {
         corners[size_t(k)] = out_->mesh.positions[v];
       }
       if (t.property >= 1 && t.property <= std::numeric_limits<int32_t>::max())
-        groups[int32_t(t.property)].push_back(corners);
+        surface.add_triangle(int32_t(t.property), corners[0], corners[1], corners[2]);
     }
-    for (auto& [tag, triangles] : groups) {
-      InputSurfaceGroup group;
-      group.tag = tag;
-      group.triangles = std::move(triangles);
-      out_->surface_groups.push_back(std::move(group));
-    }
-    out_->surface_elements_not_kept = triangles_.size() + quads_;
+    surface.finish(out_);
     return true;
   }
 

@@ -621,7 +621,7 @@ class VtkLegacyParser {
     if (!seen_types_) return scanner_.fail("no CELL_TYPES section");
     TetMesh& mesh = out_->mesh;
     std::vector<uint64_t> counts_by_type(128, 0);
-    VtkSurfaceCells surface;
+    SurfaceElements surface;
     for (size_t c = 0; c < cell_count(); ++c) {
       const uint64_t size = cell_starts_[c + 1] - cell_starts_[c];
       const int64_t type = cell_types_[c];
@@ -728,8 +728,8 @@ int vtk_triangle_points(int64_t type) {
   }
 }
 
-void VtkSurfaceCells::finish(ParsedMesh* out) {
-  out->surface_elements_not_kept = cells_;
+void SurfaceElements::finish(ParsedMesh* out) {
+  out->surface_elements_not_kept = elements_;
   for (auto& [tag, triangles] : triangles_) {
     InputSurfaceGroup group;
     group.tag = tag;

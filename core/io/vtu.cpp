@@ -748,7 +748,7 @@ class VtuParser {
     }
     TetMesh& mesh = out_->mesh;
     std::vector<uint64_t> counts_by_type(128, 0);
-    VtkSurfaceCells surface;
+    SurfaceElements surface;
     uint64_t start = 0;
     for (size_t c = 0; c < cell_count_; ++c) {
       const uint64_t end = offsets_[c];
