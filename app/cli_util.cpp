@@ -83,7 +83,8 @@ std::vector<std::string> reader_notes(const ReadInfo& info, bool surfaces_writte
     groups += " and " + std::to_string(info.surface_groups.size() - shown) + " more";
   notes.push_back(
       std::to_string(info.surface_elements_not_kept) +
-      " surface elements are not kept as elements" +
+      (info.surface_elements_not_kept == 1 ? " surface element is not kept as an element"
+                                           : " surface elements are not kept as elements") +
       (groups.empty() ? std::string() : ", only as the surface groups " + groups) +
       ": TetLOD keeps the tetrahedra and their volume groups; --surfaces, or the viewer's "
       "boundary groups, writes the boundary and interface triangles again" +

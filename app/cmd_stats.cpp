@@ -20,7 +20,8 @@ constexpr const char* kStatsUsage =
     "Prints the mesh properties of the paper's Table I -- #nodes, #edges, #elements,\n"
     "average and minimum stretch, maximum valence, maximum size (longest edge) -- for the\n"
     "whole mesh and for each material's sub-mesh, a stretch histogram (bins of 0.1), the\n"
-    "boundary/interface triangles per material pair and the vertex classification.\n"
+    "boundary/interface triangles per material pair, the file's own surface groups (as\n"
+    "--surfaces writes them) and the vertex classification.\n"
     "FILE: .mesh .msh .node/.ele .vtk .vtu .bdf/.nas .inp\n"
     "  --json   machine-readable output on stdout\n";
 
@@ -87,6 +88,13 @@ int cmd_stats(const Args& args) {
   const MeshAdjacency adjacency = build_adjacency(mesh);
   const MeshStats stats = compute_mesh_stats(mesh, adjacency.vertex_tets);
   const SurfaceSummary surface = summarize_surface(mesh, adjacency.tet_neighbors);
+  // The file's own surface groups, as laid on the mesh's surface (what --surfaces
+  // writes of them).
+  SurfacePatches patches;
+  if (!info.surface_groups.empty()) {
+    patches = SurfacePatches(mesh, info.surface_groups);
+    print_patch_notes(patches, "stats");
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -118,8 +126,17 @@ int cmd_stats(const Args& args) {
       std::printf("%s\"%s\": %zu", first ? "" : ", ", pair_name(pair).c_str(), count);
       first = false;
     }
+    std::printf("},\n  \"surface_groups\": [");
+    for (size_t i = 0; i < patches.groups().size(); ++i) {
+      const SurfacePatches::Group& g = patches.groups()[i];
+      std::printf(
+          "%s\n    {\"tag\": %d, \"name\": \"%s\", \"triangles\": %zu, "
+          "\"in_a_smaller_group\": %zu, \"not_on_the_surface\": %zu}",
+          i ? "," : "", g.tag, json_escape(g.name).c_str(), g.triangles, g.shared, g.missing);
+    }
+    std::printf(patches.groups().empty() ? "]" : "\n  ]");
     std::printf(
-        "},\n  \"vertices\": {\"corner\": %zu, \"curve\": %zu, \"surface\": %zu, "
+        ",\n  \"vertices\": {\"corner\": %zu, \"curve\": %zu, \"surface\": %zu, "
         "\"interior\": %zu},\n  \"feature_edges\": %zu,\n  \"seconds\": %.6f\n}\n",
         surface.kind_counts[0], surface.kind_counts[1], surface.kind_counts[2],
         surface.kind_counts[3], surface.feature_edges, seconds);
@@ -140,6 +157,15 @@ int cmd_stats(const Args& args) {
   std::printf("\nsurface triangles per material pair:");
   for (const auto& [pair, count] : surface.triangles_per_pair)
     std::printf(" %s=%zu", pair_name(pair).c_str(), count);
+  if (!patches.groups().empty()) {
+    std::printf("\nthe file's surface groups (tag name: triangles on the surface):");
+    const char* separator = " ";
+    for (const SurfacePatches::Group& g : patches.groups()) {
+      std::printf("%s%d %s: %zu", separator, g.tag, g.name.empty() ? "(unnamed)" : g.name.c_str(),
+                  g.triangles);
+      separator = ", ";
+    }
+  }
   std::printf("\nvertices: %zu corner, %zu curve, %zu surface, %zu interior; %zu feature edges\n",
               surface.kind_counts[0], surface.kind_counts[1], surface.kind_counts[2],
               surface.kind_counts[3], surface.feature_edges);

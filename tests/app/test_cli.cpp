@@ -98,6 +98,43 @@ TEST(Cli, StatsPrintsTableOneAndJson) {
   EXPECT_NE(json.output.find("\"elements\": 96"), std::string::npos) << json.output;
   EXPECT_NE(json.output.find("\"nodes\": 45"), std::string::npos);
   EXPECT_NE(json.output.find("\"1|2\": 8"), std::string::npos);
+  EXPECT_NE(json.output.find("\"surface_groups\": []"), std::string::npos) << json.output;
+}
+
+// The file's own surface groups as --surfaces writes them (a partitioned Gmsh file's),
+// and a note for a group that is not on the surface.
+TEST(Cli, StatsListsTheFilesSurfaceGroups) {
+  const std::string coax = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_part3.msh";
+  CommandResult r = run("stats " + coax);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("the file's surface groups (tag name: triangles on the surface): 20 "
+                          "ends: 246, 21 jacket: 180\n"),
+            std::string::npos)
+      << r.output;
+  r = run("stats --json " + coax);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("{\"tag\": 21, \"name\": \"jacket\", \"triangles\": 180, "
+                          "\"in_a_smaller_group\": 0, \"not_on_the_surface\": 0}"),
+            std::string::npos)
+      << r.output;
+  // A Medit triangle inside the grid (not a face on its surface) is noted; its group
+  // has none on the surface.
+  const std::string path = write_grid("inner_triangle.mesh");
+  std::string text = read_file(path);
+  const size_t end = text.rfind("End");
+  ASSERT_NE(end, std::string::npos);
+  text.insert(end, "Triangles\n1\n22 23 27 9\n");  // 22: an inner vertex
+  std::ofstream(path) << text;
+  r = run("stats " + path);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tetlod stats: note: surface group with tag 9 (unnamed) is not on a "
+                          "boundary or interface of the mesh"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("the file's surface groups (tag name: triangles on the surface): 9 "
+                          "(unnamed): 0\n"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(Cli, BadInputNamesTheFileAndExitsOne) {
