@@ -1,10 +1,8 @@
 // Medit / Gamma Mesh Format, ASCII (.mesh). Entry widths of the skipped keywords
 // follow the keyword table of libMeshb (L. Maréchal, INRIA), for Dimension 3.
-#include <algorithm>
 #include <array>
 #include <cstring>
 #include <limits>
-#include <map>
 
 #include "core/io/mesh_formats.h"
 #include "core/io/text_scanner.h"
@@ -144,10 +142,11 @@ struct PendingTriangle {
   int64_t v[3];
   int64_t ref;
 };
-bool read_triangles(TextScanner& scanner, std::vector<PendingTriangle>* out, uint64_t* entries) {
+bool read_triangles(TextScanner& scanner, std::vector<PendingTriangle>* out,
+                    SurfaceElements* surface) {
   uint64_t count = 0;
   if (!scanner.read_count(&count, "triangle count", 8)) return false;
-  *entries += count;
+  surface->count(count);
   for (uint64_t i = 0; i < count; ++i) {
     PendingTriangle t;
     for (int64_t& v : t.v)
@@ -176,6 +175,7 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   bool seen_tets = false;
   std::string skipped_volumes;  // "28 Prisms, 3 Hexahedra"
   std::vector<PendingTriangle> triangles;
+  SurfaceElements surface;  // kept only as groups (the CLI says so)
 
   while (!scanner.failed() && scanner.next_token(&keyword)) {
     auto is = [&](const char* word) { return TextScanner::equals_ignore_case(keyword, word); };
@@ -193,15 +193,15 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
       seen_tets = true;
       read_tets(scanner, out);
     } else if (is("Triangles")) {
-      read_triangles(scanner, &triangles, &out->surface_elements_not_kept);
+      read_triangles(scanner, &triangles, &surface);
     } else if (const SkippedKeyword* skipped = find_skipped(keyword)) {
       uint64_t count = 1;
       const uint64_t width = uint64_t(skipped->numbers_per_entry);
       if (skipped->has_count) scanner.read_count(&count, "entry count", 2 * width);
       if (!scanner.failed()) scanner.skip_numbers(count * width, skipped->name);
       // Surface elements are kept only as groups (Triangles), and the CLI says so.
-      for (const char* surface : {"Quadrilaterals", "TrianglesP2", "QuadrilateralsQ2"})
-        if (std::string_view(skipped->name) == surface) out->surface_elements_not_kept += count;
+      for (const char* kind : {"Quadrilaterals", "TrianglesP2", "QuadrilateralsQ2"})
+        if (std::string_view(skipped->name) == kind) surface.count(count);
       // Volume elements other than 4-node tets are not read: say so.
       for (const char* volume : {"Prisms", "Pyramids", "Hexahedra", "HexahedraQ2", "TetrahedraP2"})
         if (count > 0 && std::string_view(skipped->name) == volume)
@@ -226,7 +226,6 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   }
   // The referenced triangles, by reference, as surface groups (positions: the indices
   // are checked here, the vertices before validation may drop unused ones).
-  std::map<int64_t, size_t> group_of;
   size_t outside = 0;
   for (const PendingTriangle& t : triangles) {
     std::array<Vec3, 3> corners;
@@ -239,15 +238,9 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
       ++outside;
       continue;
     }
-    auto [it, added] = group_of.try_emplace(t.ref, out->surface_groups.size());
-    if (added) {
-      out->surface_groups.emplace_back();
-      out->surface_groups.back().tag = int32_t(t.ref);
-    }
-    out->surface_groups[it->second].triangles.push_back(corners);
+    surface.add_triangle(int32_t(t.ref), corners[0], corners[1], corners[2]);
   }
-  std::sort(out->surface_groups.begin(), out->surface_groups.end(),
-            [](const InputSurfaceGroup& a, const InputSurfaceGroup& b) { return a.tag < b.tag; });
+  surface.finish(out);
   if (outside > 0) {
     out->notes.push_back(std::to_string(outside) +
                          " triangles name a vertex that is not in Vertices: not kept");

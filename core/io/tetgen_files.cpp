@@ -12,10 +12,8 @@
 //
 // As TetGen does, a header's trailing fields may be left out ("5" is "5 3 0 0" in a
 // .node file, "5 4 0" in a .ele, "5 0" in a .face), and numbers after them are ignored.
-#include <algorithm>
 #include <array>
 #include <limits>
-#include <map>
 
 #include "core/io/mesh_formats.h"
 #include "core/io/text_scanner.h"
@@ -221,8 +219,8 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
   const int nodes_per_face = nodes_per_tet == 10 ? 6 : 3;
   const std::string form = std::string("'index a b c") + (nodes_per_face == 6 ? " d e f" : "") +
                            (markers == 1 ? " marker" : "") + "'";
-  std::map<int64_t, size_t> group_of;  // marker -> index in out->surface_groups
-  uint64_t unkept = 0;                 // faces whose marker is not a group tag
+  SurfaceElements surface;  // the faces with a marker, kept only as groups (the CLI says so)
+  uint64_t unkept = 0;      // faces whose marker is not a group tag
   std::string first_unkept;
   uint64_t undeclared = 0;  // faces with a marker column the header does not declare
   size_t first_undeclared = 0;
@@ -295,13 +293,8 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
         first_unkept = "line " + std::to_string(line) + ", marker " + std::to_string(marker);
       continue;
     }
-    const auto [it, added] = group_of.try_emplace(marker, out->surface_groups.size());
-    if (added) {
-      out->surface_groups.emplace_back();
-      out->surface_groups.back().tag = int32_t(marker);
-    }
-    out->surface_groups[it->second].triangles.push_back(corners);
-    ++out->surface_elements_not_kept;  // kept only in its group (the CLI says so)
+    surface.count();
+    surface.add_triangle(int32_t(marker), corners[0], corners[1], corners[2]);
   }
   if (undeclared > 0) {
     out->notes.push_back(std::to_string(undeclared) +
@@ -318,8 +311,7 @@ Status read_faces(TextScanner& scanner, int64_t base, int64_t nodes_per_tet, Par
                          " outside 1 to 2147483647 (the first at " + first_unkept +
                          "); no surface group holds " + (unkept == 1 ? "it" : "them"));
   }
-  std::sort(out->surface_groups.begin(), out->surface_groups.end(),
-            [](const InputSurfaceGroup& a, const InputSurfaceGroup& b) { return a.tag < b.tag; });
+  surface.finish(out);
   expect_end_of_file(scanner, "face");
   return scanner.status();
 }
