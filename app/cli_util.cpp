@@ -169,7 +169,8 @@ bool output_directory_ok(const std::string& path, bool make_directories) {
 }
 
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
-                         WriteOptions options, StagedMesh* staged, const SurfacePatches* patches) {
+                         WriteOptions options, StagedMesh* staged, const SurfacePatches* patches,
+                         bool inside) {
   staged->has_groups = options.surface_groups;
   if (!options.surface_groups && (has_extension(path, ".node") || has_extension(path, ".ele"))) {
     const std::string face =
@@ -178,7 +179,7 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
     if (std::filesystem::exists(face, ec)) staged->stale_face = face;
   }
   if (options.surface_groups) {
-    if (Status s = patches ? group_surface(mesh, &staged->groups, *patches)
+    if (Status s = patches ? group_surface(mesh, &staged->groups, *patches, inside)
                            : group_surface(mesh, &staged->groups);
         !s)
       return Status::error(path + ": " + s.message());
@@ -187,36 +188,52 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
   return stage_mesh(files, path, mesh, options);
 }
 
-void print_patch_notes(const SurfacePatches& patches, const char* command) {
+void print_patch_notes(const SurfacePatches& patches, const char* command, InsideTriangles inside) {
   for (const SurfacePatches::Group& g : patches.groups()) {
     const std::string label = g.name.empty()
                                   ? "with tag " + std::to_string(g.tag) + " (unnamed)"
                                   : "'" + g.name + "' (tag " + std::to_string(g.tag) + ")";
+    const size_t all = g.triangles + g.inside + g.shared + g.missing;
+    // What is written of the group: its surface triangles, and those inside a material
+    // where the command writes them.
+    const size_t written = g.triangles + (inside == InsideTriangles::kWritten ? g.inside : 0);
+    // "every triangle of surface group X" or "N of the M triangles of ...", and whether
+    // its verb is singular.
+    const auto some = [&](size_t n) {
+      const bool whole = written == 0 && n == all;
+      return std::make_pair(whole ? "every triangle of surface group " + label
+                                  : std::to_string(n) + " of the " + std::to_string(all) +
+                                        " triangles of surface group " + label,
+                            whole || n == 1);
+    };
+    const char* outcome = written == 0 ? "not written" : "written without them";
     if (g.shared > 0) {
-      if (g.triangles == 0 && g.missing == 0) {
-        std::fprintf(stderr,
-                     "tetlod %s: note: every triangle of surface group %s is also in a smaller "
-                     "group, which holds it (a triangle is written in one group): not written\n",
-                     command, label.c_str());
-        continue;
-      }
+      const auto [what, one] = some(g.shared);
       std::fprintf(stderr,
-                   "tetlod %s: note: %zu of the triangles of surface group %s are also in a "
-                   "smaller group, which holds them (a triangle is written in one group): "
-                   "written without them\n",
-                   command, g.shared, label.c_str());
+                   "tetlod %s: note: %s %s also in a smaller group, which holds %s (a triangle "
+                   "is written in one group): %s\n",
+                   command, what.c_str(), one ? "is" : "are", one ? "it" : "them", outcome);
     }
-    if (g.missing == 0) continue;
-    if (g.triangles == 0 && g.shared == 0) {
+    if (g.inside > 0 && inside != InsideTriangles::kWritten) {
+      const auto [what, one] = some(g.inside);
+      const std::string result =
+          inside == InsideTriangles::kNotKept
+              ? std::string(outcome) +
+                    " (a simplified mesh has other faces there; convert --surfaces writes them)"
+              : "convert --surfaces writes them, simplify cannot keep them";
       std::fprintf(stderr,
-                   "tetlod %s: note: surface group %s is not on a boundary or interface of the "
-                   "mesh (an inner surface of one material?): not written\n",
+                   "tetlod %s: note: %s %s inside one material (between two tets of it): %s\n",
+                   command, what.c_str(), one ? "lies" : "lie", result.c_str());
+    }
+    if (g.missing > 0 && written == 0 && g.missing == all) {
+      std::fprintf(stderr,
+                   "tetlod %s: note: no triangle of surface group %s is a face of the mesh: not "
+                   "written\n",
                    command, label.c_str());
-    } else {
-      std::fprintf(stderr,
-                   "tetlod %s: note: %zu of the %zu triangles of surface group %s are not on a "
-                   "boundary or interface of the mesh: written without them\n",
-                   command, g.missing, g.missing + g.triangles, label.c_str());
+    } else if (g.missing > 0) {
+      const auto [what, one] = some(g.missing);
+      std::fprintf(stderr, "tetlod %s: note: %s %s not %s of the mesh: %s\n", command, what.c_str(),
+                   one ? "is" : "are", one ? "a face" : "faces", outcome);
     }
   }
 }

@@ -70,15 +70,19 @@ struct StagedMesh {
   std::string stale_face;  // the .face left beside a TetGen pair, or ""
 };
 // `patches`: the input file's surface groups, written under their own names and tags
-// (group_surface() with them), or null.
+// (group_surface() with them), or null. `inside`: with their triangles inside a
+// material too (group_surface()'s `inside`: `mesh` is the input itself).
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
                          WriteOptions options, StagedMesh* staged,
-                         const SurfacePatches* patches = nullptr);
+                         const SurfacePatches* patches = nullptr, bool inside = false);
 
+// What a command does with the input groups' triangles inside one material: writes
+// them (convert), cannot keep them (simplify), or reports on both (stats).
+enum class InsideTriangles { kWritten, kNotKept, kReported };
 // Prints a note for each input surface group (SurfacePatches of the input) that
-// cannot be written as it is: its triangles, or some of them, are not on a boundary
-// or interface of the mesh (an inner surface of one material, or no such face).
-void print_patch_notes(const SurfacePatches& patches, const char* command);
+// cannot be written as it is: some of its triangles are in a smaller group, lie
+// inside a material (unless `inside` is kWritten), or are not faces of the mesh.
+void print_patch_notes(const SurfacePatches& patches, const char* command, InsideTriangles inside);
 void print_staged_mesh_notes(const StagedMesh& staged);
 
 // A collapse history file opened to read levels from.

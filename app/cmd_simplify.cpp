@@ -151,7 +151,8 @@ int cmd_simplify(const Args& args) {
   // those between materials, so that the output has them too (with --surfaces).
   SurfacePatches patches;
   if (!info.surface_groups.empty()) patches = SurfacePatches(input, info.surface_groups);
-  if (write_options.surface_groups) print_patch_notes(patches, "simplify");
+  if (write_options.surface_groups)
+    print_patch_notes(patches, "simplify", InsideTriangles::kNotKept);
   // Material ids near the top of the tag range can leave no room to number the surface
   // groups; the simplified mesh has the input's material pairs: say so before the work.
   if (write_options.surface_groups &&

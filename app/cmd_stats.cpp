@@ -93,7 +93,7 @@ int cmd_stats(const Args& args) {
   SurfacePatches patches;
   if (!info.surface_groups.empty()) {
     patches = SurfacePatches(mesh, info.surface_groups);
-    print_patch_notes(patches, "stats");
+    print_patch_notes(patches, "stats", InsideTriangles::kReported);
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -131,8 +131,9 @@ int cmd_stats(const Args& args) {
       const SurfacePatches::Group& g = patches.groups()[i];
       std::printf(
           "%s\n    {\"tag\": %d, \"name\": \"%s\", \"triangles\": %zu, "
-          "\"in_a_smaller_group\": %zu, \"not_on_the_surface\": %zu}",
-          i ? "," : "", g.tag, json_escape(g.name).c_str(), g.triangles, g.shared, g.missing);
+          "\"in_a_smaller_group\": %zu, \"inside_a_material\": %zu, \"not_faces\": %zu}",
+          i ? "," : "", g.tag, json_escape(g.name).c_str(), g.triangles, g.shared, g.inside,
+          g.missing);
     }
     std::printf(patches.groups().empty() ? "]" : "\n  ]");
     std::printf(
@@ -163,6 +164,7 @@ int cmd_stats(const Args& args) {
     for (const SurfacePatches::Group& g : patches.groups()) {
       std::printf("%s%d %s: %zu", separator, g.tag, g.name.empty() ? "(unnamed)" : g.name.c_str(),
                   g.triangles);
+      if (g.inside > 0) std::printf(" (+%zu inside a material)", g.inside);
       separator = ", ";
     }
   }

@@ -1189,8 +1189,11 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
   WriteOptions options;
   options.surface_groups = surfaces;
   if (Status s = check_mesh_path(path, options); !s) return s;
+  // The input itself (nothing simplified or improved) keeps its groups' triangles inside
+  // a material too, as convert writes them.
+  const bool inside = !scene_->result && !improve;
   save_path_ = path;
-  save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
+  save_future_ = std::async(std::launch::async, [path, improve, inside, params, level_name, options,
                                                  patches = scene_->patches,
                                                  material_names = scene_->material_names,
                                                  mesh = scene_->lod->extract()]() mutable {
@@ -1217,7 +1220,8 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
     }
     // The input's own groups keep their names and tags: the levels keep their borders.
     SurfaceGroups groups;
-    if (Status s = patches ? group_surface(mesh, &groups, *patches) : group_surface(mesh, &groups);
+    if (Status s =
+            patches ? group_surface(mesh, &groups, *patches, inside) : group_surface(mesh, &groups);
         !s) {
       saved.status = Status::error(path + ": " + s.message());
       return saved;

@@ -120,6 +120,88 @@ uint64_t corner_hash(const TriangleKey& key) {
   return h;
 }
 
+// A triangle given by its corners' positions, found as a face of a mesh between two
+// tets of one material: its corners (the mesh's vertices, in the given order), that
+// material, and the tet on its back side with the corner opposite it.
+struct InnerFace {
+  bool found = false;
+  std::array<uint32_t, 3> v{};
+  int32_t material = 0;
+  uint32_t tet = kInvalidIndex;
+  uint8_t corner = 0;
+};
+
+bool position_less(const Vec3& a, const Vec3& b) {
+  return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+}
+
+// Each triangle of `triangles` as an inner face of `mesh` (a valid mesh), if it is one.
+// Vertices at one position (a mesh not conforming there) are each tried.
+std::vector<InnerFace> find_inner_faces(const TetMesh& mesh,
+                                        const std::vector<std::array<Vec3, 3>>& triangles) {
+  std::vector<InnerFace> found(triangles.size());
+  if (triangles.empty()) return found;
+  std::vector<Vec3> wanted;
+  wanted.reserve(3 * triangles.size());
+  for (const auto& t : triangles) wanted.insert(wanted.end(), t.begin(), t.end());
+  std::sort(wanted.begin(), wanted.end(), position_less);
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  // (index into `wanted`, a vertex there), sorted.
+  std::vector<std::pair<uint32_t, uint32_t>> at;
+  for (uint32_t v = 0; v < mesh.vertex_count(); ++v) {
+    const auto it =
+        std::lower_bound(wanted.begin(), wanted.end(), mesh.positions[v], position_less);
+    if (it != wanted.end() && *it == mesh.positions[v])
+      at.push_back({uint32_t(it - wanted.begin()), v});
+  }
+  std::sort(at.begin(), at.end());
+  auto vertices_at = [&](const Vec3& p) {
+    const uint32_t w =
+        uint32_t(std::lower_bound(wanted.begin(), wanted.end(), p, position_less) - wanted.begin());
+    const auto first = std::lower_bound(at.begin(), at.end(), std::make_pair(w, uint32_t(0)));
+    auto last = first;
+    while (last != at.end() && last->first == w) ++last;
+    return std::make_pair(first, last);
+  };
+  const VertexTets stars = build_vertex_tets(mesh);
+  const auto& p = mesh.positions;
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const auto [a0, a1] = vertices_at(triangles[i][0]);
+    const auto [b0, b1] = vertices_at(triangles[i][1]);
+    const auto [c0, c1] = vertices_at(triangles[i][2]);
+    for (auto a = a0; a != a1 && !found[i].found; ++a) {
+      for (auto b = b0; b != b1 && !found[i].found; ++b) {
+        for (auto c = c0; c != c1 && !found[i].found; ++c) {
+          const std::array<uint32_t, 3> v = {a->second, b->second, c->second};
+          if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;  // no triangle
+          uint32_t sides[2];
+          int count = 0;
+          for (const uint32_t* t = stars.begin(v[0]); t != stars.end(v[0]); ++t) {
+            const Tet& tet = mesh.tets[*t];
+            const bool has_b = std::find(tet.begin(), tet.end(), v[1]) != tet.end();
+            const bool has_c = std::find(tet.begin(), tet.end(), v[2]) != tet.end();
+            if (has_b && has_c && count < 2) sides[count++] = *t;
+          }
+          if (count != 2 || mesh.materials[sides[0]] != mesh.materials[sides[1]]) continue;
+          const Vec3 normal = cross(p[v[1]] - p[v[0]], p[v[2]] - p[v[0]]);
+          for (const uint32_t t : sides) {
+            const Tet& tet = mesh.tets[t];
+            const int corner =
+                int(std::find_if(tet.begin(), tet.end(),
+                                 [&](uint32_t w) { return w != v[0] && w != v[1] && w != v[2]; }) -
+                    tet.begin());
+            if (dot(normal, p[tet[size_t(corner)]] - p[v[0]]) < 0) {
+              found[i] = {true, v, mesh.materials[t], t, uint8_t(corner)};
+              break;
+            }
+          }
+        }
+      }
+    }
+  }
+  return found;
+}
+
 }  // namespace
 
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups) {
@@ -141,6 +223,9 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     return groups[a].triangles.size() < groups[b].triangles.size();
   });
+  // The triangles not on the surface, in that order, with their group.
+  std::vector<std::array<Vec3, 3>> off_surface;
+  std::vector<uint32_t> off_group;
   for (const uint32_t id : order) {
     const InputSurfaceGroup& g = groups[id];
     Group& group = groups_[id];
@@ -149,7 +234,8 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
     for (const auto& t : g.triangles) {
       const uint32_t e = g.tag >= 1 ? find_exact(t[0], t[1], t[2]) : kNone;
       if (e == kNone) {
-        ++group.missing;
+        if (g.tag >= 1) off_surface.push_back(t), off_group.push_back(id);
+        if (g.tag < 1) ++group.missing;
       } else if (entries_[e].group == kNone) {
         entries_[e].group = id;
         ++group.triangles;
@@ -158,6 +244,38 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
         ++group.shared;
       }
     }
+  }
+  // Those that are faces inside one material, each held by the first group to hold it
+  // (the smallest), as on the surface.
+  const std::vector<InnerFace> inner = find_inner_faces(input, off_surface);
+  std::vector<std::pair<std::array<uint32_t, 3>, uint32_t>> held;  // sorted corners, group
+  for (size_t i = 0; i < off_surface.size(); ++i) {
+    Group& group = groups_[off_group[i]];
+    if (!inner[i].found) {
+      ++group.missing;
+      continue;
+    }
+    std::array<uint32_t, 3> key = inner[i].v;
+    std::sort(key.begin(), key.end());
+    held.push_back({key, uint32_t(i)});
+  }
+  std::stable_sort(held.begin(), held.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  // In a run of one triangle, the first is the holder (stable: the smallest group).
+  std::vector<uint8_t> holds(off_surface.size(), 0);
+  for (size_t k = 0, first = 0; k < held.size(); ++k) {
+    if (k == 0 || held[k].first != held[k - 1].first) {
+      first = k;
+      holds[held[k].second] = 1;
+    } else if (off_group[held[k].second] != off_group[held[first].second]) {
+      ++groups_[off_group[held[k].second]].shared;
+    }
+  }
+  for (size_t i = 0; i < off_surface.size(); ++i) {
+    if (!holds[i]) continue;
+    ++groups_[off_group[i]].inside;
+    const int32_t m = inner[i].material;
+    inside_.push_back({off_surface[i], m, m, off_group[i]});
   }
 }
 
@@ -222,7 +340,8 @@ uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int
   return i == TriangleGrid::kNone ? kNone : entries_[grid_entries_[pair][i]].group;
 }
 
-Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches) {
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
+                     bool inside) {
   SurfaceGroups result;
   result.surface = extract_surface(mesh, face_neighbors(mesh));
   const auto& p = mesh.positions;
@@ -237,6 +356,19 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePa
       unlabelled[pair_key(t)].push_back(i);
     else
       in_group[g].push_back(i);
+  }
+  if (inside) {
+    // After the surface's, so that each group's indices still increase.
+    const std::vector<SurfacePatches::Entry>& entries = patches.inside_entries();
+    std::vector<std::array<Vec3, 3>> corners(entries.size());
+    for (size_t i = 0; i < entries.size(); ++i) corners[i] = entries[i].p;
+    const std::vector<InnerFace> faces = find_inner_faces(mesh, corners);
+    for (size_t i = 0; i < entries.size(); ++i) {
+      const InnerFace& f = faces[i];
+      if (!f.found) continue;
+      in_group[entries[i].group].push_back(uint32_t(result.surface.size()));
+      result.surface.push_back({f.v, f.material, f.material, f.tet, f.corner});
+    }
   }
   std::set<int32_t> used_tags;
   std::set<std::string> used_names;  // the input groups', which a generated one must not take
@@ -292,6 +424,17 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePa
       group.triangles = std::move(in_group[g]);
       result.groups.push_back(std::move(group));
     }
+  }
+  // The groups only inside materials, in the input's order.
+  for (size_t g = 0; g < in_group.size(); ++g) {
+    if (placed[g] || in_group[g].empty()) continue;
+    const SurfacePatches::Group& input = patches.groups()[g];
+    SurfaceGroup group;
+    group.material = group.other = result.surface[in_group[g].front()].inner;
+    group.tag = input.tag;
+    group.name = input.name.empty() ? "surface_" + std::to_string(input.tag) : input.name;
+    group.triangles = std::move(in_group[g]);
+    result.groups.push_back(std::move(group));
   }
   *groups = std::move(result);
   return Status();

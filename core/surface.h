@@ -44,14 +44,16 @@ std::vector<SurfaceEdgeUse> surface_edge_uses(const std::vector<SurfaceTriangle>
 // from first_surface_tag() up, in that order, so a group's tag is above every tag a
 // writer gives a material and is the same in every format.
 struct SurfaceGroup {
-  int32_t material;                 // the smaller material of the pair
-  int32_t other;                    // the larger one, kOutsideMaterial on the boundary
-  int32_t tag;                      // >= first_surface_tag(mesh)
-  std::string name;                 // "boundary_<m>" or "interface_<a>_<b>"
+  int32_t material;  // the smaller material of the pair (of its first triangle)
+  int32_t other;     // the larger one, kOutsideMaterial on the boundary, material inside it
+  int32_t tag;       // >= first_surface_tag(mesh)
+  std::string name;  // "boundary_<m>" or "interface_<a>_<b>"
   std::vector<uint32_t> triangles;  // indices into the surface, increasing
 };
 struct SurfaceGroups {
-  std::vector<SurfaceTriangle> surface;  // extract_surface() of the mesh
+  // extract_surface() of the mesh, then any faces inside a material that a group holds
+  // (group_surface() with `inside`: inner == outer).
+  std::vector<SurfaceTriangle> surface;
   std::vector<SurfaceGroup> groups;
 };
 
@@ -78,7 +80,14 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 // went to input groups has no group). An input group whose triangles are exactly
 // one pair's is so that pair's group under the input's name and tag. An unnamed
 // input group is named after its pair if it is one pair's, else surface_<tag>.
-Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches);
+// With `inside`, the groups' triangles inside one material
+// (SurfacePatches::inside_entries()) that are faces of `mesh` go to their groups too,
+// after the surface's triangles (material == other == that material; oriented as in
+// the input, `tet` on their back side); a group of such triangles only comes after
+// the others. That is for the input's mesh itself (convert): a mesh made from it has
+// other faces inside its materials, so a group would keep only some of its triangles.
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
+                     bool inside = false);
 
 // A surface group of an input file (a Gmsh physical surface, a Medit triangle
 // reference, a TetGen .face marker, an Abaqus *SURFACE): its triangles by the
@@ -105,8 +114,9 @@ class SurfacePatches {
     int32_t tag = 0;
     std::string name;
     size_t triangles = 0;  // of the input surface
-    size_t missing = 0;    // triangles of the group that are not on it
-    size_t shared = 0;     // on it, but held by a smaller group (not saved in histories)
+    size_t missing = 0;    // triangles of the group that are not faces of the input mesh
+    size_t shared = 0;     // on it or inside, but held by a smaller group (not saved in histories)
+    size_t inside = 0;     // faces of the input inside one material (not saved in histories)
   };
   // An input surface triangle and its group (kNone if in none).
   struct Entry {
@@ -124,6 +134,10 @@ class SurfacePatches {
   bool any() const { return any_; }
   const std::vector<Group>& groups() const { return groups_; }
   const std::vector<Entry>& entries() const { return entries_; }
+  // The groups' triangles that are faces of the input between two tets of one
+  // material (inner == outer == that material), each held by one group, as the input
+  // gives their corners (a history keeps none: only convert writes them).
+  const std::vector<Entry>& inside_entries() const { return inside_; }
   // The group (index into groups()) of the triangle (a, b, c) between materials
   // `inner` and `outer` (kOutsideMaterial on the boundary), or kNone.
   uint32_t locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner, int32_t outer) const;
@@ -134,6 +148,7 @@ class SurfacePatches {
   uint32_t find_exact(const Vec3& a, const Vec3& b, const Vec3& c) const;
   std::vector<Group> groups_;
   std::vector<Entry> entries_;
+  std::vector<Entry> inside_;
   // (hash of an entry's sorted corners, entry), sorted: the input's own triangles,
   // and the pieces of a mesh made from it that kept their corners, are found here
   // without a search of the grids.

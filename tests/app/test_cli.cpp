@@ -114,11 +114,11 @@ TEST(Cli, StatsListsTheFilesSurfaceGroups) {
   r = run("stats --json " + coax);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("{\"tag\": 21, \"name\": \"jacket\", \"triangles\": 180, "
-                          "\"in_a_smaller_group\": 0, \"not_on_the_surface\": 0}"),
+                          "\"in_a_smaller_group\": 0, \"inside_a_material\": 0, \"not_faces\": 0}"),
             std::string::npos)
       << r.output;
-  // A Medit triangle inside the grid (not a face on its surface) is noted; its group
-  // has none on the surface.
+  // A Medit triangle inside the grid that is no face of it is noted; its group has
+  // none on the surface.
   const std::string path = write_grid("inner_triangle.mesh");
   std::string text = read_file(path);
   const size_t end = text.rfind("End");
@@ -127,14 +127,74 @@ TEST(Cli, StatsListsTheFilesSurfaceGroups) {
   std::ofstream(path) << text;
   r = run("stats " + path);
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("tetlod stats: note: surface group with tag 9 (unnamed) is not on a "
-                          "boundary or interface of the mesh"),
+  EXPECT_NE(r.output.find("tetlod stats: note: no triangle of surface group with tag 9 (unnamed) "
+                          "is a face of the mesh: not written\n"),
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("the file's surface groups (tag name: triangles on the surface): 9 "
                           "(unnamed): 0\n"),
             std::string::npos)
       << r.output;
+}
+
+// Surface groups inside one material (tests/data/gmsh/sheet.msh: 'sheet' inside the
+// block, 'top_and_sheet' its top face and another sheet): stats counts them, convert
+// writes them (the file read back has them, inside again), simplify says it cannot
+// keep them and writes the rest.
+TEST(Cli, GroupsInsideAMaterialAreConvertedNotSimplified) {
+  const std::string sheet = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/sheet.msh";
+  CommandResult r = run("stats " + sheet);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("the file's surface groups (tag name: triangles on the surface): 100 "
+                          "sheet: 0 (+38 inside a material), 200 bottom: 112, 300 top_and_sheet: "
+                          "112 (+38 inside a material)\n"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("tetlod stats: note: every triangle of surface group 'sheet' (tag 100) "
+                          "lies inside one material (between two tets of it): convert --surfaces "
+                          "writes them, simplify cannot keep them\n"),
+            std::string::npos)
+      << r.output;
+  r = run("stats --json " + sheet);
+  EXPECT_NE(
+      r.output.find("{\"tag\": 300, \"name\": \"top_and_sheet\", \"triangles\": 112, "
+                    "\"in_a_smaller_group\": 0, \"inside_a_material\": 38, \"not_faces\": 0}"),
+      std::string::npos)
+      << r.output;
+
+  const std::string converted = out_dir() + "/sheet_converted.msh";
+  r = run("convert " + sheet + " " + converted + " --surfaces");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("surface groups (tag name: triangles): 2 boundary_1: 358, 200 bottom: "
+                          "112, 300 top_and_sheet: 150, 100 sheet: 38\n"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("inside one material"), std::string::npos) << r.output;
+  r = run("stats " + converted);
+  EXPECT_NE(r.output.find("100 sheet: 0 (+38 inside a material), 200 bottom: 112, 300 "
+                          "top_and_sheet: 112 (+38 inside a material)\n"),
+            std::string::npos)
+      << r.output;
+
+  const std::string simplified = out_dir() + "/sheet_simplified.msh";
+  r = run("simplify " + sheet + " -o " + simplified + " --size 0.5 --surfaces");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tetlod simplify: note: every triangle of surface group 'sheet' (tag "
+                          "100) lies inside one material (between two tets of it): not written"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("tetlod simplify: note: 38 of the 150 triangles of surface group "
+                          "'top_and_sheet' (tag 300) lie inside one material (between two tets "
+                          "of it): written without them"),
+            std::string::npos)
+      << r.output;
+  r = run("stats " + simplified);
+  EXPECT_NE(r.output.find("the file's surface groups (tag name: triangles on the surface): 2 "
+                          "boundary_1: "),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find(" sheet:"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("inside a material"), std::string::npos) << r.output;
 }
 
 TEST(Cli, BadInputNamesTheFileAndExitsOne) {

@@ -377,6 +377,133 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   EXPECT_EQ(info.surface_groups[2].name, "1st _outer_ wall");
 }
 
+// Groups inside one material (Gmsh's embedded surfaces, tests/data/gmsh/sheet.msh:
+// "sheet" wholly inside material 1, "top_and_sheet" a boundary face and another sheet):
+// their triangles are faces between two tets of that material. SurfacePatches counts
+// them; group_surface() with `inside` (convert) adds them to their groups, oriented as
+// in the input and seen from the tet behind them, and every writer's file reads back
+// with the same groups; without it (a simplified mesh's) they are left out. A triangle
+// in two groups is the smaller one's; one that is no face is missing.
+TEST(SurfaceGroups, GroupsInsideAMaterial) {
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/sheet.msh"), &mesh, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), 3u);
+  EXPECT_EQ(info.surface_groups[0].name, "sheet");
+  EXPECT_EQ(info.surface_groups[2].name, "top_and_sheet");
+  const SurfacePatches patches(mesh, info.surface_groups);
+  const auto& counts = patches.groups();
+  const size_t sheet = info.surface_groups[0].triangles.size();
+  const size_t bottom = info.surface_groups[1].triangles.size();
+  const size_t top = counts[2].triangles, top_inside = counts[2].inside;
+  EXPECT_EQ(counts[0].triangles, 0u);
+  EXPECT_EQ(counts[0].inside, sheet);
+  EXPECT_EQ(counts[1].triangles, bottom);
+  EXPECT_EQ(counts[1].inside, 0u);
+  EXPECT_GT(top, 0u);
+  EXPECT_GT(top_inside, 0u);
+  EXPECT_EQ(top + top_inside, info.surface_groups[2].triangles.size());
+  for (const auto& g : counts) EXPECT_EQ(g.missing + g.shared, 0u);
+  EXPECT_EQ(patches.inside_entries().size(), sheet + top_inside);
+
+  SurfaceGroups without, with;
+  ASSERT_TRUE(group_surface(mesh, &without, patches).ok());
+  ASSERT_TRUE(group_surface(mesh, &with, patches, true).ok());
+  const size_t rest = groups_of(mesh).surface.size() - bottom - top;
+  EXPECT_EQ(names_and_tags(without),
+            (std::vector<std::string>{"boundary_1=2:" + std::to_string(rest),
+                                      "bottom=200:" + std::to_string(bottom),
+                                      "top_and_sheet=300:" + std::to_string(top)}));
+  EXPECT_EQ(names_and_tags(with),
+            (std::vector<std::string>{"boundary_1=2:" + std::to_string(rest),
+                                      "bottom=200:" + std::to_string(bottom),
+                                      "top_and_sheet=300:" + std::to_string(top + top_inside),
+                                      "sheet=100:" + std::to_string(sheet)}));
+  // Each inside triangle is the face of its tet opposite its corner, between two tets
+  // of material 1, and its normal points away from that tet.
+  const MeshAdjacency adjacency = build_adjacency(mesh);
+  const auto& p = mesh.positions;
+  size_t inside = 0;
+  for (size_t i = without.surface.size(); i < with.surface.size(); ++i, ++inside) {
+    const SurfaceTriangle& t = with.surface[i];
+    EXPECT_EQ(t.inner, 1);
+    EXPECT_EQ(t.outer, 1);
+    const Tet& tet = mesh.tets[t.tet];
+    std::array<uint32_t, 3> face = {tet[kTetFace[t.corner][0]], tet[kTetFace[t.corner][1]],
+                                    tet[kTetFace[t.corner][2]]};
+    std::array<uint32_t, 3> v = t.v;
+    std::sort(face.begin(), face.end());
+    std::sort(v.begin(), v.end());
+    EXPECT_EQ(face, v);
+    const uint32_t other = adjacency.tet_neighbors[4 * t.tet + t.corner];
+    ASSERT_NE(other, kInvalidIndex);
+    EXPECT_EQ(mesh.materials[other], 1);
+    const Vec3 normal = cross(p[t.v[1]] - p[t.v[0]], p[t.v[2]] - p[t.v[0]]);
+    EXPECT_LT(dot(normal, p[tet[t.corner]] - p[t.v[0]]), 0);
+  }
+  EXPECT_EQ(inside, sheet + top_inside);
+  // The sheet's triangles, with their orientation, are the input's.
+  std::vector<PositionTriangle> want;
+  for (const auto& t : info.surface_groups[0].triangles) {
+    PositionTriangle c;
+    for (int k = 0; k < 3; ++k) c[k] = {t[k].x, t[k].y, t[k].z};
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    want.push_back(c);
+  }
+  std::sort(want.begin(), want.end());
+  EXPECT_EQ(triangles_by_tag(mesh, with)[100], want);
+
+  // Every writer of groups: read back, the same groups (by name where the format has
+  // names, else by tag), those inside a material again inside.
+  const std::string dir = test::output_dir("surface_groups_inside");
+  WriteOptions options;
+  options.surface_groups = true;
+  options.groups = &with;
+  for (const char* name : {"sheet.msh", "sheet.mesh", "sheet.inp", "sheet.node"}) {
+    SCOPED_TRACE(name);
+    const std::string ext = std::filesystem::path(name).extension().string();
+    const bool named = ext == ".msh" || ext == ".inp";
+    ASSERT_TRUE(write_mesh(dir + "/" + name, mesh, options).ok());
+    TetMesh back;
+    ReadInfo back_info;
+    ASSERT_TRUE(read_mesh(dir + "/" + name, &back, &back_info).ok());
+    const SurfacePatches again(back, back_info.surface_groups);
+    std::vector<std::string> got, expected;
+    for (const SurfacePatches::Group& g : again.groups())
+      got.push_back((named ? g.name : std::to_string(g.tag)) + ":" + std::to_string(g.triangles) +
+                    "+" + std::to_string(g.inside));
+    for (const SurfaceGroup& g : with.groups) {
+      size_t in = 0;
+      for (uint32_t i : g.triangles) in += i >= without.surface.size();
+      expected.push_back((named ? g.name : std::to_string(g.tag)) + ":" +
+                         std::to_string(g.triangles.size() - in) + "+" + std::to_string(in));
+    }
+    std::sort(got.begin(), got.end());
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(got, expected);
+  }
+
+  // A triangle of the sheet in a smaller group too, and one that is not a face.
+  std::vector<InputSurfaceGroup> input(2);
+  input[0].tag = 7;
+  input[0].triangles = {info.surface_groups[0].triangles[0]};
+  input[1].tag = 8;
+  input[1].triangles = info.surface_groups[0].triangles;
+  const auto& first = info.surface_groups[0].triangles[0];
+  input[1].triangles.push_back({first[0], first[1], info.surface_groups[1].triangles[0][0]});
+  input[1].triangles.push_back({first[0], first[1], first[1]});  // not even a triangle
+  const SurfacePatches overlapping(mesh, input);
+  EXPECT_EQ(overlapping.groups()[0].inside, 1u);
+  EXPECT_EQ(overlapping.groups()[1].inside, sheet - 1);
+  EXPECT_EQ(overlapping.groups()[1].shared, 1u);
+  EXPECT_EQ(overlapping.groups()[1].missing, 2u);
+  ASSERT_TRUE(group_surface(mesh, &with, overlapping, true).ok());
+  EXPECT_EQ(
+      names_and_tags(with),
+      (std::vector<std::string>{"boundary_1=2:" + std::to_string(without.surface.size()),
+                                "surface_7=7:1", "surface_8=8:" + std::to_string(sheet - 1)}));
+}
+
 // Names that would clash in what is written: two that make one Abaqus label, one too
 // long for Abaqus, and a user's group named as a generated one. Each .inp set and
 // surface name is distinct and at most 80 characters; the generated group takes its

@@ -440,6 +440,35 @@ TEST(ViewerWindow, SaveKeepsTheInputsGroups) {
   EXPECT_LT(saved.tet_count(), original.tet_count());
 }
 
+// Groups inside one material (tests/data/gmsh/sheet.msh): Save of the input itself
+// writes them, as `tetlod convert --surfaces` does; after Simplify (other faces inside)
+// and with "improve" they are left out, as `tetlod simplify --surfaces` leaves them.
+TEST(ViewerWindow, SaveOfTheInputKeepsGroupsInsideAMaterial) {
+  const fs::path dir = fresh_output_dir("viewer_save_inside_groups");
+  std::ofstream(dir / "save.script")
+      << "save input.msh surfaces\nsave improved.msh surfaces improve\nthresholds size=0.5\n"
+         "simplify\nsave simplified.msh surfaces\nquit\n";
+  const std::string input = kSource + "/tests/data/gmsh/sheet.msh";
+  const ViewerRun run = run_viewer(dir, "'" + input + "' --size 320x240 --script save.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  auto groups = [&](const char* name) {
+    TetMesh mesh;
+    ReadInfo info;
+    EXPECT_TRUE(read_mesh((dir / name).string(), &mesh, &info).ok()) << name;
+    std::string list;
+    for (const InputSurfaceGroup& g : info.surface_groups)
+      list += g.name + ":" + std::to_string(g.triangles.size()) + " ";
+    return list;
+  };
+  EXPECT_EQ(groups("input.msh"), "boundary_1:358 sheet:38 bottom:112 top_and_sheet:150 ");
+  const std::string improved = groups("improved.msh");
+  EXPECT_EQ(improved.find(" sheet:"), std::string::npos) << improved;
+  EXPECT_NE(improved.find("top_and_sheet:112 "), std::string::npos) << improved;
+  const std::string simplified = groups("simplified.msh");
+  EXPECT_EQ(simplified.find(" sheet:"), std::string::npos) << simplified;
+  EXPECT_NE(simplified.find("top_and_sheet:"), std::string::npos) << simplified;
+}
+
 // Save keeps the input's names of its materials (Gmsh physical volumes), as `tetlod
 // simplify` does.
 TEST(ViewerWindow, SaveKeepsMaterialNames) {

@@ -33,3 +33,6 @@ gmsh port.geo -3 -clmax 0.1 -v 0 -format msh41 -o port.msh
 # Overlapping surface groups (a face in two groups), text and binary.
 gmsh overlap.geo -3 -clmax 0.5 -v 0 -format msh41 -o overlap41.msh
 gmsh overlap.geo -3 -clmax 0.5 -v 0 -format msh41 -bin -o overlap41_bin.msh
+# A block with two sheets inside it (embedded surfaces), in groups of their own and
+# with a boundary face: surface groups inside one material.
+gmsh sheet.geo -3 -clmax 0.25 -v 0 -format msh41 -o sheet.msh
