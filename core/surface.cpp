@@ -136,68 +136,84 @@ bool position_less(const Vec3& a, const Vec3& b) {
 }
 
 // Each triangle of `triangles` as an inner face of `mesh` (a valid mesh), if it is one.
-// Vertices at one position (a mesh not conforming there) are each tried.
+// Only the faces whose corners are all at positions of the triangles are listed, by
+// the hash of their corners' positions; each distinct triangle is looked up once, so
+// that the work stays near linear whatever the input (vertices at one position
+// included).
 std::vector<InnerFace> find_inner_faces(const TetMesh& mesh,
                                         const std::vector<std::array<Vec3, 3>>& triangles) {
   std::vector<InnerFace> found(triangles.size());
   if (triangles.empty()) return found;
+  const auto& p = mesh.positions;
   std::vector<Vec3> wanted;
   wanted.reserve(3 * triangles.size());
   for (const auto& t : triangles) wanted.insert(wanted.end(), t.begin(), t.end());
   std::sort(wanted.begin(), wanted.end(), position_less);
   wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
-  // (index into `wanted`, a vertex there), sorted.
-  std::vector<std::pair<uint32_t, uint32_t>> at;
-  for (uint32_t v = 0; v < mesh.vertex_count(); ++v) {
-    const auto it =
-        std::lower_bound(wanted.begin(), wanted.end(), mesh.positions[v], position_less);
-    if (it != wanted.end() && *it == mesh.positions[v])
-      at.push_back({uint32_t(it - wanted.begin()), v});
-  }
-  std::sort(at.begin(), at.end());
-  auto vertices_at = [&](const Vec3& p) {
-    const uint32_t w =
-        uint32_t(std::lower_bound(wanted.begin(), wanted.end(), p, position_less) - wanted.begin());
-    const auto first = std::lower_bound(at.begin(), at.end(), std::make_pair(w, uint32_t(0)));
-    auto last = first;
-    while (last != at.end() && last->first == w) ++last;
-    return std::make_pair(first, last);
+  std::vector<uint8_t> at_wanted(mesh.vertex_count());
+  for (uint32_t v = 0; v < mesh.vertex_count(); ++v)
+    at_wanted[v] = std::binary_search(wanted.begin(), wanted.end(), p[v], position_less);
+  // Those faces, each side apart: the two sides of one face are next to each other.
+  struct Side {
+    uint64_t hash;
+    std::array<uint32_t, 3> ids;  // sorted
+    uint32_t tet;
+    uint8_t corner;
   };
-  const VertexTets stars = build_vertex_tets(mesh);
-  const auto& p = mesh.positions;
-  for (size_t i = 0; i < triangles.size(); ++i) {
-    const auto [a0, a1] = vertices_at(triangles[i][0]);
-    const auto [b0, b1] = vertices_at(triangles[i][1]);
-    const auto [c0, c1] = vertices_at(triangles[i][2]);
-    for (auto a = a0; a != a1 && !found[i].found; ++a) {
-      for (auto b = b0; b != b1 && !found[i].found; ++b) {
-        for (auto c = c0; c != c1 && !found[i].found; ++c) {
-          const std::array<uint32_t, 3> v = {a->second, b->second, c->second};
-          if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;  // no triangle
-          uint32_t sides[2];
-          int count = 0;
-          for (const uint32_t* t = stars.begin(v[0]); t != stars.end(v[0]); ++t) {
-            const Tet& tet = mesh.tets[*t];
-            const bool has_b = std::find(tet.begin(), tet.end(), v[1]) != tet.end();
-            const bool has_c = std::find(tet.begin(), tet.end(), v[2]) != tet.end();
-            if (has_b && has_c && count < 2) sides[count++] = *t;
-          }
-          if (count != 2 || mesh.materials[sides[0]] != mesh.materials[sides[1]]) continue;
-          const Vec3 normal = cross(p[v[1]] - p[v[0]], p[v[2]] - p[v[0]]);
-          for (const uint32_t t : sides) {
-            const Tet& tet = mesh.tets[t];
-            const int corner =
-                int(std::find_if(tet.begin(), tet.end(),
-                                 [&](uint32_t w) { return w != v[0] && w != v[1] && w != v[2]; }) -
-                    tet.begin());
-            if (dot(normal, p[tet[size_t(corner)]] - p[v[0]]) < 0) {
-              found[i] = {true, v, mesh.materials[t], t, uint8_t(corner)};
-              break;
-            }
-          }
+  std::vector<Side> sides;
+  for (uint32_t t = 0; t < mesh.tet_count(); ++t) {
+    const Tet& tet = mesh.tets[t];
+    for (int i = 0; i < 4; ++i) {
+      const int* f = kTetFace[i];
+      std::array<uint32_t, 3> ids = {tet[f[0]], tet[f[1]], tet[f[2]]};
+      if (!(at_wanted[ids[0]] && at_wanted[ids[1]] && at_wanted[ids[2]])) continue;
+      std::sort(ids.begin(), ids.end());
+      sides.push_back(
+          {corner_hash(triangle_key(p[ids[0]], p[ids[1]], p[ids[2]])), ids, t, uint8_t(i)});
+    }
+  }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return std::tie(x.hash, x.ids, x.tet) < std::tie(y.hash, y.ids, y.tet);
+  });
+  // The triangles by key, so that one key is looked up once: (hash, triangle).
+  std::vector<std::pair<uint64_t, uint32_t>> order(triangles.size());
+  std::vector<TriangleKey> keys(triangles.size());
+  for (uint32_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
+    keys[i] = triangle_key(t[0], t[1], t[2]);
+    order[i] = {corner_hash(keys[i]), i};
+  }
+  std::sort(order.begin(), order.end(), [&](const auto& x, const auto& y) {
+    return std::tie(x.first, keys[x.second]) < std::tie(y.first, keys[y.second]);
+  });
+  const size_t kNoPair = sides.size();
+  size_t pair = kNoPair;  // the first side of the current key's inner face
+  for (size_t n = 0; n < order.size(); ++n) {
+    const uint32_t i = order[n].second;
+    if (n == 0 || order[n].first != order[n - 1].first || keys[i] != keys[order[n - 1].second]) {
+      pair = kNoPair;
+      auto k = std::lower_bound(sides.begin(), sides.end(), order[n].first,
+                                [](const Side& x, uint64_t h) { return x.hash < h; });
+      for (; k + 1 < sides.end() && k->hash == order[n].first; ++k) {
+        const Side &x = k[0], &y = k[1];
+        if (x.ids == y.ids && mesh.materials[x.tet] == mesh.materials[y.tet] &&
+            triangle_key(p[x.ids[0]], p[x.ids[1]], p[x.ids[2]]) == keys[i]) {
+          pair = size_t(k - sides.begin());
+          break;
         }
       }
     }
+    if (pair == kNoPair) continue;
+    // The corners in the triangle's order, and the side behind it.
+    const Side* two = &sides[pair];
+    std::array<uint32_t, 3> v = two->ids;
+    for (int c = 0; c < 3; ++c)
+      for (uint32_t id : two->ids)
+        if (p[id] == triangles[i][size_t(c)]) v[size_t(c)] = id;
+    const Vec3 normal = cross(p[v[1]] - p[v[0]], p[v[2]] - p[v[0]]);
+    const Side& back =
+        dot(normal, p[mesh.tets[two[0].tet][two[0].corner]] - p[v[0]]) < 0 ? two[0] : two[1];
+    found[i] = {true, v, mesh.materials[back.tet], back.tet, back.corner};
   }
   return found;
 }
