@@ -192,13 +192,14 @@ std::vector<InnerFace> find_inner_faces(const TetMesh& mesh,
     const uint32_t i = order[n].second;
     if (n == 0 || order[n].first != order[n - 1].first || keys[i] != keys[order[n - 1].second]) {
       pair = kNoPair;
-      auto k = std::lower_bound(sides.begin(), sides.end(), order[n].first,
-                                [](const Side& x, uint64_t h) { return x.hash < h; });
-      for (; k + 1 < sides.end() && k->hash == order[n].first; ++k) {
-        const Side &x = k[0], &y = k[1];
+      size_t k = size_t(std::lower_bound(sides.begin(), sides.end(), order[n].first,
+                                         [](const Side& x, uint64_t h) { return x.hash < h; }) -
+                        sides.begin());
+      for (; k + 1 < sides.size() && sides[k].hash == order[n].first; ++k) {
+        const Side &x = sides[k], &y = sides[k + 1];
         if (x.ids == y.ids && mesh.materials[x.tet] == mesh.materials[y.tet] &&
             triangle_key(p[x.ids[0]], p[x.ids[1]], p[x.ids[2]]) == keys[i]) {
-          pair = size_t(k - sides.begin());
+          pair = k;
           break;
         }
       }

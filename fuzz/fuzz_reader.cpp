@@ -65,6 +65,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       for (const tetlod::SurfaceGroup& g : groups.groups) triangles += g.triangles.size();
       if (triangles != groups.surface.size()) __builtin_trap();  // each in one group
     }
+    // With the triangles inside a material (as convert writes them): on this very mesh,
+    // every one the patches counted, each a face between two tets of its material.
+    const size_t surface = groups.surface.size();
+    if (tetlod::group_surface(mesh, &groups, patches, true).ok()) {
+      size_t triangles = 0, inside = 0;
+      for (const tetlod::SurfaceGroup& g : groups.groups) triangles += g.triangles.size();
+      for (const auto& g : patches.groups()) inside += g.inside;
+      if (triangles != groups.surface.size() || groups.surface.size() != surface + inside)
+        __builtin_trap();
+      for (size_t i = surface; i < groups.surface.size(); ++i) {
+        const tetlod::SurfaceTriangle& t = groups.surface[i];
+        const tetlod::Tet& tet = mesh.tets[t.tet];
+        if (t.inner != t.outer || mesh.materials[t.tet] != t.inner) __builtin_trap();
+        for (uint32_t v : t.v)
+          if (std::find(tet.begin(), tet.end(), v) == tet.end() || v == tet[t.corner])
+            __builtin_trap();
+      }
+    }
   }
   return 0;
 }
