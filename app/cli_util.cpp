@@ -219,8 +219,8 @@ void print_patch_notes(const SurfacePatches& patches, const char* command, Insid
       const std::string result =
           inside == InsideTriangles::kNotKept
               ? std::string(outcome) +
-                    " (a simplified mesh has other faces there; convert --surfaces writes them)"
-              : "convert --surfaces writes them, simplify cannot keep them";
+                    " (--improve changes the faces inside materials; without it they are kept)"
+              : "--surfaces writes them (simplify keeps them as they are)";
       std::fprintf(stderr,
                    "tetlod %s: note: %s %s inside one material (between two tets of it): %s\n",
                    command, what.c_str(), one ? "lies" : "lie", result.c_str());

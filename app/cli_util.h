@@ -77,7 +77,7 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
                          const SurfacePatches* patches = nullptr, bool inside = false);
 
 // What a command does with the input groups' triangles inside one material: writes
-// them (convert), cannot keep them (simplify), or reports on both (stats).
+// them (convert, simplify), cannot keep them (--improve), or reports (stats).
 enum class InsideTriangles { kWritten, kNotKept, kReported };
 // Prints a note for each input surface group (SurfacePatches of the input) that
 // cannot be written as it is: some of its triangles are in a smaller group, lie

@@ -148,11 +148,14 @@ int cmd_simplify(const Args& args) {
   if (!load_mesh(in, &input, &info, write_options.surface_groups)) return kExitBadInput;
   if (!finish_simplify_options(input, info.material_names, "simplify", &options)) return kExitUsage;
   // The file's own surface groups: the simplifier keeps their borders as it keeps
-  // those between materials, so that the output has them too (with --surfaces).
+  // those between materials, and their triangles inside a material as they are, so
+  // that the output has them too (with --surfaces; --improve changes the faces inside
+  // materials).
   SurfacePatches patches;
   if (!info.surface_groups.empty()) patches = SurfacePatches(input, info.surface_groups);
   if (write_options.surface_groups)
-    print_patch_notes(patches, "simplify", InsideTriangles::kNotKept);
+    print_patch_notes(patches, "simplify",
+                      options.improve ? InsideTriangles::kNotKept : InsideTriangles::kWritten);
   // Material ids near the top of the tag range can leave no room to number the surface
   // groups; the simplified mesh has the input's material pairs: say so before the work.
   if (write_options.surface_groups &&
@@ -197,13 +200,18 @@ int cmd_simplify(const Args& args) {
   std::printf("\noutput %s (step %zu of %zu%s)\n", out.c_str(), step, result.history.step_count(),
               beyond.c_str());
   print_property_table(stats_of(output), &info.material_names);
+  const std::string kept_unsplit =
+      result.splits_skipped_inside == 0
+          ? std::string()
+          : "; " + std::to_string(result.splits_skipped_inside) +
+                " of the surface groups inside a material, kept as they are";
   std::printf(
       "\nsubdivision: %zu splits (%zu edges longer than half the size left unsplit to keep the "
-      "thresholds: %zu for a piece's stretch or size, %zu for a node's valence), %zu tets\n"
+      "thresholds: %zu for a piece's stretch or size, %zu for a node's valence%s), %zu tets\n"
       "collapses: %zu\nrejected evaluations: %s\n",
       result.splits, result.splits_skipped, result.splits_skipped - result.splits_skipped_valence,
-      result.splits_skipped_valence, result.base.tet_count(), result.history.step_count(),
-      describe_rejections(result.rejections).c_str());
+      result.splits_skipped_valence, kept_unsplit.c_str(), result.base.tet_count(),
+      result.history.step_count(), describe_rejections(result.rejections).c_str());
   const EvaluationCounts& e = result.evaluations;
   std::printf(
       "evaluations: %llu of every edge at the start, %llu of new nodes' edges, %llu of stale "
@@ -225,7 +233,7 @@ int cmd_simplify(const Args& args) {
   // The mesh and the history are written together, or neither.
   OutputFiles files;
   StagedMesh staged;
-  Status s = stage_output_mesh(&files, out, output, write_options, &staged, &patches);
+  Status s = stage_output_mesh(&files, out, output, write_options, &staged, &patches, !improve);
   if (s && !history_path.empty())
     s = stage_history(&files, history_path, result.base, result.history, &params,
                       &info.material_names, &patches);
@@ -368,7 +376,12 @@ int cmd_lod(const Args& args) {
   write_options.material_names = &level.names;
   OutputFiles files;
   StagedMesh staged;
-  Status s = stage_output_mesh(&files, out, level.mesh, write_options, &staged, &level.patches);
+  // The history's surface groups inside a material are faces of every level, unless
+  // --improve changed them.
+  if (write_options.surface_groups && improve)
+    print_patch_notes(level.patches, "lod", InsideTriangles::kNotKept);
+  Status s =
+      stage_output_mesh(&files, out, level.mesh, write_options, &staged, &level.patches, !improve);
   if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());

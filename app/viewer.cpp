@@ -657,7 +657,7 @@ void Viewer::start_load(const std::string& path) {
       SurfacePatches saved_patches;
       s = read_history(job->path, &history->base, &history->history, &saved_params, &saved_names,
                        &saved_patches);
-      if (s && saved_patches.any())
+      if (s && (saved_patches.any() || !saved_patches.inside_entries().empty()))
         patches = std::make_shared<const SurfacePatches>(std::move(saved_patches));
       if (s && !saved_names.empty())
         material_names = std::make_shared<const std::vector<MaterialName>>(std::move(saved_names));
@@ -1189,9 +1189,9 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
   WriteOptions options;
   options.surface_groups = surfaces;
   if (Status s = check_mesh_path(path, options); !s) return s;
-  // The input itself (nothing simplified or improved) keeps its groups' triangles inside
-  // a material too, as convert writes them.
-  const bool inside = !scene_->result && !improve;
+  // The input's groups' triangles inside a material are faces of the input and of every
+  // level (the simplifier keeps them), unless "improve" changes them.
+  const bool inside = !improve;
   save_path_ = path;
   save_future_ = std::async(std::launch::async, [path, improve, inside, params, level_name, options,
                                                  patches = scene_->patches,

@@ -349,7 +349,7 @@ constexpr char kGroupsMagic[8] = {'T', 'L', 'G', 'R', 'O', 'U', 'P', '1'};
 
 // The surface groups: a u64 count, per group i32 tag, u32 name length, the name, u64
 // triangles, u64 missing; then a u64 count of entries, each 9 f64 (the corners), i32
-// inner, i32 outer, u32 group.
+// inner, i32 outer, u32 group (inner == outer: a triangle inside a material, in a group).
 bool write_patches(std::FILE* f, const SurfacePatches& patches) {
   if (std::fwrite(kGroupsMagic, 1, 8, f) != 8) return false;
   ParamsWriter w{f};
@@ -362,12 +362,15 @@ bool write_patches(std::FILE* f, const SurfacePatches& patches) {
     w.put(uint64_t(g.triangles));
     w.put(uint64_t(g.missing));
   }
-  w.put(uint64_t(patches.entries().size()));
-  for (const SurfacePatches::Entry& e : patches.entries()) {
-    for (const Vec3& p : e.p) w.put(p);
-    w.put(int32_t(e.inner));
-    w.put(int32_t(e.outer));
-    w.put(uint32_t(e.group));
+  // The triangles inside a material after the surface's (inner == outer).
+  w.put(uint64_t(patches.entries().size() + patches.inside_entries().size()));
+  for (const auto* list : {&patches.entries(), &patches.inside_entries()}) {
+    for (const SurfacePatches::Entry& e : *list) {
+      for (const Vec3& p : e.p) w.put(p);
+      w.put(int32_t(e.inner));
+      w.put(int32_t(e.outer));
+      w.put(uint32_t(e.group));
+    }
   }
   return w.ok;
 }
@@ -402,8 +405,9 @@ std::string read_patches(std::FILE* f, uint64_t bytes, SurfacePatches* patches) 
     e.outer = r.get<int32_t>();
     e.group = r.get<uint32_t>();
     if (!r.ok) break;
+    const bool inside = e.outer == e.inner && e.group != SurfacePatches::kNone;
     if (!is_finite(e.p[0]) || !is_finite(e.p[1]) || !is_finite(e.p[2]) || e.inner < 0 ||
-        (e.outer != kOutsideMaterial && e.outer <= e.inner) ||
+        (e.outer != kOutsideMaterial && e.outer <= e.inner && !inside) ||
         (e.group != SurfacePatches::kNone && e.group >= groups.size()))
       return "surface group triangle " + std::to_string(i);
     entries.push_back(e);
@@ -497,7 +501,9 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
            write_array(f, history.rewired) && write_array(f, history.moved) &&
            (!params || write_params(f, *params)) && (kept.empty() || write_names(f, kept)) &&
-           (!patches || !patches->any() || write_patches(f, *patches)) && write_end(f);
+           (!patches || (!patches->any() && patches->inside_entries().empty()) ||
+            write_patches(f, *patches)) &&
+           write_end(f);
   });
 }
 

@@ -119,9 +119,9 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // improved later within them (improve.h) without the user giving them again.
 // `names`, if given and not empty: the input file's names of the materials (sorted,
 // each of a material the base has), saved next, so that levels written later
-// carry them. `patches`, if given and any(): the input file's surface groups the run
-// kept (simplify()), saved last, so that levels written later can be grouped as the
-// input was.
+// carry them. `patches`, if given and any() (or with inside_entries()): the input
+// file's surface groups the run kept (simplify()), saved last, so that levels written
+// later can be grouped as the input was.
 Status write_history(const std::string& path, const TetMesh& base, const CollapseHistory& history,
                      const SimplifyParams* params = nullptr,
                      const std::vector<MaterialName>* names = nullptr,

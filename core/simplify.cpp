@@ -382,6 +382,13 @@ class Engine {
 
   Status run(SimplifyResult* result) {
     auto start = Clock::now();
+    // The input groups' faces inside a material: their edges, which are not split.
+    if (patches_ && !patches_->inside_entries().empty()) {
+      for (const auto& f : inside_faces(mesh_now(), *patches_))
+        for (int k = 0; k < 3; ++k)
+          kept_edges_.push_back({std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])});
+      sort_unique(kept_edges_);
+    }
     if (params_.subdivide) {
       Status s = subdivide(result);
       if (!s) return s;
@@ -588,6 +595,11 @@ class Engine {
       std::pop_heap(heap.begin(), heap.end(), SplitLess());
       const Split e = heap.back();
       heap.pop_back();
+      if (!kept_edges_.empty() &&
+          std::binary_search(kept_edges_.begin(), kept_edges_.end(), std::make_pair(e.a, e.b))) {
+        ++result->splits_skipped_inside;
+        continue;
+      }
       ring.clear();
       for (uint32_t t : star_[e.a])
         if (tet_has(tet_[t].v, e.b)) ring.push_back(t);
@@ -696,6 +708,11 @@ class Engine {
     state_.assign(pos_.size(), VertexState{});
     redone_.assign(pos_.size(), Redone{});
     for (uint32_t v = 0; v < pos_.size(); ++v) state_[v].kind = c.kind[v];
+    // The input groups' faces inside a material stay as they are: their corners are
+    // corners (subdivision split none of their edges, so they are faces of `mesh`).
+    if (patches_ && !patches_->inside_entries().empty())
+      for (const auto& f : inside_faces(mesh, *patches_))
+        for (uint32_t v : f) state_[v].kind = FeatureKind::kCorner;
     feature_neighbors_.assign(pos_.size(), {});
     for (const auto& e : c.feature_edges) {
       feature_neighbors_[e[0]].push_back(e[1]);
@@ -1620,6 +1637,9 @@ class Engine {
   const ProgressCallback& progress_;
   const std::atomic<bool>* cancel_;
   const SurfacePatches* patches_ = nullptr;  // the input's surface groups, or none
+  // The edges (a < b, sorted) of patches_' faces inside a material, before
+  // subdivision (whose splits keep the ids of the vertices there).
+  std::vector<std::pair<uint32_t, uint32_t>> kept_edges_;
 
  public:
   void set_patches(const SurfacePatches* patches) { patches_ = patches; }
@@ -1725,8 +1745,15 @@ std::string above_size_reason(const SimplifyParams& params, const SimplifyResult
   if (result.cancelled && result.history.step_count() == 0)
     return "the run was cancelled before any collapse: subdivision may not have split every "
            "long edge.";
-  if (result.splits_skipped == 0)  // not expected: every long edge was split
-    return "subdivision split every long edge it found.";
+  const std::string inside =
+      result.splits_skipped_inside == 0
+          ? std::string()
+          : std::to_string(result.splits_skipped_inside) +
+                " edges longer than half the size are edges of the input's surface groups "
+                "inside a material, which are kept as they are, so not split";
+  if (result.splits_skipped == 0)  // else not expected: every long edge was split
+    return inside.empty() ? "subdivision split every long edge it found."
+                          : "these tets hold edges subdivision left unsplit: " + inside + ".";
   const size_t valence = result.splits_skipped_valence;
   const size_t shape = result.splits_skipped - valence;
   const bool both = shape > 0 && valence > 0;
@@ -1745,7 +1772,9 @@ std::string above_size_reason(const SimplifyParams& params, const SimplifyResult
   if (shape > 0)
     why += valence > 0 ? ", a lower stretch threshold" : " or a lower stretch threshold";
   if (valence > 0) why += " or a higher valence threshold";
-  return why + " leaves fewer.";
+  why += " leaves fewer.";
+  if (!inside.empty()) why += " Besides, " + inside + ".";
+  return why;
 }
 
 }  // namespace tetlod

@@ -82,6 +82,9 @@ struct SimplifyResult {
   size_t splits_skipped = 0;  // long edges left unsplit because a split would break a threshold:
   size_t splits_skipped_valence = 0;  // of them, those only a node's valence stopped (the
                                       // others: a piece's stretch or size)
+  // Long edges left unsplit (not in splits_skipped) because they are edges of an input
+  // surface group's triangles inside a material, which the run keeps as they are.
+  size_t splits_skipped_inside = 0;
   bool cancelled = false;
   // The candidate tests' kernels: "avx2" or "baseline" (also where the environment
   // sets TETLOD_NO_AVX2). Both give the same result, bit for bit.
@@ -102,7 +105,10 @@ using ProgressCallback = std::function<void(const SimplifyProgress&)>;
 // give the same result, byte for byte. No globals: runs may proceed in parallel.
 // `patches`, if given: the input file's surface groups (surface.h); their borders
 // are then kept as curves, as those between material pairs are, so that every level
-// can be grouped as the input was (group_surface() with them).
+// can be grouped as the input was (group_surface() with them). Their triangles inside
+// a material (inside_faces()) are kept as they are, in every level: subdivision does
+// not split their edges, and their corners are corners, which no collapse moves or
+// removes.
 Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
                 const ProgressCallback& progress = {}, const std::atomic<bool>* cancel = nullptr,
                 const SurfacePatches* patches = nullptr);

@@ -221,6 +221,16 @@ std::vector<InnerFace> find_inner_faces(const TetMesh& mesh,
 
 }  // namespace
 
+std::vector<std::array<uint32_t, 3>> inside_faces(const TetMesh& mesh,
+                                                  const SurfacePatches& patches) {
+  std::vector<std::array<Vec3, 3>> corners;
+  for (const SurfacePatches::Entry& e : patches.inside_entries()) corners.push_back(e.p);
+  std::vector<std::array<uint32_t, 3>> faces;
+  for (const InnerFace& f : find_inner_faces(mesh, corners))
+    if (f.found) faces.push_back(f.v);
+  return faces;
+}
+
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups) {
   return group_surface(mesh, groups, SurfacePatches());
 }
@@ -297,8 +307,17 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
 }
 
 SurfacePatches::SurfacePatches(std::vector<Group> groups, std::vector<Entry> entries)
-    : groups_(std::move(groups)), entries_(std::move(entries)) {
-  for (const Entry& e : entries_) any_ = any_ || e.group != kNone;
+    : groups_(std::move(groups)) {
+  // Entries inside a material (inner == outer) are the groups' triangles there.
+  for (Entry& e : entries) {
+    if (e.inner == e.outer && e.group != kNone) {
+      ++groups_[e.group].inside;
+      inside_.push_back(e);
+    } else {
+      any_ = any_ || e.group != kNone;
+      entries_.push_back(e);
+    }
+  }
   build_index();
 }
 

@@ -69,6 +69,13 @@ int64_t first_surface_tag(const TetMesh& mesh);
 
 class SurfacePatches;
 
+// The faces of `mesh` (a valid mesh) that the input groups' triangles inside a
+// material (SurfacePatches::inside_entries()) are, found by their corners'
+// positions: their corners, in the entries' order, leaving out any that is no face
+// between two tets of one material of `mesh`. simplify() keeps these faces as they are.
+std::vector<std::array<uint32_t, 3>> inside_faces(const TetMesh& mesh,
+                                                  const SurfacePatches& patches);
+
 // Precondition: the mesh passed validate_mesh(). An error, naming the largest
 // material, when the tags would run past 2^31 - 1 (the largest tag Gmsh and Medit
 // take); `groups` is then left as it was.
@@ -84,8 +91,9 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 // (SurfacePatches::inside_entries()) that are faces of `mesh` go to their groups too,
 // after the surface's triangles (material == other == that material; oriented as in
 // the input, `tet` on their back side); a group of such triangles only comes after
-// the others. That is for the input's mesh itself (convert): a mesh made from it has
-// other faces inside its materials, so a group would keep only some of its triangles.
+// the others. That is for the input's mesh itself (convert), and for the levels of a
+// simplification with these patches, which keeps those faces (simplify()); a mesh
+// changed otherwise (improve_mesh()) may keep only some of them.
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
                      bool inside = false);
 
@@ -128,7 +136,8 @@ class SurfacePatches {
   // `input` passed validate_mesh().
   SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups);
   // From the parts another one gave (a history file's): each entry's group < the
-  // number of groups or kNone, its positions finite.
+  // number of groups or kNone, its positions finite; an entry with inner == outer (and
+  // a group) is one of inside_entries().
   SurfacePatches(std::vector<Group> groups, std::vector<Entry> entries);
   // Whether any input surface triangle is in a group.
   bool any() const { return any_; }
@@ -136,7 +145,7 @@ class SurfacePatches {
   const std::vector<Entry>& entries() const { return entries_; }
   // The groups' triangles that are faces of the input between two tets of one
   // material (inner == outer == that material), each held by one group, as the input
-  // gives their corners (a history keeps none: only convert writes them).
+  // gives their corners (simplify() keeps these faces; a history keeps them too).
   const std::vector<Entry>& inside_entries() const { return inside_; }
   // The group (index into groups()) of the triangle (a, b, c) between materials
   // `inner` and `outer` (kOutsideMaterial on the boundary), or kNone.

@@ -138,10 +138,10 @@ TEST(Cli, StatsListsTheFilesSurfaceGroups) {
 }
 
 // Surface groups inside one material (tests/data/gmsh/sheet.msh: 'sheet' inside the
-// block, 'top_and_sheet' its top face and another sheet): stats counts them, convert
-// writes them (the file read back has them, inside again), simplify says it cannot
-// keep them and writes the rest.
-TEST(Cli, GroupsInsideAMaterialAreConvertedNotSimplified) {
+// block, 'top_and_sheet' its top face and another sheet): stats counts them; convert
+// and simplify write them (the file read back has them, inside again); with --improve
+// simplify says it cannot keep them and writes the rest.
+TEST(Cli, GroupsInsideAMaterialAreKept) {
   const std::string sheet = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/sheet.msh";
   CommandResult r = run("stats " + sheet);
   ASSERT_EQ(r.code, 0) << r.output;
@@ -151,8 +151,8 @@ TEST(Cli, GroupsInsideAMaterialAreConvertedNotSimplified) {
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("tetlod stats: note: every triangle of surface group 'sheet' (tag 100) "
-                          "lies inside one material (between two tets of it): convert --surfaces "
-                          "writes them, simplify cannot keep them\n"),
+                          "lies inside one material (between two tets of it): --surfaces writes "
+                          "them (simplify keeps them as they are)\n"),
             std::string::npos)
       << r.output;
   r = run("stats --json " + sheet);
@@ -179,8 +179,21 @@ TEST(Cli, GroupsInsideAMaterialAreConvertedNotSimplified) {
   const std::string simplified = out_dir() + "/sheet_simplified.msh";
   r = run("simplify " + sheet + " -o " + simplified + " --size 0.5 --surfaces");
   ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("inside one material"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(", 100 sheet: 38\n"), std::string::npos) << r.output;
+  r = run("stats " + simplified);
+  EXPECT_NE(r.output.find(", 100 sheet: 0 (+38 inside a material), "), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(" top_and_sheet: "), std::string::npos) << r.output;
+
+  // --improve flips faces inside materials: the groups there are left out, and said.
+  const std::string improved = out_dir() + "/sheet_improved.msh";
+  r = run("simplify " + sheet + " -o " + improved + " --size 0.5 --surfaces --improve");
+  ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("tetlod simplify: note: every triangle of surface group 'sheet' (tag "
-                          "100) lies inside one material (between two tets of it): not written"),
+                          "100) lies inside one material (between two tets of it): not written "
+                          "(--improve changes the faces inside materials; without it they are "
+                          "kept)"),
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("tetlod simplify: note: 38 of the 150 triangles of surface group "
@@ -188,11 +201,7 @@ TEST(Cli, GroupsInsideAMaterialAreConvertedNotSimplified) {
                           "of it): written without them"),
             std::string::npos)
       << r.output;
-  r = run("stats " + simplified);
-  EXPECT_NE(r.output.find("the file's surface groups (tag name: triangles on the surface): 2 "
-                          "boundary_1: "),
-            std::string::npos)
-      << r.output;
+  r = run("stats " + improved);
   EXPECT_EQ(r.output.find(" sheet:"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("inside a material"), std::string::npos) << r.output;
 }

@@ -16,6 +16,7 @@
 
 #include "core/adjacency.h"
 #include "core/io/mesh_io.h"
+#include "core/lod.h"
 #include "core/simplify.h"
 #include "core/surface.h"
 #include "core/test_io_helpers.h"
@@ -502,6 +503,74 @@ TEST(SurfaceGroups, GroupsInsideAMaterial) {
       names_and_tags(with),
       (std::vector<std::string>{"boundary_1=2:" + std::to_string(without.surface.size()),
                                 "surface_7=7:1", "surface_8=8:" + std::to_string(sheet - 1)}));
+}
+
+// simplify() with the patches keeps the groups' faces inside a material as they are:
+// every level of the run has them all (so Save, lod and --surfaces write the groups
+// whole), subdivision leaves their long edges unsplit and says so, and a history
+// keeps them. Without the patches the same run coarsens them away.
+TEST(SurfaceGroups, SimplificationKeepsGroupsInsideAMaterial) {
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/sheet.msh"), &mesh, &info).ok());
+  const SurfacePatches patches(mesh, info.surface_groups);
+  const size_t inside = patches.inside_entries().size();
+  ASSERT_EQ(inside, 76u);  // 38 in 'sheet', 38 in 'top_and_sheet'
+  ASSERT_EQ(inside_faces(mesh, patches).size(), inside);
+  SimplifyParams params;
+  params.sizing.uniform = 0.5;
+  params.tolerance = 0.01;
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(mesh, params, &result, {}, nullptr, &patches).ok());
+  EXPECT_LT(result.output.tet_count(), mesh.tet_count() * 3 / 5);
+  EXPECT_EQ(result.splits_skipped_inside, 0u);  // the sheets' edges are below 0.25
+  SurfaceGroups input_groups;
+  ASSERT_TRUE(group_surface(mesh, &input_groups, patches, true).ok());
+  const auto sheet = triangles_by_tag(mesh, input_groups)[100];
+  ASSERT_EQ(sheet.size(), 38u);
+  Lod lod(result.base, &result.history);
+  const size_t steps = lod.step_count();
+  ASSERT_GT(steps, 100u);
+  for (size_t step : {size_t(0), steps / 4, steps / 2, steps - 1, steps}) {
+    SCOPED_TRACE(step);
+    lod.seek(step);
+    const TetMesh level = lod.extract();
+    EXPECT_EQ(inside_faces(level, patches).size(), inside);
+    SurfaceGroups groups;
+    ASSERT_TRUE(group_surface(level, &groups, patches, true).ok());
+    EXPECT_EQ(triangles_by_tag(level, groups)[100], sheet);
+  }
+  EXPECT_EQ(inside_faces(result.output, patches).size(), inside);
+
+  // Without the patches the run is free to coarsen the sheets.
+  SimplifyResult free_run;
+  ASSERT_TRUE(simplify(mesh, params, &free_run).ok());
+  EXPECT_LT(inside_faces(free_run.output, patches).size(), inside / 2);
+
+  // A size whose half is below the sheets' edges: those are left unsplit, and said.
+  params.sizing.uniform = 0.3;
+  ASSERT_TRUE(simplify(mesh, params, &result, {}, nullptr, &patches).ok());
+  EXPECT_GT(result.splits_skipped_inside, 0u);
+  EXPECT_GT(result.splits, 0u);
+  EXPECT_EQ(inside_faces(result.output, patches).size(), inside);
+  EXPECT_EQ(result.violations.created, 0u);
+
+  // A history keeps them, with their groups.
+  const std::string path = test::output_dir("surface_groups_inside_history") + "/sheet.tlh";
+  ASSERT_TRUE(write_history(path, result.base, result.history, nullptr, nullptr, &patches).ok());
+  TetMesh base;
+  CollapseHistory history;
+  SurfacePatches saved;
+  ASSERT_TRUE(read_history(path, &base, &history, nullptr, nullptr, &saved).ok());
+  ASSERT_EQ(saved.inside_entries().size(), inside);
+  for (size_t g = 0; g < patches.groups().size(); ++g)
+    EXPECT_EQ(saved.groups()[g].inside, patches.groups()[g].inside);
+  for (size_t i = 0; i < inside; ++i) {
+    EXPECT_EQ(saved.inside_entries()[i].p, patches.inside_entries()[i].p);
+    EXPECT_EQ(saved.inside_entries()[i].group, patches.inside_entries()[i].group);
+    EXPECT_EQ(saved.inside_entries()[i].inner, 1);
+  }
+  EXPECT_EQ(inside_faces(base, saved).size(), inside);
 }
 
 // Names that would clash in what is written: two that make one Abaqus label, one too
