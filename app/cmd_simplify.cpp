@@ -203,8 +203,9 @@ int cmd_simplify(const Args& args) {
   const std::string kept_unsplit =
       result.splits_skipped_inside == 0
           ? std::string()
-          : "; " + std::to_string(result.splits_skipped_inside) +
-                " of the surface groups inside a material, kept as they are";
+          : "; and " + std::to_string(result.splits_skipped_inside) +
+                (result.splits_skipped_inside == 1 ? " edge" : " edges") +
+                " of surface groups inside a material, which are kept as they are";
   std::printf(
       "\nsubdivision: %zu splits (%zu edges longer than half the size left unsplit to keep the "
       "thresholds: %zu for a piece's stretch or size, %zu for a node's valence%s), %zu tets\n"

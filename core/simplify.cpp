@@ -1749,8 +1749,10 @@ std::string above_size_reason(const SimplifyParams& params, const SimplifyResult
       result.splits_skipped_inside == 0
           ? std::string()
           : std::to_string(result.splits_skipped_inside) +
-                " edges longer than half the size are edges of the input's surface groups "
-                "inside a material, which are kept as they are, so not split";
+                (result.splits_skipped_inside == 1 ? " edge longer than half the size is an edge"
+                                                   : " edges longer than half the size are edges") +
+                " of the input's surface groups inside a material, which are kept as they "
+                "are, so not split";
   if (result.splits_skipped == 0)  // else not expected: every long edge was split
     return inside.empty() ? "subdivision split every long edge it found."
                           : "these tets hold edges subdivision left unsplit: " + inside + ".";

@@ -60,13 +60,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   lod.seek(lod.step_count() / 2, &delta);
   check_level(lod.extract());
   (void)lod.step_for_elements(1);
-  // The saved groups over a level (validated as the commands do): every triangle in
-  // one group.
+  // The saved groups over a level (validated as the commands do), with their triangles
+  // inside a material as lod writes them: every triangle in one group.
   tetlod::TetMesh level = lod.extract();
   tetlod::ValidationReport report;
-  if (patches.any() && tetlod::validate_mesh(&level, "fuzz", {}, &report).ok()) {
+  if ((patches.any() || !patches.inside_entries().empty()) &&
+      tetlod::validate_mesh(&level, "fuzz", {}, &report).ok()) {
     tetlod::SurfaceGroups groups;
-    if (tetlod::group_surface(level, &groups, patches).ok()) {
+    if (tetlod::group_surface(level, &groups, patches, true).ok()) {
       size_t triangles = 0;
       for (const tetlod::SurfaceGroup& g : groups.groups) triangles += g.triangles.size();
       if (triangles != groups.surface.size()) __builtin_trap();

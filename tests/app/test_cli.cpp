@@ -186,6 +186,15 @@ TEST(Cli, GroupsInsideAMaterialAreKept) {
       << r.output;
   EXPECT_NE(r.output.find(" top_and_sheet: "), std::string::npos) << r.output;
 
+  // At a size whose half is below the sheets' edges, subdivision says it left those.
+  r = run("simplify " + sheet + " -o " + simplified + " --size 0.3 --surfaces");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(" edges of surface groups inside a material, which are kept as they "
+                          "are), "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(", 100 sheet: 38\n"), std::string::npos) << r.output;
+
   // --improve flips faces inside materials: the groups there are left out, and said.
   const std::string improved = out_dir() + "/sheet_improved.msh";
   r = run("simplify " + sheet + " -o " + improved + " --size 0.5 --surfaces --improve");
