@@ -169,8 +169,7 @@ bool output_directory_ok(const std::string& path, bool make_directories) {
 }
 
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
-                         WriteOptions options, StagedMesh* staged, const SurfacePatches* patches,
-                         bool inside) {
+                         WriteOptions options, StagedMesh* staged, const SurfacePatches* patches) {
   staged->has_groups = options.surface_groups;
   if (!options.surface_groups && (has_extension(path, ".node") || has_extension(path, ".ele"))) {
     const std::string face =
@@ -179,7 +178,7 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
     if (std::filesystem::exists(face, ec)) staged->stale_face = face;
   }
   if (options.surface_groups) {
-    if (Status s = patches ? group_surface(mesh, &staged->groups, *patches, inside)
+    if (Status s = patches ? group_surface(mesh, &staged->groups, *patches, true)
                            : group_surface(mesh, &staged->groups);
         !s)
       return Status::error(path + ": " + s.message());
@@ -188,19 +187,18 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
   return stage_mesh(files, path, mesh, options);
 }
 
-void print_patch_notes(const SurfacePatches& patches, const char* command, InsideTriangles inside) {
+void print_patch_notes(const SurfacePatches& patches, const char* command) {
   for (const SurfacePatches::Group& g : patches.groups()) {
     const std::string label = g.name.empty()
                                   ? "with tag " + std::to_string(g.tag) + " (unnamed)"
                                   : "'" + g.name + "' (tag " + std::to_string(g.tag) + ")";
     const size_t all = g.triangles + g.inside + g.shared + g.missing;
-    // What is written of the group: its surface triangles, and those inside a material
-    // where the command writes them.
-    const size_t written = g.triangles + (inside == InsideTriangles::kWritten ? g.inside : 0);
+    // What is written of the group: its surface triangles and those inside a material.
+    const size_t written = g.triangles + g.inside;
     // "every triangle of surface group X" or "N of the M triangles of ...", and whether
     // its verb is singular.
     const auto some = [&](size_t n) {
-      const bool whole = written == 0 && n == all;
+      const bool whole = n == all;
       return std::make_pair(whole ? "every triangle of surface group " + label
                                   : std::to_string(n) + " of the " + std::to_string(all) +
                                         " triangles of surface group " + label,
@@ -213,17 +211,6 @@ void print_patch_notes(const SurfacePatches& patches, const char* command, Insid
                    "tetlod %s: note: %s %s also in a smaller group, which holds %s (a triangle "
                    "is written in one group): %s\n",
                    command, what.c_str(), one ? "is" : "are", one ? "it" : "them", outcome);
-    }
-    if (g.inside > 0 && inside != InsideTriangles::kWritten) {
-      const auto [what, one] = some(g.inside);
-      const std::string result =
-          inside == InsideTriangles::kNotKept
-              ? std::string(outcome) +
-                    " (--improve changes the faces inside materials; without it they are kept)"
-              : "--surfaces writes them (simplify keeps them as they are)";
-      std::fprintf(stderr,
-                   "tetlod %s: note: %s %s inside one material (between two tets of it): %s\n",
-                   command, what.c_str(), one ? "lies" : "lie", result.c_str());
     }
     if (g.missing > 0 && written == 0 && g.missing == all) {
       std::fprintf(stderr,

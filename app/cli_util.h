@@ -69,20 +69,18 @@ struct StagedMesh {
   bool has_groups = false;
   std::string stale_face;  // the .face left beside a TetGen pair, or ""
 };
-// `patches`: the input file's surface groups, written under their own names and tags
-// (group_surface() with them), or null. `inside`: with their triangles inside a
-// material too (group_surface()'s `inside`: `mesh` is the input itself).
+// `patches`: the input file's surface groups, written under their own names and tags,
+// with their triangles inside a material (group_surface() with them and `inside`:
+// `mesh` is the input, or made from it by simplify() and improve_mesh() with them), or
+// null.
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
                          WriteOptions options, StagedMesh* staged,
-                         const SurfacePatches* patches = nullptr, bool inside = false);
+                         const SurfacePatches* patches = nullptr);
 
-// What a command does with the input groups' triangles inside one material: writes
-// them (convert, simplify), cannot keep them (--improve), or reports (stats).
-enum class InsideTriangles { kWritten, kNotKept, kReported };
 // Prints a note for each input surface group (SurfacePatches of the input) that
-// cannot be written as it is: some of its triangles are in a smaller group, lie
-// inside a material (unless `inside` is kWritten), or are not faces of the mesh.
-void print_patch_notes(const SurfacePatches& patches, const char* command, InsideTriangles inside);
+// cannot be written as it is: some of its triangles are in a smaller group, or are
+// not faces of the mesh (those inside a material are written).
+void print_patch_notes(const SurfacePatches& patches, const char* command);
 void print_staged_mesh_notes(const StagedMesh& staged);
 
 // A collapse history file opened to read levels from.

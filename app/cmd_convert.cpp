@@ -78,12 +78,12 @@ int cmd_convert(const Args& args) {
   SurfacePatches patches;
   if (options.surface_groups && !info.surface_groups.empty()) {
     patches = SurfacePatches(mesh, info.surface_groups);
-    print_patch_notes(patches, "convert", InsideTriangles::kWritten);
+    print_patch_notes(patches, "convert");
   }
   options.material_names = &info.material_names;
   OutputFiles files;
   StagedMesh staged;
-  Status status = stage_output_mesh(&files, out, mesh, options, &staged, &patches, true);
+  Status status = stage_output_mesh(&files, out, mesh, options, &staged, &patches);
   if (status) status = files.commit();
   if (!status) {
     std::fprintf(stderr, "tetlod: %s\n", status.message().c_str());

@@ -109,7 +109,7 @@ int cmd_render(const Args& args) {
     names = level.names;
     if (options.simplify_options.improve) {
       if (!history_improve_params(in, "render", level.params)) return kExitUsage;
-      improve_mesh(&mesh, *level.params);
+      improve_mesh(&mesh, *level.params, 4, nullptr, &level.patches);
     }
   } else {
     ReadInfo info;

@@ -249,7 +249,7 @@ int cmd_report(const Args& args) {
                                          : "last step (" + std::to_string(last) + ")";
       if (!history_level(&history, "report", steps[k], &level.mesh)) return kExitBadInput;
       if (options.simplify_options.improve) {
-        improve_mesh(&level.mesh, *history.params);
+        improve_mesh(&level.mesh, *history.params, 4, nullptr, &history.patches);
         level.label += ", improved";
       }
       meshes.push_back(std::move(level));
@@ -287,7 +287,7 @@ int cmd_report(const Args& args) {
                       std::move(result.output)});
     if (so.improve) {
       for (size_t k = 1; k < meshes.size(); ++k) {
-        improve_mesh(&meshes[k].mesh, so.params);
+        improve_mesh(&meshes[k].mesh, so.params, 4, nullptr, &patches);
         meshes[k].label += ", improved";
       }
     }

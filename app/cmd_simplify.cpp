@@ -65,10 +65,12 @@ void print_lod_usage(std::FILE* stream) {
   std::fputs(kWriteFlagsHelp, stream);
 }
 
-// Runs improve_mesh() on `mesh`, timed.
-ImproveResult improve_timed(TetMesh* mesh, const SimplifyParams& params, double* seconds) {
+// Runs improve_mesh() on `mesh`, timed, keeping the faces inside a material of the
+// input's surface groups.
+ImproveResult improve_timed(TetMesh* mesh, const SimplifyParams& params,
+                            const SurfacePatches& patches, double* seconds) {
   const auto start = std::chrono::steady_clock::now();
-  const ImproveResult r = improve_mesh(mesh, params);
+  const ImproveResult r = improve_mesh(mesh, params, 4, nullptr, &patches);
   *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -148,14 +150,11 @@ int cmd_simplify(const Args& args) {
   if (!load_mesh(in, &input, &info, write_options.surface_groups)) return kExitBadInput;
   if (!finish_simplify_options(input, info.material_names, "simplify", &options)) return kExitUsage;
   // The file's own surface groups: the simplifier keeps their borders as it keeps
-  // those between materials, and their triangles inside a material as they are, so
-  // that the output has them too (with --surfaces; --improve changes the faces inside
-  // materials).
+  // those between materials, and their triangles inside a material as they are (so
+  // does --improve), so that the output has them too (with --surfaces).
   SurfacePatches patches;
   if (!info.surface_groups.empty()) patches = SurfacePatches(input, info.surface_groups);
-  if (write_options.surface_groups)
-    print_patch_notes(patches, "simplify",
-                      options.improve ? InsideTriangles::kNotKept : InsideTriangles::kWritten);
+  if (write_options.surface_groups) print_patch_notes(patches, "simplify");
   // Material ids near the top of the tag range can leave no room to number the surface
   // groups; the simplified mesh has the input's material pairs: say so before the work.
   if (write_options.surface_groups &&
@@ -196,7 +195,7 @@ int cmd_simplify(const Args& args) {
   if (!beyond.empty()) beyond = "; " + beyond;
   ImproveResult improved;
   double seconds_improve = 0;
-  if (improve) improved = improve_timed(&output, params, &seconds_improve);
+  if (improve) improved = improve_timed(&output, params, patches, &seconds_improve);
   std::printf("\noutput %s (step %zu of %zu%s)\n", out.c_str(), step, result.history.step_count(),
               beyond.c_str());
   print_property_table(stats_of(output), &info.material_names);
@@ -234,7 +233,7 @@ int cmd_simplify(const Args& args) {
   // The mesh and the history are written together, or neither.
   OutputFiles files;
   StagedMesh staged;
-  Status s = stage_output_mesh(&files, out, output, write_options, &staged, &patches, !improve);
+  Status s = stage_output_mesh(&files, out, output, write_options, &staged, &patches);
   if (s && !history_path.empty())
     s = stage_history(&files, history_path, result.base, result.history, &params,
                       &info.material_names, &patches);
@@ -372,17 +371,14 @@ int cmd_lod(const Args& args) {
   if (improve) {
     std::printf("improving within %s (%s)\n", describe_thresholds(options.params, false).c_str(),
                 source.c_str());
-    improved = improve_timed(&level.mesh, options.params, &seconds_improve);
+    improved = improve_timed(&level.mesh, options.params, level.patches, &seconds_improve);
   }
   write_options.material_names = &level.names;
   OutputFiles files;
   StagedMesh staged;
-  // The history's surface groups inside a material are faces of every level, unless
-  // --improve changed them.
-  if (write_options.surface_groups && improve)
-    print_patch_notes(level.patches, "lod", InsideTriangles::kNotKept);
-  Status s =
-      stage_output_mesh(&files, out, level.mesh, write_options, &staged, &level.patches, !improve);
+  // The history's surface groups inside a material are faces of every level (improved
+  // or not).
+  Status s = stage_output_mesh(&files, out, level.mesh, write_options, &staged, &level.patches);
   if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());

@@ -93,7 +93,7 @@ int cmd_stats(const Args& args) {
   SurfacePatches patches;
   if (!info.surface_groups.empty()) {
     patches = SurfacePatches(mesh, info.surface_groups);
-    print_patch_notes(patches, "stats", InsideTriangles::kReported);
+    print_patch_notes(patches, "stats");
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

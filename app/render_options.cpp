@@ -260,7 +260,7 @@ int simplified_mesh(const TetMesh& input, const std::vector<MaterialName>& names
   } else {
     *out = std::move(result.output);
   }
-  if (so.improve) improve_mesh(out, so.params);
+  if (so.improve) improve_mesh(out, so.params, 4, nullptr, patches);
   return 0;
 }
 

@@ -1189,11 +1189,8 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
   WriteOptions options;
   options.surface_groups = surfaces;
   if (Status s = check_mesh_path(path, options); !s) return s;
-  // The input's groups' triangles inside a material are faces of the input and of every
-  // level (the simplifier keeps them), unless "improve" changes them.
-  const bool inside = !improve;
   save_path_ = path;
-  save_future_ = std::async(std::launch::async, [path, improve, inside, params, level_name, options,
+  save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
                                                  patches = scene_->patches,
                                                  material_names = scene_->material_names,
                                                  mesh = scene_->lod->extract()]() mutable {
@@ -1206,7 +1203,7 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
       }
     }
     if (improve) {
-      const ImproveResult r = improve_mesh(&mesh, params);
+      const ImproveResult r = improve_mesh(&mesh, params, 4, nullptr, patches.get());
       char note[160];
       std::snprintf(note, sizeof note, " (improved: mean stretch %.3f -> %.3f, min %.3f -> %.3f)",
                     r.mean_stretch_before, r.mean_stretch_after, r.min_stretch_before,
@@ -1218,10 +1215,11 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
       saved.status = write_mesh(path, mesh, options);
       return saved;
     }
-    // The input's own groups keep their names and tags: the levels keep their borders.
+    // The input's own groups keep their names and tags: the levels keep their borders,
+    // and their faces inside a material (improved or not).
     SurfaceGroups groups;
     if (Status s =
-            patches ? group_surface(mesh, &groups, *patches, inside) : group_surface(mesh, &groups);
+            patches ? group_surface(mesh, &groups, *patches, true) : group_surface(mesh, &groups);
         !s) {
       saved.status = Status::error(path + ": " + s.message());
       return saved;

@@ -54,7 +54,8 @@ const Triangulations& polygon_triangulations(int n) {
 
 class Improver {
  public:
-  Improver(TetMesh* mesh, const SimplifyParams& params, const std::atomic<bool>* cancel)
+  Improver(TetMesh* mesh, const SimplifyParams& params, const std::atomic<bool>* cancel,
+           const SurfacePatches* patches)
       : mesh_(*mesh), params_(params), cancel_(cancel) {
     const size_t tet_count = mesh_.tet_count();
     alive_.assign(tet_count, 1);
@@ -104,6 +105,20 @@ class Improver {
           freedom_[v] = kFixed;  // its surface triangles are not all in one plane
         }
       }
+    }
+    // The input groups' faces inside a material stay as they are: their vertices are
+    // fixed, and their faces and edges listed (sorted corners) for the flips.
+    if (patches && !patches->inside_entries().empty()) {
+      for (std::array<uint32_t, 3> f : inside_faces(mesh_, *patches)) {
+        for (uint32_t v : f) freedom_[v] = kFixed;
+        std::sort(f.begin(), f.end());
+        kept_faces_.push_back(f);
+        kept_edges_.push_back({f[0], f[1]});
+        kept_edges_.push_back({f[0], f[2]});
+        kept_edges_.push_back({f[1], f[2]});
+      }
+      std::sort(kept_faces_.begin(), kept_faces_.end());
+      std::sort(kept_edges_.begin(), kept_edges_.end());
     }
   }
 
@@ -201,6 +216,9 @@ class Improver {
   }
 
   bool try_edge_removal(uint32_t a, uint32_t b) {
+    if (!kept_edges_.empty() && std::binary_search(kept_edges_.begin(), kept_edges_.end(),
+                                                   std::make_pair(std::min(a, b), std::max(a, b))))
+      return false;
     uint32_t ring[kMaxRing];
     int n = 0;
     for (uint32_t t : star_[a])
@@ -329,6 +347,11 @@ class Improver {
     if (other == kInvalidIndex || other < t) return false;
     const int32_t material = mesh_.materials[t];
     if (mesh_.materials[other] != material) return false;
+    if (!kept_faces_.empty()) {
+      std::array<uint32_t, 3> face = {u[0], u[1], u[2]};
+      std::sort(face.begin(), face.end());
+      if (std::binary_search(kept_faces_.begin(), kept_faces_.end(), face)) return false;
+    }
     uint32_t q = kInvalidIndex;
     for (uint32_t w : mesh_.tets[other])
       if (w != u[0] && w != u[1] && w != u[2]) q = w;
@@ -465,6 +488,9 @@ class Improver {
   enum Freedom : uint8_t { kFixed, kInPlane, kFree };
   std::vector<uint8_t> freedom_;
   std::vector<Vec3> plane_normal_;  // of the flat patch a kInPlane vertex lies in
+  // The faces (sorted corners) and edges (a < b) kept as they are, sorted.
+  std::vector<std::array<uint32_t, 3>> kept_faces_;
+  std::vector<std::pair<uint32_t, uint32_t>> kept_edges_;
   std::vector<uint32_t> mark_;
   uint32_t stamp_ = 0;
 };
@@ -472,8 +498,8 @@ class Improver {
 }  // namespace
 
 ImproveResult improve_mesh(TetMesh* mesh, const SimplifyParams& params, int max_rounds,
-                           const std::atomic<bool>* cancel) {
-  Improver improver(mesh, params, cancel);
+                           const std::atomic<bool>* cancel, const SurfacePatches* patches) {
+  Improver improver(mesh, params, cancel, patches);
   return improver.run(max_rounds);
 }
 

@@ -30,7 +30,10 @@
 //    So every region, interface, junction curve and corner keeps its place and shape,
 //    and every material its volume (up to rounding);
 //  - no vertex is added or removed; tets may change in number (an edge removal on a
-//    ring of n tets makes 2(n-2) of them, a 2-3 flip adds one).
+//    ring of n tets makes 2(n-2) of them, a 2-3 flip adds one);
+//  - with the input's surface groups, their faces inside a material (inside_faces(),
+//    core/surface.h) stay as they are: their vertices do not move, no edge of theirs
+//    is removed and no 2-3 flip replaces one of them.
 // Deterministic: the same mesh and parameters give the same result, byte for byte.
 #pragma once
 
@@ -38,6 +41,7 @@
 #include <cstddef>
 
 #include "core/simplify.h"
+#include "core/surface.h"
 #include "core/tet_mesh.h"
 
 namespace tetlod {
@@ -63,8 +67,10 @@ struct ImproveResult {
 // Improves `mesh` (valid: positively oriented tets, as every reader leaves it) under
 // params.min_stretch, params.max_valence and params.sizing (the other fields are not
 // used), for at most `max_rounds` rounds or until a round changes nothing. `cancel`, if
-// set, stops between changes; the mesh is valid whenever it returns.
+// set, stops between changes; the mesh is valid whenever it returns. `patches`, if
+// given: the input file's surface groups, whose faces inside a material are kept.
 ImproveResult improve_mesh(TetMesh* mesh, const SimplifyParams& params, int max_rounds = 4,
-                           const std::atomic<bool>* cancel = nullptr);
+                           const std::atomic<bool>* cancel = nullptr,
+                           const SurfacePatches* patches = nullptr);
 
 }  // namespace tetlod

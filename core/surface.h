@@ -91,9 +91,9 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 // (SurfacePatches::inside_entries()) that are faces of `mesh` go to their groups too,
 // after the surface's triangles (material == other == that material; oriented as in
 // the input, `tet` on their back side); a group of such triangles only comes after
-// the others. That is for the input's mesh itself (convert), and for the levels of a
-// simplification with these patches, which keeps those faces (simplify()); a mesh
-// changed otherwise (improve_mesh()) may keep only some of them.
+// the others. That is for the input's mesh itself (convert), and for the meshes made
+// from it by simplify() and improve_mesh() with these patches, which keep those faces;
+// a mesh made otherwise may keep only some of them.
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
                      bool inside = false);
 

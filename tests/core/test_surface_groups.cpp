@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/adjacency.h"
+#include "core/improve.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/simplify.h"
@@ -507,8 +508,9 @@ TEST(SurfaceGroups, GroupsInsideAMaterial) {
 
 // simplify() with the patches keeps the groups' faces inside a material as they are:
 // every level of the run has them all (so Save, lod and --surfaces write the groups
-// whole), subdivision leaves their long edges unsplit and says so, and a history
-// keeps them. Without the patches the same run coarsens them away.
+// whole), subdivision leaves their long edges unsplit and says so, improve_mesh()
+// keeps them, and a history keeps them. Without the patches the same run coarsens them
+// away, and improve_mesh() changes them.
 TEST(SurfaceGroups, SimplificationKeepsGroupsInsideAMaterial) {
   TetMesh mesh;
   ReadInfo info;
@@ -541,6 +543,15 @@ TEST(SurfaceGroups, SimplificationKeepsGroupsInsideAMaterial) {
     EXPECT_EQ(triangles_by_tag(level, groups)[100], sheet);
   }
   EXPECT_EQ(inside_faces(result.output, patches).size(), inside);
+
+  // improve_mesh() with the patches keeps them too; without, it moves and flips them.
+  TetMesh improved = result.output;
+  const ImproveResult changes = improve_mesh(&improved, params, 4, nullptr, &patches);
+  EXPECT_GT(changes.edge_removals + changes.flips_23 + changes.moves, 0u);
+  EXPECT_EQ(inside_faces(improved, patches).size(), inside);
+  improved = result.output;
+  improve_mesh(&improved, params);
+  EXPECT_LT(inside_faces(improved, patches).size(), inside);
 
   // Without the patches the run is free to coarsen the sheets.
   SimplifyResult free_run;
