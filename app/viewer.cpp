@@ -856,8 +856,8 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     const bool subdivide = thresholds_.subdivide;
     thresholds_ = ui::ThresholdSettings{};
     thresholds_.subdivide = subdivide;
-    thresholds_.tolerance = static_cast<float>(scene_->default_tolerance);
-    thresholds_.size = static_cast<float>(scene_->default_size);
+    thresholds_.tolerance = scene_->default_tolerance;
+    thresholds_.size = scene_->default_size;
     // A history's own thresholds, where the panel can hold them.
     thresholds_from_history_ = scene_->from_history && scene_->params_known &&
                                ui::from_simplify_params(scene_->params, &thresholds_);
@@ -1560,9 +1560,9 @@ Status Viewer::run_action(const ScriptAction& a) {
       pending_job_line_ = a.flag ? 0 : a.line;
       break;
     case Kind::kThresholds:
-      if (a.size) thresholds_.size = static_cast<float>(*a.size);
-      if (a.stretch) thresholds_.stretch = static_cast<float>(*a.stretch);
-      if (a.tolerance) thresholds_.tolerance = static_cast<float>(*a.tolerance);
+      if (a.size) thresholds_.size = *a.size;
+      if (a.stretch) thresholds_.stretch = *a.stretch;
+      if (a.tolerance) thresholds_.tolerance = *a.tolerance;
       if (a.valence) thresholds_.valence = static_cast<int>(*a.valence);
       if (a.subdivide) thresholds_.subdivide = *a.subdivide;
       if (a.region) {
@@ -1582,7 +1582,7 @@ Status Viewer::run_action(const ScriptAction& a) {
         thresholds_.material_cap = a.size.has_value();
         thresholds_.material_sizes.clear();
         for (const auto& [m, size] : field.material_sizes)
-          thresholds_.material_sizes.push_back({m, static_cast<float>(size)});
+          thresholds_.material_sizes.push_back({m, size});
       }
       break;
     case Kind::kSimplify:

@@ -206,6 +206,11 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
   text_disabled_wrapped("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
 }
 
+// The sliders' ranges (ctrl-click types any value).
+constexpr double kToleranceRange[2] = {0.0, 5.0};
+constexpr double kSizeRange[2] = {0.1, 100.0};
+constexpr double kStretchRange[2] = {0.01, 0.9};
+
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                         std::vector<Command>* commands) {
   ImGui::TextDisabled("ctrl-click a slider to type a value");
@@ -224,12 +229,14 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
           "diagonal (as tetlod simplify); stretch %.3g, valence %d, uniform sizing.",
           ThresholdSettings{}.stretch, ThresholdSettings{}.valence);
   }
-  ImGui::SliderFloat("tolerance (TL)", &t->tolerance, 0.0f, 5.0f, "%.4g",
-                     ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderScalar("tolerance (TL)", ImGuiDataType_Double, &t->tolerance, &kToleranceRange[0],
+                      &kToleranceRange[1], "%.4g", ImGuiSliderFlags_Logarithmic);
   if (t->sizing_mode != SizingMode::kPerMaterial)
-    ImGui::SliderFloat(t->sizing_mode == SizingMode::kRegion ? "size cap (SZ)" : "size (SZ)",
-                       &t->size, 0.1f, 100.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
-  ImGui::SliderFloat("stretch (ST)", &t->stretch, 0.01f, 0.9f, "%.3f");
+    ImGui::SliderScalar(t->sizing_mode == SizingMode::kRegion ? "size cap (SZ)" : "size (SZ)",
+                        ImGuiDataType_Double, &t->size, &kSizeRange[0], &kSizeRange[1], "%.4g",
+                        ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderScalar("stretch (ST)", ImGuiDataType_Double, &t->stretch, &kStretchRange[0],
+                      &kStretchRange[1], "%.3f");
   ImGui::SliderInt("valence (VL)", &t->valence, 4, 200);
   int mode = static_cast<int>(t->sizing_mode);
   ImGui::Combo("Sizing", &mode, "uniform\0region\0per material\0");
@@ -254,7 +261,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     ImGui::SameLine(90);
     if (t->material_cap) {
       ImGui::SetNextItemWidth(-1);
-      ImGui::SliderFloat("##cap", &t->size, 0.1f, 100.0f, "cap %.4g", ImGuiSliderFlags_Logarithmic);
+      ImGui::SliderScalar("##cap", ImGuiDataType_Double, &t->size, &kSizeRange[0], &kSizeRange[1],
+                          "cap %.4g", ImGuiSliderFlags_Logarithmic);
     } else {
       ImGui::TextDisabled("no size cap");
     }
@@ -271,7 +279,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
         ImGui::SetTooltip("material %d: %s", m, name->c_str());
       if (changed) {
         if (limited) {
-          sizes.insert(std::lower_bound(sizes.begin(), sizes.end(), std::make_pair(m, 0.0f)),
+          sizes.insert(std::lower_bound(sizes.begin(), sizes.end(), std::make_pair(m, 0.0)),
                        {m, t->size});
         } else {
           sizes.erase(it);
@@ -281,8 +289,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       ImGui::SameLine(90);
       if (it != sizes.end()) {
         ImGui::SetNextItemWidth(-1);
-        ImGui::SliderFloat("##size", &it->second, 0.1f, 100.0f, "%.4g",
-                           ImGuiSliderFlags_Logarithmic);
+        ImGui::SliderScalar("##size", ImGuiDataType_Double, &it->second, &kSizeRange[0],
+                            &kSizeRange[1], "%.4g", ImGuiSliderFlags_Logarithmic);
       } else {
         ImGui::TextDisabled("no size limit");
       }
@@ -707,11 +715,11 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
       params.crease_angle_degrees != SimplifyParams{}.crease_angle_degrees)
     return false;
   ThresholdSettings t;
-  t.tolerance = static_cast<float>(params.tolerance);
-  t.stretch = static_cast<float>(params.min_stretch);
+  t.tolerance = params.tolerance;
+  t.stretch = params.min_stretch;
   t.valence = static_cast<int>(std::min<uint32_t>(params.max_valence, 1 << 30));
   t.subdivide = params.subdivide;
-  if (uniform) t.size = static_cast<float>(sizing.uniform);
+  if (uniform) t.size = sizing.uniform;
   if (region) {
     t.sizing_mode = SizingMode::kRegion;
     char rule[512];
@@ -735,7 +743,7 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
     t.sizing_mode = SizingMode::kPerMaterial;
     t.material_cap = uniform;
     for (const auto& [material, size] : sizing.material_sizes)
-      t.material_sizes.push_back({material, static_cast<float>(size)});
+      t.material_sizes.push_back({material, size});
   }
   *settings = std::move(t);
   return true;

@@ -43,15 +43,17 @@ struct ViewSettings {
 
 enum class SizingMode { kUniform = 0, kRegion = 1, kPerMaterial = 2 };
 
-// The four thresholds of the paper (tau_TL, tau_SZ, tau_ST, tau_VL) and the sizing.
+// The four thresholds of the paper (tau_TL, tau_SZ, tau_ST, tau_VL) and the sizing,
+// as doubles, so that a value typed here or set by a script gives the run `tetlod
+// simplify` makes with it.
 struct ThresholdSettings {
-  float tolerance = 0.05f;  // tau_TL, model units
-  float size = 10.0f;       // tau_SZ, uniform mode (and the cap in the other modes)
-  float stretch = 0.15f;    // tau_ST
+  double tolerance = 0.05;  // tau_TL, model units
+  double size = 10.0;       // tau_SZ, uniform mode (and the cap in the other modes)
+  double stretch = 0.15;    // tau_ST
   int valence = 25;         // tau_VL
   SizingMode sizing_mode = SizingMode::kUniform;
   std::string region_spec;  // kRegion: the syntax of core/sizing.h parse_size_field()
-  std::vector<std::pair<int32_t, float>> material_sizes;  // kPerMaterial
+  std::vector<std::pair<int32_t, double>> material_sizes;  // kPerMaterial
   // kPerMaterial: `size` also caps every material (as --size with --material-size);
   // off, a material without a size of its own has no size limit.
   bool material_cap = false;
@@ -63,7 +65,7 @@ struct ThresholdSettings {
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
                         std::string* error);
 // The reverse, for the panel to show the thresholds a history was made with: the
-// settings that give `params` back (to float precision). False, leaving `settings`
+// settings that give `params` back. False, leaving `settings`
 // alone, where the panel cannot hold them: material sizes and region rules together,
 // region rules without a uniform size, a crease angle other than the default.
 bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings);

@@ -13,7 +13,7 @@
 namespace tetlod {
 namespace {
 
-// Through the panel and back; values chosen to be exact in float.
+// Through the panel and back (doubles: any value comes back).
 SimplifyParams round_trip(const SimplifyParams& p) {
   ui::ThresholdSettings settings;
   EXPECT_TRUE(ui::from_simplify_params(p, &settings));

@@ -311,6 +311,27 @@ TEST(ViewerWindow, PerMaterialSizesMatchTheCli) {
   }
 }
 
+// The panel holds the thresholds as doubles: a typed size and the default tolerance
+// (0.001 x the diagonal) give the mesh `tetlod simplify` gives with that size and its
+// own default tolerance, to the last bit (as floats, 0.2 and the tolerance were other
+// numbers, and subdivision made 7,963 splits here instead of the CLI's 8,013).
+TEST(ViewerWindow, TypedThresholdsGiveTheClisMesh) {
+  const fs::path dir = fresh_output_dir("viewer_typed_thresholds");
+  const std::string sheet = kSource + "/tests/data/gmsh/sheet.msh";
+  std::ofstream(dir / "typed.script") << "thresholds size=0.2\nsimplify\nsave viewer.mesh\nquit\n";
+  const ViewerRun run = run_viewer(dir, "'" + sheet + "' --size 320x240 --script typed.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " simplify '" +
+                              sheet + "' -o cli.mesh --size 0.2 >cli_log.txt 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  TetMesh viewer, cli;
+  ASSERT_TRUE(read_mesh((dir / "viewer.mesh").string(), &viewer).ok());
+  ASSERT_TRUE(read_mesh((dir / "cli.mesh").string(), &cli).ok());
+  EXPECT_EQ(viewer.tets, cli.tets);
+  EXPECT_EQ(viewer.positions, cli.positions);
+  EXPECT_EQ(viewer.materials, cli.materials);
+}
+
 // As `--material-size`: a size for a material the mesh lacks is an error naming it.
 TEST(ViewerWindow, MaterialSizeOfAnAbsentMaterialIsAnError) {
   const fs::path dir = fresh_output_dir("viewer_absent_material");
