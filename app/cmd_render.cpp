@@ -117,6 +117,7 @@ int cmd_render(const Args& args) {
     names = info.material_names;
     if (options.simplify && !info.surface_groups.empty())
       patches = SurfacePatches(mesh, info.surface_groups);
+    patches.drop_inside();  // no groups are written: the mesh may coarsen there
   }
   if (!resolve_materials(mesh, names, "render", &options)) return kExitBadInput;
   if (const Status s = render::check_drawable(mesh); !s) {

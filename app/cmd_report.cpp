@@ -221,6 +221,7 @@ int cmd_report(const Args& args) {
     names = std::move(info.material_names);
     if (options.simplify && !info.surface_groups.empty())
       patches = SurfacePatches(input, info.surface_groups);
+    patches.drop_inside();  // no groups are written: the mesh may coarsen there
   }
   if (!resolve_materials(input, names, "report", &options)) return kExitBadInput;
   if (const Status s = render::check_drawable(input); !s) {

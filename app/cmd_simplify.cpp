@@ -155,6 +155,21 @@ int cmd_simplify(const Args& args) {
   SurfacePatches patches;
   if (!info.surface_groups.empty()) patches = SurfacePatches(input, info.surface_groups);
   if (write_options.surface_groups) print_patch_notes(patches, "simplify");
+  // Keeping the groups inside a material keeps the mesh fine there: only when groups
+  // may be written (--surfaces, or a history, whose levels lod can write with them).
+  if (!write_options.surface_groups && history_path.empty()) patches.drop_inside();
+  if (!patches.inside_entries().empty()) {
+    std::string names;
+    for (const SurfacePatches::Group& g : patches.groups())
+      if (g.inside > 0)
+        names += (names.empty() ? "" : ", ") +
+                 (g.name.empty() ? std::to_string(g.tag) : "'" + g.name + "'");
+    std::fprintf(stderr,
+                 "tetlod simplify: note: the surface groups inside a material (%s; %zu "
+                 "triangles) are kept as they are: the mesh is not coarsened on them (without "
+                 "--surfaces and --history it is)\n",
+                 names.c_str(), patches.inside_entries().size());
+  }
   // Material ids near the top of the tag range can leave no room to number the surface
   // groups; the simplified mesh has the input's material pairs: say so before the work.
   if (write_options.surface_groups &&

@@ -347,6 +347,11 @@ void SurfacePatches::build_index() {
   }
 }
 
+void SurfacePatches::drop_inside() {
+  for (Group& g : groups_) g.missing += g.inside, g.inside = 0;
+  inside_.clear();
+}
+
 uint32_t SurfacePatches::find_exact(const Vec3& a, const Vec3& b, const Vec3& c) const {
   const TriangleKey key = triangle_key(a, b, c);
   const uint64_t hash = corner_hash(key);

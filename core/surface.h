@@ -147,6 +147,10 @@ class SurfacePatches {
   // material (inner == outer == that material), each held by one group, as the input
   // gives their corners (simplify() keeps these faces; a history keeps them too).
   const std::vector<Entry>& inside_entries() const { return inside_; }
+  // Forgets the triangles inside a material, for a run that need not keep them (it
+  // writes no groups): simplify() then coarsens there too. Their groups count them as
+  // missing.
+  void drop_inside();
   // The group (index into groups()) of the triangle (a, b, c) between materials
   // `inner` and `outer` (kOutsideMaterial on the boundary), or kNone.
   uint32_t locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner, int32_t outer) const;

@@ -178,6 +178,20 @@ TEST(Cli, GroupsInsideAMaterialAreKept) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("inside one material"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(", 100 sheet: 38\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("tetlod simplify: note: the surface groups inside a material ('sheet', "
+                          "'top_and_sheet'; 76 triangles) are kept as they are: the mesh is not "
+                          "coarsened on them (without --surfaces and --history it is)\n"),
+            std::string::npos)
+      << r.output;
+  // Without --surfaces (and --history) nothing keeps them: the mesh coarsens there too.
+  TetMesh kept, free;
+  ASSERT_TRUE(read_mesh(simplified, &kept).ok());
+  const std::string plain = out_dir() + "/sheet_simplified_plain.msh";
+  r = run("simplify " + sheet + " -o " + plain + " --size 0.5");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("kept as they are"), std::string::npos) << r.output;
+  ASSERT_TRUE(read_mesh(plain, &free).ok());
+  EXPECT_LT(free.tet_count(), kept.tet_count());
   r = run("stats " + simplified);
   EXPECT_NE(r.output.find(", 100 sheet: 0 (+38 inside a material), "), std::string::npos)
       << r.output;
