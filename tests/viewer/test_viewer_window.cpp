@@ -312,8 +312,9 @@ TEST(ViewerWindow, PerMaterialSizesMatchTheCli) {
 }
 
 // The panel holds the thresholds as doubles: a typed size and the default tolerance
-// (0.001 x the diagonal) give the mesh `tetlod simplify` gives with that size and its
-// own default tolerance, to the last bit (as floats, 0.2 and the tolerance were other
+// (0.001 x the diagonal) give the mesh `tetlod simplify --surfaces` gives with that
+// size and its own default tolerance (with --surfaces it keeps the sheets' groups, as
+// the viewer does), to the last bit (as floats, 0.2 and the tolerance were other
 // numbers, and subdivision made 7,963 splits here instead of the CLI's 8,013).
 TEST(ViewerWindow, TypedThresholdsGiveTheClisMesh) {
   const fs::path dir = fresh_output_dir("viewer_typed_thresholds");
@@ -322,7 +323,7 @@ TEST(ViewerWindow, TypedThresholdsGiveTheClisMesh) {
   const ViewerRun run = run_viewer(dir, "'" + sheet + "' --size 320x240 --script typed.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " simplify '" +
-                              sheet + "' -o cli.mesh --size 0.2 >cli_log.txt 2>&1";
+                              sheet + "' -o cli.mesh --size 0.2 --surfaces >cli_log.txt 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   TetMesh viewer, cli;
   ASSERT_TRUE(read_mesh((dir / "viewer.mesh").string(), &viewer).ok());
