@@ -43,11 +43,14 @@ TetMesh box2() {
 // A triangle by its corner positions, rotated to start at the smallest, so that it
 // compares equal across renumberings but keeps its orientation.
 using PositionTriangle = std::array<std::array<double, 3>, 3>;
-PositionTriangle by_positions(const std::vector<Vec3>& positions, std::array<uint32_t, 3> v) {
+PositionTriangle by_positions(const std::array<Vec3, 3>& corners) {
   PositionTriangle t;
-  for (int k = 0; k < 3; ++k) t[k] = {positions[v[k]].x, positions[v[k]].y, positions[v[k]].z};
+  for (int k = 0; k < 3; ++k) t[k] = {corners[k].x, corners[k].y, corners[k].z};
   std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
   return t;
+}
+PositionTriangle by_positions(const std::vector<Vec3>& positions, std::array<uint32_t, 3> v) {
+  return by_positions({positions[v[0]], positions[v[1]], positions[v[2]]});
 }
 
 // group tag -> its triangles by positions, sorted.
@@ -446,12 +449,7 @@ TEST(SurfaceGroups, GroupsInsideAMaterial) {
   EXPECT_EQ(inside, sheet + top_inside);
   // The sheet's triangles, with their orientation, are the input's.
   std::vector<PositionTriangle> want;
-  for (const auto& t : info.surface_groups[0].triangles) {
-    PositionTriangle c;
-    for (int k = 0; k < 3; ++k) c[k] = {t[k].x, t[k].y, t[k].z};
-    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
-    want.push_back(c);
-  }
+  for (const auto& t : info.surface_groups[0].triangles) want.push_back(by_positions(t));
   std::sort(want.begin(), want.end());
   EXPECT_EQ(triangles_by_tag(mesh, with)[100], want);
 
