@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/triangle_cross.h"
 #include "core/triangle_grid.h"
 
 namespace tetlod {
@@ -16,71 +17,6 @@ struct BoundaryFace {
   uint32_t tet;
   int corner;
 };
-
-// A boundary triangle's plane (unit normal, through its first corner) and the
-// tolerance of a clear crossing: 1e-8 of its longest edge, plus what rounding far
-// from the origin can reach.
-struct Plane {
-  Vec3 normal;
-  double offset = 0;  // dot(normal, corner)
-  double delta = 0;
-};
-
-Plane plane_of(const Triangle3& t) {
-  Plane p;
-  const Vec3 n = cross(t[1] - t[0], t[2] - t[0]);
-  const double length2 = length(n);
-  p.normal = length2 > 0 ? n * (1 / length2) : Vec3{};
-  p.offset = dot(p.normal, t[0]);
-  double longest2 = 0, far = 0;
-  for (int k = 0; k < 3; ++k) {
-    longest2 = std::max(longest2, squared_length(t[(k + 1) % 3] - t[k]));
-    far = std::max({far, std::fabs(t[k].x), std::fabs(t[k].y), std::fabs(t[k].z)});
-  }
-  p.delta = 1e-8 * std::sqrt(longest2) + 1e-13 * far;
-  return p;
-}
-
-// Whether triangle t has corners clearly on both sides of plane `p`: more than
-// `delta` away on each. A triangle that does not cannot cross p's triangle.
-bool straddles(const Triangle3& t, const Plane& p, double delta, double* distance) {
-  bool above = false, below = false;
-  for (int k = 0; k < 3; ++k) {
-    distance[k] = dot(p.normal, t[k]) - p.offset;
-    above |= distance[k] > delta;
-    below |= distance[k] < -delta;
-  }
-  return above && below;
-}
-
-// Whether edge k of triangle `t` (its corners' distances from the plane of `s` in
-// `distance`) clearly passes through the inside of s: its ends more than `delta` from
-// the plane on either side, and the point where it crosses the plane more than
-// `delta` inside each edge of s.
-bool edge_pierces(const Triangle3& t, const double* distance, int k, const Triangle3& s,
-                  const Plane& plane, double delta) {
-  const double dp = distance[k], dq = distance[(k + 1) % 3];
-  if (!((dp > delta && dq < -delta) || (dp < -delta && dq > delta))) return false;
-  const Vec3 x = t[k] + (t[(k + 1) % 3] - t[k]) * (dp / (dp - dq));
-  for (int e = 0; e < 3; ++e) {
-    const Vec3 edge = s[(e + 1) % 3] - s[e];
-    // The distance from x to the edge's line, in the plane, positive inside.
-    if (!(dot(cross(edge, x - s[e]), plane.normal) > delta * length(edge))) return false;
-  }
-  return true;
-}
-
-// Whether triangles s and t clearly cross: an edge of one pierces the other.
-bool cross_each_other(const Triangle3& s, const Plane& ps, const Triangle3& t, const Plane& pt) {
-  const double delta = std::max(ps.delta, pt.delta);
-  double from_s[3], from_t[3];  // t's corners from the plane of s, and s's from t's
-  if (!straddles(t, ps, delta, from_s) || !straddles(s, pt, delta, from_t)) return false;
-  for (int k = 0; k < 3; ++k) {
-    if (edge_pierces(t, from_s, k, s, ps, delta)) return true;
-    if (edge_pierces(s, from_t, k, t, pt, delta)) return true;
-  }
-  return false;
-}
 
 // The solid angle of triangle abc seen from the origin, signed: positive if the
 // origin lies behind it (Van Oosterom and Strackee, IEEE Trans. Biomed. Eng. 30(2),
@@ -430,7 +366,7 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
   // Crossings within a piece.
   {
     std::vector<Triangle3> tri(faces.size());
-    std::vector<Plane> planes(faces.size());
+    std::vector<TrianglePlane> planes(faces.size());
     for (size_t f = 0; f < faces.size(); ++f) {
       for (int k = 0; k < 3; ++k) tri[f][k] = pos[faces[f].v[k]];
       planes[f] = plane_of(tri[f]);
@@ -440,7 +376,7 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
       const BoundaryFace &s = faces[i], &t = faces[j];
       int shared = 0;
       for (uint32_t v : s.v) shared += v == t.v[0] || v == t.v[1] || v == t.v[2];
-      if (shared >= 2 || !cross_each_other(tri[i], planes[i], tri[j], planes[j])) return true;
+      if (shared >= 2 || !triangles_cross(tri[i], planes[i], tri[j], planes[j])) return true;
       if (piece_of(s.tet) != piece_of(t.tet)) return true;
       found.kind = OverlapFinding::Kind::kCrossing;
       found.tet_a = std::min(s.tet, t.tet);
