@@ -220,7 +220,7 @@ bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialNam
 std::string describe_rejections(const RejectionCounts& r) {
   return "tolerance " + std::to_string(r.tolerance) + ", stretch " + std::to_string(r.stretch) +
          ", size " + std::to_string(r.size) + ", valence " + std::to_string(r.valence) +
-         ", topology " + std::to_string(r.topology);
+         ", topology " + std::to_string(r.topology) + ", overlap " + std::to_string(r.overlap);
 }
 
 std::string describe_violations(const ThresholdViolations& v) {

@@ -24,8 +24,10 @@
 
 #include "core/adjacency.h"
 #include "core/classify.h"
+#include "core/face_grid.h"
 #include "core/metrics.h"
 #include "core/surface.h"
+#include "core/triangle_cross.h"
 
 namespace tetlod {
 
@@ -113,7 +115,7 @@ struct Quadric {
   }
 };
 
-enum class Reject : uint8_t { kNone, kTolerance, kStretch, kSize, kValence, kTopology };
+enum class Reject : uint8_t { kNone, kTolerance, kStretch, kSize, kValence, kTopology, kOverlap };
 
 // What the queue keeps of a valid collapse, in 32 bytes (the queue holds a few hundred
 // thousand and is walked at random): the position is restored when it is popped.
@@ -1320,6 +1322,9 @@ class Engine {
       case Reject::kTopology:
         ++rejections_.topology;
         break;
+      case Reject::kOverlap:
+        ++rejections_.overlap;
+        break;
       case Reject::kNone:
         break;
     }
@@ -1359,6 +1364,7 @@ class Engine {
     int c = 0;
     while (across[c] != from) ++c;
     across[c] = to;
+    if (to == kInvalidIndex && guard_boundary_) glued_outer_.push_back(4 * tet + c);
   }
 
   void apply(const Collapse& c, CollapseHistory* history) {
@@ -1494,8 +1500,10 @@ class Engine {
   // Whether evaluate(a, b) was already called on the mesh as it is now (neither end
   // changed since). Its result is then known: if valid, its entry is in the queue, or
   // was popped and refused by topology_ok(), which would refuse it again (it reads the
-  // two stars, unchanged, and how many tets each material has left, which only falls);
-  // so evaluating it again would change nothing but the counts. Two such cases are
+  // two stars, unchanged, and how many tets each material has left, which only falls),
+  // or by the outer boundary's guard (which might pass it now, if faces near it have
+  // moved: such an edge waits, as every refused edge does, until one of its ends
+  // changes); so evaluating it again would change nothing but the counts. Two such cases are
   // recognised: the collapse that last changed both ends made a, so refresh_around()
   // evaluated (a, b) right after it (the versions say so); or it is the last stale entry
   // of a evaluated again (redone_). Not (b, a): the result may differ in its last bits
@@ -1531,6 +1539,11 @@ class Engine {
   }
 
   void simplify(SimplifyResult* result) {
+    guard_boundary_ = params_.keep_boundary_embedded;
+    if (guard_boundary_) {
+      seen_.assign(tet_.size(), 0);
+      build_outer_grid();
+    }
     heap_.assign(1, QueuedCollapse{});  // heap_[0]: see heap_
     dirty_list_.clear();
     alive_tets_ = tet_.size();
@@ -1584,10 +1597,286 @@ class Engine {
         count(Reject::kTopology);
         continue;
       }
+      const bool moves_boundary = guard_boundary_ && changes_outer_boundary(c);
+      if (moves_boundary && !outer_boundary_stays_embedded(c.kept, c.removed, c.position)) {
+        count(Reject::kOverlap);
+        continue;
+      }
+      glued_outer_.clear();
       apply(c, &result->history);
+      if (guard_boundary_) update_outer_grid(c, moves_boundary);
       refresh_around(c.kept);
     }
     report("simplify", 1);
+  }
+
+  // ------------------------------------------------------- the outer boundary
+  // Every new tet is positive, yet a collapse may still push the outer boundary
+  // through another part of it: two sheets nearer than the tolerance (across a thin
+  // gap or slot) are each held only to their own planes. The tets then overlap with no
+  // face between them, which every reader of TetLOD refuses (find_overlap(),
+  // core/overlap.h). With every tet positive, the number of tets over a point is the
+  // winding number of the outer boundary around it (the degree of the map), so tets
+  // overlap only where the boundary is not embedded: where it crosses itself, or folds
+  // over along an edge, which no crossing shows (the tets around that edge then fill
+  // more than a full turn). So a collapse that moves the outer boundary is refused if
+  // one of the faces it makes would clearly cross another (the reader's test, within a
+  // piece: tets joined through vertices, as the reader checks), or the tets around an
+  // edge of those faces would fill more than a full turn. Checked on the collapses
+  // about to be made, after every other test; the outer faces are kept in a grid.
+
+  // Whether collapse c moves the outer boundary's faces: it removes a vertex on it, or
+  // moves one.
+  bool changes_outer_boundary(const Collapse& c) const {
+    return state_[c.removed].outer ||
+           (state_[c.kept].outer && std::memcmp(&pos_[c.kept], &c.position, sizeof(Vec3)) != 0);
+  }
+
+  // Face 4 t + c: the face of tet t opposite its corner c.
+  Triangle3 face_triangle(uint32_t face) const {
+    const Tet& q = tet_[face / 4].v;
+    const int c = face % 4;
+    return {pos_[q[(c + 1) % 4]], pos_[q[(c + 2) % 4]], pos_[q[(c + 3) % 4]]};
+  }
+
+  static void box_of(const Triangle3& t, Vec3* lo, Vec3* hi) {
+    for (int k = 0; k < 3; ++k) {
+      (*lo)[k] = std::min({t[0][k], t[1][k], t[2][k]});
+      (*hi)[k] = std::max({t[0][k], t[1][k], t[2][k]});
+    }
+  }
+
+  static bool boxes_meet(const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi) {
+    return alo.x <= bhi.x && blo.x <= ahi.x && alo.y <= bhi.y && blo.y <= ahi.y && alo.z <= bhi.z &&
+           blo.z <= ahi.z;
+  }
+
+  void insert_outer_face(uint32_t face) {
+    Vec3 lo, hi;
+    box_of(face_triangle(face), &lo, &hi);
+    outer_grid_.insert(face, lo, hi);
+  }
+
+  // Lays the grid out again over the outer faces as they are now: cells about their
+  // mean extent (they grow as the run coarsens the boundary), stale entries gone. The
+  // first time, also numbers the pieces.
+  void build_outer_grid() {
+    if (piece_.empty()) {
+      piece_.resize(pos_.size());
+      for (uint32_t v = 0; v < pos_.size(); ++v) piece_[v] = v;
+      auto root = [&](uint32_t v) {
+        while (piece_[v] != v) v = piece_[v] = piece_[piece_[v]];
+        return v;
+      };
+      for (const TetRecord& r : tet_) {
+        if (!r.alive) continue;
+        for (int k = 1; k < 4; ++k) {
+          const uint32_t a = root(r.v[0]), b = root(r.v[k]);
+          if (a != b) piece_[std::max(a, b)] = std::min(a, b);
+        }
+      }
+      for (uint32_t v = 0; v < pos_.size(); ++v) piece_[v] = root(v);
+      // Every position stays in this box: a new node is an end or a midpoint.
+      outer_lo_ = outer_hi_ = pos_[0];
+      for (const Vec3& p : pos_) {
+        for (int k = 0; k < 3; ++k)
+          outer_lo_[k] = std::min(outer_lo_[k], p[k]), outer_hi_[k] = std::max(outer_hi_[k], p[k]);
+      }
+    }
+    struct Entry {
+      uint32_t face;
+      Vec3 lo, hi;
+    };
+    std::vector<Entry> faces;
+    double extent_sum = 0;
+    for (uint32_t t = 0; t < tet_.size(); ++t) {
+      if (!tet_[t].alive) continue;
+      for (uint32_t f = 4 * t; f < 4 * t + 4; ++f) {
+        if (across_[f] != kInvalidIndex) continue;
+        Entry e{f, {}, {}};
+        box_of(face_triangle(f), &e.lo, &e.hi);
+        extent_sum += std::max({e.hi.x - e.lo.x, e.hi.y - e.lo.y, e.hi.z - e.lo.z});
+        faces.push_back(e);
+      }
+    }
+    const double cell = faces.empty() ? 1.0 : extent_sum / double(faces.size());
+    outer_grid_.reset(outer_lo_, outer_hi_, cell, std::max<size_t>(4096, 2 * faces.size()));
+    for (const Entry& e : faces) outer_grid_.insert(e.face, e.lo, e.hi);
+    outer_entries_at_build_ = std::max<size_t>(outer_grid_.entries(), 4096);
+  }
+
+  // After collapse c: the outer faces it changed or made go into the grid where they
+  // are now. If it moved the boundary, they are the outer faces at the new node; else
+  // only the faces glued to the outside in place of a removed tet's (apply()), which
+  // kept their corners and became faces of another tet.
+  void update_outer_grid(const Collapse& c, bool moved_boundary) {
+    if (moved_boundary) {
+      for (uint32_t t : star_[c.kept]) {
+        const Tet& q = tet_[t].v;
+        for (int k = 0; k < 4; ++k)
+          if (q[k] != c.kept && across_[4 * t + k] == kInvalidIndex) insert_outer_face(4 * t + k);
+      }
+    } else {
+      for (uint32_t f : glued_outer_) insert_outer_face(f);
+    }
+    if (outer_grid_.entries() > 2 * outer_entries_at_build_) build_outer_grid();
+  }
+
+  // A tet as it would be after the collapse: corner ids (the kept end for the new
+  // node) and positions.
+  struct WouldBeTet {
+    std::array<uint32_t, 4> v;
+    std::array<Vec3, 4> p;
+  };
+
+  WouldBeTet would_be(uint32_t t, uint32_t kept, uint32_t removed, const Vec3& k) const {
+    WouldBeTet n;
+    for (int c = 0; c < 4; ++c) {
+      const uint32_t x = tet_[t].v[c];
+      const bool end = x == kept || x == removed;
+      n.v[c] = end ? kept : x;
+      n.p[c] = end ? k : pos_[x];
+    }
+    return n;
+  }
+
+  // Whether the dihedral angles at edge (u, w) of those tets in `tets` that hold it
+  // fill a full turn, or all but 1e-8 of it (find_overlap() refuses more than a turn).
+  // Each angle is in [0, pi]: they turn a vector in the plane one after the other, and
+  // it has gone past a whole turn when it comes back from below the axis to above it.
+  static bool fill_a_turn(uint32_t u, uint32_t w, const std::vector<WouldBeTet>& tets) {
+    double x = 1, y = 0;
+    for (const WouldBeTet& n : tets) {
+      int ku = -1, kw = -1, other[2], count = 0;
+      for (int k = 0; k < 4; ++k) {
+        if (n.v[k] == u)
+          ku = k;
+        else if (n.v[k] == w)
+          kw = k;
+        else if (count < 2)
+          other[count++] = k;
+      }
+      if (ku < 0 || kw < 0) continue;
+      const Vec3 &pu = n.p[ku], edge = n.p[kw] - pu;
+      const Vec3 n1 = cross(edge, n.p[other[0]] - pu), n2 = cross(edge, n.p[other[1]] - pu);
+      const double c = dot(n1, n2), s = length(cross(n1, n2));
+      const double turned_x = x * c - y * s, turned_y = x * s + y * c;
+      if (y < 0 && turned_y >= 0) return true;
+      const double scale = std::max(std::fabs(turned_x), std::fabs(turned_y));
+      if (!(scale > 0)) continue;  // no angle (a flat tet), as atan2(0, 0) is 0
+      x = turned_x / scale;
+      y = turned_y / scale;
+    }
+    return y < 0 && x > 0 && -y < 1e-8 * x;
+  }
+
+  // Whether collapsing (kept, removed) onto position k leaves the outer boundary
+  // embedded (see above).
+  bool outer_boundary_stays_embedded(uint32_t kept, uint32_t removed, const Vec3& k) {
+    // The faces the collapse makes: the outer faces around either end that hold only
+    // that end, with it at k (those that hold both go); and the tets that stay there.
+    fan_.clear();
+    fan_corners_.clear();
+    staying_tets_.clear();
+    for (int side = 0; side < 2; ++side) {
+      const uint32_t v = side == 0 ? kept : removed, other = side == 0 ? removed : kept;
+      for (uint32_t t : star_[v]) {
+        const Tet& q = tet_[t].v;
+        const bool ring = tet_has(q, other);
+        if (!ring) staying_tets_.push_back(would_be(t, kept, removed, k));
+        for (int c = 0; c < 4; ++c) {
+          if (q[c] == v || across_[4 * t + c] != kInvalidIndex) continue;
+          if (ring && q[c] != other) continue;  // holds both ends
+          std::array<uint32_t, 3> ids;
+          Triangle3 tri;
+          for (int n = 0; n < 3; ++n) {
+            const uint32_t x = q[(c + 1 + n) % 4];
+            ids[n] = x == v ? kept : x;
+            tri[n] = x == v ? k : pos_[x];
+          }
+          fan_.push_back(tri);
+          fan_corners_.push_back(ids);
+        }
+      }
+    }
+    if (fan_.empty()) return true;
+    fan_planes_.resize(fan_.size());
+    fan_lo_.resize(fan_.size());
+    fan_hi_.resize(fan_.size());
+    Vec3 lo, hi;  // the box of them all
+    for (size_t f = 0; f < fan_.size(); ++f) {
+      fan_planes_[f] = plane_of(fan_[f]);
+      box_of(fan_[f], &fan_lo_[f], &fan_hi_[f]);
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = f == 0 ? fan_lo_[f][a] : std::min(lo[a], fan_lo_[f][a]);
+        hi[a] = f == 0 ? fan_hi_[f][a] : std::max(hi[a], fan_hi_[f][a]);
+      }
+    }
+    // The new faces among themselves.
+    for (size_t f = 0; f < fan_.size(); ++f)
+      for (size_t g = f + 1; g < fan_.size(); ++g)
+        if (boxes_meet(fan_lo_[f], fan_hi_[f], fan_lo_[g], fan_hi_[g]) &&
+            triangles_cross(fan_[f], fan_planes_[f], fan_[g], fan_planes_[g]))
+          return false;
+    // Round each of their edges: at the new node, the tets that stay around the ends;
+    // a far edge (a, b), a's tets but those around the collapsed edge.
+    edges_.clear();
+    for (const auto& ids : fan_corners_)
+      for (int n = 0; n < 3; ++n)
+        edges_.push_back({std::min(ids[n], ids[(n + 1) % 3]), std::max(ids[n], ids[(n + 1) % 3])});
+    sort_unique(edges_);
+    for (const auto& e : edges_) {
+      const std::vector<WouldBeTet>* around = &staying_tets_;
+      if (e.first != kept && e.second != kept) {
+        far_tets_.clear();
+        for (uint32_t t : star_[e.first]) {
+          const Tet& q = tet_[t].v;
+          if (tet_has(q, e.second) && !(tet_has(q, kept) && tet_has(q, removed)))
+            far_tets_.push_back(would_be(t, kept, removed, k));
+        }
+        around = &far_tets_;
+      }
+      if (fill_a_turn(e.first, e.second, *around)) return false;
+    }
+    // The other outer faces of the piece near them: no crossing. Past the budget (a
+    // hostile mesh crowding faces into a few cells), refuse rather than not check.
+    candidates_.clear();
+    if (!outer_grid_.gather(lo, hi, kGuardBudget, &candidates_)) return false;
+    const uint32_t piece = piece_[kept];
+    // Each tet once (an entry is in every cell its face touched, and the face may
+    // have moved since): all its outer faces as they are now, but those at an
+    // end (the fan has them, or they go).
+    if (++seen_stamp_ == 0) {
+      std::fill(seen_.begin(), seen_.end(), 0);
+      seen_stamp_ = 1;
+    }
+    for (uint32_t entry : candidates_) {
+      const uint32_t t = entry / 4;
+      if (seen_[t] == seen_stamp_ || !tet_[t].alive) continue;
+      seen_[t] = seen_stamp_;
+      const Tet& q = tet_[t].v;
+      for (int c = 0; c < 4; ++c) {
+        if (across_[4 * t + c] != kInvalidIndex) continue;
+        bool at_end = false;
+        for (int n = 1; n < 4; ++n) at_end |= q[(c + n) % 4] == kept || q[(c + n) % 4] == removed;
+        if (at_end) continue;
+        const Triangle3 tri = face_triangle(4 * t + c);
+        Vec3 tlo, thi;
+        box_of(tri, &tlo, &thi);
+        if (!boxes_meet(tlo, thi, lo, hi)) continue;
+        TrianglePlane plane;
+        bool have_plane = false;
+        for (size_t f = 0; f < fan_.size(); ++f) {
+          if (!boxes_meet(fan_lo_[f], fan_hi_[f], tlo, thi)) continue;
+          if (!have_plane) plane = plane_of(tri), have_plane = true;
+          if (triangles_cross(fan_[f], fan_planes_[f], tri, plane)) {
+            if (piece_[q[0]] == piece) return false;
+            break;  // another piece's faces may cross (as find_overlap() reads them)
+          }
+        }
+      }
+    }
+    return true;
   }
 
   // ----------------------------------------------------------------- output
@@ -1720,6 +2009,23 @@ class Engine {
   std::vector<std::pair<uint32_t, uint32_t>> ring_pairs_;            // the ring edges, as slots
   std::vector<uint64_t> ring_triples_;                               // triple_key()s of Lk(i) on R
   std::vector<uint32_t> retired_tets_, rewired_tets_, merged_star_;  // apply()
+  // The outer boundary's guard (outer_boundary_stays_embedded()).
+  static constexpr size_t kGuardBudget = size_t{1} << 16;  // grid entries read at most
+  bool guard_boundary_ = false;
+  FaceGrid outer_grid_;  // outer faces (4 t + corner), where they were when added
+  size_t outer_entries_at_build_ = 0;
+  Vec3 outer_lo_, outer_hi_;     // the box of every position, then and later
+  std::vector<uint32_t> piece_;  // per vertex: the smallest vertex of its piece
+  std::vector<Triangle3> fan_;   // the outer faces a collapse would make
+  std::vector<std::array<uint32_t, 3>> fan_corners_;
+  std::vector<TrianglePlane> fan_planes_;
+  std::vector<Vec3> fan_lo_, fan_hi_;
+  std::vector<WouldBeTet> staying_tets_, far_tets_;
+  std::vector<std::pair<uint32_t, uint32_t>> edges_;
+  std::vector<uint32_t> candidates_;
+  std::vector<uint32_t> glued_outer_;  // outer faces apply() glued in place of others
+  std::vector<uint32_t> seen_;         // per tet: seen_stamp_ if looked at in this check
+  uint32_t seen_stamp_ = 0;
 };
 
 }  // namespace

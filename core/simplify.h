@@ -5,7 +5,9 @@
 //
 // The guarantee: no collapse and no split ever creates a tet with stretch below
 // tau_ST or size above tau_SZ, or a node with valence above tau_VL, and every
-// material region, interface, junction curve and corner keeps its topology.
+// material region, interface, junction curve and corner keeps its topology. Nor does
+// any collapse make tets of one body overlap (find_overlap(), overlap.h) where they
+// did not: the outer boundary is never pushed through itself.
 #pragma once
 
 #include <atomic>
@@ -31,6 +33,9 @@ struct SimplifyParams {
   bool subdivide = true;
   size_t target_elements = 0;          // stop once at most this many tets remain; 0: run to the end
   double crease_angle_degrees = 40.0;  // for the vertex classification (classify.h)
+  // Refuse collapses that would push the outer boundary through itself (see
+  // RejectionCounts::overlap). Off only to show, in tests and benchmarks, what it stops.
+  bool keep_boundary_embedded = true;
 };
 
 // Checks thresholds for absurd values (NaN, negative, stretch >= 1 or <= 0,
@@ -44,6 +49,11 @@ struct RejectionCounts {
   uint64_t size = 0;
   uint64_t valence = 0;
   uint64_t topology = 0;  // feature rules and link conditions
+  // The outer boundary would cross itself, wrap round one of its edges, or swallow a
+  // vertex of another part of it: tets would overlap with no face between them (two
+  // sheets nearer than the tolerance, as across a thin gap). Checked on the collapses
+  // about to be made, after the others.
+  uint64_t overlap = 0;
 };
 
 // How many collapse evaluations each part of the run made, valid or rejected (an

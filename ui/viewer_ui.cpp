@@ -626,8 +626,9 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   if (status.has_result) {
     const RejectionCounts& r = status.rejections;
     ImGui::TextWrapped("Rejections (last run): tolerance %" PRIu64 ", stretch %" PRIu64
-                       ", size %" PRIu64 ", valence %" PRIu64 ", topology %" PRIu64,
-                       r.tolerance, r.stretch, r.size, r.valence, r.topology);
+                       ", size %" PRIu64 ", valence %" PRIu64 ", topology %" PRIu64
+                       ", overlap %" PRIu64,
+                       r.tolerance, r.stretch, r.size, r.valence, r.topology, r.overlap);
   }
   ImGui::End();
 }
