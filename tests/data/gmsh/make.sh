@@ -36,3 +36,6 @@ gmsh overlap.geo -3 -clmax 0.5 -v 0 -format msh41 -bin -o overlap41_bin.msh
 # A block with two sheets inside it (embedded surfaces), in groups of their own and
 # with a boundary face: surface groups inside one material.
 gmsh sheet.geo -3 -clmax 0.25 -v 0 -format msh41 -o sheet.msh
+# A ball with a thin spherical gap inside, bridged: two sheets of outer boundary 0.15
+# apart, for the simplifier's guard against a boundary pushed through itself.
+gmsh gap.geo -3 -clmax 0.9 -v 0 -format msh22 -o gap.msh
