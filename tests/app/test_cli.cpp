@@ -519,6 +519,22 @@ TEST(Cli, MaterialSizeOfAnAbsentMaterialIsAnError) {
       << lod.output;
 }
 
+// A tolerance above the width of a thin gap (tests/data/gmsh/gap.geo): collapses that
+// would push one wall through the other are refused and counted, so the output reads
+// back (the reader refuses tets that overlap).
+TEST(Cli, SimplifyNeverPushesTheBoundaryThroughItself) {
+  const std::string gap = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/gap.msh";
+  const std::string out = out_dir() + "/gap_out.msh";
+  const CommandResult r = run("simplify " + gap + " -o " + out + " --size 6 --tolerance 2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const size_t at = r.output.find(", overlap ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_GT(std::stoul(r.output.substr(at + 10)), 0u) << r.output;
+  const CommandResult back = run("stats " + out);
+  EXPECT_EQ(back.code, 0) << back.output;
+  EXPECT_EQ(back.output.find("overlaps"), std::string::npos) << back.output;
+}
+
 TEST(Cli, SimplifyThenLodWritesLevels) {
   const std::string path = write_grid("simp.mesh");
   const std::string out = out_dir() + "/simp_out.mesh";
