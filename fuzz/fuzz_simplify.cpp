@@ -5,7 +5,8 @@
 // guarantee: every output tet positively oriented, no threshold broken by anything the
 // run made (violations.created == 0), and the history replaying to the output and back
 // to the subdivided base exactly, with deltas that say everything a seek changed, and
-// the output passing validation as a file read back would (no overlapping tets).
+// the output passing validation as a file read back would (no overlapping tets) when
+// the subdivided base does.
 // Per material the same number of regions, per material pair the same interface Euler
 // characteristic (tests/core/topology_checks.h), after subdivision and at the end.
 // Then `--improve` on the output must keep its own guarantee: positive tets, no more
@@ -123,11 +124,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!tetlod::simplify(mesh, params, &result).ok()) return 0;  // e.g. too many tets
   check_mesh(result.base);
   check_mesh(result.output);
-  // The output reads back: validation, which refuses overlapping tets too (the input
-  // passed it), accepts it.
-  tetlod::TetMesh reread = result.output;
+  // The output reads back: validation, which refuses overlapping tets too, accepts it
+  // if it accepts the subdivided base. (The input passed it, but the crossing test
+  // allows 1e-8 of the faces' size: faces that touch within that, or cross by less,
+  // may clearly cross once subdivision halved them. The simplifier never pushes the
+  // boundary through itself; it does not undo such a crossing.)
+  tetlod::TetMesh reread = result.base;
   tetlod::ValidationReport report;
-  if (!tetlod::validate_mesh(&reread, "output", {}, &report).ok()) TETLOD_FUZZ_FAIL();
+  if (tetlod::validate_mesh(&reread, "base", {}, &report).ok()) {
+    reread = result.output;
+    if (!tetlod::validate_mesh(&reread, "output", {}, &report).ok()) TETLOD_FUZZ_FAIL();
+  }
   if (result.violations.created != 0) TETLOD_FUZZ_FAIL();
   if (regions_per_material(result.output) != regions_per_material(result.base) ||
       tetlod::test::interface_euler(result.output) != tetlod::test::interface_euler(result.base))
