@@ -53,8 +53,8 @@ void write_tetgen_ele(const TetMesh& mesh, std::string* out);
 // Every surface triangle, with its group's tag as its boundary marker, or, without
 // `markers`, none (a .face that describes the mesh's faces and gives no groups).
 void write_tetgen_face(const SurfaceGroups& surfaces, std::string* out, bool markers = true);
-void write_vtk_legacy(const TetMesh& mesh, std::string* out);
-void write_vtu(const TetMesh& mesh, std::string* out);
+void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
+void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 void write_nastran(const TetMesh& mesh, std::string* out);
 void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
                   const std::vector<MaterialName>* names, std::string* out);

@@ -20,8 +20,7 @@ constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vt
 enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu, kNastran, kAbaqus };
 
 bool surface_groups_supported(FileKind kind) {
-  return kind == FileKind::kMedit || kind == FileKind::kGmsh || kind == FileKind::kTetGen ||
-         kind == FileKind::kAbaqus;
+  return kind != FileKind::kNastran;
 }
 
 // The extension of the file name in `path`, lower case, without the dot.
@@ -225,7 +224,7 @@ Status check_mesh_path(const std::string& path, const WriteOptions& options) {
   if (options.surface_groups && !surface_groups_supported(kind)) {
     return Status::error(path +
                          ": surface groups are written to .msh, .mesh, .node/.ele (as "
-                         "a .face file) and .inp only");
+                         "a .face file), .vtk, .vtu and .inp, not Nastran");
   }
   return Status();
 }
@@ -274,10 +273,10 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       return files->stage(base + ".face", text);
     }
     case FileKind::kVtkLegacy:
-      io::write_vtk_legacy(mesh, &text);
+      io::write_vtk_legacy(mesh, surfaces, &text);
       break;
     case FileKind::kVtu:
-      io::write_vtu(mesh, &text);
+      io::write_vtu(mesh, surfaces, &text);
       break;
     case FileKind::kNastran:
       io::write_nastran(mesh, &text);

@@ -152,8 +152,10 @@ struct WriteOptions {
   //    entity per group), numbered after the tets;
   //  - .mesh: a Triangles section, reference = the group's tag;
   //  - .node/.ele: a .face file beside them, boundary marker = the group's tag;
-  //  - .inp: per group a *NSET and a *SURFACE of element faces (<NAME>_FACES).
-  // Other formats have no place for them: writing them is an error.
+  //  - .inp: per group a *NSET and a *SURFACE of element faces (<NAME>_FACES);
+  //  - .vtk, .vtu: triangle cells after the tets, the tag in the material array (as
+  //    Gmsh's VTK export writes physical surfaces), stretch -1; no names.
+  // Nastran has no place for them: writing them there is an error.
   bool surface_groups = false;
   // With surface_groups: group_surface() of the very mesh written, for a caller that
   // also prints them; null to have the writer compute them.

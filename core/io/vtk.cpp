@@ -788,30 +788,48 @@ Status parse_vtk_legacy(std::string_view text, const std::string& name, ParsedMe
   return parser.parse();
 }
 
-void write_vtk_legacy(const TetMesh& mesh, std::string* out) {
+void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
   const size_t tet_count = mesh.tet_count();
-  out->reserve(out->size() + mesh.vertex_count() * 64 + tet_count * 64);
+  size_t triangle_count = 0;
+  if (surfaces) {
+    for (const SurfaceGroup& group : surfaces->groups) triangle_count += group.triangles.size();
+  }
+  const size_t cell_count = tet_count + triangle_count;
+  out->reserve(out->size() + mesh.vertex_count() * 64 + tet_count * 64 + triangle_count * 48);
   out->append("# vtk DataFile Version 3.0\nTetLOD tetrahedral mesh\nASCII\n");
   out->append("DATASET UNSTRUCTURED_GRID\nPOINTS ");
   append_number(out, mesh.vertex_count());
   out->append(" double\n");
   for (const Vec3& p : mesh.positions) append_line(out, p.x, p.y, p.z);
   out->append("CELLS ");
-  append_line(out, tet_count, 5 * tet_count);
+  append_line(out, cell_count, 5 * tet_count + 4 * triangle_count);
   for (const Tet& tet : mesh.tets) append_line(out, 4, tet[0], tet[1], tet[2], tet[3]);
+  // The surface groups' triangles after the tets, as Gmsh's VTK export writes physical
+  // surfaces: cell type 5, the group's tag in the material array.
+  auto for_each_triangle = [&](auto visit) {
+    if (!surfaces) return;
+    for (const SurfaceGroup& group : surfaces->groups)
+      for (uint32_t i : group.triangles) visit(surfaces->surface[i].v, group.tag);
+  };
+  for_each_triangle(
+      [&](const std::array<uint32_t, 3>& v, int32_t) { append_line(out, 3, v[0], v[1], v[2]); });
   out->append("CELL_TYPES ");
-  append_line(out, tet_count);
+  append_line(out, cell_count);
   for (size_t t = 0; t < tet_count; ++t) out->append("10\n");
+  for (size_t t = 0; t < triangle_count; ++t) out->append("5\n");
   out->append("CELL_DATA ");
-  append_line(out, tet_count);
+  append_line(out, cell_count);
   out->append("SCALARS material int 1\nLOOKUP_TABLE default\n");
   for (int32_t material : mesh.materials) append_line(out, material);
+  for_each_triangle([&](const std::array<uint32_t, 3>&, int32_t tag) { append_line(out, tag); });
   // The stretch as a FIELD array: VTK's legacy reader takes only the first SCALARS of
-  // a section unless told to read them all, but every FIELD array.
+  // a section unless told to read them all, but every FIELD array. A triangle has
+  // none: -1.
   out->append("FIELD FieldData 1\nstretch 1 ");
-  append_number(out, tet_count);
+  append_number(out, cell_count);
   out->append(" double\n");
   for (const Tet& tet : mesh.tets) append_line(out, tet_shape(mesh, tet).stretch);
+  for (size_t t = 0; t < triangle_count; ++t) out->append("-1\n");
 }
 
 }  // namespace tetlod::io

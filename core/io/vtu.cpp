@@ -843,13 +843,26 @@ Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out
   return parser.parse();
 }
 
-void write_vtu(const TetMesh& mesh, std::string* out) {
-  write_vtu(mesh, MeshFields(), out);
-}
+namespace {
 
-void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out) {
+// The surface groups' triangles come after the tets, as for .vtk (write_vtk_legacy()):
+// cell type 5, the group's tag as material, stretch -1. The fields' cell arrays are the
+// tets' only: a caller gives fields or surfaces.
+void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const SurfaceGroups* surfaces,
+                     std::string* out) {
   const size_t tet_count = mesh.tet_count();
-  out->reserve(out->size() + mesh.vertex_count() * 72 + tet_count * 96);
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::vector<int32_t> tags;
+  if (surfaces) {
+    for (const SurfaceGroup& group : surfaces->groups) {
+      for (uint32_t i : group.triangles) {
+        triangles.push_back(surfaces->surface[i].v);
+        tags.push_back(group.tag);
+      }
+    }
+  }
+  const size_t cell_count = tet_count + triangles.size();
+  out->reserve(out->size() + mesh.vertex_count() * 72 + cell_count * 96);
   out->append(
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -857,7 +870,7 @@ void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out) 
       "    <Piece NumberOfPoints=\"");
   append_number(out, mesh.vertex_count());
   out->append("\" NumberOfCells=\"");
-  append_number(out, tet_count);
+  append_number(out, cell_count);
   out->append(
       "\">\n"
       "      <Points>\n"
@@ -876,14 +889,20 @@ void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out) 
     out->append("          ");
     append_line(out, tet[0], tet[1], tet[2], tet[3]);
   }
+  for (const auto& v : triangles) {
+    out->append("          ");
+    append_line(out, v[0], v[1], v[2]);
+  }
   out->append(
       "        </DataArray>\n"
       "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-  append_rows<uint64_t>(out, tet_count, 16, [](size_t t) { return 4 * (t + 1); });
+  append_rows<uint64_t>(out, cell_count, 16, [&](size_t c) {
+    return c < tet_count ? 4 * (c + 1) : 4 * tet_count + 3 * (c + 1 - tet_count);
+  });
   out->append(
       "        </DataArray>\n"
       "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-  append_rows<int32_t>(out, tet_count, 32, [](size_t) { return 10; });
+  append_rows<int32_t>(out, cell_count, 32, [&](size_t c) { return c < tet_count ? 10 : 5; });
   out->append(
       "        </DataArray>\n"
       "      </Cells>\n");
@@ -907,12 +926,15 @@ void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out) 
   out->append(
       "      <CellData Scalars=\"material\">\n"
       "        <DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n");
-  append_rows<int32_t>(out, tet_count, 16, [&](size_t t) { return mesh.materials[t]; });
+  append_rows<int32_t>(out, cell_count, 16, [&](size_t c) {
+    return c < tet_count ? mesh.materials[c] : tags[c - tet_count];
+  });
   out->append(
       "        </DataArray>\n"
       "        <DataArray type=\"Float64\" Name=\"stretch\" format=\"ascii\">\n");
-  append_rows<double>(out, tet_count, 8,
-                      [&](size_t t) { return tet_shape(mesh, mesh.tets[t]).stretch; });
+  append_rows<double>(out, cell_count, 8, [&](size_t c) {
+    return c < tet_count ? tet_shape(mesh, mesh.tets[c]).stretch : -1.0;
+  });
   out->append("        </DataArray>\n");
   append_arrays(fields.cell_data);
   out->append(
@@ -920,6 +942,16 @@ void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out) 
       "    </Piece>\n"
       "  </UnstructuredGrid>\n"
       "</VTKFile>\n");
+}
+
+}  // namespace
+
+void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
+  write_vtu_cells(mesh, MeshFields(), surfaces, out);
+}
+
+void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out) {
+  write_vtu_cells(mesh, fields, nullptr, out);
 }
 
 }  // namespace tetlod::io

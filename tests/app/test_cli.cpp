@@ -411,14 +411,14 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   EXPECT_EQ(text.rfind("$MeshFormat\n2.2 0 8\n", 0), 0u);
   EXPECT_NE(text.find("$PhysicalNames\n5\n2 3 \"boundary_1\"\n"), std::string::npos);
 
-  const std::string vtu = out_dir() + "/surf_out.vtu";
-  fs::remove(vtu);
-  r = run("convert " + path + " " + vtu + " --surfaces");
+  const std::string bdf = out_dir() + "/surf_out.bdf";
+  fs::remove(bdf);
+  r = run("convert " + path + " " + bdf + " --surfaces");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.output.find("surf_out.vtu: surface groups are written to .msh, .mesh"),
+  EXPECT_NE(r.output.find("surf_out.bdf: surface groups are written to .msh, .mesh"),
             std::string::npos)
       << r.output;
-  EXPECT_FALSE(fs::exists(vtu));
+  EXPECT_FALSE(fs::exists(bdf));
   // Read back, each group is a whole pair's: written again under the same tag and name.
   const std::string again = out_dir() + "/surf_again.msh";
   r = run("convert " + converted + " " + again + " --surfaces");
@@ -460,7 +460,7 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
   EXPECT_EQ(read_file(simplified).rfind("$MeshFormat\n2.2 0 8\n", 0), 0u);
-  r = run("simplify " + path + " -o " + vtu + " --size 0.9 --surfaces");
+  r = run("simplify " + path + " -o " + bdf + " --size 0.9 --surfaces");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_EQ(r.output.find("input "), std::string::npos) << "checked before any work";
 
@@ -470,7 +470,7 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
   text = read_file(level);
   EXPECT_NE(text.find("\nTriangles\n88\n"), std::string::npos);
-  r = run("lod " + history + " --step 0 -o " + vtu + " --surfaces");
+  r = run("lod " + history + " --step 0 -o " + bdf + " --surfaces");
   EXPECT_EQ(r.code, 2) << r.output;
 }
 

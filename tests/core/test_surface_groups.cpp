@@ -234,8 +234,35 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     EXPECT_EQ(info.surface_groups[0].name, "boundary_1");
   }
 
-  // Formats with no place for them: an error naming the path, and no file.
-  for (const char* name : {"/box2.vtu", "/box2.vtk", "/box2.bdf"}) {
+  // VTK legacy and XML: triangle cells after the tets, the tag in the material array,
+  // stretch -1; read back as the groups, by tag, unnamed (as .mesh).
+  for (const char* name : {"/box2.vtk", "/box2.vtu"}) {
+    SCOPED_TRACE(name);
+    const std::string path = dir + name;
+    ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+    const std::string text = test::read_text(path);
+    const bool xml = std::string(name).find("vtu") != std::string::npos;
+    const size_t cells = mesh.tet_count() + groups.surface.size();
+    EXPECT_NE(text.find(xml ? "NumberOfCells=\"" + std::to_string(cells) + "\""
+                            : "CELL_TYPES " + std::to_string(cells) + "\n"),
+              std::string::npos);
+    TetMesh back;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+    test::expect_same_mesh(mesh, back);
+    EXPECT_EQ(info.surface_elements_not_kept, groups.surface.size());
+    ASSERT_EQ(info.surface_groups.size(), 3u);
+    std::map<int32_t, std::vector<PositionTriangle>> read;
+    for (const auto& group : info.surface_groups) {
+      for (const auto& t : group.triangles) read[group.tag].push_back(by_positions(t));
+      std::sort(read[group.tag].begin(), read[group.tag].end());
+    }
+    EXPECT_EQ(read, triangles_by_tag(mesh, groups));
+    EXPECT_EQ(info.surface_groups[0].name, "");  // the file names none
+  }
+
+  // Nastran has no place for them: an error naming the path, and no file.
+  for (const char* name : {"/box2.bdf"}) {
     const std::string path = dir + name;
     std::filesystem::remove(path);
     const Status s = write_mesh(path, mesh, options);
