@@ -241,15 +241,11 @@ uint32_t tet_past_a_turn(const TetMesh& mesh, const std::vector<uint32_t>& neigh
 // Pieces: tets joined through shared vertices, numbered in the order of their first
 // tet; piece_of[t] is the piece of tet t. Returns the first tet of each piece.
 std::vector<uint32_t> number_pieces(const TetMesh& mesh, std::vector<uint32_t>* piece_of) {
-  std::vector<uint32_t> root(mesh.positions.size());  // stays in cache, unlike tets
-  std::iota(root.begin(), root.end(), 0u);
-  for (const Tet& q : mesh.tets) {
-    for (int k = 1; k < 4; ++k) unite(root, q[0], q[k]);
-  }
+  const std::vector<uint32_t> root = vertex_pieces(mesh);
   std::vector<uint32_t> piece_of_root(root.size(), kInvalidIndex), first_tet;
   piece_of->resize(mesh.tets.size());
   for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
-    uint32_t& p = piece_of_root[find_root(root, mesh.tets[t][0])];
+    uint32_t& p = piece_of_root[root[mesh.tets[t][0]]];
     if (p == kInvalidIndex) {
       p = static_cast<uint32_t>(first_tet.size());
       first_tet.push_back(t);
@@ -506,6 +502,16 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
     }
   }
   return found;
+}
+
+std::vector<uint32_t> vertex_pieces(const TetMesh& mesh) {
+  std::vector<uint32_t> root(mesh.positions.size());  // stays in cache, unlike tets
+  std::iota(root.begin(), root.end(), 0u);
+  for (const Tet& q : mesh.tets) {
+    for (int k = 1; k < 4; ++k) unite(root, q[0], q[k]);
+  }
+  for (uint32_t v = 0; v < root.size(); ++v) root[v] = find_root(root, v);
+  return root;
 }
 
 }  // namespace tetlod

@@ -64,4 +64,8 @@ struct OverlapFinding {
 // the same mesh always gives the same finding.
 OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& neighbors);
 
+// The pieces find_overlap() checks one by one (tets joined through shared vertices), per
+// vertex: the smallest vertex of its piece (a vertex in no tet is a piece of its own).
+std::vector<uint32_t> vertex_pieces(const TetMesh& mesh);
+
 }  // namespace tetlod

@@ -26,6 +26,7 @@
 #include "core/classify.h"
 #include "core/face_grid.h"
 #include "core/metrics.h"
+#include "core/overlap.h"
 #include "core/surface.h"
 #include "core/triangle_cross.h"
 
@@ -740,6 +741,7 @@ class Engine {
     material_tets_.assign(material_ids_.size(), 0);
     for (int32_t m : mesh.materials) ++material_tets_[material_index(m)];
     across_ = std::move(neighbors_of_tets);
+    if (params_.keep_boundary_embedded) piece_ = vertex_pieces(mesh);
   }
 
   // The border between two surface groups of one material pair may lie on a smooth
@@ -1658,24 +1660,10 @@ class Engine {
   }
 
   // Lays the grid out again over the outer faces as they are now: cells about their
-  // mean extent (they grow as the run coarsens the boundary), stale entries gone. The
-  // first time, also numbers the pieces.
+  // mean extent (they grow as the run coarsens the boundary), stale entries gone.
   void build_outer_grid() {
-    if (piece_.empty()) {
-      piece_.resize(pos_.size());
-      for (uint32_t v = 0; v < pos_.size(); ++v) piece_[v] = v;
-      auto root = [&](uint32_t v) {
-        while (piece_[v] != v) v = piece_[v] = piece_[piece_[v]];
-        return v;
-      };
-      for (const TetRecord& r : tet_) {
-        if (!r.alive) continue;
-        for (int k = 1; k < 4; ++k) {
-          const uint32_t a = root(r.v[0]), b = root(r.v[k]);
-          if (a != b) piece_[std::max(a, b)] = std::min(a, b);
-        }
-      }
-      for (uint32_t v = 0; v < pos_.size(); ++v) piece_[v] = root(v);
+    if (!outer_grid_laid_) {
+      outer_grid_laid_ = true;
       // Every position stays in this box: a new node is an end or a midpoint.
       outer_lo_ = outer_hi_ = pos_[0];
       for (const Vec3& p : pos_) {
@@ -2014,8 +2002,9 @@ class Engine {
   bool guard_boundary_ = false;
   FaceGrid outer_grid_;  // outer faces (4 t + corner), where they were when added
   size_t outer_entries_at_build_ = 0;
-  Vec3 outer_lo_, outer_hi_;     // the box of every position, then and later
-  std::vector<uint32_t> piece_;  // per vertex: the smallest vertex of its piece
+  Vec3 outer_lo_, outer_hi_;  // the box of every position, then and later
+  bool outer_grid_laid_ = false;
+  std::vector<uint32_t> piece_;  // vertex_pieces() of the mesh classified
   std::vector<Triangle3> fan_;   // the outer faces a collapse would make
   std::vector<std::array<uint32_t, 3>> fan_corners_;
   std::vector<TrianglePlane> fan_planes_;
