@@ -1728,34 +1728,34 @@ class Engine {
     return n;
   }
 
-  // Whether the dihedral angles at edge (u, w) of those tets in `tets` that hold it
-  // fill a full turn, or all but 1e-8 of it (find_overlap() refuses more than a turn).
-  // Each angle is in [0, pi]: they turn a vector in the plane one after the other, and
-  // it has gone past a whole turn when it comes back from below the axis to above it.
-  static bool fill_a_turn(uint32_t u, uint32_t w, const std::vector<WouldBeTet>& tets) {
+  // A sum of angles in [0, pi] (the dihedral angles of tets at an edge), kept as a
+  // vector in the plane turned by each in turn: it has gone past a whole turn when it
+  // comes back from below the axis to above it.
+  struct Turn {
     double x = 1, y = 0;
-    for (const WouldBeTet& n : tets) {
-      int ku = -1, kw = -1, other[2], count = 0;
-      for (int k = 0; k < 4; ++k) {
-        if (n.v[k] == u)
-          ku = k;
-        else if (n.v[k] == w)
-          kw = k;
-        else if (count < 2)
-          other[count++] = k;
-      }
-      if (ku < 0 || kw < 0) continue;
-      const Vec3 &pu = n.p[ku], edge = n.p[kw] - pu;
-      const Vec3 n1 = cross(edge, n.p[other[0]] - pu), n2 = cross(edge, n.p[other[1]] - pu);
+    bool past = false;
+    // The angle between n1 and n2: the normals of a tet's two faces at the edge, both
+    // the edge's direction crossed with the way from the edge to the face's third corner.
+    void add(const Vec3& n1, const Vec3& n2) {
       const double c = dot(n1, n2), s = length(cross(n1, n2));
       const double turned_x = x * c - y * s, turned_y = x * s + y * c;
-      if (y < 0 && turned_y >= 0) return true;
+      past |= y < 0 && turned_y >= 0;
       const double scale = std::max(std::fabs(turned_x), std::fabs(turned_y));
-      if (!(scale > 0)) continue;  // no angle (a flat tet), as atan2(0, 0) is 0
+      if (!(scale > 0)) return;  // no angle (a flat tet), as atan2(0, 0) is 0
       x = turned_x / scale;
       y = turned_y / scale;
     }
-    return y < 0 && x > 0 && -y < 1e-8 * x;
+    // A full turn, or all but 1e-8 of it (find_overlap() refuses more than a turn).
+    bool full() const { return past || (y < 0 && x > 0 && -y < 1e-8 * x); }
+  };
+
+  // Adds the dihedral angle of tet n at its edge (corner a, corner b) to `turn`.
+  static void add_angle(const WouldBeTet& n, int a, int b, Turn* turn) {
+    int other[2], count = 0;
+    for (int k = 0; k < 4; ++k)
+      if (k != a && k != b) other[count++] = k;
+    const Vec3 &pa = n.p[a], edge = n.p[b] - pa;
+    turn->add(cross(edge, n.p[other[0]] - pa), cross(edge, n.p[other[1]] - pa));
   }
 
   // Whether collapsing (kept, removed) onto position k leaves the outer boundary
@@ -1806,25 +1806,46 @@ class Engine {
         if (boxes_meet(fan_lo_[f], fan_hi_[f], fan_lo_[g], fan_hi_[g]) &&
             triangles_cross(fan_[f], fan_planes_[f], fan_[g], fan_planes_[g]))
           return false;
-    // Round each of their edges: at the new node, the tets that stay around the ends;
-    // a far edge (a, b), a's tets but those around the collapsed edge.
+    // Round each of their edges. Every new face holds the new node: its edges to the
+    // other corners (rim_), round which the tets that stay turn, are summed in one pass
+    // over those tets; a far edge (a, b), over a's tets but those around the collapsed
+    // edge, with either end at k.
+    rim_.clear();
     edges_.clear();
-    for (const auto& ids : fan_corners_)
-      for (int n = 0; n < 3; ++n)
-        edges_.push_back({std::min(ids[n], ids[(n + 1) % 3]), std::max(ids[n], ids[(n + 1) % 3])});
+    for (const auto& ids : fan_corners_) {
+      int at_k = 0;  // each holds the new node once
+      while (ids[at_k] != kept) ++at_k;
+      const uint32_t a = ids[(at_k + 1) % 3], b = ids[(at_k + 2) % 3];
+      rim_.push_back(a);
+      rim_.push_back(b);
+      edges_.push_back({std::min(a, b), std::max(a, b)});
+    }
+    sort_unique(rim_);
     sort_unique(edges_);
-    for (const auto& e : edges_) {
-      const std::vector<WouldBeTet>* around = &staying_tets_;
-      if (e.first != kept && e.second != kept) {
-        far_tets_.clear();
-        for (uint32_t t : star_[e.first]) {
-          const Tet& q = tet_[t].v;
-          if (tet_has(q, e.second) && !(tet_has(q, kept) && tet_has(q, removed)))
-            far_tets_.push_back(would_be(t, kept, removed, k));
-        }
-        around = &far_tets_;
+    turns_.assign(rim_.size(), Turn());
+    for (const WouldBeTet& n : staying_tets_) {
+      int at_k = 0;
+      while (n.v[at_k] != kept) ++at_k;
+      for (int c = 0; c < 4; ++c) {
+        if (c == at_k) continue;
+        const auto it = std::lower_bound(rim_.begin(), rim_.end(), n.v[c]);
+        if (it != rim_.end() && *it == n.v[c]) add_angle(n, at_k, c, &turns_[it - rim_.begin()]);
       }
-      if (fill_a_turn(e.first, e.second, *around)) return false;
+    }
+    for (const Turn& turn : turns_)
+      if (turn.full()) return false;
+    for (const auto& e : edges_) {
+      Turn turn;
+      for (uint32_t t : star_[e.first]) {
+        const Tet& q = tet_[t].v;
+        if (!tet_has(q, e.second) || (tet_has(q, kept) && tet_has(q, removed))) continue;
+        const WouldBeTet n = would_be(t, kept, removed, k);
+        int a = 0, b = 0;
+        while (n.v[a] != e.first) ++a;
+        while (n.v[b] != e.second) ++b;
+        add_angle(n, a, b, &turn);
+      }
+      if (turn.full()) return false;
     }
     // The other outer faces of the piece near them: no crossing. Past the budget (a
     // hostile mesh crowding faces into a few cells), refuse rather than not check.
@@ -2009,7 +2030,9 @@ class Engine {
   std::vector<std::array<uint32_t, 3>> fan_corners_;
   std::vector<TrianglePlane> fan_planes_;
   std::vector<Vec3> fan_lo_, fan_hi_;
-  std::vector<WouldBeTet> staying_tets_, far_tets_;
+  std::vector<WouldBeTet> staying_tets_;
+  std::vector<uint32_t> rim_;  // the new faces' corners but the new node
+  std::vector<Turn> turns_;    // round the edge from the new node to each of rim_
   std::vector<std::pair<uint32_t, uint32_t>> edges_;
   std::vector<uint32_t> candidates_;
   std::vector<uint32_t> glued_outer_;  // outer faces apply() glued in place of others
