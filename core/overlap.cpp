@@ -406,10 +406,31 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
         __builtin_prefetch(&mesh.tets[ahead]);
         __builtin_prefetch(&neighbors[4 * size_t{ahead}]);
       }
-      const bool two = edges[e].first == edges[e + 1].first &&
-                       (e == 0 || edges[e - 1].first != edges[e].first) &&
+      const bool first_of_edge = e == 0 || edges[e - 1].first != edges[e].first;
+      const bool two = edges[e].first == edges[e + 1].first && first_of_edge &&
                        (e + 2 == edges.size() || edges[e + 2].first != edges[e].first);
-      if (!two) continue;
+      if (!two) {
+        // Bodies meeting along the edge: their wedges must not overlap.
+        size_t end = e;
+        while (end < edges.size() && edges[end].first == edges[e].first) ++end;
+        if (!first_of_edge || end - e < 3) continue;
+        const uint32_t u = uint32_t(edges[e].first >> 32), v = uint32_t(edges[e].first);
+        std::vector<EdgeFace> around;
+        for (size_t k = e; k < end; ++k) {
+          const BoundaryFace& f = faces[edges[k].second];
+          const uint32_t w =
+              f.v[0] != u && f.v[0] != v ? f.v[0] : (f.v[1] != u && f.v[1] != v ? f.v[1] : f.v[2]);
+          around.push_back({pos[w], pos[mesh.tets[f.tet][f.corner]]});
+        }
+        size_t a = 0, b = 0;
+        if (wedges_overlap(pos[u], pos[v], around, &a, &b)) {
+          found.kind = OverlapFinding::Kind::kInside;
+          found.tet_a = std::min(faces[edges[e + a].second].tet, faces[edges[e + b].second].tet);
+          found.tet_b = std::max(faces[edges[e + a].second].tet, faces[edges[e + b].second].tet);
+          return found;
+        }
+        continue;
+      }
       unite(sheet, edges[e].second, edges[e + 1].second);
       // Tets that wrap round the edge overlap there, and the sheet goes through itself
       // along it, where no face crosses another.
@@ -502,6 +523,58 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
     }
   }
   return found;
+}
+
+bool wedges_overlap(const Vec3& u, const Vec3& v, const std::vector<EdgeFace>& faces, size_t* a,
+                    size_t* b) {
+  const Vec3 axis = v - u;
+  const double axis2 = squared_length(axis);
+  if (faces.empty() || !(axis2 > 0)) return false;
+  // A frame across the edge: r1 towards the first face's third corner, r2 = axis x r1.
+  auto across = [&](const Vec3& p) {
+    const Vec3 d = p - u;
+    return d - axis * (dot(d, axis) / axis2);
+  };
+  const Vec3 r1 = across(faces[0].w), r2 = cross(axis, r1);
+  struct Event {
+    double angle;
+    int step;  // +1 a start, -1 an end
+    size_t face;
+  };
+  std::vector<Event> events;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const Vec3 dw = across(faces[i].w), dx = across(faces[i].x);
+    const double angle = std::atan2(dot(dw, r2), dot(dw, r1));
+    events.push_back({angle, dot(cross(dw, dx), axis) > 0 ? 1 : -1, i});
+  }
+  std::sort(events.begin(), events.end(), [](const Event& x, const Event& y) {
+    return x.angle != y.angle ? x.angle < y.angle : x.step < y.step;
+  });
+  // Touching faces (within 1e-9 radians): ends first.
+  for (size_t i = 0; i + 1 < events.size(); ++i) {
+    for (size_t j = i + 1; j < events.size() && events[j].angle - events[i].angle <= 1e-9; ++j)
+      if (events[j].step < events[i].step) std::swap(events[i], events[j]);
+  }
+  // Round the circle from where the fewest wedges are open: none may open while one is.
+  size_t start = 0;
+  for (int depth = 0, lowest = 0, i = 0; i < int(events.size()); ++i) {
+    depth += events[i].step;
+    if (depth < lowest) lowest = depth, start = size_t(i) + 1;
+  }
+  size_t open = SIZE_MAX;
+  for (size_t n = 0; n < events.size(); ++n) {
+    const Event& e = events[(start + n) % events.size()];
+    if (e.step < 0) {
+      open = SIZE_MAX;
+    } else if (open != SIZE_MAX) {
+      if (a) *a = open;
+      if (b) *b = e.face;
+      return true;
+    } else {
+      open = e.face;
+    }
+  }
+  return false;
 }
 
 std::vector<uint32_t> vertex_pieces(const TetMesh& mesh) {

@@ -24,6 +24,8 @@
 //    full turn (the sum of their dihedral angles there): tets that wrap round the edge
 //    overlap, and the sheet goes through itself along the edge, where no face crosses
 //    another and the winding number just inside the sheet changes;
+//  - at each boundary edge with more than two boundary faces (bodies meeting along it),
+//    the wedges of the tets round it do not overlap (wedges_overlap());
 //  - for each piece, a point well inside it (the centroid of its first tet with no
 //    vertex on the boundary, else of its first tet) around which another piece
 //    winds more than one half.
@@ -63,6 +65,19 @@ struct OverlapFinding {
 // positively oriented and match faces with no problem. The first finding is returned;
 // the same mesh always gives the same finding.
 OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& neighbors);
+
+// Whether bodies that meet along an edge (u, v) overlap there: an edge with more than
+// two boundary faces, each given by its third corner `w` and the corner `x` of its tet
+// off the face. Round the edge, each face starts or ends the tets of its side (whether
+// x is turned from w the right way round the edge), and where nothing overlaps they
+// take turns; faces within 1e-9 radians of each other count as touching, an end before
+// a start. No crossing of faces shows such an overlap when the faces only touch.
+struct EdgeFace {
+  Vec3 w, x;
+};
+// If they do, `*a` and `*b` are two faces whose wedges overlap.
+bool wedges_overlap(const Vec3& u, const Vec3& v, const std::vector<EdgeFace>& faces,
+                    size_t* a = nullptr, size_t* b = nullptr);
 
 // The pieces find_overlap() checks one by one (tets joined through shared vertices), per
 // vertex: the smallest vertex of its piece (a vertex in no tet is a piece of its own).

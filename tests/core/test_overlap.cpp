@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "core/adjacency.h"
+#include "core/io/mesh_io.h"
 #include "core/overlap.h"
 #include "core/test_meshes.h"
 #include "core/validate.h"
@@ -279,6 +281,46 @@ TEST(Overlap, TetsWrappingRoundABoundaryEdgeAreRefused) {
   // Tet k = 11 (listed 7th) holds the last face at the edge; from it, the angle passes
   // a full turn at tet k = 1 (listed 9th).
   EXPECT_NE(s.message().find("tetrahedron 9 overlaps tetrahedron 7 with no face between them"),
+            std::string::npos)
+      << s.message();
+}
+
+// Round an edge along x, faces given by the angle of their third corner and of their
+// tet's other corner: the wedges [0, 90] and [180, 270] degrees, or [0, 90] and
+// [90, 180] (touching), do not overlap; [0, 90] and [45, 135] do.
+TEST(Overlap, WedgesRoundAnEdgeTakeTurns) {
+  const Vec3 u{0, 0, 0}, v{1, 0, 0};
+  auto at = [](double degrees) {
+    const double a = degrees * M_PI / 180;
+    return Vec3{0.5, std::cos(a), std::sin(a)};
+  };
+  auto wedge = [&](double from, double to) {
+    return std::vector<EdgeFace>{{at(from), at(to)}, {at(to), at(from)}};
+  };
+  auto both = [](std::vector<EdgeFace> a, const std::vector<EdgeFace>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  EXPECT_FALSE(wedges_overlap(u, v, both(wedge(0, 90), wedge(180, 270))));
+  EXPECT_FALSE(wedges_overlap(u, v, both(wedge(0, 90), wedge(90, 180))));
+  EXPECT_FALSE(wedges_overlap(u, v, both(wedge(300, 340), wedge(-10, 20))));
+  size_t a = 9, b = 9;
+  EXPECT_TRUE(wedges_overlap(u, v, both(wedge(0, 90), wedge(45, 135)), &a, &b));
+  EXPECT_EQ(std::min(a, b), 0u);  // the two starts
+  EXPECT_EQ(std::max(a, b), 2u);
+  EXPECT_TRUE(wedges_overlap(u, v, both(wedge(200, 330), wedge(300, 10))));
+  EXPECT_TRUE(wedges_overlap(u, v, both(wedge(0, 170), wedge(100, 120))));  // one inside
+}
+
+// A mesh whose tets meet along an edge and overlap there, their faces only touching:
+// no crossing shows it, nor the winding number at the one point of each sheet.
+TEST(Overlap, TetsOverlappingRoundAnEdgeTheyMeetAlongAreRefused) {
+  TetMesh mesh;
+  const std::string path = std::string(TETLOD_SOURCE_DIR) + "/tests/data/overlap/edge_wedges.mesh";
+  const Status s = read_mesh(path, &mesh);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find(path + ":627: tetrahedron 332 overlaps tetrahedron 309 with no face "
+                                    "between them"),
             std::string::npos)
       << s.message();
 }
