@@ -1758,6 +1758,41 @@ class Engine {
     turn->add(cross(edge, n.p[other[0]] - pa), cross(edge, n.p[other[1]] - pa));
   }
 
+  // The corner off outer face c of tet t (the face holds end v of the collapse, not the
+  // other end) of the tet that holds the face after the collapse, at its position then:
+  // t's own corner, or, if t goes (it holds both ends), that of the tet across t's face
+  // opposite v, onto which the face is glued. None (a zero vector, `known` false) if
+  // that tet goes too, or if there is none (the face and its twin then go).
+  struct Apex {
+    Vec3 at;
+    bool known = false;
+  };
+  Apex apex_after(uint32_t t, int c, uint32_t v, uint32_t other, uint32_t kept, uint32_t removed,
+                  const Vec3& k) const {
+    const Tet& q = tet_[t].v;
+    if (!tet_has(q, other)) return {pos_[q[c]], true};
+    int corner_v = 0;
+    while (q[corner_v] != v) ++corner_v;
+    const uint32_t across = across_[4 * t + corner_v];
+    if (across == kInvalidIndex) return {};
+    const Tet& r = tet_[across].v;
+    if (tet_has(r, kept) && tet_has(r, removed)) return {};
+    for (uint32_t y : r) {
+      if (y == other) continue;
+      if (!tet_has(q, y)) return {y == v ? k : pos_[y], true};
+    }
+    return {};
+  }
+
+  // Whether the wedges round edge (p, q) overlap, `faces` being its outer faces after the
+  // collapse (wedges_overlap(), as the reader checks them), or cannot be told (a face
+  // whose tet is not known): only where more than two meet.
+  bool wedges_at_edge_overlap(const Vec3& p, const Vec3& q, const std::vector<EdgeFace>& faces,
+                              bool all_known) const {
+    if (faces.size() <= 2) return false;
+    return !all_known || wedges_overlap(p, q, faces);
+  }
+
   // Whether collapsing (kept, removed) onto position k leaves the outer boundary
   // embedded (see above).
   bool outer_boundary_stays_embedded(uint32_t kept, uint32_t removed, const Vec3& k) {
@@ -1765,6 +1800,7 @@ class Engine {
     // that end, with it at k (those that hold both go); and the tets that stay there.
     fan_.clear();
     fan_corners_.clear();
+    fan_apex_.clear();
     staying_tets_.clear();
     for (int side = 0; side < 2; ++side) {
       const uint32_t v = side == 0 ? kept : removed, other = side == 0 ? removed : kept;
@@ -1784,6 +1820,7 @@ class Engine {
           }
           fan_.push_back(tri);
           fan_corners_.push_back(ids);
+          fan_apex_.push_back(apex_after(t, c, v, other, kept, removed, k));
         }
       }
     }
@@ -1834,8 +1871,26 @@ class Engine {
     }
     for (const Turn& turn : turns_)
       if (turn.full()) return false;
+    // Where bodies meet along an edge (more than two outer faces there), their wedges
+    // must not overlap. At the new node's edges the outer faces are the new ones.
+    for (uint32_t a : rim_) {
+      edge_faces_.clear();
+      bool known = true;
+      for (size_t f = 0; f < fan_.size(); ++f) {
+        const auto& ids = fan_corners_[f];
+        if (ids[0] != a && ids[1] != a && ids[2] != a) continue;
+        const uint32_t w = ids[0] != a && ids[0] != kept
+                               ? ids[0]
+                               : (ids[1] != a && ids[1] != kept ? ids[1] : ids[2]);
+        known &= fan_apex_[f].known;
+        edge_faces_.push_back({pos_[w], fan_apex_[f].at});
+      }
+      if (wedges_at_edge_overlap(k, pos_[a], edge_faces_, known)) return false;
+    }
     for (const auto& e : edges_) {
       Turn turn;
+      edge_faces_.clear();
+      bool known = true;
       for (uint32_t t : star_[e.first]) {
         const Tet& q = tet_[t].v;
         if (!tet_has(q, e.second) || (tet_has(q, kept) && tet_has(q, removed))) continue;
@@ -1844,8 +1899,24 @@ class Engine {
         while (n.v[a] != e.first) ++a;
         while (n.v[b] != e.second) ++b;
         add_angle(n, a, b, &turn);
+        // Its outer faces at the edge that hold no end (those that do are new).
+        for (int c = 0; c < 4; ++c) {
+          if (c == a || c == b || across_[4 * t + c] != kInvalidIndex) continue;
+          const int w = 6 - a - b - c;  // the face's third corner
+          if (q[w] == kept || q[w] == removed) continue;
+          edge_faces_.push_back({n.p[w], n.p[c]});
+        }
       }
       if (turn.full()) return false;
+      for (size_t f = 0; f < fan_.size(); ++f) {
+        const auto& ids = fan_corners_[f];
+        const bool has_a = ids[0] == e.first || ids[1] == e.first || ids[2] == e.first;
+        const bool has_b = ids[0] == e.second || ids[1] == e.second || ids[2] == e.second;
+        if (!has_a || !has_b) continue;
+        known &= fan_apex_[f].known;
+        edge_faces_.push_back({k, fan_apex_[f].at});  // the third corner is the new node
+      }
+      if (wedges_at_edge_overlap(pos_[e.first], pos_[e.second], edge_faces_, known)) return false;
     }
     // The other outer faces of the piece near them: no crossing. Past the budget (a
     // hostile mesh crowding faces into a few cells), refuse rather than not check.
@@ -2028,6 +2099,8 @@ class Engine {
   std::vector<uint32_t> piece_;  // vertex_pieces() of the mesh classified
   std::vector<Triangle3> fan_;   // the outer faces a collapse would make
   std::vector<std::array<uint32_t, 3>> fan_corners_;
+  std::vector<Apex> fan_apex_;        // the corner off each of them, of its tet then
+  std::vector<EdgeFace> edge_faces_;  // outer faces at one edge (wedges_at_edge_overlap())
   std::vector<TrianglePlane> fan_planes_;
   std::vector<Vec3> fan_lo_, fan_hi_;
   std::vector<WouldBeTet> staying_tets_;
