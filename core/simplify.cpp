@@ -1624,8 +1624,10 @@ class Engine {
   // more than a full turn). So a collapse that moves the outer boundary is refused if
   // one of the faces it makes would clearly cross another (the reader's test, within a
   // piece: tets joined through vertices, as the reader checks), or the tets around an
-  // edge of those faces would fill more than a full turn. Checked on the collapses
-  // about to be made, after every other test; the outer faces are kept in a grid.
+  // edge of those faces would fill more than a full turn, or, where more than two outer
+  // faces meet at such an edge (bodies meeting along it), their wedges would overlap.
+  // Checked on the collapses about to be made, after every other test; the outer faces
+  // are kept in a grid.
 
   // Whether collapse c moves the outer boundary's faces: it removes a vertex on it, or
   // moves one.
