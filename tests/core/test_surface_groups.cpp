@@ -152,6 +152,17 @@ TEST(SurfaceGroups, TagsStartAboveEveryMaterialTag) {
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
+// Reads a written file back: the same tets, and the groups' triangles read as the
+// groups, not kept as elements (the CLI says so).
+ReadInfo read_back(const std::string& path, const TetMesh& mesh, const SurfaceGroups& groups) {
+  TetMesh back;
+  ReadInfo info;
+  EXPECT_TRUE(read_mesh(path, &back, &info).ok()) << path;
+  test::expect_same_mesh(mesh, back);
+  EXPECT_EQ(info.surface_elements_not_kept, groups.surface.size()) << path;
+  return info;
+}
+
 TEST(SurfaceGroups, EachWriterCarriesThem) {
   const TetMesh mesh = box2();
   const SurfaceGroups groups = groups_of(mesh);
@@ -177,12 +188,7 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     }
     for (auto& [tag, list] : read) std::sort(list.begin(), list.end());
     EXPECT_EQ(read, triangles_by_tag(mesh, groups));
-    TetMesh back;
-    ReadInfo info;
-    ASSERT_TRUE(read_mesh(dir + "/box2.mesh", &back, &info).ok());
-    test::expect_same_mesh(mesh, back);
-    // The triangles are read as the groups, not kept as elements (the CLI says so).
-    EXPECT_EQ(info.surface_elements_not_kept, groups.surface.size());
+    const ReadInfo info = read_back(dir + "/box2.mesh", mesh, groups);
     EXPECT_EQ(info.surface_groups.size(), 3u);
   }
 
@@ -206,11 +212,7 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     }
     for (auto& [tag, list] : read) std::sort(list.begin(), list.end());
     EXPECT_EQ(read, triangles_by_tag(mesh, groups));
-    TetMesh back;
-    ReadInfo info;
-    ASSERT_TRUE(read_mesh(dir + "/box2.node", &back, &info).ok());
-    test::expect_same_mesh(mesh, back);
-    EXPECT_EQ(info.surface_elements_not_kept, groups.surface.size());
+    const ReadInfo info = read_back(dir + "/box2.node", mesh, groups);
     EXPECT_EQ(info.surface_groups.size(), 3u);
   }
 
@@ -224,12 +226,7 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     const std::string text = test::read_text(path);
     EXPECT_NE(text.find("2 3 \"boundary_1\"\n2 4 \"boundary_2\"\n2 5 \"interface_1_2\"\n"),
               std::string::npos);
-    TetMesh back;
-    ReadInfo info;
-    ASSERT_TRUE(read_mesh(path, &back, &info).ok());
-    test::expect_same_mesh(mesh, back);
-    // The triangles are read as the groups, not kept as elements (the CLI says so).
-    EXPECT_EQ(info.surface_elements_not_kept, groups.surface.size());
+    const ReadInfo info = read_back(path, mesh, groups);
     ASSERT_EQ(info.surface_groups.size(), 3u);
     EXPECT_EQ(info.surface_groups[0].name, "boundary_1");
   }
@@ -246,11 +243,7 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     EXPECT_NE(text.find(xml ? "NumberOfCells=\"" + std::to_string(cells) + "\""
                             : "CELL_TYPES " + std::to_string(cells) + "\n"),
               std::string::npos);
-    TetMesh back;
-    ReadInfo info;
-    ASSERT_TRUE(read_mesh(path, &back, &info).ok());
-    test::expect_same_mesh(mesh, back);
-    EXPECT_EQ(info.surface_elements_not_kept, groups.surface.size());
+    const ReadInfo info = read_back(path, mesh, groups);
     ASSERT_EQ(info.surface_groups.size(), 3u);
     std::map<int32_t, std::vector<PositionTriangle>> read;
     for (const auto& group : info.surface_groups) {
