@@ -411,9 +411,10 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
                        (e + 2 == edges.size() || edges[e + 2].first != edges[e].first);
       if (!two) {
         // Bodies meeting along the edge: their wedges must not overlap.
+        if (!first_of_edge) continue;
         size_t end = e;
         while (end < edges.size() && edges[end].first == edges[e].first) ++end;
-        if (!first_of_edge || end - e < 3) continue;
+        if (end - e < 3) continue;
         const uint32_t u = uint32_t(edges[e].first >> 32), v = uint32_t(edges[e].first);
         std::vector<EdgeFace> around;
         for (size_t k = e; k < end; ++k) {

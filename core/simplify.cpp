@@ -1839,12 +1839,19 @@ class Engine {
         hi[a] = f == 0 ? fan_hi_[f][a] : std::max(hi[a], fan_hi_[f][a]);
       }
     }
+    return !new_faces_fold(kept, removed, k) && !new_faces_cross_others(kept, removed, lo, hi);
+  }
+
+  // Whether the new faces (fan_ and the rest, as outer_boundary_stays_embedded() lists
+  // them) cross one another, or the tets round one of their edges would fill a turn, or
+  // wedges would overlap where more than two outer faces meet at one of their edges.
+  bool new_faces_fold(uint32_t kept, uint32_t removed, const Vec3& k) {
     // The new faces among themselves.
     for (size_t f = 0; f < fan_.size(); ++f)
       for (size_t g = f + 1; g < fan_.size(); ++g)
         if (boxes_meet(fan_lo_[f], fan_hi_[f], fan_lo_[g], fan_hi_[g]) &&
             triangles_cross(fan_[f], fan_planes_[f], fan_[g], fan_planes_[g]))
-          return false;
+          return true;
     // Round each of their edges. Every new face holds the new node: its edges to the
     // other corners (rim_), round which the tets that stay turn, are summed in one pass
     // over those tets; a far edge (a, b), over a's tets but those around the collapsed
@@ -1872,7 +1879,7 @@ class Engine {
       }
     }
     for (const Turn& turn : turns_)
-      if (turn.full()) return false;
+      if (turn.full()) return true;
     // Where bodies meet along an edge (more than two outer faces there), their wedges
     // must not overlap. At the new node's edges the outer faces are the new ones.
     for (uint32_t a : rim_) {
@@ -1887,7 +1894,7 @@ class Engine {
         known &= fan_apex_[f].known;
         edge_faces_.push_back({pos_[w], fan_apex_[f].at});
       }
-      if (wedges_at_edge_overlap(k, pos_[a], edge_faces_, known)) return false;
+      if (wedges_at_edge_overlap(k, pos_[a], edge_faces_, known)) return true;
     }
     for (const auto& e : edges_) {
       Turn turn;
@@ -1909,7 +1916,7 @@ class Engine {
           edge_faces_.push_back({n.p[w], n.p[c]});
         }
       }
-      if (turn.full()) return false;
+      if (turn.full()) return true;
       for (size_t f = 0; f < fan_.size(); ++f) {
         const auto& ids = fan_corners_[f];
         const bool has_a = ids[0] == e.first || ids[1] == e.first || ids[2] == e.first;
@@ -1918,12 +1925,18 @@ class Engine {
         known &= fan_apex_[f].known;
         edge_faces_.push_back({k, fan_apex_[f].at});  // the third corner is the new node
       }
-      if (wedges_at_edge_overlap(pos_[e.first], pos_[e.second], edge_faces_, known)) return false;
+      if (wedges_at_edge_overlap(pos_[e.first], pos_[e.second], edge_faces_, known)) return true;
     }
+    return false;
+  }
+
+  // Whether a new face would clearly cross another outer face of the piece; [lo, hi] is
+  // the box of the new faces.
+  bool new_faces_cross_others(uint32_t kept, uint32_t removed, const Vec3& lo, const Vec3& hi) {
     // The other outer faces of the piece near them: no crossing. Past the budget (a
     // hostile mesh crowding faces into a few cells), refuse rather than not check.
     candidates_.clear();
-    if (!outer_grid_.gather(lo, hi, kGuardBudget, &candidates_)) return false;
+    if (!outer_grid_.gather(lo, hi, kGuardBudget, &candidates_)) return true;
     const uint32_t piece = piece_[kept];
     // Each tet once (an entry is in every cell its face touched, and the face may
     // have moved since): all its outer faces as they are now, but those at an
@@ -1952,13 +1965,13 @@ class Engine {
           if (!boxes_meet(fan_lo_[f], fan_hi_[f], tlo, thi)) continue;
           if (!have_plane) plane = plane_of(tri), have_plane = true;
           if (triangles_cross(fan_[f], fan_planes_[f], tri, plane)) {
-            if (piece_[q[0]] == piece) return false;
+            if (piece_[q[0]] == piece) return true;
             break;  // another piece's faces may cross (as find_overlap() reads them)
           }
         }
       }
     }
-    return true;
+    return false;
   }
 
   // ----------------------------------------------------------------- output
