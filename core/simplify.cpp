@@ -1626,8 +1626,11 @@ class Engine {
   // piece: tets joined through vertices, as the reader checks), or the tets around an
   // edge of those faces would fill more than a full turn, or, where more than two outer
   // faces meet at such an edge (bodies meeting along it), their wedges would overlap.
-  // Checked on the collapses about to be made, after every other test; the outer faces
-  // are kept in a grid.
+  // Bodies meshed apart (other pieces) are held to less: a face the collapse makes may
+  // cross one of theirs only if a face it replaces crossed it already (where they meet
+  // on a curved surface, their two meshes' chords cross by design), so no collapse
+  // pushes one body into another that it did not cross. Checked on the collapses about
+  // to be made, after every other test; the outer faces are kept in a grid.
 
   // Whether collapse c moves the outer boundary's faces: it removes a vertex on it, or
   // moves one.
@@ -1930,8 +1933,9 @@ class Engine {
     return false;
   }
 
-  // Whether a new face would clearly cross another outer face of the piece; [lo, hi] is
-  // the box of the new faces.
+  // Whether a new face would clearly cross another outer face: of the piece, or of
+  // another piece where none of the faces the collapse replaces crossed that face
+  // already. [lo, hi] is the box of the new faces.
   bool new_faces_cross_others(uint32_t kept, uint32_t removed, const Vec3& lo, const Vec3& hi) {
     // The other outer faces of the piece near them: no crossing. Past the budget (a
     // hostile mesh crowding faces into a few cells), refuse rather than not check.
@@ -1965,9 +1969,28 @@ class Engine {
           if (!boxes_meet(fan_lo_[f], fan_hi_[f], tlo, thi)) continue;
           if (!have_plane) plane = plane_of(tri), have_plane = true;
           if (triangles_cross(fan_[f], fan_planes_[f], tri, plane)) {
-            if (piece_[q[0]] == piece) return true;
-            break;  // another piece's faces may cross (as find_overlap() reads them)
+            // Bodies meshed apart may cross where they meet (find_overlap() reads them
+            // so: the chords of two meshes of one curved surface): a collapse may keep
+            // such a crossing, not make one.
+            if (piece_[q[0]] == piece || !crossed_now(kept, removed, tri, plane)) return true;
+            break;
           }
+        }
+      }
+    }
+    return false;
+  }
+
+  // Whether an outer face at `kept` or `removed` (those the collapse replaces), as it is
+  // now, clearly crosses `tri`.
+  bool crossed_now(uint32_t kept, uint32_t removed, const Triangle3& tri,
+                   const TrianglePlane& plane) const {
+    for (uint32_t v : {kept, removed}) {
+      for (uint32_t t : star_[v]) {
+        for (int c = 0; c < 4; ++c) {
+          if (tet_[t].v[c] == v || across_[4 * t + c] != kInvalidIndex) continue;
+          const Triangle3 old = face_triangle(4 * t + c);
+          if (triangles_cross(old, plane_of(old), tri, plane)) return true;
         }
       }
     }

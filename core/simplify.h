@@ -7,7 +7,8 @@
 // tau_ST or size above tau_SZ, or a node with valence above tau_VL, and every
 // material region, interface, junction curve and corner keeps its topology. Nor does
 // any collapse make tets of one body overlap (find_overlap(), overlap.h) where they
-// did not: the outer boundary is never pushed through itself.
+// did not: the outer boundary is never pushed through itself, nor one body meshed
+// apart into another.
 #pragma once
 
 #include <atomic>
@@ -49,10 +50,10 @@ struct RejectionCounts {
   uint64_t size = 0;
   uint64_t valence = 0;
   uint64_t topology = 0;  // feature rules and link conditions
-  // The outer boundary would cross itself, wrap round one of its edges, or swallow a
-  // vertex of another part of it: tets would overlap with no face between them (two
-  // sheets nearer than the tolerance, as across a thin gap). Checked on the collapses
-  // about to be made, after the others.
+  // The outer boundary would cross itself or wrap round one of its edges: tets would
+  // overlap with no face between them (two sheets nearer than the tolerance, as across
+  // a thin gap); or a body's faces would cross those of another body meshed apart,
+  // where they did not. Checked on the collapses about to be made, after the others.
   uint64_t overlap = 0;
 };
 

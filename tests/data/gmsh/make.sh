@@ -39,3 +39,7 @@ gmsh sheet.geo -3 -clmax 0.25 -v 0 -format msh41 -o sheet.msh
 # A ball with a thin spherical gap inside, bridged: two sheets of outer boundary 0.15
 # apart, for the simplifier's guard against a boundary pushed through itself.
 gmsh gap.geo -3 -clmax 0.9 -v 0 -format msh22 -o gap.msh
+# A ball inside a shell, meshed apart: 0.15 apart, and touching (chords that cross), for
+# the simplifier's guard between bodies.
+gmsh apart.geo -3 -clmax 0.9 -v 0 -format msh22 -o apart.msh
+gmsh apart.geo -3 -clmax 0.9 -v 0 -setnumber gap 0 -format msh22 -o touch.msh
