@@ -6,7 +6,8 @@
 // run made (violations.created == 0), and the history replaying to the output and back
 // to the subdivided base exactly, with deltas that say everything a seek changed, and
 // the output passing validation as a file read back would (no overlapping tets) when
-// the subdivided base does.
+// the subdivided base does, and no boundary faces of two bodies meshed apart crossing
+// where none of the base's do.
 // Per material the same number of regions, per material pair the same interface Euler
 // characteristic (tests/core/topology_checks.h), after subdivision and at the end.
 // Then `--improve` on the output must keep its own guarantee: positive tets, no more
@@ -26,9 +27,11 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/metrics.h"
+#include "core/overlap.h"
 #include "core/simplify.h"
 #include "core/surface.h"
 #include "core/topology_checks.h"  // tests/
+#include "core/triangle_cross.h"
 #include "core/validate.h"
 
 // A failed check: a crash for libFuzzer; tests/core/test_fuzz_seeds.cpp, which runs
@@ -77,6 +80,52 @@ std::map<int32_t, int> regions_per_material(const tetlod::TetMesh& mesh) {
   std::map<int32_t, int> count;
   for (int32_t m : material_of) ++count[m];
   return count;
+}
+
+// Whether boundary faces of two different pieces (bodies meshed apart, which the
+// reader lets cross) clearly cross: a sweep along x over the faces' boxes.
+bool pieces_cross(const tetlod::TetMesh& mesh) {
+  std::vector<uint32_t> neighbors;
+  if (tetlod::build_face_neighbors(mesh, &neighbors).kind != tetlod::FaceProblem::Kind::kNone)
+    TETLOD_FUZZ_FAIL();
+  const std::vector<uint32_t> piece = tetlod::vertex_pieces(mesh);
+  struct Face {
+    tetlod::Triangle3 t;
+    tetlod::Vec3 lo, hi;
+    uint32_t piece;
+  };
+  std::vector<Face> faces;
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    const tetlod::Tet& q = mesh.tets[t];
+    for (int c = 0; c < 4; ++c) {
+      if (neighbors[4 * t + c] != tetlod::kInvalidIndex) continue;
+      Face f{{mesh.positions[q[(c + 1) % 4]], mesh.positions[q[(c + 2) % 4]],
+              mesh.positions[q[(c + 3) % 4]]},
+             {},
+             {},
+             piece[q[0]]};
+      f.lo = f.hi = f.t[0];
+      for (const tetlod::Vec3& x : f.t) {
+        for (int a = 0; a < 3; ++a)
+          f.lo[a] = std::min(f.lo[a], x[a]), f.hi[a] = std::max(f.hi[a], x[a]);
+      }
+      faces.push_back(f);
+    }
+  }
+  std::sort(faces.begin(), faces.end(),
+            [](const Face& a, const Face& b) { return a.lo.x < b.lo.x; });
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const Face& a = faces[i];
+    for (size_t j = i + 1; j < faces.size() && faces[j].lo.x <= a.hi.x; ++j) {
+      const Face& b = faces[j];
+      if (a.piece == b.piece || b.lo.y > a.hi.y || a.lo.y > b.hi.y || b.lo.z > a.hi.z ||
+          a.lo.z > b.hi.z)
+        continue;
+      if (tetlod::triangles_cross(a.t, tetlod::plane_of(a.t), b.t, tetlod::plane_of(b.t)))
+        return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -135,6 +184,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     reread = result.output;
     if (!tetlod::validate_mesh(&reread, "output", {}, &report).ok()) TETLOD_FUZZ_FAIL();
   }
+  if (!pieces_cross(result.base) && pieces_cross(result.output)) TETLOD_FUZZ_FAIL();
   if (result.violations.created != 0) TETLOD_FUZZ_FAIL();
   if (regions_per_material(result.output) != regions_per_material(result.base) ||
       tetlod::test::interface_euler(result.output) != tetlod::test::interface_euler(result.base))

@@ -11,3 +11,8 @@ for g in checker edge_touch vertex_touch; do
   "$tetlod" convert "/tmp/tetlod_$g.msh" "$g.mesh"
   rm -f "/tmp/tetlod_$g.msh"
 done
+# Two bodies meshed apart, 0.4 from each other (a coarse tests/data/gmsh/apart.msh with a
+# wider gap, so that the chords of the shell's inner wall stay clear of the ball).
+gmsh -3 ../gmsh/apart.geo -clmax 1.6 -setnumber gap 0.4 -o /tmp/tetlod_apart.msh -format msh41 > /dev/null
+"$tetlod" convert /tmp/tetlod_apart.msh apart.mesh
+rm -f /tmp/tetlod_apart.msh
