@@ -40,7 +40,8 @@ const char* const kWriteFlagsHelp =
     "                    (boundary_<m>, interface_<a>_<b>, numbered above the materials):\n"
     "                    .msh physical surfaces, .mesh triangle references, a TetGen\n"
     "                    .face file, .inp node sets and element-face surfaces, .vtk/.vtu\n"
-    "                    triangle cells with the tag as material (not Nastran)\n";
+    "                    triangle cells with the tag as material, Nastran CTRIA3s with\n"
+    "                    the tag as PID\n";
 
 OptionResult parse_write_option(const Args& args, size_t* i, const char* command,
                                 WriteOptions* options) {

@@ -401,8 +401,7 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
         "input file's own surface groups under their names and tags, the rest a group\n"
         "per material pair (boundary_<m>, interface_<a>_<b>). In .msh physical\n"
         "surfaces, .mesh triangle references, a TetGen .face file, .inp node sets and\n"
-        "element-face surfaces, .vtk/.vtu triangle cells (by tag). Nastran has no place\n"
-        "for them.");
+        "element-face surfaces, .vtk/.vtu triangle cells and Nastran CTRIA3s (by tag).");
   ImGui::SetNextItemWidth(-110);
   ImGui::InputText("##shot", panel->screenshot_path, sizeof(panel->screenshot_path));
   ImGui::SameLine();

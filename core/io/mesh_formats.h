@@ -55,7 +55,7 @@ void write_tetgen_ele(const TetMesh& mesh, std::string* out);
 void write_tetgen_face(const SurfaceGroups& surfaces, std::string* out, bool markers = true);
 void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
-void write_nastran(const TetMesh& mesh, std::string* out);
+void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
                   const std::vector<MaterialName>* names, std::string* out);
 // With extra point and cell arrays (sizes and names checked by the caller).

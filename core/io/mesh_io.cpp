@@ -19,10 +19,6 @@ constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vt
 
 enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu, kNastran, kAbaqus };
 
-bool surface_groups_supported(FileKind kind) {
-  return kind != FileKind::kNastran;
-}
-
 // The extension of the file name in `path`, lower case, without the dot.
 std::string extension_of(const std::string& path) {
   const size_t slash = path.find_last_of('/');
@@ -221,11 +217,6 @@ Status check_mesh_path(const std::string& path, const WriteOptions& options) {
     return Status::error(path + ": unsupported Gmsh version " +
                          std::to_string(options.gmsh_version) + " (use 22 or 41)");
   }
-  if (options.surface_groups && !surface_groups_supported(kind)) {
-    return Status::error(path +
-                         ": surface groups are written to .msh, .mesh, .node/.ele (as "
-                         "a .face file), .vtk, .vtu and .inp, not Nastran");
-  }
   return Status();
 }
 
@@ -279,7 +270,7 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       io::write_vtu(mesh, surfaces, &text);
       break;
     case FileKind::kNastran:
-      io::write_nastran(mesh, &text);
+      io::write_nastran(mesh, surfaces, &text);
       break;
     case FileKind::kAbaqus:
       io::write_abaqus(mesh, surfaces, options.material_names, &text);

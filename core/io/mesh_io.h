@@ -170,7 +170,7 @@ struct WriteOptions {
 
 // Whether `path` has an extension read_mesh() and write_mesh() know; the error names
 // it and lists the ones they do (any case). With `options`, also whether they can be
-// written there (Gmsh version, surface groups). For a command to check its output
+// written there (the Gmsh version). For a command to check its output
 // path up front, or to tell "not a mesh file" from a mesh file that failed to read.
 Status check_mesh_path(const std::string& path, const WriteOptions& options = {});
 

@@ -475,7 +475,7 @@ Status parse_nastran(std::string_view text, const std::string& name, ParsedMesh*
   return parser.parse();
 }
 
-void write_nastran(const TetMesh& mesh, std::string* out) {
+void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
   // Material m > 0 is PID m; material 0 (no PID can be 0) the smallest unused PID,
   // named in a comment that TetLOD reads back.
   std::vector<int32_t> materials = mesh.materials;
@@ -485,17 +485,46 @@ void write_nastran(const TetMesh& mesh, std::string* out) {
   for (int32_t m : materials)
     if (m == zero_pid) ++zero_pid;
   const bool has_zero = !materials.empty() && materials.front() == 0;
+  size_t triangle_count = 0;
+  int64_t largest_tag = 0;
+  if (surfaces) {
+    for (const SurfaceGroup& group : surfaces->groups) {
+      triangle_count += group.triangles.size();
+      largest_tag = std::max<int64_t>(largest_tag, group.tag);
+    }
+  }
 
-  out->reserve(out->size() + mesh.vertex_count() * 82 + mesh.tet_count() * 50);
+  out->reserve(out->size() + mesh.vertex_count() * 82 + mesh.tet_count() * 50 +
+               triangle_count * 42);
   out->append("$ Nastran bulk data written by TetLOD: ");
   append_number(out, mesh.vertex_count());
   out->append(" GRID, ");
   append_number(out, mesh.tet_count());
-  out->append(" CTETRA; the PID of a CTETRA is its material\n");
+  out->append(" CTETRA");
+  if (surfaces) {
+    out->append(", ");
+    append_number(out, triangle_count);
+    out->append(" CTRIA3");
+  }
+  out->append("; the PID of a CTETRA is its material");
+  if (surfaces) out->append(", of a CTRIA3 its surface group");
+  out->push_back('\n');
   if (has_zero) {
     out->append(kMaterialZeroComment);
     append_number(out, zero_pid);
     out->push_back('\n');
+  }
+  // The surface groups, as Gmsh's Nastran export writes physical surfaces: a CTRIA3
+  // per triangle, after the CTETRAs, with the group's tag as its PID (which no
+  // material's PID reaches: first_surface_tag()). The names go in comments.
+  if (surfaces) {
+    for (const SurfaceGroup& group : surfaces->groups) {
+      out->append("$ surface group: the CTRIA3 with PID ");
+      append_number(out, group.tag);
+      out->append(" are ");
+      out->append(group.name.empty() ? "unnamed" : group.name);
+      out->push_back('\n');
+    }
   }
   // The bulk data section's opening line: a file of bulk data alone does not need it,
   // but meshio (5.0) reads nothing without it, and Gmsh and TetLOD skip it.
@@ -512,28 +541,48 @@ void write_nastran(const TetMesh& mesh, std::string* out) {
     out->append(nastran_real(p.z));
     out->push_back('\n');
   }
-  // CTETRA in small field when every id fits in 8 characters, else large field.
-  const bool small = mesh.vertex_count() < 100000000 && mesh.tet_count() < 100000000 &&
-                     (materials.empty() || materials.back() < 100000000) && zero_pid < 100000000;
+  // Elements in small field when every id fits in 8 characters, else large field.
+  const bool small = mesh.vertex_count() < 100000000 &&
+                     mesh.tet_count() + triangle_count < 100000000 &&
+                     (materials.empty() || materials.back() < 100000000) && zero_pid < 100000000 &&
+                     largest_tag < 100000000;
+  // An element: its name, then its ids (EID, PID, grids; 5 or 6). In large field,
+  // four to a line, the rest on a continuation line.
+  auto element = [&](const char* name, const std::string* ids, int count) {
+    out->append(name);
+    if (small) {
+      out->append(8 - std::strlen(name), ' ');
+      for (int k = 0; k + 1 < count; ++k) append_field(out, ids[k], 8);
+    } else {
+      out->push_back('*');
+      out->append(7 - std::strlen(name), ' ');
+      for (int k = 0; k < 3; ++k) append_field(out, ids[k], 16);
+      out->append(ids[3]);
+      out->append("\n*       ");
+      for (int k = 4; k + 1 < count; ++k) append_field(out, ids[k], 16);
+    }
+    out->append(ids[count - 1]);
+    out->push_back('\n');
+  };
   for (size_t t = 0; t < mesh.tet_count(); ++t) {
     const Tet& tet = mesh.tets[t];
     const int64_t pid = mesh.materials[t] == 0 ? zero_pid : mesh.materials[t];
     const std::string ids[6] = {std::to_string(t + 1),      std::to_string(pid),
                                 std::to_string(tet[0] + 1), std::to_string(tet[1] + 1),
                                 std::to_string(tet[2] + 1), std::to_string(tet[3] + 1)};
-    if (small) {
-      out->append("CTETRA  ");
-      for (int k = 0; k < 5; ++k) append_field(out, ids[k], 8);
-      out->append(ids[5]);
-    } else {
-      out->append("CTETRA* ");
-      for (int k = 0; k < 3; ++k) append_field(out, ids[k], 16);
-      out->append(ids[3]);
-      out->append("\n*       ");
-      append_field(out, ids[4], 16);
-      out->append(ids[5]);
+    element("CTETRA", ids, 6);
+  }
+  if (surfaces) {
+    size_t eid = mesh.tet_count();
+    for (const SurfaceGroup& group : surfaces->groups) {
+      for (uint32_t i : group.triangles) {
+        const auto& v = surfaces->surface[i].v;
+        const std::string ids[5] = {std::to_string(++eid), std::to_string(group.tag),
+                                    std::to_string(v[0] + 1), std::to_string(v[1] + 1),
+                                    std::to_string(v[2] + 1)};
+        element("CTRIA3", ids, 5);
+      }
     }
-    out->push_back('\n');
   }
   out->append("ENDDATA\n");
 }

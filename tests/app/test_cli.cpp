@@ -397,7 +397,7 @@ TEST(Cli, SimplifyRefusesSurfaceGroupsWithNoTagsLeftUpFront) {
 }
 
 // --surfaces and --msh-version on every command that writes a mesh: the groups are
-// printed and written; a format with no place for them is a usage error up front.
+// printed and written, in every format (Nastran too).
 TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   const std::string path = write_grid("surf.mesh");  // materials 1 (x < 1) and 2
   const std::string groups_line =
@@ -411,14 +411,15 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   EXPECT_EQ(text.rfind("$MeshFormat\n2.2 0 8\n", 0), 0u);
   EXPECT_NE(text.find("$PhysicalNames\n5\n2 3 \"boundary_1\"\n"), std::string::npos);
 
+  // Nastran: a CTRIA3 per triangle, the group's tag as its PID, as Gmsh writes them.
   const std::string bdf = out_dir() + "/surf_out.bdf";
-  fs::remove(bdf);
   r = run("convert " + path + " " + bdf + " --surfaces");
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.output.find("surf_out.bdf: surface groups are written to .msh, .mesh"),
-            std::string::npos)
-      << r.output;
-  EXPECT_FALSE(fs::exists(bdf));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  EXPECT_NE(read_file(bdf).find(" 88 CTRIA3;"), std::string::npos);
+  r = run("convert " + bdf + " " + out_dir() + "/surf_bdf_again.msh --surfaces");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
   // Read back, each group is a whole pair's: written again under the same tag and name.
   const std::string again = out_dir() + "/surf_again.msh";
   r = run("convert " + converted + " " + again + " --surfaces");
@@ -461,8 +462,8 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
   EXPECT_EQ(read_file(simplified).rfind("$MeshFormat\n2.2 0 8\n", 0), 0u);
   r = run("simplify " + path + " -o " + bdf + " --size 0.9 --surfaces");
-  EXPECT_EQ(r.code, 2) << r.output;
-  EXPECT_EQ(r.output.find("input "), std::string::npos) << "checked before any work";
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(read_file(bdf).find("\nCTRIA3  "), std::string::npos);
 
   const std::string level = out_dir() + "/surf_level.mesh";
   r = run("lod " + history + " --step 0 -o " + level + " --surfaces");
@@ -470,8 +471,11 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
   text = read_file(level);
   EXPECT_NE(text.find("\nTriangles\n88\n"), std::string::npos);
+  fs::remove(bdf);
   r = run("lod " + history + " --step 0 -o " + bdf + " --surfaces");
-  EXPECT_EQ(r.code, 2) << r.output;
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  EXPECT_NE(read_file(bdf).find(" 88 CTRIA3;"), std::string::npos);
 }
 
 TEST(Cli, SimplifyRejectsAbsurdThresholds) {

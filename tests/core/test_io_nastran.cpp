@@ -8,6 +8,7 @@
 #include <random>
 
 #include "core/io/mesh_io.h"
+#include "core/surface.h"
 #include "core/test_io_helpers.h"
 #include "core/test_meshes.h"
 
@@ -100,6 +101,41 @@ TEST(IoNastran, WrittenFilesReadBackWithEveryMaterial) {
   ASSERT_TRUE(write_mesh(dir + "/grid.bdf", grid).ok());
   ASSERT_TRUE(read_mesh(dir + "/grid.bdf", &back).ok());
   test::expect_same_mesh(grid, back);
+}
+
+// With surface groups: a CTRIA3 per triangle, the group's tag as its PID; in large
+// field when a tag does not fit in 8 characters.
+TEST(IoNastran, SurfaceGroupsReadBackInSmallAndLargeField) {
+  const std::string dir = test::output_dir("nastran");
+  for (int32_t second : {2, 99999999}) {
+    SCOPED_TRACE(second);
+    const TetMesh grid = test::make_grid_mesh(
+        2, 2, 1, [&](int i, int, int) { return i == 0 ? 1 : second; }, 0.5);
+    SurfaceGroups groups;
+    ASSERT_TRUE(group_surface(grid, &groups).ok());
+    WriteOptions options;
+    options.surface_groups = true;
+    const std::string path = dir + "/groups.bdf";
+    ASSERT_TRUE(write_mesh(path, grid, options).ok());
+    const std::string text = test::read_text(path);
+    EXPECT_EQ(text.find("\nCTRIA3* ") != std::string::npos, second > 2);
+    size_t start = 0;
+    for (size_t end = text.find('\n'); end != std::string::npos; end = text.find('\n', start)) {
+      if (text[start] != '$') {
+        EXPECT_LE(end - start, 80u) << text.substr(start, end - start);
+      }
+      start = end + 1;
+    }
+    TetMesh back;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+    test::expect_same_mesh(grid, back);
+    ASSERT_EQ(info.surface_groups.size(), groups.groups.size());
+    for (size_t g = 0; g < groups.groups.size(); ++g) {
+      EXPECT_EQ(info.surface_groups[g].tag, groups.groups[g].tag);
+      EXPECT_EQ(info.surface_groups[g].triangles.size(), groups.groups[g].triangles.size());
+    }
+  }
 }
 
 TEST(IoNastran, RandomDamageNeverCrashes) {
