@@ -313,148 +313,170 @@ uint32_t tet_holding(const TetMesh& mesh, const Vec3& p, uint32_t except) {
   return best;
 }
 
-}  // namespace
-
-OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& neighbors) {
-  OverlapFinding found;
-  const size_t tet_count = mesh.tets.size();
-  const std::vector<Vec3>& pos = mesh.positions;
-
-  std::vector<BoundaryFace> faces;
-  for (uint32_t t = 0; t < tet_count; ++t) {
-    for (int c = 0; c < 4; ++c) {
-      if (neighbors[4 * size_t{t} + c] != kInvalidIndex) continue;
-      const Tet& q = mesh.tets[t];
-      faces.push_back({{q[kTetFace[c][0]], q[kTetFace[c][1]], q[kTetFace[c][2]]}, t, c});
+// find_overlap()'s checks, in turn, on one mesh: each returns true when the search is
+// over (something found, or a budget spent), with the result in found_.
+class OverlapSearch {
+ public:
+  OverlapSearch(const TetMesh& mesh, const std::vector<uint32_t>& neighbors)
+      : mesh_(mesh), neighbors_(neighbors), pos_(mesh.positions) {
+    for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
+      for (int c = 0; c < 4; ++c) {
+        if (neighbors[4 * size_t{t} + c] != kInvalidIndex) continue;
+        const Tet& q = mesh.tets[t];
+        faces_.push_back({{q[kTetFace[c][0]], q[kTetFace[c][1]], q[kTetFace[c][2]]}, t, c});
+      }
     }
+    // Budgets: pairs of faces that share a cell, tets passed round boundary edges (a
+    // boundary edge has about three), and solid angles (about 100 ns each).
+    pair_budget_ = 64 * faces_.size() + (size_t{1} << 22);
+    walk_budget_ = 32 * faces_.size() + (size_t{1} << 20);
+    winding_budget_ = 8 * faces_.size() + (size_t{1} << 20);
+    number_surfaces();
+    // Pieces are vertex-disjoint and each has a surface of its own: with one surface
+    // the mesh is one piece, and its tets are not numbered.
+    if (first_face_.size() > 1) first_tet_ = number_pieces(mesh, &piece_);
   }
-  // Budgets: pairs of faces that share a cell, tets passed round boundary edges (a
-  // boundary edge has about three), and solid angles (about 100 ns each).
-  const size_t pair_budget = 64 * faces.size() + (size_t{1} << 22);
-  const size_t walk_budget = 32 * faces.size() + (size_t{1} << 20);
-  const size_t winding_budget = 8 * faces.size() + (size_t{1} << 20);
-  size_t work = 0, walked = 0;
+
+  OverlapFinding run() {
+    if (crossing_within_a_piece() || overlap_at_an_edge() || sheet_wound_twice()) return found_;
+    piece_inside_another();
+    return found_;
+  }
+
+ private:
+  uint32_t piece_of(uint32_t t) const { return piece_.empty() ? 0u : piece_[t]; }
+
+  bool finding(OverlapFinding::Kind kind, uint32_t a, uint32_t b) {
+    found_.kind = kind;
+    found_.tet_a = a;
+    found_.tet_b = b;
+    return true;
+  }
+
+  bool cut_short() {
+    found_.cut_short = true;
+    return true;
+  }
 
   // Surfaces: boundary faces joined through shared vertices, numbered in face order.
-  std::vector<uint32_t> surface_of(faces.size()), first_face;  // first_face: of each
-  {
-    std::vector<uint32_t> root(pos.size());
+  void number_surfaces() {
+    surface_of_.resize(faces_.size());
+    std::vector<uint32_t> root(pos_.size());
     std::iota(root.begin(), root.end(), 0u);
-    for (const BoundaryFace& f : faces) {
+    for (const BoundaryFace& f : faces_) {
       for (int k = 1; k < 3; ++k) unite(root, f.v[0], f.v[k]);
     }
-    std::vector<uint32_t> surface_of_root(pos.size(), kInvalidIndex);
-    for (uint32_t f = 0; f < faces.size(); ++f) {
-      uint32_t& s = surface_of_root[find_root(root, faces[f].v[0])];
+    std::vector<uint32_t> surface_of_root(pos_.size(), kInvalidIndex);
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      uint32_t& s = surface_of_root[find_root(root, faces_[f].v[0])];
       if (s == kInvalidIndex) {
-        s = static_cast<uint32_t>(first_face.size());
-        first_face.push_back(f);
+        s = static_cast<uint32_t>(first_face_.size());
+        first_face_.push_back(f);
       }
-      surface_of[f] = s;
+      surface_of_[f] = s;
     }
   }
-  // Pieces are vertex-disjoint and each has a surface of its own: with one surface
-  // the mesh is one piece, and its tets are not numbered.
-  std::vector<uint32_t> piece, first_tet;
-  if (first_face.size() > 1) first_tet = number_pieces(mesh, &piece);
-  auto piece_of = [&](uint32_t t) { return piece.empty() ? 0u : piece[t]; };
 
-  // Crossings within a piece.
-  {
-    std::vector<Triangle3> tri(faces.size());
-    std::vector<TrianglePlane> planes(faces.size());
-    for (size_t f = 0; f < faces.size(); ++f) {
-      for (int k = 0; k < 3; ++k) tri[f][k] = pos[faces[f].v[k]];
+  // Two boundary faces of one piece that clearly cross. Past the budget, what was
+  // checked passed and the other checks still run.
+  bool crossing_within_a_piece() {
+    std::vector<Triangle3> tri(faces_.size());
+    std::vector<TrianglePlane> planes(faces_.size());
+    for (size_t f = 0; f < faces_.size(); ++f) {
+      for (int k = 0; k < 3; ++k) tri[f][k] = pos_[faces_[f].v[k]];
       planes[f] = plane_of(tri[f]);
     }
     const BoxGrid grid = grid_of_triangles(tri);
-    const bool complete = grid.for_each_overlapping_pair(pair_budget, [&](uint32_t i, uint32_t j) {
-      const BoundaryFace &s = faces[i], &t = faces[j];
+    bool crossed = false;
+    const bool complete = grid.for_each_overlapping_pair(pair_budget_, [&](uint32_t i, uint32_t j) {
+      const BoundaryFace &s = faces_[i], &t = faces_[j];
       int shared = 0;
       for (uint32_t v : s.v) shared += v == t.v[0] || v == t.v[1] || v == t.v[2];
       if (shared >= 2 || !triangles_cross(tri[i], planes[i], tri[j], planes[j])) return true;
       if (piece_of(s.tet) != piece_of(t.tet)) return true;
-      found.kind = OverlapFinding::Kind::kCrossing;
-      found.tet_a = std::min(s.tet, t.tet);
-      found.tet_b = std::max(s.tet, t.tet);
+      crossed =
+          finding(OverlapFinding::Kind::kCrossing, std::min(s.tet, t.tet), std::max(s.tet, t.tet));
       return false;
     });
-    found.cut_short = !complete;
-    if (found.kind != OverlapFinding::Kind::kNone) return found;
+    found_.cut_short = !complete;
+    return crossed;
+  }
+
+  // At each boundary edge: with two faces, the tets round it must fill less than a
+  // turn, and the two faces are of one sheet (joined in sheet_); with more, where
+  // bodies meet along it, their wedges must not overlap.
+  bool overlap_at_an_edge() {
+    std::vector<std::pair<uint64_t, uint32_t>> edges;  // (edge, face)
+    edges.reserve(3 * faces_.size());
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const uint64_t u = faces_[f].v[k], v = faces_[f].v[(k + 1) % 3];
+        edges.push_back({std::min(u, v) << 32 | std::max(u, v), f});
+      }
+    }
+    sort_by_key(&edges);
+    sheet_.resize(faces_.size());
+    std::iota(sheet_.begin(), sheet_.end(), 0u);
+    size_t walked = 0;
+    for (size_t e = 0; e + 1 < edges.size(); ++e) {
+      // The walks round the edges below start at random tets: load a few ahead.
+      if (e + 16 < edges.size()) {
+        const uint32_t ahead = faces_[edges[e + 16].second].tet;
+        __builtin_prefetch(&mesh_.tets[ahead]);
+        __builtin_prefetch(&neighbors_[4 * size_t{ahead}]);
+      }
+      const bool first_of_edge = e == 0 || edges[e - 1].first != edges[e].first;
+      const bool two = edges[e].first == edges[e + 1].first && first_of_edge &&
+                       (e + 2 == edges.size() || edges[e + 2].first != edges[e].first);
+      const uint32_t u = uint32_t(edges[e].first >> 32), v = uint32_t(edges[e].first);
+      if (!two) {
+        if (!first_of_edge) continue;
+        size_t end = e;
+        while (end < edges.size() && edges[end].first == edges[e].first) ++end;
+        if (end - e >= 3 && wedges_overlap_at(u, v, edges, e, end)) return true;
+        continue;
+      }
+      unite(sheet_, edges[e].second, edges[e + 1].second);
+      // Tets that wrap round the edge overlap there, and the sheet goes through itself
+      // along it, where no face crosses another.
+      const BoundaryFace& f = faces_[edges[e].second];
+      const uint32_t past_turn = tet_past_a_turn(mesh_, neighbors_, f, u, v, walk_budget_, &walked);
+      if (walked >= walk_budget_) return cut_short();
+      if (past_turn != kInvalidIndex)
+        return finding(OverlapFinding::Kind::kInside, f.tet, past_turn);
+    }
+    return false;
+  }
+
+  // Whether the wedges of the faces edges[begin .. end) at edge (u, v) overlap.
+  bool wedges_overlap_at(uint32_t u, uint32_t v,
+                         const std::vector<std::pair<uint64_t, uint32_t>>& edges, size_t begin,
+                         size_t end) {
+    std::vector<EdgeFace> around;
+    for (size_t k = begin; k < end; ++k) {
+      const BoundaryFace& f = faces_[edges[k].second];
+      const uint32_t w =
+          f.v[0] != u && f.v[0] != v ? f.v[0] : (f.v[1] != u && f.v[1] != v ? f.v[1] : f.v[2]);
+      around.push_back({pos_[w], pos_[mesh_.tets[f.tet][f.corner]]});
+    }
+    size_t a = 0, b = 0;
+    if (!wedges_overlap(pos_[u], pos_[v], around, &a, &b)) return false;
+    const uint32_t ta = faces_[edges[begin + a].second].tet,
+                   tb = faces_[edges[begin + b].second].tet;
+    return finding(OverlapFinding::Kind::kInside, std::min(ta, tb), std::max(ta, tb));
   }
 
   // Parts of the boundary inside others of the same piece. With no crossings, the
   // number of times the piece's boundary winds around a point just inside a face is
   // the same for every face of its sheet (faces joined through edges that have no
   // other boundary face), and is 1 where no tets overlap: one point per sheet.
-  {
-    std::vector<std::pair<uint64_t, uint32_t>> edges;  // (edge, face)
-    edges.reserve(3 * faces.size());
-    for (uint32_t f = 0; f < faces.size(); ++f) {
-      for (int k = 0; k < 3; ++k) {
-        const uint64_t u = faces[f].v[k], v = faces[f].v[(k + 1) % 3];
-        edges.push_back({std::min(u, v) << 32 | std::max(u, v), f});
-      }
-    }
-    sort_by_key(&edges);
-    std::vector<uint32_t> sheet(faces.size());
-    std::iota(sheet.begin(), sheet.end(), 0u);
-    for (size_t e = 0; e + 1 < edges.size(); ++e) {
-      // The walks round the edges below start at random tets: load a few ahead.
-      if (e + 16 < edges.size()) {
-        const uint32_t ahead = faces[edges[e + 16].second].tet;
-        __builtin_prefetch(&mesh.tets[ahead]);
-        __builtin_prefetch(&neighbors[4 * size_t{ahead}]);
-      }
-      const bool first_of_edge = e == 0 || edges[e - 1].first != edges[e].first;
-      const bool two = edges[e].first == edges[e + 1].first && first_of_edge &&
-                       (e + 2 == edges.size() || edges[e + 2].first != edges[e].first);
-      if (!two) {
-        // Bodies meeting along the edge: their wedges must not overlap.
-        if (!first_of_edge) continue;
-        size_t end = e;
-        while (end < edges.size() && edges[end].first == edges[e].first) ++end;
-        if (end - e < 3) continue;
-        const uint32_t u = uint32_t(edges[e].first >> 32), v = uint32_t(edges[e].first);
-        std::vector<EdgeFace> around;
-        for (size_t k = e; k < end; ++k) {
-          const BoundaryFace& f = faces[edges[k].second];
-          const uint32_t w =
-              f.v[0] != u && f.v[0] != v ? f.v[0] : (f.v[1] != u && f.v[1] != v ? f.v[1] : f.v[2]);
-          around.push_back({pos[w], pos[mesh.tets[f.tet][f.corner]]});
-        }
-        size_t a = 0, b = 0;
-        if (wedges_overlap(pos[u], pos[v], around, &a, &b)) {
-          found.kind = OverlapFinding::Kind::kInside;
-          found.tet_a = std::min(faces[edges[e + a].second].tet, faces[edges[e + b].second].tet);
-          found.tet_b = std::max(faces[edges[e + a].second].tet, faces[edges[e + b].second].tet);
-          return found;
-        }
-        continue;
-      }
-      unite(sheet, edges[e].second, edges[e + 1].second);
-      // Tets that wrap round the edge overlap there, and the sheet goes through itself
-      // along it, where no face crosses another.
-      const BoundaryFace& f = faces[edges[e].second];
-      const uint32_t past_turn = tet_past_a_turn(mesh, neighbors, f, uint32_t(edges[e].first >> 32),
-                                                 uint32_t(edges[e].first), walk_budget, &walked);
-      if (walked >= walk_budget) {
-        found.cut_short = true;
-        return found;
-      }
-      if (past_turn != kInvalidIndex) {
-        found.kind = OverlapFinding::Kind::kInside;
-        found.tet_a = f.tet;
-        found.tet_b = past_turn;
-        return found;
-      }
-    }
-    const FaceGroups surfaces(faces, surface_of, first_face.size(), pos);
+  bool sheet_wound_twice() {
+    const FaceGroups surfaces(faces_, surface_of_, first_face_.size(), pos_);
     const BoxGrid surface_grid(surfaces.lo, surfaces.hi);  // which surfaces a point may be in
-    for (uint32_t first = 0; first < faces.size(); ++first) {
-      if (find_root(sheet, first) != first) continue;  // not the first face of its sheet
-      const BoundaryFace& f = faces[first];
-      const Vec3 &a = pos[f.v[0]], &b = pos[f.v[1]], &c = pos[f.v[2]];
+    for (uint32_t first = 0; first < faces_.size(); ++first) {
+      if (find_root(sheet_, first) != first) continue;  // not the first face of its sheet
+      const BoundaryFace& f = faces_[first];
+      const Vec3 &a = pos_[f.v[0]], &b = pos_[f.v[1]], &c = pos_[f.v[2]];
       const Vec3 normal = cross(b - a, c - a);  // outward, |normal| = twice the area
       const double edge = std::sqrt(
           std::max({squared_length(b - a), squared_length(c - b), squared_length(a - c)}));
@@ -462,68 +484,79 @@ OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& ne
       double winding = 0;
       bool over_budget = false;
       surface_grid.for_each_holding(point, [&](uint32_t other) {
-        if (over_budget || piece_of(faces[first_face[other]].tet) != piece_of(f.tet)) return;
-        work += 1 + surfaces.size(other);
-        over_budget = work > winding_budget;
-        if (!over_budget) winding += surfaces.winding(other, point, faces, pos);
+        if (over_budget || piece_of(faces_[first_face_[other]].tet) != piece_of(f.tet)) return;
+        work_ += 1 + surfaces.size(other);
+        over_budget = work_ > winding_budget_;
+        if (!over_budget) winding += surfaces.winding(other, point, faces_, pos_);
       });
-      if (over_budget) {
-        found.cut_short = true;
-        return found;
-      }
-      if (winding > 1.5) {
-        found.kind = OverlapFinding::Kind::kInside;
-        found.tet_a = f.tet;
-        found.tet_b = tet_holding(mesh, point, f.tet);
-        return found;
-      }
+      if (over_budget) return cut_short();
+      if (winding > 1.5)
+        return finding(OverlapFinding::Kind::kInside, f.tet, tet_holding(mesh_, point, f.tet));
     }
+    return false;
   }
 
   // A piece inside another: a point well inside it, the centroid of its first tet
   // with no vertex on the boundary (else of its first tet), around which another
   // piece winds.
-  const size_t piece_count = first_tet.size();
-  if (piece_count < 2) return found;
-  std::vector<uint32_t> piece_of_face(faces.size());
-  for (size_t f = 0; f < faces.size(); ++f) piece_of_face[f] = piece[faces[f].tet];
-  const FaceGroups pieces(faces, piece_of_face, piece_count, pos);
-  const BoxGrid piece_grid(pieces.lo, pieces.hi);
-  std::vector<char> on_boundary(pos.size(), 0);
-  for (const BoundaryFace& f : faces)
-    for (uint32_t v : f.v) on_boundary[v] = 1;
-  std::vector<uint32_t> inner_tet(first_tet);
-  std::vector<char> has_inner(piece_count, 0);
-  for (uint32_t t = 0; t < tet_count; ++t) {
-    const Tet& q = mesh.tets[t];
-    if (has_inner[piece[t]] || on_boundary[q[0]] || on_boundary[q[1]] || on_boundary[q[2]] ||
-        on_boundary[q[3]])
-      continue;
-    has_inner[piece[t]] = 1;
-    inner_tet[piece[t]] = t;
-  }
-  for (size_t p = 0; p < piece_count; ++p) {
-    const Tet& q = mesh.tets[inner_tet[p]];
-    const Vec3 point = (pos[q[0]] + pos[q[1]] + pos[q[2]] + pos[q[3]]) * 0.25;
-    bool over_budget = false, inside = false;
-    piece_grid.for_each_holding(point, [&](uint32_t other) {
-      if (over_budget || inside || other == p) return;
-      work += 1 + pieces.size(other);
-      over_budget = work > winding_budget;
-      inside = !over_budget && pieces.winding(other, point, faces, pos) > 0.5;
-    });
-    if (over_budget) {
-      found.cut_short = true;
-      return found;
+  void piece_inside_another() {
+    const size_t piece_count = first_tet_.size();
+    if (piece_count < 2) return;
+    std::vector<uint32_t> piece_of_face(faces_.size());
+    for (size_t f = 0; f < faces_.size(); ++f) piece_of_face[f] = piece_[faces_[f].tet];
+    const FaceGroups pieces(faces_, piece_of_face, piece_count, pos_);
+    const BoxGrid piece_grid(pieces.lo, pieces.hi);
+    std::vector<char> on_boundary(pos_.size(), 0);
+    for (const BoundaryFace& f : faces_)
+      for (uint32_t v : f.v) on_boundary[v] = 1;
+    std::vector<uint32_t> inner_tet(first_tet_);
+    std::vector<char> has_inner(piece_count, 0);
+    for (uint32_t t = 0; t < mesh_.tets.size(); ++t) {
+      const Tet& q = mesh_.tets[t];
+      if (has_inner[piece_[t]] || on_boundary[q[0]] || on_boundary[q[1]] || on_boundary[q[2]] ||
+          on_boundary[q[3]])
+        continue;
+      has_inner[piece_[t]] = 1;
+      inner_tet[piece_[t]] = t;
     }
-    if (inside) {
-      found.kind = OverlapFinding::Kind::kInside;
-      found.tet_a = inner_tet[p];
-      found.tet_b = tet_holding(mesh, point, inner_tet[p]);
-      return found;
+    for (size_t p = 0; p < piece_count; ++p) {
+      const Tet& q = mesh_.tets[inner_tet[p]];
+      const Vec3 point = (pos_[q[0]] + pos_[q[1]] + pos_[q[2]] + pos_[q[3]]) * 0.25;
+      bool over_budget = false, inside = false;
+      piece_grid.for_each_holding(point, [&](uint32_t other) {
+        if (over_budget || inside || other == p) return;
+        work_ += 1 + pieces.size(other);
+        over_budget = work_ > winding_budget_;
+        inside = !over_budget && pieces.winding(other, point, faces_, pos_) > 0.5;
+      });
+      if (over_budget) {
+        cut_short();
+        return;
+      }
+      if (inside) {
+        finding(OverlapFinding::Kind::kInside, inner_tet[p],
+                tet_holding(mesh_, point, inner_tet[p]));
+        return;
+      }
     }
   }
-  return found;
+
+  const TetMesh& mesh_;
+  const std::vector<uint32_t>& neighbors_;
+  const std::vector<Vec3>& pos_;
+  std::vector<BoundaryFace> faces_;
+  size_t pair_budget_ = 0, walk_budget_ = 0, winding_budget_ = 0;
+  size_t work_ = 0;                                // solid angles summed, against winding_budget_
+  std::vector<uint32_t> surface_of_, first_face_;  // first_face_: of each surface
+  std::vector<uint32_t> piece_, first_tet_;        // piece_: of each tet (if numbered)
+  std::vector<uint32_t> sheet_;                    // union-find of faces into sheets
+  OverlapFinding found_;
+};
+
+}  // namespace
+
+OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& neighbors) {
+  return OverlapSearch(mesh, neighbors).run();
 }
 
 bool wedges_overlap(const Vec3& u, const Vec3& v, const std::vector<EdgeFace>& faces, size_t* a,
