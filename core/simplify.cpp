@@ -1937,10 +1937,10 @@ class Engine {
   // another piece where none of the faces the collapse replaces crossed that face
   // already. [lo, hi] is the box of the new faces.
   bool new_faces_cross_others(uint32_t kept, uint32_t removed, const Vec3& lo, const Vec3& hi) {
-    // The other outer faces of the piece near them: no crossing. Past the budget (a
+    // The other outer faces near them: no crossing. Past the budget (a
     // hostile mesh crowding faces into a few cells), refuse rather than not check.
     candidates_.clear();
-    if (!outer_grid_.gather(lo, hi, kGuardBudget, &candidates_)) return true;
+    if (!outer_grid_.gather(lo, hi, params_.boundary_guard_budget, &candidates_)) return true;
     const uint32_t piece = piece_[kept];
     // Each tet once (an entry is in every cell its face touched, and the face may
     // have moved since): all its outer faces as they are now, but those at an
@@ -2128,7 +2128,6 @@ class Engine {
   std::vector<uint64_t> ring_triples_;                               // triple_key()s of Lk(i) on R
   std::vector<uint32_t> retired_tets_, rewired_tets_, merged_star_;  // apply()
   // The outer boundary's guard (outer_boundary_stays_embedded()).
-  static constexpr size_t kGuardBudget = size_t{1} << 16;  // grid entries read at most
   bool guard_boundary_ = false;
   FaceGrid outer_grid_;  // outer faces (4 t + corner), where they were when added
   size_t outer_entries_at_build_ = 0;

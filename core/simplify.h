@@ -37,6 +37,9 @@ struct SimplifyParams {
   // Refuse collapses that would push the outer boundary through itself (see
   // RejectionCounts::overlap). Off only to show, in tests and benchmarks, what it stops.
   bool keep_boundary_embedded = true;
+  // The most entries of the outer faces' grid that one such check reads (a hostile mesh
+  // may crowd thousands of faces near a collapse): past it, the collapse is refused.
+  size_t boundary_guard_budget = size_t{1} << 16;
 };
 
 // Checks thresholds for absurd values (NaN, negative, stretch >= 1 or <= 0,

@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/adjacency.h"
@@ -100,6 +102,46 @@ TEST(SimplifyOverlap, TheGuardChangesNothingWhereNothingCrosses) {
   EXPECT_EQ(guarded.output.tets, unguarded.output.tets);
   EXPECT_EQ(guarded.output.positions, unguarded.output.positions);
   EXPECT_EQ(guarded.history.step_count(), unguarded.history.step_count());
+}
+
+// The outer boundary's triangles, each as its corners' positions, sorted.
+std::vector<std::array<Vec3, 3>> outer_triangles(const TetMesh& mesh) {
+  std::vector<uint32_t> neighbors;
+  EXPECT_EQ(build_face_neighbors(mesh, &neighbors).kind, FaceProblem::Kind::kNone);
+  std::vector<std::array<Vec3, 3>> out;
+  const auto less = [](const Vec3& a, const Vec3& b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  };
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    for (int c = 0; c < 4; ++c) {
+      if (neighbors[4 * t + c] != kInvalidIndex) continue;
+      std::array<Vec3, 3> tri;
+      for (int k = 0; k < 3; ++k) tri[k] = mesh.positions[mesh.tets[t][(c + 1 + k) % 4]];
+      std::sort(tri.begin(), tri.end(), less);
+      out.push_back(tri);
+    }
+  }
+  std::sort(out.begin(), out.end(), [&](const auto& a, const auto& b) {
+    return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), less);
+  });
+  return out;
+}
+
+// Past its budget of grid entries (a hostile mesh crowding faces near a collapse) the
+// guard refuses the collapse rather than not check: with no budget at all, no collapse
+// moves the outer boundary, while the others still happen.
+TEST(SimplifyOverlap, PastItsBudgetTheGuardRefuses) {
+  const TetMesh input = gap_mesh();
+  SimplifyParams params = gap_params(1.0);
+  SimplifyResult checked, refused;
+  ASSERT_TRUE(simplify(input, params, &checked).ok());
+  params.boundary_guard_budget = 0;
+  ASSERT_TRUE(simplify(input, params, &refused).ok());
+  EXPECT_GT(refused.rejections.overlap, checked.rejections.overlap);
+  EXPECT_GT(refused.history.step_count(), 0u);
+  EXPECT_LT(refused.history.step_count(), checked.history.step_count());
+  EXPECT_NE(outer_triangles(checked.output), outer_triangles(checked.base));
+  EXPECT_EQ(outer_triangles(refused.output), outer_triangles(refused.base));
 }
 
 // How many pairs of boundary faces of different pieces clearly cross, by brute force.
