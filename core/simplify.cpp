@@ -1544,6 +1544,7 @@ class Engine {
     guard_boundary_ = params_.keep_boundary_embedded;
     if (guard_boundary_) {
       seen_.assign(tet_.size(), 0);
+      vertex_seen_.assign(pos_.size(), 0);
       build_outer_grid();
     }
     heap_.assign(1, QueuedCollapse{});  // heap_[0]: see heap_
@@ -1629,8 +1630,11 @@ class Engine {
   // Bodies meshed apart (other pieces) are held to less: a face the collapse makes may
   // cross one of theirs only if a face it replaces crossed it already (where they meet
   // on a curved surface, their two meshes' chords cross by design), so no collapse
-  // pushes one body into another that it did not cross. Checked on the collapses about
-  // to be made, after every other test; the outer faces are kept in a grid.
+  // pushes one body into another that it did not cross. Nor may the new faces sweep
+  // past a whole small body or cavity, crossing none of its faces: no corner of another
+  // outer face may come to lie inside the new tets (unless it lay inside the tets
+  // around the ends already). Checked on the collapses about to be made, after every
+  // other test; the outer faces are kept in a grid.
 
   // Whether collapse c moves the outer boundary's faces: it removes a vertex on it, or
   // moves one.
@@ -1807,6 +1811,7 @@ class Engine {
     fan_corners_.clear();
     fan_apex_.clear();
     staying_tets_.clear();
+    Vec3 swept_lo = k, swept_hi = k;  // the box of the outer faces at the ends, before and after
     for (int side = 0; side < 2; ++side) {
       const uint32_t v = side == 0 ? kept : removed, other = side == 0 ? removed : kept;
       for (uint32_t t : star_[v]) {
@@ -1815,6 +1820,11 @@ class Engine {
         if (!ring) staying_tets_.push_back(would_be(t, kept, removed, k));
         for (int c = 0; c < 4; ++c) {
           if (q[c] == v || across_[4 * t + c] != kInvalidIndex) continue;
+          for (int n = 1; n < 4; ++n) {
+            const Vec3& x = pos_[q[(c + n) % 4]];
+            for (int a = 0; a < 3; ++a)
+              swept_lo[a] = std::min(swept_lo[a], x[a]), swept_hi[a] = std::max(swept_hi[a], x[a]);
+          }
           if (ring && q[c] != other) continue;  // holds both ends
           std::array<uint32_t, 3> ids;
           Triangle3 tri;
@@ -1842,7 +1852,8 @@ class Engine {
         hi[a] = f == 0 ? fan_hi_[f][a] : std::max(hi[a], fan_hi_[f][a]);
       }
     }
-    return !new_faces_fold(kept, removed, k) && !new_faces_cross_others(kept, removed, lo, hi);
+    return !new_faces_fold(kept, removed, k) &&
+           !new_faces_cross_others(kept, removed, lo, hi, swept_lo, swept_hi);
   }
 
   // Whether the new faces (fan_ and the rest, as outer_boundary_stays_embedded() lists
@@ -1935,18 +1946,33 @@ class Engine {
 
   // Whether a new face would clearly cross another outer face: of the piece, or of
   // another piece where none of the faces the collapse replaces crossed that face
-  // already. [lo, hi] is the box of the new faces.
-  bool new_faces_cross_others(uint32_t kept, uint32_t removed, const Vec3& lo, const Vec3& hi) {
+  // already; or a corner of another outer face would be swept inside the new tets
+  // (a small body, or a cavity, that the faces sweep past whole, crossing none).
+  // [lo, hi] is the box of the new faces, [swept_lo, swept_hi] that of the outer faces
+  // at the ends before and after, which holds what they sweep.
+  bool new_faces_cross_others(uint32_t kept, uint32_t removed, const Vec3& lo, const Vec3& hi,
+                              const Vec3& swept_lo, const Vec3& swept_hi) {
     // The other outer faces near them: no crossing. Past the budget (a
     // hostile mesh crowding faces into a few cells), refuse rather than not check.
     candidates_.clear();
-    if (!outer_grid_.gather(lo, hi, params_.boundary_guard_budget, &candidates_)) return true;
+    if (!outer_grid_.gather(swept_lo, swept_hi, params_.boundary_guard_budget, &candidates_))
+      return true;
+    staying_lo_.resize(staying_tets_.size());
+    staying_hi_.resize(staying_tets_.size());
+    for (size_t n = 0; n < staying_tets_.size(); ++n) {
+      const auto& p = staying_tets_[n].p;
+      for (int a = 0; a < 3; ++a) {
+        staying_lo_[n][a] = std::min({p[0][a], p[1][a], p[2][a], p[3][a]});
+        staying_hi_[n][a] = std::max({p[0][a], p[1][a], p[2][a], p[3][a]});
+      }
+    }
     const uint32_t piece = piece_[kept];
     // Each tet once (an entry is in every cell its face touched, and the face may
     // have moved since): all its outer faces as they are now, but those at an
     // end (the fan has them, or they go).
     if (++seen_stamp_ == 0) {
       std::fill(seen_.begin(), seen_.end(), 0);
+      std::fill(vertex_seen_.begin(), vertex_seen_.end(), 0);
       seen_stamp_ = 1;
     }
     for (uint32_t entry : candidates_) {
@@ -1962,6 +1988,13 @@ class Engine {
         const Triangle3 tri = face_triangle(4 * t + c);
         Vec3 tlo, thi;
         box_of(tri, &tlo, &thi);
+        if (!boxes_meet(tlo, thi, swept_lo, swept_hi)) continue;
+        for (int n = 1; n < 4; ++n) {
+          const uint32_t w = q[(c + n) % 4];
+          if (vertex_seen_[w] == seen_stamp_) continue;
+          vertex_seen_[w] = seen_stamp_;
+          if (swept_inside(pos_[w], kept, removed)) return true;
+        }
         if (!boxes_meet(tlo, thi, lo, hi)) continue;
         TrianglePlane plane;
         bool have_plane = false;
@@ -1977,6 +2010,33 @@ class Engine {
           }
         }
       }
+    }
+    return false;
+  }
+
+  // Whether p (a corner of an outer face, not at the ends) would lie inside a new tet
+  // (staying_tets_) and does not lie inside a tet around the ends now: the new faces
+  // would sweep past it. Inside: more than 1e-9 of the tet's volume from each face.
+  bool swept_inside(const Vec3& p, uint32_t kept, uint32_t removed) const {
+    auto inside = [&](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+      const double margin = 1e-9 * signed_volume6(a, b, c, d);
+      return margin > 0 && signed_volume6(p, b, c, d) > margin &&
+             signed_volume6(a, p, c, d) > margin && signed_volume6(a, b, p, d) > margin &&
+             signed_volume6(a, b, c, p) > margin;
+    };
+    for (size_t n = 0; n < staying_tets_.size(); ++n) {
+      const Vec3 &lo = staying_lo_[n], &hi = staying_hi_[n];
+      if (p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y || p.z < lo.z || p.z > hi.z)
+        continue;
+      const auto& q = staying_tets_[n].p;
+      if (!inside(q[0], q[1], q[2], q[3])) continue;
+      for (uint32_t v : {kept, removed}) {
+        for (uint32_t t : star_[v]) {
+          const Tet& r = tet_[t].v;
+          if (inside(pos_[r[0]], pos_[r[1]], pos_[r[2]], pos_[r[3]])) return false;
+        }
+      }
+      return true;
     }
     return false;
   }
@@ -2147,7 +2207,9 @@ class Engine {
   std::vector<uint32_t> candidates_;
   std::vector<uint32_t> glued_outer_;  // outer faces apply() glued in place of others
   std::vector<uint32_t> seen_;         // per tet: seen_stamp_ if looked at in this check
+  std::vector<uint32_t> vertex_seen_;  // per vertex: likewise
   uint32_t seen_stamp_ = 0;
+  std::vector<Vec3> staying_lo_, staying_hi_;  // the boxes of staying_tets_
 };
 
 }  // namespace

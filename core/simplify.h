@@ -56,7 +56,9 @@ struct RejectionCounts {
   // The outer boundary would cross itself or wrap round one of its edges: tets would
   // overlap with no face between them (two sheets nearer than the tolerance, as across
   // a thin gap); or a body's faces would cross those of another body meshed apart,
-  // where they did not. Checked on the collapses about to be made, after the others.
+  // where they did not; or they would sweep past a whole small body or cavity, which
+  // the new tets would then hold. Checked on the collapses about to be made, after the
+  // others.
   uint64_t overlap = 0;
 };
 

@@ -30,7 +30,8 @@ TEST(FuzzSeeds, SimplifyHarnessHoldsOnEverySeed) {
                           "tests/data/topology/checker.mesh",
                           "tests/data/topology/edge_touch.mesh",
                           "tests/data/topology/vertex_touch.mesh",
-                          "tests/data/topology/apart.mesh"};
+                          "tests/data/topology/apart.mesh",
+                          "tests/data/topology/bead.mesh"};
   // size, stretch, valence, tolerance, flags (1 subdivide, 2 radial, 4 material size,
   // 8 element target), field, target, crease angle: see fuzz_simplify.cpp.
   const unsigned char params[][8] = {{0x40, 0x20, 0x15, 0x02, 0x01, 0x00, 0x00, 0x1e},
@@ -54,7 +55,7 @@ TEST(FuzzSeeds, SimplifyHarnessHoldsOnEverySeed) {
   }
   // Every seed went through the whole pipeline (none was refused by the reader, none
   // too large for the harness, none stopped by a threshold check).
-  EXPECT_EQ(checked_runs, 24);
+  EXPECT_EQ(checked_runs, 28);
 }
 
 }  // namespace

@@ -193,6 +193,30 @@ TEST(SimplifyOverlap, BodiesMeshedApartAreNotPushedIntoEachOther) {
   }
 }
 
+// A bead in a shell's cavity, 0.05 from its concave wall: at a tolerance above the
+// bead's size, the wall's chords would sweep past the whole bead, crossing none of its
+// faces, and the shell's tets would hold it. The guard refuses a collapse that would
+// put a corner of another outer face inside its new tets.
+TEST(SimplifyOverlap, NoBodyIsSweptInsideAnother) {
+  const TetMesh input = gmsh_mesh("bead.msh");
+  ASSERT_EQ(overlap_in(input).kind, OverlapFinding::Kind::kNone);
+  for (double tolerance : {2.0, 4.0}) {
+    SimplifyResult guarded, unguarded;
+    SimplifyParams params = gap_params(tolerance);
+    ASSERT_TRUE(simplify(input, params, &guarded).ok());
+    EXPECT_GT(guarded.rejections.overlap, 0u) << "tolerance " << tolerance;
+    EXPECT_EQ(crossings_between_pieces(guarded.output), 0u) << "tolerance " << tolerance;
+    const OverlapFinding found = overlap_in(guarded.output);
+    EXPECT_EQ(found.kind, OverlapFinding::Kind::kNone)
+        << "tolerance " << tolerance << ": tets " << found.tet_a << " and " << found.tet_b;
+    // Without the guard the shell swallows the bead: the check above can fail.
+    params.keep_boundary_embedded = false;
+    ASSERT_TRUE(simplify(input, params, &unguarded).ok());
+    EXPECT_EQ(overlap_in(unguarded.output).kind, OverlapFinding::Kind::kInside)
+        << "tolerance " << tolerance;
+  }
+}
+
 // The same ball touching the shell: the two meshes of the sphere where they meet cross
 // each other by design. A collapse may keep such a crossing (a face it makes crosses
 // only faces that one it replaces crossed), so the bodies still coarsen there; refusing

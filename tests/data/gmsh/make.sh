@@ -43,3 +43,5 @@ gmsh gap.geo -3 -clmax 0.9 -v 0 -format msh22 -o gap.msh
 # the simplifier's guard between bodies.
 gmsh apart.geo -3 -clmax 0.9 -v 0 -format msh22 -o apart.msh
 gmsh apart.geo -3 -clmax 0.9 -v 0 -setnumber gap 0 -format msh22 -o touch.msh
+# A bead in a shell's cavity, near its wall, meshed apart.
+gmsh bead.geo -3 -clmax 0.9 -v 0 -format msh22 -o bead.msh

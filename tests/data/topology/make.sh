@@ -16,3 +16,5 @@ done
 gmsh -3 ../gmsh/apart.geo -clmax 1.6 -setnumber gap 0.4 -o /tmp/tetlod_apart.msh -format msh41 > /dev/null
 "$tetlod" convert /tmp/tetlod_apart.msh apart.mesh
 rm -f /tmp/tetlod_apart.msh
+# A bead near the concave wall of a shell's cavity, meshed apart (tests/data/gmsh/bead.msh).
+"$tetlod" convert ../gmsh/bead.msh bead.mesh
