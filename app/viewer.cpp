@@ -419,6 +419,8 @@ class Viewer {
   // Script.
   size_t script_index_ = 0;
   int wait_frames_ = 0;
+  bool script_mouse_ = false;  // a script's 'mouse X Y' holds the pointer at this place
+  float script_mouse_x_ = 0, script_mouse_y_ = 0;
   Clock::time_point wait_until_;
   int pending_job_line_ = 0;    // the open/simplify line whose job must succeed
   bool wait_for_job_ = true;    // the script waits for a running job to finish
@@ -566,6 +568,7 @@ void Viewer::frame() {
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  if (script_mouse_) ImGui::GetIO().MousePos = ImVec2(script_mouse_x_, script_mouse_y_);
   ImGui::NewFrame();
   interacting_ = false;
   handle_camera_input();
@@ -1695,6 +1698,11 @@ Status Viewer::run_action(const ScriptAction& a) {
     }
     case Kind::kOrbit:
       camera_.orbit(a.value, a.value2);
+      break;
+    case Kind::kMouse:
+      script_mouse_ = true;
+      script_mouse_x_ = static_cast<float>(a.value);
+      script_mouse_y_ = static_cast<float>(a.value2);
       break;
     case Kind::kPan: {
       int fb_width = 0, fb_height = 0;

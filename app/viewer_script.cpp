@@ -276,6 +276,13 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     if (Status s = p.arg_count(2, 2); !s) return s;
     if (Status s = p.number("dx", w[1], &a->value); !s) return s;
     if (Status s = p.number("dy", w[2], &a->value2); !s) return s;
+  } else if (command == "mouse") {
+    a->kind = Kind::kMouse;
+    if (Status s = p.arg_count(2, 2); !s) return s;
+    if (Status s = p.number("x", w[1], &a->value); !s) return s;
+    if (Status s = p.number("y", w[2], &a->value2); !s) return s;
+    if (!(a->value >= 0 && a->value <= 16384 && a->value2 >= 0 && a->value2 <= 16384))
+      return p.error("'mouse' takes pixel coordinates in [0, 16384]");
   } else if (command == "zoom") {
     a->kind = Kind::kZoom;
     if (Status s = p.arg_count(1, 1); !s) return s;

@@ -29,6 +29,10 @@
 //   view iso|x|y|z|fit
 //   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
 //   zoom CLICKS                      as by the mouse wheel (positive: closer)
+//   mouse X Y                        hold the mouse pointer at window pixel (X, Y), from
+//                                    the top left, for the rest of the script (to show a
+//                                    tooltip in a 'screenshot ui=1'); the real pointer is
+//                                    not read meanwhile
 //   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
 //   save PATH [improve] [surfaces]   the displayed level, format from the extension;
 //                                    improve: its shapes improved first (improve.h);
@@ -88,6 +92,7 @@ struct ScriptAction {
     kOrbit,
     kPan,
     kZoom,
+    kMouse,
     kScreenshot,
     kSave,
     kWait,

@@ -629,6 +629,13 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
                        ", size %" PRIu64 ", valence %" PRIu64 ", topology %" PRIu64
                        ", overlap %" PRIu64,
                        r.tolerance, r.stretch, r.size, r.valence, r.topology, r.overlap);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "Evaluated collapses refused, each by its first failed test: the geometric\n"
+          "tolerance, a new tet flatter than the stretch or larger than the size, a node\n"
+          "above the valence, the topology of the regions, interfaces, curves and\n"
+          "corners; overlap: the outer boundary would cross itself, or cross or sweep\n"
+          "past another body meshed apart, so that tets would overlap.");
   }
   ImGui::End();
 }
