@@ -426,7 +426,7 @@ TEST(ViewerWindow, MouseShowsATooltip) {
                                        "mouse 700 828\nwait frames=3\nscreenshot tip.png ui=1\n"
                                        "quit\n";
   const ViewerRun run = run_viewer(
-      dir, "'" + kSource + "/tests/data/gmsh/apart.msh' " + "--size 1200x850 --script tip.script");
+      dir, "'" + kSource + "/tests/data/gmsh/apart.msh' --size 1200x850 --script tip.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const render::Image away = load_png(dir / "away.png"), tip = load_png(dir / "tip.png");
   ASSERT_EQ(away.width, tip.width);
