@@ -9,6 +9,7 @@
 #include <map>
 
 #include "core/io/mesh_io.h"
+#include "core/surface.h"
 #include "core/test_io_helpers.h"
 #include "core/test_meshes.h"
 
@@ -78,6 +79,28 @@ TEST(IoGmshInterop, NastranBothWays) {
       << test::read_text(log);
   TetMesh back;
   Status status = read_mesh(read_by_gmsh, &back);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+
+  // With surface groups: Gmsh reads each group's CTRIA3s as a surface entity tagged with
+  // the group's tag (a block "2 tag 2 count" of its elements).
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(mesh, &groups).ok());
+  WriteOptions with_groups;
+  with_groups.surface_groups = true;
+  ASSERT_TRUE(write_mesh(dir + "/ours_groups.bdf", mesh, with_groups).ok());
+  log = dir + "/groups.log";
+  ASSERT_TRUE(run_gmsh(
+      "'" + dir + "/ours_groups.bdf' -0 -format msh41 -o '" + dir + "/gmsh_groups.msh'", log))
+      << test::read_text(log);
+  const std::string gmsh_groups = test::read_text(dir + "/gmsh_groups.msh");
+  for (const SurfaceGroup& g : groups.groups) {
+    EXPECT_NE(gmsh_groups.find("\n2 " + std::to_string(g.tag) + " 2 " +
+                               std::to_string(g.triangles.size()) + "\n"),
+              std::string::npos)
+        << g.name;
+  }
+  status = read_mesh(dir + "/gmsh_groups.msh", &back);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
 
