@@ -9,7 +9,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
+#include <fstream>
+#include <random>
 #include <set>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -25,11 +29,15 @@
 namespace tetlod {
 namespace {
 
-TetMesh gmsh_mesh(const char* name) {
+TetMesh gmsh_mesh_at(const std::string& path) {
   TetMesh mesh;
-  const Status s = read_mesh(test::data_path(std::string("gmsh/") + name), &mesh);
+  const Status s = read_mesh(path, &mesh);
   EXPECT_TRUE(s.ok()) << s.message();
   return mesh;
+}
+
+TetMesh gmsh_mesh(const char* name) {
+  return gmsh_mesh_at(test::data_path(std::string("gmsh/") + name));
 }
 
 TetMesh gap_mesh() {
@@ -214,6 +222,82 @@ TEST(SimplifyOverlap, NoBodyIsSweptInsideAnother) {
     ASSERT_TRUE(simplify(input, params, &unguarded).ok());
     EXPECT_EQ(overlap_in(unguarded.output).kind, OverlapFinding::Kind::kInside)
         << "tolerance " << tolerance;
+  }
+}
+
+// Random scenes, meshed by Gmsh when it is on PATH: a spherical or box-shaped cavity in
+// a shell, with one to four beads (radius 0.05 to 0.4) 0.05 to 0.3 from its wall, all
+// meshed apart. At every tolerance the output has no tets that overlap and, if the
+// input's bodies do not cross (they may where a bead is nearer the wall than the sag of
+// the wall's chords), no faces of two bodies that cross. The guard of b09bc38, which
+// looked only within a body, fails this test: its outputs for scenes 0 and 2 at
+// tolerance 2 and 5 overlap.
+TEST(SimplifyOverlap, RandomBeadsNearAWallStayApart) {
+  if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
+  const std::string dir = test::output_dir("random_beads");
+  std::mt19937 random(20261127);
+  auto uniform = [&](double lo, double hi) {
+    return lo + (hi - lo) * (static_cast<double>(random() >> 5) / double(1u << 27));
+  };
+  for (int scene = 0; scene < 4; ++scene) {
+    SCOPED_TRACE(scene);
+    const bool ball = scene % 2 == 0;
+    std::ostringstream geo;
+    geo << "SetFactory(\"OpenCASCADE\");\n";
+    if (ball) {
+      geo << "Sphere(1) = {0, 0, 0, 5};\nSphere(2) = {0, 0, 0, 3};\n";
+    } else {
+      geo << "Box(1) = {-5, -5, -5, 10, 10, 10};\nBox(2) = {-3, -3, -3, 6, 6, 6};\n";
+    }
+    geo << "BooleanDifference(3) = { Volume{1}; Delete; }{ Volume{2}; Delete; };\n"
+        << "Physical Volume(1) = {3};\n";
+    std::vector<std::pair<Vec3, double>> beads;
+    const int wanted = 1 + scene;
+    for (int tries = 0; tries < 400 && int(beads.size()) < wanted; ++tries) {
+      const double r = uniform(0.05, 0.4), gap = uniform(0.05, 0.3);
+      Vec3 c;
+      if (ball) {
+        const Vec3 d{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+        if (!(length(d) > 0.1 && length(d) < 1)) continue;
+        c = d * ((3 - gap - r) / length(d));
+      } else {
+        for (int k = 0; k < 3; ++k) c[k] = uniform(-3 + r + gap, 3 - r - gap);
+        const int axis = int(uniform(0, 3));
+        c[axis] = (uniform(0, 1) < 0.5 ? -1 : 1) * (3 - gap - r);
+      }
+      bool apart = true;
+      for (const auto& [o, q] : beads) apart &= length(c - o) > r + q + 0.05;
+      if (apart) beads.push_back({c, r});
+    }
+    for (size_t b = 0; b < beads.size(); ++b) {
+      const auto& [c, r] = beads[b];
+      geo << "Sphere(" << 10 + b << ") = {" << c.x << ", " << c.y << ", " << c.z << ", " << r
+          << "};\nPhysical Volume(" << 2 + b << ") = {" << 10 + b
+          << "};\nMeshSize{ PointsOf{ Volume{" << 10 + b << "}; } } = " << r / 2 << ";\n";
+    }
+    const std::string base = dir + "/scene" + std::to_string(scene);
+    std::ofstream(base + ".geo") << geo.str();
+    ASSERT_EQ(std::system(("gmsh '" + base + ".geo' -3 -clmax 0.9 -v 0 -format msh22 -o '" + base +
+                           ".msh' > '" + base + ".log' 2>&1")
+                              .c_str()),
+              0)
+        << test::read_text(base + ".log");
+    const TetMesh input = gmsh_mesh_at(base + ".msh");
+    ASSERT_EQ(overlap_in(input).kind, OverlapFinding::Kind::kNone);
+    const bool bodies_apart = crossings_between_pieces(input) == 0;
+    for (double tolerance : {0.5, 2.0, 5.0}) {
+      SimplifyParams params;
+      params.sizing.uniform = 8;
+      params.tolerance = tolerance;
+      SimplifyResult result;
+      ASSERT_TRUE(simplify(input, params, &result).ok());
+      const OverlapFinding found = overlap_in(result.output);
+      EXPECT_EQ(found.kind, OverlapFinding::Kind::kNone)
+          << "tolerance " << tolerance << ": tets " << found.tet_a << " and " << found.tet_b;
+      if (bodies_apart) {
+        EXPECT_EQ(crossings_between_pieces(result.output), 0u) << "tolerance " << tolerance;
+      }
+    }
   }
 }
 
