@@ -170,10 +170,17 @@ size_t crossings_between_pieces(const TetMesh& mesh) {
       face_piece.push_back(piece[q[0]]);
     }
   }
+  // The faces' extents along x, to pass over pairs far apart.
+  std::vector<std::pair<double, double>> x(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    x[f] = {std::min({faces[f][0].x, faces[f][1].x, faces[f][2].x}),
+            std::max({faces[f][0].x, faces[f][1].x, faces[f][2].x})};
+  }
   size_t crossings = 0;
   for (size_t f = 0; f < faces.size(); ++f)
     for (size_t g = f + 1; g < faces.size(); ++g)
-      crossings += face_piece[f] != face_piece[g] &&
+      crossings += face_piece[f] != face_piece[g] && x[f].first <= x[g].second &&
+                   x[g].first <= x[f].second &&
                    triangles_cross(faces[f], planes[f], faces[g], planes[g]);
   return crossings;
 }
