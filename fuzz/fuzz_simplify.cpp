@@ -95,22 +95,18 @@ bool pieces_cross(const tetlod::TetMesh& mesh) {
     uint32_t piece;
   };
   std::vector<Face> faces;
-  for (size_t t = 0; t < mesh.tet_count(); ++t) {
-    const tetlod::Tet& q = mesh.tets[t];
-    for (int c = 0; c < 4; ++c) {
-      if (neighbors[4 * t + c] != tetlod::kInvalidIndex) continue;
-      Face f{{mesh.positions[q[(c + 1) % 4]], mesh.positions[q[(c + 2) % 4]],
-              mesh.positions[q[(c + 3) % 4]]},
-             {},
-             {},
-             piece[q[0]]};
-      f.lo = f.hi = f.t[0];
-      for (const tetlod::Vec3& x : f.t) {
-        for (int a = 0; a < 3; ++a)
-          f.lo[a] = std::min(f.lo[a], x[a]), f.hi[a] = std::max(f.hi[a], x[a]);
-      }
-      faces.push_back(f);
+  for (const tetlod::SurfaceTriangle& s : tetlod::extract_surface(mesh, neighbors)) {
+    if (s.outer != tetlod::kOutsideMaterial) continue;
+    Face f{{mesh.positions[s.v[0]], mesh.positions[s.v[1]], mesh.positions[s.v[2]]},
+           {},
+           {},
+           piece[s.v[0]]};
+    f.lo = f.hi = f.t[0];
+    for (const tetlod::Vec3& x : f.t) {
+      for (int a = 0; a < 3; ++a)
+        f.lo[a] = std::min(f.lo[a], x[a]), f.hi[a] = std::max(f.hi[a], x[a]);
     }
+    faces.push_back(f);
   }
   std::sort(faces.begin(), faces.end(),
             [](const Face& a, const Face& b) { return a.lo.x < b.lo.x; });

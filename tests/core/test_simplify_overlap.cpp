@@ -23,6 +23,7 @@
 #include "core/lod.h"
 #include "core/overlap.h"
 #include "core/simplify.h"
+#include "core/surface.h"
 #include "core/triangle_cross.h"
 #include "test_io_helpers.h"
 
@@ -112,23 +113,28 @@ TEST(SimplifyOverlap, TheGuardChangesNothingWhereNothingCrosses) {
   EXPECT_EQ(guarded.history.step_count(), unguarded.history.step_count());
 }
 
-// The outer boundary's triangles, each as its corners' positions, sorted.
-std::vector<std::array<Vec3, 3>> outer_triangles(const TetMesh& mesh) {
+// The outer boundary's triangles (extract_surface()'s, on the outside), each as its
+// corners' positions; with each one's first vertex in *first_vertex if asked.
+std::vector<Triangle3> outer_faces(const TetMesh& mesh,
+                                   std::vector<uint32_t>* first_vertex = nullptr) {
   std::vector<uint32_t> neighbors;
   EXPECT_EQ(build_face_neighbors(mesh, &neighbors).kind, FaceProblem::Kind::kNone);
-  std::vector<std::array<Vec3, 3>> out;
+  std::vector<Triangle3> out;
+  for (const SurfaceTriangle& t : extract_surface(mesh, neighbors)) {
+    if (t.outer != kOutsideMaterial) continue;
+    out.push_back({mesh.positions[t.v[0]], mesh.positions[t.v[1]], mesh.positions[t.v[2]]});
+    if (first_vertex) first_vertex->push_back(t.v[0]);
+  }
+  return out;
+}
+
+// The outer boundary's triangles, each with its corners sorted, sorted.
+std::vector<Triangle3> outer_triangles(const TetMesh& mesh) {
   const auto less = [](const Vec3& a, const Vec3& b) {
     return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
   };
-  for (size_t t = 0; t < mesh.tets.size(); ++t) {
-    for (int c = 0; c < 4; ++c) {
-      if (neighbors[4 * t + c] != kInvalidIndex) continue;
-      std::array<Vec3, 3> tri;
-      for (int k = 0; k < 3; ++k) tri[k] = mesh.positions[mesh.tets[t][(c + 1 + k) % 4]];
-      std::sort(tri.begin(), tri.end(), less);
-      out.push_back(tri);
-    }
-  }
+  std::vector<Triangle3> out = outer_faces(mesh);
+  for (Triangle3& tri : out) std::sort(tri.begin(), tri.end(), less);
   std::sort(out.begin(), out.end(), [&](const auto& a, const auto& b) {
     return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), less);
   });
@@ -154,22 +160,12 @@ TEST(SimplifyOverlap, PastItsBudgetTheGuardRefuses) {
 
 // How many pairs of boundary faces of different pieces clearly cross, by brute force.
 size_t crossings_between_pieces(const TetMesh& mesh) {
-  std::vector<uint32_t> neighbors;
-  EXPECT_EQ(build_face_neighbors(mesh, &neighbors).kind, FaceProblem::Kind::kNone);
   const std::vector<uint32_t> piece = vertex_pieces(mesh);
-  std::vector<Triangle3> faces;
-  std::vector<TrianglePlane> planes;
   std::vector<uint32_t> face_piece;
-  for (size_t t = 0; t < mesh.tets.size(); ++t) {
-    const Tet& q = mesh.tets[t];
-    for (int c = 0; c < 4; ++c) {
-      if (neighbors[4 * t + c] != kInvalidIndex) continue;
-      faces.push_back({mesh.positions[q[(c + 1) % 4]], mesh.positions[q[(c + 2) % 4]],
-                       mesh.positions[q[(c + 3) % 4]]});
-      planes.push_back(plane_of(faces.back()));
-      face_piece.push_back(piece[q[0]]);
-    }
-  }
+  const std::vector<Triangle3> faces = outer_faces(mesh, &face_piece);
+  for (uint32_t& p : face_piece) p = piece[p];
+  std::vector<TrianglePlane> planes;
+  for (const Triangle3& f : faces) planes.push_back(plane_of(f));
   // The faces' extents along x, to pass over pairs far apart.
   std::vector<std::pair<double, double>> x(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) {
