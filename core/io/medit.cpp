@@ -40,9 +40,7 @@ constexpr SkippedKeyword kSkippedKeywords[] = {
     {"TangentAtEdges", true, 3},
     {"TangentAtEdgeVertices", true, 3},
     {"EdgesP2", true, 4},
-    {"TrianglesP2", true, 7},
     {"QuadrilateralsQ2", true, 10},
-    {"TetrahedraP2", true, 11},
     {"HexahedraQ2", true, 28},
     {"VerticesOnGeometricVertices", true, 2},
     {"VerticesOnGeometricEdges", true, 4},
@@ -102,11 +100,14 @@ bool read_vertices(TextScanner& scanner, TetMesh& mesh) {
   return true;
 }
 
-// Appends a Tetrahedra section's entries (meshio writes one section per cell block).
-bool read_tets(TextScanner& scanner, ParsedMesh* out) {
+// Appends a Tetrahedra section's entries (meshio writes one section per cell block), or a
+// TetrahedraP2 section's (Gmsh's second-order export: the 4 corners, then the 6 mid-edge
+// nodes, which are not kept; validation drops them as unused) by their corners.
+bool read_tets(TextScanner& scanner, ParsedMesh* out, int nodes_per_entry) {
   uint64_t count = 0;
-  // An entry "a b c d ref" takes at least 10 bytes.
-  if (!scanner.read_count(&count, "tetrahedron count", 10)) return false;
+  // An entry "a b c d ref" takes at least 10 bytes (a P2 one, 22).
+  if (!scanner.read_count(&count, "tetrahedron count", 2 * uint64_t(nodes_per_entry) + 2))
+    return false;
   TetMesh& mesh = out->mesh;
   if (count >= kInvalidIndex - mesh.tets.size()) return scanner.fail("too many tetrahedra");
   mesh.tets.reserve(mesh.tets.size() + count);
@@ -124,6 +125,14 @@ bool read_tets(TextScanner& scanner, ParsedMesh* out) {
       }
       tet[k] = uint32_t(index - 1);
     }
+    for (int k = 4; k < nodes_per_entry; ++k) {
+      int64_t index = 0;
+      if (!scanner.read_int(&index, "mid-edge vertex index")) return false;
+      if (index < 1 || index > int64_t{kInvalidIndex}) {
+        return scanner.fail("vertex index " + std::to_string(index) +
+                            " is out of range (Medit indices start at 1)");
+      }
+    }
     int64_t material = 0;
     if (!scanner.read_int_in_range(&material, "tetrahedron reference (material)",
                                    std::numeric_limits<int32_t>::min(),
@@ -137,20 +146,26 @@ bool read_tets(TextScanner& scanner, ParsedMesh* out) {
 }
 
 // A Triangles section's entries "a b c ref", kept with a reference >= 1 (a boundary
-// condition's id, as MMG and TetLOD write them) for ParsedMesh::surface_groups.
+// condition's id, as MMG and TetLOD write them) for ParsedMesh::surface_groups; or a
+// TrianglesP2 section's "a b c ab bc ca ref", by their corners.
 struct PendingTriangle {
   int64_t v[3];
   int64_t ref;
 };
 bool read_triangles(TextScanner& scanner, std::vector<PendingTriangle>* out,
-                    SurfaceElements* surface) {
+                    SurfaceElements* surface, int nodes_per_entry) {
   uint64_t count = 0;
-  if (!scanner.read_count(&count, "triangle count", 8)) return false;
+  if (!scanner.read_count(&count, "triangle count", 2 * uint64_t(nodes_per_entry) + 2))
+    return false;
   surface->count(count);
   for (uint64_t i = 0; i < count; ++i) {
     PendingTriangle t;
     for (int64_t& v : t.v)
       if (!scanner.read_int(&v, "triangle vertex index")) return false;
+    for (int k = 3; k < nodes_per_entry; ++k) {
+      int64_t mid = 0;
+      if (!scanner.read_int(&mid, "mid-edge vertex index")) return false;
+    }
     if (!scanner.read_int(&t.ref, "triangle reference")) return false;
     if (t.ref >= 1 && t.ref <= std::numeric_limits<int32_t>::max()) out->push_back(t);
   }
@@ -174,6 +189,7 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   bool seen_vertices = false;
   bool seen_tets = false;
   std::string skipped_volumes;  // "28 Prisms, 3 Hexahedra"
+  uint64_t quadratic_tets = 0;  // read by their corners
   std::vector<PendingTriangle> triangles;
   SurfaceElements surface;  // kept only as groups (the CLI says so)
 
@@ -191,19 +207,25 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
       read_vertices(scanner, out->mesh);
     } else if (is("Tetrahedra")) {
       seen_tets = true;
-      read_tets(scanner, out);
+      read_tets(scanner, out, 4);
+    } else if (is("TetrahedraP2")) {
+      seen_tets = true;
+      const size_t before = out->mesh.tets.size();
+      if (read_tets(scanner, out, 10)) quadratic_tets += out->mesh.tets.size() - before;
     } else if (is("Triangles")) {
-      read_triangles(scanner, &triangles, &surface);
+      read_triangles(scanner, &triangles, &surface, 3);
+    } else if (is("TrianglesP2")) {
+      read_triangles(scanner, &triangles, &surface, 6);
     } else if (const SkippedKeyword* skipped = find_skipped(keyword)) {
       uint64_t count = 1;
       const uint64_t width = uint64_t(skipped->numbers_per_entry);
       if (skipped->has_count) scanner.read_count(&count, "entry count", 2 * width);
       if (!scanner.failed()) scanner.skip_numbers(count * width, skipped->name);
       // Surface elements are kept only as groups (Triangles), and the CLI says so.
-      for (const char* kind : {"Quadrilaterals", "TrianglesP2", "QuadrilateralsQ2"})
+      for (const char* kind : {"Quadrilaterals", "QuadrilateralsQ2"})
         if (std::string_view(skipped->name) == kind) surface.count(count);
       // Volume elements other than 4-node tets are not read: say so.
-      for (const char* volume : {"Prisms", "Pyramids", "Hexahedra", "HexahedraQ2", "TetrahedraP2"})
+      for (const char* volume : {"Prisms", "Pentahedra", "Pyramids", "Hexahedra", "HexahedraQ2"})
         if (count > 0 && std::string_view(skipped->name) == volume)
           skipped_volumes +=
               (skipped_volumes.empty() ? "" : ", ") + std::to_string(count) + " " + volume;
@@ -244,6 +266,11 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   if (outside > 0) {
     out->notes.push_back(std::to_string(outside) +
                          " triangles name a vertex that is not in Vertices: not kept");
+  }
+  if (quadratic_tets > 0) {
+    out->notes.push_back(std::to_string(quadratic_tets) +
+                         " TetrahedraP2 (10-node) were read as 4-node tetrahedra (by their "
+                         "corners; their mid-edge points are dropped)");
   }
   if (!skipped_volumes.empty()) {
     out->notes.push_back("skipped " + skipped_volumes +

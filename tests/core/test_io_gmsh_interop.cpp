@@ -221,6 +221,51 @@ TEST(IoGmshInterop, GmshAbaqusPhysicalSurfacesAreGroups) {
             sorted(msh_info.surface_groups[0].triangles));
 }
 
+// Gmsh's second-order Medit export (TetrahedraP2, TrianglesP2) reads as the same mesh,
+// with the same surface groups, as its first-order export of the same geometry: the
+// corners are the same, the mid-edge nodes (on the sphere: moved onto it) are dropped.
+TEST(IoGmshInterop, WeReadGmshSecondOrderMedit) {
+  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  const std::string dir = test::output_dir("gmsh_p2");
+  test::write_text(dir + "/ball.geo",
+                   "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                   "Sphere(2) = {0.5, 0.5, 0.5, 0.3};\n"
+                   "BooleanFragments{ Volume{1}; Delete; }{ Volume{2}; Delete; }\n"
+                   "Physical Volume(1) = {2};\nPhysical Volume(2) = {3};\n"
+                   "Physical Surface(5) = Boundary{ Volume{2}; };\nMesh.MeshSizeMax = 0.3;\n");
+  const std::string log = dir + "/gmsh.log";
+  TetMesh linear, quadratic;
+  ReadInfo linear_info, quadratic_info;
+  for (int order : {1, 2}) {
+    const std::string out = dir + "/ball" + std::to_string(order) + ".mesh";
+    ASSERT_TRUE(run_gmsh("'" + dir + "/ball.geo' -3 -order " + std::to_string(order) +
+                             " -format mesh -o '" + out + "'",
+                         log))
+        << test::read_text(log);
+    const std::string text = test::read_text(out);
+    EXPECT_EQ(text.find("TetrahedraP2") != std::string::npos, order == 2);
+    EXPECT_EQ(text.find("TrianglesP2") != std::string::npos, order == 2);
+    const Status status = read_mesh(out, order == 1 ? &linear : &quadratic,
+                                    order == 1 ? &linear_info : &quadratic_info);
+    ASSERT_TRUE(status.ok()) << status.message();
+  }
+  EXPECT_EQ(test::canonical_tets(quadratic), test::canonical_tets(linear));
+  EXPECT_EQ(quadratic.vertex_count(), linear.vertex_count());
+  EXPECT_EQ(linear_info.validation.removed_unused_vertices, 0u);
+  EXPECT_GT(quadratic_info.validation.removed_unused_vertices, linear.vertex_count());
+  ASSERT_FALSE(quadratic_info.notes.empty());
+  EXPECT_EQ(quadratic_info.notes[0], std::to_string(quadratic.tet_count()) +
+                                         " TetrahedraP2 (10-node) were read as 4-node "
+                                         "tetrahedra (by their corners; their mid-edge points "
+                                         "are dropped)");
+  ASSERT_EQ(quadratic_info.surface_groups.size(), linear_info.surface_groups.size());
+  ASSERT_FALSE(linear_info.surface_groups.empty());
+  for (size_t g = 0; g < linear_info.surface_groups.size(); ++g) {
+    EXPECT_EQ(quadratic_info.surface_groups[g].tag, linear_info.surface_groups[g].tag);
+    EXPECT_EQ(quadratic_info.surface_groups[g].triangles, linear_info.surface_groups[g].triangles);
+  }
+}
+
 TEST(IoGmshInterop, GmshFindsNoInvertedTets) {
   if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
   const std::string dir = test::output_dir("gmsh_orientation");

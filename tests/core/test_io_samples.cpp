@@ -68,8 +68,7 @@ TEST(IoSamples, SkippedCellsAreNoted) {
             std::string::npos)
       << info.notes[1];
   EXPECT_EQ(mesh.tet_count(), 1u);
-  // Medit: a Prisms section beside the tets is noted; TetrahedraP2 alone is named in the
-  // error.
+  // Medit: a Prisms section beside the tets is noted.
   const std::string medit =
       "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n"
       "0 0 1 0\n";
@@ -81,13 +80,33 @@ TEST(IoSamples, SkippedCellsAreNoted) {
   EXPECT_NE(info.notes[0].find("skipped 1 Prisms: TetLOD reads 4-node tetrahedra only"),
             std::string::npos)
       << info.notes[0];
-  const Status p2 = read_mesh_from_memory(medit + "TetrahedraP2\n1\n1 2 3 4 1 2 3 4 1 2 1\nEnd\n",
-                                          MeshFormat::kMedit, "m.mesh", &mesh, &info);
-  ASSERT_FALSE(p2.ok());
-  EXPECT_NE(p2.message().find("no Tetrahedra section (TetLOD reads 4-node tetrahedra only, not "
-                              "1 TetrahedraP2)"),
-            std::string::npos)
-      << p2.message();
+  // TetrahedraP2 (Gmsh's second-order export) are read by their corners, and TrianglesP2
+  // are surface groups by theirs; the mid-edge vertices are dropped as unused.
+  const std::string p2 =
+      "MeshVersionFormatted 2\nDimension 3\nVertices\n10\n0 0 0 0\n1 0 0 0\n0 1 0 0\n"
+      "0 0 1 0\n0.5 0 0 0\n0.5 0.5 0 0\n0 0.5 0 0\n0 0 0.5 0\n0.5 0 0.5 0\n0 0.5 0.5 0\n"
+      "TrianglesP2\n1\n1 3 2 7 6 5 4\n";
+  ASSERT_TRUE(read_mesh_from_memory(p2 + "TetrahedraP2\n1\n1 2 3 4 5 6 7 8 9 10 3\nEnd\n",
+                                    MeshFormat::kMedit, "m.mesh", &mesh, &info)
+                  .ok());
+  ASSERT_EQ(mesh.tet_count(), 1u);
+  EXPECT_EQ(mesh.vertex_count(), 4u);
+  EXPECT_EQ(mesh.materials[0], 3);
+  EXPECT_EQ(info.validation.removed_unused_vertices, 6u);
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_EQ(info.notes[0],
+            "1 TetrahedraP2 (10-node) were read as 4-node tetrahedra (by their corners; their "
+            "mid-edge points are dropped)");
+  ASSERT_EQ(info.surface_groups.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].tag, 4);
+  ASSERT_EQ(info.surface_groups[0].triangles.size(), 1u);
+  EXPECT_EQ(info.surface_groups[0].triangles[0][1].y, 1.0);
+  // A mid-edge index out of range is an error on its line.
+  const Status bad = read_mesh_from_memory(p2 + "TetrahedraP2\n1\n1 2 3 4 5 6 7 8 9 0 3\nEnd\n",
+                                           MeshFormat::kMedit, "m.mesh", &mesh, &info);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.message().find("m.mesh:20: vertex index 0 is out of range"), std::string::npos)
+      << bad.message();
   // Nastran's CPENTA and Abaqus's C3D6 beside a tet.
   const std::string nastran =
       "BEGIN BULK\nGRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n"
