@@ -823,13 +823,19 @@ void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, std::s
   for (int32_t material : mesh.materials) append_line(out, material);
   for_each_triangle([&](const std::array<uint32_t, 3>&, int32_t tag) { append_line(out, tag); });
   // The stretch as a FIELD array: VTK's legacy reader takes only the first SCALARS of
-  // a section unless told to read them all, but every FIELD array. A triangle has
-  // none: -1.
+  // a section unless told to read them all, but every FIELD array. A triangle takes
+  // the stretch of its tet (on its back side), so that ParaView colours it as the face
+  // it lies on and its range is the tets'.
   out->append("FIELD FieldData 1\nstretch 1 ");
   append_number(out, cell_count);
   out->append(" double\n");
-  for (const Tet& tet : mesh.tets) append_line(out, tet_shape(mesh, tet).stretch);
-  for (size_t t = 0; t < triangle_count; ++t) out->append("-1\n");
+  std::vector<double> stretch(tet_count);
+  for (size_t t = 0; t < tet_count; ++t) stretch[t] = tet_shape(mesh, mesh.tets[t]).stretch;
+  for (double d : stretch) append_line(out, d);
+  if (surfaces) {
+    for (const SurfaceGroup& group : surfaces->groups)
+      for (uint32_t i : group.triangles) append_line(out, stretch[surfaces->surface[i].tet]);
+  }
 }
 
 }  // namespace tetlod::io

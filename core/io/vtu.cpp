@@ -846,18 +846,20 @@ Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out
 namespace {
 
 // The surface groups' triangles come after the tets, as for .vtk (write_vtk_legacy()):
-// cell type 5, the group's tag as material, stretch -1. The fields' cell arrays are the
-// tets' only: a caller gives fields or surfaces.
+// cell type 5, the group's tag as material, the stretch of the tet on its back side. The
+// fields' cell arrays are the tets' only: a caller gives fields or surfaces.
 void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const SurfaceGroups* surfaces,
                      std::string* out) {
   const size_t tet_count = mesh.tet_count();
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<int32_t> tags;
+  std::vector<uint32_t> triangle_tets;
   if (surfaces) {
     for (const SurfaceGroup& group : surfaces->groups) {
       for (uint32_t i : group.triangles) {
         triangles.push_back(surfaces->surface[i].v);
         tags.push_back(group.tag);
+        triangle_tets.push_back(surfaces->surface[i].tet);
       }
     }
   }
@@ -932,8 +934,10 @@ void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const Surfac
   out->append(
       "        </DataArray>\n"
       "        <DataArray type=\"Float64\" Name=\"stretch\" format=\"ascii\">\n");
+  std::vector<double> stretch(tet_count);
+  for (size_t t = 0; t < tet_count; ++t) stretch[t] = tet_shape(mesh, mesh.tets[t]).stretch;
   append_rows<double>(out, cell_count, 8, [&](size_t c) {
-    return c < tet_count ? tet_shape(mesh, mesh.tets[c]).stretch : -1.0;
+    return stretch[c < tet_count ? c : triangle_tets[c - tet_count]];
   });
   out->append("        </DataArray>\n");
   append_arrays(fields.cell_data);

@@ -18,6 +18,7 @@
 #include "core/improve.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
+#include "core/metrics.h"
 #include "core/simplify.h"
 #include "core/surface.h"
 #include "core/test_io_helpers.h"
@@ -232,8 +233,14 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
   }
 
   // VTK legacy and XML: triangle cells after the tets, the tag in the material array,
-  // stretch -1; Nastran: a CTRIA3 per triangle after the CTETRAs, the tag as its PID.
-  // Read back as the groups, by tag, unnamed (as .mesh).
+  // the stretch of the tet behind (so that ParaView colours the triangle as that tet's
+  // face, and its range is the tets'); Nastran: a CTRIA3 per triangle after the
+  // CTETRAs, the tag as its PID. Read back as the groups, by tag, unnamed (as .mesh).
+  std::vector<double> stretch_expected;
+  for (const Tet& tet : mesh.tets) stretch_expected.push_back(tet_shape(mesh, tet).stretch);
+  for (const SurfaceGroup& group : groups.groups)
+    for (uint32_t i : group.triangles)
+      stretch_expected.push_back(stretch_expected[groups.surface[i].tet]);
   for (const char* name : {"/box2.vtk", "/box2.vtu", "/box2.bdf"}) {
     SCOPED_TRACE(name);
     const std::string path = dir + name;
@@ -241,10 +248,21 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
     const std::string text = test::read_text(path);
     const std::string kind = std::string(name).substr(6);
     const size_t cells = mesh.tet_count() + groups.surface.size();
-    if (kind == "vtu") {
-      EXPECT_NE(text.find("NumberOfCells=\"" + std::to_string(cells) + "\""), std::string::npos);
-    } else if (kind == "vtk") {
-      EXPECT_NE(text.find("CELL_TYPES " + std::to_string(cells) + "\n"), std::string::npos);
+    if (kind == "vtu" || kind == "vtk") {
+      const std::string cells_text = kind == "vtu"
+                                         ? "NumberOfCells=\"" + std::to_string(cells) + "\""
+                                         : "CELL_TYPES " + std::to_string(cells) + "\n";
+      EXPECT_NE(text.find(cells_text), std::string::npos);
+      const std::string header = kind == "vtu" ? "Name=\"stretch\" format=\"ascii\">"
+                                               : "stretch 1 " + std::to_string(cells) + " double";
+      const size_t at = text.find(header);
+      ASSERT_NE(at, std::string::npos);
+      std::istringstream in(text.substr(at + header.size()));
+      for (size_t c = 0; c < cells; ++c) {
+        double value = -2;
+        in >> value;
+        ASSERT_NEAR(value, stretch_expected[c], 1e-12) << "cell " << c;
+      }
     } else {
       EXPECT_NE(text.find(std::to_string(groups.surface.size()) + " CTRIA3;"), std::string::npos);
       EXPECT_NE(text.find("\nCTRIA3  " + std::to_string(mesh.tet_count() + 1) + " "),
