@@ -23,6 +23,8 @@ const Sample kSamples[] = {
     // volume 3 has none: its entity tag.
     {"gmsh41_entities.msh", MeshFormat::kGmsh41, 0, 21, 3, 0, 0},
     {"medit_sections.mesh", MeshFormat::kMedit, 4, 9, 4, 1, 1},
+    // Second order: the 12 mid-edge nodes are dropped.
+    {"medit_p2.mesh", MeshFormat::kMedit, 7, 8, 7, 0, 12},
     {"tetgen0.node", MeshFormat::kTetGen, 1, 2, 1, 0, 0},
     {"tetgen1.ele", MeshFormat::kTetGen, 3, 5, 3, 1, 0},
     {"vtk_mixed.vtk", MeshFormat::kVtkLegacy, 6, 8, 6, 0, 1},

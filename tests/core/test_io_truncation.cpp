@@ -122,7 +122,8 @@ TEST(IoTruncation, HandWrittenSamples) {
   } files[] = {
       {"medit_sections.mesh", MeshFormat::kMedit},  {"gmsh22_mixed.msh", MeshFormat::kGmsh22},
       {"gmsh41_entities.msh", MeshFormat::kGmsh41}, {"vtk_mixed.vtk", MeshFormat::kVtkLegacy},
-      {"vtk51_field.vtk", MeshFormat::kVtkLegacy},  {"vtu_mixed.vtu", MeshFormat::kVtu}};
+      {"vtk51_field.vtk", MeshFormat::kVtkLegacy},  {"vtu_mixed.vtu", MeshFormat::kVtu},
+      {"medit_p2.mesh", MeshFormat::kMedit}};
   for (const auto& file : files) {
     check_truncations(test::read_text(test::data_path(file.file)), file.format, file.file);
   }
