@@ -140,6 +140,11 @@ class AbaqusParser {
       if (!data(record, first_line)) return error_;
     }
     if (!resolve() || !resolve_surfaces()) return error_;
+    if (quadratic_tets_ > 0) {
+      out_->notes.push_back(std::to_string(quadratic_tets_) +
+                            " 10-node tetrahedra (C3D10 and variants) were read as 4-node ones "
+                            "(by their corners; their mid-edge nodes are dropped)");
+    }
     if (!skipped_solids_.empty()) {
       out_->notes.push_back("skipped the elements " + count_list(skipped_solids_) +
                             ": TetLOD reads tetrahedra only, so a region meshed with other "
@@ -392,6 +397,7 @@ class AbaqusParser {
       return fail(line, "element " + std::to_string(id) + " is defined twice");
     }
     tets_.push_back(t);
+    quadratic_tets_ += element_nodes_ == 10;
     if (!element_set_name_.empty()) element_sets_[element_set_name_].push_back(id);
     return true;
   }
@@ -825,6 +831,7 @@ class AbaqusParser {
   int parts_ = 0;
   size_t instance_line_ = 0;
   int element_nodes_ = 0;
+  size_t quadratic_tets_ = 0;    // C3D10 and variants, read by their corners
   std::string skipped_type_;     // of the *ELEMENT block: a non-tet solid
   bool triangle_block_ = false;  // the *ELEMENT block's are triangles
   std::unordered_map<int64_t, std::array<int64_t, 3>> triangles_;  // by element id: corners

@@ -100,6 +100,11 @@ class NastranParser {
                            "ends with ENDDATA");
     }
     if (!resolve()) return error_;
+    if (quadratic_tets_ > 0) {
+      out_->notes.push_back(std::to_string(quadratic_tets_) +
+                            " 10-node CTETRAs were read as 4-node ones (by their corners; "
+                            "their mid-side GRIDs are dropped)");
+    }
     if (!skipped_solids_.empty()) {
       out_->notes.push_back("skipped the solid elements " + count_list(skipped_solids_) +
                             ": TetLOD reads CTETRA only, so a region meshed with other elements "
@@ -343,6 +348,7 @@ class NastranParser {
     }
     if (tets_.size() + 1 >= kInvalidIndex) return fail(card_line_, "too many CTETRAs");
     tets_.push_back(t);
+    quadratic_tets_ += !field(6).empty();  // G5..G10: the mid-side grids
     return true;
   }
 
@@ -428,6 +434,7 @@ class NastranParser {
   std::string expanded_;  // the current line, tabs expanded
   std::vector<PendingTriangle> triangles_;
   uint64_t quads_ = 0;                // CQUAD4, CQUAD8, CQUADR entries
+  uint64_t quadratic_tets_ = 0;       // 10-node CTETRAs, read by their corners
   std::vector<int64_t> grid_ids_;     // per vertex, in file order
   std::vector<uint32_t> grid_lines_;  // per vertex
   int64_t first_id_ = 0;

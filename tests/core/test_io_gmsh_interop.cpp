@@ -221,10 +221,11 @@ TEST(IoGmshInterop, GmshAbaqusPhysicalSurfacesAreGroups) {
             sorted(msh_info.surface_groups[0].triangles));
 }
 
-// Gmsh's second-order Medit export (TetrahedraP2, TrianglesP2) reads as the same mesh,
-// with the same surface groups, as its first-order export of the same geometry: the
-// corners are the same, the mid-edge nodes (on the sphere: moved onto it) are dropped.
-TEST(IoGmshInterop, WeReadGmshSecondOrderMedit) {
+// Gmsh's second-order exports (10-node tets, 6-node triangles) read as the same mesh,
+// with the same surface groups, as its first-order exports of the same geometry: the
+// corners are the same, the mid-edge nodes (on the sphere: moved onto it) are dropped,
+// and a note says so. In every format Gmsh writes that TetLOD reads.
+TEST(IoGmshInterop, WeReadGmshSecondOrderExports) {
   if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
   const std::string dir = test::output_dir("gmsh_p2");
   test::write_text(dir + "/ball.geo",
@@ -234,35 +235,50 @@ TEST(IoGmshInterop, WeReadGmshSecondOrderMedit) {
                    "Physical Volume(1) = {2};\nPhysical Volume(2) = {3};\n"
                    "Physical Surface(5) = Boundary{ Volume{2}; };\nMesh.MeshSizeMax = 0.3;\n");
   const std::string log = dir + "/gmsh.log";
-  TetMesh linear, quadratic;
-  ReadInfo linear_info, quadratic_info;
-  for (int order : {1, 2}) {
-    const std::string out = dir + "/ball" + std::to_string(order) + ".mesh";
-    ASSERT_TRUE(run_gmsh("'" + dir + "/ball.geo' -3 -order " + std::to_string(order) +
-                             " -format mesh -o '" + out + "'",
-                         log))
-        << test::read_text(log);
-    const std::string text = test::read_text(out);
-    EXPECT_EQ(text.find("TetrahedraP2") != std::string::npos, order == 2);
-    EXPECT_EQ(text.find("TrianglesP2") != std::string::npos, order == 2);
-    const Status status = read_mesh(out, order == 1 ? &linear : &quadratic,
-                                    order == 1 ? &linear_info : &quadratic_info);
-    ASSERT_TRUE(status.ok()) << status.message();
-  }
-  EXPECT_EQ(test::canonical_tets(quadratic), test::canonical_tets(linear));
-  EXPECT_EQ(quadratic.vertex_count(), linear.vertex_count());
-  EXPECT_EQ(linear_info.validation.removed_unused_vertices, 0u);
-  EXPECT_GT(quadratic_info.validation.removed_unused_vertices, linear.vertex_count());
-  ASSERT_FALSE(quadratic_info.notes.empty());
-  EXPECT_EQ(quadratic_info.notes[0], std::to_string(quadratic.tet_count()) +
-                                         " TetrahedraP2 (10-node) were read as 4-node "
-                                         "tetrahedra (by their corners; their mid-edge points "
-                                         "are dropped)");
-  ASSERT_EQ(quadratic_info.surface_groups.size(), linear_info.surface_groups.size());
-  ASSERT_FALSE(linear_info.surface_groups.empty());
-  for (size_t g = 0; g < linear_info.surface_groups.size(); ++g) {
-    EXPECT_EQ(quadratic_info.surface_groups[g].tag, linear_info.surface_groups[g].tag);
-    EXPECT_EQ(quadratic_info.surface_groups[g].triangles, linear_info.surface_groups[g].triangles);
+  const struct {
+    const char* format;  // Gmsh's -format
+    const char* extension;
+    const char* note;  // TetLOD's note on the second-order file (and not on the other)
+  } exports[] = {
+      {"mesh", "mesh", " TetrahedraP2 (10-node) were read as 4-node tetrahedra"},
+      {"msh41", "msh", " higher-order tetrahedra (10 nodes or more) were read"},
+      {"vtk", "vtk", " quadratic (10-node) tetrahedra were read as 4-node ones"},
+      {"bdf", "bdf", " 10-node CTETRAs were read as 4-node ones"},
+      {"inp", "inp", " 10-node tetrahedra (C3D10 and variants) were read"},
+  };
+  for (const auto& e : exports) {
+    SCOPED_TRACE(e.format);
+    TetMesh mesh[2];
+    ReadInfo info[2];
+    for (int order : {1, 2}) {
+      const std::string out =
+          dir + "/ball" + std::to_string(order) + "." + e.format + "." + e.extension;
+      ASSERT_TRUE(run_gmsh("'" + dir + "/ball.geo' -3 -order " + std::to_string(order) +
+                               " -format " + e.format + " -o '" + out + "'",
+                           log))
+          << test::read_text(log);
+      const Status status = read_mesh(out, &mesh[order - 1], &info[order - 1]);
+      ASSERT_TRUE(status.ok()) << status.message();
+    }
+    const TetMesh &linear = mesh[0], &quadratic = mesh[1];
+    EXPECT_EQ(test::canonical_tets(quadratic), test::canonical_tets(linear));
+    EXPECT_EQ(quadratic.vertex_count(), linear.vertex_count());
+    EXPECT_EQ(info[0].validation.removed_unused_vertices, 0u);
+    EXPECT_GT(info[1].validation.removed_unused_vertices, linear.vertex_count());
+    const std::string note = std::to_string(quadratic.tet_count()) + e.note;
+    auto has_note = [&](const ReadInfo& i) {
+      return std::any_of(i.notes.begin(), i.notes.end(),
+                         [&](const std::string& n) { return n.rfind(note, 0) == 0; });
+    };
+    EXPECT_TRUE(has_note(info[1])) << "no note starting '" << note << "'";
+    EXPECT_FALSE(has_note(info[0]));
+    ASSERT_EQ(info[1].surface_groups.size(), info[0].surface_groups.size());
+    ASSERT_FALSE(info[0].surface_groups.empty());
+    for (size_t g = 0; g < info[0].surface_groups.size(); ++g) {
+      EXPECT_EQ(info[1].surface_groups[g].tag, info[0].surface_groups[g].tag);
+      EXPECT_EQ(info[1].surface_groups[g].name, info[0].surface_groups[g].name);
+      EXPECT_EQ(info[1].surface_groups[g].triangles, info[0].surface_groups[g].triangles);
+    }
   }
 }
 
