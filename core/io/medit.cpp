@@ -172,6 +172,68 @@ bool read_triangles(TextScanner& scanner, std::vector<PendingTriangle>* out,
   return true;
 }
 
+// What a Medit file (ASCII or binary) holds besides its vertices and tets: the
+// triangles for the surface groups, and what the notes tell of.
+struct Sections {
+  bool seen_vertices = false;
+  bool seen_tets = false;
+  std::string skipped_volumes;  // "28 Prisms, 3 Hexahedra"
+  uint64_t quadratic_tets = 0;  // TetrahedraP2, read by their corners
+  std::vector<PendingTriangle> triangles;
+  SurfaceElements surface;  // kept only as groups (the CLI says so)
+
+  // Volume elements other than tets are not read: the notes say so.
+  void skip_volumes(const char* name, uint64_t count) {
+    if (count > 0)
+      skipped_volumes += (skipped_volumes.empty() ? "" : ", ") + std::to_string(count) + " " + name;
+  }
+};
+
+// After the last section: the errors for what is missing, the surface groups and the
+// notes.
+Status finish(const std::string& name, Sections& s, ParsedMesh* out) {
+  if (!s.seen_vertices) return Status::error(name + ": no Vertices section");
+  if (!s.seen_tets) {
+    return Status::error(
+        name + ": no Tetrahedra section" +
+        (s.skipped_volumes.empty()
+             ? std::string()
+             : " (TetLOD reads 4-node tetrahedra only, not " + s.skipped_volumes + ")"));
+  }
+  // The referenced triangles, by reference, as surface groups (positions: the indices
+  // are checked here, the vertices before validation may drop unused ones).
+  size_t outside = 0;
+  for (const PendingTriangle& t : s.triangles) {
+    std::array<Vec3, 3> corners;
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+      ok = ok && t.v[k] >= 1 && uint64_t(t.v[k]) <= out->mesh.positions.size();
+      if (ok) corners[size_t(k)] = out->mesh.positions[size_t(t.v[k] - 1)];
+    }
+    if (!ok) {
+      ++outside;
+      continue;
+    }
+    s.surface.add_triangle(int32_t(t.ref), corners[0], corners[1], corners[2]);
+  }
+  s.surface.finish(out);
+  if (outside > 0) {
+    out->notes.push_back(std::to_string(outside) +
+                         " triangles name a vertex that is not in Vertices: not kept");
+  }
+  if (s.quadratic_tets > 0) {
+    out->notes.push_back(std::to_string(s.quadratic_tets) +
+                         " TetrahedraP2 (10-node) were read as 4-node tetrahedra (by their "
+                         "corners; their mid-edge points are dropped)");
+  }
+  if (!s.skipped_volumes.empty()) {
+    out->notes.push_back("skipped " + s.skipped_volumes +
+                         ": TetLOD reads 4-node tetrahedra only, so a region meshed with other "
+                         "elements is not in the mesh");
+  }
+  return Status();
+}
+
 }  // namespace
 
 Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out) {
@@ -186,12 +248,7 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   if (!scanner.read_int_in_range(&value, "MeshVersionFormatted value", 1, 4)) {
     return scanner.status();
   }
-  bool seen_vertices = false;
-  bool seen_tets = false;
-  std::string skipped_volumes;  // "28 Prisms, 3 Hexahedra"
-  uint64_t quadratic_tets = 0;  // read by their corners
-  std::vector<PendingTriangle> triangles;
-  SurfaceElements surface;  // kept only as groups (the CLI says so)
+  Sections sections;
 
   while (!scanner.failed() && scanner.next_token(&keyword)) {
     auto is = [&](const char* word) { return TextScanner::equals_ignore_case(keyword, word); };
@@ -202,20 +259,20 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
                      ")");
       }
     } else if (is("Vertices")) {
-      if (seen_vertices) scanner.fail("a second Vertices section");
-      seen_vertices = true;
+      if (sections.seen_vertices) scanner.fail("a second Vertices section");
+      sections.seen_vertices = true;
       read_vertices(scanner, out->mesh);
     } else if (is("Tetrahedra")) {
-      seen_tets = true;
+      sections.seen_tets = true;
       read_tets(scanner, out, 4);
     } else if (is("TetrahedraP2")) {
-      seen_tets = true;
+      sections.seen_tets = true;
       const size_t before = out->mesh.tets.size();
-      if (read_tets(scanner, out, 10)) quadratic_tets += out->mesh.tets.size() - before;
+      if (read_tets(scanner, out, 10)) sections.quadratic_tets += out->mesh.tets.size() - before;
     } else if (is("Triangles")) {
-      read_triangles(scanner, &triangles, &surface, 3);
+      read_triangles(scanner, &sections.triangles, &sections.surface, 3);
     } else if (is("TrianglesP2")) {
-      read_triangles(scanner, &triangles, &surface, 6);
+      read_triangles(scanner, &sections.triangles, &sections.surface, 6);
     } else if (const SkippedKeyword* skipped = find_skipped(keyword)) {
       uint64_t count = 1;
       const uint64_t width = uint64_t(skipped->numbers_per_entry);
@@ -223,12 +280,9 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
       if (!scanner.failed()) scanner.skip_numbers(count * width, skipped->name);
       // Surface elements are kept only as groups (Triangles), and the CLI says so.
       for (const char* kind : {"Quadrilaterals", "QuadrilateralsQ2"})
-        if (std::string_view(skipped->name) == kind) surface.count(count);
-      // Volume elements other than 4-node tets are not read: say so.
+        if (std::string_view(skipped->name) == kind) sections.surface.count(count);
       for (const char* volume : {"Prisms", "Pentahedra", "Pyramids", "Hexahedra", "HexahedraQ2"})
-        if (count > 0 && std::string_view(skipped->name) == volume)
-          skipped_volumes +=
-              (skipped_volumes.empty() ? "" : ", ") + std::to_string(count) + " " + volume;
+        if (std::string_view(skipped->name) == volume) sections.skip_volumes(volume, count);
     } else if (is_string_keyword(keyword)) {
       skip_string(scanner, keyword);
     } else if (TextScanner::looks_numeric(keyword)) {
@@ -239,45 +293,7 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
     }
   }
   if (scanner.failed()) return scanner.status();
-  if (!seen_vertices) return Status::error(name + ": no Vertices section");
-  if (!seen_tets) {
-    return Status::error(name + ": no Tetrahedra section" +
-                         (skipped_volumes.empty() ? std::string()
-                                                  : " (TetLOD reads 4-node tetrahedra only, not " +
-                                                        skipped_volumes + ")"));
-  }
-  // The referenced triangles, by reference, as surface groups (positions: the indices
-  // are checked here, the vertices before validation may drop unused ones).
-  size_t outside = 0;
-  for (const PendingTriangle& t : triangles) {
-    std::array<Vec3, 3> corners;
-    bool ok = true;
-    for (int k = 0; k < 3; ++k) {
-      ok = ok && t.v[k] >= 1 && uint64_t(t.v[k]) <= out->mesh.positions.size();
-      if (ok) corners[size_t(k)] = out->mesh.positions[size_t(t.v[k] - 1)];
-    }
-    if (!ok) {
-      ++outside;
-      continue;
-    }
-    surface.add_triangle(int32_t(t.ref), corners[0], corners[1], corners[2]);
-  }
-  surface.finish(out);
-  if (outside > 0) {
-    out->notes.push_back(std::to_string(outside) +
-                         " triangles name a vertex that is not in Vertices: not kept");
-  }
-  if (quadratic_tets > 0) {
-    out->notes.push_back(std::to_string(quadratic_tets) +
-                         " TetrahedraP2 (10-node) were read as 4-node tetrahedra (by their "
-                         "corners; their mid-edge points are dropped)");
-  }
-  if (!skipped_volumes.empty()) {
-    out->notes.push_back("skipped " + skipped_volumes +
-                         ": TetLOD reads 4-node tetrahedra only, so a region meshed with other "
-                         "elements is not in the mesh");
-  }
-  return Status();
+  return finish(name, sections, out);
 }
 
 void write_medit(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
