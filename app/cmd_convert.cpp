@@ -16,9 +16,11 @@ constexpr const char* kConvertUsage =
     "Converts a tetrahedral mesh between formats, chosen by extension, keeping the\n"
     "material of every tetrahedron, and the materials' names where both formats\n"
     "have them (Gmsh physical volumes, Abaqus element sets and sections):\n"
-    "  .mesh (Medit)  .msh (Gmsh 2.2/4.1)  .node/.ele (TetGen)  .vtk (legacy)  .vtu\n"
-    "  .bdf/.nas (Nastran bulk data; material = PID)  .inp (Abaqus, CalculiX)\n"
-    "Binary .msh, .vtk and .vtu files are read; every format is written as text.\n"
+    "  .mesh (Medit)  .meshb (Medit binary)  .msh (Gmsh 2.2/4.1)  .node/.ele (TetGen)\n"
+    "  .vtk (legacy)  .vtu  .bdf/.nas (Nastran bulk data; material = PID)\n"
+    "  .inp (Abaqus, CalculiX)\n"
+    "Binary .msh, .vtk and .vtu files are read; .meshb is binary, every other format\n"
+    "is written as text.\n"
     "The output is written to a temporary file and renamed, never left half-written.\n";
 
 void print_convert_usage(std::FILE* stream) {

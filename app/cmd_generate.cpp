@@ -34,7 +34,7 @@ constexpr const char* kGenerateUsage =
     "  --quality Q       radius-edge ratio bound (TetGen q), in [1.2, 100]; default 2\n"
     "  --sphere-level L  icosphere subdivisions for spheres, 0..5; default 3\n"
     "  -o, --output FILE the mesh to write; the format follows the extension\n"
-    "                    (.mesh .msh .node/.ele .vtk .vtu .bdf/.nas .inp)\n";
+    "                    (.mesh .meshb .msh .node/.ele .vtk .vtu .bdf/.nas .inp)\n";
 
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "tetlod generate: %s\n\n%s", message.c_str(), kGenerateUsage);

@@ -22,7 +22,7 @@ constexpr const char* kStatsUsage =
     "whole mesh and for each material's sub-mesh, a stretch histogram (bins of 0.1), the\n"
     "boundary/interface triangles per material pair, the file's own surface groups (as\n"
     "--surfaces writes them) and the vertex classification.\n"
-    "FILE: .mesh .msh .node/.ele .vtk .vtu .bdf/.nas .inp\n"
+    "FILE: .mesh .meshb .msh .node/.ele .vtk .vtu .bdf/.nas .inp\n"
     "  --json   machine-readable output on stdout\n";
 
 struct SurfaceSummary {

@@ -387,7 +387,7 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
     commands->push_back(
         {CommandKind::kSave, panel->save_path,
          (panel->save_improved ? kSaveImproved : 0) | (panel->save_surfaces ? kSaveSurfaces : 0)});
-  text_disabled_wrapped(".mesh .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
+  text_disabled_wrapped(".mesh .meshb .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
   ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(

@@ -30,6 +30,8 @@ struct ParsedMesh {
 };
 
 Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* out);
+// The binary .meshb (libMeshb's versions 1 to 4, either byte order).
+Status parse_medit_binary(std::string_view data, const std::string& name, ParsedMesh* out);
 // `version` receives 22 or 41.
 Status parse_gmsh(std::string_view text, const std::string& name, ParsedMesh* out, int* version);
 // `face_name`: of the .face file beside them (`face_text`), or null for none.
@@ -44,6 +46,8 @@ Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* 
 // `surfaces` (group_surface() of the mesh, or null for none): the surface groups
 // to write as well, in the format's way (mesh_io.h).
 void write_medit(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
+// Little-endian, version 2 (or 3 and 4 when positions or vertex numbers need 8 bytes).
+void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 // `version` is 22 or 41.
 // `names`: WriteOptions::material_names, or null.
 void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,

@@ -15,9 +15,10 @@
 namespace tetlod {
 namespace {
 
-constexpr const char* kSupportedExtensions = ".mesh, .msh, .node/.ele, .vtk, .vtu, .bdf/.nas, .inp";
+constexpr const char* kSupportedExtensions =
+    ".mesh, .meshb, .msh, .node/.ele, .vtk, .vtu, .bdf/.nas, .inp";
 
-enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu, kNastran, kAbaqus };
+enum class FileKind { kMedit, kGmsh, kTetGen, kVtkLegacy, kVtu, kNastran, kAbaqus, kMeditBinary };
 
 // The extension of the file name in `path`, lower case, without the dot.
 std::string extension_of(const std::string& path) {
@@ -48,8 +49,7 @@ Status file_kind(const std::string& path, FileKind* kind) {
   } else if (extension == "inp") {
     *kind = FileKind::kAbaqus;
   } else if (extension == "meshb") {
-    return Status::error(
-        path + ": binary Medit .meshb is not supported (supported: " + kSupportedExtensions + ")");
+    *kind = FileKind::kMeditBinary;
   } else {
     return Status::error(path + ": unknown mesh file extension '" +
                          (extension.empty() ? std::string() : "." + extension) +
@@ -124,6 +124,8 @@ const char* format_name(MeshFormat format) {
       return "Nastran bulk data .bdf";
     case MeshFormat::kAbaqus:
       return "Abaqus input .inp";
+    case MeshFormat::kMeditBinary:
+      return "Medit binary .meshb";
   }
   return "unknown format";
 }
@@ -156,6 +158,9 @@ Status read_mesh_from_memory(std::string_view data, MeshFormat format, const std
       break;
     case MeshFormat::kAbaqus:
       status = io::parse_abaqus(data, name, &parsed);
+      break;
+    case MeshFormat::kMeditBinary:
+      status = io::parse_medit_binary(data, name, &parsed);
       break;
   }
   if (!status.ok()) return status;
@@ -205,7 +210,7 @@ Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
   if (!(status = io::read_file(path, &text)).ok()) return status;
   static constexpr MeshFormat kFormats[] = {
       MeshFormat::kMedit, MeshFormat::kGmsh41,  MeshFormat::kTetGen, MeshFormat::kVtkLegacy,
-      MeshFormat::kVtu,   MeshFormat::kNastran, MeshFormat::kAbaqus};
+      MeshFormat::kVtu,   MeshFormat::kNastran, MeshFormat::kAbaqus, MeshFormat::kMeditBinary};
   return read_mesh_from_memory(text, kFormats[int(kind)], path, mesh, info);
 }
 
@@ -274,6 +279,9 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       break;
     case FileKind::kAbaqus:
       io::write_abaqus(mesh, surfaces, options.material_names, &text);
+      break;
+    case FileKind::kMeditBinary:
+      io::write_medit_binary(mesh, surfaces, &text);
       break;
   }
   return files->stage(path, text);

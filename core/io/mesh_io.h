@@ -1,6 +1,7 @@
 // Reading and writing tetrahedral meshes in the formats analysts' tools use.
 // The format is chosen from the file extension (ASCII case-insensitive):
 //   .mesh          Medit ASCII (MMG, CGAL, TetWild, Gmsh); material = tet reference
+//   .meshb         Medit binary (libMeshb: MMG, TetWild, meshio); as .mesh
 //   .msh           Gmsh 2.2 or 4.1 (read: from $MeshFormat, ASCII or binary in either
 //                  byte order; write: ASCII 4.1 unless WriteOptions::gmsh_version ==
 //                  22); material = physical tag, else the elementary tag
@@ -98,7 +99,17 @@
 
 namespace tetlod {
 
-enum class MeshFormat { kMedit, kGmsh22, kGmsh41, kTetGen, kVtkLegacy, kVtu, kNastran, kAbaqus };
+enum class MeshFormat {
+  kMedit,
+  kGmsh22,
+  kGmsh41,
+  kTetGen,
+  kVtkLegacy,
+  kVtu,
+  kNastran,
+  kAbaqus,
+  kMeditBinary
+};
 
 const char* format_name(MeshFormat format);
 
@@ -150,12 +161,13 @@ struct WriteOptions {
   // above every material's), for boundary conditions:
   //  - .msh: triangles in physical surfaces of those tags and names (4.1: one surface
   //    entity per group), numbered after the tets;
-  //  - .mesh: a Triangles section, reference = the group's tag;
+  //  - .mesh, .meshb: a Triangles section, reference = the group's tag;
   //  - .node/.ele: a .face file beside them, boundary marker = the group's tag;
   //  - .inp: per group a *NSET and a *SURFACE of element faces (<NAME>_FACES);
   //  - .vtk, .vtu: triangle cells after the tets, the tag in the material array (as
-  //    Gmsh's VTK export writes physical surfaces), stretch -1; no names.
-  // Nastran has no place for them: writing them there is an error.
+  //    Gmsh's VTK export writes physical surfaces), the stretch of the tet behind
+  //    each; no names;
+  //  - .bdf/.nas: a CTRIA3 per triangle after the CTETRAs, the tag as its PID.
   bool surface_groups = false;
   // With surface_groups: group_surface() of the very mesh written, for a caller that
   // also prints them; null to have the writer compute them.

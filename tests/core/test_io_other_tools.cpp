@@ -44,6 +44,10 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
                {"vtk42_meshio_binary_from_medit.vtk", true},
                // meshio's Medit writer: one Tetrahedra section per cell block.
                {"mesh_meshio_two_blocks.mesh", true},
+               // meshio's Medit binary writer: version 3 (4-byte integers), or 4 (8-byte
+               // integers) for 64-bit cell arrays.
+               {"meshb_meshio_v3.meshb", true},
+               {"meshb_meshio_v4.meshb", true},
                {"msh_meshio_binary.msh", false},
                {"msh22_meshio_binary.msh", false},
                {"nas_meshio.nas", false},

@@ -86,3 +86,11 @@ blocks = [tets[refs == m] for m in (1, 2)]
 meshio.write(folder + "/mesh_meshio_two_blocks.mesh",
              meshio.Mesh(from_medit.points, [("tetra", b) for b in blocks],
                          cell_data={"medit:ref": [refs[refs == m] for m in (1, 2)]}))
+
+# Medit binary (.meshb): meshio writes version 3 (4-byte integers, 8-byte keyword
+# positions) for 32-bit cell arrays, version 4 (8-byte integers too) for 64-bit ones.
+for bits, version in ((32, 3), (64, 4)):
+    kind = "int%d" % bits
+    meshio.write(folder + "/meshb_meshio_v%d.meshb" % version,
+                 meshio.Mesh(from_medit.points, [("tetra", tets.astype(kind))],
+                             cell_data={"medit:ref": [refs.astype(kind)]}))

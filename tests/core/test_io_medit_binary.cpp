@@ -1,0 +1,333 @@
+// Binary Medit files (.meshb, libMeshb's layout), versions 1 to 4 in both byte orders:
+// written here byte by byte, they read as the same mesh as the ASCII file; TetLOD's own
+// .meshb reads back as it wrote it; every truncation and every broken header fails with
+// "name: byte N: ...", and random damage never crashes. (test_io_other_tools.cpp reads
+// meshio's .meshb files.)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <random>
+
+#include "core/io/mesh_io.h"
+#include "core/surface.h"
+#include "core/test_io_helpers.h"
+#include "core/test_meshes.h"
+
+namespace tetlod {
+namespace {
+
+// libMeshb's keyword codes used here.
+constexpr int32_t kDimension = 3, kVertices = 4, kTriangles = 6, kTetrahedra = 8, kPrisms = 9,
+                  kCorners = 13, kTetrahedraP2 = 30, kEnd = 54;
+
+// A .meshb written by hand: each keyword's next position is filled in when the next
+// keyword starts; the last one's stays 0.
+class Gmf {
+ public:
+  Gmf(int version, bool swap) : version_(version), swap_(swap) {
+    i32(1);
+    i32(version);
+  }
+  void keyword(int64_t code) {
+    if (header_ != 0) patch(header_, data_.size());
+    i32(code);
+    header_ = data_.size();
+    position(0);
+  }
+  void i32(int64_t v) { put(int32_t(v)); }
+  void position(int64_t v) { version_ >= 3 ? put(v) : put(int32_t(v)); }
+  void integer(int64_t v) { version_ == 4 ? put(v) : put(int32_t(v)); }
+  void real(double v) { version_ == 1 ? put(float(v)) : put(v); }
+  // Gives the keyword begun last this next position instead of where the next starts.
+  void override_next(int64_t v) {
+    override_at_ = header_;
+    next_override_ = v;
+  }
+  std::string finish(bool end_keyword = true) {
+    if (end_keyword) keyword(kEnd);
+    if (next_override_) patch(override_at_, *next_override_);
+    return data_;
+  }
+
+ private:
+  template <typename T>
+  void put(T value) {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    if (swap_) std::reverse(bytes, bytes + sizeof(T));
+    data_.append(bytes, sizeof(T));
+  }
+  void patch(size_t at, int64_t value) {
+    const std::string saved = data_.substr(at + (version_ >= 3 ? 8 : 4));
+    data_.resize(at);
+    position(value);
+    data_ += saved;
+  }
+  int version_;
+  bool swap_;
+  std::string data_;
+  size_t header_ = 0, override_at_ = 0;
+  std::optional<int64_t> next_override_;
+};
+
+// What a test changes in the otherwise valid file.
+struct Damage {
+  int32_t one = 1;      // the byte-order word
+  int32_t version = 0;  // if not 0, instead of the real one
+  bool dimension_first = true;
+  int32_t dimension = 3;
+  int64_t vertex_count = 6;
+  double first_x = 0.1;
+  int64_t corner = 1;  // the first tet's first corner (1-based)
+  int64_t last_material = std::numeric_limits<int32_t>::max();
+  int64_t corners_next = -1;  // if >= 0, the Corners keyword's next position
+  bool end_keyword = true;
+};
+
+// The mesh of test::make_io_mesh() (6 vertices, tets {0,1,2,3} of material 0,
+// {1,2,3,4} of 7 and {0,2,1,5} of INT32_MAX, the last as a TetrahedraP2), with a
+// keyword TetLOD skips (Corners), a triangle of reference 5, and a prism.
+std::string meshb(int version, bool swap, const Damage& d = {}) {
+  const TetMesh mesh = test::make_io_mesh();
+  Gmf f(version, swap);
+  if (!d.dimension_first) {
+    f.keyword(kCorners);
+    f.integer(0);
+  }
+  f.keyword(kDimension);
+  f.i32(d.dimension);
+  f.keyword(kCorners);
+  if (d.corners_next >= 0) f.override_next(d.corners_next);
+  f.integer(2);
+  f.integer(1);
+  f.integer(2);
+  f.keyword(kVertices);
+  f.integer(d.vertex_count);
+  for (size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const Vec3& p = mesh.positions[i];
+    f.real(i == 0 ? d.first_x : p.x);
+    f.real(p.y);
+    f.real(p.z);
+    f.integer(int64_t(i % 2));
+  }
+  f.keyword(kTriangles);
+  f.integer(1);
+  for (int64_t v : {1, 3, 2, 5}) f.integer(v);
+  f.keyword(kTetrahedra);
+  f.integer(2);
+  for (size_t t = 0; t < 2; ++t) {
+    for (size_t k = 0; k < 4; ++k)
+      f.integer(t == 0 && k == 0 ? d.corner : int64_t(mesh.tets[t][k]) + 1);
+    f.integer(mesh.materials[t]);
+  }
+  f.keyword(kTetrahedraP2);
+  f.integer(1);
+  for (uint32_t v : mesh.tets[2]) f.integer(int64_t(v) + 1);
+  for (int64_t mid : {1, 2, 3, 4, 5, 6}) f.integer(mid);  // mid-edge nodes: not read
+  f.integer(d.last_material);
+  f.keyword(kPrisms);
+  f.integer(1);
+  for (int k = 0; k < 7; ++k) f.integer(1);
+  std::string out = f.finish(d.end_keyword);
+  if (d.one != 1 || d.version != 0) {
+    int32_t words[2] = {d.one, d.version != 0 ? d.version : version};
+    std::memcpy(&out[0], words, 8);
+  }
+  return out;
+}
+
+Status read(const std::string& data, TetMesh* mesh, ReadInfo* info = nullptr) {
+  return read_mesh_from_memory(data, MeshFormat::kMeditBinary, "b.meshb", mesh, info);
+}
+
+// `v` rounded to a float. Through a volatile: Debian's GCC 12.2 at -O2 drops the
+// rounding of some coordinates in a loop such as `for (Vec3& p : positions) p =
+// {float(p.x), float(p.y), float(p.z)};` (the SLP vectorizer: right with
+// -fno-tree-slp-vectorize, at -O0 and with clang; reproduced in a 10-line program).
+double to_float(double v) {
+  volatile float f = float(v);
+  return f;
+}
+
+// make_io_mesh() as a version 1 file holds it: coordinates rounded to floats.
+TetMesh expected_mesh(int version) {
+  TetMesh mesh = test::make_io_mesh();
+  if (version == 1)
+    for (Vec3& p : mesh.positions) p = {to_float(p.x), to_float(p.y), to_float(p.z)};
+  return mesh;
+}
+
+TEST(IoMeditBinary, ReadsEveryVersionInBothByteOrders) {
+  for (int version = 1; version <= 4; ++version) {
+    for (bool swap : {false, true}) {
+      SCOPED_TRACE(std::to_string(version) + (swap ? " big-endian" : " little-endian"));
+      TetMesh mesh;
+      ReadInfo info;
+      const Status s = read(meshb(version, swap), &mesh, &info);
+      ASSERT_TRUE(s.ok()) << s.message();
+      EXPECT_EQ(info.format, MeshFormat::kMeditBinary);
+      test::expect_same_mesh(expected_mesh(version), mesh);
+      ASSERT_EQ(info.surface_groups.size(), 1u);
+      EXPECT_EQ(info.surface_groups[0].tag, 5);
+      ASSERT_EQ(info.surface_groups[0].triangles.size(), 1u);
+      EXPECT_EQ(info.surface_groups[0].triangles[0][1], mesh.positions[2]);
+      ASSERT_EQ(info.notes.size(), 2u);
+      EXPECT_EQ(info.notes[0],
+                "1 TetrahedraP2 (10-node) were read as 4-node tetrahedra (by their corners; "
+                "their mid-edge points are dropped)");
+      EXPECT_EQ(info.notes[1].rfind("skipped 1 Prisms: TetLOD reads 4-node tetrahedra only", 0), 0u)
+          << info.notes[1];
+    }
+  }
+}
+
+// What TetLOD writes reads back as the mesh and groups it wrote, and as the ASCII
+// .mesh of the same mesh reads.
+TEST(IoMeditBinary, WrittenFilesReadBack) {
+  const std::string dir = test::output_dir("meshb");
+  TetMesh box2;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
+  const TetMesh grid = test::make_grid_mesh(
+      3, 2, 2, [](int i, int j, int k) { return (i + 2 * j + k) % 3; }, 0.25);
+  for (const TetMesh& mesh : {grid, box2}) {
+    WriteOptions options;
+    options.surface_groups = true;
+    ASSERT_TRUE(write_mesh(dir + "/m.meshb", mesh, options).ok());
+    ASSERT_TRUE(write_mesh(dir + "/m.mesh", mesh, options).ok());
+    const std::string data = test::read_text(dir + "/m.meshb");
+    // Version 2, little-endian.
+    ASSERT_GE(data.size(), 8u);
+    EXPECT_EQ(data.substr(0, 8), std::string("\1\0\0\0\2\0\0\0", 8));
+    TetMesh binary, ascii;
+    ReadInfo binary_info, ascii_info;
+    ASSERT_TRUE(read_mesh(dir + "/m.meshb", &binary, &binary_info).ok());
+    ASSERT_TRUE(read_mesh(dir + "/m.mesh", &ascii, &ascii_info).ok());
+    test::expect_same_mesh(mesh, binary);
+    EXPECT_TRUE(binary_info.notes.empty());
+    ASSERT_EQ(binary_info.surface_groups.size(), ascii_info.surface_groups.size());
+    ASSERT_FALSE(binary_info.surface_groups.empty());
+    for (size_t g = 0; g < ascii_info.surface_groups.size(); ++g) {
+      EXPECT_EQ(binary_info.surface_groups[g].tag, ascii_info.surface_groups[g].tag);
+      EXPECT_EQ(binary_info.surface_groups[g].triangles, ascii_info.surface_groups[g].triangles);
+    }
+  }
+}
+
+TEST(IoMeditBinary, EveryTruncationFails) {
+  for (int version : {2, 4}) {
+    const std::string data = meshb(version, version == 4);
+    size_t ok_count = 0;
+    for (size_t length = 0; length < data.size(); ++length) {
+      const std::string prefix = data.substr(0, length);  // ASan sees reads past it
+      TetMesh mesh;
+      const Status s = read(prefix, &mesh);
+      if (s.ok()) {
+        ++ok_count;
+        test::expect_same_mesh(expected_mesh(version), mesh);
+      } else {
+        EXPECT_EQ(s.message().rfind("b.meshb: byte ", 0), 0u) << s.message();
+      }
+      if (testing::Test::HasFailure()) return;
+    }
+    EXPECT_EQ(ok_count, 0u) << version;
+  }
+}
+
+TEST(IoMeditBinary, BrokenHeadersAndCountsNameTheProblem) {
+  auto damage = [](auto change) {
+    Damage d;
+    change(d);
+    return d;
+  };
+  const struct {
+    Damage damage;
+    const char* words;  // expected in the message
+  } cases[] = {
+      {damage([](Damage& d) { d.one = 7; }), "byte 0: not a binary Medit (.meshb) file"},
+      {damage([](Damage& d) { d.version = 5; }), "byte 4: version 5 (libMeshb knows 1 to 4)"},
+      {damage([](Damage& d) { d.dimension_first = false; }),
+       "byte 8: the first keyword is code 13, not Dimension (3)"},
+      {damage([](Damage& d) { d.dimension = 2; }), "only 3-dimensional meshes are supported"},
+      {damage([](Damage& d) { d.vertex_count = 1000000; }),
+       "Vertices: 1000000 entries of 28 bytes do not fit"},
+      {damage([](Damage& d) { d.vertex_count = -1; }), "Vertices: -1 entries"},
+      {damage([](Damage& d) { d.first_x = std::nan(""); }), "vertex 1: a coordinate is not finite"},
+      {damage([](Damage& d) { d.corner = 0; }), "vertex index 0 is out of range"},
+      {damage([](Damage& d) { d.corners_next = 4; }), "the next keyword's position 4 is not after"},
+      {damage([](Damage& d) { d.corners_next = 1 << 20; }),
+       "the next keyword's position 1048576 is past the end of the file"},
+  };
+  for (int version : {2, 3}) {
+    for (const auto& c : cases) {
+      SCOPED_TRACE(std::to_string(version) + ": " + c.words);
+      TetMesh mesh;
+      const Status s = read(meshb(version, false, c.damage), &mesh);
+      ASSERT_FALSE(s.ok());
+      EXPECT_EQ(s.message().rfind("b.meshb: byte ", 0), 0u) << s.message();
+      EXPECT_NE(s.message().find(c.words), std::string::npos) << s.message();
+    }
+  }
+  // A next position inside the keyword's own header (the Corners keyword starts at byte
+  // 20 of a version 2 file, its entries at 28): refused before its count is read.
+  Damage inside;
+  inside.corners_next = 22;
+  TetMesh read_back;
+  EXPECT_NE(read(meshb(2, false, inside), &read_back)
+                .message()
+                .find("byte 24: keyword 13: the next keyword's position 22 is not after this one"),
+            std::string::npos)
+      << read(meshb(2, false, inside), &read_back).message();
+  // Version 4's 8-byte references: one past the int32 range is named.
+  Damage d;
+  d.last_material = int64_t(1) << 40;
+  TetMesh mesh;
+  EXPECT_NE(read(meshb(4, false, d), &mesh).message().find("(material) 1099511627776 is out of"),
+            std::string::npos);
+  // A vertex index past the vertices: the validation's error, naming the file.
+  d = Damage();
+  d.corner = 99;
+  const Status s = read(meshb(2, false, d), &mesh);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.message().rfind("b.meshb: ", 0), 0u) << s.message();
+  EXPECT_NE(s.message().find("99"), std::string::npos) << s.message();
+  // Without the End keyword, a last keyword whose next position is 0 ends the file, as
+  // libMeshb reads it; one whose next position is the end of the file (the End keyword
+  // cut off) does not.
+  d = Damage();
+  d.end_keyword = false;
+  const std::string without_end = meshb(2, false, d);
+  ASSERT_TRUE(read(without_end, &mesh).ok());
+  test::expect_same_mesh(expected_mesh(2), mesh);
+  const std::string cut = meshb(2, false).substr(0, meshb(2, false).size() - 8);
+  EXPECT_NE(
+      read(cut, &mesh)
+          .message()
+          .find("byte " + std::to_string(cut.size()) + ": the file ends before the End keyword"),
+      std::string::npos)
+      << read(cut, &mesh).message();
+}
+
+// Random damage to the binary data: an error naming the file, or a valid mesh.
+TEST(IoMeditBinary, RandomDamageNeverCrashes) {
+  std::mt19937 random(2026);
+  for (int version = 1; version <= 4; ++version) {
+    const std::string valid = meshb(version, version % 2 == 0);
+    for (int trial = 0; trial < 2000; ++trial) {
+      std::string data = valid;
+      const int changes = 1 + trial % 4;
+      for (int k = 0; k < changes; ++k) {
+        const size_t at = random() % data.size();
+        data[at] = char(trial % 3 == 0 ? 0xff : random() & 0xff);
+      }
+      test::expect_error_or_valid_mesh(data, MeshFormat::kMeditBinary, "b.meshb");
+      if (testing::Test::HasFatalFailure()) return;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tetlod
