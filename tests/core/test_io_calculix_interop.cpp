@@ -16,7 +16,7 @@ namespace tetlod {
 namespace {
 
 TEST(IoCalculixInterop, CcxRunsAFrequencyAnalysisOnOurMesh) {
-  if (std::system("command -v ccx > /dev/null 2>&1") != 0) GTEST_SKIP() << "no ccx on PATH";
+  TETLOD_NEED_PROGRAM("ccx");
   const std::string dir = test::output_dir("calculix");
   TetMesh mesh;
   ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &mesh).ok());

@@ -71,7 +71,7 @@ std::string electrostatics_pro(int32_t inner, int32_t outer,
 }
 
 TEST(IoGetdpInterop, GetdpSolvesOnOurSurfaceGroups) {
-  if (std::system("command -v getdp > /dev/null 2>&1") != 0) GTEST_SKIP() << "no getdp on PATH";
+  TETLOD_NEED_PROGRAM("getdp");
   const std::string dir = test::output_dir("getdp");
   TetMesh mesh;
   ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh", &mesh).ok());
@@ -137,8 +137,8 @@ double getdp_energy(const std::string& dir, const std::string& msh, const std::s
 // the jacket, and finds the energy it finds on the input mesh, and the exact one of
 // the three cylindrical layers (the ends are insulating, so the field is radial).
 TEST(IoGetdpInterop, GetdpSolvesOnAnInputGroupThroughSimplification) {
-  if (std::system("command -v getdp > /dev/null 2>&1") != 0) GTEST_SKIP() << "no getdp on PATH";
-  if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
+  TETLOD_NEED_PROGRAM("getdp");
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("getdp_coax");
   ASSERT_EQ(std::system(("gmsh '" + std::string(TETLOD_SOURCE_DIR) +
                          "/tests/data/gmsh/coax.geo' -3 -clmax 0.4 -v 0 -format msh41 -o '" + dir +

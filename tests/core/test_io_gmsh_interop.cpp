@@ -16,17 +16,13 @@
 namespace tetlod {
 namespace {
 
-bool gmsh_available() {
-  return std::system("command -v gmsh > /dev/null 2>&1") == 0;
-}
-
 // Runs gmsh with `arguments`, its output going to `log`; true on exit status 0.
 bool run_gmsh(const std::string& arguments, const std::string& log) {
   return std::system(("gmsh " + arguments + " > '" + log + "' 2>&1").c_str()) == 0;
 }
 
 TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
-  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("gmsh_interop");
   // Materials 0 (named "material_0"), 1..3 and a large id.
   TetMesh mesh = test::make_grid_mesh(
@@ -67,7 +63,7 @@ TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
 // Nastran bulk data both ways: Gmsh reads what we write (PID = material), and we
 // read what Gmsh writes in each of its three field formats.
 TEST(IoGmshInterop, NastranBothWays) {
-  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("gmsh_nastran");
   const TetMesh mesh = test::make_grid_mesh(
       3, 2, 2, [](int i, int j, int) { return 1 + (i + j) % 4; }, 0.25);
@@ -122,7 +118,7 @@ TEST(IoGmshInterop, NastranBothWays) {
 // Gmsh's binary legacy VTK: points, cells and, as cell data CellEntityIds, each
 // element's physical group, read as the materials; -1 (in no group) is material 0.
 TEST(IoGmshInterop, WeReadGmshBinaryVtk) {
-  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("gmsh_vtk");
   const TetMesh mesh = test::make_grid_mesh(
       3, 2, 2, [](int i, int, int) { return i == 0 ? 4 : 1; }, 0.25);
@@ -166,7 +162,7 @@ TEST(IoGmshInterop, WeReadGmshBinaryVtk) {
 
 // Gmsh's Abaqus input: its physical groups (our materials) as *ELSET material_<n>.
 TEST(IoGmshInterop, WeReadGmshAbaqusInput) {
-  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("gmsh_inp");
   const TetMesh mesh = test::make_grid_mesh(
       3, 2, 2, [](int i, int j, int k) { return 1 + (i + 2 * j + k) % 3; }, 0.25);
@@ -184,7 +180,7 @@ TEST(IoGmshInterop, WeReadGmshAbaqusInput) {
 // Gmsh's .inp export writes a physical surface as CPS3 elements in an *ELSET named
 // after it: read, it is the same group, of the same triangles, as in the .msh.
 TEST(IoGmshInterop, GmshAbaqusPhysicalSurfacesAreGroups) {
-  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("gmsh_inp_groups");
   const std::string theirs = dir + "/port.inp";
   const std::string log = dir + "/inp.log";
@@ -226,7 +222,7 @@ TEST(IoGmshInterop, GmshAbaqusPhysicalSurfacesAreGroups) {
 // corners are the same, the mid-edge nodes (on the sphere: moved onto it) are dropped,
 // and a note says so. In every format Gmsh writes that TetLOD reads.
 TEST(IoGmshInterop, WeReadGmshSecondOrderExports) {
-  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("gmsh_p2");
   test::write_text(dir + "/ball.geo",
                    "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
@@ -283,7 +279,7 @@ TEST(IoGmshInterop, WeReadGmshSecondOrderExports) {
 }
 
 TEST(IoGmshInterop, GmshFindsNoInvertedTets) {
-  if (!gmsh_available()) GTEST_SKIP() << "no gmsh binary on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("gmsh_orientation");
   const TetMesh mesh = test::make_io_mesh();
   ASSERT_TRUE(write_mesh(dir + "/m.msh", mesh).ok());

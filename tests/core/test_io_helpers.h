@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -15,6 +16,23 @@
 #include "core/tet_mesh.h"
 
 namespace tetlod::test {
+
+// Whether `program` is on PATH.
+inline bool on_path(const std::string& program) {
+  return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
+}
+
+// Ends a test that runs another tool (Gmsh, CalculiX, GetDP) when that tool is not on
+// PATH: skipped on a developer's machine, failed in CI (CI=true), where scripts/test.sh
+// installs them, so that a failed install cannot pass as skipped tests.
+#define TETLOD_NEED_PROGRAM(program)                                                     \
+  do {                                                                                   \
+    if (!::tetlod::test::on_path(program)) {                                             \
+      const char* ci = std::getenv("CI");                                                \
+      if (ci && std::string(ci) == "true") FAIL() << program << " is not on PATH in CI"; \
+      GTEST_SKIP() << "no " << program << " on PATH";                                    \
+    }                                                                                    \
+  } while (0)
 
 inline std::string data_path(const std::string& name) {
   return std::string(TETLOD_SOURCE_DIR) + "/tests/data/" + name;

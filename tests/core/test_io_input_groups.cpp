@@ -374,7 +374,7 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
 // is a third of the loaded face's area vector, outward from the tet. Each face of
 // this tet has a different one.
 TEST(IoInputGroups, CalculixLoadsTheFacesTheReaderGives) {
-  if (std::system("command -v ccx > /dev/null 2>&1") != 0) GTEST_SKIP() << "no ccx on PATH";
+  TETLOD_NEED_PROGRAM("ccx");
   const std::string dir = test::output_dir("input_groups_calculix");
   const Vec3 corner[4] = {{0, 0, 0}, {2, 0, 0}, {0.5, 3, 0}, {0.3, 0.2, 5}};
   std::ostringstream deck;

@@ -123,7 +123,7 @@ TEST(MaterialNames, GmshNamesThatCannotStandAreReplaced) {
 
 // Gmsh reads our names: it saves the physical groups again under them.
 TEST(MaterialNames, GmshKeepsTheNamesWeWrite) {
-  if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("material_names_by_gmsh");
   TetMesh mesh;
   ReadInfo info;

@@ -236,7 +236,7 @@ TEST(SimplifyOverlap, NoBodyIsSweptInsideAnother) {
 // looked only within a body, fails this test: its outputs for scenes 0 and 2 at
 // tolerance 2 and 5 overlap.
 TEST(SimplifyOverlap, RandomBeadsNearAWallStayApart) {
-  if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("random_beads");
   std::mt19937 random(20261127);
   auto uniform = [&](double lo, double hi) {

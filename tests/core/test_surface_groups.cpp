@@ -793,7 +793,7 @@ TEST(SurfaceGroups, SimplificationKeepsAGroupsBorder) {
 // Gmsh reads the physical surfaces: it saves them again (as 2.2 text) with the same
 // triangles, oriented the same way, under the same tags.
 TEST(SurfaceGroups, GmshKeepsOurPhysicalSurfaces) {
-  if (std::system("command -v gmsh > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh on PATH";
+  TETLOD_NEED_PROGRAM("gmsh");
   const TetMesh mesh = test::make_grid_mesh(
       3, 2, 2, [](int i, int j, int) { return i == 2 && j == 1 ? 1000000 : (i + j) % 4; }, 0.25);
   const SurfaceGroups groups = groups_of(mesh);
@@ -873,7 +873,7 @@ TEST(SurfaceGroups, GmshKeepsOurPhysicalSurfaces) {
 // (1, 0, 0) on box2 (the interface at x = 1 closes material 2's boundary). Wrong
 // face labels would load other faces, wrong node sets hold other nodes.
 TEST(SurfaceGroups, CalculixLoadsOurSurfacesAndHoldsOurNodeSets) {
-  if (std::system("command -v ccx > /dev/null 2>&1") != 0) GTEST_SKIP() << "no ccx on PATH";
+  TETLOD_NEED_PROGRAM("ccx");
   const std::string dir = test::output_dir("surface_groups_calculix");
   WriteOptions options;
   options.surface_groups = true;
