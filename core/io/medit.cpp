@@ -284,8 +284,10 @@ class MeditBinaryReader {
     if (code == 0x01000000) {
       big_endian_ = true;
     } else if (code != 1) {
-      return error(0, "not a binary Medit (.meshb) file: it starts with " + std::to_string(code) +
-                          ", not the 4-byte 1 in either byte order");
+      const bool ascii = data_.find("MeshVersionFormatted") < 256;
+      return error(0, ascii ? "not a binary Medit file: it is an ASCII one (name it .mesh)"
+                            : "not a binary Medit (.meshb) file: it starts with " +
+                                  std::to_string(code) + ", not the 4-byte 1 in either byte order");
     }
     const int64_t version = integer(4, 4);
     if (version < 1 || version > 4) {
@@ -495,7 +497,11 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
   std::string_view keyword;
   if (!scanner.next_token(&keyword) ||
       !TextScanner::equals_ignore_case(keyword, "MeshVersionFormatted")) {
-    scanner.fail("not a Medit file: expected 'MeshVersionFormatted' first");
+    // A binary file named .mesh starts with libMeshb's 4-byte 1 (in either byte order).
+    const bool binary = text.size() >= 8 && (text.substr(0, 4) == std::string_view("\1\0\0\0", 4) ||
+                                             text.substr(0, 4) == std::string_view("\0\0\0\1", 4));
+    scanner.fail(binary ? "not an ASCII Medit file: it starts as a binary one does (name it .meshb)"
+                        : "not a Medit file: expected 'MeshVersionFormatted' first");
     return scanner.status();
   }
   int64_t value = 0;

@@ -217,6 +217,20 @@ TEST(IoMeditBinary, WrittenFilesReadBack) {
   }
 }
 
+// A binary file named .mesh, or an ASCII one named .meshb: the error says which it is.
+TEST(IoMeditBinary, FilesNamedForTheOtherKindAreNamedSo) {
+  TetMesh mesh;
+  for (bool swap : {false, true}) {
+    const Status s =
+        read_mesh_from_memory(meshb(2, swap), MeshFormat::kMedit, "b.mesh", &mesh, nullptr);
+    EXPECT_EQ(s.message(),
+              "b.mesh:1: not an ASCII Medit file: it starts as a binary one does (name it .meshb)");
+  }
+  const std::string ascii = test::read_text(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh");
+  EXPECT_EQ(read(ascii, &mesh).message(),
+            "b.meshb: byte 0: not a binary Medit file: it is an ASCII one (name it .mesh)");
+}
+
 TEST(IoMeditBinary, EveryTruncationFails) {
   for (int version : {2, 4}) {
     const std::string data = meshb(version, version == 4);
