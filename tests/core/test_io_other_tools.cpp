@@ -1,6 +1,7 @@
 // Files written by other tools (tests/data/other_tools, made by its make.py with
-// VTK 9.1 and meshio 5.0 from the bundled box2 model): every encoding and layout they
-// use reads as box2, and the compressors TetLOD does not read give a clear error.
+// VTK 9.1 and meshio 5.0 from the bundled box2 model, and by make_freefem.edp with
+// FreeFEM 4.9): every encoding and layout they use reads as the mesh they hold, and the
+// compressors TetLOD does not read give a clear error.
 #include <gtest/gtest.h>
 
 #include "core/io/mesh_io.h"
@@ -68,6 +69,33 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
     } else {
       test::expect_same_mesh(f.materials ? box2 : without_materials, mesh);
     }
+  }
+}
+
+// FreeFEM's savemesh() (libMeshb inside): its .meshb and its .mesh of one cube mesh
+// read as the same tets and the same surface groups (the six faces' labels); the
+// coordinates differ only by the ASCII file's 15 significant digits.
+TEST(IoOtherTools, FreeFemMeshbReadsAsItsAsciiMesh) {
+  TetMesh binary, ascii;
+  ReadInfo binary_info, ascii_info;
+  const Status b = read_mesh(tool_file("meshb_freefem_cube.meshb"), &binary, &binary_info);
+  ASSERT_TRUE(b.ok()) << b.message();
+  ASSERT_TRUE(read_mesh(tool_file("mesh_freefem_cube.mesh"), &ascii, &ascii_info).ok());
+  EXPECT_EQ(binary_info.format, MeshFormat::kMeditBinary);
+  EXPECT_EQ(binary.tet_count(), 162u);
+  EXPECT_EQ(binary.tets, ascii.tets);
+  EXPECT_EQ(binary.materials, ascii.materials);
+  ASSERT_EQ(binary.vertex_count(), ascii.vertex_count());
+  for (size_t i = 0; i < ascii.vertex_count(); ++i)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(binary.positions[i][k], ascii.positions[i][k], 1e-14) << "vertex " << i;
+  ASSERT_EQ(binary_info.surface_groups.size(), 6u);
+  ASSERT_EQ(ascii_info.surface_groups.size(), 6u);
+  for (size_t g = 0; g < 6; ++g) {
+    EXPECT_EQ(binary_info.surface_groups[g].tag, int32_t(g + 1));
+    EXPECT_EQ(ascii_info.surface_groups[g].tag, int32_t(g + 1));
+    EXPECT_EQ(binary_info.surface_groups[g].triangles.size(), 18u);
+    EXPECT_EQ(ascii_info.surface_groups[g].triangles.size(), 18u);
   }
 }
 
