@@ -1,8 +1,8 @@
 // Binary Medit files (.meshb, libMeshb's layout), versions 1 to 4 in both byte orders:
-// written here byte by byte, they read as the same mesh as the ASCII file; TetLOD's own
-// .meshb reads back as it wrote it; every truncation and every broken header fails with
-// "name: byte N: ...", and random damage never crashes. (test_io_other_tools.cpp reads
-// meshio's .meshb files.)
+// written here byte by byte, they read as the mesh written; TetLOD's own .meshb reads
+// back as it wrote it, and as its .mesh reads; every truncation and every broken header
+// fails with "name: byte N: ...", and random damage never crashes.
+// (test_io_other_tools.cpp reads the .meshb files of meshio and FreeFEM.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
