@@ -1,4 +1,4 @@
-// tetlod convert IN OUT (or IN -o OUT) [--msh-version 2.2|4.1] [--surfaces]
+// tetlod convert IN OUT (or IN -o OUT) [--msh-version 2.2|4.1] [--msh-binary] [--surfaces]
 #include <cstdio>
 #include <string>
 
@@ -10,7 +10,7 @@ namespace tetlod::app {
 namespace {
 
 constexpr const char* kConvertUsage =
-    "usage: tetlod convert IN OUT [--msh-version 2.2|4.1] [--surfaces]\n"
+    "usage: tetlod convert IN OUT [--msh-version 2.2|4.1] [--msh-binary] [--surfaces]\n"
     "       (OUT may also be given as -o OUT)\n"
     "\n"
     "Converts a tetrahedral mesh between formats, chosen by extension, keeping the\n"
@@ -19,8 +19,8 @@ constexpr const char* kConvertUsage =
     "  .mesh (Medit)  .meshb (Medit binary)  .msh (Gmsh 2.2/4.1)  .node/.ele (TetGen)\n"
     "  .vtk (legacy)  .vtu  .bdf/.nas (Nastran bulk data; material = PID)\n"
     "  .inp (Abaqus, CalculiX)\n"
-    "Binary .msh, .vtk and .vtu files are read; .meshb is binary, every other format\n"
-    "is written as text.\n"
+    "Binary .msh, .vtk and .vtu files are read; .meshb is written binary, .msh too with\n"
+    "--msh-binary, every other format as text.\n"
     "The output is written to a temporary file and renamed, never left half-written.\n";
 
 void print_convert_usage(std::FILE* stream) {

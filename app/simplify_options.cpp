@@ -29,6 +29,7 @@ const char* const kSimplifyFlagsHelp =
 
 const char* const kWriteFlagsHelp =
     "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n"
+    "  --msh-binary      write .msh in binary, as gmsh -bin does (default: ASCII)\n"
     "  --surfaces        also write the boundary and interface triangles, for boundary\n"
     "                    conditions: the input's own surface groups (Gmsh physical\n"
     "                    surfaces, Medit triangle references, TetGen .face markers,\n"
@@ -48,6 +49,10 @@ OptionResult parse_write_option(const Args& args, size_t* i, const char* command
   const std::string& a = args[*i];
   if (a == "--surfaces") {
     options->surface_groups = true;
+    return OptionResult::kParsed;
+  }
+  if (a == "--msh-binary") {
+    options->gmsh_binary = true;
     return OptionResult::kParsed;
   }
   if (a != "--msh-version") return OptionResult::kNotMine;

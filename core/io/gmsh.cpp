@@ -1383,6 +1383,53 @@ void append_physical_names(const std::vector<int32_t>& materials,
   out->append("$EndPhysicalNames\n");
 }
 
+// The values of a .msh section: as text, a line per record (append_line()); in binary
+// (file type 1), each value as the C type the format gives it, without separators, in
+// this machine's byte order (the 1 after the header tells readers which).
+struct I32 {
+  int64_t v;
+};
+struct U64 {
+  uint64_t v;
+};
+struct F64 {
+  double v;
+};
+class MshRecords {
+ public:
+  MshRecords(std::string* out, bool binary) : out_(out), binary_(binary) {}
+  template <typename... Values>
+  void record(Values... values) {
+    if (binary_) {
+      (put(values), ...);
+    } else {
+      append_line(out_, value_of(values)...);
+    }
+  }
+  // "$EndNodes" and the like: after binary data, on a line of their own.
+  void end_section(const char* name) {
+    if (binary_) out_->push_back('\n');
+    out_->append(name);
+    out_->push_back('\n');
+  }
+
+ private:
+  static int64_t value_of(I32 x) { return x.v; }
+  static uint64_t value_of(U64 x) { return x.v; }
+  static double value_of(F64 x) { return x.v; }
+  void put(I32 x) { put_bytes(int32_t(x.v)); }
+  void put(U64 x) { put_bytes(x.v); }
+  void put(F64 x) { put_bytes(x.v); }
+  template <typename T>
+  void put_bytes(T value) {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    out_->append(bytes, sizeof(T));
+  }
+  std::string* out_;
+  bool binary_;
+};
+
 }  // namespace
 
 Status parse_gmsh(std::string_view text, const std::string& name, ParsedMesh* out, int* version) {
@@ -1390,7 +1437,7 @@ Status parse_gmsh(std::string_view text, const std::string& name, ParsedMesh* ou
   return parser.parse(version);
 }
 
-void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
+void write_gmsh(const TetMesh& mesh, int version, bool binary, const SurfaceGroups* surfaces,
                 const std::vector<MaterialName>* names, std::string* out) {
   // Distinct materials and their physical tags: m for m > 0; 0 takes the smallest
   // positive tag no material uses.
@@ -1408,8 +1455,11 @@ void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
   };
 
   out->reserve(out->size() + mesh.vertex_count() * 64 + mesh.tet_count() * 48);
-  out->append(version == 22 ? "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
-                            : "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+  MshRecords r(out, binary);
+  out->append(version == 22 ? "$MeshFormat\n2.2 " : "$MeshFormat\n4.1 ");
+  out->append(binary ? "1 8\n" : "0 8\n");
+  if (binary) r.record(I32{1});
+  r.end_section("$EndMeshFormat");
   append_physical_names(materials, physical_tags, surfaces, names, out);
   const std::vector<SurfaceGroup> no_groups;
   const std::vector<SurfaceGroup>& groups = surfaces ? surfaces->groups : no_groups;
@@ -1417,29 +1467,46 @@ void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
   for (const SurfaceGroup& group : groups) triangle_count += group.triangles.size();
 
   if (version == 22) {
+    // The counts stay text lines in binary files too; there an element is its tag,
+    // tags and nodes, after a header (type, count, number of tags) per run of one type.
     out->append("$Nodes\n");
     append_line(out, mesh.vertex_count());
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
       const Vec3& p = mesh.positions[v];
-      append_line(out, v + 1, p.x, p.y, p.z);
+      r.record(I32{int64_t(v) + 1}, F64{p.x}, F64{p.y}, F64{p.z});
     }
-    out->append("$EndNodes\n$Elements\n");
+    r.end_section("$EndNodes");
+    out->append("$Elements\n");
     append_line(out, mesh.tet_count() + triangle_count);
+    if (binary) r.record(I32{kTet4}, I32{int64_t(mesh.tet_count())}, I32{2});
     for (size_t t = 0; t < mesh.tet_count(); ++t) {
       const Tet& tet = mesh.tets[t];
       const int32_t tag = physical_tags[group_of(mesh.materials[t])];
-      append_line(out, t + 1, kTet4, 2, tag, tag, tet[0] + 1, tet[1] + 1, tet[2] + 1, tet[3] + 1);
+      if (binary) {
+        r.record(I32{int64_t(t) + 1}, I32{tag}, I32{tag}, I32{tet[0] + 1}, I32{tet[1] + 1},
+                 I32{tet[2] + 1}, I32{tet[3] + 1});
+      } else {
+        append_line(out, t + 1, kTet4, 2, tag, tag, tet[0] + 1, tet[1] + 1, tet[2] + 1, tet[3] + 1);
+      }
     }
     // Triangles after the tets, so that tet t keeps element tag t + 1.
+    if (binary && triangle_count > 0)
+      r.record(I32{kTriangle3}, I32{int64_t(triangle_count)}, I32{2});
     size_t element = mesh.tet_count();
     for (const SurfaceGroup& group : groups) {
       for (uint32_t i : group.triangles) {
         const auto& v = surfaces->surface[i].v;
-        append_line(out, ++element, kTriangle3, 2, group.tag, group.tag, v[0] + 1, v[1] + 1,
-                    v[2] + 1);
+        ++element;
+        if (binary) {
+          r.record(I32{int64_t(element)}, I32{group.tag}, I32{group.tag}, I32{v[0] + 1},
+                   I32{v[1] + 1}, I32{v[2] + 1});
+        } else {
+          append_line(out, element, kTriangle3, 2, group.tag, group.tag, v[0] + 1, v[1] + 1,
+                      v[2] + 1);
+        }
       }
     }
-    out->append("$EndElements\n");
+    r.end_section("$EndElements");
     return;
   }
 
@@ -1490,7 +1557,7 @@ void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
   for (const auto& vertices : group_vertices) node_block_count += vertices.empty() ? 0 : 1;
 
   out->append("$Entities\n");
-  append_line(out, 0, 0, groups.size(), group_count);
+  r.record(U64{0}, U64{0}, U64{groups.size()}, U64{group_count});
   // One surface entity per surface group (entity tag = physical tag).
   for (const SurfaceGroup& group : groups) {
     Vec3 lo = mesh.positions[surfaces->surface[group.triangles[0]].v[0]];  // never empty
@@ -1503,48 +1570,53 @@ void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
         }
       }
     }
-    append_line(out, group.tag, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, 1, group.tag, 0);
+    r.record(I32{group.tag}, F64{lo.x}, F64{lo.y}, F64{lo.z}, F64{hi.x}, F64{hi.y}, F64{hi.z},
+             U64{1}, I32{group.tag}, U64{0});
   }
   for (size_t g = 0; g < group_count; ++g) {
     const Vec3& lo = box_min[g];
     const Vec3& hi = box_max[g];
-    append_line(out, physical_tags[g], lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, 1, physical_tags[g], 0);
+    r.record(I32{physical_tags[g]}, F64{lo.x}, F64{lo.y}, F64{lo.z}, F64{hi.x}, F64{hi.y},
+             F64{hi.z}, U64{1}, I32{physical_tags[g]}, U64{0});
   }
-  out->append("$EndEntities\n$Nodes\n");
-  append_line(out, node_block_count, mesh.vertex_count(), mesh.vertex_count() > 0 ? 1 : 0,
-              mesh.vertex_count());
+  r.end_section("$EndEntities");
+  out->append("$Nodes\n");
+  r.record(U64{node_block_count}, U64{mesh.vertex_count()}, U64{mesh.vertex_count() > 0 ? 1u : 0u},
+           U64{mesh.vertex_count()});
   for (size_t g = 0; g < group_count; ++g) {
     const std::vector<uint32_t>& vertices = group_vertices[g];
     if (vertices.empty()) continue;
-    append_line(out, 3, physical_tags[g], 0, vertices.size());
-    for (uint32_t v : vertices) append_line(out, v + 1);
+    r.record(I32{3}, I32{physical_tags[g]}, I32{0}, U64{vertices.size()});
+    for (uint32_t v : vertices) r.record(U64{uint64_t(v) + 1});
     for (uint32_t v : vertices) {
       const Vec3& p = mesh.positions[v];
-      append_line(out, p.x, p.y, p.z);
+      r.record(F64{p.x}, F64{p.y}, F64{p.z});
     }
   }
-  out->append("$EndNodes\n$Elements\n");
+  r.end_section("$EndNodes");
+  out->append("$Elements\n");
   const size_t element_count = mesh.tet_count() + triangle_count;
-  append_line(out, group_count + groups.size(), element_count, element_count > 0 ? 1 : 0,
-              element_count);
+  r.record(U64{group_count + groups.size()}, U64{element_count}, U64{element_count > 0 ? 1u : 0u},
+           U64{element_count});
   // Triangles numbered after the tets, so that tet t keeps element tag t + 1.
   size_t element = mesh.tet_count();
   for (const SurfaceGroup& group : groups) {
-    append_line(out, 2, group.tag, kTriangle3, group.triangles.size());
+    r.record(I32{2}, I32{group.tag}, I32{kTriangle3}, U64{group.triangles.size()});
     for (uint32_t i : group.triangles) {
       const auto& v = surfaces->surface[i].v;
-      append_line(out, ++element, v[0] + 1, v[1] + 1, v[2] + 1);
+      r.record(U64{++element}, U64{v[0] + 1u}, U64{v[1] + 1u}, U64{v[2] + 1u});
     }
   }
   for (size_t g = 0; g < group_count; ++g) {
-    append_line(out, 3, physical_tags[g], kTet4, group_tet_start[g + 1] - group_tet_start[g]);
+    r.record(I32{3}, I32{physical_tags[g]}, I32{kTet4},
+             U64{group_tet_start[g + 1] - group_tet_start[g]});
     for (size_t i = group_tet_start[g]; i < group_tet_start[g + 1]; ++i) {
       const uint32_t t = tet_order[i];
       const Tet& tet = mesh.tets[t];
-      append_line(out, t + 1, tet[0] + 1, tet[1] + 1, tet[2] + 1, tet[3] + 1);
+      r.record(U64{t + 1u}, U64{tet[0] + 1u}, U64{tet[1] + 1u}, U64{tet[2] + 1u}, U64{tet[3] + 1u});
     }
   }
-  out->append("$EndElements\n");
+  r.end_section("$EndElements");
 }
 
 }  // namespace tetlod::io

@@ -48,9 +48,9 @@ Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* 
 void write_medit(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 // Little-endian, version 2 (or 3 and 4 when positions or vertex numbers need 8 bytes).
 void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
-// `version` is 22 or 41.
+// `version` is 22 or 41; `binary`: file type 1 (WriteOptions::gmsh_binary).
 // `names`: WriteOptions::material_names, or null.
-void write_gmsh(const TetMesh& mesh, int version, const SurfaceGroups* surfaces,
+void write_gmsh(const TetMesh& mesh, int version, bool binary, const SurfaceGroups* surfaces,
                 const std::vector<MaterialName>* names, std::string* out);
 void write_tetgen_node(const TetMesh& mesh, std::string* out);
 void write_tetgen_ele(const TetMesh& mesh, std::string* out);

@@ -245,7 +245,8 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       io::write_medit(mesh, surfaces, &text);
       break;
     case FileKind::kGmsh:
-      io::write_gmsh(mesh, options.gmsh_version, surfaces, options.material_names, &text);
+      io::write_gmsh(mesh, options.gmsh_version, options.gmsh_binary, surfaces,
+                     options.material_names, &text);
       break;
     case FileKind::kTetGen: {
       const std::string base = tetgen_base(path);

@@ -3,8 +3,9 @@
 //   .mesh          Medit ASCII (MMG, CGAL, TetWild, Gmsh); material = tet reference
 //   .meshb         Medit binary (libMeshb: MMG, TetWild, meshio); as .mesh
 //   .msh           Gmsh 2.2 or 4.1 (read: from $MeshFormat, ASCII or binary in either
-//                  byte order; write: ASCII 4.1 unless WriteOptions::gmsh_version ==
-//                  22); material = physical tag, else the elementary tag
+//                  byte order; write: 4.1 unless WriteOptions::gmsh_version == 22,
+//                  ASCII unless WriteOptions::gmsh_binary); material = physical tag,
+//                  else the elementary tag
 //   .node / .ele   TetGen pair (either name selects both); material = first region
 //                  attribute; 0- or 1-based numbering; a .face file of the same
 //                  base name beside them, if any, gives surface groups
@@ -156,6 +157,9 @@ Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_
 
 struct WriteOptions {
   int gmsh_version = 41;  // 41 or 22, for .msh
+  // .msh in binary (file type 1, this machine's byte order), as Gmsh writes with -bin;
+  // else ASCII.
+  bool gmsh_binary = false;
   // Also write the boundary and interface triangles, one group per material pair
   // (group_surface() in core/surface.h: "boundary_<m>", "interface_<a>_<b>", tags
   // above every material's), for boundary conditions:

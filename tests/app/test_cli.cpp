@@ -253,7 +253,7 @@ TEST(Cli, ReadNotesArePrinted) {
 
 TEST(Cli, ConvertKeepsCountsAcrossFormats) {
   const std::string path = write_grid("conv.mesh");
-  for (const char* ext : {"msh", "vtu", "vtk", "node", "mesh", "bdf", "nas", "inp"}) {
+  for (const char* ext : {"msh", "vtu", "vtk", "node", "mesh", "meshb", "bdf", "nas", "inp"}) {
     const std::string target = out_dir() + "/conv_out." + ext;
     const CommandResult c = run("convert " + path + " " + target);
     ASSERT_EQ(c.code, 0) << c.output;
@@ -464,6 +464,23 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   r = run("simplify " + path + " -o " + bdf + " --size 0.9 --surfaces");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(read_file(bdf).find("\nCTRIA3  "), std::string::npos);
+
+  // --msh-binary on simplify and lod: binary files of the same mesh and groups.
+  const std::string binary = out_dir() + "/surf_simp_binary.msh";
+  r = run("simplify " + path + " -o " + binary + " --size 0.9 --tolerance 1e-12 " +
+          "--no-subdivide --surfaces --msh-binary");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(binary).rfind(std::string("$MeshFormat\n4.1 1 8\n\1\0\0\0\n", 25), 0), 0u);
+  fs::remove(binary);
+  r = run("lod " + history + " --step 0 -o " + binary +
+          " --surfaces --msh-binary --msh-version 2.2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(binary).rfind(std::string("$MeshFormat\n2.2 1 8\n\1\0\0\0\n", 25), 0), 0u);
+  r = run("stats " + binary);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("(Gmsh 2.2 .msh)"), std::string::npos) << r.output;
 
   const std::string level = out_dir() + "/surf_level.mesh";
   r = run("lod " + history + " --step 0 -o " + level + " --surfaces");

@@ -239,6 +239,48 @@ TEST(IoGmshBinary, BrokenHeadersAndCountsNameTheProblem) {
   EXPECT_NE(read(binary_22(false, d), &mesh).message().find("gives 0 elements"), std::string::npos);
 }
 
+// What TetLOD writes with WriteOptions::gmsh_binary reads as what it writes in text:
+// the same mesh, materials' names and surface groups, in both versions.
+TEST(IoGmshBinary, OurBinaryFilesReadAsOurTextFiles) {
+  const std::string dir = test::output_dir("gmsh_binary_written");
+  TetMesh box2;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
+  const std::vector<MaterialName> names = {{1, "Rotor"}, {2, "air gap"}};
+  for (int version : {22, 41}) {
+    for (bool groups : {false, true}) {
+      SCOPED_TRACE(std::to_string(version) + (groups ? " with groups" : ""));
+      // make_io_mesh()'s material INT32_MAX leaves no tag for groups.
+      const TetMesh mesh = groups ? box2 : io_mesh();
+      TetMesh read[2];
+      ReadInfo info[2];
+      for (bool binary : {false, true}) {
+        WriteOptions options;
+        options.gmsh_version = version;
+        options.gmsh_binary = binary;
+        options.surface_groups = groups;
+        options.material_names = &names;
+        const std::string path = dir + (binary ? "/b.msh" : "/t.msh");
+        ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+        const Status s = read_mesh(path, &read[binary], &info[binary]);
+        ASSERT_TRUE(s.ok()) << s.message();
+      }
+      test::expect_same_mesh(read[0], read[1]);
+      test::expect_same_mesh(mesh, read[1]);
+      EXPECT_EQ(info[1].format, version == 22 ? MeshFormat::kGmsh22 : MeshFormat::kGmsh41);
+      ASSERT_EQ(info[1].material_names.size(), info[0].material_names.size());
+      for (size_t i = 0; i < info[0].material_names.size(); ++i)
+        EXPECT_EQ(info[1].material_names[i].name, info[0].material_names[i].name);
+      ASSERT_EQ(info[1].surface_groups.size(), info[0].surface_groups.size());
+      EXPECT_EQ(info[1].surface_groups.empty(), !groups);
+      for (size_t g = 0; g < info[0].surface_groups.size(); ++g) {
+        EXPECT_EQ(info[1].surface_groups[g].tag, info[0].surface_groups[g].tag);
+        EXPECT_EQ(info[1].surface_groups[g].name, info[0].surface_groups[g].name);
+        EXPECT_EQ(info[1].surface_groups[g].triangles, info[0].surface_groups[g].triangles);
+      }
+    }
+  }
+}
+
 // Random damage to the binary data: an error naming the file, or a valid mesh.
 TEST(IoGmshBinary, RandomDamageNeverCrashes) {
   std::mt19937 random(12345);

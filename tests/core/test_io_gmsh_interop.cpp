@@ -1,6 +1,6 @@
 // Gmsh itself reads what we write: run the `gmsh` binary (when it is on PATH) on
-// our 2.2 and 4.1 files, have it save the mesh again, as text and as binary, and
-// read its output back.
+// our 2.2 and 4.1 files, text and binary, have it save the mesh again, as text and as
+// binary, and read its output back.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,18 +27,32 @@ TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
   // Materials 0 (named "material_0"), 1..3 and a large id.
   TetMesh mesh = test::make_grid_mesh(
       3, 2, 2, [](int i, int j, int) { return i == 2 && j == 1 ? 1000000 : (i + j) % 4; }, 0.25);
-  for (int version : {22, 41}) {
+  // Ours in text and in binary (--msh-binary), with the surface groups.
+  for (int ours_version : {22, 41, -22, -41}) {
+    const int version = std::abs(ours_version);
+    SCOPED_TRACE(ours_version < 0 ? "ours binary" : "ours text");
     SCOPED_TRACE(version);
-    const std::string ours = dir + "/ours" + std::to_string(version) + ".msh";
+    const std::string ours = dir + "/ours" + std::to_string(ours_version) + ".msh";
     WriteOptions options;
     options.gmsh_version = version;
+    options.gmsh_binary = ours_version < 0;
+    options.surface_groups = true;
     ASSERT_TRUE(write_mesh(ours, mesh, options).ok());
+    // The header: file type 1 and the binary 1 (this machine's byte order), or type 0.
+    const std::string type = ours_version < 0 ? std::string(" 1 8\n\1\0\0\0\n", 10) : " 0 8\n";
+    EXPECT_EQ(test::read_text(ours).find(type), std::string("$MeshFormat\n2.2").size());
+    TetMesh ours_back;
+    ReadInfo ours_info;
+    ASSERT_TRUE(read_mesh(ours, &ours_back, &ours_info).ok());
+    size_t triangles = 0;
+    for (const auto& group : ours_info.surface_groups) triangles += group.triangles.size();
     // Gmsh's own files, text and binary.
     for (const char* out_format : {"msh22", "msh41", "msh22 -bin", "msh41 -bin"}) {
       SCOPED_TRACE(out_format);
       std::string suffix = out_format;
       std::replace(suffix.begin(), suffix.end(), ' ', '_');
-      const std::string theirs = dir + "/gmsh_" + std::to_string(version) + "_" + suffix + ".msh";
+      const std::string theirs =
+          dir + "/gmsh_" + std::to_string(ours_version) + "_" + suffix + ".msh";
       const std::string log = theirs + ".log";
       ASSERT_TRUE(run_gmsh("'" + ours + "' -0 -format " + out_format + " -o '" + theirs + "'", log))
           << test::read_text(log);
@@ -46,7 +60,8 @@ TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
         ASSERT_NE(test::read_text(theirs).find(" 1 8\n"), std::string::npos) << "not binary";
       }
       const std::string output = test::read_text(log);
-      EXPECT_NE(output.find(std::to_string(mesh.tet_count()) + " elements"), std::string::npos)
+      EXPECT_NE(output.find(std::to_string(mesh.tet_count() + triangles) + " elements"),
+                std::string::npos)
           << output;
       EXPECT_EQ(output.find("Error"), std::string::npos) << output;
       // Gmsh renumbers nodes: compare tets by their corner positions and materials.
@@ -56,6 +71,14 @@ TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
       ASSERT_TRUE(status.ok()) << status.message();
       EXPECT_EQ(info.validation.reoriented_tets, 0u);
       EXPECT_EQ(test::canonical_tets(back), test::canonical_tets(mesh));
+      // The surface groups too, by tag, name and triangles.
+      ASSERT_EQ(info.surface_groups.size(), ours_info.surface_groups.size());
+      for (size_t g = 0; g < info.surface_groups.size(); ++g) {
+        EXPECT_EQ(info.surface_groups[g].tag, ours_info.surface_groups[g].tag);
+        EXPECT_EQ(info.surface_groups[g].name, ours_info.surface_groups[g].name);
+        EXPECT_EQ(info.surface_groups[g].triangles.size(),
+                  ours_info.surface_groups[g].triangles.size());
+      }
     }
   }
 }
