@@ -291,13 +291,8 @@ TEST(IoGmshInterop, WeReadGmshSecondOrderExports) {
     };
     EXPECT_TRUE(has_note(info[1])) << "no note starting '" << note << "'";
     EXPECT_FALSE(has_note(info[0]));
-    ASSERT_EQ(info[1].surface_groups.size(), info[0].surface_groups.size());
     ASSERT_FALSE(info[0].surface_groups.empty());
-    for (size_t g = 0; g < info[0].surface_groups.size(); ++g) {
-      EXPECT_EQ(info[1].surface_groups[g].tag, info[0].surface_groups[g].tag);
-      EXPECT_EQ(info[1].surface_groups[g].name, info[0].surface_groups[g].name);
-      EXPECT_EQ(info[1].surface_groups[g].triangles, info[0].surface_groups[g].triangles);
-    }
+    test::expect_same_groups(info[0].surface_groups, info[1].surface_groups);
   }
 }
 

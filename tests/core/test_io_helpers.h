@@ -58,6 +58,18 @@ inline void write_text(const std::string& path, const std::string& text) {
   out << text;
 }
 
+// The same surface groups, in the same order: tags, names and triangles (corner
+// positions, in order).
+inline void expect_same_groups(const std::vector<InputSurfaceGroup>& expected,
+                               const std::vector<InputSurfaceGroup>& actual) {
+  ASSERT_EQ(expected.size(), actual.size());
+  for (size_t g = 0; g < expected.size(); ++g) {
+    EXPECT_EQ(expected[g].tag, actual[g].tag) << "group " << g;
+    EXPECT_EQ(expected[g].name, actual[g].name) << "group " << g;
+    EXPECT_EQ(expected[g].triangles, actual[g].triangles) << "group " << g;
+  }
+}
+
 // Two unit-ish cells of six tets each, plus a lone tet, with coordinates that have
 // no short decimal form, materials 0, 7 and INT32_MAX.
 inline TetMesh make_io_mesh() {

@@ -208,12 +208,8 @@ TEST(IoMeditBinary, WrittenFilesReadBack) {
     ASSERT_TRUE(read_mesh(dir + "/m.mesh", &ascii, &ascii_info).ok());
     test::expect_same_mesh(mesh, binary);
     EXPECT_TRUE(binary_info.notes.empty());
-    ASSERT_EQ(binary_info.surface_groups.size(), ascii_info.surface_groups.size());
     ASSERT_FALSE(binary_info.surface_groups.empty());
-    for (size_t g = 0; g < ascii_info.surface_groups.size(); ++g) {
-      EXPECT_EQ(binary_info.surface_groups[g].tag, ascii_info.surface_groups[g].tag);
-      EXPECT_EQ(binary_info.surface_groups[g].triangles, ascii_info.surface_groups[g].triangles);
-    }
+    test::expect_same_groups(ascii_info.surface_groups, binary_info.surface_groups);
   }
 }
 
