@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -56,6 +57,39 @@ inline std::string read_text(const std::string& path) {
 inline void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+}
+
+// Binary file data written by hand, value by value, in this machine's byte order or
+// (`swap`) the other one.
+class Bytes {
+ public:
+  explicit Bytes(bool swap) : swap_(swap) {}
+  void text(const std::string& s) { data_ += s; }
+  void i32(int64_t v) { put(int32_t(v)); }
+  void i64(int64_t v) { put(v); }
+  void u64(uint64_t v) { put(v); }
+  void f32(double v) { put(float(v)); }
+  void f64(double v) { put(v); }
+  const std::string& data() const { return data_; }
+  std::string& data() { return data_; }
+
+ private:
+  template <typename T>
+  void put(T value) {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    if (swap_) std::reverse(bytes, bytes + sizeof(T));
+    data_.append(bytes, sizeof(T));
+  }
+  bool swap_;
+  std::string data_;
+};
+
+// A failed read whose message starts with `start` and contains `words`.
+inline void expect_error(const Status& status, const std::string& start, const std::string& words) {
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message().rfind(start, 0), 0u) << status.message();
+  EXPECT_NE(status.message().find(words), std::string::npos) << status.message();
 }
 
 // The same surface groups, in the same order: tags, names and triangles (corner
