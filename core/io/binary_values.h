@@ -1,11 +1,15 @@
 // Numbers stored as raw bytes in binary mesh files (internal to core/io): the
-// value types of VTK's arrays and their conversion, in either byte order.
+// value types of VTK's arrays and their conversion, in either byte order, and
+// appending a number's bytes to a file being written.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
+#include <type_traits>
+#include <utility>
 
 namespace tetlod::io {
 
@@ -57,6 +61,22 @@ inline bool binary_integer(uint64_t bits, BinaryType type, int64_t* value) {
   const unsigned shift = unsigned(64 - 8 * type.size);
   *value = int64_t(bits << shift) >> shift;
   return true;
+}
+
+// Appends the bytes of `value` (an integer or floating-point number) in the given
+// byte order.
+template <typename T>
+void append_binary(std::string* out, T value, bool big_endian) {
+  static_assert(std::is_arithmetic_v<T> && sizeof(T) <= 8);
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  // This machine's order: the first byte of a 2-byte 1.
+  const uint16_t one = 1;
+  char first;
+  std::memcpy(&first, &one, 1);
+  if ((first == 0) != big_endian)
+    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
+  out->append(bytes, sizeof(T));
 }
 
 }  // namespace tetlod::io

@@ -57,13 +57,17 @@ void write_tetgen_ele(const TetMesh& mesh, std::string* out);
 // Every surface triangle, with its group's tag as its boundary marker, or, without
 // `markers`, none (a .face that describes the mesh's faces and gives no groups).
 void write_tetgen_face(const SurfaceGroups& surfaces, std::string* out, bool markers = true);
-void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
-void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
+// `binary` (WriteOptions::vtk_binary): .vtk BINARY (big-endian, as the format has it);
+// .vtu with its arrays in raw appended data (little-endian, UInt64 headers, as
+// ParaView's "binary, appended, not encoded" writes them).
+void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, bool binary,
+                      std::string* out);
+void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, bool binary, std::string* out);
 void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
                   const std::vector<MaterialName>* names, std::string* out);
 // With extra point and cell arrays (sizes and names checked by the caller).
-void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out);
+void write_vtu(const TetMesh& mesh, const MeshFields& fields, bool binary, std::string* out);
 
 // VTK cell types read as tets (vtk.cpp, vtu.cpp): the quadratic tet gives its corners.
 inline constexpr int64_t kVtkTetra = 10;

@@ -270,10 +270,10 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       return files->stage(base + ".face", text);
     }
     case FileKind::kVtkLegacy:
-      io::write_vtk_legacy(mesh, surfaces, &text);
+      io::write_vtk_legacy(mesh, surfaces, options.vtk_binary, &text);
       break;
     case FileKind::kVtu:
-      io::write_vtu(mesh, surfaces, &text);
+      io::write_vtu(mesh, surfaces, options.vtk_binary, &text);
       break;
     case FileKind::kNastran:
       io::write_nastran(mesh, surfaces, &text);
@@ -294,8 +294,8 @@ Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptio
   return files.commit();
 }
 
-Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh,
-                             const MeshFields& fields) {
+Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh, const MeshFields& fields,
+                             bool binary) {
   if (Status status = check_writable(path, mesh); !status) return status;
   auto check = [&](const std::vector<ScalarArray>& arrays, size_t count, const char* kind) {
     for (const ScalarArray& array : arrays) {
@@ -326,7 +326,7 @@ Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh,
   if (Status s = check(fields.point_data, mesh.vertex_count(), "point"); !s) return s;
   if (Status s = check(fields.cell_data, mesh.tet_count(), "cell"); !s) return s;
   std::string text;
-  io::write_vtu(mesh, fields, &text);
+  io::write_vtu(mesh, fields, binary, &text);
   return write_file_atomically(path, text);
 }
 

@@ -9,10 +9,11 @@
 //   .node / .ele   TetGen pair (either name selects both); material = first region
 //                  attribute; 0- or 1-based numbering; a .face file of the same
 //                  base name beside them, if any, gives surface groups
-//   .vtk           VTK legacy unstructured grid (read: ASCII or binary; write: ASCII),
-//                  cell data "material", "stretch"
+//   .vtk           VTK legacy unstructured grid (read: ASCII or binary; write: ASCII
+//                  unless WriteOptions::vtk_binary), cell data "material", "stretch"
 //   .vtu           VTK XML unstructured grid (read: ASCII, binary or appended data,
-//                  zlib-compressed or not; write: ASCII), cell data "material", "stretch"
+//                  zlib-compressed or not; write: ASCII, or raw appended data with
+//                  WriteOptions::vtk_binary), cell data "material", "stretch"
 //   .bdf / .nas    Nastran bulk data: GRID and CTETRA entries (small, large and free
 //                  field); material = the CTETRA's property id (PID); written with
 //                  GRID* (16-character coordinates: exact when the shortest exact
@@ -63,8 +64,7 @@
 //    groups too (io/abaqus.cpp).
 //  - VTK legacy (3.0 and 5.1 cell layouts) and VTK XML: cell type 10 (tet) and 24
 //    (quadratic tet: its four corners) are read, other cells skipped; material =
-//    cell data array "material" (legacy: SCALARS or FIELD), else 0. Binary,
-//    appended and compressed data are rejected.
+//    cell data array "material" (legacy: SCALARS or FIELD), else 0.
 // A file cut short either fails to read or, when the cut removed only text that
 // carries no mesh data (Medit `End`, trailing comments, cell data after
 // "material", sections after $EndElements in .msh), reads as the full mesh. A
@@ -160,6 +160,9 @@ struct WriteOptions {
   // .msh in binary (file type 1, this machine's byte order), as Gmsh writes with -bin;
   // else ASCII.
   bool gmsh_binary = false;
+  // .vtk and .vtu in binary (.vtk: BINARY, big-endian; .vtu: raw appended data), as
+  // ParaView writes them by default; else ASCII.
+  bool vtk_binary = false;
   // Also write the boundary and interface triangles, one group per material pair
   // (group_surface() in core/surface.h: "boundary_<m>", "interface_<a>_<b>", tags
   // above every material's), for boundary conditions:
@@ -214,8 +217,9 @@ struct MeshFields {
 // Writes `mesh` as a .vtu (whatever the extension of `path`) with cell data
 // "material" and "stretch" followed by `fields`, atomically as write_mesh(). The
 // first point array is marked as the active scalars. A size mismatch, a name with
-// other characters or a non-finite value gives an error naming the array.
-Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh,
-                             const MeshFields& fields);
+// other characters or a non-finite value gives an error naming the array. `binary`:
+// as WriteOptions::vtk_binary.
+Status write_vtu_with_fields(const std::string& path, const TetMesh& mesh, const MeshFields& fields,
+                             bool binary = false);
 
 }  // namespace tetlod

@@ -788,22 +788,62 @@ Status parse_vtk_legacy(std::string_view text, const std::string& name, ParsedMe
   return parser.parse();
 }
 
-void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
+namespace {
+
+// The values of a legacy file's lines: as text, a line of numbers; in a BINARY file,
+// their big-endian bytes (32-bit integers as "int", double as "double"), the arrays' lines
+// of keywords staying text, each on a line of its own after the data before it.
+class LegacyRecords {
+ public:
+  LegacyRecords(std::string* out, bool binary) : out_(out), binary_(binary) {}
+  template <typename... Values>
+  void record(Values... values) {
+    if (binary_) {
+      (append_binary(out_, values, true), ...);
+    } else {
+      append_line(out_, values...);
+    }
+  }
+  // A keyword line after an array's values.
+  void keywords(std::string_view line) {
+    if (binary_ && data_before_) out_->push_back('\n');
+    out_->append(line);
+    data_before_ = true;
+  }
+
+ private:
+  std::string* out_;
+  bool binary_;
+  bool data_before_ = false;
+};
+
+}  // namespace
+
+void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, bool binary,
+                      std::string* out) {
   const size_t tet_count = mesh.tet_count();
   size_t triangle_count = 0;
   if (surfaces) {
     for (const SurfaceGroup& group : surfaces->groups) triangle_count += group.triangles.size();
   }
   const size_t cell_count = tet_count + triangle_count;
-  out->reserve(out->size() + mesh.vertex_count() * 64 + tet_count * 64 + triangle_count * 48);
-  out->append("# vtk DataFile Version 3.0\nTetLOD tetrahedral mesh\nASCII\n");
-  out->append("DATASET UNSTRUCTURED_GRID\nPOINTS ");
-  append_number(out, mesh.vertex_count());
-  out->append(" double\n");
-  for (const Vec3& p : mesh.positions) append_line(out, p.x, p.y, p.z);
-  out->append("CELLS ");
-  append_line(out, cell_count, 5 * tet_count + 4 * triangle_count);
-  for (const Tet& tet : mesh.tets) append_line(out, 4, tet[0], tet[1], tet[2], tet[3]);
+  out->reserve(out->size() + mesh.vertex_count() * (binary ? 24 : 64) +
+               tet_count * (binary ? 40 : 64) + triangle_count * (binary ? 36 : 48));
+  LegacyRecords r(out, binary);
+  out->append(binary ? "# vtk DataFile Version 3.0\nTetLOD tetrahedral mesh\nBINARY\n"
+                     : "# vtk DataFile Version 3.0\nTetLOD tetrahedral mesh\nASCII\n");
+  auto line = [](const char* keyword, size_t count, const char* after) {
+    std::string text = keyword;
+    append_number(&text, uint64_t(count));
+    return text + after;
+  };
+  out->append("DATASET UNSTRUCTURED_GRID\n");
+  r.keywords(line("POINTS ", mesh.vertex_count(), " double\n"));
+  for (const Vec3& p : mesh.positions) r.record(p.x, p.y, p.z);
+  std::string cells = line("CELLS ", cell_count, " ");
+  append_line(&cells, uint64_t(5 * tet_count + 4 * triangle_count));
+  r.keywords(cells);
+  for (const Tet& tet : mesh.tets) r.record(int32_t{4}, tet[0], tet[1], tet[2], tet[3]);
   // The surface groups' triangles after the tets, as Gmsh's VTK export writes physical
   // surfaces: cell type 5, the group's tag in the material array.
   auto for_each_triangle = [&](auto visit) {
@@ -812,30 +852,26 @@ void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, std::s
       for (uint32_t i : group.triangles) visit(surfaces->surface[i].v, group.tag);
   };
   for_each_triangle(
-      [&](const std::array<uint32_t, 3>& v, int32_t) { append_line(out, 3, v[0], v[1], v[2]); });
-  out->append("CELL_TYPES ");
-  append_line(out, cell_count);
-  for (size_t t = 0; t < tet_count; ++t) out->append("10\n");
-  for (size_t t = 0; t < triangle_count; ++t) out->append("5\n");
-  out->append("CELL_DATA ");
-  append_line(out, cell_count);
-  out->append("SCALARS material int 1\nLOOKUP_TABLE default\n");
-  for (int32_t material : mesh.materials) append_line(out, material);
-  for_each_triangle([&](const std::array<uint32_t, 3>&, int32_t tag) { append_line(out, tag); });
+      [&](const std::array<uint32_t, 3>& v, int32_t) { r.record(int32_t{3}, v[0], v[1], v[2]); });
+  r.keywords(line("CELL_TYPES ", cell_count, "\n"));
+  for (size_t t = 0; t < tet_count; ++t) r.record(int32_t{10});
+  for (size_t t = 0; t < triangle_count; ++t) r.record(int32_t{5});
+  r.keywords(line("CELL_DATA ", cell_count, "\nSCALARS material int 1\nLOOKUP_TABLE default\n"));
+  for (int32_t material : mesh.materials) r.record(material);
+  for_each_triangle([&](const std::array<uint32_t, 3>&, int32_t tag) { r.record(tag); });
   // The stretch as a FIELD array: VTK's legacy reader takes only the first SCALARS of
   // a section unless told to read them all, but every FIELD array. A triangle takes
   // the stretch of its tet (on its back side), so that ParaView colours it as the face
   // it lies on and its range is the tets'.
-  out->append("FIELD FieldData 1\nstretch 1 ");
-  append_number(out, cell_count);
-  out->append(" double\n");
+  r.keywords(line("FIELD FieldData 1\nstretch 1 ", cell_count, " double\n"));
   std::vector<double> stretch(tet_count);
   for (size_t t = 0; t < tet_count; ++t) stretch[t] = tet_shape(mesh, mesh.tets[t]).stretch;
-  for (double d : stretch) append_line(out, d);
+  for (double d : stretch) r.record(d);
   if (surfaces) {
     for (const SurfaceGroup& group : surfaces->groups)
-      for (uint32_t i : group.triangles) append_line(out, stretch[surfaces->surface[i].tet]);
+      for (uint32_t i : group.triangles) r.record(stretch[surfaces->surface[i].tet]);
   }
+  if (binary) out->push_back('\n');
 }
 
 }  // namespace tetlod::io

@@ -826,16 +826,6 @@ class VtuParser {
   std::vector<PendingArray> appended_arrays_;
 };
 
-// Appends values `per_line` to a line, indented for readability.
-template <typename Value, typename Function>
-void append_rows(std::string* out, size_t count, size_t per_line, Function value_of) {
-  for (size_t i = 0; i < count; ++i) {
-    out->append(i % per_line == 0 ? "          " : " ");
-    append_number(out, Value(value_of(i)));
-    if (i % per_line == per_line - 1 || i + 1 == count) out->push_back('\n');
-  }
-}
-
 }  // namespace
 
 Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out) {
@@ -845,11 +835,78 @@ Status parse_vtu(std::string_view text, const std::string& name, ParsedMesh* out
 
 namespace {
 
+// The DataArray elements of a file being written: as text, each with its values
+// inside; in binary, each with its offset into the raw appended data, which
+// finish() writes after the grid: per array a UInt64 count of bytes, then the
+// values, little-endian.
+class VtuArrays {
+ public:
+  VtuArrays(std::string* out, bool binary) : out_(out), binary_(binary) {}
+
+  // An array of `count` values of `Value` (the XML type `type`), value_of(i) the i-th;
+  // as text, `per_line` a line. `attributes`: more of the element's, after the name.
+  template <typename Value, typename Function>
+  void add(const char* type, std::string_view name, std::string_view attributes, size_t count,
+           size_t per_line, Function value_of) {
+    open(type, name, attributes);
+    if (binary_) {
+      append_binary(&appended_, uint64_t(count * sizeof(Value)), false);
+      for (size_t i = 0; i < count; ++i) append_binary(&appended_, Value(value_of(i)), false);
+      return;
+    }
+    for (size_t i = 0; i < count; ++i) {
+      out_->append(i % per_line == 0 ? "          " : " ");
+      append_number(out_, Value(value_of(i)));
+      if (i % per_line == per_line - 1 || i + 1 == count) out_->push_back('\n');
+    }
+    out_->append("        </DataArray>\n");
+  }
+
+  // The same, the text written by write_text() (lines, each indented as above).
+  template <typename Value, typename Function, typename Text>
+  void add_text(const char* type, std::string_view name, std::string_view attributes, size_t count,
+                Function value_of, Text write_text) {
+    if (binary_) return add<Value>(type, name, attributes, count, 1, value_of);
+    open(type, name, attributes);
+    write_text();
+    out_->append("        </DataArray>\n");
+  }
+
+  // After </UnstructuredGrid>.
+  void finish() {
+    if (!binary_) return;
+    out_->append("  <AppendedData encoding=\"raw\">\n   _");
+    out_->append(appended_);
+    out_->append("\n  </AppendedData>\n");
+  }
+
+ private:
+  void open(const char* type, std::string_view name, std::string_view attributes) {
+    out_->append("        <DataArray type=\"");
+    out_->append(type);
+    out_->append("\" Name=\"");
+    out_->append(name);
+    out_->append("\"");
+    out_->append(attributes);
+    if (binary_) {
+      out_->append(" format=\"appended\" offset=\"");
+      append_number(out_, uint64_t(appended_.size()));
+      out_->append("\"/>\n");
+    } else {
+      out_->append(" format=\"ascii\">\n");
+    }
+  }
+
+  std::string* out_;
+  bool binary_;
+  std::string appended_;
+};
+
 // The surface groups' triangles come after the tets, as for .vtk (write_vtk_legacy()):
 // cell type 5, the group's tag as material, the stretch of the tet on its back side. The
 // fields' cell arrays are the tets' only: a caller gives fields or surfaces.
 void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const SurfaceGroups* surfaces,
-                     std::string* out) {
+                     bool binary, std::string* out) {
   const size_t tet_count = mesh.tet_count();
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<int32_t> tags;
@@ -864,10 +921,15 @@ void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const Surfac
     }
   }
   const size_t cell_count = tet_count + triangles.size();
-  out->reserve(out->size() + mesh.vertex_count() * 72 + cell_count * 96);
+  out->reserve(out->size() + mesh.vertex_count() * (binary ? 24 : 72) +
+               cell_count * (binary ? 56 : 96));
+  out->append(binary ? "<?xml version=\"1.0\"?>\n"
+                       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+                       "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+                     : "<?xml version=\"1.0\"?>\n"
+                       "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+                       "byte_order=\"LittleEndian\">\n");
   out->append(
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       "  <UnstructuredGrid>\n"
       "    <Piece NumberOfPoints=\"");
   append_number(out, mesh.vertex_count());
@@ -875,87 +937,88 @@ void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const Surfac
   append_number(out, cell_count);
   out->append(
       "\">\n"
-      "      <Points>\n"
-      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
-      "format=\"ascii\">\n");
-  for (const Vec3& p : mesh.positions) {
-    out->append("          ");
-    append_line(out, p.x, p.y, p.z);
-  }
+      "      <Points>\n");
+  VtuArrays arrays(out, binary);
+  const auto& p = mesh.positions;
+  arrays.add_text<double>(
+      "Float64", "Points", " NumberOfComponents=\"3\"", 3 * p.size(),
+      [&](size_t i) { return p[i / 3][i % 3]; },
+      [&] {
+        for (const Vec3& q : p) {
+          out->append("          ");
+          append_line(out, q.x, q.y, q.z);
+        }
+      });
   out->append(
-      "        </DataArray>\n"
       "      </Points>\n"
-      "      <Cells>\n"
-      "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-  for (const Tet& tet : mesh.tets) {
-    out->append("          ");
-    append_line(out, tet[0], tet[1], tet[2], tet[3]);
-  }
-  for (const auto& v : triangles) {
-    out->append("          ");
-    append_line(out, v[0], v[1], v[2]);
-  }
-  out->append(
-      "        </DataArray>\n"
-      "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-  append_rows<uint64_t>(out, cell_count, 16, [&](size_t c) {
+      "      <Cells>\n");
+  const size_t tet_ids = 4 * tet_count;
+  arrays.add_text<int64_t>(
+      "Int64", "connectivity", "", tet_ids + 3 * triangles.size(),
+      [&](size_t i) {
+        return i < tet_ids ? mesh.tets[i / 4][i % 4]
+                           : triangles[(i - tet_ids) / 3][(i - tet_ids) % 3];
+      },
+      [&] {
+        for (const Tet& tet : mesh.tets) {
+          out->append("          ");
+          append_line(out, tet[0], tet[1], tet[2], tet[3]);
+        }
+        for (const auto& v : triangles) {
+          out->append("          ");
+          append_line(out, v[0], v[1], v[2]);
+        }
+      });
+  arrays.add<int64_t>("Int64", "offsets", "", cell_count, 16, [&](size_t c) {
     return c < tet_count ? 4 * (c + 1) : 4 * tet_count + 3 * (c + 1 - tet_count);
   });
-  out->append(
-      "        </DataArray>\n"
-      "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-  append_rows<int32_t>(out, cell_count, 32, [&](size_t c) { return c < tet_count ? 10 : 5; });
-  out->append(
-      "        </DataArray>\n"
-      "      </Cells>\n");
-  auto append_arrays = [&](const std::vector<ScalarArray>& arrays) {
-    for (const ScalarArray& array : arrays) {
-      out->append("        <DataArray type=\"Float64\" Name=\"");
-      out->append(array.name);
-      out->append("\" format=\"ascii\">\n");
-      append_rows<double>(out, array.values->size(), 8,
-                          [&](size_t i) { return (*array.values)[i]; });
-      out->append("        </DataArray>\n");
+  if (binary) {
+    arrays.add<uint8_t>("UInt8", "types", "", cell_count, 32,
+                        [&](size_t c) { return c < tet_count ? 10 : 5; });
+  } else {  // as numbers, not characters
+    arrays.add<int32_t>("UInt8", "types", "", cell_count, 32,
+                        [&](size_t c) { return c < tet_count ? 10 : 5; });
+  }
+  out->append("      </Cells>\n");
+  auto add_fields = [&](const std::vector<ScalarArray>& list) {
+    for (const ScalarArray& array : list) {
+      arrays.add<double>("Float64", array.name, "", array.values->size(), 8,
+                         [&](size_t i) { return (*array.values)[i]; });
     }
   };
   if (!fields.point_data.empty()) {
     out->append("      <PointData Scalars=\"");
     out->append(fields.point_data[0].name);
     out->append("\">\n");
-    append_arrays(fields.point_data);
+    add_fields(fields.point_data);
     out->append("      </PointData>\n");
   }
-  out->append(
-      "      <CellData Scalars=\"material\">\n"
-      "        <DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n");
-  append_rows<int32_t>(out, cell_count, 16, [&](size_t c) {
+  out->append("      <CellData Scalars=\"material\">\n");
+  arrays.add<int32_t>("Int32", "material", "", cell_count, 16, [&](size_t c) {
     return c < tet_count ? mesh.materials[c] : tags[c - tet_count];
   });
-  out->append(
-      "        </DataArray>\n"
-      "        <DataArray type=\"Float64\" Name=\"stretch\" format=\"ascii\">\n");
   std::vector<double> stretch(tet_count);
   for (size_t t = 0; t < tet_count; ++t) stretch[t] = tet_shape(mesh, mesh.tets[t]).stretch;
-  append_rows<double>(out, cell_count, 8, [&](size_t c) {
+  arrays.add<double>("Float64", "stretch", "", cell_count, 8, [&](size_t c) {
     return stretch[c < tet_count ? c : triangle_tets[c - tet_count]];
   });
-  out->append("        </DataArray>\n");
-  append_arrays(fields.cell_data);
+  add_fields(fields.cell_data);
   out->append(
       "      </CellData>\n"
       "    </Piece>\n"
-      "  </UnstructuredGrid>\n"
-      "</VTKFile>\n");
+      "  </UnstructuredGrid>\n");
+  arrays.finish();
+  out->append("</VTKFile>\n");
 }
 
 }  // namespace
 
-void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
-  write_vtu_cells(mesh, MeshFields(), surfaces, out);
+void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, bool binary, std::string* out) {
+  write_vtu_cells(mesh, MeshFields(), surfaces, binary, out);
 }
 
-void write_vtu(const TetMesh& mesh, const MeshFields& fields, std::string* out) {
-  write_vtu_cells(mesh, fields, nullptr, out);
+void write_vtu(const TetMesh& mesh, const MeshFields& fields, bool binary, std::string* out) {
+  write_vtu_cells(mesh, fields, nullptr, binary, out);
 }
 
 }  // namespace tetlod::io

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -353,6 +354,45 @@ TEST(Electrostatics, VtuCarriesPotentialAndField) {
   bad = write_vtu_with_fields(bad_path, mesh, fields);
   EXPECT_NE(bad.message().find("a<b"), std::string::npos) << bad.message();
   EXPECT_FALSE(std::filesystem::exists(bad_path));
+}
+
+// The values of the array `name` in a .vtu with raw appended data and UInt64 headers
+// (as write_vtu_with_fields() writes it in binary), read by hand from the offset
+// the array's element gives; empty if not found.
+std::vector<double> appended_doubles(const std::string& file, const std::string& name) {
+  const std::string element = "Name=\"" + name + "\" format=\"appended\" offset=\"";
+  const size_t at = file.find(element);
+  const size_t data = file.find("<AppendedData encoding=\"raw\">\n   _");
+  if (at == std::string::npos || data == std::string::npos) return {};
+  const size_t base = data + 34 + std::stoull(file.substr(at + element.size()));
+  uint64_t bytes = 0;
+  std::memcpy(&bytes, file.data() + base, 8);  // little-endian host
+  std::vector<double> values(bytes / 8);
+  std::memcpy(values.data(), file.data() + base + 8, bytes);
+  return values;
+}
+
+TEST(Electrostatics, BinaryVtuCarriesTheSameFields) {
+  const TetMesh mesh = layered_plates();
+  ElectrostaticsSolution s;
+  ASSERT_TRUE(solve_electrostatics(mesh, plates_problem(), {}, &s).ok());
+  const std::string dir = std::string(TETLOD_TEST_OUTPUT_DIR) + "/electrostatics";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/plates_binary.vtu";
+  MeshFields fields;
+  fields.point_data = {{"potential", &s.potential}};
+  fields.cell_data = {{"field magnitude", &s.field_magnitude}};
+  ASSERT_TRUE(write_vtu_with_fields(path, mesh, fields, true).ok());
+  std::stringstream file;
+  file << std::ifstream(path, std::ios::binary).rdbuf();
+  EXPECT_NE(file.str().find("<PointData Scalars=\"potential\">"), std::string::npos);
+  EXPECT_EQ(appended_doubles(file.str(), "potential"), s.potential);
+  EXPECT_EQ(appended_doubles(file.str(), "field magnitude"), s.field_magnitude);
+  TetMesh back;
+  ASSERT_TRUE(read_mesh(path, &back).ok());
+  EXPECT_EQ(back.positions, mesh.positions);
+  EXPECT_EQ(back.tets, mesh.tets);
+  EXPECT_EQ(back.materials, mesh.materials);
 }
 
 TEST(Electrostatics, EveryLodLevelOfThePlatesIsExact) {

@@ -3,10 +3,15 @@
 // 5.1), with the material as SCALARS or as a FIELD array among arrays to skip, they
 // read as the same mesh as the ASCII file; every truncation fails with the file's
 // name, and random damage never crashes. (Gmsh's own -bin output: interop test.)
+// What TetLOD writes in binary (WriteOptions::vtk_binary), .vtk and .vtu, reads as
+// what it writes in text, with the bytes in the order each format has.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <random>
+#include <sstream>
 
 #include "core/io/mesh_io.h"
 #include "core/test_io_helpers.h"
@@ -174,6 +179,108 @@ TEST(IoVtkBinary, RandomDamageNeverCrashes) {
       }
       test::expect_error_or_valid_mesh(data, MeshFormat::kVtkLegacy, "b.vtk");
       if (testing::Test::HasFatalFailure()) return;
+    }
+  }
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// The 8 bytes of `x` in the given order.
+std::string double_bytes(double x, bool big_endian) {
+  char bytes[8];
+  std::memcpy(bytes, &x, 8);
+  std::string s(bytes, 8);  // little-endian host, as BigEndian above assumes
+  if (big_endian) std::reverse(s.begin(), s.end());
+  return s;
+}
+
+TEST(IoVtkBinary, OurBinaryFilesReadAsOurTextFiles) {
+  const std::string dir = test::output_dir("vtk_binary_written");
+  TetMesh box2;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
+  for (const char* extension : {".vtk", ".vtu"}) {
+    for (bool groups : {false, true}) {
+      SCOPED_TRACE(std::string(extension) + (groups ? " with groups" : ""));
+      // make_io_mesh()'s material INT32_MAX leaves no tag for groups.
+      const TetMesh mesh = groups ? box2 : test::make_io_mesh();
+      TetMesh read[2];
+      ReadInfo info[2];
+      std::string bytes;
+      for (bool binary : {false, true}) {
+        WriteOptions options;
+        options.vtk_binary = binary;
+        options.surface_groups = groups;
+        const std::string path = dir + (binary ? "/b" : "/t") + extension;
+        ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+        const Status s = read_mesh(path, &read[binary], &info[binary]);
+        ASSERT_TRUE(s.ok()) << s.message();
+        if (binary) bytes = file_bytes(path);
+      }
+      test::expect_same_mesh(read[0], read[1]);
+      test::expect_same_mesh(mesh, read[1]);
+      EXPECT_EQ(info[1].surface_groups.empty(), !groups);
+      test::expect_same_groups(info[0].surface_groups, info[1].surface_groups);
+      // The first point's x where the format puts it: after the POINTS line,
+      // big-endian; first in the appended data, after a little-endian UInt64 count.
+      const double x = mesh.positions[0].x;
+      if (std::string(extension) == ".vtk") {
+        EXPECT_EQ(bytes.rfind("# vtk DataFile Version 3.0\nTetLOD tetrahedral mesh\nBINARY\n", 0),
+                  0u);
+        const std::string points = "POINTS " + std::to_string(mesh.vertex_count()) + " double\n";
+        const size_t at = bytes.find(points);
+        ASSERT_NE(at, std::string::npos);
+        EXPECT_EQ(bytes.substr(at + points.size(), 8), double_bytes(x, true));
+      } else {
+        EXPECT_EQ(bytes.find("format=\"ascii\""), std::string::npos);
+        const size_t at = bytes.find("<AppendedData encoding=\"raw\">\n   _");
+        ASSERT_NE(at, std::string::npos);
+        const uint64_t count = 24 * mesh.vertex_count();
+        std::string count_bytes(8, '\0');
+        std::memcpy(&count_bytes[0], &count, 8);
+        EXPECT_EQ(bytes.substr(at + 34, 16), count_bytes + double_bytes(x, false));
+        const std::string end = "\n  </AppendedData>\n</VTKFile>\n";
+        EXPECT_EQ(bytes.substr(bytes.size() - end.size()), end);
+      }
+    }
+  }
+}
+
+// Every cut of what TetLOD writes in binary fails with the file's name, but where
+// only the legacy file's optional arrays are lost (as in the truncation test above).
+TEST(IoVtkBinary, OurBinaryFilesCutShortFail) {
+  const std::string dir = test::output_dir("vtk_binary_written");
+  const TetMesh mesh = test::make_io_mesh();
+  for (MeshFormat format : {MeshFormat::kVtkLegacy, MeshFormat::kVtu}) {
+    const bool legacy = format == MeshFormat::kVtkLegacy;
+    const std::string path = dir + (legacy ? "/cut.vtk" : "/cut.vtu");
+    WriteOptions options;
+    options.vtk_binary = true;
+    ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+    const std::string data = file_bytes(path);
+    const std::string name = legacy ? "b.vtk" : "b.vtu";
+    for (size_t length = 0; length + 1 < data.size(); ++length) {
+      TetMesh read;
+      const std::string prefix = data.substr(0, length);
+      const Status s = read_mesh_from_memory(prefix, format, name, &read);
+      if (s.ok() && legacy) {
+        const size_t materials = data.find("SCALARS material");
+        if (length < materials) {
+          TetMesh expected = mesh;
+          expected.materials.assign(expected.tet_count(), 0);
+          test::expect_same_mesh(expected, read);
+        } else {
+          test::expect_same_mesh(mesh, read);  // only stretch values lost
+        }
+      } else {
+        ASSERT_FALSE(s.ok()) << name << " cut at " << length;
+        EXPECT_EQ(s.message().rfind(name + ":", 0), 0u) << s.message();
+      }
+      if (testing::Test::HasFailure()) return;
     }
   }
 }
