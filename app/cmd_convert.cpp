@@ -1,4 +1,5 @@
-// tetlod convert IN OUT (or IN -o OUT) [--msh-version 2.2|4.1] [--msh-binary] [--surfaces]
+// tetlod convert IN OUT (or IN -o OUT) [--msh-version 2.2|4.1] [--msh-binary] [--vtk-binary]
+// [--surfaces]
 #include <cstdio>
 #include <string>
 
@@ -10,7 +11,8 @@ namespace tetlod::app {
 namespace {
 
 constexpr const char* kConvertUsage =
-    "usage: tetlod convert IN OUT [--msh-version 2.2|4.1] [--msh-binary] [--surfaces]\n"
+    "usage: tetlod convert IN OUT [--msh-version 2.2|4.1] [--msh-binary] [--vtk-binary]\n"
+    "                             [--surfaces]\n"
     "       (OUT may also be given as -o OUT)\n"
     "\n"
     "Converts a tetrahedral mesh between formats, chosen by extension, keeping the\n"
@@ -20,7 +22,7 @@ constexpr const char* kConvertUsage =
     "  .vtk (legacy)  .vtu  .bdf/.nas (Nastran bulk data; material = PID)\n"
     "  .inp (Abaqus, CalculiX)\n"
     "Binary .msh, .vtk and .vtu files are read; .meshb is written binary, .msh too with\n"
-    "--msh-binary, every other format as text.\n"
+    "--msh-binary, .vtk and .vtu with --vtk-binary, every other format as text.\n"
     "The output is written to a temporary file and renamed, never left half-written.\n";
 
 void print_convert_usage(std::FILE* stream) {

@@ -24,7 +24,7 @@ constexpr const char* kSimplifyUsageHead =
     "usage: tetlod simplify IN -o OUT --size S [--stretch D] [--valence V] [--tolerance T]\n"
     "                       [--no-subdivide] [--material-size M=S,...] [--size-field SPEC]\n"
     "                       [--elements N] [--history FILE] [--crease-angle DEG] [--improve]\n"
-    "                       [--msh-version V] [--msh-binary] [--surfaces]\n"
+    "                       [--msh-version V] [--msh-binary] [--vtk-binary] [--surfaces]\n"
     "\n"
     "Subdivides IN (every edge longer than half its target size), then collapses edges in\n"
     "order of the paper's priority index while every threshold holds:\n";
@@ -48,7 +48,7 @@ void print_simplify_usage(std::FILE* stream) {
 
 constexpr const char* kLodUsage =
     "usage: tetlod lod HISTORY (--elements N | --step K) -o OUT [--msh-version V] [--msh-binary]\n"
-    "                  [--surfaces]\n"
+    "                  [--vtk-binary] [--surfaces]\n"
     "                  [--improve [--size S [--stretch D] [--valence V] [--material-size ...]\n"
     "                   [--size-field ...] [--crease-angle DEG]]]\n"
     "\n"

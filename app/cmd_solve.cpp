@@ -18,7 +18,8 @@ namespace {
 
 constexpr const char* kSolveUsage =
     "usage: tetlod solve MESH --conductor M=V[,M=V...] [--ground boundary|M[,...]]\n"
-    "                    [--eps M=E[,M=E...]] [-o FIELD.vtu] [--solver auto|direct|cg]\n"
+    "                    [--eps M=E[,M=E...]] [-o FIELD.vtu [--vtk-binary]]\n"
+    "                    [--solver auto|direct|cg]\n"
     "                    [--preconditioner jacobi|ic] [--tolerance T]\n"
     "\n"
     "Electrostatics with linear finite elements: -div(eps grad u) = 0, every node of a\n"
@@ -34,6 +35,7 @@ constexpr const char* kSolveUsage =
     "  a material M is its id or its name in the input (a Gmsh physical group, an\n"
     "  Abaqus set): --conductor inner_conductor=1 --ground shield\n"
     "  -o FIELD.vtu         write the potential (point data) and |E| (cell data) for ParaView\n"
+    "  --vtk-binary         write it with raw appended binary data (default: ASCII)\n"
     "  --solver S           auto (direct up to 2000 unknowns, else cg), direct, cg\n"
     "  --preconditioner P   for cg: jacobi (default) or ic (incomplete Cholesky)\n"
     "  --tolerance T        cg stops at relative residual T (default 1e-10)\n"
@@ -138,6 +140,7 @@ int cmd_solve(const Args& args) {
   std::vector<MaterialText> grounds;
   SolveOptions options;
   bool ground_given = false;
+  bool binary = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     std::string v;
@@ -148,6 +151,8 @@ int cmd_solve(const Args& args) {
                      out.c_str());
         return kExitUsage;
       }
+    } else if (a == "--vtk-binary") {
+      binary = true;
     } else if (a == "--conductor") {
       if (!next_value(args, &i, &v) || !parse_pairs(a, v, &conductors)) return kExitUsage;
     } else if (a == "--eps") {
@@ -270,7 +275,7 @@ int cmd_solve(const Args& args) {
     MeshFields fields;
     fields.point_data = {{"potential", &solution.potential}};
     fields.cell_data = {{"field magnitude", &solution.field_magnitude}};
-    const Status s = write_vtu_with_fields(out, mesh, fields);
+    const Status s = write_vtu_with_fields(out, mesh, fields, binary);
     if (!s) {
       std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
       return kExitBadInput;

@@ -30,6 +30,7 @@ const char* const kSimplifyFlagsHelp =
 const char* const kWriteFlagsHelp =
     "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n"
     "  --msh-binary      write .msh in binary, as gmsh -bin does (default: ASCII)\n"
+    "  --vtk-binary      write .vtk and .vtu in binary, as ParaView does (default: ASCII)\n"
     "  --surfaces        also write the boundary and interface triangles, for boundary\n"
     "                    conditions: the input's own surface groups (Gmsh physical\n"
     "                    surfaces, Medit triangle references, TetGen .face markers,\n"
@@ -53,6 +54,10 @@ OptionResult parse_write_option(const Args& args, size_t* i, const char* command
   }
   if (a == "--msh-binary") {
     options->gmsh_binary = true;
+    return OptionResult::kParsed;
+  }
+  if (a == "--vtk-binary") {
+    options->vtk_binary = true;
     return OptionResult::kParsed;
   }
   if (a != "--msh-version") return OptionResult::kNotMine;

@@ -482,6 +482,29 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("(Gmsh 2.2 .msh)"), std::string::npos) << r.output;
 
+  // --vtk-binary on simplify and lod: a .vtu with raw appended data, a BINARY .vtk.
+  const std::string vtu = out_dir() + "/surf_simp_binary.vtu";
+  const std::string vtk = out_dir() + "/surf_level_binary.vtk";
+  r = run("simplify " + path + " -o " + vtu + " --size 0.9 --tolerance 1e-12 " +
+          "--no-subdivide --surfaces --vtk-binary");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  EXPECT_NE(read_file(vtu).find("<AppendedData encoding=\"raw\">"), std::string::npos);
+  r = run("lod " + history + " --step 0 -o " + vtk + " --surfaces --vtk-binary");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find(groups_line), std::string::npos) << r.output;
+  EXPECT_EQ(
+      read_file(vtk).rfind("# vtk DataFile Version 3.0\nTetLOD tetrahedral mesh\nBINARY\n", 0), 0u);
+  for (const std::string& file : {vtu, vtk}) {
+    TetMesh written;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(file, &written, &info).ok()) << file;
+    EXPECT_EQ(written.tet_count(), 96u) << file;
+    size_t triangles = 0;
+    for (const InputSurfaceGroup& group : info.surface_groups) triangles += group.triangles.size();
+    EXPECT_EQ(triangles, 88u) << file;
+  }
+
   const std::string level = out_dir() + "/surf_level.mesh";
   r = run("lod " + history + " --step 0 -o " + level + " --surfaces");
   ASSERT_EQ(r.code, 0) << r.output;
@@ -848,6 +871,13 @@ TEST(Cli, SolveSpheresPrintsCapacitanceAndWritesTheField) {
   const CommandResult r =
       run("solve " + spheres + " --conductor 1=1 --ground 4 --eps 2=2,3=5 -o " + field);
   ASSERT_EQ(r.code, 0) << r.output;
+  // --vtk-binary: the same field in raw appended data.
+  const std::string binary_field = out_dir() + "/spheres_field_binary.vtu";
+  const CommandResult b =
+      run("solve " + spheres + " --conductor 1=1 --ground 4 -o " + binary_field + " --vtk-binary");
+  ASSERT_EQ(b.code, 0) << b.output;
+  EXPECT_NE(read_file(binary_field).find("Name=\"potential\" format=\"appended\""),
+            std::string::npos);
   // The committed asset's value (direct solver); the exact sphere value is 44.36.
   EXPECT_NE(r.output.find("capacitance  C = 46.9104"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("energy       W = 23.4552"), std::string::npos) << r.output;
