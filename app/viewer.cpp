@@ -328,7 +328,7 @@ class Viewer {
   ViewPixels view_pixels(int fb_width, int fb_height) const;
   void draw_scene(int fb_width, int fb_height);
   Status screenshot(const std::string& path, int width, int height);
-  Status save_level(const std::string& path, bool improve, bool surfaces);
+  Status save_level(const std::string& path, bool improve, bool surfaces, bool binary);
   void fill_status();
   void add_recent(const std::string& path);
   void upload_all();
@@ -939,7 +939,8 @@ void Viewer::execute(const ui::Command& command) {
       break;
     case ui::CommandKind::kSave: {
       const Status s = save_level(command.path, (command.value & ui::kSaveImproved) != 0,
-                                  (command.value & ui::kSaveSurfaces) != 0);
+                                  (command.value & ui::kSaveSurfaces) != 0,
+                                  (command.value & ui::kSaveBinary) != 0);
       if (!s) status_.load_error = s.message();
       break;
     }
@@ -1151,7 +1152,7 @@ Status Viewer::screenshot(const std::string& path, int width, int height) {
   return render::write_png(path, image);
 }
 
-Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) {
+Status Viewer::save_level(const std::string& path, bool improve, bool surfaces, bool binary) {
   if (!scene_) return Status::error("nothing to save: no mesh loaded");
   if (save_future_.valid()) return Status::error("still saving " + save_path_);
   if (is_history_path(path)) {
@@ -1191,6 +1192,7 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces) 
           : std::string();
   WriteOptions options;
   options.surface_groups = surfaces;
+  options.gmsh_binary = options.vtk_binary = binary;
   if (Status s = check_mesh_path(path, options); !s) return s;
   save_path_ = path;
   save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
@@ -1723,7 +1725,7 @@ Status Viewer::run_action(const ScriptAction& a) {
       return screenshot(a.path, a.width, a.height);
     case Kind::kSave:
       save_line_ = a.line;
-      return save_level(a.path, a.flag, a.surfaces);
+      return save_level(a.path, a.flag, a.surfaces, a.binary);
     case Kind::kWait:
       wait_frames_ = static_cast<int>(a.count);
       wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(

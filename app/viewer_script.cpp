@@ -311,13 +311,15 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
       return p.error("a screenshot with the UI is taken at the window size (--size WxH)");
   } else if (command == "save") {
     a->kind = Kind::kSave;
-    if (Status s = p.arg_count(1, 3); !s) return s;
+    if (Status s = p.arg_count(1, 4); !s) return s;
     a->path = w[1];
     for (size_t i = 2; i < w.size(); ++i) {
-      bool& option = w[i] == "improve" ? a->flag : a->surfaces;
-      if ((w[i] != "improve" && w[i] != "surfaces") || option)
-        return p.error("'save' takes PATH [improve] [surfaces]");
-      option = true;
+      bool* option = w[i] == "improve"    ? &a->flag
+                     : w[i] == "surfaces" ? &a->surfaces
+                     : w[i] == "binary"   ? &a->binary
+                                          : nullptr;
+      if (!option || *option) return p.error("'save' takes PATH [improve] [surfaces] [binary]");
+      *option = true;
     }
   } else if (command == "wait") {
     a->kind = Kind::kWait;

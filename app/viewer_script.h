@@ -34,9 +34,10 @@
 //                                    tooltip in a 'screenshot ui=1'); the real pointer is
 //                                    not read meanwhile
 //   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
-//   save PATH [improve] [surfaces]   the displayed level, format from the extension;
-//                                    improve: its shapes improved first (improve.h);
-//                                    surfaces: with boundary groups (WriteOptions);
+//   save PATH [improve] [surfaces] [binary]   the displayed level, format from the
+//                                    extension; improve: its shapes improved first
+//                                    (improve.h); surfaces: with boundary groups;
+//                                    binary: .msh, .vtk, .vtu in binary (WriteOptions);
 //                                    PATH.tlh: the whole collapse history instead
 //   wait frames=N | seconds=S        keep drawing (and taking input) meanwhile
 //   bench-scrub [frames=N] [out=CSV] drag the scrubber end to end and back over N
@@ -114,6 +115,7 @@ struct ScriptAction {
   int axis = 0;           // cut: 0 x, 1 y, 2 z
   bool flag = false;      // cut flip, wireframe on, screenshot ui, save improve
   bool surfaces = false;  // save surfaces
+  bool binary = false;    // save binary
   int width = 0, height = 0;
   // thresholds
   std::optional<double> size, stretch, tolerance;

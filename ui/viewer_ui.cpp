@@ -384,9 +384,10 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::InputText("##save", panel->save_path, sizeof(panel->save_path));
   ImGui::SameLine();
   if (ImGui::Button("Save level"))
-    commands->push_back(
-        {CommandKind::kSave, panel->save_path,
-         (panel->save_improved ? kSaveImproved : 0) | (panel->save_surfaces ? kSaveSurfaces : 0)});
+    commands->push_back({CommandKind::kSave, panel->save_path,
+                         (panel->save_improved ? kSaveImproved : 0) |
+                             (panel->save_surfaces ? kSaveSurfaces : 0) |
+                             (panel->save_binary ? kSaveBinary : 0)});
   text_disabled_wrapped(".mesh .meshb .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
   ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
@@ -402,6 +403,12 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
         "per material pair (boundary_<m>, interface_<a>_<b>). In .msh physical\n"
         "surfaces, .mesh triangle references, a TetGen .face file, .inp node sets and\n"
         "element-face surfaces, .vtk/.vtu triangle cells and Nastran CTRIA3s (by tag).");
+  ImGui::SameLine();
+  ImGui::Checkbox("binary", &panel->save_binary);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Write .msh, .vtk and .vtu in binary, as gmsh -bin and ParaView do: smaller, and\n"
+        "much faster for them to read (.meshb is always binary; other formats are text).");
   ImGui::SetNextItemWidth(-110);
   ImGui::InputText("##shot", panel->screenshot_path, sizeof(panel->screenshot_path));
   ImGui::SameLine();

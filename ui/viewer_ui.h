@@ -100,7 +100,7 @@ enum class CommandKind {
   kJumpElements,  // value: target number of elements
   kFit,           // fit the camera to the model
   kAxisView,      // value: 0 iso, 1 x, 2 y, 3 z
-  kSave,          // path: the displayed level; value: kSaveImproved | kSaveSurfaces
+  kSave,          // path: the displayed level; value: kSaveImproved | kSaveSurfaces | kSaveBinary
   kScreenshot,    // path, width, height (0: window size), with_ui
   kSolve,         // the displayed level, with the current AnalysisSettings
   kCancelSolve,
@@ -109,6 +109,7 @@ enum class CommandKind {
 // The bits of a kSave command's value.
 inline constexpr long long kSaveImproved = 1;  // improve the shapes first (improve.h)
 inline constexpr long long kSaveSurfaces = 2;  // with surface groups (WriteOptions)
+inline constexpr long long kSaveBinary = 4;    // .msh, .vtk, .vtu in binary (WriteOptions)
 
 struct Command {
   Command() = default;
@@ -131,6 +132,7 @@ struct PanelState {
   char save_path[1024] = "level.mesh";
   bool save_improved = false;  // improve the level's shapes before saving (improve.h)
   bool save_surfaces = false;  // with the boundary and interface triangles (surface.h)
+  bool save_binary = false;    // .msh, .vtk and .vtu in binary
   char screenshot_path[1024] = "screenshot.png";
   int screenshot_size[2] = {0, 0};  // width, height; 0: the 3D view's size
   bool screenshot_ui = false;

@@ -70,7 +70,7 @@ TEST(ViewerScript, ParsesEveryCommand) {
       "wait frames=3\n"
       "bench-scrub frames=50 out=b.csv\n"
       "save better.mesh improve\n"
-      "save groups.msh surfaces improve\n"
+      "save groups.msh binary surfaces improve\n"
       "quit\n");
   ASSERT_EQ(a.size(), 25u);
   EXPECT_EQ(a[0].kind, Kind::kOpen);
@@ -119,10 +119,12 @@ TEST(ViewerScript, ParsesEveryCommand) {
   EXPECT_EQ(a[22].path, "better.mesh");
   EXPECT_TRUE(a[22].flag);
   EXPECT_FALSE(a[22].surfaces);
+  EXPECT_FALSE(a[22].binary);
   EXPECT_FALSE(a[19].surfaces);
   EXPECT_EQ(a[23].kind, Kind::kSave);
   EXPECT_TRUE(a[23].flag);
   EXPECT_TRUE(a[23].surfaces);
+  EXPECT_TRUE(a[23].binary);
   EXPECT_EQ(a[24].kind, Kind::kQuit);
 }
 
@@ -137,9 +139,11 @@ TEST(ViewerScript, CameraMoves) {
   EXPECT_EQ(a[2].value, -2.5);
   EXPECT_EQ(parse_error("orbit 1\n"), "t.script:1: 'orbit' takes 2 argument(s), got 1");
   EXPECT_EQ(parse_error("save a.msh surfaces surfaces\n"),
-            "t.script:1: 'save' takes PATH [improve] [surfaces]");
+            "t.script:1: 'save' takes PATH [improve] [surfaces] [binary]");
   EXPECT_EQ(parse_error("save a.msh boundary\n"),
-            "t.script:1: 'save' takes PATH [improve] [surfaces]");
+            "t.script:1: 'save' takes PATH [improve] [surfaces] [binary]");
+  EXPECT_EQ(parse_error("save a.msh binary improve surfaces binary\n"),
+            "t.script:1: 'save' takes 1 to 4 argument(s), got 5");
   EXPECT_EQ(parse_error("zoom in\n"), "t.script:1: 'clicks' needs a number, got 'in'");
   // The pointer held where a tooltip should show.
   EXPECT_EQ(a[3].kind, Kind::kMouse);

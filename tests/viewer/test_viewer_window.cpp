@@ -440,7 +440,9 @@ TEST(ViewerWindow, MouseShowsATooltip) {
 // does, in every format.
 TEST(ViewerWindow, SaveWithSurfaceGroups) {
   const fs::path dir = fresh_output_dir("viewer_save_surfaces");
-  std::ofstream(dir / "save.script") << "save level.msh surfaces\nsave level.bdf surfaces\nquit\n";
+  std::ofstream(dir / "save.script")
+      << "save level.msh surfaces\nsave level.bdf surfaces\nsave level.vtu surfaces binary\n"
+         "save binary.msh binary\nquit\n";
   const ViewerRun run =
       run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 320x240 --script save.script");
   EXPECT_EQ(run.exit_code, 0) << run.output;
@@ -455,6 +457,20 @@ TEST(ViewerWindow, SaveWithSurfaceGroups) {
   ASSERT_TRUE(read_mesh((dir / "level.msh").string(), &saved).ok());
   ASSERT_TRUE(read_mesh(kSource + "/assets/box2.mesh", &input).ok());
   EXPECT_EQ(saved.tet_count(), input.tet_count());
+  // `binary`: the same level and groups in a binary .vtu, and a binary .msh.
+  TetMesh vtu, msh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh((dir / "level.vtu").string(), &vtu, &info).ok());
+  EXPECT_EQ(vtu.tets, saved.tets);
+  EXPECT_EQ(info.surface_groups.size(), 3u);
+  std::ifstream v(dir / "level.vtu");
+  EXPECT_NE(std::string(std::istreambuf_iterator<char>(v), {}).find("<AppendedData encoding"),
+            std::string::npos);
+  ASSERT_TRUE(read_mesh((dir / "binary.msh").string(), &msh).ok());
+  EXPECT_EQ(msh.tets, saved.tets);
+  std::ifstream m(dir / "binary.msh");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(m), {}).rfind("$MeshFormat\n4.1 1 8\n", 0),
+            0u);
 }
 
 // The input's own surface groups keep their names and tags in what Save writes, after
