@@ -106,7 +106,7 @@ TEST(IoNastran, WrittenFilesReadBackWithEveryMaterial) {
 // With surface groups: a CTRIA3 per triangle, the group's tag as its PID; in large
 // field when a tag does not fit in 8 characters.
 TEST(IoNastran, SurfaceGroupsReadBackInSmallAndLargeField) {
-  const std::string dir = test::output_dir("nastran");
+  const std::string dir = test::output_dir("nastran_groups");
   for (int32_t second : {2, 99999999}) {
     SCOPED_TRACE(second);
     const TetMesh grid = test::make_grid_mesh(

@@ -200,7 +200,7 @@ std::string double_bytes(double x, bool big_endian) {
 }
 
 TEST(IoVtkBinary, OurBinaryFilesReadAsOurTextFiles) {
-  const std::string dir = test::output_dir("vtk_binary_written");
+  const std::string dir = test::output_dir("vtk_binary_written_pairs");
   TetMesh box2;
   ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
   for (const char* extension : {".vtk", ".vtu"}) {
@@ -253,7 +253,7 @@ TEST(IoVtkBinary, OurBinaryFilesReadAsOurTextFiles) {
 // Every cut of what TetLOD writes in binary fails with the file's name, but where
 // only the legacy file's optional arrays are lost (as in the truncation test above).
 TEST(IoVtkBinary, OurBinaryFilesCutShortFail) {
-  const std::string dir = test::output_dir("vtk_binary_written");
+  const std::string dir = test::output_dir("vtk_binary_written_cut");
   const TetMesh mesh = test::make_io_mesh();
   for (MeshFormat format : {MeshFormat::kVtkLegacy, MeshFormat::kVtu}) {
     const bool legacy = format == MeshFormat::kVtkLegacy;

@@ -85,7 +85,7 @@ std::vector<std::string> write_four(const std::string& dir, const std::string& n
 
 TEST(IoVtkInterop, VtkReadsOurFilesInTextAndBinary) {
   TETLOD_NEED_VTK_PYTHON(python);
-  const std::string dir = test::output_dir("vtk_interop");
+  const std::string dir = test::output_dir("vtk_interop_meshes");
   TetMesh box2;
   ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
   SurfaceGroups groups;
@@ -136,7 +136,7 @@ TEST(IoVtkInterop, VtkReadsOurFilesInTextAndBinary) {
 
 TEST(IoVtkInterop, VtkReadsOurFieldsInTextAndBinary) {
   TETLOD_NEED_VTK_PYTHON(python);
-  const std::string dir = test::output_dir("vtk_interop");
+  const std::string dir = test::output_dir("vtk_interop_fields");
   TetMesh mesh;
   ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &mesh).ok());
   std::vector<double> potential, field;
