@@ -588,7 +588,9 @@ class VtkLegacyParser {
           !scanner_.read_count(&tuples, "tuple count", 0) || !scanner_.next_token(&type)) {
         return scanner_.failed() ? false : scanner_.fail("unexpected end of file, expected a type");
       }
-      if (data_section_ == DataSection::kCells && components == 1 &&
+      const bool strings = TextScanner::equals_ignore_case(type, "string") ||
+                           TextScanner::equals_ignore_case(type, "utf8_string");
+      if (data_section_ == DataSection::kCells && components == 1 && !strings &&
           (array_name == kMaterialArray || takes_material(array_name, type, components))) {
         if (tuples != section_count_) {
           return scanner_.fail("the material array has " + std::to_string(tuples) + " values for " +
@@ -598,9 +600,45 @@ class VtkLegacyParser {
         continue;
       }
       if (!check_value_count(tuples, components, &value_count)) return false;
-      if (binary_ ? !skip_binary(value_count, type, "field array")
-                  : !scanner_.skip_numbers(value_count, "field array")) {
+      if (strings) {
+        if (!skip_strings(value_count)) return false;
+      } else if (binary_ ? !skip_binary(value_count, type, "field array")
+                         : !scanner_.skip_numbers(value_count, "field array")) {
         return false;
+      }
+    }
+    return true;
+  }
+
+  // The values of a string array (VTK writes names and records so, as the Exodus
+  // reader's QA and information records): as text, one string a line (spaces and
+  // other characters %-encoded), empty lines for empty strings; in a binary file,
+  // each string after its length, big-endian, in 1, 2, 4 or 8 bytes as the first
+  // byte's two high bits say (3, 2, 1, 0), the length in the remaining bits.
+  bool skip_strings(uint64_t count) {
+    if (!trim_line(scanner_.rest_of_line()).empty()) {
+      return scanner_.fail("unexpected text after the string array's line");
+    }
+    for (uint64_t i = 0; i < count; ++i) {
+      const std::string_view rest = scanner_.remaining_text();
+      size_t header = 0;
+      uint64_t length = 0;
+      if (!rest.empty() && binary_) {
+        const unsigned kind = uint8_t(rest[0]) >> 6;
+        header = kind == 3 ? 1 : kind == 2 ? 2 : kind == 1 ? 4 : 8;
+        if (header <= rest.size()) {
+          length = value_bits(rest.data(), header, true);
+          if (kind != 0) length &= (uint64_t{1} << (8 * header - 2)) - 1;
+        }
+      }
+      if (rest.empty() || header > rest.size() || length > rest.size() - header) {
+        scanner_.advance(rest.size());
+        return scanner_.fail("the file ends inside a string array (truncated file?)");
+      }
+      if (binary_) {
+        scanner_.advance(header + length);
+      } else {
+        scanner_.rest_of_line();
       }
     }
     return true;

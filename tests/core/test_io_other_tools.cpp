@@ -31,6 +31,12 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
                {"vtu_vtk9_ascii.vtu", true},
                {"vtk_vtk9_binary51.vtk", true},
                {"vtk_vtk9_binary42.vtk", true},
+               // String arrays (field data and one string per cell), as VTK writes
+               // names and records.
+               {"vtk_vtk9_strings_ascii.vtk", true},
+               {"vtk_vtk9_strings_binary.vtk", true},
+               {"vtu_vtk9_strings_ascii.vtu", true},
+               {"vtu_vtk9_strings_appended.vtu", true},
                {"vtk_meshio_binary.vtk", true},
                // meshio from Gmsh and Medit files: the material is "gmsh:physical",
                // "medit:ref" (next to "gmsh:geometrical" and other integer arrays).
@@ -68,6 +74,40 @@ TEST(IoOtherTools, BinaryFilesReadAsTheMeshTheyHold) {
       EXPECT_EQ(test::canonical_tets(mesh), test::canonical_tets(without_materials));
     } else {
       test::expect_same_mesh(f.materials ? box2 : without_materials, mesh);
+    }
+  }
+}
+
+// VTK's legacy files with string arrays, cut anywhere: an error naming the file, or
+// box2 (without its materials when the cut came before them). A cut inside a string
+// array is an error, in text (a string a line) as in binary (each after its length).
+TEST(IoOtherTools, LegacyStringArraysCutShortFail) {
+  TetMesh box2;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
+  TetMesh without_materials = box2;
+  without_materials.materials.assign(box2.tet_count(), 0);
+  for (const char* file : {"vtk_vtk9_strings_ascii.vtk", "vtk_vtk9_strings_binary.vtk"}) {
+    SCOPED_TRACE(file);
+    const std::string data = test::read_text(tool_file(file));
+    const size_t records = data.find("Information%20Records 1 4 string\n");
+    ASSERT_NE(records, std::string::npos);
+    for (size_t length = 0; length < data.size(); ++length) {
+      TetMesh mesh;
+      const Status s = read_mesh_from_memory(std::string_view(data).substr(0, length),
+                                             MeshFormat::kVtkLegacy, "s.vtk", &mesh);
+      if (s.ok()) {
+        test::expect_same_mesh(mesh.materials[0] == 0 ? without_materials : box2, mesh);
+      } else {
+        ASSERT_EQ(s.message().rfind("s.vtk:", 0), 0u) << s.message();
+        // Before the records' last string: the four strings do not fit, or the
+        // file ends before all four.
+        if (length > records + 34 && length <= data.find("Kupfer")) {
+          EXPECT_TRUE(s.message().find("inside a string array") != std::string::npos ||
+                      s.message().find("larger than the rest of the file") != std::string::npos)
+              << length << ": " << s.message();
+        }
+      }
+      if (testing::Test::HasFailure()) return;
     }
   }
 }

@@ -94,3 +94,32 @@ for bits, version in ((32, 3), (64, 4)):
     meshio.write(folder + "/meshb_meshio_v%d.meshb" % version,
                  meshio.Mesh(from_medit.points, [("tetra", tets.astype(kind))],
                              cell_data={"medit:ref": [refs.astype(kind)]}))
+
+# String arrays, as VTK writes names and records (the Exodus reader's "QA Records",
+# "Information Records", block names): in the field data, and one string per cell,
+# with a space, an empty string, a string of 70 bytes (whose length takes two bytes
+# in a binary legacy file) and UTF-8 letters.
+grid = vtk.vtkUnstructuredGrid()
+grid.DeepCopy(reader.GetOutput())
+names = vtk.vtkStringArray()
+names.SetName("Information Records")
+for text in ("iron core", "", "x" * 70, "Kupfer \u00e4\u00f6\u00fc \u03a9"):
+    names.InsertNextValue(text)
+grid.GetFieldData().AddArray(names)
+labels = vtk.vtkStringArray()
+labels.SetName("cell label")
+for c in range(grid.GetNumberOfCells()):
+    labels.InsertNextValue("cell %d" % c)
+grid.GetCellData().AddArray(labels)
+for file_type, name in ((1, "vtk_vtk9_strings_ascii.vtk"), (2, "vtk_vtk9_strings_binary.vtk")):
+    w = vtk.vtkUnstructuredGridWriter()
+    w.SetInputData(grid)
+    w.SetFileName(folder + "/" + name)
+    w.SetFileType(file_type)
+    w.Write()
+for mode, name in (("ascii", "vtu_vtk9_strings_ascii.vtu"), ("appended", "vtu_vtk9_strings_appended.vtu")):
+    w = vtk.vtkXMLUnstructuredGridWriter()
+    w.SetInputData(grid)
+    w.SetFileName(folder + "/" + name)
+    w.SetDataModeToAscii() if mode == "ascii" else w.SetDataModeToAppended()
+    w.Write()
