@@ -1184,7 +1184,7 @@ class GmshParser {
       out_->notes.push_back(renamed + " in $PhysicalNames: the last name is kept");
     if (!volume_names.empty()) {
       out_->notes.push_back(
-          "volume groups are materials by their number (.msh and .inp "
+          "volume groups are materials by their number (.msh, .inp, .vtk and .vtu "
           "outputs keep their names): " +
           quoted_list(volume_names));
     }

@@ -60,9 +60,12 @@ void write_tetgen_face(const SurfaceGroups& surfaces, std::string* out, bool mar
 // `binary` (WriteOptions::vtk_binary): .vtk BINARY (big-endian, as the format has it);
 // .vtu with its arrays in raw appended data (little-endian, UInt64 headers, as
 // ParaView's "binary, appended, not encoded" writes them).
-void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, bool binary,
-                      std::string* out);
-void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, bool binary, std::string* out);
+// `names`: WriteOptions::material_names, or null; with the groups' names, in the
+// field data (kVtkNameTagArray).
+void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces,
+                      const std::vector<MaterialName>* names, bool binary, std::string* out);
+void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces,
+               const std::vector<MaterialName>* names, bool binary, std::string* out);
 void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
                   const std::vector<MaterialName>* names, std::string* out);
@@ -133,6 +136,26 @@ inline void finish_vtk_materials(int rank, ParsedMesh* out) {
     note += "; " + std::to_string(ungrouped) + " tetrahedra in none (-1) are material 0";
   out->notes.push_back(note);
 }
+
+// The names of materials and surface groups in a .vtk or .vtu, as TetLOD writes them
+// in the dataset's field data and reads them back: the arrays "group_tag" (integers)
+// and "group_name" (strings), row by row a material's id or a group's tag and its
+// name (ParaView shows them as a table in its spreadsheet view, Field Data).
+inline constexpr std::string_view kVtkNameTagArray = "group_tag";
+inline constexpr std::string_view kVtkNameArray = "group_name";
+struct VtkNameRow {
+  int32_t tag = 0;
+  std::string name;  // no NUL bytes
+};
+// The rows to write: the named materials of `mesh` (`names`: WriteOptions'), then
+// the groups of `surfaces`; empty when there are none.
+std::vector<VtkNameRow> vtk_name_rows(const TetMesh& mesh, const SurfaceGroups* surfaces,
+                                      const std::vector<MaterialName>* names);
+// After the reader made the mesh and its surface groups: the names of `tags` (read
+// from the two arrays) given to the materials and groups of those tags; others are
+// ignored, and arrays of unequal length are ignored with a note.
+void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<std::string>& names,
+                     ParsedMesh* out);
 
 // A name from a file as valid UTF-8: each byte that does not start or continue a
 // well-formed sequence becomes '?' (so that JSON, meshio and Gmsh take what is

@@ -270,10 +270,10 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       return files->stage(base + ".face", text);
     }
     case FileKind::kVtkLegacy:
-      io::write_vtk_legacy(mesh, surfaces, options.vtk_binary, &text);
+      io::write_vtk_legacy(mesh, surfaces, options.material_names, options.vtk_binary, &text);
       break;
     case FileKind::kVtu:
-      io::write_vtu(mesh, surfaces, options.vtk_binary, &text);
+      io::write_vtu(mesh, surfaces, options.material_names, options.vtk_binary, &text);
       break;
     case FileKind::kNastran:
       io::write_nastran(mesh, surfaces, &text);

@@ -64,7 +64,10 @@
 //    groups too (io/abaqus.cpp).
 //  - VTK legacy (3.0 and 5.1 cell layouts) and VTK XML: cell type 10 (tet) and 24
 //    (quadratic tet: its four corners) are read, other cells skipped; material =
-//    cell data array "material" (legacy: SCALARS or FIELD), else 0.
+//    cell data array "material" (legacy: SCALARS or FIELD), else 0. The names of
+//    materials and surface groups: the dataset's field data arrays "group_tag" and
+//    "group_name", as TetLOD writes them (kVtkNameTagArray in mesh_formats.h); other
+//    field data, and string arrays anywhere, are skipped.
 // A file cut short either fails to read or, when the cut removed only text that
 // carries no mesh data (Medit `End`, trailing comments, cell data after
 // "material", sections after $EndElements in .msh), reads as the full mesh. A
@@ -173,7 +176,7 @@ struct WriteOptions {
   //  - .inp: per group a *NSET and a *SURFACE of element faces (<NAME>_FACES);
   //  - .vtk, .vtu: triangle cells after the tets, the tag in the material array (as
   //    Gmsh's VTK export writes physical surfaces), the stretch of the tet behind
-  //    each; no names;
+  //    each; the names in the field data (with the materials', below);
   //  - .bdf/.nas: a CTRIA3 per triangle after the CTETRAs, the tag as its PID.
   bool surface_groups = false;
   // With surface_groups: group_surface() of the very mesh written, for a caller that
@@ -182,7 +185,8 @@ struct WriteOptions {
   // Names for the materials (ReadInfo::material_names of the input, or null), where
   // the format has a place for them: .msh physical volume names ("material_<m>" for
   // a material without one, and always for material 0, whose Gmsh tag is not its
-  // id); .inp element sets <NAME>_<m> (MATERIAL_<m> without). Names of materials the
+  // id); .inp element sets <NAME>_<m> (MATERIAL_<m> without); .vtk and .vtu field
+  // data "group_tag" and "group_name", row by row, with the surface groups'. Names of materials the
   // mesh does not have are ignored; characters the format cannot hold become '_'.
   const std::vector<MaterialName>* material_names = nullptr;
 };

@@ -3,6 +3,7 @@
 // followed by "k i1 .. ik" (file version <= 4.2) and "CELLS n+1 size" followed by
 // OFFSETS and CONNECTIVITY arrays (file version 5.1). In a binary file the keyword
 // lines stay text and each array's values follow its line as big-endian numbers.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -442,15 +443,7 @@ class VtkLegacyParser {
   bool takes_material(std::string_view name, std::string_view type, uint64_t components) const {
     const int rank = vtk_material_rank(name);
     if (rank <= 0 || rank >= material_rank_ || components != 1) return false;
-    for (const char* integer : {"char", "unsigned_char", "short", "unsigned_short", "int",
-                                "unsigned_int", "long", "unsigned_long", "vtkIdType"}) {
-      if (TextScanner::equals_ignore_case(type, integer)) return true;
-    }
-    // vtktypeint8 ... vtktypeuint64
-    return TextScanner::equals_ignore_case(type.substr(0, std::min<size_t>(type.size(), 10)),
-                                           "vtktypeint") ||
-           TextScanner::equals_ignore_case(type.substr(0, std::min<size_t>(type.size(), 11)),
-                                           "vtktypeuint");
+    return integer_type(type);
   }
 
   // The material array, of rank `rank` (vtk_material_rank): replaces one of a worse
@@ -600,8 +593,14 @@ class VtkLegacyParser {
         continue;
       }
       if (!check_value_count(tuples, components, &value_count)) return false;
-      if (strings) {
-        if (!skip_strings(value_count)) return false;
+      // The names TetLOD writes (kVtkNameTagArray) in the dataset's field data.
+      const bool dataset = data_section_ == DataSection::kNone && components == 1;
+      if (dataset && strings && array_name == kVtkNameArray) {
+        if (!read_strings(value_count, &names_)) return false;
+      } else if (dataset && array_name == kVtkNameTagArray && integer_type(type)) {
+        if (!read_integers(value_count, type, &name_tags_)) return false;
+      } else if (strings) {
+        if (!read_strings(value_count, nullptr)) return false;
       } else if (binary_ ? !skip_binary(value_count, type, "field array")
                          : !scanner_.skip_numbers(value_count, "field array")) {
         return false;
@@ -614,8 +613,9 @@ class VtkLegacyParser {
   // reader's QA and information records): as text, one string a line (spaces and
   // other characters %-encoded), empty lines for empty strings; in a binary file,
   // each string after its length, big-endian, in 1, 2, 4 or 8 bytes as the first
-  // byte's two high bits say (3, 2, 1, 0), the length in the remaining bits.
-  bool skip_strings(uint64_t count) {
+  // byte's two high bits say (3, 2, 1, 0), the length in the remaining bits. Into
+  // `out` (decoded), or skipped when it is null.
+  bool read_strings(uint64_t count, std::vector<std::string>* out) {
     if (!trim_line(scanner_.rest_of_line()).empty()) {
       return scanner_.fail("unexpected text after the string array's line");
     }
@@ -636,12 +636,62 @@ class VtkLegacyParser {
         return scanner_.fail("the file ends inside a string array (truncated file?)");
       }
       if (binary_) {
+        if (out) out->emplace_back(rest.substr(header, length));
         scanner_.advance(header + length);
       } else {
-        scanner_.rest_of_line();
+        const std::string_view line = scanner_.rest_of_line();
+        if (out) out->push_back(decode_legacy_string(line));
       }
     }
     return true;
+  }
+
+  // %XX as the byte XX (VTK's encoding of spaces and other bytes in text files).
+  static std::string decode_legacy_string(std::string_view text) {
+    std::string out;
+    auto hex = [](char c) {
+      return c >= '0' && c <= '9'   ? c - '0'
+             : c >= 'A' && c <= 'F' ? c - 'A' + 10
+             : c >= 'a' && c <= 'f' ? c - 'a' + 10
+                                    : -1;
+    };
+    for (size_t i = 0; i < text.size(); ++i) {
+      if (text[i] == '%' && i + 2 < text.size() && hex(text[i + 1]) >= 0 && hex(text[i + 2]) >= 0) {
+        out.push_back(char(hex(text[i + 1]) * 16 + hex(text[i + 2])));
+        i += 2;
+      } else {
+        out.push_back(text[i]);
+      }
+    }
+    return out;
+  }
+
+  // `count` integers of `type` (ASCII: any integer; binary: the type's values).
+  bool read_integers(uint64_t count, std::string_view type, std::vector<int64_t>* out) {
+    out->clear();
+    if (binary_) {
+      return read_binary_integers(count, type, "integer array", std::numeric_limits<int64_t>::min(),
+                                  std::numeric_limits<int64_t>::max(), out);
+    }
+    out->reserve(count);
+    for (uint64_t i = 0; i < count; ++i) {
+      int64_t value = 0;
+      if (!scanner_.read_int(&value, "integer array value")) return false;
+      out->push_back(value);
+    }
+    return true;
+  }
+
+  // An integer type of the legacy format (vtktypeint8 ... vtktypeuint64 too).
+  static bool integer_type(std::string_view type) {
+    for (const char* name : {"char", "unsigned_char", "short", "unsigned_short", "int",
+                             "unsigned_int", "long", "unsigned_long", "vtkIdType"}) {
+      if (TextScanner::equals_ignore_case(type, name)) return true;
+    }
+    return TextScanner::equals_ignore_case(type.substr(0, std::min<size_t>(type.size(), 10)),
+                                           "vtktypeint") ||
+           TextScanner::equals_ignore_case(type.substr(0, std::min<size_t>(type.size(), 11)),
+                                           "vtktypeuint");
   }
 
   // VTK 9 writes "METADATA" and information lines up to an empty line.
@@ -701,10 +751,13 @@ class VtkLegacyParser {
     if (has_materials_) finish_vtk_materials(material_rank_, out_);
     if (!has_materials_ && !cell_arrays_.empty())
       out_->notes.push_back(no_material_note(cell_arrays_));
+    apply_vtk_names(name_tags_, names_, out_);
     return true;
   }
 
   std::string_view text_;
+  std::vector<int64_t> name_tags_;  // the field data's kVtkNameTagArray
+  std::vector<std::string> names_;  // and kVtkNameArray
   TextScanner scanner_;
   ParsedMesh* out_;
   bool binary_ = false;     // BINARY: arrays as big-endian values
@@ -807,6 +860,54 @@ void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh*
   }
 }
 
+std::vector<VtkNameRow> vtk_name_rows(const TetMesh& mesh, const SurfaceGroups* surfaces,
+                                      const std::vector<MaterialName>* names) {
+  std::vector<VtkNameRow> rows;
+  auto add = [&](int32_t tag, std::string name) {
+    std::replace(name.begin(), name.end(), '\0', '_');
+    rows.push_back({tag, std::move(name)});
+  };
+  if (names) {
+    std::vector<int32_t> present = mesh.materials;
+    std::sort(present.begin(), present.end());
+    for (const MaterialName& m : *names)
+      if (!m.name.empty() && std::binary_search(present.begin(), present.end(), m.material))
+        add(m.material, m.name);
+  }
+  if (surfaces)
+    for (const SurfaceGroup& g : surfaces->groups) add(g.tag, g.name);
+  return rows;
+}
+
+void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<std::string>& names,
+                     ParsedMesh* out) {
+  if (tags.empty() && names.empty()) return;
+  if (tags.size() != names.size()) {
+    out->notes.push_back("the field data's " + std::string(kVtkNameTagArray) + " and " +
+                         std::string(kVtkNameArray) + " arrays have " +
+                         std::to_string(tags.size()) + " and " + std::to_string(names.size()) +
+                         " values: their names are not read");
+    return;
+  }
+  std::vector<int32_t> present = out->mesh.materials;
+  std::sort(present.begin(), present.end());
+  for (size_t i = 0; i < tags.size(); ++i) {
+    if (names[i].empty() || tags[i] < std::numeric_limits<int32_t>::min() ||
+        tags[i] > std::numeric_limits<int32_t>::max())
+      continue;
+    const int32_t tag = int32_t(tags[i]);
+    const std::string name = valid_utf8(names[i]);
+    if (std::binary_search(present.begin(), present.end(), tag)) {
+      auto& list = out->material_names;
+      auto at = std::lower_bound(list.begin(), list.end(), tag,
+                                 [](const MaterialName& m, int32_t t) { return m.material < t; });
+      if (at == list.end() || at->material != tag) list.insert(at, MaterialName{tag, name});
+    }
+    for (InputSurfaceGroup& g : out->surface_groups)
+      if (g.tag == tag && g.name.empty()) g.name = name;
+  }
+}
+
 std::string no_material_note(const std::vector<std::string>& arrays) {
   std::string names, known;
   constexpr size_t kListed = 10;  // a hostile file may have millions
@@ -857,8 +958,24 @@ class LegacyRecords {
 
 }  // namespace
 
-void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, bool binary,
-                      std::string* out) {
+// A string value of a legacy text file, as VTK writes it: every byte but the printable
+// ASCII ones other than '%' as %XX.
+std::string encode_legacy_string(std::string_view text) {
+  static const char kHex[] = "0123456789ABCDEF";
+  std::string out;
+  for (char c : text) {
+    const auto byte = uint8_t(c);
+    if (byte > 0x20 && byte < 0x7f && c != '%') {
+      out.push_back(c);
+    } else {
+      out += {'%', kHex[byte >> 4], kHex[byte & 15]};
+    }
+  }
+  return out;
+}
+
+void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces,
+                      const std::vector<MaterialName>* names, bool binary, std::string* out) {
   const size_t tet_count = mesh.tet_count();
   size_t triangle_count = 0;
   if (surfaces) {
@@ -876,6 +993,33 @@ void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces, bool b
     return text + after;
   };
   out->append("DATASET UNSTRUCTURED_GRID\n");
+  // The names of the materials and groups (vtk_name_rows()) as the dataset's field data.
+  const std::vector<VtkNameRow> rows = vtk_name_rows(mesh, surfaces, names);
+  if (!rows.empty()) {
+    out->append("FIELD FieldData 2\n");
+    r.keywords(std::string(kVtkNameTagArray) + " 1 " + std::to_string(rows.size()) + " int\n");
+    for (const VtkNameRow& row : rows) r.record(row.tag);
+    r.keywords(std::string(kVtkNameArray) + " 1 " + std::to_string(rows.size()) + " string\n");
+    for (const VtkNameRow& row : rows) {
+      if (!binary) {
+        out->append(encode_legacy_string(row.name));
+        out->push_back('\n');
+        continue;
+      }
+      // Its length first, in 1, 2, 4 or 8 bytes, the two high bits saying which.
+      const uint64_t n = row.name.size();
+      if (n < (uint64_t{1} << 6)) {
+        append_binary(out, uint8_t(0xc0 | n), true);
+      } else if (n < (uint64_t{1} << 14)) {
+        append_binary(out, uint16_t(0x8000 | n), true);
+      } else if (n < (uint64_t{1} << 30)) {
+        append_binary(out, uint32_t(0x40000000 | n), true);
+      } else {
+        append_binary(out, n, true);
+      }
+      out->append(row.name);
+    }
+  }
   r.keywords(line("POINTS ", mesh.vertex_count(), " double\n"));
   for (const Vec3& p : mesh.positions) r.record(p.x, p.y, p.z);
   std::string cells = line("CELLS ", cell_count, " ");

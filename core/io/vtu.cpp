@@ -288,17 +288,36 @@ class VtuParser {
         read_count_attribute(tag, "NumberOfCells",
                              std::min<uint64_t>(remaining / 4, kInvalidIndex - 1), &cell_count_);
       }
-    } else if (tag.name == "DataArray") {
+    } else if (tag.name == "DataArray" || (tag.name == "Array" && parent == "FieldData")) {
+      // VTK writes String arrays as <Array>.
       read_data_array(tag, parent);
     }
   }
 
-  enum class Target { kNone, kPoints, kConnectivity, kOffsets, kTypes, kMaterial };
+  // kNameTags, kNames: the names TetLOD writes in the dataset's field data
+  // (kVtkNameTagArray, kVtkNameArray: integers, and strings as their bytes).
+  enum class Target {
+    kNone,
+    kPoints,
+    kConnectivity,
+    kOffsets,
+    kTypes,
+    kMaterial,
+    kNameTags,
+    kNames
+  };
 
   // Called once per array, in the order of the file.
   Target target_of(const Tag& tag, std::string_view parent) {
     const std::string_view name = tag.attribute("Name");
     if (parent == "Points") return Target::kPoints;
+    if (parent == "FieldData") {
+      const std::string_view type = tag.attribute("type");
+      if (name == kVtkNameTagArray && (type.rfind("Int", 0) == 0 || type.rfind("UInt", 0) == 0))
+        return Target::kNameTags;
+      if (name == kVtkNameArray && type == "String") return Target::kNames;
+      return Target::kNone;
+    }
     if (parent == "Cells") {
       if (name == "connectivity") return Target::kConnectivity;
       if (name == "offsets") return Target::kOffsets;
@@ -336,8 +355,9 @@ class VtuParser {
       content = rest.substr(0, end);
     }
     const Target target = target_of(tag, parent);
+    const bool names = target == Target::kNameTags || target == Target::kNames;
     if (target != Target::kNone) {
-      if (!seen_piece_) {
+      if (!seen_piece_ && !names) {
         fail("<DataArray> outside a <Piece>");
         return;
       }
@@ -345,7 +365,8 @@ class VtuParser {
       if (format == "binary" || format == "appended") {
         PendingArray array;
         array.target = target;
-        array.type = vtu_type(tag.attribute("type"));
+        array.type = target == Target::kNames ? BinaryType{BinaryType::kUnsigned, 1}
+                                              : vtu_type(tag.attribute("type"));
         array.name = std::string(tag.attribute("Name"));
         array.components = std::string(tag.attribute("NumberOfComponents"));
         array.line = line;
@@ -522,6 +543,10 @@ class VtuParser {
       case Target::kConnectivity:
         *bound = 64 * cell_count_;  // a generous bound on the points of all cells
         return 0;
+      case Target::kNameTags:
+      case Target::kNames:
+        *bound = kMaxNameBytes;
+        return 0;
       case Target::kNone:
         break;
     }
@@ -664,6 +689,18 @@ class VtuParser {
         }
         has_materials_ = true;
         return true;
+      case Target::kNameTags:
+        name_tags_.resize(count);
+        for (uint64_t i = 0; i < count; ++i) {
+          if (!integer(i, std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max(),
+                       &name_tags_[i])) {
+            return false;
+          }
+        }
+        return true;
+      case Target::kNames:
+        name_bytes_.assign(values.data(), count);
+        return true;
       case Target::kNone:
         return true;
     }
@@ -717,6 +754,21 @@ class VtuParser {
           material = int32_t(value);
         }
         has_materials_ = true;
+        break;
+      case Target::kNameTags:
+        name_tags_.clear();
+        while (ok && !values.at_end() && name_tags_.size() < kMaxNameBytes) {
+          ok = values.read_int(&value, "tag");
+          name_tags_.push_back(value);
+        }
+        break;
+      case Target::kNames:
+        name_bytes_.clear();
+        while (ok && !values.at_end() && name_bytes_.size() < kMaxNameBytes) {
+          // VTK writes bytes past 127 as negative numbers (signed chars).
+          ok = values.read_int_in_range(&value, "string byte", -128, 255);
+          name_bytes_.push_back(char(value));
+        }
         break;
       case Target::kNone:
         break;
@@ -798,7 +850,19 @@ class VtuParser {
     if (has_materials_) finish_vtk_materials(material_rank_, out_);
     if (!has_materials_ && !cell_arrays_.empty())
       out_->notes.push_back(no_material_note(cell_arrays_));
+    // The strings of a String array: each one's bytes and a 0.
+    std::vector<std::string> names;
+    for (size_t from = 0; from < name_bytes_.size();) {
+      size_t to = name_bytes_.find('\0', from);
+      if (to == std::string::npos) to = name_bytes_.size();
+      names.push_back(name_bytes_.substr(from, to - from));
+      from = to + 1;
+    }
+    apply_vtk_names(name_tags_, names, out_);
   }
+
+  // The most bytes of names, or tags, read from the field data.
+  static constexpr uint64_t kMaxNameBytes = uint64_t{1} << 24;
 
   TextScanner scanner_;
   ParsedMesh* out_;
@@ -816,6 +880,8 @@ class VtuParser {
   int material_rank_ = 1 << 30;  // vtk_material_rank() of the array taken (none yet: worst)
   std::vector<int32_t> materials_;
   std::vector<std::string> cell_arrays_;  // names of the <CellData> arrays, in file order
+  std::vector<int64_t> name_tags_;        // Target::kNameTags
+  std::string name_bytes_;                // Target::kNames
   // Binary data.
   bool big_endian_ = false;
   size_t header_size_ = 4;  // UInt32
@@ -848,7 +914,9 @@ class VtuArrays {
   template <typename Value, typename Function>
   void add(const char* type, std::string_view name, std::string_view attributes, size_t count,
            size_t per_line, Function value_of) {
-    open(type, name, attributes);
+    // VTK writes String arrays as <Array>, the numeric ones as <DataArray>.
+    const char* element = std::string_view(type) == "String" ? "Array" : "DataArray";
+    open(element, type, name, attributes);
     if (binary_) {
       append_binary(&appended_, uint64_t(count * sizeof(Value)), false);
       for (size_t i = 0; i < count; ++i) append_binary(&appended_, Value(value_of(i)), false);
@@ -859,7 +927,9 @@ class VtuArrays {
       append_number(out_, Value(value_of(i)));
       if (i % per_line == per_line - 1 || i + 1 == count) out_->push_back('\n');
     }
-    out_->append("        </DataArray>\n");
+    out_->append("        </");
+    out_->append(element);
+    out_->append(">\n");
   }
 
   // The same, the text written by write_text() (lines, each indented as above).
@@ -867,7 +937,7 @@ class VtuArrays {
   void add_text(const char* type, std::string_view name, std::string_view attributes, size_t count,
                 Function value_of, Text write_text) {
     if (binary_) return add<Value>(type, name, attributes, count, 1, value_of);
-    open(type, name, attributes);
+    open("DataArray", type, name, attributes);
     write_text();
     out_->append("        </DataArray>\n");
   }
@@ -881,8 +951,11 @@ class VtuArrays {
   }
 
  private:
-  void open(const char* type, std::string_view name, std::string_view attributes) {
-    out_->append("        <DataArray type=\"");
+  void open(const char* element, const char* type, std::string_view name,
+            std::string_view attributes) {
+    out_->append("        <");
+    out_->append(element);
+    out_->append(" type=\"");
     out_->append(type);
     out_->append("\" Name=\"");
     out_->append(name);
@@ -906,7 +979,7 @@ class VtuArrays {
 // cell type 5, the group's tag as material, the stretch of the tet on its back side. The
 // fields' cell arrays are the tets' only: a caller gives fields or surfaces.
 void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const SurfaceGroups* surfaces,
-                     bool binary, std::string* out) {
+                     const std::vector<MaterialName>* names, bool binary, std::string* out) {
   const size_t tet_count = mesh.tet_count();
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<int32_t> tags;
@@ -929,16 +1002,34 @@ void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const Surfac
                      : "<?xml version=\"1.0\"?>\n"
                        "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
                        "byte_order=\"LittleEndian\">\n");
-  out->append(
-      "  <UnstructuredGrid>\n"
-      "    <Piece NumberOfPoints=\"");
+  out->append("  <UnstructuredGrid>\n");
+  VtuArrays arrays(out, binary);
+  // The names of the materials and groups (vtk_name_rows()) as the dataset's field
+  // data; a String array holds each string's bytes and a 0 after it, written as
+  // numbers in text (as VTK writes it).
+  const std::vector<VtkNameRow> rows = vtk_name_rows(mesh, surfaces, names);
+  if (!rows.empty()) {
+    std::string bytes;
+    for (const VtkNameRow& row : rows) bytes += row.name + '\0';
+    const std::string tuples = " NumberOfTuples=\"" + std::to_string(rows.size()) + "\"";
+    out->append("    <FieldData>\n");
+    arrays.add<int32_t>("Int32", kVtkNameTagArray, tuples, rows.size(), 16,
+                        [&](size_t i) { return rows[i].tag; });
+    auto byte = [&](size_t i) { return uint8_t(bytes[i]); };
+    if (binary) {
+      arrays.add<uint8_t>("String", kVtkNameArray, tuples, bytes.size(), 32, byte);
+    } else {  // as numbers, not characters
+      arrays.add<int32_t>("String", kVtkNameArray, tuples, bytes.size(), 32, byte);
+    }
+    out->append("    </FieldData>\n");
+  }
+  out->append("    <Piece NumberOfPoints=\"");
   append_number(out, mesh.vertex_count());
   out->append("\" NumberOfCells=\"");
   append_number(out, cell_count);
   out->append(
       "\">\n"
       "      <Points>\n");
-  VtuArrays arrays(out, binary);
   const auto& p = mesh.positions;
   arrays.add_text<double>(
       "Float64", "Points", " NumberOfComponents=\"3\"", 3 * p.size(),
@@ -1013,12 +1104,13 @@ void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const Surfac
 
 }  // namespace
 
-void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces, bool binary, std::string* out) {
-  write_vtu_cells(mesh, MeshFields(), surfaces, binary, out);
+void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces,
+               const std::vector<MaterialName>* names, bool binary, std::string* out) {
+  write_vtu_cells(mesh, MeshFields(), surfaces, names, binary, out);
 }
 
 void write_vtu(const TetMesh& mesh, const MeshFields& fields, bool binary, std::string* out) {
-  write_vtu_cells(mesh, fields, nullptr, binary, out);
+  write_vtu_cells(mesh, fields, nullptr, nullptr, binary, out);
 }
 
 }  // namespace tetlod::io

@@ -54,8 +54,8 @@ TEST(IoGmshFiles, PartitionedMeshesKeepTheirPhysicalGroups) {
     EXPECT_EQ(tets_per_material(mesh), tets_per_material(order2));
     EXPECT_EQ(tets_per_material(mesh).size(), 4u);
     EXPECT_TRUE(has_note(info,
-                         "volume groups are materials by their number (.msh and .inp "
-                         "outputs keep their names): "
+                         "volume groups are materials by their number (.msh, .inp, .vtk "
+                         "and .vtu outputs keep their names): "
                          "'inner_conductor' = 1, 'dielectric_inner' = 2, "
                          "'dielectric_outer' = 3, 'shield' = 4"))
         << all_notes(info);

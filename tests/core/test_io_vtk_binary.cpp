@@ -203,6 +203,9 @@ TEST(IoVtkBinary, OurBinaryFilesReadAsOurTextFiles) {
   const std::string dir = test::output_dir("vtk_binary_written_pairs");
   TetMesh box2;
   ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
+  // Names with a space, UTF-8 letters, and a name for a material the mesh lacks.
+  const std::vector<MaterialName> names = {
+      {1, "Rotor"}, {2, "air gap \u00e4\u00f6"}, {7, "copper coil"}, {9, "absent"}};
   for (const char* extension : {".vtk", ".vtu"}) {
     for (bool groups : {false, true}) {
       SCOPED_TRACE(std::string(extension) + (groups ? " with groups" : ""));
@@ -215,6 +218,7 @@ TEST(IoVtkBinary, OurBinaryFilesReadAsOurTextFiles) {
         WriteOptions options;
         options.vtk_binary = binary;
         options.surface_groups = groups;
+        options.material_names = &names;
         const std::string path = dir + (binary ? "/b" : "/t") + extension;
         ASSERT_TRUE(write_mesh(path, mesh, options).ok());
         const Status s = read_mesh(path, &read[binary], &info[binary]);
@@ -223,6 +227,11 @@ TEST(IoVtkBinary, OurBinaryFilesReadAsOurTextFiles) {
       }
       test::expect_same_mesh(read[0], read[1]);
       test::expect_same_mesh(mesh, read[1]);
+      // The names in the field data: box2's materials 1 and 2, make_io_mesh()'s 7.
+      for (const ReadInfo& i : info) {
+        ASSERT_EQ(i.material_names.size(), groups ? 2u : 1u);
+        EXPECT_EQ(i.material_names[0].name, groups ? "Rotor" : "copper coil");
+      }
       EXPECT_EQ(info[1].surface_groups.empty(), !groups);
       test::expect_same_groups(info[0].surface_groups, info[1].surface_groups);
       // The first point's x where the format puts it: after the POINTS line,
@@ -239,10 +248,15 @@ TEST(IoVtkBinary, OurBinaryFilesReadAsOurTextFiles) {
         EXPECT_EQ(bytes.find("format=\"ascii\""), std::string::npos);
         const size_t at = bytes.find("<AppendedData encoding=\"raw\">\n   _");
         ASSERT_NE(at, std::string::npos);
+        const std::string points =
+            "Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"";
+        const size_t offset = bytes.find(points);
+        ASSERT_NE(offset, std::string::npos);
+        const size_t data = at + 34 + std::stoull(bytes.substr(offset + points.size()));
         const uint64_t count = 24 * mesh.vertex_count();
         std::string count_bytes(8, '\0');
         std::memcpy(&count_bytes[0], &count, 8);
-        EXPECT_EQ(bytes.substr(at + 34, 16), count_bytes + double_bytes(x, false));
+        EXPECT_EQ(bytes.substr(data, 16), count_bytes + double_bytes(x, false));
         const std::string end = "\n  </AppendedData>\n</VTKFile>\n";
         EXPECT_EQ(bytes.substr(bytes.size() - end.size()), end);
       }

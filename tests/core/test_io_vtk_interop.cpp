@@ -1,8 +1,9 @@
 // VTK 9 itself (Debian's python3-vtk9, the library ParaView is built on) reads the
 // .vtk and .vtu files TetLOD writes, in text and in binary (WriteOptions::vtk_binary),
-// without a warning: the same points, cells, materials, surface-group triangles and
-// arrays from all four (tests/core/vtk_read.py prints what VTK read and a digest of
-// it), and the solver's fields in both forms of .vtu.
+// without a warning: the same points, cells, materials, surface-group triangles,
+// arrays and names from all four (tests/core/vtk_read.py prints what VTK read and a
+// digest of it), and the solver's fields in both forms of .vtu. And what VTK writes
+// of them again, in each of its encodings, reads as what TetLOD wrote.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -38,20 +39,26 @@ std::string vtk_python() {
 // What vtk_read.py printed of each file: its "key=value" words by key.
 using Report = std::map<std::string, std::string>;
 
-std::map<std::string, Report> read_with_vtk(const std::string& python,
-                                            const std::vector<std::string>& paths) {
+// Runs vtk_read.py with `args`; its output, and a failure if it failed.
+std::string run_vtk_read(const std::string& python, const std::vector<std::string>& args) {
   std::string command = python + " '" + TETLOD_SOURCE_DIR + "/tests/core/vtk_read.py'";
-  for (const std::string& p : paths) command += " '" + p + "'";
-  std::map<std::string, Report> reports;
+  for (const std::string& a : args) command += " '" + a + "'";
+  std::string output;
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   if (!pipe) {
     ADD_FAILURE() << "cannot run " << command;
-    return reports;
+    return output;
   }
-  std::string output;
   char buffer[4096];
   for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-  EXPECT_EQ(pclose(pipe), 0) << output;
+  EXPECT_EQ(pclose(pipe), 0) << command << "\n" << output;
+  return output;
+}
+
+std::map<std::string, Report> read_with_vtk(const std::string& python,
+                                            const std::vector<std::string>& paths) {
+  const std::string output = run_vtk_read(python, paths);
+  std::map<std::string, Report> reports;
   std::istringstream lines(output);
   for (std::string line; std::getline(lines, line);) {
     const size_t first = line.find(" points=");
@@ -67,6 +74,10 @@ std::map<std::string, Report> read_with_vtk(const std::string& python,
   return reports;
 }
 
+// Names with a space, a comma, UTF-8 letters (written by vtk_read.py with %XX for
+// space, comma and '%').
+const std::vector<MaterialName> kNames = {{1, "Rotor, laminated"}, {2, "air gap \u00e4"}};
+
 // The four files of `mesh`: .vtk and .vtu, text and binary.
 std::vector<std::string> write_four(const std::string& dir, const std::string& name,
                                     const TetMesh& mesh, bool groups) {
@@ -76,6 +87,7 @@ std::vector<std::string> write_four(const std::string& dir, const std::string& n
       WriteOptions options;
       options.vtk_binary = binary;
       options.surface_groups = groups;
+      options.material_names = &kNames;
       paths.push_back(dir + "/" + name + (binary ? "_binary" : "_text") + extension);
       EXPECT_TRUE(write_mesh(paths.back(), mesh, options).ok()) << paths.back();
     }
@@ -109,6 +121,13 @@ TEST(IoVtkInterop, VtkReadsOurFilesInTextAndBinary) {
       }
     }
     const Vec3& p = c.mesh.positions[0];
+    // The names: box2's two materials, then its groups; none for the other mesh.
+    std::string names;
+    if (c.groups) {
+      names = "1:Rotor%2C%20laminated,2:air%20gap%20\u00e4";
+      for (const SurfaceGroup& g : groups.groups)
+        names += "," + std::to_string(g.tag) + ":" + g.name;
+    }
     for (const std::string& path : paths) {
       SCOPED_TRACE(path);
       ASSERT_EQ(reports.count(path), 1u);
@@ -119,6 +138,7 @@ TEST(IoVtkInterop, VtkReadsOurFilesInTextAndBinary) {
       EXPECT_EQ(r.at("other"), "0");
       EXPECT_EQ(r.at("material_sum"), std::to_string(material_sum));
       EXPECT_EQ(r.at("arrays"), "material,stretch");
+      EXPECT_EQ(r.at("names"), names);
       // The first point exactly: Python prints the shortest text of the double.
       std::istringstream xyz(r.at("first_point"));
       std::string x, y, z;
@@ -154,6 +174,42 @@ TEST(IoVtkInterop, VtkReadsOurFieldsInTextAndBinary) {
   EXPECT_EQ(reports.at(text).at("arrays"), "potential,material,stretch,field%20magnitude");
   EXPECT_EQ(reports.at(binary).at("arrays"), "potential,material,stretch,field%20magnitude");
   EXPECT_EQ(reports.at(text).at("digest"), reports.at(binary).at("digest"));
+}
+
+// VTK writes our files again in each of its encodings (inline and appended base64,
+// zlib-compressed, and text; legacy binary and text): TetLOD reads each as the mesh,
+// names and surface groups it wrote.
+TEST(IoVtkInterop, WeReadWhatVtkWritesOfOurFiles) {
+  TETLOD_NEED_VTK_PYTHON(python);
+  const std::string dir = test::output_dir("vtk_interop_resaved");
+  TetMesh box2;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
+  for (const std::string& path : write_four(dir, "box2", box2, true)) {
+    TetMesh ours;
+    ReadInfo our_info;
+    ASSERT_TRUE(read_mesh(path, &ours, &our_info).ok()) << path;
+    ASSERT_EQ(our_info.material_names.size(), 2u);
+    ASSERT_FALSE(our_info.surface_groups.empty());
+    const bool xml = path.substr(path.size() - 4) == ".vtu";
+    for (const char* mode : xml ? std::vector<const char*>{"ascii", "binary", "appended"}
+                                : std::vector<const char*>{"ascii", "binary"}) {
+      const std::string again =
+          path.substr(0, path.size() - 4) + "_vtk_" + mode + path.substr(path.size() - 4);
+      SCOPED_TRACE(again);
+      run_vtk_read(python, {"--resave", path, again, mode});
+      TetMesh theirs;
+      ReadInfo their_info;
+      const Status s = read_mesh(again, &theirs, &their_info);
+      ASSERT_TRUE(s.ok()) << s.message();
+      test::expect_same_mesh(ours, theirs);
+      ASSERT_EQ(their_info.material_names.size(), our_info.material_names.size());
+      for (size_t i = 0; i < our_info.material_names.size(); ++i) {
+        EXPECT_EQ(their_info.material_names[i].material, our_info.material_names[i].material);
+        EXPECT_EQ(their_info.material_names[i].name, our_info.material_names[i].name);
+      }
+      test::expect_same_groups(our_info.surface_groups, their_info.surface_groups);
+    }
+  }
 }
 
 }  // namespace

@@ -235,7 +235,8 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
   // VTK legacy and XML: triangle cells after the tets, the tag in the material array,
   // the stretch of the tet behind (so that ParaView colours the triangle as that tet's
   // face, and its range is the tets'); Nastran: a CTRIA3 per triangle after the
-  // CTETRAs, the tag as its PID. Read back as the groups, by tag, unnamed (as .mesh).
+  // CTETRAs, the tag as its PID. Read back as the groups, by tag, named in .vtk and
+  // .vtu (their field data), unnamed in Nastran (as .mesh).
   std::vector<double> stretch_expected;
   for (const Tet& tet : mesh.tets) stretch_expected.push_back(tet_shape(mesh, tet).stretch);
   for (const SurfaceGroup& group : groups.groups)
@@ -276,7 +277,13 @@ TEST(SurfaceGroups, EachWriterCarriesThem) {
       std::sort(read[group.tag].begin(), read[group.tag].end());
     }
     EXPECT_EQ(read, triangles_by_tag(mesh, groups));
-    EXPECT_EQ(info.surface_groups[0].name, "");  // the file names none
+    for (const auto& group : info.surface_groups) {
+      // .vtk and .vtu name them in their field data, Nastran does not.
+      std::string written;
+      for (const SurfaceGroup& g : groups.groups)
+        if (g.tag == group.tag && kind != "bdf") written = g.name;
+      EXPECT_EQ(group.name, written) << group.tag;
+    }
   }
 }
 
