@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 
 #include "core/io/binary_values.h"
 #include "core/io/mesh_formats.h"
@@ -891,21 +892,28 @@ void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<std::st
   }
   std::vector<int32_t> present = out->mesh.materials;
   std::sort(present.begin(), present.end());
+  present.erase(std::unique(present.begin(), present.end()), present.end());
+  // The groups by tag (a reader makes one group a tag).
+  std::map<int32_t, InputSurfaceGroup*> groups;
+  for (InputSurfaceGroup& g : out->surface_groups) groups[g.tag] = &g;
+  std::map<int32_t, std::string> material_names;  // the first name of each
   for (size_t i = 0; i < tags.size(); ++i) {
     if (names[i].empty() || tags[i] < std::numeric_limits<int32_t>::min() ||
         tags[i] > std::numeric_limits<int32_t>::max())
       continue;
     const int32_t tag = int32_t(tags[i]);
+    const bool material = std::binary_search(present.begin(), present.end(), tag);
+    const auto group = groups.find(tag);
+    if (!material && group == groups.end()) continue;
     const std::string name = valid_utf8(names[i]);
-    if (std::binary_search(present.begin(), present.end(), tag)) {
-      auto& list = out->material_names;
-      auto at = std::lower_bound(list.begin(), list.end(), tag,
-                                 [](const MaterialName& m, int32_t t) { return m.material < t; });
-      if (at == list.end() || at->material != tag) list.insert(at, MaterialName{tag, name});
-    }
-    for (InputSurfaceGroup& g : out->surface_groups)
-      if (g.tag == tag && g.name.empty()) g.name = name;
+    if (material) material_names.emplace(tag, name);
+    if (group != groups.end() && group->second->name.empty()) group->second->name = name;
   }
+  if (material_names.empty()) return;
+  for (const MaterialName& m : out->material_names) material_names.emplace(m.material, m.name);
+  out->material_names.clear();
+  for (auto& [material, name] : material_names)
+    out->material_names.push_back({material, std::move(name)});
 }
 
 std::string no_material_note(const std::vector<std::string>& arrays) {
@@ -956,8 +964,6 @@ class LegacyRecords {
   bool data_before_ = false;
 };
 
-}  // namespace
-
 // A string value of a legacy text file, as VTK writes it: every byte but the printable
 // ASCII ones other than '%' as %XX.
 std::string encode_legacy_string(std::string_view text) {
@@ -973,6 +979,8 @@ std::string encode_legacy_string(std::string_view text) {
   }
   return out;
 }
+
+}  // namespace
 
 void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces,
                       const std::vector<MaterialName>* names, bool binary, std::string* out) {
