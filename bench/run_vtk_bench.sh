@@ -21,7 +21,7 @@ seconds() { # command...: wall seconds, to the millisecond
   start=$(date +%s.%N)
   "$@" > /dev/null
   end=$(date +%s.%N)
-  printf "%.3f" "$(echo "$end - $start" | bc)"
+  awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f", b - a }'
 }
 python=""
 for p in /usr/bin/python3 python3; do
