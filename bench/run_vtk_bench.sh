@@ -4,7 +4,9 @@
 # (convert from .meshb, so that reading the input costs little), its size, and the
 # time TetLOD (bench_core: read + validate), VTK 9 (Debian's python3-vtk9) and
 # ParaView (pvbatch, Debian's paraview + python3-paraview) take to read it, where
-# those are installed. ROUNDS rounds, the four files alternating.
+# those are installed. ROUNDS rounds, the four files alternating. (Debian 12 cannot
+# install python3-vtk9 and python3-paraview together; with the second, the "vtk"
+# column is ParaView's own VTK.)
 #   bash bench/run_vtk_bench.sh [TETS] [ROUNDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
