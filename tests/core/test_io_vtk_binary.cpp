@@ -264,6 +264,33 @@ TEST(IoVtkBinary, OurBinaryFilesReadAsOurTextFiles) {
   }
 }
 
+// Names of every length class of a binary legacy string (1-, 2- and 4-byte length
+// headers), and with bytes VTK's text form encodes (space, '%', a line break), read
+// back from all four forms.
+TEST(IoVtkBinary, NamesOfEveryLengthReadBack) {
+  const std::string dir = test::output_dir("vtk_binary_names");
+  const TetMesh mesh = test::make_io_mesh();  // materials 0, 7 and INT32_MAX
+  const std::vector<MaterialName> names = {
+      {7, "a 100% line\nbreak"}, {0, std::string(70, 'x')}, {2147483647, std::string(20000, 'y')}};
+  for (const char* extension : {".vtk", ".vtu"}) {
+    for (bool binary : {false, true}) {
+      SCOPED_TRACE(std::string(extension) + (binary ? " binary" : " text"));
+      WriteOptions options;
+      options.vtk_binary = binary;
+      options.material_names = &names;
+      const std::string path = dir + "/names" + extension;
+      ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+      ReadInfo info;
+      TetMesh read;
+      ASSERT_TRUE(read_mesh(path, &read, &info).ok());
+      ASSERT_EQ(info.material_names.size(), 3u);
+      EXPECT_EQ(info.material_names[0].name, names[1].name);
+      EXPECT_EQ(info.material_names[1].name, names[0].name);
+      EXPECT_EQ(info.material_names[2].name, names[2].name);
+    }
+  }
+}
+
 // Every cut of what TetLOD writes in binary fails with the file's name, but where
 // only the legacy file's optional arrays are lost (as in the truncation test above).
 TEST(IoVtkBinary, OurBinaryFilesCutShortFail) {
