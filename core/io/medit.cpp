@@ -52,6 +52,7 @@ constexpr SkippedKeyword kSkippedKeywords[] = {
     {"BoundingBox", false, 6},
     {"Iterations", false, 1},
     {"Time", false, 1},
+    {"FloatingPointPrecision", false, 1},
 };
 
 // Keywords followed by one string, possibly quoted with spaces inside.
@@ -255,6 +256,7 @@ enum MeditCode : int64_t {
   kCodeHexahedraQ2 = 33,
   kCodePyramids = 49,
   kCodeEnd = 54,
+  kCodeFloatingPointPrecision = 155,
 };
 
 // The keywords with entries of integers only that a reader counts (surface elements
@@ -388,6 +390,20 @@ class MeditBinaryReader {
           return fail(at, "only 3-dimensional meshes are supported (Dimension " +
                               std::to_string(dimension) + ")");
         }
+        return true;
+      }
+      case kCodeFloatingPointPrecision: {
+        // One integer, 32 or 64: the size of the reals after it, whatever the version
+        // (libMeshb's GmfSetFloatPrecision(); it ignores other values, and so do we).
+        if (end - at < integer_size_) return fail(at, "FloatingPointPrecision: no value");
+        const int64_t bits = integer(at, integer_size_);
+        if (bits != 32 && bits != 64) return true;
+        if (sections_.seen_vertices && size_t(bits / 8) != real_size_) {
+          return fail(at, "FloatingPointPrecision " + std::to_string(bits) +
+                              " after the Vertices section, read with " +
+                              std::to_string(8 * real_size_) + "-bit reals");
+        }
+        real_size_ = size_t(bits / 8);
         return true;
       }
       case kCodeVertices: {

@@ -22,7 +22,7 @@ namespace {
 
 // libMeshb's keyword codes used here.
 constexpr int32_t kDimension = 3, kVertices = 4, kTriangles = 6, kTetrahedra = 8, kPrisms = 9,
-                  kCorners = 13, kTetrahedraP2 = 30, kEnd = 54;
+                  kCorners = 13, kTetrahedraP2 = 30, kEnd = 54, kFloatingPointPrecision = 155;
 
 // A .meshb written by hand: each keyword's next position is filled in when the next
 // keyword starts; the last one's stays 0.
@@ -42,6 +42,7 @@ class Gmf {
   void position(int64_t v) { version_ >= 3 ? bytes_.i64(v) : bytes_.i32(v); }
   void integer(int64_t v) { version_ == 4 ? bytes_.i64(v) : bytes_.i32(v); }
   void real(double v) { version_ == 1 ? bytes_.f32(v) : bytes_.f64(v); }
+  void real32(double v) { bytes_.f32(v); }
   // Gives the keyword begun last this next position instead of where the next starts.
   void override_next(int64_t v) {
     override_at_ = header_;
@@ -180,6 +181,71 @@ TEST(IoMeditBinary, ReadsEveryVersionInBothByteOrders) {
 
 // What TetLOD writes reads back as the mesh and groups it wrote, and as the ASCII
 // .mesh of the same mesh reads.
+// libMeshb's FloatingPointPrecision keyword (a writer's GmfSetFloatPrecision()) sets
+// the size of the reals after it, whatever the version: 32-bit coordinates in a
+// version 2 or 4 file read as the floats they are; 64 changes nothing; after the
+// vertices, a size other than theirs is an error, not a misread. (The ASCII reader
+// skips the keyword.)
+TEST(IoMeditBinary, FloatingPointPrecisionSetsTheRealSize) {
+  const TetMesh mesh = test::make_single_tet();
+  auto file = [&](int version, int64_t bits, bool before_vertices) {
+    Gmf f(version, false);
+    f.keyword(kDimension);
+    f.i32(3);
+    if (before_vertices) {
+      f.keyword(kFloatingPointPrecision);
+      f.integer(bits);
+    }
+    f.keyword(kVertices);
+    f.integer(4);
+    for (const Vec3& p : mesh.positions) {
+      // Written as the keyword says where it comes first, else as the version says.
+      for (double x : {p.x, p.y, p.z})
+        bits == 32 && before_vertices ? f.real32(x + 0.1) : f.real(x + 0.1);
+      f.integer(0);
+    }
+    if (!before_vertices) {
+      f.keyword(kFloatingPointPrecision);
+      f.integer(bits);
+    }
+    f.keyword(kTetrahedra);
+    f.integer(1);
+    for (uint32_t v : mesh.tets[0]) f.integer(int64_t(v) + 1);
+    f.integer(mesh.materials[0]);
+    return f.finish();
+  };
+  for (int version : {2, 3, 4}) {
+    for (int64_t bits : {32, 64}) {
+      SCOPED_TRACE(std::to_string(version) + ", " + std::to_string(bits));
+      TetMesh read;
+      const Status s = read_mesh_from_memory(file(version, bits, true), MeshFormat::kMeditBinary,
+                                             "p.meshb", &read);
+      ASSERT_TRUE(s.ok()) << s.message();
+      ASSERT_EQ(read.vertex_count(), 4u);
+      for (size_t v = 0; v < 4; ++v) {
+        for (int k = 0; k < 3; ++k) {
+          const double x = mesh.positions[v][k] + 0.1;
+          EXPECT_EQ(read.positions[v][k], bits == 32 ? to_float(x) : x);
+        }
+      }
+    }
+  }
+  TetMesh read;
+  const Status late =
+      read_mesh_from_memory(file(2, 32, false), MeshFormat::kMeditBinary, "p.meshb", &read);
+  EXPECT_NE(late.message().find("FloatingPointPrecision 32 after the Vertices section, read with "
+                                "64-bit reals"),
+            std::string::npos)
+      << late.message();
+  EXPECT_TRUE(
+      read_mesh_from_memory(file(2, 64, false), MeshFormat::kMeditBinary, "p.meshb", &read).ok());
+  const std::string ascii =
+      "MeshVersionFormatted 2\nDimension 3\nFloatingPointPrecision\n64\nVertices\n4\n"
+      "0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 2 3 4 1\nEnd\n";
+  const Status text = read_mesh_from_memory(ascii, MeshFormat::kMedit, "p.mesh", &read);
+  EXPECT_TRUE(text.ok()) << text.message();
+}
+
 TEST(IoMeditBinary, WrittenFilesReadBack) {
   const std::string dir = test::output_dir("meshb");
   TetMesh box2;
