@@ -365,8 +365,10 @@ std::vector<double> appended_doubles(const std::string& file, const std::string&
   const size_t data = file.find("<AppendedData encoding=\"raw\">\n   _");
   if (at == std::string::npos || data == std::string::npos) return {};
   const size_t base = data + 34 + std::stoull(file.substr(at + element.size()));
+  if (base + 8 > file.size()) return {};
   uint64_t bytes = 0;
   std::memcpy(&bytes, file.data() + base, 8);  // little-endian host
+  if (bytes > file.size() - base - 8) return {};
   std::vector<double> values(bytes / 8);
   std::memcpy(values.data(), file.data() + base + 8, bytes);
   return values;
