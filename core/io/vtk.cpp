@@ -909,9 +909,7 @@ void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<std::st
     if (material) material_names.emplace(tag, name);
     if (group != groups.end() && group->second->name.empty()) group->second->name = name;
   }
-  if (material_names.empty()) return;
-  for (const MaterialName& m : out->material_names) material_names.emplace(m.material, m.name);
-  out->material_names.clear();
+  // The VTK readers give no other names: these are the file's, sorted by material.
   for (auto& [material, name] : material_names)
     out->material_names.push_back({material, std::move(name)});
 }
