@@ -214,6 +214,8 @@ struct alignas(64) TetBlock {
   double skip[kLanes];                        // 1: not a tet of t*(k) (ring, padding)
   double stretch_now[kLanes];                 // its stretch now
   double limit[kLanes];                       // tau_SZ of the tet with k in place
+  double material_limit[kLanes];              // its part that does not depend on k
+  double centroid_x[kLanes], centroid_y[kLanes], centroid_z[kLanes];  // with k in place
   // Of the candidate: 6 V, s^2, (2 x area of k's three faces)^2, the first pass's
   // verdict (0 passed, 1 stretch, 2 size), then the exact size and stretch.
   double volume6[kLanes], size2[kLanes], face0[kLanes], face1[kLanes], face2[kLanes];
@@ -357,6 +359,7 @@ class Engine {
       : params_(params), progress_(progress), cancel_(cancel), pos_(input.positions) {
     tolerance2_ = params.tolerance * params.tolerance;
     uniform_sizing_ = !params.sizing.has_local_rules();
+    region_sizing_ = params.sizing.has_region_rules();
     // For a test: TETLOD_REPEAT_EVALUATIONS (other than 0) makes every repeat again,
     // which must not change the result (evaluated_as_is()).
     const char* repeat = std::getenv("TETLOD_REPEAT_EVALUATIONS");
@@ -1166,7 +1169,11 @@ class Engine {
       b.steady[l] = static_cast<double>(r.allowance == 0);
       b.material[l] = r.material;
       b.stretch_now[l] = r.stretch;
-      b.limit[l] = params_.sizing.uniform;  // the size field's, per candidate: check_position()
+      // Without region rules, the limit does not depend on k; with them, it is
+      // completed per candidate (check_position()).
+      b.material_limit[l] =
+          uniform_sizing_ ? params_.sizing.uniform : params_.sizing.material_size(r.material);
+      b.limit[l] = b.material_limit[l];
       if (!first) b.skip[l] = static_cast<double>(!real);
     }
     kernels_.fixed_faces(b);
@@ -1192,11 +1199,15 @@ class Engine {
     for (size_t k_block = 0; k_block < moving_blocks_; ++k_block) {
       if (!block_built_[k_block]) build_block(k_block);
       TetBlock& b = moving_[k_block];
-      if (!uniform_sizing_) {  // else set by build_block()
+      if (region_sizing_) {  // else set by build_block()
+        // size_limit(f0, f1, f2, k, material), a block at a time: the same operations.
         for (int l = 0; l < kLanes; ++l) {
-          b.limit[l] = size_limit({b.f0x[l], b.f0y[l], b.f0z[l]}, {b.f1x[l], b.f1y[l], b.f1z[l]},
-                                  {b.f2x[l], b.f2y[l], b.f2z[l]}, k, b.material[l]);
+          b.centroid_x[l] = (b.f0x[l] + b.f1x[l] + b.f2x[l] + k.x) * 0.25;
+          b.centroid_y[l] = (b.f0y[l] + b.f1y[l] + b.f2y[l] + k.y) * 0.25;
+          b.centroid_z[l] = (b.f0z[l] + b.f1z[l] + b.f2z[l] + k.z) * 0.25;
+          b.limit[l] = b.material_limit[l];
         }
+        params_.sizing.apply_regions(kLanes, b.centroid_x, b.centroid_y, b.centroid_z, b.limit);
       }
       kernels_.first_pass(b, k.x, k.y, k.z, unmoved, floor2);
       for (int l = 0; l < kLanes; ++l)
@@ -2173,6 +2184,7 @@ class Engine {
   std::vector<uint32_t> second_tets_;  // the tets of b off the ring
   std::vector<uint32_t> ring_tets_;    // the tets around the edge evaluated
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
+  bool region_sizing_ = false;         // radial or box rules: sizes depend on the position
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
   const VectorKernels& kernels_ = vector_kernels();
   // The tet across each face: across_[4 * t + c] is across the face of t opposite

@@ -8,6 +8,12 @@
 namespace tetlod {
 
 double SizingField::size_at(const Vec3& p, int32_t material) const {
+  double size = material_size(material);
+  apply_regions(1, &p.x, &p.y, &p.z, &size);
+  return size;
+}
+
+double SizingField::material_size(int32_t material) const {
   double size = uniform;
   if (!material_sizes.empty()) {
     const auto it = std::lower_bound(
@@ -15,18 +21,36 @@ double SizingField::size_at(const Vec3& p, int32_t material) const {
         [](const std::pair<int32_t, double>& e, int32_t m) { return e.first < m; });
     if (it != material_sizes.end() && it->first == material) size = std::min(size, it->second);
   }
+  return size;
+}
+
+// Rule by rule over the points, so that the loops run down arrays. The operations are
+// those of the Vec3 forms (d = p - c; d -= axis dot(d, axis); size0 + growth |d|), in
+// the same order.
+void SizingField::apply_regions(size_t n, const double* x, const double* y, const double* z,
+                                double* size) const {
   for (const Radial& r : radial) {
-    Vec3 d = p - r.center;
-    if (r.axis != Vec3{}) d = d - r.axis * dot(d, r.axis);
-    size = std::min(size, r.size0 + r.growth * length(d));
-  }
-  for (const Box& b : boxes) {
-    if (p.x >= b.low.x && p.x <= b.high.x && p.y >= b.low.y && p.y <= b.high.y && p.z >= b.low.z &&
-        p.z <= b.high.z) {
-      size = std::min(size, b.size);
+    const Vec3 c = r.center, a = r.axis;
+    const bool from_axis = a != Vec3{};
+    for (size_t i = 0; i < n; ++i) {
+      double dx = x[i] - c.x, dy = y[i] - c.y, dz = z[i] - c.z;
+      if (from_axis) {
+        const double along = dx * a.x + dy * a.y + dz * a.z;
+        dx = dx - a.x * along;
+        dy = dy - a.y * along;
+        dz = dz - a.z * along;
+      }
+      size[i] = std::min(size[i], r.size0 + r.growth * std::sqrt(dx * dx + dy * dy + dz * dz));
     }
   }
-  return size;
+  for (const Box& b : boxes) {
+    for (size_t i = 0; i < n; ++i) {
+      if (x[i] >= b.low.x && x[i] <= b.high.x && y[i] >= b.low.y && y[i] <= b.high.y &&
+          z[i] >= b.low.z && z[i] <= b.high.z) {
+        size[i] = std::min(size[i], b.size);
+      }
+    }
+  }
 }
 
 double suggested_size(const TetMesh& mesh) {

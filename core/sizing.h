@@ -9,6 +9,7 @@
 //     (size = size0 + growth * distance, Fig. 4(d)), or a box (size inside it).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -41,6 +42,16 @@ struct SizingField {
 
   // tau_SZ for a tet of `material` with centroid `p`; +inf if nothing limits it.
   double size_at(const Vec3& p, int32_t material) const;
+  // size_at() in two parts, for a caller that evaluates many positions: the part that
+  // does not depend on the position (the smaller of the uniform size and the size of
+  // `material`), then the region rules at n points (x[i], y[i], z[i]), each size[i]
+  // made the smaller of itself and every rule that applies there. size_at(p, m) is
+  // apply_regions() on material_size(m), so the two give the same value to the bit.
+  double material_size(int32_t material) const;
+  void apply_regions(size_t n, const double* x, const double* y, const double* z,
+                     double* size) const;
+  // True if any radial or box rule is set (sizes that depend on the position).
+  bool has_region_rules() const { return !radial.empty() || !boxes.empty(); }
   // The smallest size any rule can give (a lower bound of size_at), for diagnostics.
   double smallest_size() const;
   // True if any material, radial or box rule is set (besides the uniform size).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/io/mesh_io.h"
 #include "core/metrics.h"
@@ -33,6 +34,58 @@ TEST(Sizing, CombinesRulesByTheirMinimum) {
 
 // An axis direction of any magnitude is that direction: no overflow to a zero axis
 // (which would make the rule radial), no underflow to "zero".
+// The simplifier evaluates sizes a block of positions at a time (material_size(),
+// then apply_regions()); that must give, to the bit, what the rules say point by point:
+// here written out again with Vec3 operations, as size_at() was first written.
+TEST(Sizing, BlocksOfPointsGiveEachPointsSizeToTheBit) {
+  SizingField f;
+  f.uniform = 9;
+  ASSERT_TRUE(parse_material_sizes("2=3,5=1.5", &f));
+  ASSERT_TRUE(parse_size_field(
+      "radial:0.3,-1,2,0.7,0.31;axis:1,2,3,0.2,-1,0.4,0.5,0.17;box:-1,-2,-3,2,1,0.5,0.05", &f));
+  auto by_rules = [&f](const Vec3& p, int32_t material) {
+    double size = f.uniform;
+    for (const auto& m : f.material_sizes)
+      if (m.first == material) size = std::min(size, m.second);
+    for (const SizingField::Radial& r : f.radial) {
+      Vec3 d = p - r.center;
+      if (r.axis != Vec3{}) d = d - r.axis * dot(d, r.axis);
+      size = std::min(size, r.size0 + r.growth * length(d));
+    }
+    for (const SizingField::Box& b : f.boxes)
+      if (p.x >= b.low.x && p.x <= b.high.x && p.y >= b.low.y && p.y <= b.high.y &&
+          p.z >= b.low.z && p.z <= b.high.z)
+        size = std::min(size, b.size);
+    return size;
+  };
+  constexpr int kPoints = 301;  // not a multiple of any block
+  double x[kPoints], y[kPoints], z[kPoints], size[kPoints];
+  int32_t material[kPoints];
+  uint64_t state = 12345;
+  auto next = [&state] {  // a fixed sequence in [-5, 5)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * 0x1p-53 * 10 - 5;
+  };
+  for (int i = 0; i < kPoints; ++i) {
+    x[i] = next(), y[i] = next(), z[i] = next();
+    material[i] = i % 6;
+    size[i] = f.material_size(material[i]);
+  }
+  f.apply_regions(kPoints, x, y, z, size);
+  int inside_box = 0, by_material = 0;
+  for (int i = 0; i < kPoints; ++i) {
+    const Vec3 p{x[i], y[i], z[i]};
+    const double want = by_rules(p, material[i]);
+    EXPECT_EQ(std::memcmp(&size[i], &want, sizeof want), 0) << "point " << i;
+    const double at = f.size_at(p, material[i]);
+    EXPECT_EQ(std::memcmp(&size[i], &at, sizeof at), 0) << "point " << i;
+    inside_box += size[i] == 0.05;
+    by_material += size[i] == 1.5 || size[i] == 3;
+  }
+  EXPECT_GT(inside_box, 0);  // the box rule decided some, and the materials' sizes some
+  EXPECT_GT(by_material, 0);
+}
+
 TEST(Sizing, AxisDirectionsOfAnyMagnitude) {
   for (const char* rule : {"axis:0,0,0,0,0,1e200,1,1", "axis:0,0,0,0,0,1e-200,1,1",
                            "axis:0,0,0,0,0,-1e308,1,1", "axis:0,0,0,0,0,5e-324,1,1"}) {
