@@ -2,7 +2,8 @@
 // mesh, repeated; reports the median time of each phase, collapses per second and
 // the peak memory per input tet. One thread.
 //
-//   bench_simplify FILE --size S [--tolerance T] [--stretch D] [--valence V] [--repeat N]
+//   bench_simplify FILE --size S [--tolerance T] [--stretch D] [--valence V]
+//                  [--size-field SPEC] [--material-size M=S,...] [--repeat N]
 #include <sys/resource.h>
 
 #include <algorithm>

@@ -32,7 +32,7 @@ inline int load_simplify_bench(const char* name, int argc, char** argv, TetMesh*
   if (argc < 4 || std::string(argv[2]) != "--size") {
     std::fprintf(stderr,
                  "usage: %s FILE --size S [--tolerance T] [--stretch D] [--valence V] "
-                 "[--repeat N]\n",
+                 "[--size-field SPEC] [--material-size M=S,...] [--repeat N]\n",
                  name);
     return 2;
   }
@@ -43,6 +43,13 @@ inline int load_simplify_bench(const char* name, int argc, char** argv, TetMesh*
     if (flag == "--stretch") params->min_stretch = std::atof(argv[i + 1]);
     if (flag == "--valence") params->max_valence = static_cast<uint32_t>(std::atoi(argv[i + 1]));
     if (flag == "--repeat") *repeat = std::max(1, std::atoi(argv[i + 1]));
+    Status rules;
+    if (flag == "--size-field") rules = parse_size_field(argv[i + 1], &params->sizing);
+    if (flag == "--material-size") rules = parse_material_sizes(argv[i + 1], &params->sizing);
+    if (!rules) {
+      std::fprintf(stderr, "%s: %s\n", name, rules.message().c_str());
+      return 2;
+    }
   }
   ReadInfo info;
   const Status s = read_mesh(argv[1], mesh, &info);
