@@ -76,8 +76,10 @@ struct Scene {
   SimplifyParams params;                         // of the result's run, if params_known
   bool params_known = false;                     // run here, or saved in the history file read
   // The input file's own surface groups (ReadInfo::surface_groups) on its surface:
-  // Simplify keeps their borders, and Save's boundary groups write them.
-  std::shared_ptr<const SurfacePatches> patches;
+  // Simplify keeps their borders, and Save's boundary groups write them. `patches`
+  // are those the shown levels keep (the result's run dropped the groups inside a
+  // material if the panel said so), `input_patches` all of them, for the next run.
+  std::shared_ptr<const SurfacePatches> patches, input_patches;
   // The input file's names of its materials (ReadInfo::material_names), for Save.
   std::shared_ptr<const std::vector<MaterialName>> material_names;
   bool from_history = false;  // the result was read from a history file, not run here
@@ -702,6 +704,7 @@ void Viewer::start_load(const std::string& path) {
       v.cut = false;  // the cut position belongs to the old model
       auto scene = make_scene(job->path, std::move(mesh), history, v);
       scene->from_history = history != nullptr;
+      scene->input_patches = patches;
       scene->patches = std::move(patches);
       scene->material_names = std::move(material_names);
       if (saved_params) {
@@ -732,10 +735,16 @@ void Viewer::start_simplify() {
   job_->path = scene_->path;
   Job* job = job_.get();
   std::shared_ptr<const TetMesh> input = scene_->input;  // always the loaded input
-  auto patches = scene_->patches;
+  const auto input_patches = scene_->input_patches;
+  std::shared_ptr<const SurfacePatches> patches = input_patches;
+  if (patches && !thresholds_.keep_inside_groups && !patches->inside_entries().empty()) {
+    auto outside_only = std::make_shared<SurfacePatches>(*patches);
+    outside_only->drop_inside();
+    patches = std::move(outside_only);
+  }
   auto material_names = scene_->material_names;
   const ui::ViewSettings view = view_;
-  job->thread = std::thread([job, input, patches, material_names, params, view] {
+  job->thread = std::thread([job, input, patches, input_patches, material_names, params, view] {
     auto result = std::make_shared<SimplifyResult>();
     const Status s = simplify(
         *input, params, result.get(),
@@ -765,6 +774,7 @@ void Viewer::start_simplify() {
       scene->params = params;
       scene->params_known = true;
       scene->patches = patches;
+      scene->input_patches = input_patches;
       scene->material_names = material_names;
       std::lock_guard<std::mutex> lock(job->mutex);
       job->scene = std::move(scene);
@@ -855,10 +865,12 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
                                           : view_.cut_axis == ui::CutAxis::kY ? center.y
                                                                               : center.z);
     // Every threshold and the sizing start again from the defaults for this mesh
-    // (region rules and material ids belong to the old one); subdivide on/off stays.
-    const bool subdivide = thresholds_.subdivide;
+    // (region rules and material ids belong to the old one); subdivide and keeping the groups
+    // inside materials stay.
+    const bool subdivide = thresholds_.subdivide, keep_inside = thresholds_.keep_inside_groups;
     thresholds_ = ui::ThresholdSettings{};
     thresholds_.subdivide = subdivide;
+    thresholds_.keep_inside_groups = keep_inside;
     thresholds_.tolerance = scene_->default_tolerance;
     thresholds_.size = scene_->default_size;
     // A history's own thresholds, where the panel can hold them.
@@ -1464,6 +1476,7 @@ void Viewer::fill_status() {
   s.default_size = scene.default_size;
   s.default_tolerance = scene.default_tolerance;
   s.materials = scene.materials;
+  s.inside_group_triangles = scene.input_patches ? scene.input_patches->inside_entries().size() : 0;
   s.material_names = scene.material_names ? *scene.material_names : std::vector<MaterialName>();
   for (int k = 0; k < 3; ++k) {
     s.bounds_min[k] = static_cast<float>(k == 0 ? scene.lo.x : k == 1 ? scene.lo.y : scene.lo.z);
@@ -1570,6 +1583,7 @@ Status Viewer::run_action(const ScriptAction& a) {
       if (a.tolerance) thresholds_.tolerance = *a.tolerance;
       if (a.valence) thresholds_.valence = static_cast<int>(*a.valence);
       if (a.subdivide) thresholds_.subdivide = *a.subdivide;
+      if (a.keep_inside) thresholds_.keep_inside_groups = *a.keep_inside;
       if (a.region) {
         thresholds_.sizing_mode = ui::SizingMode::kRegion;
         thresholds_.region_spec = *a.region;

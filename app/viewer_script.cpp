@@ -90,6 +90,10 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
       bool on = false;
       if (Status s = p.on_off(key, value, &on); !s) return s;
       a->subdivide = on;
+    } else if (key == "keep-inside") {
+      bool on = false;
+      if (Status s = p.on_off(key, value, &on); !s) return s;
+      a->keep_inside = on;
     } else if (key == "material-sizes") {
       SizingField field;
       if (Status s = parse_material_sizes(value, &field); !s) return p.error(s.message());
@@ -100,7 +104,8 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
       a->region = value;
     } else {
       return p.error("unknown threshold '" + key +
-                     "' (size, stretch, valence, tolerance, subdivide, material-sizes, region)");
+                     "' (size, stretch, valence, tolerance, subdivide, keep-inside, "
+                     "material-sizes, region)");
     }
   }
   return Status();

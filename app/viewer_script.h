@@ -6,7 +6,7 @@
 //   open PATH [may-fail]             load a mesh, or a collapse history (.tlh) with its
 //                                    levels (waits); with may-fail a bad file is not a
 //                                    script error: it shows in the UI as for a user
-//   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1
+//   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1 keep-inside=0|1
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h;
 //              a material material-sizes leaves out has no size limit, as in the CLI;
 //              size= on the same line as material-sizes= also caps every material, as
@@ -121,6 +121,7 @@ struct ScriptAction {
   std::optional<double> size, stretch, tolerance;
   std::optional<long long> valence;
   std::optional<bool> subdivide;
+  std::optional<bool> keep_inside;
   std::optional<std::string> material_sizes, region;
   // analysis
   ElectrostaticsProblem problem;

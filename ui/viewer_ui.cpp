@@ -299,6 +299,16 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     unlisted_note(status);
   }
   ImGui::Checkbox("Subdivide first", &t->subdivide);
+  if (status.inside_group_triangles > 0) {
+    ImGui::Checkbox("Keep groups inside materials", &t->keep_inside_groups);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "The input's surface groups inside a material (%zu triangles):\n"
+          "kept as they are, so that Save can write them\n"
+          "(tetlod simplify --surfaces). Off: coarsened like the rest\n"
+          "of the material, and not written (tetlod simplify).",
+          status.inside_group_triangles);
+  }
 
   if (!status.running) {
     if (ImGui::Button("Simplify") && !status.mesh_name.empty())

@@ -58,6 +58,11 @@ struct ThresholdSettings {
   // off, a material without a size of its own has no size limit.
   bool material_cap = false;
   bool subdivide = true;
+  // The input's surface groups inside a material (a sheet, a port inside the air):
+  // kept as they are, faces of every level, so that Save can write them (as `tetlod
+  // simplify --surfaces` keeps them); off, coarsened like the rest of the material,
+  // and not written (as `tetlod simplify` without --surfaces or --history).
+  bool keep_inside_groups = true;
 };
 
 // Turns the settings into core parameters. False with a message naming the bad
@@ -144,6 +149,9 @@ struct ViewerStatus {
   std::string mesh_name;  // path of the loaded mesh ("" if none)
   size_t input_tets = 0, input_vertices = 0;
   std::vector<int32_t> materials;  // ids present in the input
+  // Triangles of the input's surface groups inside a material (0: none, and the
+  // Thresholds panel does not offer to keep them).
+  size_t inside_group_triangles = 0;
   // The input file's names of its materials (a Gmsh physical volume's, an Abaqus
   // section's), sorted by id; materials without a name are not listed.
   std::vector<MaterialName> material_names;

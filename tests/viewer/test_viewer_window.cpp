@@ -523,6 +523,44 @@ TEST(ViewerWindow, SaveKeepsGroupsInsideAMaterial) {
   EXPECT_NE(simplified.find("top_and_sheet:"), std::string::npos) << simplified;
 }
 
+// With the panel's "Keep groups inside materials" off, Simplify coarsens across the
+// sheet inside the material as `tetlod simplify` does without --surfaces (the same
+// mesh, to the bit), and Save writes the groups' triangles on the surface only; a
+// later run with it on keeps the sheet again (the input's groups were not lost).
+TEST(ViewerWindow, GroupsInsideAMaterialCanBeCoarsened) {
+  const fs::path dir = fresh_output_dir("viewer_coarsen_inside_groups");
+  std::ofstream(dir / "run.script")
+      << "thresholds size=0.5 keep-inside=off\nsimplify\nsave dropped.msh surfaces\n"
+         "save dropped.mesh\nthresholds keep-inside=on\nsimplify\nsave kept.msh surfaces\n"
+         "quit\n";
+  const std::string input = kSource + "/tests/data/gmsh/sheet.msh";
+  const ViewerRun run = run_viewer(dir, "'" + input + "' --size 320x240 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " simplify '" +
+                              input + "' -o cli.mesh --size 0.5 >cli_log.txt 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  TetMesh viewer, cli, kept;
+  ASSERT_TRUE(read_mesh((dir / "dropped.mesh").string(), &viewer).ok());
+  ASSERT_TRUE(read_mesh((dir / "cli.mesh").string(), &cli).ok());
+  EXPECT_EQ(viewer.tets, cli.tets);
+  EXPECT_EQ(viewer.positions, cli.positions);
+  auto groups = [&](const char* name, TetMesh* mesh) {
+    ReadInfo info;
+    EXPECT_TRUE(read_mesh((dir / name).string(), mesh, &info).ok()) << name;
+    std::string list = " ";
+    for (const InputSurfaceGroup& g : info.surface_groups) list += g.name + " ";
+    return list;
+  };
+  TetMesh dropped;
+  const std::string dropped_groups = groups("dropped.msh", &dropped);
+  EXPECT_EQ(dropped_groups.find(" sheet "), std::string::npos) << dropped_groups;
+  EXPECT_NE(dropped_groups.find(" bottom "), std::string::npos) << dropped_groups;
+  const std::string kept_groups = groups("kept.msh", &kept);
+  EXPECT_NE(kept_groups.find(" sheet "), std::string::npos) << kept_groups;
+  // Keeping the sheet keeps the mesh finer there.
+  EXPECT_LT(dropped.tet_count(), kept.tet_count());
+}
+
 // Save keeps the input's names of its materials (Gmsh physical volumes), as `tetlod
 // simplify` does.
 TEST(ViewerWindow, SaveKeepsMaterialNames) {
