@@ -215,7 +215,6 @@ struct alignas(64) TetBlock {
   double stretch_now[kLanes];                 // its stretch now
   double limit[kLanes];                       // tau_SZ of the tet with k in place
   double material_limit[kLanes];              // its part that does not depend on k
-  double centroid_x[kLanes], centroid_y[kLanes], centroid_z[kLanes];  // with k in place
   // Of the candidate: 6 V, s^2, (2 x area of k's three faces)^2, the first pass's
   // verdict (0 passed, 1 stretch, 2 size), then the exact size and stretch.
   double volume6[kLanes], size2[kLanes], face0[kLanes], face1[kLanes], face2[kLanes];
@@ -1201,13 +1200,14 @@ class Engine {
       TetBlock& b = moving_[k_block];
       if (region_sizing_) {  // else set by build_block()
         // size_limit(f0, f1, f2, k, material), a block at a time: the same operations.
+        double cx[kLanes], cy[kLanes], cz[kLanes];  // the centroids with k in place
         for (int l = 0; l < kLanes; ++l) {
-          b.centroid_x[l] = (b.f0x[l] + b.f1x[l] + b.f2x[l] + k.x) * 0.25;
-          b.centroid_y[l] = (b.f0y[l] + b.f1y[l] + b.f2y[l] + k.y) * 0.25;
-          b.centroid_z[l] = (b.f0z[l] + b.f1z[l] + b.f2z[l] + k.z) * 0.25;
+          cx[l] = (b.f0x[l] + b.f1x[l] + b.f2x[l] + k.x) * 0.25;
+          cy[l] = (b.f0y[l] + b.f1y[l] + b.f2y[l] + k.y) * 0.25;
+          cz[l] = (b.f0z[l] + b.f1z[l] + b.f2z[l] + k.z) * 0.25;
           b.limit[l] = b.material_limit[l];
         }
-        params_.sizing.apply_regions(kLanes, b.centroid_x, b.centroid_y, b.centroid_z, b.limit);
+        params_.sizing.apply_regions(kLanes, cx, cy, cz, b.limit);
       }
       kernels_.first_pass(b, k.x, k.y, k.z, unmoved, floor2);
       for (int l = 0; l < kLanes; ++l)
