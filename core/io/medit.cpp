@@ -600,7 +600,8 @@ Status parse_medit_binary(std::string_view data, const std::string& name, Parsed
   return MeditBinaryReader(data, name, out).read();
 }
 
-void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
+void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out,
+                        int min_version) {
   uint64_t triangles = 0;
   if (surfaces)
     for (const SurfaceGroup& group : surfaces->groups) triangles += group.triangles.size();
@@ -609,13 +610,15 @@ void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std:
   // reads, while the file fits in 2^31 bytes; else 3 (8-byte positions); 4 (8-byte
   // integers) only for vertex numbers past 2^31 - 1.
   const int64_t int32_max = std::numeric_limits<int32_t>::max();
-  const size_t integer = vertices >= uint64_t(int32_max) ? 8 : 4;
+  const size_t integer = vertices >= uint64_t(int32_max) || min_version >= 4 ? 8 : 4;
   auto file_size = [&](uint64_t position) {
     return 8 + (4 + position + 4) + (4 + position + integer + vertices * (24 + integer)) +
            (triangles > 0 ? 4 + position + integer + triangles * 4 * integer : 0) +
            (4 + position + integer + tets * 5 * integer) + (4 + position);
   };
-  const int version = integer == 8 ? 4 : file_size(4) <= uint64_t(int32_max) ? 2 : 3;
+  const int version = integer == 8                                              ? 4
+                      : file_size(4) <= uint64_t(int32_max) && min_version <= 2 ? 2
+                                                                                : 3;
   const size_t position = version >= 3 ? 8 : 4;
   const size_t base = out->size();
   out->reserve(base + file_size(position));

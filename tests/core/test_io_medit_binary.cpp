@@ -12,6 +12,7 @@
 #include <optional>
 #include <random>
 
+#include "core/io/mesh_formats.h"
 #include "core/io/mesh_io.h"
 #include "core/surface.h"
 #include "core/test_io_helpers.h"
@@ -269,6 +270,44 @@ TEST(IoMeditBinary, WrittenFilesReadBack) {
     EXPECT_TRUE(binary_info.notes.empty());
     ASSERT_FALSE(binary_info.surface_groups.empty());
     test::expect_same_groups(ascii_info.surface_groups, binary_info.surface_groups);
+  }
+}
+
+// Versions 3 (8-byte keyword positions) and 4 (8-byte integers too) are written only
+// for files past 2 GiB or vertex numbers past 2^31 - 1; written so for small meshes,
+// they read back as the same mesh and groups as version 2 (the reader itself is checked
+// on meshio's files of those versions in test_io_other_tools.cpp).
+TEST(IoMeditBinary, Versions3And4ReadBackAsVersion2) {
+  TetMesh box2;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &box2).ok());
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(box2, &groups).ok());
+  std::string v2;
+  io::write_medit_binary(box2, &groups, &v2);
+  TetMesh expected;
+  ReadInfo expected_info;
+  ASSERT_TRUE(
+      read_mesh_from_memory(v2, MeshFormat::kMeditBinary, "v2.meshb", &expected, &expected_info)
+          .ok());
+  ASSERT_FALSE(expected_info.surface_groups.empty());
+  for (int version : {3, 4}) {
+    SCOPED_TRACE(version);
+    std::string data;
+    io::write_medit_binary(box2, &groups, &data, version);
+    ASSERT_GE(data.size(), 8u);
+    EXPECT_EQ(data.substr(0, 8), std::string("\1\0\0\0", 4) + char(version) + std::string(3, '\0'));
+    // The positions take 4 more bytes per keyword (5: Dimension, Vertices, Triangles,
+    // Tetrahedra, End); version 4 also writes every integer in 8 bytes.
+    const size_t integers =
+        1 + box2.vertex_count() + 1 + 4 * groups.surface.size() + 1 + 5 * box2.tet_count();
+    EXPECT_EQ(data.size(), v2.size() + 5 * 4 + (version == 4 ? 4 * integers : 0));
+    TetMesh mesh;
+    ReadInfo info;
+    const Status s = read_mesh_from_memory(data, MeshFormat::kMeditBinary, "v.meshb", &mesh, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    test::expect_same_mesh(expected, mesh);
+    EXPECT_TRUE(info.notes.empty());
+    test::expect_same_groups(expected_info.surface_groups, info.surface_groups);
   }
 }
 
