@@ -169,7 +169,8 @@ bool output_directory_ok(const std::string& path, bool make_directories) {
 }
 
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
-                         WriteOptions options, StagedMesh* staged, const SurfacePatches* patches) {
+                         WriteOptions options, StagedMesh* staged, const SurfacePatches* patches,
+                         const std::vector<uint32_t>* face_neighbors) {
   staged->has_groups = options.surface_groups;
   if (!options.surface_groups && (has_extension(path, ".node") || has_extension(path, ".ele"))) {
     const std::string face =
@@ -178,8 +179,9 @@ Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetM
     if (std::filesystem::exists(face, ec)) staged->stale_face = face;
   }
   if (options.surface_groups) {
-    if (Status s = patches ? group_surface(mesh, &staged->groups, *patches, true)
-                           : group_surface(mesh, &staged->groups);
+    if (Status s =
+            patches ? group_surface(mesh, &staged->groups, *patches, true, face_neighbors)
+                    : group_surface(mesh, &staged->groups, SurfacePatches(), false, face_neighbors);
         !s)
       return Status::error(path + ": " + s.message());
     options.groups = &staged->groups;

@@ -72,10 +72,12 @@ struct StagedMesh {
 // `patches`: the input file's surface groups, written under their own names and tags,
 // with their triangles inside a material (group_surface() with them and `inside`:
 // `mesh` is the input, or made from it by simplify() and improve_mesh() with them), or
-// null.
+// null. `face_neighbors`: those of `mesh`'s tets if the caller has them
+// (ReadInfo::face_neighbors), or null.
 Status stage_output_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,
                          WriteOptions options, StagedMesh* staged,
-                         const SurfacePatches* patches = nullptr);
+                         const SurfacePatches* patches = nullptr,
+                         const std::vector<uint32_t>* face_neighbors = nullptr);
 
 // Prints a note for each input surface group (SurfacePatches of the input) that
 // cannot be written as it is: some of its triangles are in a smaller group, or are

@@ -78,17 +78,19 @@ int cmd_convert(const Args& args) {
   if (!output_directory_ok(out)) return kExitBadInput;
   TetMesh mesh;
   ReadInfo info;
+  info.keep_face_neighbors = options.surface_groups;  // validation's, for the groups
   if (!load_mesh(in, &mesh, &info, options.surface_groups)) return kExitBadInput;
+  const std::vector<uint32_t>* neighbors = options.surface_groups ? &info.face_neighbors : nullptr;
   // The file's own surface groups, written under their names and tags.
   SurfacePatches patches;
   if (options.surface_groups && !info.surface_groups.empty()) {
-    patches = SurfacePatches(mesh, info.surface_groups);
+    patches = SurfacePatches(mesh, info.surface_groups, neighbors);
     print_patch_notes(patches, "convert");
   }
   options.material_names = &info.material_names;
   OutputFiles files;
   StagedMesh staged;
-  Status status = stage_output_mesh(&files, out, mesh, options, &staged, &patches);
+  Status status = stage_output_mesh(&files, out, mesh, options, &staged, &patches, neighbors);
   if (status) status = files.commit();
   if (!status) {
     std::fprintf(stderr, "tetlod: %s\n", status.message().c_str());

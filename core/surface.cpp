@@ -107,6 +107,14 @@ std::vector<uint32_t> face_neighbors(const TetMesh& mesh) {
   return neighbors;
 }
 
+// `given` (a caller's face neighbours of `mesh`), or else those built into `built`.
+const std::vector<uint32_t>& given_or_built(const TetMesh& mesh, const std::vector<uint32_t>* given,
+                                            std::vector<uint32_t>* built) {
+  if (given) return *given;
+  *built = face_neighbors(mesh);
+  return *built;
+}
+
 // A hash of a key's coordinates (-0 as 0, so that equal keys hash alike).
 uint64_t corner_hash(const TriangleKey& key) {
   uint64_t h = 0x9e3779b97f4a7c15ull;
@@ -235,8 +243,11 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups) {
   return group_surface(mesh, groups, SurfacePatches());
 }
 
-SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups) {
-  const std::vector<SurfaceTriangle> surface = extract_surface(input, face_neighbors(input));
+SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups,
+                               const std::vector<uint32_t>* neighbors) {
+  std::vector<uint32_t> built;
+  const std::vector<SurfaceTriangle> surface =
+      extract_surface(input, given_or_built(input, neighbors, &built));
   const auto& p = input.positions;
   entries_.reserve(surface.size());
   for (const SurfaceTriangle& t : surface)
@@ -382,9 +393,10 @@ uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int
 }
 
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
-                     bool inside) {
+                     bool inside, const std::vector<uint32_t>* neighbors) {
   SurfaceGroups result;
-  result.surface = extract_surface(mesh, face_neighbors(mesh));
+  std::vector<uint32_t> built;
+  result.surface = extract_surface(mesh, given_or_built(mesh, neighbors, &built));
   const auto& p = mesh.positions;
   std::map<PairKey, std::vector<uint32_t>> by_pair, unlabelled;
   std::vector<std::vector<uint32_t>> in_group(patches.groups().size());

@@ -94,8 +94,11 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 // the others. That is for the input's mesh itself (convert), and for the meshes made
 // from it by simplify() and improve_mesh() with these patches, which keep those faces;
 // a mesh made otherwise may keep only some of them.
+//
+// `face_neighbors`, here and below: those of `mesh`'s tets (build_face_neighbors(), or
+// ReadInfo::face_neighbors) if the caller has them; null to build them.
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
-                     bool inside = false);
+                     bool inside = false, const std::vector<uint32_t>* face_neighbors = nullptr);
 
 // A surface group of an input file (a Gmsh physical surface, a Medit triangle
 // reference, a TetGen .face marker, an Abaqus *SURFACE): its triangles by the
@@ -134,7 +137,8 @@ class SurfacePatches {
   };
   SurfacePatches() = default;
   // `input` passed validate_mesh().
-  SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups);
+  SurfacePatches(const TetMesh& input, const std::vector<InputSurfaceGroup>& groups,
+                 const std::vector<uint32_t>* face_neighbors = nullptr);
   // From the parts another one gave (a history file's): each entry's group < the
   // number of groups or kNone, its positions finite; an entry with inner == outer (and
   // a group) is one of inside_entries().

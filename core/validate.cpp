@@ -39,7 +39,8 @@ uint64_t position_hash(const Vec3& p) {
 }  // namespace
 
 Status validate_mesh(TetMesh* mesh, const std::string& source,
-                     const std::vector<uint32_t>& tet_lines, ValidationReport* report) {
+                     const std::vector<uint32_t>& tet_lines, ValidationReport* report,
+                     std::vector<uint32_t>* face_neighbors) {
   ValidationReport local;
   ValidationReport& rep = report ? *report : local;
   rep = ValidationReport{};
@@ -160,6 +161,8 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
                            " with no face between them: the mesh covers that space twice " +
                            "(as when a vertex number is wrong, or a body is written twice)");
     }
+    // By tet and corner: dropping unused vertices below does not change them.
+    if (face_neighbors) *face_neighbors = std::move(neighbors);
   }
 
   // Drop unused vertices, keeping the order of the used ones.

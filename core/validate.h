@@ -37,7 +37,10 @@ struct ValidationReport {
 // `source` names the input in messages ("path"); `tet_lines`, when not empty, holds
 // the 1-based line of each tet in the file so that messages read "path:line: ...".
 // On error the mesh is left in an unspecified but destructible state.
+// `face_neighbors`, if not null, receives the face neighbours of the valid mesh's tets
+// (build_face_neighbors(), core/adjacency.h), which the checks build anyway.
 Status validate_mesh(TetMesh* mesh, const std::string& source,
-                     const std::vector<uint32_t>& tet_lines, ValidationReport* report);
+                     const std::vector<uint32_t>& tet_lines, ValidationReport* report,
+                     std::vector<uint32_t>* face_neighbors = nullptr);
 
 }  // namespace tetlod

@@ -66,7 +66,9 @@ std::string tetgen_base(const std::string& path) {
 Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string& source,
                    TetMesh* mesh, ReadInfo* info) {
   ValidationReport report;
-  Status status = validate_mesh(&parsed->mesh, source, parsed->tet_lines, &report);
+  std::vector<uint32_t> neighbors;
+  Status status = validate_mesh(&parsed->mesh, source, parsed->tet_lines, &report,
+                                info && info->keep_face_neighbors ? &neighbors : nullptr);
   if (!status.ok()) return status;
   *mesh = std::move(parsed->mesh);
   if (info) {
@@ -76,6 +78,7 @@ Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string&
     info->surface_groups = std::move(parsed->surface_groups);
     info->material_names = std::move(parsed->material_names);
     info->surface_elements_not_kept = parsed->surface_elements_not_kept;
+    info->face_neighbors = std::move(neighbors);
   }
   return Status();
 }

@@ -138,6 +138,11 @@ struct ReadInfo {
   // Abaqus triangle elements): TetLOD keeps only their groups (surface_groups), not
   // the elements (callers say so unless they write the surface groups again).
   uint64_t surface_elements_not_kept = 0;
+  // Set by the caller: also keep the face neighbours of the mesh's tets
+  // (build_face_neighbors(), core/adjacency.h) that validation builds, in
+  // face_neighbors, for a caller that needs them (SurfacePatches, group_surface()).
+  bool keep_face_neighbors = false;
+  std::vector<uint32_t> face_neighbors;
 };
 
 // Reads `path`; `*mesh` is replaced only on success. For .msh, info->format tells

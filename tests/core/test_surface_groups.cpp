@@ -428,6 +428,38 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
 // in the input and seen from the tet behind them, and every writer's file reads back
 // with the same groups; without it (a simplified mesh's) they are left out. A triangle
 // in two groups is the smaller one's; one that is no face is missing.
+// Face neighbours a caller already has (validation's, kept in ReadInfo) give the same
+// patches and groups as those built anew.
+TEST(SurfaceGroups, GivenFaceNeighboursGiveTheSameGroups) {
+  TetMesh mesh;
+  ReadInfo info;
+  info.keep_face_neighbors = true;
+  ASSERT_TRUE(read_mesh(test::data_path("gmsh/sheet.msh"), &mesh, &info).ok());
+  ASSERT_EQ(info.face_neighbors.size(), 4 * mesh.tet_count());
+  const SurfacePatches built(mesh, info.surface_groups);
+  const SurfacePatches given(mesh, info.surface_groups, &info.face_neighbors);
+  ASSERT_EQ(built.groups().size(), given.groups().size());
+  for (size_t g = 0; g < built.groups().size(); ++g) {
+    EXPECT_EQ(built.groups()[g].triangles, given.groups()[g].triangles);
+    EXPECT_EQ(built.groups()[g].inside, given.groups()[g].inside);
+  }
+  EXPECT_EQ(built.inside_entries().size(), given.inside_entries().size());
+  for (bool inside : {false, true}) {
+    SurfaceGroups a, b;
+    ASSERT_TRUE(group_surface(mesh, &a, built, inside).ok());
+    ASSERT_TRUE(group_surface(mesh, &b, given, inside, &info.face_neighbors).ok());
+    EXPECT_EQ(names_and_tags(a), names_and_tags(b));
+    ASSERT_EQ(a.surface.size(), b.surface.size());
+    for (size_t i = 0; i < a.surface.size(); ++i) {
+      EXPECT_EQ(a.surface[i].v, b.surface[i].v);
+      EXPECT_EQ(a.surface[i].tet, b.surface[i].tet);
+    }
+    ASSERT_EQ(a.groups.size(), b.groups.size());
+    for (size_t g = 0; g < a.groups.size(); ++g)
+      EXPECT_EQ(a.groups[g].triangles, b.groups[g].triangles);
+  }
+}
+
 TEST(SurfaceGroups, GroupsInsideAMaterial) {
   TetMesh mesh;
   ReadInfo info;

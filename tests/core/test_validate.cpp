@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "core/adjacency.h"
+#include "core/io/mesh_io.h"
 #include "core/metrics.h"
 #include "core/test_meshes.h"
 #include "core/validate.h"
@@ -72,6 +74,37 @@ TEST(Validate, DropsUnusedVertices) {
   ASSERT_EQ(mesh.positions.size(), 4u);
   EXPECT_EQ(mesh.positions[0], (Vec3{0, 0, 0}));
   EXPECT_EQ(mesh.tets[0], (Tet{0, 1, 2, 3}));
+}
+
+// The face neighbours the checks build are handed over on request, and are those of
+// the mesh as validated (its unused vertices dropped, its tets reoriented); so are
+// those read_mesh() keeps in ReadInfo when asked, and only then.
+TEST(Validate, HandsOverTheFaceNeighboursItBuilds) {
+  TetMesh mesh = test::make_grid_mesh(
+      2, 2, 1, [](int i, int j, int k) { return 1 + (i + j + k) % 2; }, 1.0);
+  mesh.positions.insert(mesh.positions.begin(), Vec3{50, 50, 50});
+  for (Tet& t : mesh.tets)
+    for (uint32_t& v : t) ++v;
+  std::swap(mesh.tets[3][0], mesh.tets[3][1]);
+  ValidationReport report;
+  std::vector<uint32_t> handed;
+  ASSERT_TRUE(validate_mesh(&mesh, "m.mesh", {}, &report, &handed).ok());
+  EXPECT_EQ(report.removed_unused_vertices, 1u);
+  EXPECT_EQ(report.reoriented_tets, 1u);
+  std::vector<uint32_t> built;
+  ASSERT_EQ(build_face_neighbors(mesh, &built).kind, FaceProblem::Kind::kNone);
+  ASSERT_EQ(handed.size(), 4 * mesh.tet_count());
+  EXPECT_EQ(handed, built);
+
+  const std::string box2 = std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh";
+  TetMesh read;
+  ReadInfo plain, keeping;
+  keeping.keep_face_neighbors = true;
+  ASSERT_TRUE(read_mesh(box2, &read, &plain).ok());
+  EXPECT_TRUE(plain.face_neighbors.empty());
+  ASSERT_TRUE(read_mesh(box2, &read, &keeping).ok());
+  ASSERT_EQ(build_face_neighbors(read, &built).kind, FaceProblem::Kind::kNone);
+  EXPECT_EQ(keeping.face_neighbors, built);
 }
 
 void expect_error(TetMesh mesh, const std::string& fragment,
