@@ -47,8 +47,8 @@ Status parse_abaqus(std::string_view text, const std::string& name, ParsedMesh* 
 // to write as well, in the format's way (mesh_io.h).
 void write_medit(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
 // Little-endian, version 2 (or 3 and 4 when positions or vertex numbers need 8 bytes).
-// `min_version` (2 to 4) writes at least that version: files of 2^31 bytes or vertex
-// numbers past 2^31 - 1 are too large for a test to make, so it writes small ones so.
+// `min_version` (2 to 4): write at least that version. For tests: the files that need
+// versions 3 and 4 (2^31 bytes, vertex numbers past 2^31 - 1) are too large to make.
 void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out,
                         int min_version = 2);
 // `version` is 22 or 41; `binary`: file type 1 (WriteOptions::gmsh_binary).
