@@ -421,13 +421,6 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   EXPECT_EQ(info.surface_groups[2].name, "1st _outer_ wall");
 }
 
-// Groups inside one material (Gmsh's embedded surfaces, tests/data/gmsh/sheet.msh:
-// "sheet" wholly inside material 1, "top_and_sheet" a boundary face and another sheet):
-// their triangles are faces between two tets of that material. SurfacePatches counts
-// them; group_surface() with `inside` (convert) adds them to their groups, oriented as
-// in the input and seen from the tet behind them, and every writer's file reads back
-// with the same groups; without it (a simplified mesh's) they are left out. A triangle
-// in two groups is the smaller one's; one that is no face is missing.
 // Face neighbours a caller already has (validation's, kept in ReadInfo) give the same
 // patches and groups as those built anew.
 TEST(SurfaceGroups, GivenFaceNeighboursGiveTheSameGroups) {
@@ -460,6 +453,13 @@ TEST(SurfaceGroups, GivenFaceNeighboursGiveTheSameGroups) {
   }
 }
 
+// Groups inside one material (Gmsh's embedded surfaces, tests/data/gmsh/sheet.msh:
+// "sheet" wholly inside material 1, "top_and_sheet" a boundary face and another sheet):
+// their triangles are faces between two tets of that material. SurfacePatches counts
+// them; group_surface() with `inside` (convert) adds them to their groups, oriented as
+// in the input and seen from the tet behind them, and every writer's file reads back
+// with the same groups; without it (a simplified mesh's) they are left out. A triangle
+// in two groups is the smaller one's; one that is no face is missing.
 TEST(SurfaceGroups, GroupsInsideAMaterial) {
   TetMesh mesh;
   ReadInfo info;
