@@ -54,8 +54,9 @@ const Triangulations& polygon_triangulations(int n) {
 
 class Improver {
  public:
+  // moves: classify the vertices for move_pass() (else none may move: edge removals only).
   Improver(TetMesh* mesh, const SimplifyParams& params, const std::atomic<bool>* cancel,
-           const SurfacePatches* patches)
+           const SurfacePatches* patches, bool moves = true)
       : mesh_(*mesh), params_(params), cancel_(cancel) {
     const size_t tet_count = mesh_.tet_count();
     alive_.assign(tet_count, 1);
@@ -69,19 +70,37 @@ class Improver {
       big_[t] = shape.size > size_limit(mesh_.tets[t], mesh_.materials[t]);
       for (uint32_t v : mesh_.tets[t]) star_[v].push_back(t);
     }
-    // Which vertices may move, and within what: a vertex on no boundary or interface
-    // triangle anywhere; a vertex inside a flat patch of one boundary or interface (a
-    // surface vertex, not on a curve or corner, all of whose surface triangles lie in
-    // one plane) within that plane; no other. Flips keep every surface triangle, and
-    // moves keep each patch's plane, so these stay right.
+    freedom_.assign(mesh_.vertex_count(), kFixed);
+    plane_normal_.assign(mesh_.vertex_count(), Vec3{0, 0, 0});
+    if (moves) classify_for_moves();
+    // The input groups' faces inside a material stay as they are: their vertices are
+    // fixed, and their faces and edges listed (sorted corners) for the flips.
+    if (patches && !patches->inside_entries().empty()) {
+      for (std::array<uint32_t, 3> f : inside_faces(mesh_, *patches)) {
+        for (uint32_t v : f) freedom_[v] = kFixed;
+        std::sort(f.begin(), f.end());
+        kept_faces_.push_back(f);
+        kept_edges_.push_back({f[0], f[1]});
+        kept_edges_.push_back({f[0], f[2]});
+        kept_edges_.push_back({f[1], f[2]});
+      }
+      std::sort(kept_faces_.begin(), kept_faces_.end());
+      std::sort(kept_edges_.begin(), kept_edges_.end());
+    }
+  }
+
+  // Which vertices may move, and within what: a vertex on no boundary or interface
+  // triangle anywhere; a vertex inside a flat patch of one boundary or interface (a
+  // surface vertex, not on a curve or corner, all of whose surface triangles lie in
+  // one plane) within that plane; no other. Flips keep every surface triangle, and
+  // moves keep each patch's plane, so these stay right.
+  void classify_for_moves() {
     std::vector<uint32_t> neighbors;
     build_face_neighbors(mesh_, &neighbors);
     const std::vector<SurfaceTriangle> surface = extract_surface(mesh_, neighbors);
     ClassifyOptions options;
-    options.crease_angle_degrees = params.crease_angle_degrees;
+    options.crease_angle_degrees = params_.crease_angle_degrees;
     const Classification c = classify_vertices(mesh_, surface, options);
-    freedom_.assign(mesh_.vertex_count(), kFixed);
-    plane_normal_.assign(mesh_.vertex_count(), Vec3{0, 0, 0});
     for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
       if (c.kind[v] == FeatureKind::kInterior)
         freedom_[v] = kFree;
@@ -105,20 +124,6 @@ class Improver {
           freedom_[v] = kFixed;  // its surface triangles are not all in one plane
         }
       }
-    }
-    // The input groups' faces inside a material stay as they are: their vertices are
-    // fixed, and their faces and edges listed (sorted corners) for the flips.
-    if (patches && !patches->inside_entries().empty()) {
-      for (std::array<uint32_t, 3> f : inside_faces(mesh_, *patches)) {
-        for (uint32_t v : f) freedom_[v] = kFixed;
-        std::sort(f.begin(), f.end());
-        kept_faces_.push_back(f);
-        kept_edges_.push_back({f[0], f[1]});
-        kept_edges_.push_back({f[0], f[2]});
-        kept_edges_.push_back({f[1], f[2]});
-      }
-      std::sort(kept_faces_.begin(), kept_faces_.end());
-      std::sort(kept_edges_.begin(), kept_edges_.end());
     }
   }
 
@@ -215,7 +220,40 @@ class Improver {
     return removals;
   }
 
-  bool try_edge_removal(uint32_t a, uint32_t b) {
+ public:
+  // Lowers the valence of each of `nodes` above tau_VL by removing its edges (to its
+  // neighbours in id order, the first removal that can be made each time) until it is
+  // within tau_VL or none of its edges can go; again over the nodes until a pass
+  // removes nothing (a removal elsewhere may have made room). Returns the removals.
+  size_t shed_valence(const std::vector<uint32_t>& nodes) {
+    size_t removals = 0, before = 0;
+    do {
+      before = removals;
+      for (uint32_t h : nodes)
+        while (valence(h) > params_.max_valence && !cancelled() && remove_an_edge_of(h)) ++removals;
+    } while (removals != before);
+    compact();
+    return removals;
+  }
+
+ private:
+  bool remove_an_edge_of(uint32_t h) {
+    std::vector<uint32_t>& others = others_;
+    others.clear();
+    const uint32_t s = next_stamp();
+    mark_[h] = s;
+    for (uint32_t t : star_[h])
+      for (uint32_t w : mesh_.tets[t])
+        if (mark_[w] != s) mark_[w] = s, others.push_back(w);
+    std::sort(others.begin(), others.end());
+    for (uint32_t x : others)
+      if (try_edge_removal(h, x, /*any_valid=*/true)) return true;
+    return false;
+  }
+
+  // any_valid: take the triangulation of highest lowest stretch among those within
+  // every threshold, even if it is lower than the ring's (to shed a neighbour).
+  bool try_edge_removal(uint32_t a, uint32_t b, bool any_valid = false) {
     if (!kept_edges_.empty() && std::binary_search(kept_edges_.begin(), kept_edges_.end(),
                                                    std::make_pair(std::min(a, b), std::max(a, b))))
       return false;
@@ -261,12 +299,38 @@ class Improver {
       old_min = std::min(old_min, stretch_[ring[k]]);
       fixes_size |= big_[ring[k]] != 0;
     }
-    // New edges between ring vertices: they must not exist yet, and raise valences.
-    int gain[kMaxRing] = {};
+    // New edges between ring vertices (the diagonals of a triangulation): they must not
+    // be edges already (elsewhere), and each raises the valence of its two ends, which
+    // must stay within tau_VL. Known per pair before the triangulations are tried.
+    // The one triangle of a 3-2 flip has no diagonal, and must not be a face already: in
+    // a mesh whose tets overlap without sharing faces (which validation cannot see), a
+    // tet elsewhere may have it, and would then share it with both new tets.
+    if (n == 3) {
+      for (uint32_t t : star_[r[0]])
+        if (tet_has(mesh_.tets[t], r[1]) && tet_has(mesh_.tets[t], r[2])) return false;
+    }
+    bool joined[kMaxRing][kMaxRing] = {};
+    uint32_t room[kMaxRing] = {};  // how many more neighbours each may take
+    bool known = false;            // joined and room, found when first needed
+    auto find_joined_and_room = [&] {
+      for (int i = 0; i < n; ++i) {
+        const uint32_t v = valence(r[i]);
+        room[i] = v < params_.max_valence ? params_.max_valence - v : 0;
+        for (int j = i + 2; j < n; ++j) {
+          if (i == 0 && j == n - 1) continue;  // a side of the polygon
+          for (uint32_t t : star_[r[i]])
+            if (tet_has(mesh_.tets[t], r[j])) {
+              joined[i][j] = true;
+              break;
+            }
+        }
+      }
+      known = true;
+    };
     const Triangulations& all = polygon_triangulations(n);
     Tet best[2 * (kMaxRing - 2)];
     double best_d[2 * (kMaxRing - 2)];
-    double best_min = fixes_size ? -1 : old_min;
+    double best_min = fixes_size || any_valid ? -1 : old_min;
     int best_index = -1;
     for (size_t i = 0; i < all.size(); ++i) {
       const std::vector<std::array<uint8_t, 3>>& triangles = all[i];
@@ -290,6 +354,17 @@ class Improver {
         }
       }
       if (!ok || !(low > best_min)) continue;
+      if (n > 3 && !known) find_joined_and_room();
+      uint32_t gain[kMaxRing] = {};
+      for (size_t k = 0; k < triangles.size() && ok; ++k)
+        for (int e = 0; e < 3; ++e) {
+          const int lo = std::min(triangles[k][e], triangles[k][(e + 1) % 3]);
+          const int hi = std::max(triangles[k][e], triangles[k][(e + 1) % 3]);
+          if (hi == lo + 1 || (lo == 0 && hi == n - 1)) continue;     // a side of the polygon
+          if (triangles[k][e] > triangles[k][(e + 1) % 3]) continue;  // each diagonal once
+          if (joined[lo][hi] || ++gain[lo] > room[lo] || ++gain[hi] > room[hi]) ok = false;
+        }
+      if (!ok) continue;
       best_min = low;
       best_index = static_cast<int>(i);
       std::copy(made, made + 2 * triangles.size(), best);
@@ -297,27 +372,6 @@ class Improver {
     }
     if (best_index < 0) return false;
     const auto& triangles = all[best_index];
-    // New faces: each triangle, seen from a and from b. With a diagonal it is new if
-    // the diagonal is (below); the one triangle of a 3-2 flip has none, and must not
-    // be a face already: in a mesh whose tets overlap without sharing faces (which
-    // validation cannot see), a tet elsewhere may have it, and would then share it with
-    // both new tets.
-    if (n == 3) {
-      for (uint32_t t : star_[r[0]])
-        if (tet_has(mesh_.tets[t], r[1]) && tet_has(mesh_.tets[t], r[2])) return false;
-    }
-    for (const auto& tri : triangles)
-      for (int e = 0; e < 3; ++e) {
-        const int i = tri[e], j = tri[(e + 1) % 3];
-        if ((i + 1) % n == j || (j + 1) % n == i) continue;  // a side of the polygon
-        if (i > j) continue;  // each diagonal once (it is in two triangles)
-        for (uint32_t t : star_[r[i]])
-          if (tet_has(mesh_.tets[t], r[j])) return false;  // already an edge elsewhere
-        ++gain[i];
-        ++gain[j];
-      }
-    for (int k = 0; k < n; ++k)
-      if (gain[k] > 0 && valence(r[k]) + gain[k] > params_.max_valence) return false;
     for (int k = 0; k < n; ++k) remove_tet(ring[k]);
     for (size_t k = 0; k < 2 * triangles.size(); ++k) add_tet(best[k], material, best_d[k]);
     return true;
@@ -493,9 +547,16 @@ class Improver {
   std::vector<std::pair<uint32_t, uint32_t>> kept_edges_;
   std::vector<uint32_t> mark_;
   uint32_t stamp_ = 0;
+  std::vector<uint32_t> others_;  // remove_an_edge_of()
 };
 
 }  // namespace
+
+size_t shed_valence(TetMesh* mesh, const SimplifyParams& params, const std::vector<uint32_t>& nodes,
+                    const std::atomic<bool>* cancel, const SurfacePatches* patches) {
+  Improver improver(mesh, params, cancel, patches, /*moves=*/false);
+  return improver.shed_valence(nodes);
+}
 
 ImproveResult improve_mesh(TetMesh* mesh, const SimplifyParams& params, int max_rounds,
                            const std::atomic<bool>* cancel, const SurfacePatches* patches) {

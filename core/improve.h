@@ -73,4 +73,14 @@ ImproveResult improve_mesh(TetMesh* mesh, const SimplifyParams& params, int max_
                            const std::atomic<bool>* cancel = nullptr,
                            const SurfacePatches* patches = nullptr);
 
+// Lowers the valence of each of `nodes` (vertex ids of `mesh`) above params.max_valence
+// by edge removals inside one material (as improve_mesh() makes them, with the same
+// guarantee, but taking a removal whose new tets are within every threshold even if
+// their lowest stretch is lower), until the node is within it or none of its edges can
+// go; a removal never takes another node above max_valence. Tets may be renumbered;
+// vertices keep their ids. Returns the removals made.
+size_t shed_valence(TetMesh* mesh, const SimplifyParams& params, const std::vector<uint32_t>& nodes,
+                    const std::atomic<bool>* cancel = nullptr,
+                    const SurfacePatches* patches = nullptr);
+
 }  // namespace tetlod

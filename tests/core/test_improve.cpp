@@ -196,6 +196,105 @@ TEST(Improve, RemovesAnEdgeAboveTheSizeEvenIfTheWorstStretchFalls) {
   EXPECT_GE(r.min_stretch_after, 0.15);
 }
 
+// Four tets around the axis of a tall octahedron over a rhombus (0 and 2 on the long
+// diagonal, 1 and 3 on the short one), and a tet (1, 6, 7, 8) far off that touches it
+// at vertex 1 only, so 1 has seven neighbours and 0 and 2 four. Removing the axis on
+// the short diagonal gives the better tets but raises 1 to eight neighbours; within a
+// valence of 6 the removal takes the long diagonal instead, whose tets are still
+// better than the four around the axis.
+TEST(Improve, EdgeRemovalTakesATriangulationWithinTheValence) {
+  TetMesh mesh;
+  mesh.positions = {{1.2, 0, 0},  {0, 0.8, 0}, {-1.2, 0, 0}, {0, -0.8, 0}, {0, 0, 1.5},
+                    {0, 0, -1.5}, {0, 10, 0},  {1, 11, 0},   {0, 11, 1}};
+  for (uint32_t k = 0; k < 4; ++k) {
+    mesh.tets.push_back({4, 5, k, (k + 1) % 4});
+    mesh.materials.push_back(1);
+  }
+  mesh.tets.push_back({1, 6, 7, 8});
+  mesh.materials.push_back(1);
+  test::orient_positively(&mesh);
+  auto diagonal = [](const TetMesh& m, uint32_t a, uint32_t b) {
+    for (const Tet& t : m.tets)
+      if (tet_has(t, a) && tet_has(t, b)) return true;
+    return false;
+  };
+  SimplifyParams p = loose();
+  p.max_valence = 8;
+  TetMesh free = mesh;
+  ASSERT_EQ(improve_mesh(&free, p).edge_removals, 1u);
+  EXPECT_TRUE(diagonal(free, 1, 3));
+  EXPECT_FALSE(diagonal(free, 0, 2));
+
+  p.max_valence = 6;
+  TetMesh capped = mesh;
+  ASSERT_EQ(improve_mesh(&capped, p).edge_removals, 1u);
+  EXPECT_TRUE(diagonal(capped, 0, 2));
+  EXPECT_FALSE(diagonal(capped, 1, 3));
+  EXPECT_FALSE(diagonal(capped, 4, 5));
+  auto octahedron_min = [](const TetMesh& m) {  // the tets but the far one
+    double low = 1;
+    for (const Tet& t : m.tets)
+      if (!tet_has(t, 6)) low = std::min(low, tet_shape(m, t).stretch);
+    return low;
+  };
+  EXPECT_LT(octahedron_min(capped), octahedron_min(free));
+  EXPECT_GT(octahedron_min(capped), octahedron_min(mesh));
+  EXPECT_LE(valences(capped)[1], 7u);
+  EXPECT_NEAR(volume_per_material(capped).at(1), volume_per_material(mesh).at(1), 1e-12);
+}
+
+// shed_valence() on the bundled motor, whose input has nodes of up to 37 neighbours:
+// edge removals lower them, raise no other node past the valence, and change neither
+// the surfaces nor the volumes; every tet it makes is within the thresholds.
+TEST(Improve, ShedValenceLowersNodesWithinTheGuarantee) {
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh", &mesh, &info));
+  SimplifyParams p;
+  p.sizing.uniform = 30;
+  p.min_stretch = 0.1;
+  p.max_valence = 25;
+  const std::vector<uint32_t> before = valences(mesh);
+  std::vector<uint32_t> over;
+  for (uint32_t v = 0; v < before.size(); ++v)
+    if (before[v] > p.max_valence) over.push_back(v);
+  ASSERT_GT(over.size(), 5u);
+  const auto surfaces = surface_set(mesh);
+  const auto volume = volume_per_material(mesh);
+  const auto tets_before = tet_set(mesh);
+  TetMesh shed = mesh;
+  const size_t removals = shed_valence(&shed, p, over);
+  EXPECT_GT(removals, 0u);
+  const std::vector<uint32_t> after = valences(shed);
+  size_t lowered = 0, brought_back = 0;
+  for (uint32_t v : over) {
+    EXPECT_LE(after[v], before[v]) << v;
+    lowered += after[v] < before[v];
+    brought_back += after[v] <= p.max_valence;
+  }
+  EXPECT_GT(lowered, over.size() / 2);
+  EXPECT_GT(brought_back, 0u);
+  for (uint32_t v = 0; v < after.size(); ++v)
+    if (before[v] <= p.max_valence) {
+      EXPECT_LE(after[v], p.max_valence) << v;
+    }
+  EXPECT_EQ(surface_set(shed), surfaces);
+  for (const auto& [material, v] : volume_per_material(shed))
+    EXPECT_NEAR(v, volume.at(material), 1e-9 * volume.at(material)) << material;
+  size_t made = 0;
+  for (size_t t = 0; t < shed.tet_count(); ++t) {
+    const TetShape s = tet_shape(shed, shed.tets[t]);
+    ASSERT_GT(s.volume, 0);
+    Tet sorted = shed.tets[t];
+    std::sort(sorted.begin(), sorted.end());
+    if (tets_before.count(sorted)) continue;
+    ++made;
+    EXPECT_GE(s.stretch, p.min_stretch);
+    EXPECT_LE(s.size, p.sizing.uniform);
+  }
+  EXPECT_GT(made, 0u);
+}
+
 TEST(Improve, FlipsTwoTetsIntoThreeAroundANewEdge) {
   TetMesh mesh = make_bipyramid(0.3, false);
   const ImproveResult r = improve_mesh(&mesh, loose());
