@@ -273,7 +273,10 @@ int cmd_report(const Args& args) {
         describe_violations(result.violations) + "." +
         (result.violations.above_size > 0
              ? " Above the size: " + above_size_reason(so.params, result)
-             : std::string());
+             : std::string()) +
+        (past_valence_summary(result).empty()
+             ? std::string()
+             : " Past the valence: " + past_valence_summary(result) + ".");
     thresholds =
         describe_thresholds(so.params) + (so.improve ? "; levels improved (--improve)" : "");
     meshes.push_back({"input", input});

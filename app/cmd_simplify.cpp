@@ -228,23 +228,33 @@ int cmd_simplify(const Args& args) {
       result.splits, result.splits_skipped, result.splits_skipped - result.splits_skipped_valence,
       result.splits_skipped_valence, kept_unsplit.c_str(), result.base.tet_count(),
       result.history.step_count(), describe_rejections(result.rejections).c_str());
+  const std::string past = past_valence_summary(result);
+  if (!past.empty()) std::printf("past the valence: %s\n", past.c_str());
   const EvaluationCounts& e = result.evaluations;
   std::printf(
       "evaluations: %llu of every edge at the start, %llu of new nodes' edges, %llu of stale "
-      "queue entries, %llu in %llu sweeps (%llu in all; %llu more not made again, as made "
+      "queue entries, %llu in %llu sweeps%s (%llu in all; %llu more not made again, as made "
       "already on the same mesh)\n",
       static_cast<unsigned long long>(e.initial), static_cast<unsigned long long>(e.new_node),
       static_cast<unsigned long long>(e.stale), static_cast<unsigned long long>(e.sweep),
-      static_cast<unsigned long long>(e.sweeps), static_cast<unsigned long long>(e.total()),
-      static_cast<unsigned long long>(e.repeated));
+      static_cast<unsigned long long>(e.sweeps),
+      e.valence == 0 ? ""
+                     : (", " + std::to_string(e.valence) +
+                        " in the links of nodes subdivision took past the valence")
+                           .c_str(),
+      static_cast<unsigned long long>(e.total()), static_cast<unsigned long long>(e.repeated));
   const ThresholdViolations& v = result.violations;
   std::printf("final mesh%s, breaking a threshold: %s\n", improve ? " (before --improve)" : "",
               describe_violations(v).c_str());
   if (v.above_size > 0) std::printf("why: %s\n", above_size_reason(params, result).c_str());
   if (improve) print_improve(improved, seconds_improve);
-  std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)\n",
+  std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)",
               result.seconds_subdivide, result.seconds_classify, result.seconds_simplify,
               result.kernels);
+  if (result.past_valence.tried)
+    std::printf("; and %.3f s for the run that is not the result",
+                result.past_valence.seconds_other);
+  std::printf("\n");
 
   // The mesh and the history are written together, or neither.
   OutputFiles files;

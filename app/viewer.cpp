@@ -1492,6 +1492,7 @@ void Viewer::fill_status() {
     s.splits = scene.result->splits;
     s.violations = scene.result->violations;
     s.above_size_reason = scene.above_size_reason;
+    s.past_valence = past_valence_summary(*scene.result);
     s.simplify_seconds = run_seconds(*scene.result);
     s.result_cancelled = scene.result->cancelled;
   }

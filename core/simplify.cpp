@@ -25,6 +25,7 @@
 #include "core/adjacency.h"
 #include "core/classify.h"
 #include "core/face_grid.h"
+#include "core/improve.h"
 #include "core/metrics.h"
 #include "core/overlap.h"
 #include "core/surface.h"
@@ -353,9 +354,14 @@ const VectorKernels& vector_kernels() {
 
 class Engine {
  public:
+  // past_valence: subdivision may take nodes past tau_VL (see ::simplify()).
   Engine(const TetMesh& input, const SimplifyParams& params, const ProgressCallback& progress,
-         const std::atomic<bool>* cancel)
-      : params_(params), progress_(progress), cancel_(cancel), pos_(input.positions) {
+         const std::atomic<bool>* cancel, bool past_valence)
+      : params_(params),
+        progress_(progress),
+        cancel_(cancel),
+        past_valence_(past_valence),
+        pos_(input.positions) {
     tolerance2_ = params.tolerance * params.tolerance;
     uniform_sizing_ = !params.sizing.has_local_rules();
     region_sizing_ = params.sizing.has_region_rules();
@@ -398,6 +404,7 @@ class Engine {
       Status s = subdivide(result);
       if (!s) return s;
     }
+    if (result->splits_past_valence > 0 && !cancelled()) shed_valence_by_flips(result);
     if (result->splits > 0) reorder_for_locality();  // new vertices were appended
     result->seconds_subdivide = seconds_since(start);
     result->base = mesh_now();
@@ -545,7 +552,9 @@ class Engine {
   // Longest edge first (a max-heap on length): a popped edge is the longest edge of
   // every tet around it, so this is conforming longest-edge bisection. A split is
   // skipped, and counted, if a child would fall below min(tau_ST, its parent's
-  // stretch) or a node would exceed tau_VL.
+  // stretch) or a node would exceed tau_VL (twice tau_VL in a run past the valence,
+  // whose nodes past tau_VL are brought back before the collapses start, or the run is
+  // given up: see ::simplify()).
   double edge_size_limit(uint32_t a, uint32_t b) const {
     if (uniform_sizing_) return params_.sizing.uniform;
     double limit = std::numeric_limits<double>::infinity();
@@ -636,9 +645,13 @@ class Engine {
         continue;
       }
       sort_unique(opposite);
-      if (opposite.size() + 2 > params_.max_valence) ok = false;
-      for (uint32_t w : opposite)
-        if (valence_now[w] + 1 > params_.max_valence) ok = false;
+      const size_t cap = past_valence_ ? 2 * size_t{params_.max_valence} : params_.max_valence;
+      bool past = opposite.size() + 2 > params_.max_valence;
+      if (opposite.size() + 2 > cap) ok = false;
+      for (uint32_t w : opposite) {
+        past |= valence_now[w] + 1 > params_.max_valence;
+        if (valence_now[w] + 1 > cap) ok = false;
+      }
       if (!ok) {
         ++result->splits_skipped;
         ++result->splits_skipped_valence;
@@ -679,6 +692,7 @@ class Engine {
         star_[mid].push_back(child);
       }
       ++result->splits;
+      result->splits_past_valence += past;
       push_if_long(heap, e.a, mid);
       push_if_long(heap, mid, e.b);
       for (uint32_t w : opposite) push_if_long(heap, mid, w);
@@ -687,6 +701,34 @@ class Engine {
     // any split, which rebuilds them.
     report("subdivide", 1);
     return Status();
+  }
+
+  // After a subdivision that took nodes past tau_VL: edge removals round each node past
+  // both tau_VL and its input valence (shed_valence(), improve.h), whose tets meet every
+  // threshold. The tets are then those it returns, each allowed to break what it
+  // breaks: only pieces of input tets can (subdivision makes no piece flatter than
+  // both tau_ST and its parent, nor above its own size unless its parent was, and a
+  // removal makes none).
+  void shed_valence_by_flips(SimplifyResult* result) {
+    std::vector<uint32_t> over;
+    for (uint32_t v = 0; v < pos_.size(); ++v) {
+      const uint32_t n = valence(v);
+      if (n > params_.max_valence && n > input_valence_[v]) over.push_back(v);
+    }
+    result->nodes_past_valence = over.size();
+    if (over.empty()) return;
+    TetMesh mesh = mesh_now();
+    result->valence_edge_removals = shed_valence(&mesh, params_, over, cancel_, patches_);
+    tet_.assign(mesh.tets.size(), TetRecord{});
+    for (uint32_t t = 0; t < tet_.size(); ++t) {
+      tet_[t].v = mesh.tets[t];
+      tet_[t].material = mesh.materials[t];
+      const TetShape s = shape(t);
+      tet_[t].stretch = s.stretch;
+      tet_[t].allowance = static_cast<uint8_t>((s.stretch < params_.min_stretch ? kMayBeThin : 0) |
+                                               (s.size > size_limit(t) ? kMayBeBig : 0));
+    }
+    // The stars are rebuilt by reorder_for_locality(), which follows.
   }
 
   // --------------------------------------------------------- classification
@@ -1529,6 +1571,87 @@ class Engine {
            (r.removed == b && r.version_kept == va && r.version_removed == vb);
   }
 
+  // In a run past the valence, before the priority order starts: each node still past
+  // both tau_VL and its input valence sheds neighbours by collapses of the edges of its
+  // link (two of its neighbours in a triangle with it, which it then neighbours as
+  // one) while it is past tau_VL, each time the valid one of highest priority. They are
+  // checked as every collapse is, and are the first steps of the history. Rounds over
+  // the nodes left, in id order, until one collapses nothing; returns how many nodes
+  // are still past both.
+  size_t bring_back_valences(SimplifyResult* result) {
+    std::vector<Collapse> valid;
+    std::vector<uint32_t> over, left;
+    for (uint32_t h = 0; h < pos_.size(); ++h)
+      if (state_[h].alive && past_valence(h)) over.push_back(h);
+    while (!over.empty() && !cancelled()) {
+      const size_t collapses_before = result->valence_collapses;
+      left.clear();
+      for (uint32_t h : over) {
+        while (state_[h].alive && state_[h].valence > params_.max_valence &&
+               collapse_in_link(h, &valid, result)) {
+        }
+        if (state_[h].alive && past_valence(h)) left.push_back(h);
+      }
+      over.swap(left);
+      if (result->valence_collapses == collapses_before) break;
+    }
+    return over.size();
+  }
+
+  bool past_valence(uint32_t v) const {
+    return state_[v].valence > params_.max_valence && state_[v].valence > input_valence_[v];
+  }
+
+  // One collapse of an edge of h's link, the valid one of highest priority; false if
+  // there is none.
+  bool collapse_in_link(uint32_t h, std::vector<Collapse>* valid, SimplifyResult* result) {
+    edges_.clear();
+    for (uint32_t t : star_[h]) {
+      const Tet& q = tet_[t].v;
+      for (int x = 0; x < 4; ++x)
+        for (int y = x + 1; y < 4; ++y)
+          if (q[x] != h && q[y] != h)
+            edges_.push_back({std::min(q[x], q[y]), std::max(q[x], q[y])});
+    }
+    sort_unique(edges_);
+    valid->clear();
+    first_end_ = kInvalidIndex;
+    for (const auto& [c, d] : edges_) {
+      // The valence rule first, from the tets round the edge (at least the triangles
+      // round it, less one on a surface), which most of these edges fail.
+      uint32_t ring = 0;
+      for (uint32_t t : star_[c]) ring += tet_has(tet_[t].v, d);
+      if (state_[c].valence + state_[d].valence > params_.max_valence + ring + 3) continue;
+      ++evaluations_.valence;
+      Collapse collapse;
+      const Reject r = evaluate(c, d, &collapse);
+      if (r == Reject::kNone)
+        valid->push_back(collapse);
+      else
+        count(r);
+    }
+    std::sort(valid->begin(), valid->end(),
+              [](const Collapse& x, const Collapse& y) { return CollapseLess()(y, x); });
+    for (const Collapse& c : *valid) {
+      if (!topology_ok(c.kept, c.removed, c.surface_edge)) {
+        count(Reject::kTopology);
+        continue;
+      }
+      const bool moves_boundary = guard_boundary_ && changes_outer_boundary(c);
+      if (moves_boundary && !outer_boundary_stays_embedded(c.kept, c.removed, c.position)) {
+        count(Reject::kOverlap);
+        continue;
+      }
+      glued_outer_.clear();
+      apply(c, &result->history);
+      if (guard_boundary_) update_outer_grid(c, moves_boundary);
+      first_end_ = kInvalidIndex;
+      ++result->valence_collapses;
+      return true;
+    }
+    return false;
+  }
+
   // Re-evaluates every edge with a dirty end, once.
   void sweep() {
     ++evaluations_.sweeps;
@@ -1563,6 +1686,10 @@ class Engine {
     alive_tets_ = tet_.size();
     const size_t initial_tets = alive_tets_;
     for (uint32_t v = 0; v < pos_.size(); ++v) state_[v].valence = valence(v);
+    if (result->splits_past_valence > 0) {
+      result->nodes_left_past_valence = bring_back_valences(result);
+      if (result->nodes_left_past_valence > 0) return;  // given up: see ::simplify()
+    }
     std::vector<uint32_t> nb;
     for (uint32_t v = 0; v < pos_.size(); ++v) {
       neighbors(v, &nb);
@@ -2114,6 +2241,7 @@ class Engine {
   const SimplifyParams& params_;
   const ProgressCallback& progress_;
   const std::atomic<bool>* cancel_;
+  const bool past_valence_;                  // subdivision may take nodes past tau_VL
   const SurfacePatches* patches_ = nullptr;  // the input's surface groups, or none
   // The edges (a < b, sorted) of patches_' faces inside a material, before
   // subdivision (whose splits keep the ids of the vertices there).
@@ -2226,15 +2354,73 @@ class Engine {
 
 }  // namespace
 
+namespace {
+
+Status run_engine(const TetMesh& input, const SimplifyParams& params, bool past_valence,
+                  const ProgressCallback& progress, const std::atomic<bool>* cancel,
+                  const SurfacePatches* patches, SimplifyResult* result) {
+  *result = SimplifyResult{};
+  Engine engine(input, params, progress, cancel, past_valence);
+  engine.set_patches(patches);
+  return engine.run(result);
+}
+
+double run_seconds(const SimplifyResult& r) {
+  return r.seconds_subdivide + r.seconds_classify + r.seconds_simplify;
+}
+
+}  // namespace
+
 Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
                 const ProgressCallback& progress, const std::atomic<bool>* cancel,
                 const SurfacePatches* patches) {
   Status s = check_params(params);
   if (!s) return s;
-  *result = SimplifyResult{};
-  Engine engine(input, params, progress, cancel);
-  engine.set_patches(patches);
-  return engine.run(result);
+  // Subdivision keeps every node within tau_VL, which on a coarse, graded input leaves
+  // long edges unsplit (longest-edge bisection adds a neighbour to every node opposite
+  // a split edge), and so tets above the size. If the run leaves such tets, a second
+  // run lets subdivision take nodes up to twice tau_VL; edge removals, then collapses
+  // in the links of the nodes it took past both tau_VL and their input valence, bring
+  // those back before the priority order starts. If one is left, that run is given
+  // up; else its result is taken if it has fewer tets above the size. Either way no
+  // node is past both when the priority order starts, and a collapse raises no node's
+  // valence but the one it makes, which stays within tau_VL.
+  //
+  // The choice is made on whole runs, so that a run stopped at an element count is
+  // the chosen run stopped there: with params.target_elements, the runs that choose
+  // go to the end, and the chosen one is made again with the target.
+  SimplifyParams whole = params;
+  whole.target_elements = 0;
+  s = run_engine(input, whole, false, progress, cancel, patches, result);
+  if (!s || result->cancelled || !params.subdivide || !params.subdivide_past_valence ||
+      result->violations.above_size == 0 || result->splits_skipped_valence == 0) {
+    if (s && !result->cancelled && params.target_elements > 0)
+      s = run_engine(input, params, false, progress, cancel, patches, result);
+    return s;
+  }
+  SimplifyResult past;
+  const Status s2 = run_engine(input, whole, true, progress, cancel, patches, &past);
+  PastValence p;
+  p.tried = true;
+  p.nodes = past.nodes_past_valence;
+  p.nodes_left = past.nodes_left_past_valence;
+  p.taken = s2 && !past.cancelled && p.nodes_left == 0 &&
+            past.violations.above_size < result->violations.above_size;
+  if (s2 && !past.cancelled && p.nodes_left == 0) p.above_size_past = past.violations.above_size;
+  p.above_size_within = result->violations.above_size;
+  if (!s2 || past.cancelled) {  // the first result stands, cancelled if the second was
+    p.stopped = true;
+    result->cancelled = past.cancelled;
+    p.seconds_other = run_seconds(past);
+    result->past_valence = p;
+    return s;
+  }
+  p.seconds_other = p.taken ? run_seconds(*result) : run_seconds(past);
+  if (p.taken) *result = std::move(past);
+  if (params.target_elements > 0)
+    s = run_engine(input, params, p.taken, progress, cancel, patches, result);
+  result->past_valence = p;
+  return s;
 }
 
 // A tet above the size has an edge longer than the size, so longer than half of it:
@@ -2279,6 +2465,29 @@ std::string above_size_reason(const SimplifyParams& params, const SimplifyResult
   why += " leaves fewer.";
   if (!inside.empty()) why += " Besides, " + inside + ".";
   return why;
+}
+
+std::string past_valence_summary(const SimplifyResult& result) {
+  const PastValence& p = result.past_valence;
+  if (!p.tried) return "";
+  const std::string within = "subdivision within the valence threshold left " +
+                             std::to_string(p.above_size_within) + " tets above the size; ";
+  const std::string past =
+      p.nodes > 0 ? "a second run, whose subdivision took " + std::to_string(p.nodes) +
+                        " nodes past the threshold, "
+                  : std::string("a second run, whose subdivision could pass the threshold, ");
+  if (p.stopped) return within + past + "was stopped before its end";
+  if (p.nodes_left > 0)
+    return within + past + "was given up, as " + std::to_string(p.nodes_left) +
+           " of them could not be brought back";
+  const std::string back =
+      p.nodes == 0 ? std::string()
+      : p.taken    ? "brought them all back by " + std::to_string(result.valence_edge_removals) +
+                      " edge removals and " + std::to_string(result.valence_collapses) +
+                      " collapses (the history's first) and "
+                : std::string("brought them all back but ");
+  return within + past + back + "left " + std::to_string(p.above_size_past) +
+         (p.taken ? ", so it is the result" : ", not fewer, so the first run is the result");
 }
 
 }  // namespace tetlod

@@ -32,6 +32,10 @@ struct SimplifyParams {
   uint32_t max_valence = 25;  // tau_VL, >= 4
   SizingField sizing;         // tau_SZ per tet (see sizing.h); must set some limit
   bool subdivide = true;
+  // Where the run leaves tets above the size, a second run whose subdivision may take
+  // nodes past tau_VL, for edge removals and collapses to bring back before the
+  // priority order starts (see simplify()); off: never.
+  bool subdivide_past_valence = true;
   size_t target_elements = 0;          // stop once at most this many tets remain; 0: run to the end
   double crease_angle_degrees = 40.0;  // for the vertex classification (classify.h)
   // Refuse collapses that would push the outer boundary through itself (see
@@ -70,9 +74,10 @@ struct EvaluationCounts {
   uint64_t stale = 0;     // queued collapses popped after a neighbouring collapse
   uint64_t sweep = 0;     // the edges of the nodes collapses touched, when the queue ran dry
   uint64_t sweeps = 0;    // how many times the queue ran dry with such nodes left
+  uint64_t valence = 0;   // of edges in the links of nodes subdivision took past tau_VL
   uint64_t repeated = 0;  // not made again (stale entries, sweeps): the same evaluation was
                           // already made on the mesh as it is, so its result is known
-  uint64_t total() const { return initial + new_node + stale + sweep; }
+  uint64_t total() const { return initial + new_node + stale + sweep + valence; }
 };
 
 // Output tets and nodes that break a threshold. Only what the input already broke
@@ -87,6 +92,19 @@ struct ThresholdViolations {
   size_t created = 0;        // of the above, ones the input did not already break
 };
 
+// The second run of simplify() (see there), whose subdivision may take nodes past
+// tau_VL.
+struct PastValence {
+  bool tried = false;
+  bool taken = false;            // its result is the one returned
+  bool stopped = false;          // cancelled, or an error (more tets than allowed, say)
+  size_t nodes = 0;              // nodes it took past both tau_VL and their input valence
+  size_t nodes_left = 0;         // of them, not brought back: the run was given up
+  size_t above_size_within = 0;  // tets above the size the first run left
+  size_t above_size_past = 0;    // and the second (if it was not given up)
+  double seconds_other = 0;      // the run that is not the result
+};
+
 struct SimplifyResult {
   TetMesh base;             // LOD step 0: the input after subdivision
   CollapseHistory history;  // every collapse, in order
@@ -98,6 +116,16 @@ struct SimplifyResult {
   size_t splits_skipped = 0;  // long edges left unsplit because a split would break a threshold:
   size_t splits_skipped_valence = 0;  // of them, those only a node's valence stopped (the
                                       // others: a piece's stretch or size)
+  // Subdivision past tau_VL (see simplify()): splits that took a node past it; nodes
+  // then past both tau_VL and their input valence; the edge removals, then collapses
+  // (the history's first), that brought them back; nodes left past both (0 in a result
+  // simplify() returns, unless cancelled).
+  size_t splits_past_valence = 0;
+  size_t nodes_past_valence = 0;
+  size_t valence_edge_removals = 0;
+  size_t valence_collapses = 0;
+  size_t nodes_left_past_valence = 0;
+  PastValence past_valence;
   // Long edges left unsplit (not in splits_skipped) because they are edges of an input
   // surface group's triangles inside a material, which the run keeps as they are.
   size_t splits_skipped_inside = 0;
@@ -132,5 +160,9 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
 // Why a result's final mesh still has tets above the size (violations.above_size > 0),
 // for the user: what stopped subdivision and what would let it reach the size.
 std::string above_size_reason(const SimplifyParams& params, const SimplifyResult& result);
+
+// What subdivision past tau_VL did, in a sentence for the user; "" if it took no node
+// past it.
+std::string past_valence_summary(const SimplifyResult& result);
 
 }  // namespace tetlod

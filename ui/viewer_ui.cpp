@@ -339,6 +339,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     ImGui::TextWrapped("Last run: %.2f s (subdivide, classify, simplify), %zu splits%s",
                        status.simplify_seconds, status.splits,
                        status.result_cancelled ? " (cancelled)" : "");
+    if (!status.past_valence.empty())
+      ImGui::TextWrapped("Past the valence: %s.", status.past_valence.c_str());
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
     if (v.below_stretch + v.above_size + v.above_valence == 0) {

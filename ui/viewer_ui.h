@@ -180,6 +180,7 @@ struct ViewerStatus {
   double simplify_seconds = 0;
   ThresholdViolations violations;  // of the last run's final mesh
   std::string above_size_reason;   // why it has tets above the size ("" if none)
+  std::string past_valence;        // what subdivision past the valence did ("" if nothing)
 
   // The displayed level.
   size_t step = 0, step_count = 0;

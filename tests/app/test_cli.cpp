@@ -778,6 +778,30 @@ TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
   EXPECT_EQ(file_bytes(saved), file_bytes(direct));
 }
 
+// Subdivision may take nodes past the valence threshold; the output says how many, and
+// whether edge removals and collapses brought them all back or the run was given up
+// and made again within the threshold.
+TEST(Cli, SimplifySaysWhatSubdivisionPastTheValenceDid) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const std::string out = out_dir() + "/past_valence.mesh";
+  CommandResult r = run("simplify " + motor + " -o " + out + " --size 18 --tolerance 0.05");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("past the valence: subdivision within the valence threshold left "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("collapses (the history's first) and left 0, so it is the result"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(" in the links of nodes subdivision took past the valence"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(" tets below the stretch, 0 above the size, "), std::string::npos)
+      << r.output;
+  r = run("simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("was given up, as "), std::string::npos) << r.output;
+}
+
 // The simplifier's candidate kernels run on AVX2 where the processor has it, else on
 // the baseline instruction set (forced by TETLOD_NO_AVX2): the two must agree bit for
 // bit (same output mesh, same history), with a uniform size and with a size field.

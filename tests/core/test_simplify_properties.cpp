@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -171,7 +172,10 @@ INSTANTIATE_TEST_SUITE_P(
                       // Tight: many input tets and nodes already break these.
                       Case{"spheres_tight", "assets/spheres.mesh", 1.5, 0.3, 18, 0.006},
                       // Loose: large collapses, surfaces free to move.
-                      Case{"motor_loose", "assets/motor.mesh", 30.0, 0.05, 40, 0.5}),
+                      Case{"motor_loose", "assets/motor.mesh", 30.0, 0.05, 40, 0.5},
+                      // Subdivision takes nodes past the valence, and edge removals and
+                      // the history's first collapses bring them back.
+                      Case{"motor_past_valence", "assets/motor.mesh", 18.0, 0.15, 25, 0.05}),
     [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
 // Gmsh meshes of non-manifold configurations (tests/data/topology): regions of one
@@ -238,6 +242,108 @@ TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
     EXPECT_EQ(again.history.removed_tets, first.history.removed_tets);
     EXPECT_EQ(again.history.rewired, first.history.rewired);
   }
+}
+
+// Valences per vertex.
+std::vector<uint32_t> valences(const TetMesh& mesh) {
+  std::vector<std::set<uint32_t>> nb(mesh.vertex_count());
+  for (const Tet& t : mesh.tets)
+    for (uint32_t a : t)
+      for (uint32_t b : t)
+        if (a != b) nb[a].insert(b);
+  std::vector<uint32_t> out;
+  for (const auto& s : nb) out.push_back(static_cast<uint32_t>(s.size()));
+  return out;
+}
+
+SimplifyResult simplify_motor(double size, bool past_valence) {
+  TetMesh input;
+  ReadInfo info;
+  EXPECT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
+  SimplifyParams params;
+  params.sizing.uniform = size;
+  params.tolerance = 0.05;
+  params.subdivide_past_valence = past_valence;
+  SimplifyResult result;
+  EXPECT_TRUE(simplify(input, params, &result));
+  return result;
+}
+
+// At size 18 the bundled motor (tets up to 20.4, nodes of up to 37 neighbours)
+// keeps 59 tets above the size if subdivision keeps every node within the valence.
+// Past it, edge removals and the history's first collapses bring every node it took
+// past both 25 and its input valence back, and no tet stays above the size.
+TEST(SimplifyPastValence, BringsEveryNodeBackBeforeThePriorityOrder) {
+  const SimplifyResult within = simplify_motor(18, false);
+  const SimplifyResult past = simplify_motor(18, true);
+  EXPECT_EQ(within.nodes_past_valence, 0u);
+  EXPECT_GT(within.violations.above_size, 0u);
+  EXPECT_GT(within.splits_skipped_valence, 0u);
+  EXPECT_TRUE(past.past_valence.tried);
+  EXPECT_TRUE(past.past_valence.taken);
+  EXPECT_EQ(past.past_valence.above_size_within, within.violations.above_size);
+  EXPECT_EQ(past.past_valence.above_size_past, past.violations.above_size);
+  EXPECT_GT(past.splits_past_valence, 0u);
+  EXPECT_GT(past.nodes_past_valence, 0u);
+  EXPECT_GT(past.valence_edge_removals, 0u);
+  EXPECT_GT(past.valence_collapses, 0u);
+  EXPECT_GT(past.evaluations.valence, 0u);
+  EXPECT_EQ(past.nodes_left_past_valence, 0u);
+  EXPECT_EQ(past.violations.created, 0u);
+  EXPECT_LT(past.violations.above_size, within.violations.above_size);
+  EXPECT_NE(past_valence_summary(past).find("brought them all back by"), std::string::npos);
+  EXPECT_EQ(past_valence_summary(within), "");
+
+  // The base has nodes past 25; once the first collapses are made, every node past
+  // 25 is an input node (at its input position) within its input valence.
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
+  const std::vector<uint32_t> input_valence = valences(input);
+  std::map<std::array<double, 3>, uint32_t> input_node;
+  for (uint32_t v = 0; v < input.vertex_count(); ++v) {
+    const Vec3& p = input.positions[v];
+    input_node[{p.x, p.y, p.z}] = v;
+  }
+  auto past_both = [&](const TetMesh& level) {
+    const std::vector<uint32_t> val = valences(level);
+    size_t n = 0;
+    for (uint32_t v = 0; v < level.vertex_count(); ++v) {
+      if (val[v] <= 25) continue;
+      const Vec3& p = level.positions[v];
+      const auto it = input_node.find({p.x, p.y, p.z});
+      n += it == input_node.end() || val[v] > input_valence[it->second];
+    }
+    return n;
+  };
+  Lod lod(past.base, &past.history);
+  EXPECT_GT(past_both(lod.extract()), 0u);
+  lod.seek(past.valence_collapses - 1);
+  EXPECT_GT(past_both(lod.extract()), 0u);
+  lod.seek(past.valence_collapses);
+  EXPECT_EQ(past_both(lod.extract()), 0u);
+  lod.seek(lod.step_count());
+  EXPECT_EQ(past_both(lod.extract()), 0u);
+}
+
+// At size 12 some nodes stay past the valence: that run is given up, and the result
+// is the run within it, the same as with subdivide_past_valence off.
+TEST(SimplifyPastValence, IsGivenUpWhereANodeCannotBeBroughtBack) {
+  const SimplifyResult within = simplify_motor(12, false);
+  const SimplifyResult past = simplify_motor(12, true);
+  EXPECT_TRUE(past.past_valence.tried);
+  EXPECT_FALSE(past.past_valence.taken);
+  EXPECT_GT(past.past_valence.nodes, 0u);
+  EXPECT_GT(past.past_valence.nodes_left, 0u);
+  EXPECT_EQ(past.nodes_past_valence, 0u);
+  EXPECT_EQ(past.violations.created, 0u);
+  EXPECT_EQ(past.output.tets, within.output.tets);
+  ASSERT_EQ(past.output.positions.size(), within.output.positions.size());
+  EXPECT_EQ(std::memcmp(past.output.positions.data(), within.output.positions.data(),
+                        past.output.positions.size() * sizeof(Vec3)),
+            0);
+  EXPECT_EQ(past.history.step_count(), within.history.step_count());
+  EXPECT_NE(past_valence_summary(past).find("was given up, as "), std::string::npos);
 }
 
 TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
