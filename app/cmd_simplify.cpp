@@ -22,8 +22,9 @@ namespace {
 
 constexpr const char* kSimplifyUsageHead =
     "usage: tetlod simplify IN -o OUT --size S [--stretch D] [--valence V] [--tolerance T]\n"
-    "                       [--no-subdivide] [--material-size M=S,...] [--size-field SPEC]\n"
-    "                       [--elements N] [--history FILE] [--crease-angle DEG] [--improve]\n"
+    "                       [--no-subdivide] [--within-valence] [--material-size M=S,...]\n"
+    "                       [--size-field SPEC] [--elements N] [--history FILE]\n"
+    "                       [--crease-angle DEG] [--improve]\n"
     "                       [--msh-version V] [--msh-binary] [--vtk-binary] [--surfaces]\n"
     "\n"
     "Subdivides IN (every edge longer than half its target size), then collapses edges in\n"
@@ -288,8 +289,9 @@ int cmd_lod(const Args& args) {
     const std::string& a = args[i];
     std::string v;
     // The thresholds (not --elements, which here may be 0, nor the simplifier's own
-    // --tolerance and --no-subdivide, which a level does not use).
-    if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide" && a != "--improve") {
+    // --tolerance, --no-subdivide and --within-valence, which a level does not use).
+    if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide" &&
+        a != "--within-valence" && a != "--improve") {
       const OptionResult parsed = parse_simplify_option(args, &i, "lod", &options);
       if (parsed == OptionResult::kError) return kExitUsage;
       if (parsed == OptionResult::kParsed) {

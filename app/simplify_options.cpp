@@ -25,6 +25,8 @@ const char* const kSimplifyFlagsHelp =
     "                    the size of a tet is the smallest of --size and every rule above,\n"
     "                    taken at its centroid (a box holds the tets whose centroid it holds)\n"
     "  --no-subdivide    skip the subdivision step\n"
+    "  --within-valence  subdivision never takes a node past the valence, not even for\n"
+    "                    collapses to bring back (fewer runs where tets stay above the size)\n"
     "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
 
 const char* const kWriteFlagsHelp =
@@ -138,6 +140,8 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
     params.crease_angle_degrees = *d;
   } else if (a == "--no-subdivide") {
     params.subdivide = false;
+  } else if (a == "--within-valence") {
+    params.subdivide_past_valence = false;
   } else if (a == "--material-size" || a == "--size-field") {
     if (!value()) return OptionResult::kError;
     if (a == "--material-size") {

@@ -184,6 +184,17 @@ void sort_unique(std::vector<T>& v) {
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
+// A node by its position, bit for bit: the same in every run on one input, where the
+// ids of the nodes subdivision makes are not.
+using PositionKey = std::array<uint64_t, 3>;
+PositionKey position_key(const Vec3& p) {
+  PositionKey key;
+  std::memcpy(&key[0], &p.x, sizeof(double));
+  std::memcpy(&key[1], &p.y, sizeof(double));
+  std::memcpy(&key[2], &p.z, sizeof(double));
+  return key;
+}
+
 // Everything the evaluation of a collapse reads of a tet, in one 32-byte record, so
 // that walking a star costs one cache line per tet instead of one per array.
 struct TetRecord {
@@ -354,13 +365,16 @@ const VectorKernels& vector_kernels() {
 
 class Engine {
  public:
-  // past_valence: subdivision may take nodes past tau_VL (see ::simplify()).
+  // past_valence: subdivision may take nodes past tau_VL (see ::simplify()), but not
+  // those at the positions in `pinned` (sorted), if given.
   Engine(const TetMesh& input, const SimplifyParams& params, const ProgressCallback& progress,
-         const std::atomic<bool>* cancel, bool past_valence)
+         const std::atomic<bool>* cancel, bool past_valence,
+         const std::vector<PositionKey>* pinned = nullptr)
       : params_(params),
         progress_(progress),
         cancel_(cancel),
         past_valence_(past_valence),
+        pinned_(pinned),
         pos_(input.positions) {
     tolerance2_ = params.tolerance * params.tolerance;
     uniform_sizing_ = !params.sizing.has_local_rules();
@@ -563,6 +577,14 @@ class Engine {
     return limit;
   }
 
+  // The most neighbours subdivision may give a node at p.
+  size_t valence_cap(const Vec3& p) const {
+    if (!past_valence_) return params_.max_valence;
+    if (pinned_ && std::binary_search(pinned_->begin(), pinned_->end(), position_key(p)))
+      return params_.max_valence;
+    return 2 * size_t{params_.max_valence};
+  }
+
   void push_if_long(std::vector<Split>& heap, uint32_t a, uint32_t b) {
     const double length2 = squared_length(pos_[a] - pos_[b]);
     const double half = 0.5 * edge_size_limit(a, b);
@@ -645,12 +667,11 @@ class Engine {
         continue;
       }
       sort_unique(opposite);
-      const size_t cap = past_valence_ ? 2 * size_t{params_.max_valence} : params_.max_valence;
       bool past = opposite.size() + 2 > params_.max_valence;
-      if (opposite.size() + 2 > cap) ok = false;
+      if (opposite.size() + 2 > valence_cap(m)) ok = false;
       for (uint32_t w : opposite) {
         past |= valence_now[w] + 1 > params_.max_valence;
-        if (valence_now[w] + 1 > cap) ok = false;
+        if (valence_now[w] + 1 > valence_cap(pos_[w])) ok = false;
       }
       if (!ok) {
         ++result->splits_skipped;
@@ -1595,6 +1616,7 @@ class Engine {
       over.swap(left);
       if (result->valence_collapses == collapses_before) break;
     }
+    for (uint32_t h : over) left_past_.push_back(position_key(pos_[h]));
     return over.size();
   }
 
@@ -2242,6 +2264,7 @@ class Engine {
   const ProgressCallback& progress_;
   const std::atomic<bool>* cancel_;
   const bool past_valence_;                  // subdivision may take nodes past tau_VL
+  const std::vector<PositionKey>* pinned_;   // but not these
   const SurfacePatches* patches_ = nullptr;  // the input's surface groups, or none
   // The edges (a < b, sorted) of patches_' faces inside a material, before
   // subdivision (whose splits keep the ids of the vertices there).
@@ -2249,6 +2272,8 @@ class Engine {
 
  public:
   void set_patches(const SurfacePatches* patches) { patches_ = patches; }
+  // The nodes bring_back_valences() left past the valence, by position.
+  const std::vector<PositionKey>& left_past() const { return left_past_; }
 
  private:
   double tolerance2_ = 0;
@@ -2257,6 +2282,7 @@ class Engine {
   std::vector<TetRecord> tet_;
   std::vector<std::vector<uint32_t>> star_;  // sorted tet ids per vertex
   std::vector<uint32_t> input_valence_;
+  std::vector<PositionKey> left_past_;
   std::vector<int32_t> material_ids_;  // sorted
   std::vector<size_t> material_tets_;  // alive tets per material, by index in material_ids_
 
@@ -2358,11 +2384,17 @@ namespace {
 
 Status run_engine(const TetMesh& input, const SimplifyParams& params, bool past_valence,
                   const ProgressCallback& progress, const std::atomic<bool>* cancel,
-                  const SurfacePatches* patches, SimplifyResult* result) {
+                  const SurfacePatches* patches, SimplifyResult* result,
+                  std::vector<PositionKey>* pinned = nullptr) {
   *result = SimplifyResult{};
-  Engine engine(input, params, progress, cancel, past_valence);
+  Engine engine(input, params, progress, cancel, past_valence, pinned);
   engine.set_patches(patches);
-  return engine.run(result);
+  const Status s = engine.run(result);
+  if (pinned) {
+    pinned->insert(pinned->end(), engine.left_past().begin(), engine.left_past().end());
+    sort_unique(*pinned);
+  }
+  return s;
 }
 
 double run_seconds(const SimplifyResult& r) {
@@ -2378,17 +2410,21 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   if (!s) return s;
   // Subdivision keeps every node within tau_VL, which on a coarse, graded input leaves
   // long edges unsplit (longest-edge bisection adds a neighbour to every node opposite
-  // a split edge), and so tets above the size. If the run leaves such tets, a second
+  // a split edge), and so tets above the size. If the run leaves such tets, another
   // run lets subdivision take nodes up to twice tau_VL; edge removals, then collapses
   // in the links of the nodes it took past both tau_VL and their input valence, bring
-  // those back before the priority order starts. If one is left, that run is given
-  // up; else its result is taken if it has fewer tets above the size. Either way no
-  // node is past both when the priority order starts, and a collapse raises no node's
-  // valence but the one it makes, which stays within tau_VL.
+  // those back before the priority order starts. If one is left, that run is given up
+  // and made again with the nodes left pinned (subdivision keeps them within tau_VL;
+  // they are found by position: no collapse moves a node it leaves past the valence),
+  // up to kRuns times. A run that brings every node back is the result if it leaves
+  // fewer tets above the size. Either way no node is past both when the priority order
+  // starts, and a collapse raises no node's valence but the one it makes, which stays
+  // within tau_VL.
   //
   // The choice is made on whole runs, so that a run stopped at an element count is
   // the chosen run stopped there: with params.target_elements, the runs that choose
   // go to the end, and the chosen one is made again with the target.
+  constexpr int kRuns = 4;
   SimplifyParams whole = params;
   whole.target_elements = 0;
   s = run_engine(input, whole, false, progress, cancel, patches, result);
@@ -2398,27 +2434,35 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
       s = run_engine(input, params, false, progress, cancel, patches, result);
     return s;
   }
-  SimplifyResult past;
-  const Status s2 = run_engine(input, whole, true, progress, cancel, patches, &past);
   PastValence p;
   p.tried = true;
+  p.above_size_within = result->violations.above_size;
+  SimplifyResult past;
+  std::vector<PositionKey> pinned;
+  Status s2;
+  double past_seconds = 0;  // of the runs past the valence before the last
+  for (p.runs = 1;; ++p.runs) {
+    p.pinned = pinned.size();
+    s2 = run_engine(input, whole, true, progress, cancel, patches, &past, &pinned);
+    if (!s2 || past.cancelled || past.nodes_left_past_valence == 0 || p.runs == kRuns) break;
+    past_seconds += run_seconds(past);
+  }
   p.nodes = past.nodes_past_valence;
   p.nodes_left = past.nodes_left_past_valence;
-  p.taken = s2 && !past.cancelled && p.nodes_left == 0 &&
-            past.violations.above_size < result->violations.above_size;
-  if (s2 && !past.cancelled && p.nodes_left == 0) p.above_size_past = past.violations.above_size;
-  p.above_size_within = result->violations.above_size;
-  if (!s2 || past.cancelled) {  // the first result stands, cancelled if the second was
+  if (!s2 || past.cancelled) {  // the first result stands, cancelled if the other was
     p.stopped = true;
+    p.seconds_other = past_seconds + run_seconds(past);
     result->cancelled = past.cancelled;
-    p.seconds_other = run_seconds(past);
     result->past_valence = p;
     return s;
   }
-  p.seconds_other = p.taken ? run_seconds(*result) : run_seconds(past);
+  if (p.nodes_left == 0) p.above_size_past = past.violations.above_size;
+  p.taken = p.nodes_left == 0 && p.above_size_past < p.above_size_within;
+  p.seconds_other = past_seconds + run_seconds(p.taken ? *result : past);
   if (p.taken) *result = std::move(past);
   if (params.target_elements > 0)
-    s = run_engine(input, params, p.taken, progress, cancel, patches, result);
+    s = run_engine(input, params, p.taken, progress, cancel, patches, result,
+                   p.taken ? &pinned : nullptr);
   result->past_valence = p;
   return s;
 }
@@ -2472,14 +2516,18 @@ std::string past_valence_summary(const SimplifyResult& result) {
   if (!p.tried) return "";
   const std::string within = "subdivision within the valence threshold left " +
                              std::to_string(p.above_size_within) + " tets above the size; ";
-  const std::string past =
-      p.nodes > 0 ? "a second run, whose subdivision took " + std::to_string(p.nodes) +
-                        " nodes past the threshold, "
-                  : std::string("a second run, whose subdivision could pass the threshold, ");
-  if (p.stopped) return within + past + "was stopped before its end";
+  std::string past = p.runs == 1 ? "a run whose subdivision "
+                                 : std::to_string(p.runs) + " runs whose subdivision ";
+  past += p.nodes > 0 ? "took " + std::to_string(p.nodes) + " nodes past the threshold"
+                      : std::string("could pass the threshold");
+  if (p.runs > 1)
+    past += (p.nodes > 0 ? " in the last" : std::string()) + " (each but the first with the " +
+            "nodes the one before could not bring back kept within it),";
+  past += " ";
+  if (p.stopped) return within + past + "stopped before its end";
   if (p.nodes_left > 0)
-    return within + past + "was given up, as " + std::to_string(p.nodes_left) +
-           " of them could not be brought back";
+    return within + past + "were given up: " + std::to_string(p.nodes_left) +
+           " nodes could not be brought back in the last";
   const std::string back =
       p.nodes == 0 ? std::string()
       : p.taken    ? "brought them all back by " + std::to_string(result.valence_edge_removals) +

@@ -92,17 +92,18 @@ struct ThresholdViolations {
   size_t created = 0;        // of the above, ones the input did not already break
 };
 
-// The second run of simplify() (see there), whose subdivision may take nodes past
-// tau_VL.
+// The runs of simplify() (see there) whose subdivision may take nodes past tau_VL.
 struct PastValence {
   bool tried = false;
-  bool taken = false;            // its result is the one returned
+  bool taken = false;            // the last such run is the result
   bool stopped = false;          // cancelled, or an error (more tets than allowed, say)
-  size_t nodes = 0;              // nodes it took past both tau_VL and their input valence
-  size_t nodes_left = 0;         // of them, not brought back: the run was given up
+  int runs = 0;                  // made, each with the nodes the one before left pinned
+  size_t pinned = 0;             // nodes pinned in the last
+  size_t nodes = 0;              // nodes the last took past both tau_VL and their input valence
+  size_t nodes_left = 0;         // of them, not brought back: it was given up
   size_t above_size_within = 0;  // tets above the size the first run left
-  size_t above_size_past = 0;    // and the second (if it was not given up)
-  double seconds_other = 0;      // the run that is not the result
+  size_t above_size_past = 0;    // and the last run past the valence (if not given up)
+  double seconds_other = 0;      // the runs that are not the result
 };
 
 struct SimplifyResult {

@@ -175,7 +175,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"motor_loose", "assets/motor.mesh", 30.0, 0.05, 40, 0.5},
                       // Subdivision takes nodes past the valence, and edge removals and
                       // the history's first collapses bring them back.
-                      Case{"motor_past_valence", "assets/motor.mesh", 18.0, 0.15, 25, 0.05}),
+                      Case{"motor_past_valence", "assets/motor.mesh", 18.0, 0.15, 25, 0.05},
+                      // The same after runs that pinned the nodes they left past it.
+                      Case{"motor_pinned", "assets/motor.mesh", 16.0, 0.15, 25, 0.05}),
     [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
 // Gmsh meshes of non-manifold configurations (tests/data/topology): regions of one
@@ -281,6 +283,8 @@ TEST(SimplifyPastValence, BringsEveryNodeBackBeforeThePriorityOrder) {
   EXPECT_GT(within.splits_skipped_valence, 0u);
   EXPECT_TRUE(past.past_valence.tried);
   EXPECT_TRUE(past.past_valence.taken);
+  EXPECT_EQ(past.past_valence.runs, 1);
+  EXPECT_EQ(past.past_valence.pinned, 0u);
   EXPECT_EQ(past.past_valence.above_size_within, within.violations.above_size);
   EXPECT_EQ(past.past_valence.above_size_past, past.violations.above_size);
   EXPECT_GT(past.splits_past_valence, 0u);
@@ -326,7 +330,22 @@ TEST(SimplifyPastValence, BringsEveryNodeBackBeforeThePriorityOrder) {
   EXPECT_EQ(past_both(lod.extract()), 0u);
 }
 
-// At size 12 some nodes stay past the valence: that run is given up, and the result
+// At size 16 the first run past the valence leaves a node it cannot bring back; made
+// again with it pinned (and then the nodes the next runs leave), a run brings them
+// all back and leaves fewer tets above the size than the run within the valence.
+TEST(SimplifyPastValence, PinsTheNodesARunLeftAndTriesAgain) {
+  const SimplifyResult within = simplify_motor(16, false);
+  const SimplifyResult past = simplify_motor(16, true);
+  EXPECT_TRUE(past.past_valence.taken);
+  EXPECT_GT(past.past_valence.runs, 1);
+  EXPECT_GT(past.past_valence.pinned, 0u);
+  EXPECT_EQ(past.nodes_left_past_valence, 0u);
+  EXPECT_EQ(past.violations.created, 0u);
+  EXPECT_LT(past.violations.above_size, within.violations.above_size);
+  EXPECT_NE(past_valence_summary(past).find("runs whose subdivision took "), std::string::npos);
+}
+
+// At size 12 nodes stay past the valence in each of the runs: they are given up, and the result
 // is the run within it, the same as with subdivide_past_valence off.
 TEST(SimplifyPastValence, IsGivenUpWhereANodeCannotBeBroughtBack) {
   const SimplifyResult within = simplify_motor(12, false);
@@ -343,7 +362,9 @@ TEST(SimplifyPastValence, IsGivenUpWhereANodeCannotBeBroughtBack) {
                         past.output.positions.size() * sizeof(Vec3)),
             0);
   EXPECT_EQ(past.history.step_count(), within.history.step_count());
-  EXPECT_NE(past_valence_summary(past).find("was given up, as "), std::string::npos);
+  EXPECT_EQ(past.past_valence.runs, 4);
+  EXPECT_GT(past.past_valence.pinned, 0u);
+  EXPECT_NE(past_valence_summary(past).find("were given up: "), std::string::npos);
 }
 
 TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
