@@ -225,19 +225,40 @@ class Improver {
   // neighbours in id order, the first removal that can be made each time) until it is
   // within tau_VL or none of its edges can go; again over the nodes until a pass
   // removes nothing (a removal elsewhere may have made room). Returns the removals.
+  // A node whose tries all failed is tried again only once a removal has changed its
+  // star or a neighbour's (which is all its tries read), so with the same outcome.
   size_t shed_valence(const std::vector<uint32_t>& nodes) {
     size_t removals = 0, before = 0;
+    changed_at_.assign(mesh_.vertex_count(), 0);
+    std::vector<uint32_t> failed_at(mesh_.vertex_count(), 0);
+    clock_ = 1;
     do {
       before = removals;
-      for (uint32_t h : nodes)
-        while (valence(h) > params_.max_valence && !cancelled() && remove_an_edge_of(h)) ++removals;
+      for (uint32_t h : nodes) {
+        if (failed_at[h] != 0 && !changed_since(h, failed_at[h])) continue;
+        if (valence(h) <= params_.max_valence || cancelled()) continue;
+        const size_t made = remove_edges_of(h);
+        removals += made;
+        if (made == 0) failed_at[h] = ++clock_;
+      }
     } while (removals != before);
     compact();
     return removals;
   }
 
  private:
-  bool remove_an_edge_of(uint32_t h) {
+  // Whether h or a neighbour of h was in a removal after `clock`.
+  bool changed_since(uint32_t h, uint32_t clock) {
+    if (changed_at_[h] > clock) return true;
+    for (uint32_t t : star_[h])
+      for (uint32_t w : mesh_.tets[t])
+        if (changed_at_[w] > clock) return true;
+    return false;
+  }
+
+  // Tries to remove h's edges, to its neighbours in id order, while h is past the
+  // valence; returns how many it removed.
+  size_t remove_edges_of(uint32_t h) {
     std::vector<uint32_t>& others = others_;
     others.clear();
     const uint32_t s = next_stamp();
@@ -246,9 +267,12 @@ class Improver {
       for (uint32_t w : mesh_.tets[t])
         if (mark_[w] != s) mark_[w] = s, others.push_back(w);
     std::sort(others.begin(), others.end());
-    for (uint32_t x : others)
-      if (try_edge_removal(h, x, /*any_valid=*/true)) return true;
-    return false;
+    size_t made = 0;
+    for (uint32_t x : others) {
+      if (valence(h) <= params_.max_valence) break;
+      made += try_edge_removal(h, x, /*any_valid=*/true);
+    }
+    return made;
   }
 
   // any_valid: take the triangulation of highest lowest stretch among those within
@@ -374,6 +398,11 @@ class Improver {
     const auto& triangles = all[best_index];
     for (int k = 0; k < n; ++k) remove_tet(ring[k]);
     for (size_t k = 0; k < 2 * triangles.size(); ++k) add_tet(best[k], material, best_d[k]);
+    if (!changed_at_.empty()) {  // shed_valence()
+      ++clock_;
+      changed_at_[a] = changed_at_[b] = clock_;
+      for (int k = 0; k < n; ++k) changed_at_[r[k]] = clock_;
+    }
     return true;
   }
 
@@ -548,6 +577,9 @@ class Improver {
   std::vector<uint32_t> mark_;
   uint32_t stamp_ = 0;
   std::vector<uint32_t> others_;  // remove_an_edge_of()
+  // shed_valence(): per vertex, the clock at the last removal that changed its star.
+  std::vector<uint32_t> changed_at_;
+  uint32_t clock_ = 0;
 };
 
 }  // namespace
