@@ -2416,15 +2416,17 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   // those back before the priority order starts. If one is left, that run is given up
   // and made again with the nodes left pinned (subdivision keeps them within tau_VL;
   // they are found by position: no collapse moves a node it leaves past the valence),
-  // up to kRuns times. A run that brings every node back is the result if it leaves
-  // fewer tets above the size. Either way no node is past both when the priority order
-  // starts, and a collapse raises no node's valence but the one it makes, which stays
-  // within tau_VL.
+  // up to kRuns runs in all, if it left at most kMostLeft (on the bundled motor, a run
+  // that leaves more was never brought to none within four runs). A run that brings every node back
+  // is the result if it leaves fewer tets above the size. Either way no node is past both when the
+  // priority order starts, and a collapse raises no node's valence but the one it makes, which
+  // stays within tau_VL.
   //
   // The choice is made on whole runs, so that a run stopped at an element count is
   // the chosen run stopped there: with params.target_elements, the runs that choose
   // go to the end, and the chosen one is made again with the target.
   constexpr int kRuns = 4;
+  constexpr size_t kMostLeft = 16;  // a run that leaves more is not made again
   SimplifyParams whole = params;
   whole.target_elements = 0;
   s = run_engine(input, whole, false, progress, cancel, patches, result);
@@ -2444,7 +2446,9 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   for (p.runs = 1;; ++p.runs) {
     p.pinned = pinned.size();
     s2 = run_engine(input, whole, true, progress, cancel, patches, &past, &pinned);
-    if (!s2 || past.cancelled || past.nodes_left_past_valence == 0 || p.runs == kRuns) break;
+    if (!s2 || past.cancelled || past.nodes_left_past_valence == 0 || p.runs == kRuns ||
+        past.nodes_left_past_valence > kMostLeft)
+      break;
     past_seconds += run_seconds(past);
   }
   p.nodes = past.nodes_past_valence;
@@ -2526,8 +2530,9 @@ std::string past_valence_summary(const SimplifyResult& result) {
   past += " ";
   if (p.stopped) return within + past + "stopped before its end";
   if (p.nodes_left > 0)
-    return within + past + "were given up: " + std::to_string(p.nodes_left) +
-           " nodes could not be brought back in the last";
+    return within + past + (p.runs == 1 ? "was" : "were") +
+           " given up: " + std::to_string(p.nodes_left) + " nodes could not be brought back" +
+           (p.runs == 1 ? "" : " in the last");
   const std::string back =
       p.nodes == 0 ? std::string()
       : p.taken    ? "brought them all back by " + std::to_string(result.valence_edge_removals) +

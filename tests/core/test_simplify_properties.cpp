@@ -345,13 +345,16 @@ TEST(SimplifyPastValence, PinsTheNodesARunLeftAndTriesAgain) {
   EXPECT_NE(past_valence_summary(past).find("runs whose subdivision took "), std::string::npos);
 }
 
-// At size 12 nodes stay past the valence in each of the runs: they are given up, and the result
-// is the run within it, the same as with subdivide_past_valence off.
-TEST(SimplifyPastValence, IsGivenUpWhereANodeCannotBeBroughtBack) {
-  const SimplifyResult within = simplify_motor(12, false);
-  const SimplifyResult past = simplify_motor(12, true);
+// At size 14 the runs past the valence leave nodes they cannot bring back, each made
+// again with those pinned, up to four: they are given up, and the result is the run
+// within the valence, the same as with subdivide_past_valence off.
+TEST(SimplifyPastValence, IsGivenUpWhereNodesCannotBeBroughtBack) {
+  const SimplifyResult within = simplify_motor(14, false);
+  const SimplifyResult past = simplify_motor(14, true);
   EXPECT_TRUE(past.past_valence.tried);
   EXPECT_FALSE(past.past_valence.taken);
+  EXPECT_EQ(past.past_valence.runs, 4);
+  EXPECT_GT(past.past_valence.pinned, 0u);
   EXPECT_GT(past.past_valence.nodes, 0u);
   EXPECT_GT(past.past_valence.nodes_left, 0u);
   EXPECT_EQ(past.nodes_past_valence, 0u);
@@ -362,9 +365,15 @@ TEST(SimplifyPastValence, IsGivenUpWhereANodeCannotBeBroughtBack) {
                         past.output.positions.size() * sizeof(Vec3)),
             0);
   EXPECT_EQ(past.history.step_count(), within.history.step_count());
-  EXPECT_EQ(past.past_valence.runs, 4);
-  EXPECT_GT(past.past_valence.pinned, 0u);
   EXPECT_NE(past_valence_summary(past).find("were given up: "), std::string::npos);
+
+  // At size 12 the first run leaves more than 16 nodes: it is not made again.
+  const SimplifyResult twelve = simplify_motor(12, true);
+  EXPECT_TRUE(twelve.past_valence.tried);
+  EXPECT_FALSE(twelve.past_valence.taken);
+  EXPECT_EQ(twelve.past_valence.runs, 1);
+  EXPECT_GT(twelve.past_valence.nodes_left, 16u);
+  EXPECT_NE(past_valence_summary(twelve).find("was given up: "), std::string::npos);
 }
 
 TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
