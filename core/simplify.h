@@ -4,8 +4,12 @@
 // holds.
 //
 // The guarantee: no collapse and no split ever creates a tet with stretch below
-// tau_ST or size above tau_SZ, or a node with valence above tau_VL, and every
-// material region, interface, junction curve and corner keeps its topology. Nor does
+// tau_ST or size above tau_SZ, no collapse a node with valence above tau_VL, and
+// every material region, interface, junction curve and corner keeps its topology.
+// Where subdivision may take a node past tau_VL (see simplify()), edge removals and
+// the history's first collapses bring it back before the priority order starts, or
+// that run is given up: the levels from there on, the final mesh among them, have no
+// node past tau_VL that the input did not have. Nor does
 // any collapse make tets of one body overlap (find_overlap(), overlap.h) where they
 // did not: the outer boundary is never pushed through itself, nor one body meshed
 // apart into another.
