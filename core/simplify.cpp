@@ -2417,10 +2417,10 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   // and made again with the nodes left pinned (subdivision keeps them within tau_VL;
   // they are found by position: no collapse moves a node it leaves past the valence),
   // up to kRuns runs in all, if it left at most kMostLeft (on the bundled motor, a run
-  // that leaves more was never brought to none within four runs). A run that brings every node back
-  // is the result if it leaves fewer tets above the size. Either way no node is past both when the
-  // priority order starts, and a collapse raises no node's valence but the one it makes, which
-  // stays within tau_VL.
+  // that left more was never brought to none within four runs). A run that brings
+  // every node back is the result if it leaves fewer tets above the size. Either way
+  // no node is past both when the priority order starts, and a collapse raises no
+  // node's valence but the one it makes, which stays within tau_VL.
   //
   // The choice is made on whole runs, so that a run stopped at an element count is
   // the chosen run stopped there: with params.target_elements, the runs that choose
