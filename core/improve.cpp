@@ -156,6 +156,17 @@ class Improver {
     return stamp_;
   }
 
+  // The edge neighbours of v, in id order.
+  void sorted_neighbors(uint32_t v, std::vector<uint32_t>* out) {
+    out->clear();
+    const uint32_t s = next_stamp();
+    mark_[v] = s;
+    for (uint32_t t : star_[v])
+      for (uint32_t w : mesh_.tets[t])
+        if (mark_[w] != s) mark_[w] = s, out->push_back(w);
+    std::sort(out->begin(), out->end());
+  }
+
   uint32_t valence(uint32_t v) {
     const uint32_t s = next_stamp();
     mark_[v] = s;
@@ -207,13 +218,7 @@ class Improver {
     std::vector<uint32_t> others;
     for (uint32_t a = 0; a < mesh_.vertex_count(); ++a) {
       if (cancelled()) break;
-      others.clear();
-      const uint32_t s = next_stamp();
-      mark_[a] = s;
-      for (uint32_t t : star_[a])
-        for (uint32_t w : mesh_.tets[t])
-          if (mark_[w] != s) mark_[w] = s, others.push_back(w);
-      std::sort(others.begin(), others.end());
+      sorted_neighbors(a, &others);
       for (uint32_t b : others)
         if (b > a && try_edge_removal(a, b)) ++removals;
     }
@@ -260,13 +265,7 @@ class Improver {
   // valence; returns how many it removed.
   size_t remove_edges_of(uint32_t h) {
     std::vector<uint32_t>& others = others_;
-    others.clear();
-    const uint32_t s = next_stamp();
-    mark_[h] = s;
-    for (uint32_t t : star_[h])
-      for (uint32_t w : mesh_.tets[t])
-        if (mark_[w] != s) mark_[w] = s, others.push_back(w);
-    std::sort(others.begin(), others.end());
+    sorted_neighbors(h, &others);
     size_t made = 0;
     for (uint32_t x : others) {
       if (valence(h) <= params_.max_valence) break;

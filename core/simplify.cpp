@@ -1655,23 +1655,31 @@ class Engine {
     std::sort(valid->begin(), valid->end(),
               [](const Collapse& x, const Collapse& y) { return CollapseLess()(y, x); });
     for (const Collapse& c : *valid) {
-      if (!topology_ok(c.kept, c.removed, c.surface_edge)) {
-        count(Reject::kTopology);
-        continue;
-      }
-      const bool moves_boundary = guard_boundary_ && changes_outer_boundary(c);
-      if (moves_boundary && !outer_boundary_stays_embedded(c.kept, c.removed, c.position)) {
-        count(Reject::kOverlap);
-        continue;
-      }
-      glued_outer_.clear();
-      apply(c, &result->history);
-      if (guard_boundary_) update_outer_grid(c, moves_boundary);
+      if (!checked_apply(c, result)) continue;
       first_end_ = kInvalidIndex;
       ++result->valence_collapses;
       return true;
     }
     return false;
+  }
+
+  // The checks made on a collapse about to be made (the link conditions and feature
+  // rules, then the outer boundary's guard), and the collapse if they pass; false, and
+  // the rejection counted, if not.
+  bool checked_apply(const Collapse& c, SimplifyResult* result) {
+    if (!topology_ok(c.kept, c.removed, c.surface_edge)) {
+      count(Reject::kTopology);
+      return false;
+    }
+    const bool moves_boundary = guard_boundary_ && changes_outer_boundary(c);
+    if (moves_boundary && !outer_boundary_stays_embedded(c.kept, c.removed, c.position)) {
+      count(Reject::kOverlap);
+      return false;
+    }
+    glued_outer_.clear();
+    apply(c, &result->history);
+    if (guard_boundary_) update_outer_grid(c, moves_boundary);
+    return true;
   }
 
   // Re-evaluates every edge with a dirty end, once.
@@ -1756,18 +1764,7 @@ class Engine {
       Collapse c;
       static_cast<QueuedCollapse&>(c) = q;
       c.position = q.midpoint ? (pos_[q.kept] + pos_[q.removed]) * 0.5 : pos_[q.kept];
-      if (!topology_ok(c.kept, c.removed, c.surface_edge)) {
-        count(Reject::kTopology);
-        continue;
-      }
-      const bool moves_boundary = guard_boundary_ && changes_outer_boundary(c);
-      if (moves_boundary && !outer_boundary_stays_embedded(c.kept, c.removed, c.position)) {
-        count(Reject::kOverlap);
-        continue;
-      }
-      glued_outer_.clear();
-      apply(c, &result->history);
-      if (guard_boundary_) update_outer_grid(c, moves_boundary);
+      if (!checked_apply(c, result)) continue;
       refresh_around(c.kept);
     }
     report("simplify", 1);

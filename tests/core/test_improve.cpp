@@ -93,17 +93,6 @@ std::set<std::array<uint32_t, 4>> tet_set(const TetMesh& mesh) {
   return out;
 }
 
-std::vector<uint32_t> valences(const TetMesh& mesh) {
-  std::vector<std::set<uint32_t>> nb(mesh.vertex_count());
-  for (const Tet& t : mesh.tets)
-    for (uint32_t a : t)
-      for (uint32_t b : t)
-        if (a != b) nb[a].insert(b);
-  std::vector<uint32_t> out;
-  for (const auto& s : nb) out.push_back(static_cast<uint32_t>(s.size()));
-  return out;
-}
-
 TEST(Improve, FlipsThreeTetsAroundAnEdgeIntoTwo) {
   TetMesh mesh = make_bipyramid(1.41, true);
   const auto volume = volume_per_material(mesh);
@@ -239,7 +228,7 @@ TEST(Improve, EdgeRemovalTakesATriangulationWithinTheValence) {
   };
   EXPECT_LT(octahedron_min(capped), octahedron_min(free));
   EXPECT_GT(octahedron_min(capped), octahedron_min(mesh));
-  EXPECT_LE(valences(capped)[1], 7u);
+  EXPECT_LE(test::valences(capped)[1], 7u);
   EXPECT_NEAR(volume_per_material(capped).at(1), volume_per_material(mesh).at(1), 1e-12);
 }
 
@@ -254,7 +243,7 @@ TEST(Improve, ShedValenceLowersNodesWithinTheGuarantee) {
   p.sizing.uniform = 30;
   p.min_stretch = 0.1;
   p.max_valence = 25;
-  const std::vector<uint32_t> before = valences(mesh);
+  const std::vector<uint32_t> before = test::valences(mesh);
   std::vector<uint32_t> over;
   for (uint32_t v = 0; v < before.size(); ++v)
     if (before[v] > p.max_valence) over.push_back(v);
@@ -265,7 +254,7 @@ TEST(Improve, ShedValenceLowersNodesWithinTheGuarantee) {
   TetMesh shed = mesh;
   const size_t removals = shed_valence(&shed, p, over);
   EXPECT_GT(removals, 0u);
-  const std::vector<uint32_t> after = valences(shed);
+  const std::vector<uint32_t> after = test::valences(shed);
   size_t lowered = 0, brought_back = 0;
   for (uint32_t v : over) {
     EXPECT_LE(after[v], before[v]) << v;
@@ -434,7 +423,7 @@ TEST_P(ImproveOnModels, KeepsEveryGuarantee) {
     EXPECT_GE(s.stretch, c.stretch) << "tet " << t;
     EXPECT_LE(s.size, c.size) << "tet " << t;
   }
-  const auto valence_before = valences(before), valence_after = valences(after);
+  const auto valence_before = test::valences(before), valence_after = test::valences(after);
   for (size_t v = 0; v < valence_after.size(); ++v)
     if (valence_after[v] > c.valence) {
       EXPECT_LE(valence_after[v], valence_before[v]) << v;

@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <functional>
 #include <random>
+#include <set>
 #include <utility>
+#include <vector>
 
 #include "core/tet_mesh.h"
 
@@ -79,6 +81,18 @@ inline TetMesh make_needle_star(int needles, uint32_t seed) {
     star.materials.push_back(1);
   }
   return star;
+}
+
+// The number of edge neighbours of each vertex.
+inline std::vector<uint32_t> valences(const TetMesh& mesh) {
+  std::vector<std::set<uint32_t>> neighbors(mesh.vertex_count());
+  for (const Tet& t : mesh.tets)
+    for (uint32_t a : t)
+      for (uint32_t b : t)
+        if (a != b) neighbors[a].insert(b);
+  std::vector<uint32_t> out;
+  for (const auto& s : neighbors) out.push_back(static_cast<uint32_t>(s.size()));
+  return out;
 }
 
 }  // namespace tetlod::test

@@ -21,6 +21,7 @@
 #include "core/metrics.h"
 #include "core/simplify.h"
 #include "core/surface.h"
+#include "core/test_meshes.h"
 #include "core/topology_checks.h"
 #include "core/validate.h"
 
@@ -246,18 +247,6 @@ TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
   }
 }
 
-// Valences per vertex.
-std::vector<uint32_t> valences(const TetMesh& mesh) {
-  std::vector<std::set<uint32_t>> nb(mesh.vertex_count());
-  for (const Tet& t : mesh.tets)
-    for (uint32_t a : t)
-      for (uint32_t b : t)
-        if (a != b) nb[a].insert(b);
-  std::vector<uint32_t> out;
-  for (const auto& s : nb) out.push_back(static_cast<uint32_t>(s.size()));
-  return out;
-}
-
 SimplifyResult simplify_motor(double size, bool past_valence) {
   TetMesh input;
   ReadInfo info;
@@ -303,14 +292,14 @@ TEST(SimplifyPastValence, BringsEveryNodeBackBeforeThePriorityOrder) {
   TetMesh input;
   ReadInfo info;
   ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
-  const std::vector<uint32_t> input_valence = valences(input);
+  const std::vector<uint32_t> input_valence = test::valences(input);
   std::map<std::array<double, 3>, uint32_t> input_node;
   for (uint32_t v = 0; v < input.vertex_count(); ++v) {
     const Vec3& p = input.positions[v];
     input_node[{p.x, p.y, p.z}] = v;
   }
   auto past_both = [&](const TetMesh& level) {
-    const std::vector<uint32_t> val = valences(level);
+    const std::vector<uint32_t> val = test::valences(level);
     size_t n = 0;
     for (uint32_t v = 0; v < level.vertex_count(); ++v) {
       if (val[v] <= 25) continue;
