@@ -253,8 +253,9 @@ int cmd_simplify(const Args& args) {
               result.seconds_subdivide, result.seconds_classify, result.seconds_simplify,
               result.kernels);
   if (result.past_valence.tried)
-    std::printf("; and %.3f s for the run that is not the result",
-                result.past_valence.seconds_other);
+    std::printf("; and %.3f s for the %s", result.past_valence.seconds_other,
+                result.past_valence.runs > 1 ? "runs that are not the result"
+                                             : "run that is not the result");
   std::printf("\n");
 
   // The mesh and the history are written together, or neither.

@@ -25,8 +25,9 @@ const char* const kSimplifyFlagsHelp =
     "                    the size of a tet is the smallest of --size and every rule above,\n"
     "                    taken at its centroid (a box holds the tets whose centroid it holds)\n"
     "  --no-subdivide    skip the subdivision step\n"
-    "  --within-valence  subdivision never takes a node past the valence, not even for\n"
-    "                    collapses to bring back (fewer runs where tets stay above the size)\n"
+    "  --within-valence  one run only: where tets stay above the size, no other run whose\n"
+    "                    subdivision may take nodes past the valence for edge removals and\n"
+    "                    collapses to bring back (faster; it may leave more tets above the size)\n"
     "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
 
 const char* const kWriteFlagsHelp =
