@@ -418,7 +418,18 @@ int cmd_lod(const Args& args) {
               step > static_cast<long long>(level.step_count) ? " (the last: --step is past it)"
                                                               : beyond.c_str(),
               level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
-  if (improve) print_improve(improved, seconds_improve);
+  if (improve) {
+    print_improve(improved, seconds_improve);
+  } else if (level.params) {
+    // A level before the last may break what the final mesh does not: tets not yet
+    // collapsed, and after a run past the valence, before its first collapses, nodes
+    // subdivision took past it (docs/RESULTS.md).
+    const ThresholdCounts b = threshold_breaks(level.mesh, *level.params);
+    std::printf(
+        "this level, breaking the thresholds saved in the history: %zu tets below the stretch, "
+        "%zu above the size, %zu nodes above the valence\n",
+        b.below_stretch, b.above_size, b.above_valence);
+  }
   print_staged_mesh_notes(staged);
   return kExitOk;
 }

@@ -145,6 +145,14 @@ class Improver {
     return r;
   }
 
+  // Over the mesh as it is.
+  ThresholdCounts breaks() {
+    double mean = 0, low = 0;
+    ThresholdCounts counts;
+    summarize(&mean, &low, &counts);
+    return counts;
+  }
+
  private:
   bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
 
@@ -582,6 +590,12 @@ class Improver {
 };
 
 }  // namespace
+
+ThresholdCounts threshold_breaks(const TetMesh& mesh, const SimplifyParams& params) {
+  TetMesh copy = mesh;
+  Improver improver(&copy, params, nullptr, nullptr, /*moves=*/false);
+  return improver.breaks();
+}
 
 size_t shed_valence(TetMesh* mesh, const SimplifyParams& params, const std::vector<uint32_t>& nodes,
                     const std::atomic<bool>* cancel, const SurfacePatches* patches) {

@@ -53,6 +53,9 @@ struct ThresholdCounts {
   size_t above_valence = 0;  // nodes with valence > tau_VL
 };
 
+// The tets and nodes of `mesh` that break params' stretch, size and valence thresholds.
+ThresholdCounts threshold_breaks(const TetMesh& mesh, const SimplifyParams& params);
+
 struct ImproveResult {
   size_t edge_removals = 0;  // edges inside one material removed (3-2 flips and larger)
   size_t flips_23 = 0;       // triangles replaced by an edge with three tets around it

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -805,6 +806,38 @@ TEST(Cli, SimplifySaysWhatSubdivisionPastTheValenceDid) {
   r = run("simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("was given up: "), std::string::npos) << r.output;
+}
+
+// `tetlod lod` says what the level it writes breaks of the thresholds saved in the
+// history: at the last level, what `simplify` said of its final mesh; at the first,
+// more (after a run past the valence, nodes subdivision took past it among them).
+TEST(Cli, LodSaysWhatTheLevelBreaks) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const std::string history = out_dir() + "/breaks.tlh", level = out_dir() + "/breaks.mesh";
+  const CommandResult r = run("simplify " + motor + " -o " + level +
+                              " --size 18 --tolerance 0.05 " + "--history " + history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string head = "final mesh, breaking a threshold: ";
+  const size_t at = r.output.find(head);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const size_t end = r.output.find(" (", at);
+  const std::string breaks = r.output.substr(at + head.size(), end - at - head.size());
+  ASSERT_NE(breaks.find(" nodes above the valence"), std::string::npos) << breaks;
+  const std::string line = "this level, breaking the thresholds saved in the history: ";
+  const CommandResult last = run("lod " + history + " --step 1000000 -o " + level);
+  ASSERT_EQ(last.code, 0) << last.output;
+  EXPECT_NE(last.output.find(line + breaks + "\n"), std::string::npos) << breaks << "\n"
+                                                                       << last.output;
+  const CommandResult first = run("lod " + history + " --step 0 -o " + level);
+  ASSERT_EQ(first.code, 0) << first.output;
+  ASSERT_NE(first.output.find(line), std::string::npos) << first.output;
+  auto nodes_above = [](const std::string& text) {
+    const size_t n = text.find(" nodes above the valence");
+    size_t b = n;
+    while (b > 0 && std::isdigit(static_cast<unsigned char>(text[b - 1]))) --b;
+    return std::stoul(text.substr(b, n - b));
+  };
+  EXPECT_GT(nodes_above(first.output), nodes_above(breaks));
 }
 
 // The simplifier's candidate kernels run on AVX2 where the processor has it, else on
