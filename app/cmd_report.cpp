@@ -266,6 +266,7 @@ int cmd_report(const Args& args) {
     }
     // What the run did and what the final mesh still breaks, as `tetlod simplify`
     // prints it.
+    const std::string past = past_valence_summary(result);
     run_summary =
         std::to_string(result.splits) + " splits, " + std::to_string(result.history.step_count()) +
         " collapses; rejected evaluations: " + describe_rejections(result.rejections) +
@@ -274,9 +275,7 @@ int cmd_report(const Args& args) {
         (result.violations.above_size > 0
              ? " Above the size: " + above_size_reason(so.params, result)
              : std::string()) +
-        (past_valence_summary(result).empty()
-             ? std::string()
-             : " Past the valence: " + past_valence_summary(result) + ".");
+        (past.empty() ? std::string() : " Past the valence: " + past + ".");
     thresholds =
         describe_thresholds(so.params) + (so.improve ? "; levels improved (--improve)" : "");
     meshes.push_back({"input", input});

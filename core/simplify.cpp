@@ -2424,11 +2424,13 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   // go to the end, and the chosen one is made again with the target.
   constexpr int kRuns = 4;
   constexpr size_t kMostLeft = 16;  // a run that leaves more is not made again
+  if (!params.subdivide || !params.subdivide_past_valence)  // one run, nothing to choose
+    return run_engine(input, params, false, progress, cancel, patches, result);
   SimplifyParams whole = params;
   whole.target_elements = 0;
   s = run_engine(input, whole, false, progress, cancel, patches, result);
-  if (!s || result->cancelled || !params.subdivide || !params.subdivide_past_valence ||
-      result->violations.above_size == 0 || result->splits_skipped_valence == 0) {
+  if (!s || result->cancelled || result->violations.above_size == 0 ||
+      result->splits_skipped_valence == 0) {
     if (s && !result->cancelled && params.target_elements > 0)
       s = run_engine(input, params, false, progress, cancel, patches, result);
     return s;
