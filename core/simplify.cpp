@@ -73,6 +73,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr size_t kMaxTets = 40'000'000;  // subdivision refuses to grow beyond this
+constexpr int kMostRedLevels = 12;       // red levels of a run past the valence (2^12 x)
 constexpr uint8_t kMayBeThin = 1;        // below tau_ST
 constexpr uint8_t kMayBeBig = 2;         // above tau_SZ
 
@@ -594,6 +595,472 @@ class Engine {
     }
   }
 
+  // ------------------------------------------------- red levels (Bey's 1:8 split)
+  // Longest-edge bisection joins the two corners opposite a split edge to its
+  // midpoint, so splitting the edges of a region raises the valence of its nodes by
+  // about their number of neighbours: on a coarse input, subdivision within tau_VL
+  // leaves long edges unsplit. Red refinement (Bey, Computing 55, 1995) does not: a
+  // tet whose six edges are split becomes its four corner tets (its shape, half its
+  // size) and four tets of the inner octahedron, and each corner trades its
+  // neighbours for the midpoints of its edges. A run past the valence starts with red
+  // levels. A level marks every edge longer than its size limit (the bisection that
+  // follows splits the ones between half the size and the size), then closes the
+  // marking: a face with two marked edges gets its third, unless that one is frozen.
+  // Each tet then has one of five patterns with one conforming split each: none, one
+  // edge (bisected), two opposite edges (bisected twice), the three edges of a face
+  // (its four triangles, each joined to the opposite corner), all six (red); or, next
+  // to a frozen edge, any other, whose faces are cut by face_triangles() and joined to
+  // the tet's centroid. A tet whose pieces would be flatter than min(tau_ST, itself)
+  // or above their size limit (unless it was) is made red, or if it is red or cannot
+  // be, its edges are frozen; so are edges whose midpoint would exceed the valence
+  // cap, and a tet split but not red around a node that would exceed it, where it
+  // grows, is made red or frozen. The marking is closed again until nothing breaks.
+  // Levels repeat while they split an edge longer than its limit.
+  static constexpr int kEdgeEnds[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  // The three edges of the face opposite each corner.
+  static constexpr int kFaceEdges[4][3] = {{3, 4, 5}, {1, 2, 5}, {0, 2, 4}, {0, 1, 3}};
+
+  struct RedLevel {
+    std::vector<std::array<uint32_t, 2>> ends;  // of each edge, by id
+    std::vector<uint32_t> tet_edge;             // 6 per tet: edge ids, order of kEdgeEnds
+    std::vector<uint32_t> edge_tets_first;      // tets of edge e: edge_tets[first[e], first[e+1])
+    std::vector<uint32_t> edge_tets;
+    std::vector<uint8_t> marked, frozen;
+  };
+
+  // The position of a plan vertex: a vertex id, or V + e for the midpoint of edge e.
+  Vec3 plan_position(const RedLevel& level, uint32_t v) const {
+    const size_t n = pos_.size();
+    if (v < n) return pos_[v];
+    if (v < n + level.ends.size()) {
+      const auto& e = level.ends[v - n];
+      return (pos_[e[0]] + pos_[e[1]]) * 0.5;
+    }
+    const Tet& q = tet_[v - n - level.ends.size()].v;
+    return (pos_[q[0]] + pos_[q[1]] + pos_[q[2]] + pos_[q[3]]) * 0.25;
+  }
+
+  static int tet_mask(const RedLevel& level, uint32_t t) {
+    int mask = 0;
+    for (int k = 0; k < 6; ++k) mask |= level.marked[level.tet_edge[6 * size_t{t} + k]] << k;
+    return mask;
+  }
+  // The pieces of tet t under its marked edges, positively oriented, in plan ids
+  // (V + e: the midpoint of edge e; V + E + t: the centroid of tet t).
+  void red_pieces(const RedLevel& level, uint32_t t, std::vector<Tet>* out) const {
+    out->clear();
+    const uint32_t n = static_cast<uint32_t>(pos_.size());
+    const Tet& v = tet_[t].v;
+    uint32_t mid[6];
+    int mask = 0;
+    for (int k = 0; k < 6; ++k) {
+      const uint32_t e = level.tet_edge[6 * size_t{t} + k];
+      mid[k] = n + e;
+      mask |= level.marked[e] << k;
+    }
+    auto bisect = [&](const Tet& q, uint32_t a, uint32_t b, uint32_t m, Tet* x, Tet* y) {
+      *x = q, *y = q;
+      for (int c = 0; c < 4; ++c) {
+        if (q[c] == b) (*x)[c] = m;
+        if (q[c] == a) (*y)[c] = m;
+      }
+    };
+    auto edge_of = [&](int k, int s) { return v[kEdgeEnds[k][s]]; };
+    if (mask == 0) {
+      out->push_back(v);
+    } else if ((mask & (mask - 1)) == 0) {  // one edge
+      const int k = __builtin_ctz(mask);
+      Tet x, y;
+      bisect(v, edge_of(k, 0), edge_of(k, 1), mid[k], &x, &y);
+      out->push_back(x), out->push_back(y);
+    } else if (mask == 0b100001 || mask == 0b010010 || mask == 0b001100) {  // opposite
+      const int k1 = __builtin_ctz(mask), k2 = 5 - k1;
+      Tet x, y, p[4];
+      bisect(v, edge_of(k1, 0), edge_of(k1, 1), mid[k1], &x, &y);
+      bisect(x, edge_of(k2, 0), edge_of(k2, 1), mid[k2], &p[0], &p[1]);
+      bisect(y, edge_of(k2, 0), edge_of(k2, 1), mid[k2], &p[2], &p[3]);
+      out->insert(out->end(), p, p + 4);
+    } else if (mask == 63) {
+      // Local edge index of corners (i, j).
+      auto k_of = [](int i, int j) {
+        if (i > j) std::swap(i, j);
+        return i == 0 ? j - 1 : i + j;  // (0,1)0 (0,2)1 (0,3)2 (1,2)3 (1,3)4 (2,3)5
+      };
+      for (int i = 0; i < 4; ++i) {
+        Tet c = v;
+        for (int j = 0; j < 4; ++j)
+          if (j != i) c[j] = mid[k_of(i, j)];
+        out->push_back(c);
+      }
+      // The octahedron, cut along the diagonal whose four tets have the best worst
+      // stretch (the first of equals).
+      double best = -std::numeric_limits<double>::infinity();
+      Tet inner[4];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t p = mid[k], q = mid[5 - k];
+        uint32_t ring[4];
+        int r = 0;
+        for (int o = 0; o < 6; ++o)
+          if (o != k && o != 5 - k) ring[r++] = mid[o];
+        // Order the ring into a cycle: consecutive midpoints share a corner.
+        auto share = [&](uint32_t x, uint32_t y) {
+          const auto &ex = level.ends[x - n], &ey = level.ends[y - n];
+          return ex[0] == ey[0] || ex[0] == ey[1] || ex[1] == ey[0] || ex[1] == ey[1];
+        };
+        if (!share(ring[0], ring[1])) std::swap(ring[1], ring[2]);
+        if (!share(ring[1], ring[2])) std::swap(ring[2], ring[3]);
+        Tet cut[4];
+        double worst = std::numeric_limits<double>::infinity();
+        for (int s = 0; s < 4; ++s) {
+          cut[s] = {p, q, ring[s], ring[(s + 1) % 4]};
+          orient_plan(level, &cut[s]);
+          const Tet& c = cut[s];
+          worst = std::min(worst, tet_shape(plan_position(level, c[0]), plan_position(level, c[1]),
+                                            plan_position(level, c[2]), plan_position(level, c[3]))
+                                      .stretch);
+        }
+        if (worst > best) best = worst, std::copy(cut, cut + 4, inner);
+      }
+      out->insert(out->end(), inner, inner + 4);
+    } else if (face_mask_corner(mask) < 4) {  // the three edges of the face opposite d
+      const int d = face_mask_corner(mask);
+      int face[3], r = 0;
+      for (int c = 0; c < 4; ++c)
+        if (c != d) face[r++] = c;
+      auto k_of = [](int i, int j) {
+        if (i > j) std::swap(i, j);
+        return i == 0 ? j - 1 : i + j;
+      };
+      const int a = face[0], b = face[1], c = face[2];
+      Tet x = v;  // corner a
+      x[b] = mid[k_of(a, b)], x[c] = mid[k_of(a, c)];
+      out->push_back(x);
+      x = v;  // corner b
+      x[a] = mid[k_of(a, b)], x[c] = mid[k_of(b, c)];
+      out->push_back(x);
+      x = v;  // corner c
+      x[a] = mid[k_of(a, c)], x[b] = mid[k_of(b, c)];
+      out->push_back(x);
+      x = v;  // the middle triangle: a -> ab, b -> bc, c -> ca keeps the orientation
+      x[a] = mid[k_of(a, b)], x[b] = mid[k_of(b, c)], x[c] = mid[k_of(a, c)];
+      out->push_back(x);
+    } else {
+      // Any other marking (a face with two marked edges, whose third may not be
+      // split): each face is cut by the rule of face_triangles(), the same from both
+      // its tets, and joined to the tet's centroid.
+      const uint32_t g = n + static_cast<uint32_t>(level.ends.size()) + t;
+      for (int d = 0; d < 4; ++d) {
+        const int* f = kFaceEdges[d];
+        int corner[3], r = 0;
+        for (int c = 0; c < 4; ++c)
+          if (c != d) corner[r++] = c;
+        std::array<uint32_t, 3> tri[4];
+        const int count = face_triangles(level, v[corner[0]], v[corner[1]], v[corner[2]],
+                                         {mid[f[0]], mid[f[1]], mid[f[2]]},
+                                         {level.marked[level.tet_edge[6 * size_t{t} + f[0]]] != 0,
+                                          level.marked[level.tet_edge[6 * size_t{t} + f[1]]] != 0,
+                                          level.marked[level.tet_edge[6 * size_t{t} + f[2]]] != 0},
+                                         tri);
+        for (int k = 0; k < count; ++k) {
+          Tet x = {tri[k][0], tri[k][1], tri[k][2], g};
+          orient_plan(level, &x);
+          out->push_back(x);
+        }
+      }
+    }
+  }
+
+  // The corner opposite the face whose three edges are the mask, or 4.
+  static int face_mask_corner(int mask) {
+    for (int d = 0; d < 4; ++d) {
+      const int* f = kFaceEdges[d];
+      if (mask == (1 << f[0] | 1 << f[1] | 1 << f[2])) return d;
+    }
+    return 4;
+  }
+
+  // The triangles of face (a, b, c) (a < b < c by local slot, edges in the order of
+  // kFaceEdges: ab, ac, bc) under its marked edges, whose midpoints are mid: none
+  // marked, itself; one, halved; three, its four triangles; two, the triangle at
+  // their common corner and the rest cut along the shorter diagonal (ties: by ids).
+  // Every rule reads only the face, so both tets of a face cut it alike.
+  int face_triangles(const RedLevel& level, uint32_t a, uint32_t b, uint32_t c,
+                     std::array<uint32_t, 3> mid, std::array<bool, 3> marked,
+                     std::array<uint32_t, 3>* tri) const {
+    const uint32_t ab = mid[0], ac = mid[1], bc = mid[2];
+    const int count = marked[0] + marked[1] + marked[2];
+    if (count == 0) {
+      tri[0] = {a, b, c};
+      return 1;
+    }
+    if (count == 3) {
+      tri[0] = {a, ab, ac}, tri[1] = {ab, b, bc}, tri[2] = {ac, bc, c}, tri[3] = {ab, bc, ac};
+      return 4;
+    }
+    if (count == 1) {
+      if (marked[0]) tri[0] = {a, ab, c}, tri[1] = {ab, b, c};
+      if (marked[1]) tri[0] = {a, b, ac}, tri[1] = {ac, b, c};
+      if (marked[2]) tri[0] = {a, b, bc}, tri[1] = {a, bc, c};
+      return 2;
+    }
+    // Two: corner o between midpoints m1 (on o-x) and m2 (on o-y).
+    uint32_t o, x, y, m1, m2;
+    if (!marked[2])
+      o = a, x = b, y = c, m1 = ab, m2 = ac;  // ab, ac
+    else if (!marked[1])
+      o = b, x = a, y = c, m1 = ab, m2 = bc;  // ab, bc
+    else
+      o = c, x = a, y = b, m1 = ac, m2 = bc;  // ac, bc
+    tri[0] = {o, m2, m1};
+    // Diagonal x-m2 or m1-y.
+    const double dx = squared_length(plan_position(level, x) - plan_position(level, m2));
+    const double dy = squared_length(plan_position(level, y) - plan_position(level, m1));
+    if (dx < dy || (dx == dy && x < y)) {
+      tri[1] = {x, m1, m2}, tri[2] = {x, m2, y};
+    } else {
+      tri[1] = {x, m1, y}, tri[2] = {m1, m2, y};
+    }
+    return 3;
+  }
+
+  void orient_plan(const RedLevel& level, Tet* t) const {
+    const Vec3 a = plan_position(level, (*t)[0]);
+    if (dot(cross(plan_position(level, (*t)[1]) - a, plan_position(level, (*t)[2]) - a),
+            plan_position(level, (*t)[3]) - a) < 0)
+      std::swap((*t)[2], (*t)[3]);
+  }
+
+  // Builds the level's edges from the tets (ids by sorted end pairs: deterministic).
+  void build_level_edges(RedLevel* level) const {
+    const size_t tets = tet_.size();
+    std::vector<std::pair<uint64_t, uint32_t>> slots(6 * tets);
+    for (uint32_t t = 0; t < tets; ++t)
+      for (int k = 0; k < 6; ++k) {
+        uint64_t a = tet_[t].v[kEdgeEnds[k][0]], b = tet_[t].v[kEdgeEnds[k][1]];
+        if (a > b) std::swap(a, b);
+        slots[6 * size_t{t} + k] = {a << 32 | b, 6 * t + k};
+      }
+    std::sort(slots.begin(), slots.end());
+    level->ends.clear();
+    level->tet_edge.assign(6 * tets, 0);
+    level->edge_tets.resize(slots.size());
+    level->edge_tets_first.clear();
+    for (size_t s = 0; s < slots.size(); ++s) {
+      if (s == 0 || slots[s].first != slots[s - 1].first) {
+        level->edge_tets_first.push_back(static_cast<uint32_t>(s));
+        level->ends.push_back({static_cast<uint32_t>(slots[s].first >> 32),
+                               static_cast<uint32_t>(slots[s].first & 0xffffffffu)});
+      }
+      level->tet_edge[slots[s].second] = static_cast<uint32_t>(level->ends.size() - 1);
+      level->edge_tets[s] = slots[s].second / 6;
+    }
+    level->edge_tets_first.push_back(static_cast<uint32_t>(slots.size()));
+  }
+
+  // One red level (see above); false if it split nothing.
+  bool red_level(SimplifyResult* result) {
+    RedLevel level;
+    build_level_edges(&level);
+    const size_t edges = level.ends.size(), tets = tet_.size();
+    const uint32_t n = static_cast<uint32_t>(pos_.size());
+    // Each edge's limit: the smallest of its tets'.
+    std::vector<double> limit(edges, std::numeric_limits<double>::infinity());
+    for (uint32_t t = 0; t < tets; ++t) {
+      const double l = uniform_sizing_ ? params_.sizing.uniform : size_limit(t);
+      for (int k = 0; k < 6; ++k) {
+        double& x = limit[level.tet_edge[6 * size_t{t} + k]];
+        x = std::min(x, l);
+      }
+    }
+    level.marked.assign(edges, 0);
+    level.frozen.assign(edges, 0);
+    size_t marked = 0;
+    for (size_t e = 0; e < edges; ++e) {
+      const auto& ab = level.ends[e];
+      if (!kept_edges_.empty() && std::binary_search(kept_edges_.begin(), kept_edges_.end(),
+                                                     std::make_pair(ab[0], ab[1]))) {
+        level.frozen[e] = 1;
+        continue;
+      }
+      if (squared_length(pos_[ab[0]] - pos_[ab[1]]) > limit[e] * limit[e])
+        level.marked[e] = 1, ++marked;
+    }
+    if (marked == 0) return false;
+    std::vector<uint8_t> queued(tets, 0);
+    std::vector<uint32_t> work;
+    auto push_edge_tets = [&](uint32_t e) {
+      for (uint32_t s = level.edge_tets_first[e]; s < level.edge_tets_first[e + 1]; ++s) {
+        const uint32_t t = level.edge_tets[s];
+        if (!queued[t]) queued[t] = 1, work.push_back(t);
+      }
+    };
+    auto mark = [&](uint32_t e) {
+      if (level.marked[e] || level.frozen[e]) return;
+      level.marked[e] = 1;
+      push_edge_tets(e);
+    };
+    auto freeze = [&](uint32_t e) {
+      if (level.frozen[e]) return;
+      level.frozen[e] = 1;
+      if (level.marked[e]) level.marked[e] = 0, push_edge_tets(e);
+    };
+    // Tet t made red if none of its edges is frozen, else none of them split.
+    auto red_or_none = [&](uint32_t t) {
+      const uint32_t* te = &level.tet_edge[6 * size_t{t}];
+      bool can_red = true;
+      for (int k = 0; k < 6; ++k) can_red = can_red && !level.frozen[te[k]];
+      for (int k = 0; k < 6; ++k) can_red ? mark(te[k]) : freeze(te[k]);
+    };
+    for (uint32_t e = 0; e < edges; ++e)
+      if (level.marked[e]) push_edge_tets(e);
+    std::vector<uint32_t> valence_before(n, 0);
+    for (const auto& ab : level.ends) ++valence_before[ab[0]], ++valence_before[ab[1]];
+    std::vector<int8_t> passed(tets, -1);  // the mask whose pieces last passed the shape rules
+    std::vector<uint32_t> valence_after;
+    std::vector<uint64_t> plan_edges;
+    std::vector<Tet> pieces;
+    constexpr int kMostRounds = 64;  // (the bundled motor at size 8: 6 and 9)
+    for (int round = 0;; ++round) {
+      if (round == kMostRounds || cancelled()) return false;
+      // Close the marking: a face with two marked edges gets its third.
+      while (!work.empty()) {
+        const uint32_t t = work.back();
+        work.pop_back();
+        queued[t] = 0;
+        const uint32_t* te = &level.tet_edge[6 * size_t{t}];
+        for (const auto& f : kFaceEdges) {
+          const uint32_t e0 = te[f[0]], e1 = te[f[1]], e2 = te[f[2]];
+          if (level.marked[e0] + level.marked[e1] + level.marked[e2] == 2)
+            mark(!level.marked[e0] ? e0 : !level.marked[e1] ? e1 : e2);
+        }
+      }
+      // Shapes. A tet split but not red whose pieces fail is made red if it can be (a
+      // red split's corner pieces are its parent's shape, and its inner ones the best
+      // of three); a red one that fails is not split.
+      bool changed = false;
+      for (uint32_t t = 0; t < tets; ++t) {
+        const int mask = tet_mask(level, t);
+        if (mask == 0 || mask == passed[t]) continue;
+        red_pieces(level, t, &pieces);
+        const TetRecord& r = tet_[t];
+        const double floor = std::min(params_.min_stretch, r.stretch);
+        bool ok = true;
+        for (const Tet& c : pieces) {
+          const Vec3 p0 = plan_position(level, c[0]), p1 = plan_position(level, c[1]),
+                     p2 = plan_position(level, c[2]), p3 = plan_position(level, c[3]);
+          const TetShape shape = tet_shape(p0, p1, p2, p3);
+          // (The margin takes the rounding of a corner piece's stretch, its parent's.)
+          if (shape.stretch < floor * (1 - 1e-9) ||
+              (!(r.allowance & kMayBeBig) && shape.size > size_limit(p0, p1, p2, p3, r.material)))
+            ok = false;
+        }
+        if (ok) {
+          passed[t] = static_cast<int8_t>(mask);
+        } else {
+          if (mask == 63) {
+            for (int k = 0; k < 6; ++k) freeze(level.tet_edge[6 * size_t{t} + k]);
+          } else {
+            red_or_none(t);
+          }
+          changed = true;
+        }
+      }
+      if (changed) continue;
+      // Valences, from the planned pieces' edges. A node past its cap may not gain
+      // neighbours: it gains one in a tet split but not red (a red tet's corner only
+      // trades its neighbours for the midpoints of its edges), so those tets are made
+      // red, or not split. A midpoint or centroid past its cap is not made.
+      plan_edges.clear();
+      for (uint32_t t = 0; t < tets; ++t) {
+        red_pieces(level, t, &pieces);
+        for (const Tet& c : pieces)
+          for (const auto& k : kEdgeEnds) {
+            uint64_t a = c[k[0]], b = c[k[1]];
+            if (a > b) std::swap(a, b);
+            plan_edges.push_back(a << 32 | b);
+          }
+      }
+      sort_unique(plan_edges);
+      valence_after.assign(n + edges + tets, 0);
+      for (uint64_t ab : plan_edges) ++valence_after[ab >> 32], ++valence_after[ab & 0xffffffffu];
+      for (uint32_t v = 0; v < n; ++v) {
+        if (valence_after[v] <= valence_before[v] || valence_after[v] <= valence_cap(pos_[v]))
+          continue;
+        for (uint32_t t : star_[v]) {
+          const int mask = tet_mask(level, t);
+          if (mask != 0 && mask != 63) red_or_none(t), changed = true;
+        }
+      }
+      for (uint32_t e = 0; e < edges; ++e)
+        if (level.marked[e] && valence_after[n + e] > valence_cap(plan_position(level, n + e)))
+          freeze(e), changed = true;
+      for (uint32_t t = 0; t < tets; ++t)
+        if (valence_after[n + edges + t] > valence_cap(plan_position(level, n + edges + t))) {
+          for (int k = 0; k < 6; ++k) freeze(level.tet_edge[6 * size_t{t} + k]);
+          changed = true;
+        }
+      if (!changed) break;
+    }
+    // A level that splits no edge longer than its limit (only edges the marking's
+    // closure added, around frozen ones) would only refine; the levels end.
+    bool splits_long = false;
+    for (size_t e = 0; e < edges && !splits_long; ++e)
+      splits_long = level.marked[e] && squared_length(pos_[level.ends[e][0]] -
+                                                      pos_[level.ends[e][1]]) > limit[e] * limit[e];
+    if (!splits_long) return false;
+    // Apply: the pieces in plan ids first (plan_position() reads pos_ as it is).
+    std::vector<TetRecord> next;
+    std::vector<uint8_t> is_piece;
+    for (uint32_t t = 0; t < tets; ++t) {
+      red_pieces(level, t, &pieces);
+      for (const Tet& c : pieces) {
+        next.push_back(tet_[t]);  // material and allowance: a piece may break what t broke
+        next.back().v = c;
+        is_piece.push_back(pieces.size() > 1);
+      }
+    }
+    if (next.size() > kMaxTets) return false;       // (the bisection stops at it with an error)
+    std::vector<uint32_t> new_id(edges + tets, 0);  // of midpoints, then centroids
+    std::vector<Vec3> added;
+    for (uint32_t e = 0; e < edges; ++e)
+      if (level.marked[e]) {
+        new_id[e] = static_cast<uint32_t>(n + added.size());
+        added.push_back(plan_position(level, n + e));
+      }
+    if (added.empty()) return false;
+    const size_t splits = added.size();
+    for (const TetRecord& r : next)
+      for (uint32_t v : r.v)
+        if (v >= n + edges && new_id[v - n] == 0) {
+          new_id[v - n] = static_cast<uint32_t>(n + added.size());
+          added.push_back(plan_position(level, v));
+        }
+    // Centroids are numbered in the order of their first piece, which is tet order.
+    pos_.insert(pos_.end(), added.begin(), added.end());
+    mark_.resize(pos_.size(), 0);
+    input_valence_.resize(pos_.size(), 0);
+    for (size_t k = 0; k < next.size(); ++k) {
+      TetRecord& r = next[k];
+      for (uint32_t& v : r.v)
+        if (v >= n) v = new_id[v - n];
+      if (is_piece[k])
+        r.stretch = tet_shape(pos_[r.v[0]], pos_[r.v[1]], pos_[r.v[2]], pos_[r.v[3]]).stretch;
+    }
+    tet_.swap(next);
+    star_.assign(pos_.size(), {});
+    for (uint32_t t = 0; t < tet_.size(); ++t)
+      for (uint32_t v : tet_[t].v) star_[v].push_back(t);
+    result->splits += splits;
+    result->red_splits += splits;
+    result->red_centroids += added.size() - splits;
+    ++result->red_levels;
+    for (uint32_t v = 0; v < n + edges + tets; ++v) {
+      const bool grew = v >= n || valence_after[v] > valence_before[v];
+      if (valence_after[v] > params_.max_valence && grew) ++result->splits_past_valence;
+    }
+    return true;
+  }
+
   Status subdivide(SimplifyResult* result) {
     // Refuse sizes that would explode the mesh before doing any work. The estimate
     // assumes every split is made; the valence and stretch rules refuse many (box2
@@ -609,8 +1076,12 @@ class Engine {
                            " would subdivide the mesh into " + count + " tets (limit " +
                            std::to_string(kMaxTets) + "); choose a larger size or --no-subdivide");
     }
+    if (past_valence_)
+      for (int level = 0; level < kMostRedLevels && red_level(result); ++level) {
+      }
     std::vector<uint32_t> valence_now(pos_.size());
-    for (uint32_t v = 0; v < pos_.size(); ++v) valence_now[v] = input_valence_[v];
+    for (uint32_t v = 0; v < pos_.size(); ++v)
+      valence_now[v] = result->red_levels > 0 ? valence(v) : input_valence_[v];
 
     std::vector<Split> heap;
     std::vector<uint32_t> nb;
@@ -2408,7 +2879,10 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   // Subdivision keeps every node within tau_VL, which on a coarse, graded input leaves
   // long edges unsplit (longest-edge bisection adds a neighbour to every node opposite
   // a split edge), and so tets above the size. If the run leaves such tets, another
-  // run lets subdivision take nodes up to twice tau_VL; edge removals, then collapses
+  // run subdivides first by red levels (Engine::red_level(): a red tet's corners gain
+  // no neighbours), then by bisection, and lets both take nodes up to twice tau_VL
+  // (in a trial on the bundled motor at size 12, red levels within tau_VL left 3,068
+  // tets above the size; with the cap doubled, none); edge removals, then collapses
   // in the links of the nodes it took past both tau_VL and their input valence, bring
   // those back before the priority order starts. If one is left, that run is given up
   // and made again with the nodes left pinned (subdivision keeps them within tau_VL;
@@ -2451,6 +2925,8 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
     past_seconds += run_seconds(past);
   }
   p.nodes = past.nodes_past_valence;
+  p.red_levels = past.red_levels;
+  p.red_splits = past.red_splits;
   p.nodes_left = past.nodes_left_past_valence;
   if (!s2 || past.cancelled) {  // the first result stands, cancelled if the other was
     p.stopped = true;
@@ -2519,19 +2995,24 @@ std::string past_valence_summary(const SimplifyResult& result) {
   if (!p.tried) return "";
   const std::string within = "subdivision within the valence threshold left " +
                              std::to_string(p.above_size_within) + " tets above the size; ";
-  std::string past = p.runs == 1 ? "a run whose subdivision "
-                                 : std::to_string(p.runs) + " runs whose subdivision ";
-  past += p.nodes > 0 ? "took " + std::to_string(p.nodes) + " nodes past the threshold"
-                      : std::string("could pass the threshold");
-  if (p.runs > 1)
-    past += (p.nodes > 0 ? " in the last" : std::string()) + " (each but the first with the " +
-            "nodes the one before could not bring back kept within it),";
-  past += " ";
+  std::string subdivision;  // what the last run's subdivision did
+  if (p.red_levels > 0)
+    subdivision =
+        "split " + std::to_string(p.red_splits) + " edges in " + std::to_string(p.red_levels) +
+        (p.red_levels == 1 ? " red level" : " red levels") + " (Bey's 1:8 refinement) and ";
+  subdivision += p.nodes > 0 ? "took " + std::to_string(p.nodes) + " nodes past the threshold"
+                             : std::string("could pass the threshold");
+  const std::string past =
+      p.runs == 1 ? "a run whose subdivision " + subdivision + " "
+                  : std::to_string(p.runs) +
+                        " runs, each but the first with the nodes the one before could not bring "
+                        "back kept within the threshold; the last one's subdivision " +
+                        subdivision + ", and it ";
   if (p.stopped) return within + past + "stopped before its end";
   if (p.nodes_left > 0)
-    return within + past + (p.runs == 1 ? "was" : "were") +
-           " given up: " + std::to_string(p.nodes_left) + " nodes could not be brought back" +
-           (p.runs == 1 ? "" : " in the last");
+    return within + past + (p.runs == 1 ? "was given up: " : "was given up as the others: ") +
+           std::to_string(p.nodes_left) + (p.nodes_left == 1 ? " node" : " nodes") +
+           " could not be brought back";
   const std::string back =
       p.nodes == 0 ? std::string()
       : p.taken    ? "brought them all back by " + std::to_string(result.valence_edge_removals) +

@@ -36,9 +36,10 @@ struct SimplifyParams {
   uint32_t max_valence = 25;  // tau_VL, >= 4
   SizingField sizing;         // tau_SZ per tet (see sizing.h); must set some limit
   bool subdivide = true;
-  // Where the run leaves tets above the size, a second run whose subdivision may take
-  // nodes past tau_VL, for edge removals and collapses to bring back before the
-  // priority order starts (see simplify()); off: never.
+  // Where the run leaves tets above the size, a second run whose subdivision (red
+  // levels, then bisection) may take nodes past tau_VL, for edge removals and
+  // collapses to bring back before the priority order starts (see simplify()); off:
+  // never.
   bool subdivide_past_valence = true;
   size_t target_elements = 0;          // stop once at most this many tets remain; 0: run to the end
   double crease_angle_degrees = 40.0;  // for the vertex classification (classify.h)
@@ -99,11 +100,13 @@ struct ThresholdViolations {
 // The runs of simplify() (see there) whose subdivision may take nodes past tau_VL.
 struct PastValence {
   bool tried = false;
-  bool taken = false;            // the last such run is the result
-  bool stopped = false;          // cancelled, or an error (more tets than allowed, say)
-  int runs = 0;                  // made, each with the nodes the one before left pinned
-  size_t pinned = 0;             // nodes pinned in the last
-  size_t nodes = 0;              // nodes the last took past both tau_VL and their input valence
+  bool taken = false;     // the last such run is the result
+  bool stopped = false;   // cancelled, or an error (more tets than allowed, say)
+  int runs = 0;           // made, each with the nodes the one before left pinned
+  size_t pinned = 0;      // nodes pinned in the last
+  size_t nodes = 0;       // nodes the last took past both tau_VL and their input valence
+  size_t red_levels = 0;  // red levels of the last, and edges they split
+  size_t red_splits = 0;
   size_t nodes_left = 0;         // of them, not brought back: it was given up
   size_t above_size_within = 0;  // tets above the size the first run left
   size_t above_size_past = 0;    // and the last run past the valence (if not given up)
@@ -126,6 +129,11 @@ struct SimplifyResult {
   // (the history's first), that brought them back; nodes left past both (0 in a result
   // simplify() returns, unless cancelled).
   size_t splits_past_valence = 0;
+  // Red levels of a run past tau_VL (see simplify()): levels made, edges they split
+  // (in `splits` too), and tets they cut from their centroid.
+  size_t red_levels = 0;
+  size_t red_splits = 0;
+  size_t red_centroids = 0;
   size_t nodes_past_valence = 0;
   size_t valence_edge_removals = 0;
   size_t valence_collapses = 0;

@@ -798,12 +798,16 @@ TEST(Cli, SimplifySaysWhatSubdivisionPastTheValenceDid) {
       << r.output;
   EXPECT_NE(r.output.find(" tets below the stretch, 0 above the size, "), std::string::npos)
       << r.output;
+  EXPECT_NE(r.output.find("a run whose subdivision split "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" edges in 1 red level (Bey's 1:8 refinement) and took "),
+            std::string::npos)
+      << r.output;
   // --within-valence: one run, and its tets above the size.
   r = run("simplify " + motor + " -o " + out + " --size 18 --tolerance 0.05 --within-valence");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("past the valence"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find(" 0 above the size, "), std::string::npos) << r.output;
-  r = run("simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05");
+  r = run("simplify " + motor + " -o " + out + " --size 18 --valence 18 --tolerance 0.05");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("was given up: "), std::string::npos) << r.output;
 }
@@ -842,11 +846,13 @@ TEST(Cli, LodSaysWhatTheLevelBreaks) {
 
 // The simplifier's candidate kernels run on AVX2 where the processor has it, else on
 // the baseline instruction set (forced by TETLOD_NO_AVX2): the two must agree bit for
-// bit (same output mesh, same history), with a uniform size and with a size field.
+// bit (same output mesh, same history), with a uniform size (where a run past the
+// valence is the result) and with a size field (within it).
 TEST(Cli, SimplifyKernelsAgreeBitForBit) {
   const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
-  const char* settings[] = {"--size 12 --tolerance 0.05",
-                            "--size 12 --tolerance 0.05 --size-field axis:0,0,0,0,0,1,3,0.3"};
+  const char* settings[] = {
+      "--size 12 --tolerance 0.05",
+      "--size 12 --tolerance 0.05 --size-field axis:0,0,0,0,0,1,3,0.3 --within-valence"};
   int n = 0;
   for (const char* flags : settings) {
     std::string out[2], history[2];
@@ -866,14 +872,17 @@ TEST(Cli, SimplifyKernelsAgreeBitForBit) {
       const std::string size_line =
           n == 0 ? "thresholds: size 12, stretch" : "thresholds: size 12, less where the local";
       EXPECT_NE(r.output.find(size_line), std::string::npos) << r.output;
-      // The bundled motor is coarse: some of its long edges cannot be split within the
-      // thresholds, and the output says so, with both reasons.
-      EXPECT_NE(
-          r.output.find(
-              "why: these tets hold edges longer than half the size that subdivision left unsplit"),
-          std::string::npos)
-          << r.output;
-      EXPECT_NE(r.output.find("would have raised a node's valence"), std::string::npos);
+      if (n == 0) {
+        EXPECT_NE(r.output.find(", so it is the result"), std::string::npos) << r.output;
+      } else {
+        // The bundled motor is coarse: within the valence, some of its long edges cannot
+        // be split, and the output says so, with both reasons.
+        EXPECT_NE(r.output.find("why: these tets hold edges longer than half the size that "
+                                "subdivision left unsplit"),
+                  std::string::npos)
+            << r.output;
+        EXPECT_NE(r.output.find("would have raised a node's valence"), std::string::npos);
+      }
     }
     const std::string mesh = file_bytes(out[0]);
     EXPECT_GT(mesh.size(), 1000u);
