@@ -26,8 +26,9 @@ const char* const kSimplifyFlagsHelp =
     "                    taken at its centroid (a box holds the tets whose centroid it holds)\n"
     "  --no-subdivide    skip the subdivision step\n"
     "  --within-valence  one run only: where tets stay above the size, no other run whose\n"
-    "                    subdivision may take nodes past the valence for edge removals and\n"
-    "                    collapses to bring back (faster; it may leave more tets above the size)\n"
+    "                    subdivision (red levels, then bisection) may take nodes past the\n"
+    "                    valence for edge removals and collapses to bring back (faster; it\n"
+    "                    may leave more tets above the size)\n"
     "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
 
 const char* const kWriteFlagsHelp =
