@@ -1,5 +1,5 @@
 // The simplifier's fuzz harness (fuzz/fuzz_simplify.cpp) on its seeds, in every test
-// run (and under ASan + UBSan in CI): the small bundled and test meshes behind four
+// run (and under ASan + UBSan in CI): the small bundled and test meshes behind five
 // sets of threshold bytes. It also writes them, as the fuzzer's seeds, to
 // tests/out/fuzz_simplify_seeds/ in the build directory. So the harness's
 // checks (positive tets, no created violation, regions and interfaces kept, no bodies
@@ -37,7 +37,10 @@ TEST(FuzzSeeds, SimplifyHarnessHoldsOnEverySeed) {
   const unsigned char params[][8] = {{0x40, 0x20, 0x15, 0x02, 0x01, 0x00, 0x00, 0x1e},
                                      {0xff, 0x05, 0x10, 0x00, 0x00, 0x00, 0x00, 0x1e},
                                      {0x10, 0x30, 0x19, 0x03, 0x07, 0x80, 0x00, 0x1e},
-                                     {0x80, 0x20, 0x15, 0x01, 0x0e, 0x40, 0x30, 0xa0}};
+                                     {0x80, 0x20, 0x15, 0x01, 0x0e, 0x40, 0x30, 0xa0},
+                                     // valence 6, the smallest size: tets stay above
+                                     // it, and runs past the valence make red levels
+                                     {0x00, 0x1e, 0x02, 0x02, 0x01, 0x28, 0x00, 0x1e}};
   const std::string seeds = std::string(TETLOD_TEST_OUTPUT_DIR) + "/fuzz_simplify_seeds";
   std::filesystem::create_directories(seeds);
   int seed_count = 0;
@@ -55,7 +58,7 @@ TEST(FuzzSeeds, SimplifyHarnessHoldsOnEverySeed) {
   }
   // Every seed went through the whole pipeline (none was refused by the reader, none
   // too large for the harness, none stopped by a threshold check).
-  EXPECT_EQ(checked_runs, 28);
+  EXPECT_EQ(checked_runs, 35);
 }
 
 }  // namespace
