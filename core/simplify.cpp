@@ -681,15 +681,10 @@ class Engine {
       bisect(y, edge_of(k2, 0), edge_of(k2, 1), mid[k2], &p[2], &p[3]);
       out->insert(out->end(), p, p + 4);
     } else if (mask == 63) {
-      // Local edge index of corners (i, j).
-      auto k_of = [](int i, int j) {
-        if (i > j) std::swap(i, j);
-        return i == 0 ? j - 1 : i + j;  // (0,1)0 (0,2)1 (0,3)2 (1,2)3 (1,3)4 (2,3)5
-      };
       for (int i = 0; i < 4; ++i) {
         Tet c = v;
         for (int j = 0; j < 4; ++j)
-          if (j != i) c[j] = mid[k_of(i, j)];
+          if (j != i) c[j] = mid[local_edge(i, j)];
         out->push_back(c);
       }
       // The octahedron, cut along the diagonal whose four tets have the best worst
@@ -727,22 +722,18 @@ class Engine {
       int face[3], r = 0;
       for (int c = 0; c < 4; ++c)
         if (c != d) face[r++] = c;
-      auto k_of = [](int i, int j) {
-        if (i > j) std::swap(i, j);
-        return i == 0 ? j - 1 : i + j;
-      };
       const int a = face[0], b = face[1], c = face[2];
       Tet x = v;  // corner a
-      x[b] = mid[k_of(a, b)], x[c] = mid[k_of(a, c)];
+      x[b] = mid[local_edge(a, b)], x[c] = mid[local_edge(a, c)];
       out->push_back(x);
       x = v;  // corner b
-      x[a] = mid[k_of(a, b)], x[c] = mid[k_of(b, c)];
+      x[a] = mid[local_edge(a, b)], x[c] = mid[local_edge(b, c)];
       out->push_back(x);
       x = v;  // corner c
-      x[a] = mid[k_of(a, c)], x[b] = mid[k_of(b, c)];
+      x[a] = mid[local_edge(a, c)], x[b] = mid[local_edge(b, c)];
       out->push_back(x);
       x = v;  // the middle triangle: a -> ab, b -> bc, c -> ca keeps the orientation
-      x[a] = mid[k_of(a, b)], x[b] = mid[k_of(b, c)], x[c] = mid[k_of(a, c)];
+      x[a] = mid[local_edge(a, b)], x[b] = mid[local_edge(b, c)], x[c] = mid[local_edge(a, c)];
       out->push_back(x);
     } else {
       // Any other marking (a face with two marked edges, whose third may not be
@@ -768,6 +759,12 @@ class Engine {
         }
       }
     }
+  }
+
+  // The index in kEdgeEnds of the edge of corners i and j (i != j).
+  static int local_edge(int i, int j) {
+    if (i > j) std::swap(i, j);
+    return i == 0 ? j - 1 : i + j;  // (0,1)0 (0,2)1 (0,3)2 (1,2)3 (1,3)4 (2,3)5
   }
 
   // The corner opposite the face whose three edges are the mask, or 4.
