@@ -105,9 +105,9 @@ struct PastValence {
   int runs = 0;           // made, each with the nodes the one before left pinned
   size_t pinned = 0;      // nodes pinned in the last
   size_t nodes = 0;       // nodes the last took past both tau_VL and their input valence
+  size_t nodes_left = 0;  // of them, not brought back: it was given up
   size_t red_levels = 0;  // red levels of the last, and edges they split
   size_t red_splits = 0;
-  size_t nodes_left = 0;         // of them, not brought back: it was given up
   size_t above_size_within = 0;  // tets above the size the first run left
   size_t above_size_past = 0;    // and the last run past the valence (if not given up)
   double seconds_other = 0;      // the runs that are not the result
@@ -129,15 +129,15 @@ struct SimplifyResult {
   // (the history's first), that brought them back; nodes left past both (0 in a result
   // simplify() returns, unless cancelled).
   size_t splits_past_valence = 0;
+  size_t nodes_past_valence = 0;
+  size_t valence_edge_removals = 0;
+  size_t valence_collapses = 0;
+  size_t nodes_left_past_valence = 0;
   // Red levels of a run past tau_VL (see simplify()): levels made, edges they split
   // (in `splits` too), and tets they cut from their centroid.
   size_t red_levels = 0;
   size_t red_splits = 0;
   size_t red_centroids = 0;
-  size_t nodes_past_valence = 0;
-  size_t valence_edge_removals = 0;
-  size_t valence_collapses = 0;
-  size_t nodes_left_past_valence = 0;
   PastValence past_valence;
   // Long edges left unsplit (not in splits_skipped) because they are edges of an input
   // surface group's triangles inside a material, which the run keeps as they are.
