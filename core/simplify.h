@@ -124,7 +124,8 @@ struct SimplifyResult {
   size_t splits_skipped = 0;  // long edges left unsplit because a split would break a threshold:
   size_t splits_skipped_valence = 0;  // of them, those only a node's valence stopped (the
                                       // others: a piece's stretch or size)
-  // Subdivision past tau_VL (see simplify()): splits that took a node past it; nodes
+  // Subdivision past tau_VL (see simplify()): splits that took a node past it (and the
+  // nodes a red level took past it, as a level splits many edges at once); nodes
   // then past both tau_VL and their input valence; the edge removals, then collapses
   // (the history's first), that brought them back; nodes left past both (0 in a result
   // simplify() returns, unless cancelled).

@@ -262,9 +262,10 @@ SimplifyResult simplify_motor(double size, bool past_valence, uint32_t valence =
 }
 
 // At size 18 the bundled motor (tets up to 20.4, nodes of up to 37 neighbours)
-// keeps 59 tets above the size if subdivision keeps every node within the valence.
-// Past it, edge removals and the history's first collapses bring every node it took
-// past both 25 and its input valence back, and no tet stays above the size.
+// keeps 55 tets above the size if subdivision keeps every node within the valence.
+// Past it (red levels, then bisection), edge removals and the history's first
+// collapses bring every node it took past both 25 and its input valence back, and no
+// tet stays above the size.
 TEST(SimplifyPastValence, BringsEveryNodeBackBeforeThePriorityOrder) {
   const SimplifyResult within = simplify_motor(18, false);
   const SimplifyResult past = simplify_motor(18, true);
