@@ -65,6 +65,10 @@ Status check_params(const SimplifyParams& p) {
         p.crease_angle_degrees < 180)) {
     return Status::error("crease angle must lie between 0 and 180 degrees");
   }
+  if (p.past_valence_tets_factor < 1) {
+    return Status::error("past_valence_tets_factor " + std::to_string(p.past_valence_tets_factor) +
+                         " must be >= 1");
+  }
   return Status();
 }
 
@@ -417,7 +421,10 @@ class Engine {
     }
     if (params_.subdivide) {
       Status s = subdivide(result);
-      if (!s) return s;
+      if (!s) {
+        result->seconds_subdivide = seconds_since(start);
+        return s;
+      }
     }
     if (result->splits_past_valence > 0 && !cancelled()) shed_valence_by_flips(result);
     if (result->splits > 0) reorder_for_locality();  // new vertices were appended
@@ -1016,7 +1023,10 @@ class Engine {
         is_piece.push_back(pieces.size() > 1);
       }
     }
-    if (next.size() > kMaxTets) return false;       // (the bisection stops at it with an error)
+    if (next.size() > max_tets_) {  // subdivide() stops with an error
+      red_over_max_ = true;
+      return false;
+    }
     std::vector<uint32_t> new_id(edges + tets, 0);  // of midpoints, then centroids
     std::vector<Vec3> added;
     for (uint32_t e = 0; e < edges; ++e)
@@ -1058,6 +1068,16 @@ class Engine {
     return true;
   }
 
+  Status too_many_tets() const {
+    if (max_tets_ < kMaxTets)
+      return Status::error("its subdivision passed " + std::to_string(max_tets_) + " tets, " +
+                           std::to_string(params_.past_valence_tets_factor) +
+                           " times the first run's");
+    return Status::error("size " + number(params_.sizing.smallest_size()) +
+                         ": subdivision exceeded " + std::to_string(kMaxTets) +
+                         " tets; choose a larger size or --no-subdivide");
+  }
+
   Status subdivide(SimplifyResult* result) {
     // Refuse sizes that would explode the mesh before doing any work. The estimate
     // assumes every split is made; the valence and stretch rules refuse many (box2
@@ -1076,6 +1096,7 @@ class Engine {
     if (past_valence_)
       for (int level = 0; level < kMostRedLevels && red_level(result); ++level) {
       }
+    if (red_over_max_) return too_many_tets();
     std::vector<uint32_t> valence_now(pos_.size());
     for (uint32_t v = 0; v < pos_.size(); ++v)
       valence_now[v] = result->red_levels > 0 ? valence(v) : input_valence_[v];
@@ -1146,11 +1167,7 @@ class Engine {
         ++result->splits_skipped_valence;
         continue;
       }
-      if (tet_.size() + ring.size() > kMaxTets) {
-        return Status::error("size " + number(params_.sizing.smallest_size()) +
-                             ": subdivision exceeded " + std::to_string(kMaxTets) +
-                             " tets; choose a larger size or --no-subdivide");
-      }
+      if (tet_.size() + ring.size() > max_tets_) return too_many_tets();
 
       const uint32_t mid = static_cast<uint32_t>(pos_.size());
       pos_.push_back(m);
@@ -2728,8 +2745,10 @@ class Engine {
   const SimplifyParams& params_;
   const ProgressCallback& progress_;
   const std::atomic<bool>* cancel_;
-  const bool past_valence_;                  // subdivision may take nodes past tau_VL
-  const std::vector<PositionKey>* pinned_;   // but not these
+  const bool past_valence_;                 // subdivision may take nodes past tau_VL
+  const std::vector<PositionKey>* pinned_;  // but not these
+  size_t max_tets_ = kMaxTets;
+  bool red_over_max_ = false;                // a red level would have made more than max_tets_
   const SurfacePatches* patches_ = nullptr;  // the input's surface groups, or none
   // The edges (a < b, sorted) of patches_' faces inside a material, before
   // subdivision (whose splits keep the ids of the vertices there).
@@ -2737,6 +2756,9 @@ class Engine {
 
  public:
   void set_patches(const SurfacePatches* patches) { patches_ = patches; }
+  // The most tets subdivision may make (a run past the valence: a multiple of the
+  // first run's; see ::simplify()).
+  void set_max_tets(size_t max_tets) { max_tets_ = max_tets; }
   // The nodes bring_back_valences() left past the valence, by position.
   const std::vector<PositionKey>& left_past() const { return left_past_; }
 
@@ -2850,10 +2872,11 @@ namespace {
 Status run_engine(const TetMesh& input, const SimplifyParams& params, bool past_valence,
                   const ProgressCallback& progress, const std::atomic<bool>* cancel,
                   const SurfacePatches* patches, SimplifyResult* result,
-                  std::vector<PositionKey>* pinned = nullptr) {
+                  std::vector<PositionKey>* pinned = nullptr, size_t max_tets = kMaxTets) {
   *result = SimplifyResult{};
   Engine engine(input, params, progress, cancel, past_valence, pinned);
   engine.set_patches(patches);
+  engine.set_max_tets(max_tets);
   const Status s = engine.run(result);
   if (pinned) {
     pinned->insert(pinned->end(), engine.left_past().begin(), engine.left_past().end());
@@ -2909,13 +2932,17 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   PastValence p;
   p.tried = true;
   p.above_size_within = result->violations.above_size;
+  // A run past the valence may subdivide into at most params.past_valence_tets_factor
+  // times the tets of the first run's subdivision.
+  const size_t max_tets = static_cast<size_t>(std::min<double>(
+      kMaxTets, double(params.past_valence_tets_factor) * double(result->base.tet_count())));
   SimplifyResult past;
   std::vector<PositionKey> pinned;
   Status s2;
   double past_seconds = 0;  // of the runs past the valence before the last
   for (p.runs = 1;; ++p.runs) {
     p.pinned = pinned.size();
-    s2 = run_engine(input, whole, true, progress, cancel, patches, &past, &pinned);
+    s2 = run_engine(input, whole, true, progress, cancel, patches, &past, &pinned, max_tets);
     if (!s2 || past.cancelled || past.nodes_left_past_valence == 0 || p.runs == kRuns ||
         past.nodes_left_past_valence > kMostLeft)
       break;
@@ -2927,6 +2954,7 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   p.nodes_left = past.nodes_left_past_valence;
   if (!s2 || past.cancelled) {  // the first result stands, cancelled if the other was
     p.stopped = true;
+    p.stopped_why = s2.message();
     p.seconds_other = past_seconds + run_seconds(past);
     result->cancelled = past.cancelled;
     result->past_valence = p;
@@ -2938,7 +2966,7 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   if (p.taken) *result = std::move(past);
   if (params.target_elements > 0)
     s = run_engine(input, params, p.taken, progress, cancel, patches, result,
-                   p.taken ? &pinned : nullptr);
+                   p.taken ? &pinned : nullptr, p.taken ? max_tets : kMaxTets);
   result->past_valence = p;
   return s;
 }
@@ -3005,7 +3033,9 @@ std::string past_valence_summary(const SimplifyResult& result) {
                         " runs, each but the first with the nodes the one before could not bring "
                         "back kept within the threshold; the last one's subdivision " +
                         subdivision + ", and it ";
-  if (p.stopped) return within + past + "stopped before its end";
+  if (p.stopped)
+    return within + past + "stopped before its end" +
+           (p.stopped_why.empty() ? std::string() : ": " + p.stopped_why);
   if (p.nodes_left > 0)
     return within + past + (p.runs == 1 ? "was given up: " : "was given up as the others: ") +
            std::to_string(p.nodes_left) + (p.nodes_left == 1 ? " node" : " nodes") +

@@ -41,6 +41,11 @@ struct SimplifyParams {
   // collapses to bring back before the priority order starts (see simplify()); off:
   // never.
   bool subdivide_past_valence = true;
+  // The most tets such a run may subdivide into, as a multiple of the first run's
+  // subdivided tets (>= 1); past it, that run is stopped and the first stands. On the
+  // bundled motor at size 6 it takes 5.1; a unit box at size 0.03 would take far more
+  // (without this bound it ran for over 5 minutes in over 7 GB).
+  uint32_t past_valence_tets_factor = 8;
   size_t target_elements = 0;          // stop once at most this many tets remain; 0: run to the end
   double crease_angle_degrees = 40.0;  // for the vertex classification (classify.h)
   // Refuse collapses that would push the outer boundary through itself (see
@@ -100,13 +105,14 @@ struct ThresholdViolations {
 // The runs of simplify() (see there) whose subdivision may take nodes past tau_VL.
 struct PastValence {
   bool tried = false;
-  bool taken = false;     // the last such run is the result
-  bool stopped = false;   // cancelled, or an error (more tets than allowed, say)
-  int runs = 0;           // made, each with the nodes the one before left pinned
-  size_t pinned = 0;      // nodes pinned in the last
-  size_t nodes = 0;       // nodes the last took past both tau_VL and their input valence
-  size_t nodes_left = 0;  // of them, not brought back: it was given up
-  size_t red_levels = 0;  // red levels of the last, and edges they split
+  bool taken = false;       // the last such run is the result
+  bool stopped = false;     // cancelled, or an error (more tets than allowed, say)
+  std::string stopped_why;  // the error, if one stopped it
+  int runs = 0;             // made, each with the nodes the one before left pinned
+  size_t pinned = 0;        // nodes pinned in the last
+  size_t nodes = 0;         // nodes the last took past both tau_VL and their input valence
+  size_t nodes_left = 0;    // of them, not brought back: it was given up
+  size_t red_levels = 0;    // red levels of the last, and edges they split
   size_t red_splits = 0;
   size_t above_size_within = 0;  // tets above the size the first run left
   size_t above_size_past = 0;    // and the last run past the valence (if not given up)

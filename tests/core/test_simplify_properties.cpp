@@ -384,6 +384,44 @@ double volume_of(const TetMesh& mesh, uint32_t t) {
   return tet_shape(p[q[0]], p[q[1]], p[q[2]], p[q[3]]).volume;
 }
 
+// A run past the valence may not subdivide into more than past_valence_tets_factor
+// times the tets of the first run's subdivision (at size 12 it takes 2.2 times): past
+// it, that run stops, and the first run is the result, as with subdivide_past_valence
+// off.
+TEST(SimplifyPastValence, StopsWhereItsSubdivisionGrowsPastTheFactor) {
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
+  SimplifyParams params;
+  params.sizing.uniform = 12;
+  params.tolerance = 0.05;
+  params.past_valence_tets_factor = 2;
+  SimplifyResult stopped;
+  ASSERT_TRUE(simplify(input, params, &stopped));
+  EXPECT_TRUE(stopped.past_valence.tried);
+  EXPECT_TRUE(stopped.past_valence.stopped);
+  EXPECT_FALSE(stopped.past_valence.taken);
+  EXPECT_FALSE(stopped.cancelled);
+  const std::string why = "its subdivision passed " + std::to_string(2 * stopped.base.tet_count()) +
+                          " tets, 2 times the first run's";
+  EXPECT_EQ(stopped.past_valence.stopped_why, why);
+  EXPECT_NE(past_valence_summary(stopped).find("stopped before its end: " + why), std::string::npos)
+      << past_valence_summary(stopped);
+  const SimplifyResult within = simplify_motor(12, false);
+  EXPECT_EQ(stopped.output.tets, within.output.tets);
+  EXPECT_EQ(stopped.history.step_count(), within.history.step_count());
+  EXPECT_GT(stopped.violations.above_size, 0u);
+  // With 3, it is the result, and leaves no tet above the size.
+  params.past_valence_tets_factor = 3;
+  SimplifyResult taken;
+  ASSERT_TRUE(simplify(input, params, &taken));
+  EXPECT_TRUE(taken.past_valence.taken);
+  EXPECT_EQ(taken.violations.above_size, 0u);
+  // 0 is refused.
+  params.past_valence_tets_factor = 0;
+  EXPECT_FALSE(check_params(params).ok());
+}
+
 // Boundary and interface area per pair of materials (inner, outer).
 std::map<std::pair<int32_t, int32_t>, double> surface_areas(const TetMesh& mesh) {
   std::vector<uint32_t> neighbors;
