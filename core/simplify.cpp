@@ -970,6 +970,16 @@ class Engine {
         }
       }
       if (changed) continue;
+      // More pieces than the run may make: stop before planning them all.
+      size_t piece_count = 0;
+      for (uint32_t t = 0; t < tets && piece_count <= max_tets_; ++t) {
+        red_pieces(level, t, &pieces);
+        piece_count += pieces.size();
+      }
+      if (piece_count > max_tets_) {  // subdivide() stops with an error
+        red_over_max_ = true;
+        return false;
+      }
       // Valences, from the planned pieces' edges. A node past its cap may not gain
       // neighbours: it gains one in a tet split but not red (a red tet's corner only
       // trades its neighbours for the midpoints of its edges), so those tets are made
