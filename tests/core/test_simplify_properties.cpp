@@ -378,12 +378,6 @@ TEST(SimplifyPastValence, IsGivenUpWhereNodesCannotBeBroughtBack) {
   EXPECT_NE(past_valence_summary(more).find("was given up: "), std::string::npos);
 }
 
-double volume_of(const TetMesh& mesh, uint32_t t) {
-  const Tet& q = mesh.tets[t];
-  const auto& p = mesh.positions;
-  return tet_shape(p[q[0]], p[q[1]], p[q[2]], p[q[3]]).volume;
-}
-
 // A run past the valence may not subdivide into more than past_valence_tets_factor
 // times the tets of the first run's subdivision (at size 12 it takes 2.2 times): past
 // it, that run stops, and the first run is the result, as with subdivide_past_valence
@@ -422,22 +416,9 @@ TEST(SimplifyPastValence, StopsWhereItsSubdivisionGrowsPastTheFactor) {
   EXPECT_FALSE(check_params(params).ok());
 }
 
-// Boundary and interface area per pair of materials (inner, outer).
-std::map<std::pair<int32_t, int32_t>, double> surface_areas(const TetMesh& mesh) {
-  std::vector<uint32_t> neighbors;
-  EXPECT_EQ(build_face_neighbors(mesh, &neighbors).kind, FaceProblem::Kind::kNone);
-  std::map<std::pair<int32_t, int32_t>, double> area;
-  for (const SurfaceTriangle& t : extract_surface(mesh, neighbors)) {
-    const Vec3& p = mesh.positions[t.v[0]];
-    area[{std::min(t.inner, t.outer), std::max(t.inner, t.outer)}] +=
-        0.5 * length(cross(mesh.positions[t.v[1]] - p, mesh.positions[t.v[2]] - p));
-  }
-  return area;
-}
-
 // Red levels (Engine::red_level()) leave a conforming mesh: a face of a tet that met
 // two faces of its neighbours (a node hanging on an edge or face) would add to the
-// boundary, so every boundary and interface keeps its area, as every material its
+// boundary, so every material keeps the area of its boundary and interfaces, and its
 // volume, and the mesh is valid. On the bundled motor at size 12, and on a block with
 // a sheet of surface group inside it (tests/data/gmsh/sheet.msh) at size 0.3, whose
 // edges a level may not split: tets next to them are cut from their centroid.
@@ -471,21 +452,16 @@ TEST(SimplifyPastValence, RedLevelsKeepTheMeshConforming) {
     ASSERT_TRUE(validate_mesh(&base, "base", {}, &report));
     EXPECT_EQ(report.reoriented_tets, 0u);
     EXPECT_EQ(report.removed_unused_vertices, 0u);
-    const auto input_areas = surface_areas(input), areas = surface_areas(r.base);
+    const auto input_areas = surface_area_per_material(input);
+    const auto areas = surface_area_per_material(r.base);
     ASSERT_EQ(areas.size(), input_areas.size());
-    for (const auto& [pair, area] : input_areas) {
-      ASSERT_TRUE(areas.count(pair));
-      EXPECT_NEAR(areas.at(pair), area, 1e-9 * area);
+    for (const auto& [m, area] : input_areas) {
+      ASSERT_TRUE(areas.count(m));
+      EXPECT_NEAR(areas.at(m), area, 1e-9 * area);
     }
-    std::map<int32_t, double> input_volume, volume;
-    for (uint32_t t = 0; t < input.tet_count(); ++t)
-      input_volume[input.materials[t]] += volume_of(input, t);
-    for (uint32_t t = 0; t < r.base.tet_count(); ++t) {
-      const double v = volume_of(r.base, t);
-      EXPECT_GT(v, 0);
-      volume[r.base.materials[t]] += v;
-    }
-    for (const auto& [m, v] : input_volume) EXPECT_NEAR(volume[m], v, 1e-9 * v);
+    for (const Tet& t : r.base.tets) EXPECT_GT(signed_volume6(r.base, t), 0);
+    const auto volume = volume_per_material(r.base);
+    for (const auto& [m, v] : volume_per_material(input)) EXPECT_NEAR(volume.at(m), v, 1e-9 * v);
   }
 }
 
