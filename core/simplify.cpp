@@ -623,13 +623,12 @@ class Engine {
   // cap, and a tet split but not red around a node that would exceed it, where it
   // grows, is made red or frozen. The marking is closed again until nothing breaks.
   // Levels repeat while they split an edge longer than its limit.
-  static constexpr int kEdgeEnds[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   // The three edges of the face opposite each corner.
   static constexpr int kFaceEdges[4][3] = {{3, 4, 5}, {1, 2, 5}, {0, 2, 4}, {0, 1, 3}};
 
   struct RedLevel {
     std::vector<std::array<uint32_t, 2>> ends;  // of each edge, by id
-    std::vector<uint32_t> tet_edge;             // 6 per tet: edge ids, order of kEdgeEnds
+    std::vector<uint32_t> tet_edge;             // 6 per tet: edge ids, order of kTetEdge
     std::vector<uint32_t> edge_tets_first;      // tets of edge e: edge_tets[first[e], first[e+1])
     std::vector<uint32_t> edge_tets;
     std::vector<uint8_t> marked, frozen;
@@ -672,7 +671,7 @@ class Engine {
         if (q[c] == a) (*y)[c] = m;
       }
     };
-    auto edge_of = [&](int k, int s) { return v[kEdgeEnds[k][s]]; };
+    auto edge_of = [&](int k, int s) { return v[kTetEdge[k][s]]; };
     if (mask == 0) {
       out->push_back(v);
     } else if ((mask & (mask - 1)) == 0) {  // one edge
@@ -700,17 +699,10 @@ class Engine {
       Tet inner[4];
       for (int k = 0; k < 3; ++k) {
         const uint32_t p = mid[k], q = mid[5 - k];
-        uint32_t ring[4];
-        int r = 0;
-        for (int o = 0; o < 6; ++o)
-          if (o != k && o != 5 - k) ring[r++] = mid[o];
-        // Order the ring into a cycle: consecutive midpoints share a corner.
-        auto share = [&](uint32_t x, uint32_t y) {
-          const auto &ex = level.ends[x - n], &ey = level.ends[y - n];
-          return ex[0] == ey[0] || ex[0] == ey[1] || ex[1] == ey[0] || ex[1] == ey[1];
-        };
-        if (!share(ring[0], ring[1])) std::swap(ring[1], ring[2]);
-        if (!share(ring[1], ring[2])) std::swap(ring[2], ring[3]);
+        // The other four midpoints in a cycle (consecutive ones share a corner).
+        static constexpr int kRing[3][4] = {{1, 2, 4, 3}, {0, 2, 5, 3}, {0, 1, 5, 4}};
+        const uint32_t ring[4] = {mid[kRing[k][0]], mid[kRing[k][1]], mid[kRing[k][2]],
+                                  mid[kRing[k][3]]};
         Tet cut[4];
         double worst = std::numeric_limits<double>::infinity();
         for (int s = 0; s < 4; ++s) {
@@ -768,7 +760,7 @@ class Engine {
     }
   }
 
-  // The index in kEdgeEnds of the edge of corners i and j (i != j).
+  // The index in kTetEdge of the edge of corners i and j (i != j).
   static int local_edge(int i, int j) {
     if (i > j) std::swap(i, j);
     return i == 0 ? j - 1 : i + j;  // (0,1)0 (0,2)1 (0,3)2 (1,2)3 (1,3)4 (2,3)5
@@ -840,7 +832,7 @@ class Engine {
     std::vector<std::pair<uint64_t, uint32_t>> slots(6 * tets);
     for (uint32_t t = 0; t < tets; ++t)
       for (int k = 0; k < 6; ++k) {
-        uint64_t a = tet_[t].v[kEdgeEnds[k][0]], b = tet_[t].v[kEdgeEnds[k][1]];
+        uint64_t a = tet_[t].v[kTetEdge[k][0]], b = tet_[t].v[kTetEdge[k][1]];
         if (a > b) std::swap(a, b);
         slots[6 * size_t{t} + k] = {a << 32 | b, 6 * t + k};
       }
@@ -988,7 +980,7 @@ class Engine {
       for (uint32_t t = 0; t < tets; ++t) {
         red_pieces(level, t, &pieces);
         for (const Tet& c : pieces)
-          for (const auto& k : kEdgeEnds) {
+          for (const auto& k : kTetEdge) {
             uint64_t a = c[k[0]], b = c[k[1]];
             if (a > b) std::swap(a, b);
             plan_edges.push_back(a << 32 | b);
