@@ -882,6 +882,17 @@ class Engine {
         level.marked[e] = 1, ++marked;
     }
     if (marked == 0) return false;
+    // Progress: each level halves the edges it splits, so the first one's longest edge
+    // over its limit says about how many levels there will be.
+    if (result->red_levels == 0) {
+      double ratio2 = 1;
+      for (size_t e = 0; e < edges; ++e)
+        if (level.marked[e])
+          ratio2 =
+              std::max(ratio2, squared_length(pos_[level.ends[e][0]] - pos_[level.ends[e][1]]) /
+                                   (limit[e] * limit[e]));
+      red_levels_expected_ = std::max(1.0, std::ceil(0.5 * std::log2(ratio2)));
+    }
     std::vector<uint8_t> queued(tets, 0);
     std::vector<uint32_t> work;
     auto push_edge_tets = [&](uint32_t e) {
@@ -918,6 +929,9 @@ class Engine {
     constexpr int kMostRounds = 64;  // (the bundled motor at size 8: 6 and 9)
     for (int round = 0;; ++round) {
       if (round == kMostRounds || cancelled()) return false;
+      // Within a level, each round of the planning closes more of the gap to the next.
+      report("red levels", std::min(1.0, (double(result->red_levels) + 1 - 1.0 / (round + 1)) /
+                                             red_levels_expected_));
       // Close the marking: a face with two marked edges gets its third.
       while (!work.empty()) {
         const uint32_t t = work.back();
@@ -1095,9 +1109,11 @@ class Engine {
                            " would subdivide the mesh into " + count + " tets (limit " +
                            std::to_string(kMaxTets) + "); choose a larger size or --no-subdivide");
     }
-    if (past_valence_)
+    if (past_valence_) {
       for (int level = 0; level < kMostRedLevels && red_level(result); ++level) {
       }
+      report("red levels", 1);
+    }
     if (red_over_max_) return too_many_tets();
     std::vector<uint32_t> valence_now(pos_.size());
     for (uint32_t v = 0; v < pos_.size(); ++v)
@@ -1110,14 +1126,17 @@ class Engine {
       for (uint32_t w : nb)
         if (w > v) push_if_long(heap, v, w);
     }
-    const size_t initial = std::max<size_t>(1, heap.size());
+    double fraction = 0;  // of the splits made, out of those and the edges still queued
     std::vector<uint32_t> ring, opposite;
     std::vector<double> piece_stretch;  // of the two pieces of each ring tet
     size_t iterations = 0;
     while (!heap.empty()) {
       if ((++iterations & 4095) == 0) {
         if (cancelled()) break;
-        report("subdivide", std::min(1.0, double(result->splits) / double(initial)));
+        // (Splits queue new long edges, so this can fall: it is shown as it rose.)
+        fraction =
+            std::max(fraction, double(result->splits) / double(result->splits + heap.size()));
+        report("subdivide", fraction);
       }
       std::pop_heap(heap.begin(), heap.end(), SplitLess());
       const Split e = heap.back();
@@ -1225,8 +1244,10 @@ class Engine {
     }
     result->nodes_past_valence = over.size();
     if (over.empty()) return;
+    report("edge removals", 0);
     TetMesh mesh = mesh_now();
     result->valence_edge_removals = shed_valence(&mesh, params_, over, cancel_, patches_);
+    report("edge removals", 1);
     tet_.assign(mesh.tets.size(), TetRecord{});
     for (uint32_t t = 0; t < tet_.size(); ++t) {
       tet_[t].v = mesh.tets[t];
@@ -2828,6 +2849,7 @@ class Engine {
   std::vector<uint32_t> ring_tets_;    // the tets around the edge evaluated
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
   bool region_sizing_ = false;         // radial or box rules: sizes depend on the position
+  double red_levels_expected_ = 1;     // about how many red levels, for the progress
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
   const VectorKernels& kernels_ = vector_kernels();
   // The tet across each face: across_[4 * t + c] is across the face of t opposite

@@ -157,8 +157,10 @@ struct SimplifyResult {
 };
 
 struct SimplifyProgress {
-  const char* phase = "";  // "classify", "subdivide", "simplify"
-  double fraction = 0;     // of the phase, in [0, 1]; an estimate for "simplify"
+  // "classify", "subdivide", "simplify"; in a run past the valence (SimplifyResult::
+  // past_valence) also "red levels" before "subdivide" and "edge removals" after it.
+  const char* phase = "";
+  double fraction = 0;  // of the phase, in [0, 1]; an estimate for "simplify"
   size_t collapses = 0;
 };
 using ProgressCallback = std::function<void(const SimplifyProgress&)>;

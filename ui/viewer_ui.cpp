@@ -842,9 +842,14 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   if (status.running) {  // always in sight, whatever the panel's scroll position
     if (ImGui::Button("Cancel##top")) commands->push_back({CommandKind::kCancel});
     ImGui::SameLine();
+    // Short enough for the panel's width: the collapses only while they are made.
     char overlay[96];
-    std::snprintf(overlay, sizeof(overlay), "simplifying: %s %.0f%%, %zu collapses",
-                  status.phase.c_str(), 100 * status.phase_fraction, status.collapses);
+    if (status.phase == "simplify")
+      std::snprintf(overlay, sizeof(overlay), "simplify %.0f%%, %zu collapses",
+                    100 * status.phase_fraction, status.collapses);
+    else
+      std::snprintf(overlay, sizeof(overlay), "simplifying: %s %.0f%%", status.phase.c_str(),
+                    100 * status.phase_fraction);
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
   }
   if (status.analysis.solving) {  // also always in sight

@@ -323,6 +323,37 @@ TEST(SimplifyPastValence, BringsEveryNodeBackBeforeThePriorityOrder) {
   EXPECT_EQ(past_both(lod.extract()), 0u);
 }
 
+// A run past the valence says what it does: after the first run's phases, "red
+// levels" (an estimate that only grows, ending at 1), bisection, edge removals, then
+// the collapses again.
+TEST(SimplifyPastValence, ReportsItsPhases) {
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
+  SimplifyParams params;
+  params.sizing.uniform = 18;
+  params.tolerance = 0.05;
+  std::vector<std::string> phases;
+  std::vector<double> red;
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(input, params, &result, [&](const SimplifyProgress& p) {
+    EXPECT_GE(p.fraction, 0.0);
+    EXPECT_LE(p.fraction, 1.0);
+    if (phases.empty() || phases.back() != p.phase) phases.emplace_back(p.phase);
+    if (phases.back() == "red levels") red.push_back(p.fraction);
+  }));
+  ASSERT_TRUE(result.past_valence.taken);
+  EXPECT_GT(result.red_levels, 0u);
+  const std::vector<std::string> expected = {"classify",      "simplify", "red levels", "subdivide",
+                                             "edge removals", "classify", "simplify"};
+  // (The first run's subdivision reports only at its end, so "subdivide" may come first.)
+  if (!phases.empty() && phases.front() == "subdivide") phases.erase(phases.begin());
+  EXPECT_EQ(phases, expected);
+  ASSERT_GE(red.size(), 2u);
+  EXPECT_TRUE(std::is_sorted(red.begin(), red.end()));
+  EXPECT_EQ(red.back(), 1.0);
+}
+
 // With valence 20 at size 17 the first run past the valence leaves nodes it cannot
 // bring back; made again with them pinned, a run brings them all back and leaves no
 // tet above the size, where the run within the valence left some.
