@@ -348,9 +348,10 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     } else {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
       ImGui::TextWrapped(
-          "Final mesh: %zu tets below the stretch, %zu above the size, %zu nodes above the "
+          "Final mesh: %zu %s below the stretch, %zu above the size, %zu %s above the "
           "valence; %s.",
-          v.below_stretch, v.above_size, v.above_valence,
+          v.below_stretch, v.below_stretch == 1 ? "tet" : "tets", v.above_size, v.above_valence,
+          v.above_valence == 1 ? "node" : "nodes",
           v.created == 0 ? "all input ones or pieces of input tets that already broke it"
                          : "some new ones: please report it");
       ImGui::PopStyleColor();
