@@ -585,6 +585,31 @@ class Engine {
     return limit;
   }
 
+  // Whether a red level's split of edge (a, b) would give its midpoint more neighbours
+  // than tau_VL: at least the two ends and the midpoints of the edges from each end to
+  // each of the r nodes round the edge, 2 + 2 r (34 for the 16 tets round the bundled
+  // motor's axis), however the octahedra are cut. A run past the valence bisects such
+  // edges longer than their limit (those a red level would mark) before its red levels:
+  // the midpoint then starts with 2 + r neighbours, and each node round the edge gains
+  // one. The halves have the same nodes round them, and are bisected again while they
+  // are longer than their limit. (The halves of an edge a red level splits have as
+  // many nodes round them as the edge, so the red levels rarely make another; they are
+  // not looked for again.) On the bundled motor at sizes 6 and 7, two such bisections
+  // are what lets the run past the valence bring every node back (docs/RESULTS.md).
+  bool hot_edge(uint32_t a, uint32_t b) {
+    const uint32_t s = next_stamp();
+    mark_[a] = mark_[b] = s;
+    size_t round = 0;
+    for (uint32_t t : star_[a]) {
+      if (!tet_has(tet_[t].v, b)) continue;
+      for (uint32_t w : tet_[t].v) {
+        round += mark_[w] != s;
+        mark_[w] = s;
+      }
+    }
+    return 2 + 2 * round > params_.max_valence;
+  }
+
   // The most neighbours subdivision may give a node at p.
   size_t valence_cap(const Vec3& p) const {
     if (!past_valence_) return params_.max_valence;
@@ -593,10 +618,12 @@ class Engine {
     return 2 * size_t{params_.max_valence};
   }
 
+  // Queues edge (a, b) for bisection if it is longer than half its size limit (in the
+  // hot phase: if it is a hot edge).
   void push_if_long(std::vector<Split>& heap, uint32_t a, uint32_t b) {
     const double length2 = squared_length(pos_[a] - pos_[b]);
-    const double half = 0.5 * edge_size_limit(a, b);
-    if (length2 > half * half) {
+    const double limit = edge_size_limit(a, b);
+    if (hot_phase_ ? length2 > limit * limit && hot_edge(a, b) : length2 > 0.25 * limit * limit) {
       heap.push_back({length2, std::min(a, b), std::max(a, b)});
       std::push_heap(heap.begin(), heap.end(), SplitLess());
     }
@@ -1109,16 +1136,30 @@ class Engine {
                            " would subdivide the mesh into " + count + " tets (limit " +
                            std::to_string(kMaxTets) + "); choose a larger size or --no-subdivide");
     }
+    std::vector<uint32_t> valence_now = input_valence_;
     if (past_valence_) {
+      // Edges whose red split would give their midpoint more neighbours than tau_VL
+      // are bisected first (see hot_edge()).
+      hot_phase_ = true;
+      Status s = bisect(result, &valence_now);
+      hot_phase_ = false;
+      if (!s) return s;
       for (int level = 0; level < kMostRedLevels && red_level(result); ++level) {
       }
       report("red levels", 1);
     }
     if (red_over_max_) return too_many_tets();
-    std::vector<uint32_t> valence_now(pos_.size());
-    for (uint32_t v = 0; v < pos_.size(); ++v)
-      valence_now[v] = result->red_levels > 0 ? valence(v) : input_valence_[v];
+    if (result->red_levels > 0) {
+      valence_now.resize(pos_.size());
+      for (uint32_t v = 0; v < pos_.size(); ++v) valence_now[v] = valence(v);
+    }
+    return bisect(result, &valence_now);
+  }
 
+  // Longest-edge bisection of the edges push_if_long() queues (see subdivide()), with
+  // valence_now the valence of every node.
+  Status bisect(SimplifyResult* result, std::vector<uint32_t>* valences) {
+    std::vector<uint32_t>& valence_now = *valences;
     std::vector<Split> heap;
     std::vector<uint32_t> nb;
     for (uint32_t v = 0; v < pos_.size(); ++v) {
@@ -1136,14 +1177,14 @@ class Engine {
         // (Splits queue new long edges, so this can fall: it is shown as it rose.)
         fraction =
             std::max(fraction, double(result->splits) / double(result->splits + heap.size()));
-        report("subdivide", fraction);
+        if (!hot_phase_) report("subdivide", fraction);
       }
       std::pop_heap(heap.begin(), heap.end(), SplitLess());
       const Split e = heap.back();
       heap.pop_back();
       if (!kept_edges_.empty() &&
           std::binary_search(kept_edges_.begin(), kept_edges_.end(), std::make_pair(e.a, e.b))) {
-        ++result->splits_skipped_inside;
+        result->splits_skipped_inside += !hot_phase_;  // (counted by the last bisection)
         continue;
       }
       ring.clear();
@@ -1173,7 +1214,7 @@ class Engine {
           if (w != e.a && w != e.b) opposite.push_back(w);
       }
       if (!ok) {
-        ++result->splits_skipped;
+        result->splits_skipped += !hot_phase_;
         continue;
       }
       sort_unique(opposite);
@@ -1184,8 +1225,8 @@ class Engine {
         if (valence_now[w] + 1 > valence_cap(pos_[w])) ok = false;
       }
       if (!ok) {
-        ++result->splits_skipped;
-        ++result->splits_skipped_valence;
+        result->splits_skipped += !hot_phase_;
+        result->splits_skipped_valence += !hot_phase_;
         continue;
       }
       if (tet_.size() + ring.size() > max_tets_) return too_many_tets();
@@ -1219,6 +1260,7 @@ class Engine {
         star_[mid].push_back(child);
       }
       ++result->splits;
+      result->hot_splits += hot_phase_;
       result->splits_past_valence += past;
       push_if_long(heap, e.a, mid);
       push_if_long(heap, mid, e.b);
@@ -1226,7 +1268,7 @@ class Engine {
     }
     // The stars are no longer sorted: run() renumbers (reorder_for_locality()) after
     // any split, which rebuilds them.
-    report("subdivide", 1);
+    if (!hot_phase_) report("subdivide", 1);
     return Status();
   }
 
@@ -2851,6 +2893,7 @@ class Engine {
   std::vector<uint32_t> ring_tets_;    // the tets around the edge evaluated
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
   bool region_sizing_ = false;         // radial or box rules: sizes depend on the position
+  bool hot_phase_ = false;             // bisect() splits only hot_edge()s
   double red_levels_expected_ = 1;     // about how many red levels, for the progress
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
   const VectorKernels& kernels_ = vector_kernels();
@@ -2977,6 +3020,7 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   p.nodes = past.nodes_past_valence;
   p.red_levels = past.red_levels;
   p.red_splits = past.red_splits;
+  p.hot_splits = past.hot_splits;
   p.nodes_left = past.nodes_left_past_valence;
   if (!s2 || past.cancelled) {  // the first result stands, cancelled if the other was
     p.stopped = true;
@@ -3047,8 +3091,12 @@ std::string past_valence_summary(const SimplifyResult& result) {
   const std::string within = "subdivision within the valence threshold left " +
                              std::to_string(p.above_size_within) + " tets above the size; ";
   std::string subdivision;  // what the last run's subdivision did
+  if (p.hot_splits > 0)
+    subdivision = "bisected " + std::to_string(p.hot_splits) +
+                  (p.hot_splits == 1 ? " edge whose red split" : " edges whose red split") +
+                  " would have given the midpoint more neighbours than the threshold, then ";
   if (p.red_levels > 0)
-    subdivision =
+    subdivision +=
         "split " + std::to_string(p.red_splits) + " edges in " + std::to_string(p.red_levels) +
         (p.red_levels == 1 ? " red level" : " red levels") + " (Bey's 1:8 refinement) and ";
   subdivision += p.nodes > 0 ? "took " + std::to_string(p.nodes) + " nodes past the threshold"

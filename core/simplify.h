@@ -114,6 +114,7 @@ struct PastValence {
   size_t nodes_left = 0;    // of them, not brought back: it was given up
   size_t red_levels = 0;    // red levels of the last, and edges they split
   size_t red_splits = 0;
+  size_t hot_splits = 0;         // edges the last bisected before its red levels
   size_t above_size_within = 0;  // tets above the size the first run left
   size_t above_size_past = 0;    // and the last run past the valence (if not given up)
   double seconds_other = 0;      // the runs that are not the result
@@ -141,10 +142,13 @@ struct SimplifyResult {
   size_t valence_collapses = 0;
   size_t nodes_left_past_valence = 0;
   // Red levels of a run past tau_VL (see simplify()): levels made, edges they split
-  // (in `splits` too), and tets they cut from their centroid.
+  // (in `splits` too), and tets they cut from their centroid; and the edges bisected
+  // before them (in `splits` too), whose red split would have given their midpoint
+  // more neighbours than tau_VL.
   size_t red_levels = 0;
   size_t red_splits = 0;
   size_t red_centroids = 0;
+  size_t hot_splits = 0;
   PastValence past_valence;
   // Long edges left unsplit (not in splits_skipped) because they are edges of an input
   // surface group's triangles inside a material, which the run keeps as they are.
