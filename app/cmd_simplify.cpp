@@ -22,7 +22,8 @@ namespace {
 
 constexpr const char* kSimplifyUsageHead =
     "usage: tetlod simplify IN -o OUT --size S [--stretch D] [--valence V] [--tolerance T]\n"
-    "                       [--no-subdivide] [--within-valence] [--material-size M=S,...]\n"
+    "                       [--no-subdivide] [--within-valence] [--past-valence-factor F]\n"
+    "                       [--material-size M=S,...]\n"
     "                       [--size-field SPEC] [--elements N] [--history FILE]\n"
     "                       [--crease-angle DEG] [--improve]\n"
     "                       [--msh-version V] [--msh-binary] [--vtk-binary] [--surfaces]\n"
@@ -231,6 +232,9 @@ int cmd_simplify(const Args& args) {
       result.history.step_count(), describe_rejections(result.rejections).c_str());
   const std::string past = past_valence_summary(result);
   if (!past.empty()) std::printf("past the valence: %s\n", past.c_str());
+  if (result.past_valence.stopped && !result.cancelled && !result.past_valence.stopped_why.empty())
+    std::printf("  (--past-valence-factor raises that bound: it was %u)\n",
+                options.params.past_valence_tets_factor);
   const EvaluationCounts& e = result.evaluations;
   std::printf(
       "evaluations: %llu of every edge at the start, %llu of new nodes' edges, %llu of stale "
@@ -290,9 +294,10 @@ int cmd_lod(const Args& args) {
     const std::string& a = args[i];
     std::string v;
     // The thresholds (not --elements, which here may be 0, nor the simplifier's own
-    // --tolerance, --no-subdivide and --within-valence, which a level does not use).
+    // --tolerance, --no-subdivide, --within-valence and --past-valence-factor, which a
+    // level does not use).
     if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide" &&
-        a != "--within-valence" && a != "--improve") {
+        a != "--within-valence" && a != "--past-valence-factor" && a != "--improve") {
       const OptionResult parsed = parse_simplify_option(args, &i, "lod", &options);
       if (parsed == OptionResult::kError) return kExitUsage;
       if (parsed == OptionResult::kParsed) {

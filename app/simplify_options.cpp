@@ -29,6 +29,9 @@ const char* const kSimplifyFlagsHelp =
     "                    subdivision (red levels, then bisection) may take nodes past the\n"
     "                    valence for edge removals and collapses to bring back (faster; it\n"
     "                    may leave more tets above the size)\n"
+    "  --past-valence-factor F   that other run stops, and the first stands, once its\n"
+    "                    subdivision passes F times the first run's tets (default 8;\n"
+    "                    a bound on its time and memory)\n"
     "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
 
 const char* const kWriteFlagsHelp =
@@ -144,6 +147,11 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
     params.subdivide = false;
   } else if (a == "--within-valence") {
     params.subdivide_past_valence = false;
+  } else if (a == "--past-valence-factor") {
+    if (!value()) return OptionResult::kError;
+    const auto n = parse_integer(v);
+    if (!n || *n < 1 || *n > 1000) return bad_value("a factor in [1, 1000]");
+    params.past_valence_tets_factor = static_cast<uint32_t>(*n);
   } else if (a == "--material-size" || a == "--size-field") {
     if (!value()) return OptionResult::kError;
     if (a == "--material-size") {

@@ -812,6 +812,36 @@ TEST(Cli, SimplifySaysWhatSubdivisionPastTheValenceDid) {
   EXPECT_NE(r.output.find("was given up: "), std::string::npos) << r.output;
 }
 
+// --past-valence-factor bounds the run past the valence (at size 12 the bundled motor's
+// needs 2.2 times the first run's tets): at 1 it stops, the first run stands, and the
+// output says so and names the flag; at 3 it is the result. Bad values are usage errors.
+TEST(Cli, PastValenceFactorBoundsTheRunPastTheValence) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const std::string out = out_dir() + "/factor.mesh";
+  const std::string base = "simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05";
+  CommandResult r = run(base + " --past-valence-factor 1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("stopped before its end: its subdivision passed "), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(" tets, 1 times the first run's\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(--past-valence-factor raises that bound: it was 1)"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find(" 0 above the size, "), std::string::npos) << r.output;
+  r = run(base + " --past-valence-factor 3");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("so it is the result"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" 0 above the size, "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("--past-valence-factor raises"), std::string::npos) << r.output;
+  for (const char* bad : {"0", "1001", "2.5", "x"}) {
+    r = run(base + " --past-valence-factor " + bad);
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.output.find("--past-valence-factor '" + std::string(bad) +
+                            "' is not a factor in [1, 1000]"),
+              std::string::npos)
+        << r.output;
+  }
+}
+
 // `tetlod lod` says what the level it writes breaks of the thresholds saved in the
 // history: at the last level, what `simplify` said of its final mesh; at the first,
 // more (after a run past the valence, nodes subdivision took past it among them).
