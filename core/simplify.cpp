@@ -898,6 +898,7 @@ class Engine {
     level.marked.assign(edges, 0);
     level.frozen.assign(edges, 0);
     size_t marked = 0;
+    double ratio2 = 1;  // the largest squared length over limit of a marked edge
     for (size_t e = 0; e < edges; ++e) {
       const auto& ab = level.ends[e];
       if (!kept_edges_.empty() && std::binary_search(kept_edges_.begin(), kept_edges_.end(),
@@ -905,21 +906,17 @@ class Engine {
         level.frozen[e] = 1;
         continue;
       }
-      if (squared_length(pos_[ab[0]] - pos_[ab[1]]) > limit[e] * limit[e])
+      const double length2 = squared_length(pos_[ab[0]] - pos_[ab[1]]);
+      if (length2 > limit[e] * limit[e]) {
         level.marked[e] = 1, ++marked;
+        ratio2 = std::max(ratio2, length2 / (limit[e] * limit[e]));
+      }
     }
     if (marked == 0) return false;
     // Progress: each level halves the edges it splits, so the first one's longest edge
     // over its limit says about how many levels there will be.
-    if (result->red_levels == 0) {
-      double ratio2 = 1;
-      for (size_t e = 0; e < edges; ++e)
-        if (level.marked[e])
-          ratio2 =
-              std::max(ratio2, squared_length(pos_[level.ends[e][0]] - pos_[level.ends[e][1]]) /
-                                   (limit[e] * limit[e]));
+    if (result->red_levels == 0)
       red_levels_expected_ = std::max(1.0, std::ceil(0.5 * std::log2(ratio2)));
-    }
     std::vector<uint8_t> queued(tets, 0);
     std::vector<uint32_t> work;
     auto push_edge_tets = [&](uint32_t e) {
