@@ -17,10 +17,14 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
+#include <mutex>
 #include <new>
+#include <thread>
 
 #include "core/adjacency.h"
 #include "core/classify.h"
@@ -430,6 +434,8 @@ class Engine {
     if (result->splits > 0) reorder_for_locality();  // new vertices were appended
     result->seconds_subdivide = seconds_since(start);
     result->base = mesh_now();
+    if (after_subdivide_ && !cancelled() && result->splits_skipped_valence > 0)
+      after_subdivide_(result->base.tet_count(), tets_above_size());
     if (cancelled()) {
       result->cancelled = true;
       result->output = result->base;
@@ -2784,6 +2790,12 @@ class Engine {
     return extract_alive(mesh.positions, mesh.tets, mesh.materials, alive);
   }
 
+  size_t tets_above_size() const {
+    size_t n = 0;
+    for (uint32_t t = 0; t < tet_.size(); ++t) n += tet_[t].alive && shape(t).size > size_limit(t);
+    return n;
+  }
+
   void count_violations(ThresholdViolations* v) {
     *v = ThresholdViolations{};
     for (uint32_t t = 0; t < tet_.size(); ++t) {
@@ -2814,6 +2826,9 @@ class Engine {
   size_t max_tets_ = kMaxTets;
   bool red_over_max_ = false;                // a red level would have made more than max_tets_
   const SurfacePatches* patches_ = nullptr;  // the input's surface groups, or none
+  // Called once subdivision is done, if a split was refused for a node's valence, with
+  // the subdivided tets and how many are above the size (see ::simplify()).
+  std::function<void(size_t tets, size_t above_size)> after_subdivide_;
   // The edges (a < b, sorted) of patches_' faces inside a material, before
   // subdivision (whose splits keep the ids of the vertices there).
   std::vector<std::pair<uint32_t, uint32_t>> kept_edges_;
@@ -2823,6 +2838,9 @@ class Engine {
   // The most tets subdivision may make (a run past the valence: a multiple of the
   // first run's; see ::simplify()).
   void set_max_tets(size_t max_tets) { max_tets_ = max_tets; }
+  void set_after_subdivide(std::function<void(size_t, size_t)> f) {
+    after_subdivide_ = std::move(f);
+  }
   // The nodes bring_back_valences() left past the valence, by position.
   const std::vector<PositionKey>& left_past() const { return left_past_; }
 
@@ -2938,11 +2956,13 @@ namespace {
 Status run_engine(const TetMesh& input, const SimplifyParams& params, bool past_valence,
                   const ProgressCallback& progress, const std::atomic<bool>* cancel,
                   const SurfacePatches* patches, SimplifyResult* result,
-                  std::vector<PositionKey>* pinned = nullptr, size_t max_tets = kMaxTets) {
+                  std::vector<PositionKey>* pinned = nullptr, size_t max_tets = kMaxTets,
+                  std::function<void(size_t, size_t)> after_subdivide = {}) {
   *result = SimplifyResult{};
   Engine engine(input, params, progress, cancel, past_valence, pinned);
   engine.set_patches(patches);
   engine.set_max_tets(max_tets);
+  engine.set_after_subdivide(std::move(after_subdivide));
   const Status s = engine.run(result);
   if (pinned) {
     pinned->insert(pinned->end(), engine.left_past().begin(), engine.left_past().end());
@@ -2954,6 +2974,101 @@ Status run_engine(const TetMesh& input, const SimplifyParams& params, bool past_
 double run_seconds(const SimplifyResult& r) {
   return r.seconds_subdivide + r.seconds_classify + r.seconds_simplify;
 }
+
+// The runs past the valence of simplify() (see there): each with the nodes the one
+// before left past it pinned, up to kRuns.
+struct PastRuns {
+  static constexpr int kRuns = 4;
+  static constexpr size_t kMostLeft = 16;  // a run that leaves more is not made again
+  Status status;
+  SimplifyResult last;
+  std::vector<PositionKey> pinned;  // in the last run
+  int runs = 0;
+  double seconds_before_last = 0;
+
+  void make(const TetMesh& input, const SimplifyParams& params, const ProgressCallback& progress,
+            const std::atomic<bool>* cancel, const SurfacePatches* patches, size_t max_tets) {
+    for (runs = 1;; ++runs) {
+      pinned_in_last = pinned.size();
+      status = run_engine(input, params, true, progress, cancel, patches, &last, &pinned, max_tets);
+      if (!status || last.cancelled || last.nodes_left_past_valence == 0 || runs == kRuns ||
+          last.nodes_left_past_valence > kMostLeft)
+        break;
+      seconds_before_last += run_seconds(last);
+    }
+  }
+  size_t pinned_in_last = 0;
+};
+
+// PastRuns::make() on a thread of its own, started while the first run of simplify()
+// collapses. Its progress is kept, to be passed on from the calling thread (as
+// simplify() promises) once the first run is done; `stop` cancels it.
+class PastRunsAlongside {
+ public:
+  PastRunsAlongside() = default;
+  PastRunsAlongside(const PastRunsAlongside&) = delete;
+  PastRunsAlongside& operator=(const PastRunsAlongside&) = delete;
+  ~PastRunsAlongside() { stop_and_join(); }
+
+  bool started() const { return thread_.joinable(); }
+
+  void start(const TetMesh& input, const SimplifyParams& params, const SurfacePatches* patches,
+             size_t max_tets) {
+    thread_ = std::thread([this, &input, params, patches, max_tets] {
+      try {
+        runs_.make(
+            input, params,
+            [this](const SimplifyProgress& p) {
+              std::lock_guard<std::mutex> lock(mutex_);
+              latest_ = p;
+              fresh_ = true;
+              changed_.notify_one();
+            },
+            &stop_, patches, max_tets);
+      } catch (const std::exception& e) {
+        runs_.status = Status::error(std::string("the run past the valence failed: ") + e.what());
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+      changed_.notify_one();
+    });
+  }
+
+  void stop_and_join() {
+    stop_.store(true);
+    if (thread_.joinable()) thread_.join();
+  }
+
+  // Waits for the runs to end, passing their progress on from this thread and their
+  // cancellation from `cancel`.
+  PastRuns& finish(const ProgressCallback& progress, const std::atomic<bool>* cancel) {
+    for (bool done = false; !done;) {
+      SimplifyProgress p;
+      bool fresh = false;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        changed_.wait_for(lock, std::chrono::milliseconds(50), [this] { return fresh_ || done_; });
+        p = latest_;
+        fresh = fresh_;
+        fresh_ = false;
+        done = done_;
+      }
+      if (fresh && progress) progress(p);
+      if (cancel && cancel->load(std::memory_order_relaxed)) stop_.store(true);
+    }
+    thread_.join();
+    return runs_;
+  }
+
+ private:
+  PastRuns runs_;
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  SimplifyProgress latest_;
+  bool fresh_ = false, done_ = false;
+};
 
 }  // namespace
 
@@ -2973,67 +3088,76 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   // those back before the priority order starts. If one is left, that run is given up
   // and made again with the nodes left pinned (subdivision keeps them within tau_VL;
   // they are found by position: no collapse moves a node it leaves past the valence),
-  // up to kRuns runs in all, if it left at most kMostLeft (on the bundled motor, a run
-  // that left more was never brought to none within four runs). A run that brings
-  // every node back is the result if it leaves fewer tets above the size. Either way
-  // no node is past both when the priority order starts, and a collapse raises no
-  // node's valence but the one it makes, which stays within tau_VL.
+  // up to PastRuns::kRuns runs in all, if it left at most PastRuns::kMostLeft (on the
+  // bundled motor, a run that left more was never brought to none within four runs).
+  // A run that brings every node back is the result if it leaves fewer tets above the
+  // size. Either way no node is past both when the priority order starts, and a
+  // collapse raises no node's valence but the one it makes, which stays within tau_VL.
   //
   // The choice is made on whole runs, so that a run stopped at an element count is
   // the chosen run stopped there: with params.target_elements, the runs that choose
   // go to the end, and the chosen one is made again with the target.
-  constexpr int kRuns = 4;
-  constexpr size_t kMostLeft = 16;  // a run that leaves more is not made again
   if (!params.subdivide || !params.subdivide_past_valence)  // one run, nothing to choose
     return run_engine(input, params, false, progress, cancel, patches, result);
   SimplifyParams whole = params;
   whole.target_elements = 0;
-  s = run_engine(input, whole, false, progress, cancel, patches, result);
+  // A run past the valence may subdivide into at most params.past_valence_tets_factor
+  // times the tets of the first run's subdivision.
+  const auto max_tets_for = [&params](size_t first_tets) {
+    return static_cast<size_t>(
+        std::min<double>(kMaxTets, double(params.past_valence_tets_factor) * double(first_tets)));
+  };
+  // The runs past the valence start on a thread of their own as soon as the first
+  // run's subdivision shows they may be needed: tets above the size (which collapses
+  // never make) and a split refused for a node's valence. Their result does not depend
+  // on when they start, so the outcome is the same as one run after the other.
+  PastRunsAlongside alongside;
+  std::function<void(size_t, size_t)> after_subdivide;
+  if (params.past_valence_alongside && std::thread::hardware_concurrency() >= 2) {
+    after_subdivide = [&](size_t tets, size_t above_size) {
+      if (above_size > 0) alongside.start(input, whole, patches, max_tets_for(tets));
+    };
+  }
+  s = run_engine(input, whole, false, progress, cancel, patches, result, nullptr, kMaxTets,
+                 after_subdivide);
   if (!s || result->cancelled || result->violations.above_size == 0 ||
       result->splits_skipped_valence == 0) {
+    alongside.stop_and_join();
     if (s && !result->cancelled && params.target_elements > 0)
       s = run_engine(input, params, false, progress, cancel, patches, result);
     return s;
   }
   PastValence p;
   p.tried = true;
+  p.alongside = alongside.started();
   p.above_size_within = result->violations.above_size;
-  // A run past the valence may subdivide into at most params.past_valence_tets_factor
-  // times the tets of the first run's subdivision.
-  const size_t max_tets = static_cast<size_t>(std::min<double>(
-      kMaxTets, double(params.past_valence_tets_factor) * double(result->base.tet_count())));
-  SimplifyResult past;
-  std::vector<PositionKey> pinned;
-  Status s2;
-  double past_seconds = 0;  // of the runs past the valence before the last
-  for (p.runs = 1;; ++p.runs) {
-    p.pinned = pinned.size();
-    s2 = run_engine(input, whole, true, progress, cancel, patches, &past, &pinned, max_tets);
-    if (!s2 || past.cancelled || past.nodes_left_past_valence == 0 || p.runs == kRuns ||
-        past.nodes_left_past_valence > kMostLeft)
-      break;
-    past_seconds += run_seconds(past);
-  }
+  const size_t max_tets = max_tets_for(result->base.tet_count());
+  PastRuns sequential;
+  if (!alongside.started()) sequential.make(input, whole, progress, cancel, patches, max_tets);
+  PastRuns& runs = alongside.started() ? alongside.finish(progress, cancel) : sequential;
+  SimplifyResult& past = runs.last;
+  p.runs = runs.runs;
+  p.pinned = runs.pinned_in_last;
   p.nodes = past.nodes_past_valence;
   p.red_levels = past.red_levels;
   p.red_splits = past.red_splits;
   p.hot_splits = past.hot_splits;
   p.nodes_left = past.nodes_left_past_valence;
-  if (!s2 || past.cancelled) {  // the first result stands, cancelled if the other was
+  if (!runs.status || past.cancelled) {  // the first result stands, cancelled if the other was
     p.stopped = true;
-    p.stopped_why = s2.message();
-    p.seconds_other = past_seconds + run_seconds(past);
+    p.stopped_why = runs.status.message();
+    p.seconds_other = runs.seconds_before_last + run_seconds(past);
     result->cancelled = past.cancelled;
     result->past_valence = p;
     return s;
   }
   if (p.nodes_left == 0) p.above_size_past = past.violations.above_size;
   p.taken = p.nodes_left == 0 && p.above_size_past < p.above_size_within;
-  p.seconds_other = past_seconds + run_seconds(p.taken ? *result : past);
+  p.seconds_other = runs.seconds_before_last + run_seconds(p.taken ? *result : past);
   if (p.taken) *result = std::move(past);
   if (params.target_elements > 0)
     s = run_engine(input, params, p.taken, progress, cancel, patches, result,
-                   p.taken ? &pinned : nullptr, p.taken ? max_tets : kMaxTets);
+                   p.taken ? &runs.pinned : nullptr, p.taken ? max_tets : kMaxTets);
   result->past_valence = p;
   return s;
 }

@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/adjacency.h"
@@ -221,6 +222,23 @@ TEST(SimplifyTopology, NonManifoldMeshesKeepTheirRegions) {
   }
 }
 
+// The same output mesh and history, byte for byte.
+void expect_same_result(const SimplifyResult& a, const SimplifyResult& b) {
+  EXPECT_EQ(a.output.tets, b.output.tets);
+  EXPECT_EQ(a.output.materials, b.output.materials);
+  ASSERT_EQ(a.output.positions.size(), b.output.positions.size());
+  EXPECT_EQ(std::memcmp(a.output.positions.data(), b.output.positions.data(),
+                        b.output.positions.size() * sizeof(Vec3)),
+            0);
+  EXPECT_EQ(a.base.tets, b.base.tets);
+  ASSERT_EQ(a.history.step_count(), b.history.step_count());
+  EXPECT_EQ(std::memcmp(a.history.steps.data(), b.history.steps.data(),
+                        b.history.steps.size() * sizeof(CollapseHistory::Step)),
+            0);
+  EXPECT_EQ(a.history.removed_tets, b.history.removed_tets);
+  EXPECT_EQ(a.history.rewired, b.history.rewired);
+}
+
 TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
   TetMesh input;
   ReadInfo info;
@@ -233,17 +251,8 @@ TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
   for (int run = 1; run < 5; ++run) {
     SimplifyResult again;
     ASSERT_TRUE(simplify(input, params, &again));
-    EXPECT_EQ(again.output.tets, first.output.tets) << "run " << run;
-    ASSERT_EQ(again.output.positions.size(), first.output.positions.size());
-    EXPECT_EQ(std::memcmp(again.output.positions.data(), first.output.positions.data(),
-                          first.output.positions.size() * sizeof(Vec3)),
-              0);
-    ASSERT_EQ(again.history.step_count(), first.history.step_count());
-    EXPECT_EQ(std::memcmp(again.history.steps.data(), first.history.steps.data(),
-                          first.history.steps.size() * sizeof(CollapseHistory::Step)),
-              0);
-    EXPECT_EQ(again.history.removed_tets, first.history.removed_tets);
-    EXPECT_EQ(again.history.rewired, first.history.rewired);
+    SCOPED_TRACE("run " + std::to_string(run));
+    expect_same_result(again, first);
   }
 }
 
@@ -401,6 +410,9 @@ TEST(SimplifyPastValence, ReportsItsPhases) {
   SimplifyParams params;
   params.sizing.uniform = 18;
   params.tolerance = 0.05;
+  // One run after the other: alongside, the phases the run past the valence passes
+  // while the first run collapses are not reported (see the test below).
+  params.past_valence_alongside = false;
   std::vector<std::string> phases;
   std::vector<double> red;
   SimplifyResult result;
@@ -418,6 +430,107 @@ TEST(SimplifyPastValence, ReportsItsPhases) {
   ASSERT_GE(red.size(), 2u);
   EXPECT_TRUE(std::is_sorted(red.begin(), red.end()));
   EXPECT_EQ(red.back(), 1.0);
+}
+
+// The runs past the valence made on a second thread while the first run collapses
+// give the same result as one run after the other: where that run is the result (size
+// 18), where it is made again with pins (17, valence 20), where the first run leaves no
+// tet above the size though its subdivision did (20: the other is started, then
+// stopped), and where its subdivision passes the factor (12, factor 2). Every progress
+// call comes from the calling thread: the first run's phases, then those of the runs
+// past the valence from where they are when it ends.
+TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one processor: never alongside";
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
+  struct Setting {
+    double size;
+    uint32_t valence, factor;
+  };
+  for (const Setting& setting :
+       {Setting{18, 25, 8}, Setting{17, 20, 8}, Setting{20, 25, 8}, Setting{12, 25, 2}}) {
+    SCOPED_TRACE("size " + std::to_string(setting.size));
+    SimplifyParams params;
+    params.sizing.uniform = setting.size;
+    params.max_valence = setting.valence;
+    params.past_valence_tets_factor = setting.factor;
+    params.tolerance = 0.05;
+    params.past_valence_alongside = false;
+    SimplifyResult sequential;
+    ASSERT_TRUE(simplify(input, params, &sequential));
+    params.past_valence_alongside = true;
+    SimplifyResult alongside;
+    std::vector<std::string> phases;
+    bool other_thread = false;
+    const std::thread::id caller = std::this_thread::get_id();
+    ASSERT_TRUE(simplify(input, params, &alongside, [&](const SimplifyProgress& p) {
+      other_thread |= std::this_thread::get_id() != caller;
+      if (phases.empty() || phases.back() != p.phase) phases.emplace_back(p.phase);
+    }));
+    expect_same_result(alongside, sequential);
+    const PastValence &a = alongside.past_valence, &b = sequential.past_valence;
+    EXPECT_EQ(a.tried, b.tried);
+    EXPECT_EQ(a.taken, b.taken);
+    EXPECT_EQ(a.stopped, b.stopped);
+    EXPECT_EQ(a.stopped_why, b.stopped_why);
+    EXPECT_EQ(a.runs, b.runs);
+    EXPECT_EQ(a.pinned, b.pinned);
+    EXPECT_EQ(a.nodes_left, b.nodes_left);
+    EXPECT_EQ(a.above_size_within, b.above_size_within);
+    EXPECT_EQ(a.above_size_past, b.above_size_past);
+    EXPECT_EQ(a.alongside, a.tried);
+    EXPECT_FALSE(b.alongside);
+    EXPECT_FALSE(other_thread);
+    ASSERT_GE(phases.size(), 3u);
+    EXPECT_EQ(std::vector<std::string>(phases.begin(), phases.begin() + 3),
+              (std::vector<std::string>{"subdivide", "classify", "simplify"}));
+    if (a.tried && !a.stopped) {
+      EXPECT_EQ(phases.back(), "simplify");
+    }
+    for (size_t k = 3; k < phases.size(); ++k) {
+      const std::string& phase = phases[k];
+      EXPECT_TRUE(phase == "red levels" || phase == "subdivide" || phase == "edge removals" ||
+                  phase == "classify" || phase == "simplify")
+          << phase;
+    }
+  }
+}
+
+// Cancelled while the run past the valence runs alongside: during the first run's
+// collapses, and while the calling thread waits for the other. Either way the call
+// returns a cancelled, consistent result.
+TEST(SimplifyPastValence, AlongsideCanBeCancelled) {
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
+  SimplifyParams params;
+  params.sizing.uniform = 12;
+  params.tolerance = 0.05;
+  for (int when = 0; when < 2; ++when) {
+    SCOPED_TRACE(when == 0 ? "during the first run" : "waiting for the other");
+    std::atomic<bool> cancel{false};
+    int simplify_phases = 0;
+    std::string last;
+    SimplifyResult result;
+    ASSERT_TRUE(simplify(
+        input, params, &result,
+        [&](const SimplifyProgress& p) {
+          if (last != p.phase && std::string(p.phase) == "simplify") ++simplify_phases;
+          last = p.phase;
+          // The first run's collapses, or anything after them.
+          if (when == 0 && simplify_phases == 1 && p.collapses > 0) cancel = true;
+          if (when == 1 && simplify_phases == 1 && p.fraction == 1) cancel = true;
+        },
+        &cancel));
+    EXPECT_TRUE(result.cancelled);
+    Lod lod(result.base, &result.history);
+    lod.seek(lod.step_count());
+    EXPECT_EQ(lod.extract().tets, result.output.tets);
+    TetMesh check = result.output;
+    ValidationReport report;
+    EXPECT_TRUE(validate_mesh(&check, "cancelled", {}, &report));
+  }
 }
 
 // With valence 20 at size 17 the first run past the valence leaves nodes it cannot
