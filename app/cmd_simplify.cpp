@@ -23,6 +23,7 @@ namespace {
 constexpr const char* kSimplifyUsageHead =
     "usage: tetlod simplify IN -o OUT --size S [--stretch D] [--valence V] [--tolerance T]\n"
     "                       [--no-subdivide] [--within-valence] [--past-valence-factor F]\n"
+    "                       [--one-thread]\n"
     "                       [--material-size M=S,...]\n"
     "                       [--size-field SPEC] [--elements N] [--history FILE]\n"
     "                       [--crease-angle DEG] [--improve]\n"
@@ -261,6 +262,7 @@ int cmd_simplify(const Args& args) {
     std::printf("; and %.3f s for the %s", result.past_valence.seconds_other,
                 result.past_valence.runs > 1 ? "runs that are not the result"
                                              : "run that is not the result");
+  if (result.past_valence.alongside) std::printf(", made at the same time on a second thread");
   std::printf("\n");
 
   // The mesh and the history are written together, or neither.
@@ -295,10 +297,11 @@ int cmd_lod(const Args& args) {
     const std::string& a = args[i];
     std::string v;
     // The thresholds (not --elements, which here may be 0, nor the simplifier's own
-    // --tolerance, --no-subdivide, --within-valence and --past-valence-factor, which a
-    // level does not use).
+    // --tolerance, --no-subdivide, --within-valence, --past-valence-factor and
+    // --one-thread, which a level does not use).
     if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide" &&
-        a != "--within-valence" && a != "--past-valence-factor" && a != "--improve") {
+        a != "--within-valence" && a != "--past-valence-factor" && a != "--one-thread" &&
+        a != "--improve") {
       const OptionResult parsed = parse_simplify_option(args, &i, "lod", &options);
       if (parsed == OptionResult::kError) return kExitUsage;
       if (parsed == OptionResult::kParsed) {

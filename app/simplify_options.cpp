@@ -32,6 +32,10 @@ const char* const kSimplifyFlagsHelp =
     "  --past-valence-factor F   that other run stops, and the first stands, once its\n"
     "                    subdivision passes F times the first run's tets (default 8;\n"
     "                    a bound on its time and memory)\n"
+    "  --one-thread      make that other run after the first (by default it starts on a\n"
+    "                    second thread, where there are two processors, as soon as the\n"
+    "                    first run's subdivision leaves tets above the size: the same\n"
+    "                    result, sooner)\n"
     "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
 
 const char* const kWriteFlagsHelp =
@@ -147,6 +151,8 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
     params.subdivide = false;
   } else if (a == "--within-valence") {
     params.subdivide_past_valence = false;
+  } else if (a == "--one-thread") {
+    params.past_valence_alongside = false;
   } else if (a == "--past-valence-factor") {
     if (!value()) return OptionResult::kError;
     const auto n = parse_integer(v);

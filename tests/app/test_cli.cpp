@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 
 #include "app/cli_runner.h"
 #include "core/io/mesh_io.h"
@@ -840,6 +841,31 @@ TEST(Cli, PastValenceFactorBoundsTheRunPastTheValence) {
               std::string::npos)
         << r.output;
   }
+}
+
+// By default the run past the valence starts on a second thread while the first
+// collapses, and the time line says so; --one-thread makes it after the first. The
+// mesh and the history are the same, byte for byte.
+TEST(Cli, OneThreadGivesTheSameOutput) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  std::string mesh[2], history[2];
+  for (int one = 0; one < 2; ++one) {
+    const std::string name = out_dir() + (one ? "/one_thread" : "/alongside");
+    const CommandResult r = run("simplify " + motor + " -o " + name + ".mesh --history " + name +
+                                ".tlh --size 16 --tolerance 0.05" + (one ? " --one-thread" : ""));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("so it is the result"), std::string::npos) << r.output;
+    const bool alongside =
+        r.output.find(
+            " for the run that is not the result, made at the same time on a second "
+            "thread\n") != std::string::npos;
+    EXPECT_EQ(alongside, !one && std::thread::hardware_concurrency() >= 2) << r.output;
+    mesh[one] = read_file(name + ".mesh");
+    history[one] = read_file(name + ".tlh");
+  }
+  EXPECT_FALSE(mesh[0].empty());
+  EXPECT_EQ(mesh[0], mesh[1]);
+  EXPECT_EQ(history[0], history[1]);
 }
 
 // `tetlod lod` says what the level it writes breaks of the thresholds saved in the
