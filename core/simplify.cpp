@@ -24,6 +24,7 @@
 #include <exception>
 #include <mutex>
 #include <new>
+#include <system_error>
 #include <thread>
 
 #include "core/adjacency.h"
@@ -2999,7 +3000,8 @@ struct PastRuns {
   static constexpr size_t kMostLeft = 16;  // a run that leaves more is not made again
   Status status;
   SimplifyResult last;
-  std::vector<PositionKey> pinned;  // in the last run
+  std::vector<PositionKey> pinned;  // after the last run: the nodes every run left
+  size_t pinned_in_last = 0;        // of them, those pinned in the last run
   int runs = 0;
   double seconds_before_last = 0;
 
@@ -3014,12 +3016,11 @@ struct PastRuns {
       seconds_before_last += run_seconds(last);
     }
   }
-  size_t pinned_in_last = 0;
 };
 
 // PastRuns::make() on a thread of its own, started while the first run of simplify()
 // collapses. Its progress is kept, to be passed on from the calling thread (as
-// simplify() promises) once the first run is done; `stop` cancels it.
+// simplify() promises) once the first run is done; stop_and_join() cancels it.
 class PastRunsAlongside {
  public:
   PastRunsAlongside() = default;
@@ -3029,26 +3030,15 @@ class PastRunsAlongside {
 
   bool started() const { return thread_.joinable(); }
 
+  // Leaves it not started if no thread can be made (simplify() then makes the runs
+  // after the first, as without a second processor).
   void start(const TetMesh& input, const SimplifyParams& params, const SurfacePatches* patches,
              size_t max_tets) {
-    thread_ = std::thread([this, &input, params, patches, max_tets] {
-      try {
-        runs_.make(
-            input, params,
-            [this](const SimplifyProgress& p) {
-              std::lock_guard<std::mutex> lock(mutex_);
-              latest_ = p;
-              fresh_ = true;
-              changed_.notify_one();
-            },
-            &stop_, patches, max_tets);
-      } catch (const std::exception& e) {
-        runs_.status = Status::error(std::string("the run past the valence failed: ") + e.what());
-      }
-      std::lock_guard<std::mutex> lock(mutex_);
-      done_ = true;
-      changed_.notify_one();
-    });
+    try {
+      thread_ = std::thread(
+          [this, &input, params, patches, max_tets] { run(input, params, patches, max_tets); });
+    } catch (const std::system_error&) {
+    }
   }
 
   void stop_and_join() {
@@ -3078,6 +3068,27 @@ class PastRunsAlongside {
   }
 
  private:
+  // The thread: the runs, then done_.
+  void run(const TetMesh& input, const SimplifyParams& params, const SurfacePatches* patches,
+           size_t max_tets) {
+    try {
+      runs_.make(
+          input, params,
+          [this](const SimplifyProgress& p) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            latest_ = p;
+            fresh_ = true;
+            changed_.notify_one();
+          },
+          &stop_, patches, max_tets);
+    } catch (const std::exception& e) {
+      runs_.status = Status::error(std::string("the run past the valence failed: ") + e.what());
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    done_ = true;
+    changed_.notify_one();
+  }
+
   PastRuns runs_;
   std::thread thread_;
   std::atomic<bool> stop_{false};
