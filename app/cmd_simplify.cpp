@@ -233,8 +233,7 @@ int cmd_simplify(const Args& args) {
       result.history.step_count(), describe_rejections(result.rejections).c_str());
   const std::string past = past_valence_summary(result);
   if (!past.empty()) std::printf("past the valence: %s\n", past.c_str());
-  if (result.past_valence.stopped &&
-      result.past_valence.stopped_why.find(" times the first run's") != std::string::npos)
+  if (result.past_valence.stopped_by_factor)
     std::printf("  (--past-valence-factor raises that bound: it was %u)\n",
                 options.params.past_valence_tets_factor);
   const EvaluationCounts& e = result.evaluations;

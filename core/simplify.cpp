@@ -428,6 +428,7 @@ class Engine {
       Status s = subdivide(result);
       if (!s) {
         result->seconds_subdivide = seconds_since(start);
+        result->over_tets_factor = over_factor_;
         return s;
       }
     }
@@ -1120,11 +1121,14 @@ class Engine {
     return true;
   }
 
-  Status too_many_tets() const {
-    if (max_tets_ < kMaxTets)
+  Status too_many_tets() {
+    if (max_tets_ < kMaxTets) {
+      over_factor_ = true;
+      const uint32_t f = params_.past_valence_tets_factor;
       return Status::error("its subdivision passed " + std::to_string(max_tets_) + " tets, " +
-                           std::to_string(params_.past_valence_tets_factor) +
-                           " times the first run's");
+                           (f == 1 ? std::string("as many as") : std::to_string(f) + " times") +
+                           " the first run's");
+    }
     return Status::error("size " + number(params_.sizing.smallest_size()) +
                          ": subdivision exceeded " + std::to_string(kMaxTets) +
                          " tets; choose a larger size or --no-subdivide");
@@ -2842,7 +2846,8 @@ class Engine {
   const bool past_valence_;                 // subdivision may take nodes past tau_VL
   const std::vector<PositionKey>* pinned_;  // but not these
   size_t max_tets_ = kMaxTets;
-  bool red_over_max_ = false;                // a red level would have made more than max_tets_
+  bool red_over_max_ = false;  // a red level would have made more than max_tets_
+  bool over_factor_ = false;   // subdivision stopped at max_tets_, a run past the valence's bound
   const SurfacePatches* patches_ = nullptr;  // the input's surface groups, or none
   // Called once subdivision is done, if a split was refused for a node's valence, with
   // the subdivided tets and how many are above the size (see ::simplify()).
@@ -3174,6 +3179,7 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   if (!runs.status || past.cancelled) {  // the first result stands, cancelled if the other was
     p.stopped = true;
     p.stopped_why = runs.status.message();
+    p.stopped_by_factor = past.over_tets_factor;
     p.seconds_other = runs.seconds_before_last + run_seconds(past);
     result->cancelled = past.cancelled;
     result->past_valence = p;

@@ -112,11 +112,14 @@ struct PastValence {
   bool taken = false;       // the last such run is the result
   bool stopped = false;     // cancelled, or an error (more tets than allowed, say)
   std::string stopped_why;  // the error, if one stopped it
-  int runs = 0;             // made, each with the nodes the one before left pinned
-  size_t pinned = 0;        // nodes pinned in the last
-  size_t nodes = 0;         // nodes the last took past both tau_VL and their input valence
-  size_t nodes_left = 0;    // of them, not brought back: it was given up
-  size_t red_levels = 0;    // red levels of the last, and edges they split
+  // The error: its subdivision passed SimplifyParams::past_valence_tets_factor times
+  // the first run's tets.
+  bool stopped_by_factor = false;
+  int runs = 0;           // made, each with the nodes the one before left pinned
+  size_t pinned = 0;      // nodes pinned in the last
+  size_t nodes = 0;       // nodes the last took past both tau_VL and their input valence
+  size_t nodes_left = 0;  // of them, not brought back: it was given up
+  size_t red_levels = 0;  // red levels of the last, and edges they split
   size_t red_splits = 0;
   size_t hot_splits = 0;         // edges the last bisected before its red levels
   size_t above_size_within = 0;  // tets above the size the first run left
@@ -160,6 +163,9 @@ struct SimplifyResult {
   // Long edges left unsplit (not in splits_skipped) because they are edges of an input
   // surface group's triangles inside a material, which the run keeps as they are.
   size_t splits_skipped_inside = 0;
+  // Subdivision stopped (an error) at the tets a run past the valence may make
+  // (SimplifyParams::past_valence_tets_factor times the first run's).
+  bool over_tets_factor = false;
   bool cancelled = false;
   // The candidate tests' kernels: "avx2" or "baseline" (also where the environment
   // sets TETLOD_NO_AVX2). Both give the same result, bit for bit.

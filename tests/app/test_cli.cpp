@@ -824,7 +824,7 @@ TEST(Cli, PastValenceFactorBoundsTheRunPastTheValence) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("stopped before its end: its subdivision passed "), std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find(" tets, 1 times the first run's\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" tets, as many as the first run's\n"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(--past-valence-factor raises that bound: it was 1)"), std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find(" 0 above the size, "), std::string::npos) << r.output;

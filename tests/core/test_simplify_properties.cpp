@@ -474,6 +474,7 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
     EXPECT_EQ(a.taken, b.taken);
     EXPECT_EQ(a.stopped, b.stopped);
     EXPECT_EQ(a.stopped_why, b.stopped_why);
+    EXPECT_EQ(a.stopped_by_factor, b.stopped_by_factor);
     EXPECT_EQ(a.runs, b.runs);
     EXPECT_EQ(a.pinned, b.pinned);
     EXPECT_EQ(a.nodes_left, b.nodes_left);
@@ -609,6 +610,7 @@ TEST(SimplifyPastValence, StopsWhereItsSubdivisionGrowsPastTheFactor) {
   const std::string why = "its subdivision passed " + std::to_string(2 * stopped.base.tet_count()) +
                           " tets, 2 times the first run's";
   EXPECT_EQ(stopped.past_valence.stopped_why, why);
+  EXPECT_TRUE(stopped.past_valence.stopped_by_factor);
   EXPECT_NE(past_valence_summary(stopped).find("stopped before its end: " + why), std::string::npos)
       << past_valence_summary(stopped);
   const SimplifyResult within = simplify_motor(12, false);
