@@ -332,6 +332,19 @@ TEST(SimplifyPastValence, BringsEveryNodeBackBeforeThePriorityOrder) {
   EXPECT_EQ(past_both(lod.extract()), 0u);
 }
 
+// A cancelled run's history leads from its base to its output, which is a valid mesh
+// with every tet the right way round.
+void expect_consistent_cancelled(const SimplifyResult& result) {
+  EXPECT_TRUE(result.cancelled);
+  Lod lod(result.base, &result.history);
+  lod.seek(lod.step_count());
+  EXPECT_EQ(lod.extract().tets, result.output.tets);
+  TetMesh check = result.output;
+  ValidationReport report;
+  EXPECT_TRUE(validate_mesh(&check, "cancelled", {}, &report));
+  EXPECT_EQ(report.reoriented_tets, 0u);
+}
+
 // The subdivided base of a run is valid and conforming: no tet turned round, every
 // boundary and interface keeps its area, every material its volume.
 void expect_conforming_base(const TetMesh& input, const SimplifyResult& r) {
@@ -524,13 +537,7 @@ TEST(SimplifyPastValence, AlongsideCanBeCancelled) {
           if (when == 1 && simplify_phases == 1 && p.fraction == 1) cancel = true;
         },
         &cancel));
-    EXPECT_TRUE(result.cancelled);
-    Lod lod(result.base, &result.history);
-    lod.seek(lod.step_count());
-    EXPECT_EQ(lod.extract().tets, result.output.tets);
-    TetMesh check = result.output;
-    ValidationReport report;
-    EXPECT_TRUE(validate_mesh(&check, "cancelled", {}, &report));
+    expect_consistent_cancelled(result);
   }
 }
 
@@ -680,15 +687,8 @@ TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
         if (std::string(p.phase) == "simplify" && p.collapses > 0) cancel = true;
       },
       &cancel));
-  EXPECT_TRUE(result.cancelled);
   EXPECT_GT(calls, 0u);
-  Lod lod(result.base, &result.history);
-  lod.seek(lod.step_count());
-  EXPECT_EQ(lod.extract().tets, result.output.tets);
-  TetMesh check = result.output;
-  ValidationReport report;
-  EXPECT_TRUE(validate_mesh(&check, "cancelled", {}, &report));
-  EXPECT_EQ(report.reoriented_tets, 0u);
+  expect_consistent_cancelled(result);
 }
 
 }  // namespace
