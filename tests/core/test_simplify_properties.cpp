@@ -538,6 +538,9 @@ TEST(SimplifyPastValence, AlongsideCanBeCancelled) {
         },
         &cancel));
     expect_consistent_cancelled(result);
+    // Waiting: the first run ended, and the other was stopped.
+    EXPECT_EQ(result.past_valence.tried, when == 1);
+    EXPECT_EQ(result.past_valence.stopped, when == 1);
   }
 }
 
