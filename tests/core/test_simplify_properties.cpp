@@ -541,6 +541,7 @@ TEST(SimplifyPastValence, AlongsideCanBeCancelled) {
     // Waiting: the first run ended, and the other was stopped.
     EXPECT_EQ(result.past_valence.tried, when == 1);
     EXPECT_EQ(result.past_valence.stopped, when == 1);
+    EXPECT_EQ(result.past_valence.alongside, when == 1 && std::thread::hardware_concurrency() >= 2);
   }
 }
 
