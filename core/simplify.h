@@ -179,6 +179,7 @@ struct SimplifyProgress {
   const char* phase = "";
   double fraction = 0;  // of the phase, in [0, 1]; an estimate for "simplify"
   size_t collapses = 0;
+  bool past_valence = false;  // a run past the valence (after the first run's phases)
 };
 using ProgressCallback = std::function<void(const SimplifyProgress&)>;
 

@@ -427,12 +427,16 @@ TEST(SimplifyPastValence, ReportsItsPhases) {
   // while the first run collapses are not reported (see the test below).
   params.past_valence_alongside = false;
   std::vector<std::string> phases;
+  std::vector<bool> past;  // of each phase, SimplifyProgress::past_valence
   std::vector<double> red;
   SimplifyResult result;
   ASSERT_TRUE(simplify(input, params, &result, [&](const SimplifyProgress& p) {
     EXPECT_GE(p.fraction, 0.0);
     EXPECT_LE(p.fraction, 1.0);
-    if (phases.empty() || phases.back() != p.phase) phases.emplace_back(p.phase);
+    if (phases.empty() || phases.back() != p.phase || past.back() != p.past_valence) {
+      phases.emplace_back(p.phase);
+      past.push_back(p.past_valence);
+    }
     if (phases.back() == "red levels") red.push_back(p.fraction);
   }));
   ASSERT_TRUE(result.past_valence.taken);
@@ -440,6 +444,7 @@ TEST(SimplifyPastValence, ReportsItsPhases) {
   const std::vector<std::string> expected = {"subdivide", "classify",      "simplify", "red levels",
                                              "subdivide", "edge removals", "classify", "simplify"};
   EXPECT_EQ(phases, expected);
+  EXPECT_EQ(past, std::vector<bool>({false, false, false, true, true, true, true, true}));
   ASSERT_GE(red.size(), 2u);
   EXPECT_TRUE(std::is_sorted(red.begin(), red.end()));
   EXPECT_EQ(red.back(), 1.0);
@@ -477,10 +482,17 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
     std::vector<std::string> phases;
     bool other_thread = false;
     const std::thread::id caller = std::this_thread::get_id();
+    bool past_before_first_ends = false, first_after_past = false, past_seen = false;
     ASSERT_TRUE(simplify(input, params, &alongside, [&](const SimplifyProgress& p) {
       other_thread |= std::this_thread::get_id() != caller;
       if (phases.empty() || phases.back() != p.phase) phases.emplace_back(p.phase);
+      past_before_first_ends |= p.past_valence && phases.size() < 3;
+      first_after_past |= !p.past_valence && past_seen;
+      past_seen |= p.past_valence;
     }));
+    EXPECT_FALSE(past_before_first_ends);
+    EXPECT_FALSE(first_after_past);
+    EXPECT_EQ(past_seen, alongside.past_valence.tried);
     expect_same_result(alongside, sequential);
     const PastValence &a = alongside.past_valence, &b = sequential.past_valence;
     EXPECT_EQ(a.tried, b.tried);
@@ -692,6 +704,30 @@ TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
       },
       &cancel));
   EXPECT_GT(calls, 0u);
+  expect_consistent_cancelled(result);
+}
+
+// The simplify phase is reported as it starts, before every edge is evaluated, and a
+// cancel then stops the run before its first collapse: the base is the output.
+TEST(SimplifyCancel, CancelledBeforeTheFirstCollapseLeavesTheBase) {
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(source_file("assets/spheres.mesh"), &input, &info));
+  SimplifyParams params;
+  params.sizing.uniform = 1.0;
+  params.tolerance = 0.02;
+  params.subdivide_past_valence = false;
+  std::atomic<bool> cancel{false};
+  SimplifyResult result;
+  ASSERT_TRUE(simplify(
+      input, params, &result,
+      [&](const SimplifyProgress& p) {
+        if (std::string(p.phase) == "simplify" && p.fraction == 0) cancel = true;
+      },
+      &cancel));
+  EXPECT_EQ(result.history.step_count(), 0u);
+  EXPECT_EQ(result.evaluations.initial, 0u);
+  EXPECT_EQ(result.output.tets, result.base.tets);
   expect_consistent_cancelled(result);
 }
 
