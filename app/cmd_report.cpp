@@ -10,6 +10,7 @@
 #include "app/cli_util.h"
 #include "app/commands.h"
 #include "app/render_options.h"
+#include "app/terminal_progress.h"
 #include "core/adjacency.h"
 #include "core/improve.h"
 #include "core/io/output_files.h"
@@ -259,7 +260,9 @@ int cmd_report(const Args& args) {
     SimplifyOptions& so = options.simplify_options;
     if (!finish_simplify_options(input, names, "report", &so)) return kExitUsage;
     SimplifyResult result;
-    const Status s = simplify(input, so.params, &result, {}, nullptr, &patches);
+    TerminalProgress progress("tetlod report");
+    const Status s = simplify(input, so.params, &result, progress.callback(), nullptr, &patches);
+    progress.clear();
     if (!s) {
       std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
       return kExitBadInput;

@@ -11,6 +11,7 @@
 #include "app/cli_util.h"
 #include "app/commands.h"
 #include "app/simplify_options.h"
+#include "app/terminal_progress.h"
 #include "core/adjacency.h"
 #include "core/improve.h"
 #include "core/lod.h"
@@ -195,7 +196,9 @@ int cmd_simplify(const Args& args) {
   std::printf("\nthresholds: %s\n", describe_thresholds(params).c_str());
 
   SimplifyResult result;
-  const Status status = simplify(input, params, &result, {}, nullptr, &patches);
+  TerminalProgress progress("tetlod simplify");
+  const Status status = simplify(input, params, &result, progress.callback(), nullptr, &patches);
+  progress.clear();
   if (!status) {
     std::fprintf(stderr, "tetlod simplify: %s\n", status.message().c_str());
     return kExitBadInput;

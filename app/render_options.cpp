@@ -6,6 +6,7 @@
 
 #include "app/cli_util.h"
 #include "app/commands.h"
+#include "app/terminal_progress.h"
 #include "core/improve.h"
 #include "core/lod.h"
 
@@ -248,7 +249,9 @@ int simplified_mesh(const TetMesh& input, const std::vector<MaterialName>& names
   SimplifyOptions& so = options->simplify_options;
   if (!finish_simplify_options(input, names, command, &so)) return kExitUsage;
   SimplifyResult result;
-  const Status status = simplify(input, so.params, &result, {}, nullptr, patches);
+  TerminalProgress progress(std::string("tetlod ") + command);
+  const Status status = simplify(input, so.params, &result, progress.callback(), nullptr, patches);
+  progress.clear();
   if (!status) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, status.message().c_str());
     return kExitBadInput;

@@ -868,6 +868,38 @@ TEST(Cli, OneThreadGivesTheSameOutput) {
   EXPECT_EQ(history[0], history[1]);
 }
 
+// Where stderr is a terminal, `simplify` shows its progress on one line, rewritten in
+// place (the run past the valence's phases named as such) and erased before the
+// results; where it is not (a pipe, as for scripts), nothing of it. The terminal is
+// util-linux's `script` (Debian's bsdutils, an essential package); skipped where it
+// cannot make one.
+TEST(Cli, ProgressLineOnlyOnATerminal) {
+  if (std::system("script -qec true /dev/null > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "no script(1), or no pseudo-terminal for it";
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const std::string simplify = std::string(TETLOD_BINARY) + " simplify " + motor + " -o " +
+                               out_dir() + "/progress.mesh --size 16 --tolerance 0.05";
+  std::string terminal;
+  {
+    std::FILE* pipe = popen(("script -qec '" + simplify + " > /dev/null' /dev/null").c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    char buffer[4096];
+    size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) terminal.append(buffer, n);
+    ASSERT_EQ(pclose(pipe), 0) << terminal;
+  }
+  EXPECT_EQ(terminal.rfind("\rtetlod simplify: subdivide ", 0), 0u) << terminal;
+  EXPECT_NE(terminal.find("\rtetlod simplify: simplify "), std::string::npos) << terminal;
+  EXPECT_NE(terminal.find(" collapses\033[K\rtetlod simplify: past the valence: "),
+            std::string::npos)
+      << terminal;
+  ASSERT_GE(terminal.size(), 4u);
+  EXPECT_EQ(terminal.substr(terminal.size() - 4), "\r\033[K") << terminal;  // erased
+  const CommandResult piped = run(simplify.substr(std::string(TETLOD_BINARY).size() + 1));
+  ASSERT_EQ(piped.code, 0) << piped.output;
+  EXPECT_EQ(piped.output.find('\r'), std::string::npos) << piped.output;
+}
+
 // `tetlod lod` says what the level it writes breaks of the thresholds saved in the
 // history: at the last level, what `simplify` said of its final mesh; at the first,
 // more (after a run past the valence, nodes subdivision took past it among them).
