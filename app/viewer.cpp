@@ -228,6 +228,7 @@ struct Job {
   Clock::time_point start = Clock::now();
   std::mutex mutex;  // guards the fields below
   std::string phase = "starting";
+  bool past_valence = false;  // SimplifyProgress::past_valence
   double fraction = 0;
   size_t collapses = 0;
   std::unique_ptr<Scene> scene;
@@ -751,6 +752,7 @@ void Viewer::start_simplify() {
         [job](const SimplifyProgress& p) {
           std::lock_guard<std::mutex> lock(job->mutex);
           job->phase = p.phase;
+          job->past_valence = p.past_valence;
           job->fraction = p.fraction;
           job->collapses = p.collapses;
         },
@@ -1424,6 +1426,7 @@ void Viewer::fill_status() {
   if (job_) {
     std::lock_guard<std::mutex> lock(job_->mutex);
     s.phase = job_->phase;
+    s.past_valence_run = job_->past_valence;
     s.phase_fraction = job_->fraction;
     s.collapses = job_->collapses;
     s.elapsed_seconds = seconds_between(job_->start, Clock::now());

@@ -317,7 +317,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     if (ImGui::Button("Cancel")) commands->push_back({CommandKind::kCancel});
     ImGui::SameLine();
     char overlay[96];
-    std::snprintf(overlay, sizeof(overlay), "%s %.0f%%", status.phase.c_str(),
+    std::snprintf(overlay, sizeof(overlay), "%s%s %.0f%%",
+                  status.past_valence_run ? "past the valence: " : "", status.phase.c_str(),
                   100 * status.phase_fraction);
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
     ImGui::TextWrapped("%zu collapses, %.0f /s, %.1f s", status.collapses,
@@ -845,7 +846,10 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
     ImGui::SameLine();
     // Short enough for the panel's width: the collapses only while they are made.
     char overlay[96];
-    if (status.phase == "simplify")
+    if (status.past_valence_run)  // (the collapses are in the Thresholds section)
+      std::snprintf(overlay, sizeof(overlay), "past the valence: %s %.0f%%", status.phase.c_str(),
+                    100 * status.phase_fraction);
+    else if (status.phase == "simplify")
       std::snprintf(overlay, sizeof(overlay), "simplify %.0f%%, %zu collapses",
                     100 * status.phase_fraction, status.collapses);
     else

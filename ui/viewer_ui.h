@@ -166,6 +166,7 @@ struct ViewerStatus {
   // Simplification: running state and the last result.
   bool running = false;
   std::string phase;
+  bool past_valence_run = false;  // the phase is a run past the valence's (simplify.h)
   double phase_fraction = 0;
   size_t collapses = 0;
   double collapses_per_second = 0;
