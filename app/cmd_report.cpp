@@ -261,7 +261,8 @@ int cmd_report(const Args& args) {
     if (!finish_simplify_options(input, names, "report", &so)) return kExitUsage;
     SimplifyResult result;
     TerminalProgress progress("tetlod report");
-    const Status s = simplify(input, so.params, &result, progress.callback(), nullptr, &patches);
+    const Status s =
+        simplify(input, so.params, &result, progress.simplify_callback(), nullptr, &patches);
     progress.clear();
     if (!s) {
       std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());

@@ -197,7 +197,8 @@ int cmd_simplify(const Args& args) {
 
   SimplifyResult result;
   TerminalProgress progress("tetlod simplify");
-  const Status status = simplify(input, params, &result, progress.callback(), nullptr, &patches);
+  const Status status =
+      simplify(input, params, &result, progress.simplify_callback(), nullptr, &patches);
   progress.clear();
   if (!status) {
     std::fprintf(stderr, "tetlod simplify: %s\n", status.message().c_str());

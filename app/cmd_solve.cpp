@@ -11,6 +11,7 @@
 #include "app/cli_util.h"
 #include "app/commands.h"
 #include "app/simplify_options.h"
+#include "app/terminal_progress.h"
 #include "core/electrostatics.h"
 
 namespace tetlod::app {
@@ -243,7 +244,10 @@ int cmd_solve(const Args& args) {
   }
   const auto start = std::chrono::steady_clock::now();
   ElectrostaticsSolution solution;
-  const Status status = solve_electrostatics(mesh, problem, options, &solution);
+  TerminalProgress progress("tetlod solve");
+  const Status status =
+      solve_electrostatics(mesh, problem, options, &solution, progress.solve_callback());
+  progress.clear();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!status) {

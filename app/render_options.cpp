@@ -250,7 +250,8 @@ int simplified_mesh(const TetMesh& input, const std::vector<MaterialName>& names
   if (!finish_simplify_options(input, names, command, &so)) return kExitUsage;
   SimplifyResult result;
   TerminalProgress progress(std::string("tetlod ") + command);
-  const Status status = simplify(input, so.params, &result, progress.callback(), nullptr, patches);
+  const Status status =
+      simplify(input, so.params, &result, progress.simplify_callback(), nullptr, patches);
   progress.clear();
   if (!status) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, status.message().c_str());

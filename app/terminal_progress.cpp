@@ -9,24 +9,31 @@ namespace tetlod::app {
 TerminalProgress::TerminalProgress(const std::string& command)
     : command_(command), terminal_(isatty(STDERR_FILENO) == 1) {}
 
-ProgressCallback TerminalProgress::callback() {
+ProgressCallback TerminalProgress::simplify_callback() {
   if (!terminal_) return {};
-  return [this](const SimplifyProgress& p) { show(p); };
+  return [this](const SimplifyProgress& p) {
+    const std::string phase = std::string(p.past_valence ? "past the valence: " : "") + p.phase;
+    const bool collapsing = std::string(p.phase) == "simplify";
+    show(phase, p.fraction, collapsing ? std::to_string(p.collapses) + " collapses" : "");
+  };
 }
 
-void TerminalProgress::show(const SimplifyProgress& p) {
-  const std::string phase = std::string(p.past_valence ? "past the valence: " : "") + p.phase;
+SolveProgressCallback TerminalProgress::solve_callback() {
+  if (!terminal_) return {};
+  return [this](const SolveProgress& p) {
+    const bool iterating = std::string(p.phase) == "solve";
+    show(p.phase, p.fraction, iterating ? "iteration " + std::to_string(p.iteration) : "");
+  };
+}
+
+void TerminalProgress::show(const std::string& phase, double fraction, const std::string& detail) {
   const auto now = std::chrono::steady_clock::now();
   if (phase == phase_ && now - last_ < std::chrono::milliseconds(200)) return;
   phase_ = phase;
   last_ = now;
   // \r and "erase to the end of the line": the line is rewritten in place.
-  if (std::string(p.phase) == "simplify")
-    std::fprintf(stderr, "\r%s: %s %.0f%%, %zu collapses\033[K", command_.c_str(), phase.c_str(),
-                 100 * p.fraction, p.collapses);
-  else
-    std::fprintf(stderr, "\r%s: %s %.0f%%\033[K", command_.c_str(), phase.c_str(),
-                 100 * p.fraction);
+  std::fprintf(stderr, "\r%s: %s %.0f%%%s%s\033[K", command_.c_str(), phase.c_str(), 100 * fraction,
+               detail.empty() ? "" : ", ", detail.c_str());
   std::fflush(stderr);
   shown_ = true;
 }

@@ -1,11 +1,13 @@
-// A progress line on stderr while the simplifier works, for the commands that run it
-// (`simplify`, `report`, `render --simplify`): only where stderr is a terminal, so
-// scripts and logs that read the output see none of it.
+// A progress line on stderr while a long computation works, for the commands that
+// run the simplifier (`simplify`, `report`, `render --simplify`) or the solver
+// (`solve`): only where stderr is a terminal, so scripts and logs that read the
+// output see none of it.
 #pragma once
 
 #include <chrono>
 #include <string>
 
+#include "core/electrostatics.h"
 #include "core/simplify.h"
 
 namespace tetlod::app {
@@ -17,19 +19,22 @@ class TerminalProgress {
   TerminalProgress(const TerminalProgress&) = delete;
   TerminalProgress& operator=(const TerminalProgress&) = delete;
 
-  // The callback to give simplify(): rewrites the line at most five times a second
-  // (always at a new phase). Empty where stderr is not a terminal.
-  ProgressCallback callback();
+  // The callbacks to give simplify() and solve_electrostatics(): each rewrites the
+  // line at most five times a second (always at a new phase). Empty where stderr is
+  // not a terminal.
+  ProgressCallback simplify_callback();
+  SolveProgressCallback solve_callback();
   // Erases the line, before the command prints what it found.
   void clear();
 
  private:
-  void show(const SimplifyProgress& p);
+  // "PHASE N%" and, if not empty, ", DETAIL".
+  void show(const std::string& phase, double fraction, const std::string& detail);
 
   std::string command_;
   bool terminal_ = false;
   bool shown_ = false;
-  std::string phase_;  // the last shown, with the run it belongs to
+  std::string phase_;  // the last shown
   std::chrono::steady_clock::time_point last_{};
 };
 

@@ -868,7 +868,7 @@ TEST(Cli, OneThreadGivesTheSameOutput) {
   EXPECT_EQ(history[0], history[1]);
 }
 
-// Where stderr is a terminal, `simplify` shows its progress on one line, rewritten in
+// Where stderr is a terminal, `simplify` (and `solve`) show progress on one line, rewritten in
 // place (the run past the valence's phases named as such) and erased before the
 // results; where it is not (a pipe, as for scripts), nothing of it. The terminal is
 // util-linux's `script` (Debian's bsdutils, an essential package); skipped where it
@@ -879,15 +879,19 @@ TEST(Cli, ProgressLineOnlyOnATerminal) {
   const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
   const std::string simplify = std::string(TETLOD_BINARY) + " simplify " + motor + " -o " +
                                out_dir() + "/progress.mesh --size 16 --tolerance 0.05";
-  std::string terminal;
-  {
-    std::FILE* pipe = popen(("script -qec '" + simplify + " > /dev/null' /dev/null").c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
+  // What the command writes to a terminal (its stdout thrown away).
+  const auto on_terminal = [](const std::string& command) {
+    std::string terminal;
+    std::FILE* pipe = popen(("script -qec '" + command + " > /dev/null' /dev/null").c_str(), "r");
+    EXPECT_NE(pipe, nullptr);
+    if (!pipe) return terminal;
     char buffer[4096];
     size_t n;
     while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) terminal.append(buffer, n);
-    ASSERT_EQ(pclose(pipe), 0) << terminal;
-  }
+    EXPECT_EQ(pclose(pipe), 0) << terminal;
+    return terminal;
+  };
+  const std::string terminal = on_terminal(simplify);
   EXPECT_EQ(terminal.rfind("\rtetlod simplify: subdivide ", 0), 0u) << terminal;
   EXPECT_NE(terminal.find("\rtetlod simplify: simplify "), std::string::npos) << terminal;
   EXPECT_NE(terminal.find(" collapses\033[K\rtetlod simplify: past the valence: "),
@@ -898,6 +902,18 @@ TEST(Cli, ProgressLineOnlyOnATerminal) {
   const CommandResult piped = run(simplify.substr(std::string(TETLOD_BINARY).size() + 1));
   ASSERT_EQ(piped.code, 0) << piped.output;
   EXPECT_EQ(piped.output.find('\r'), std::string::npos) << piped.output;
+  // `solve` likewise: its setup, assembly, factorisation (and iterations, on larger
+  // meshes than this).
+  const std::string solve = std::string(TETLOD_BINARY) + " solve " + TETLOD_SOURCE_DIR +
+                            "/assets/spheres.mesh --conductor 1=1 --ground 4";
+  const std::string solving = on_terminal(solve);
+  EXPECT_EQ(solving.rfind("\rtetlod solve: setup ", 0), 0u) << solving;
+  EXPECT_NE(solving.find("\rtetlod solve: assemble "), std::string::npos) << solving;
+  ASSERT_GE(solving.size(), 4u);
+  EXPECT_EQ(solving.substr(solving.size() - 4), "\r\033[K") << solving;
+  const CommandResult solved = run(solve.substr(std::string(TETLOD_BINARY).size() + 1));
+  ASSERT_EQ(solved.code, 0) << solved.output;
+  EXPECT_EQ(solved.output.find('\r'), std::string::npos) << solved.output;
 }
 
 // `tetlod lod` says what the level it writes breaks of the thresholds saved in the
