@@ -2290,7 +2290,7 @@ class Engine {
     }
     std::vector<uint32_t> nb;
     for (uint32_t v = 0; v < pos_.size(); ++v) {
-      if ((v & 4095) == 0 && cancelled()) {  // no collapse made yet: the base stands
+      if ((v & 4095) == 0 && cancelled()) {  // before the priority order's first collapse
         result->cancelled = true;
         return;
       }
