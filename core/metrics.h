@@ -5,6 +5,7 @@
 //   valence  number of edge neighbours of a node
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -21,6 +22,12 @@ struct TetShape {
 };
 
 TetShape tet_shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+// The square of the longest edge: tet_shape()'s size is its square root.
+inline double tet_longest_edge2(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return std::max({squared_length(b - a), squared_length(c - a), squared_length(d - a),
+                   squared_length(c - b), squared_length(d - b), squared_length(d - c)});
+}
 
 inline TetShape tet_shape(const TetMesh& mesh, const Tet& t) {
   return tet_shape(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]],

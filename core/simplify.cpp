@@ -2817,10 +2817,7 @@ class Engine {
       ++*tets;
       const Tet& q = tet_[t].v;
       const Vec3 &a = pos_[q[0]], &b = pos_[q[1]], &c = pos_[q[2]], &d = pos_[q[3]];
-      const double longest2 =
-          std::max({squared_length(b - a), squared_length(c - a), squared_length(d - a),
-                    squared_length(c - b), squared_length(d - b), squared_length(d - c)});
-      n += std::sqrt(longest2) > size_limit(t);
+      n += std::sqrt(tet_longest_edge2(a, b, c, d)) > size_limit(t);
     }
     return n;
   }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/metrics.h"
+
 namespace tetlod {
 
 double SizingField::size_at(const Vec3& p, int32_t material) const {
@@ -62,9 +64,7 @@ double suggested_size(const TetMesh& mesh) {
   for (const Tet& t : mesh.tets) {
     const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]],
                &d = mesh.positions[t[3]];
-    longest2.push_back(
-        std::max({squared_length(b - a), squared_length(c - a), squared_length(d - a),
-                  squared_length(c - b), squared_length(d - b), squared_length(d - c)}));
+    longest2.push_back(tet_longest_edge2(a, b, c, d));
   }
   const auto median = longest2.begin() + static_cast<std::ptrdiff_t>(longest2.size() / 2);
   std::nth_element(longest2.begin(), median, longest2.end());
