@@ -27,7 +27,8 @@ constexpr const char* kUsage =
     "  report IN -o DIR [...]           HTML report: Table I rows, pictures, histograms\n"
     "  view [FILE] [--script S]         the interactive viewer (a window; needs a display)\n"
     "\n"
-    "Run 'tetlod COMMAND --help' for the options of a command.\n"
+    "Run 'tetlod COMMAND --help' for the options of a command, 'tetlod --version' for the\n"
+    "version.\n"
     "Exit codes: 0 ok, 1 bad input, 2 bad usage.\n";
 
 // Ctrl-C, `timeout`, a closed terminal: remove the temporaries of the files being
@@ -59,6 +60,14 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   if (command == "--help" || command == "-h" || command == "help") {
     std::fputs(kUsage, stdout);
+    return kExitOk;
+  }
+  if (command == "--version" || command == "version") {
+    std::printf(
+        "tetlod %s\n"
+        "It links TetGen 1.5 (for 'tetlod generate'), so it is covered by the GNU AGPLv3;\n"
+        "see the README's Licensing.\n",
+        TETLOD_VERSION);
     return kExitOk;
   }
   const Args args(argv + 2, argv + argc);

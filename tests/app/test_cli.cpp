@@ -53,6 +53,10 @@ std::string write_grid(const std::string& name) {
 TEST(Cli, UsageAndExitCodes) {
   EXPECT_EQ(run("").code, 2);
   EXPECT_EQ(run("--help").code, 0);
+  const CommandResult version = run("--version");
+  EXPECT_EQ(version.code, 0);
+  EXPECT_EQ(version.output.rfind(std::string("tetlod ") + TETLOD_VERSION + "\n", 0), 0u)
+      << version.output;
   const CommandResult unknown = run("frobnicate");
   EXPECT_EQ(unknown.code, 2);
   EXPECT_NE(unknown.output.find("unknown command"), std::string::npos);
