@@ -1,5 +1,6 @@
 #include "app/terminal_progress.h"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -14,7 +15,11 @@ ProgressCallback TerminalProgress::simplify_callback() {
   return [this](const SimplifyProgress& p) {
     const std::string phase = std::string(p.past_valence ? "past the valence: " : "") + p.phase;
     const bool collapsing = std::string(p.phase) == "simplify";
-    show(phase, p.fraction, collapsing ? std::to_string(p.collapses) + " collapses" : "");
+    char other[64] = "";  // where the run past the valence on the second thread is
+    if (p.other_phase)
+      std::snprintf(other, sizeof(other), "; past the valence: %s %.0f%%", p.other_phase,
+                    100 * p.other_fraction);
+    show(phase, p.fraction, collapsing ? std::to_string(p.collapses) + " collapses" : "", other);
   };
 }
 
@@ -26,14 +31,23 @@ SolveProgressCallback TerminalProgress::solve_callback() {
   };
 }
 
-void TerminalProgress::show(const std::string& phase, double fraction, const std::string& detail) {
+void TerminalProgress::show(const std::string& phase, double fraction, const std::string& detail,
+                            const std::string& suffix) {
   const auto now = std::chrono::steady_clock::now();
   if (phase == phase_ && now - last_ < std::chrono::milliseconds(200)) return;
   phase_ = phase;
   last_ = now;
+  char percent[16];
+  std::snprintf(percent, sizeof(percent), " %.0f%%", 100 * fraction);
+  std::string line =
+      command_ + ": " + phase + percent + (detail.empty() ? "" : ", ") + detail + suffix;
+  // A line longer than the terminal would wrap, and \r would then rewrite only its last
+  // row: cut it one column short of the width (its text is ASCII).
+  winsize size{};
+  if (ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1 && line.size() >= size.ws_col)
+    line.resize(size.ws_col - 1);
   // \r and "erase to the end of the line": the line is rewritten in place.
-  std::fprintf(stderr, "\r%s: %s %.0f%%%s%s\033[K", command_.c_str(), phase.c_str(), 100 * fraction,
-               detail.empty() ? "" : ", ", detail.c_str());
+  std::fprintf(stderr, "\r%s\033[K", line.c_str());
   std::fflush(stderr);
   shown_ = true;
 }

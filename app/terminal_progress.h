@@ -28,8 +28,10 @@ class TerminalProgress {
   void clear();
 
  private:
-  // "PHASE N%" and, if not empty, ", DETAIL".
-  void show(const std::string& phase, double fraction, const std::string& detail);
+  // "PHASE N%", ", DETAIL" if not empty, then SUFFIX; cut to the terminal's width, so
+  // that it stays on one line, which the next rewrites.
+  void show(const std::string& phase, double fraction, const std::string& detail,
+            const std::string& suffix = "");
 
   std::string command_;
   bool terminal_ = false;

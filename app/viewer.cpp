@@ -230,6 +230,8 @@ struct Job {
   std::string phase = "starting";
   bool past_valence = false;  // SimplifyProgress::past_valence
   double fraction = 0;
+  std::string other_phase;  // SimplifyProgress::other_phase ("" for none)
+  double other_fraction = 0;
   size_t collapses = 0;
   std::unique_ptr<Scene> scene;
   std::string error;
@@ -754,6 +756,8 @@ void Viewer::start_simplify() {
           job->phase = p.phase;
           job->past_valence = p.past_valence;
           job->fraction = p.fraction;
+          job->other_phase = p.other_phase ? p.other_phase : "";
+          job->other_fraction = p.other_fraction;
           job->collapses = p.collapses;
         },
         &job->cancel, patches.get());
@@ -1428,6 +1432,8 @@ void Viewer::fill_status() {
     s.phase = job_->phase;
     s.past_valence_run = job_->past_valence;
     s.phase_fraction = job_->fraction;
+    s.other_phase = job_->other_phase;
+    s.other_fraction = job_->other_fraction;
     s.collapses = job_->collapses;
     s.elapsed_seconds = seconds_between(job_->start, Clock::now());
     s.collapses_per_second = s.elapsed_seconds > 0 ? double(s.collapses) / s.elapsed_seconds : 0;

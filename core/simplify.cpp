@@ -3039,6 +3039,15 @@ class PastRunsAlongside {
 
   bool started() const { return thread_.joinable(); }
 
+  // Where the runs are, for the first run's progress (SimplifyProgress::other_phase);
+  // nothing if they were not started.
+  void where(SimplifyProgress* p) {
+    if (!started()) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    p->other_phase = done_ ? "done" : reported_ ? latest_.phase : "starting";
+    p->other_fraction = done_ ? 1 : reported_ ? latest_.fraction : 0;
+  }
+
   // Leaves it not started if no thread can be made (simplify() then makes the runs
   // after the first, as without a second processor).
   void start(const TetMesh& input, const SimplifyParams& params, const SurfacePatches* patches,
@@ -3086,7 +3095,7 @@ class PastRunsAlongside {
           [this](const SimplifyProgress& p) {
             std::lock_guard<std::mutex> lock(mutex_);
             latest_ = p;
-            fresh_ = true;
+            fresh_ = reported_ = true;
             changed_.notify_one();
           },
           &stop_, patches, max_tets);
@@ -3104,7 +3113,7 @@ class PastRunsAlongside {
   std::mutex mutex_;
   std::condition_variable changed_;
   SimplifyProgress latest_;
-  bool fresh_ = false, done_ = false;
+  bool fresh_ = false, reported_ = false, done_ = false;
 };
 
 }  // namespace
@@ -3150,12 +3159,20 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   // on when they start, so the outcome is the same as one run after the other.
   PastRunsAlongside alongside;
   std::function<void(size_t, size_t)> after_subdivide;
+  ProgressCallback first_progress = progress;  // with where the other runs are
   if (params.past_valence_alongside && std::thread::hardware_concurrency() >= 2) {
     after_subdivide = [&](size_t tets, size_t above_size) {
       if (above_size > 0) alongside.start(input, whole, patches, max_tets_for(tets));
     };
+    if (progress) {
+      first_progress = [&](const SimplifyProgress& p) {
+        SimplifyProgress with_other = p;
+        alongside.where(&with_other);
+        progress(with_other);
+      };
+    }
   }
-  s = run_engine(input, whole, false, progress, cancel, patches, result, nullptr, kMaxTets,
+  s = run_engine(input, whole, false, first_progress, cancel, patches, result, nullptr, kMaxTets,
                  after_subdivide);
   if (!s || result->cancelled || result->violations.above_size == 0 ||
       result->splits_skipped_valence == 0) {

@@ -180,6 +180,12 @@ struct SimplifyProgress {
   double fraction = 0;  // of the phase, in [0, 1]; an estimate for "simplify"
   size_t collapses = 0;
   bool past_valence = false;  // a run past the valence (after the first run's phases)
+  // While the first run's phases are reported and a run past the valence is made at the
+  // same time on a second thread (SimplifyParams::past_valence_alongside): where that
+  // run is, its phase ("starting" before its first report, "done" once it has ended)
+  // and the fraction of it; nullptr when no such run is being made.
+  const char* other_phase = nullptr;
+  double other_fraction = 0;
 };
 using ProgressCallback = std::function<void(const SimplifyProgress&)>;
 

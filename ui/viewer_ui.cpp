@@ -56,6 +56,21 @@ void text_disabled_wrapped(const char* format, ...) {
   ImGui::PopStyleColor();
 }
 
+// Under the progress bar of the first run, a bar for the run past the valence made at
+// the same time on a second thread (nothing when none is).
+void other_run_bar(const ViewerStatus& status) {
+  if (status.other_phase.empty()) return;
+  char overlay[96];
+  std::snprintf(overlay, sizeof(overlay), "past the valence: %s %.0f%%", status.other_phase.c_str(),
+                100 * status.other_fraction);
+  ImGui::ProgressBar(static_cast<float>(status.other_fraction), ImVec2(-1, 0), overlay);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Subdivision left tets above the size: a run allowed to take nodes past the\n"
+        "valence threshold (then brought back) is made on a second thread while the\n"
+        "first collapses. The one that leaves fewer tets above the size is the result.");
+}
+
 void copy_path(const std::string& from, char* to, size_t capacity) {
   std::snprintf(to, capacity, "%s", from.c_str());
 }
@@ -321,6 +336,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                   status.past_valence_run ? "past the valence: " : "", status.phase.c_str(),
                   100 * status.phase_fraction);
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
+    other_run_bar(status);
     ImGui::TextWrapped("%zu collapses, %.0f /s, %.1f s", status.collapses,
                        status.collapses_per_second, status.elapsed_seconds);
   }
@@ -856,6 +872,7 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
       std::snprintf(overlay, sizeof(overlay), "simplifying: %s %.0f%%", status.phase.c_str(),
                     100 * status.phase_fraction);
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
+    other_run_bar(status);
   }
   if (status.analysis.solving) {  // also always in sight
     const ViewerStatus::Analysis& a = status.analysis;

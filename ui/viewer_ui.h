@@ -168,6 +168,8 @@ struct ViewerStatus {
   std::string phase;
   bool past_valence_run = false;  // the phase is a run past the valence's (simplify.h)
   double phase_fraction = 0;
+  std::string other_phase;  // where the run past the valence alongside is ("" if none)
+  double other_fraction = 0;
   size_t collapses = 0;
   double collapses_per_second = 0;
   double elapsed_seconds = 0;

@@ -898,11 +898,25 @@ TEST(Cli, ProgressLineOnlyOnATerminal) {
   const std::string terminal = on_terminal(simplify);
   EXPECT_EQ(terminal.rfind("\rtetlod simplify: subdivide ", 0), 0u) << terminal;
   EXPECT_NE(terminal.find("\rtetlod simplify: simplify "), std::string::npos) << terminal;
-  EXPECT_NE(terminal.find(" collapses\033[K\rtetlod simplify: past the valence: "),
+  // The run past the valence starts on a second thread when the first run's
+  // subdivision ends: the first's collapses are shown with where it is, then its own.
+  EXPECT_NE(terminal.find("\rtetlod simplify: simplify 0%, 0 collapses; past the valence: "),
+            std::string::npos)
+      << terminal;
+  EXPECT_NE(terminal.find("%\033[K\rtetlod simplify: past the valence: simplify "),
             std::string::npos)
       << terminal;
   ASSERT_GE(terminal.size(), 4u);
   EXPECT_EQ(terminal.substr(terminal.size() - 4), "\r\033[K") << terminal;  // erased
+  // On a narrow terminal each line is cut short of its width, so that it never wraps
+  // (\r would then rewrite only its last row).
+  const std::string narrow = on_terminal("stty cols 50; " + simplify);
+  EXPECT_NE(narrow.find("\rtetlod simplify: simplify "), std::string::npos) << narrow;
+  for (size_t at = 0; (at = narrow.find('\r', at)) != std::string::npos; ++at) {
+    const size_t end = narrow.find("\033[K", at);
+    ASSERT_NE(end, std::string::npos) << narrow;
+    EXPECT_LE(end - at - 1, 49u) << narrow.substr(at + 1, end - at - 1);
+  }
   const CommandResult piped = run(simplify.substr(std::string(TETLOD_BINARY).size() + 1));
   ASSERT_EQ(piped.code, 0) << piped.output;
   EXPECT_EQ(piped.output.find('\r'), std::string::npos) << piped.output;

@@ -455,8 +455,9 @@ TEST(SimplifyPastValence, ReportsItsPhases) {
 // 18), where it is made again with pins (17, valence 20), where the first run leaves no
 // tet above the size though its subdivision did (20: the other is started, then
 // stopped), and where its subdivision passes the factor (12, factor 2). Every progress
-// call comes from the calling thread: the first run's phases, then those of the runs
-// past the valence from where they are when it ends.
+// call comes from the calling thread: the first run's phases, with where the other
+// runs are once they have started, then those of the runs past the valence from where
+// they are when it ends.
 TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one processor: never alongside";
   TetMesh input;
@@ -476,15 +477,25 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
     params.tolerance = 0.05;
     params.past_valence_alongside = false;
     SimplifyResult sequential;
-    ASSERT_TRUE(simplify(input, params, &sequential));
+    bool other_in_sequential = false;
+    ASSERT_TRUE(simplify(input, params, &sequential, [&](const SimplifyProgress& p) {
+      other_in_sequential |= p.other_phase != nullptr;
+    }));
+    EXPECT_FALSE(other_in_sequential);
     params.past_valence_alongside = true;
     SimplifyResult alongside;
     std::vector<std::string> phases;
     bool other_thread = false;
     const std::thread::id caller = std::this_thread::get_id();
     bool past_before_first_ends = false, first_after_past = false, past_seen = false;
+    std::vector<std::string> others;  // SimplifyProgress::other_phase, in the first's phases
+    bool other_while_past = false, other_fraction_out = false;
     ASSERT_TRUE(simplify(input, params, &alongside, [&](const SimplifyProgress& p) {
       other_thread |= std::this_thread::get_id() != caller;
+      if (p.other_phase && (others.empty() || others.back() != p.other_phase))
+        others.emplace_back(p.other_phase);
+      other_while_past |= p.other_phase && p.past_valence;
+      other_fraction_out |= p.other_phase && !(p.other_fraction >= 0 && p.other_fraction <= 1);
       if (phases.empty() || phases.back() != p.phase) phases.emplace_back(p.phase);
       past_before_first_ends |= p.past_valence && phases.size() < 3;
       first_after_past |= !p.past_valence && past_seen;
@@ -520,6 +531,16 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
                   phase == "classify" || phase == "simplify")
           << phase;
     }
+    // Each setting starts the other runs when the first run's subdivision ends, so its
+    // classification and collapses are reported with where they are.
+    ASSERT_FALSE(others.empty());
+    EXPECT_FALSE(other_while_past);
+    EXPECT_FALSE(other_fraction_out);
+    for (const std::string& phase : others)
+      EXPECT_TRUE(phase == "starting" || phase == "red levels" || phase == "subdivide" ||
+                  phase == "edge removals" || phase == "classify" || phase == "simplify" ||
+                  phase == "done")
+          << phase;
   }
 }
 
