@@ -866,35 +866,82 @@ class Engine {
       std::swap((*t)[2], (*t)[3]);
   }
 
-  // Builds the level's edges from the tets (ids by sorted end pairs: deterministic).
+  // Builds the level's edges from the stars: ids in the order of their sorted end
+  // pairs (a < b), so deterministic; each edge's tets in increasing order. Linear but
+  // for each vertex's own short sort (a sort of the 6 edge slots of every tet, as
+  // before, took most of a level's time on meshes of millions of tets).
   void build_level_edges(RedLevel* level) const {
     const size_t tets = tet_.size();
-    std::vector<std::pair<uint64_t, uint32_t>> slots(6 * tets);
-    for (uint32_t t = 0; t < tets; ++t)
-      for (int k = 0; k < 6; ++k) {
-        uint64_t a = tet_[t].v[kTetEdge[k][0]], b = tet_[t].v[kTetEdge[k][1]];
-        if (a > b) std::swap(a, b);
-        slots[6 * size_t{t} + k] = {a << 32 | b, 6 * t + k};
-      }
-    std::sort(slots.begin(), slots.end());
+    const uint32_t n = static_cast<uint32_t>(pos_.size());
     level->ends.clear();
     level->tet_edge.assign(6 * tets, 0);
-    level->edge_tets.resize(slots.size());
-    level->edge_tets_first.clear();
-    for (size_t s = 0; s < slots.size(); ++s) {
-      if (s == 0 || slots[s].first != slots[s - 1].first) {
-        level->edge_tets_first.push_back(static_cast<uint32_t>(s));
-        level->ends.push_back({static_cast<uint32_t>(slots[s].first >> 32),
-                               static_cast<uint32_t>(slots[s].first & 0xffffffffu)});
+    std::vector<uint32_t>& count = level->edge_tets_first;  // tets per edge, then offsets
+    count.assign(1, 0);
+    // In a's turn: seen[w] == a + 1 for each w > a next to a, and id[w] the id of (a, w).
+    std::vector<uint32_t> id(n), seen(n, 0);
+    std::vector<uint32_t> others;
+    for (uint32_t a = 0; a < n; ++a) {
+      others.clear();
+      for (uint32_t t : star_[a])
+        for (uint32_t w : tet_[t].v)
+          if (w > a && seen[w] != a + 1) seen[w] = a + 1, others.push_back(w);
+      std::sort(others.begin(), others.end());
+      for (uint32_t b : others) {
+        id[b] = static_cast<uint32_t>(level->ends.size());
+        level->ends.push_back({a, b});
+        count.push_back(0);
       }
-      level->tet_edge[slots[s].second] = static_cast<uint32_t>(level->ends.size() - 1);
-      level->edge_tets[s] = slots[s].second / 6;
+      // Each tet edge under its smaller end.
+      for (uint32_t t : star_[a])
+        for (int k = 0; k < 6; ++k) {
+          const uint32_t x = tet_[t].v[kTetEdge[k][0]], y = tet_[t].v[kTetEdge[k][1]];
+          if (std::min(x, y) != a) continue;
+          const uint32_t e = id[std::max(x, y)];
+          level->tet_edge[6 * size_t{t} + k] = e;
+          ++count[e + 1];
+        }
     }
-    level->edge_tets_first.push_back(static_cast<uint32_t>(slots.size()));
+    const size_t edges = level->ends.size();
+    for (size_t e = 0; e < edges; ++e) count[e + 1] += count[e];
+    level->edge_tets.resize(6 * tets);
+    std::vector<uint32_t> next(count.begin(), count.end() - 1);
+    for (uint32_t t = 0; t < tets; ++t)
+      for (int k = 0; k < 6; ++k) level->edge_tets[next[level->tet_edge[6 * size_t{t} + k]]++] = t;
   }
+
+#ifndef NDEBUG
+  // The valence of every plan vertex, from the edges of every tet's pieces: what
+  // red_level() counts from the split tets alone (checked in builds with assertions).
+  std::vector<uint32_t> plan_valences(const RedLevel& level) const {
+    std::vector<uint64_t> edges;
+    std::vector<Tet> pieces;
+    for (uint32_t t = 0; t < tet_.size(); ++t) {
+      red_pieces(level, t, &pieces);
+      for (const Tet& c : pieces)
+        for (const auto& k : kTetEdge) {
+          uint64_t a = c[k[0]], b = c[k[1]];
+          if (a > b) std::swap(a, b);
+          edges.push_back(a << 32 | b);
+        }
+    }
+    sort_unique(edges);
+    std::vector<uint32_t> valences(pos_.size() + level.ends.size() + tet_.size(), 0);
+    for (uint64_t ab : edges) ++valences[ab >> 32], ++valences[ab & 0xffffffffu];
+    return valences;
+  }
+#endif
 
   // One red level (see above); false if it split nothing.
   bool red_level(SimplifyResult* result) {
+    // An edge is marked below if it is longer than the limit of a tet around it: if no
+    // tet has one, the level would split nothing, and its edges need not be built.
+    bool any_long = false;
+    for (uint32_t t = 0; t < tet_.size() && !any_long; ++t) {
+      const Tet& v = tet_[t].v;
+      const double l = uniform_sizing_ ? params_.sizing.uniform : size_limit(t);
+      any_long = tet_longest_edge2(pos_[v[0]], pos_[v[1]], pos_[v[2]], pos_[v[3]]) > l * l;
+    }
+    if (!any_long) return false;
     RedLevel level;
     build_level_edges(&level);
     const size_t edges = level.ends.size(), tets = tet_.size();
@@ -1016,6 +1063,10 @@ class Engine {
       // More pieces than the run may make: stop before planning them all.
       size_t piece_count = 0;
       for (uint32_t t = 0; t < tets && piece_count <= max_tets_; ++t) {
+        if (tet_mask(level, t) == 0) {  // one piece: the tet
+          ++piece_count;
+          continue;
+        }
         red_pieces(level, t, &pieces);
         piece_count += pieces.size();
       }
@@ -1027,19 +1078,27 @@ class Engine {
       // neighbours: it gains one in a tet split but not red (a red tet's corner only
       // trades its neighbours for the midpoints of its edges), so those tets are made
       // red, or not split. A midpoint or centroid past its cap is not made.
+      // A node keeps its edges but the marked ones (the pieces of a tet join two of its
+      // corners only by an edge of it, not marked) and gains those to the midpoints and
+      // centroids of the pieces around it: only the tets that are split are read.
+      valence_after.assign(n + edges + tets, 0);
+      std::copy(valence_before.begin(), valence_before.end(), valence_after.begin());
       plan_edges.clear();
+      for (uint32_t e = 0; e < edges; ++e)
+        if (level.marked[e]) --valence_after[level.ends[e][0]], --valence_after[level.ends[e][1]];
       for (uint32_t t = 0; t < tets; ++t) {
+        if (tet_mask(level, t) == 0) continue;
         red_pieces(level, t, &pieces);
         for (const Tet& c : pieces)
           for (const auto& k : kTetEdge) {
             uint64_t a = c[k[0]], b = c[k[1]];
             if (a > b) std::swap(a, b);
-            plan_edges.push_back(a << 32 | b);
+            if (b >= n) plan_edges.push_back(a << 32 | b);  // a midpoint or centroid
           }
       }
       sort_unique(plan_edges);
-      valence_after.assign(n + edges + tets, 0);
       for (uint64_t ab : plan_edges) ++valence_after[ab >> 32], ++valence_after[ab & 0xffffffffu];
+      assert(valence_after == plan_valences(level));
       for (uint32_t v = 0; v < n; ++v) {
         if (valence_after[v] <= valence_before[v] || valence_after[v] <= valence_cap(pos_[v]))
           continue;
@@ -2861,15 +2920,21 @@ class Engine {
   std::vector<std::pair<uint32_t, uint32_t>> kept_edges_;
 
  public:
-  void set_patches(const SurfacePatches* patches) { patches_ = patches; }
+  void set_patches(const SurfacePatches* patches) {
+    patches_ = patches;
+  }
   // The most tets subdivision may make (a run past the valence: a multiple of the
   // first run's; see ::simplify()).
-  void set_max_tets(size_t max_tets) { max_tets_ = max_tets; }
+  void set_max_tets(size_t max_tets) {
+    max_tets_ = max_tets;
+  }
   void set_after_subdivide(std::function<void(size_t, size_t)> f) {
     after_subdivide_ = std::move(f);
   }
   // The nodes bring_back_valences() left past the valence, by position.
-  const std::vector<PositionKey>& left_past() const { return left_past_; }
+  const std::vector<PositionKey>& left_past() const {
+    return left_past_;
+  }
 
  private:
   double tolerance2_ = 0;
