@@ -68,7 +68,7 @@ void other_run_bar(const ViewerStatus& status) {
     ImGui::SetTooltip(
         "Subdivision left tets above the size: a run allowed to take nodes past the\n"
         "valence threshold (then brought back) is made on a second thread while the\n"
-        "first collapses. The one that leaves fewer tets above the size is the result.");
+        "first collapses; it is the result if it leaves fewer tets above the size.");
 }
 
 void copy_path(const std::string& from, char* to, size_t capacity) {
