@@ -174,8 +174,10 @@ struct SimplifyResult {
 };
 
 struct SimplifyProgress {
-  // "classify", "subdivide", "simplify"; in a run past the valence (SimplifyResult::
-  // past_valence) also "red levels" before "subdivide" and "edge removals" after it.
+  // "subdivide", "classify", "evaluate edges" (the first evaluation of every edge,
+  // before the first collapse), "simplify"; in a run past the valence (SimplifyResult::
+  // past_valence) also "red levels" before "subdivide", "edge removals" after it, and
+  // "valence collapses" before "evaluate edges" where nodes are still past the valence.
   const char* phase = "";
   double fraction = 0;  // of the phase, in [0, 1]; an estimate for "simplify"
   size_t collapses = 0;

@@ -415,7 +415,10 @@ TEST(SimplifyPastValence, BisectsEdgesWithManyTetsRoundThemBeforeTheRedLevels) {
 
 // A run past the valence says what it does: after the first run's phases, "red
 // levels" (an estimate that only grows, ending at 1), bisection, edge removals, then
-// classification and the collapses again.
+// classification, collapses round the nodes still past the valence, the first
+// evaluations and the collapses again. The first evaluation
+// of every edge, before the first collapse, is a phase of its own whose fraction grows
+// to 1 (it takes seconds on millions of tets).
 TEST(SimplifyPastValence, ReportsItsPhases) {
   TetMesh input;
   ReadInfo info;
@@ -428,7 +431,7 @@ TEST(SimplifyPastValence, ReportsItsPhases) {
   params.past_valence_alongside = false;
   std::vector<std::string> phases;
   std::vector<bool> past;  // of each phase, SimplifyProgress::past_valence
-  std::vector<double> red;
+  std::vector<double> red, evaluate;
   SimplifyResult result;
   ASSERT_TRUE(simplify(input, params, &result, [&](const SimplifyProgress& p) {
     EXPECT_GE(p.fraction, 0.0);
@@ -438,16 +441,26 @@ TEST(SimplifyPastValence, ReportsItsPhases) {
       past.push_back(p.past_valence);
     }
     if (phases.back() == "red levels") red.push_back(p.fraction);
+    if (phases.back() == "evaluate edges") evaluate.push_back(p.fraction);
   }));
   ASSERT_TRUE(result.past_valence.taken);
   EXPECT_GT(result.red_levels, 0u);
-  const std::vector<std::string> expected = {"subdivide", "classify",      "simplify", "red levels",
-                                             "subdivide", "edge removals", "classify", "simplify"};
+  const std::vector<std::string> expected = {
+      "subdivide",     "classify", "evaluate edges",    "simplify",       "red levels", "subdivide",
+      "edge removals", "classify", "valence collapses", "evaluate edges", "simplify"};
   EXPECT_EQ(phases, expected);
-  EXPECT_EQ(past, std::vector<bool>({false, false, false, true, true, true, true, true}));
+  EXPECT_EQ(past, std::vector<bool>(
+                      {false, false, false, false, true, true, true, true, true, true, true}));
   ASSERT_GE(red.size(), 2u);
   EXPECT_TRUE(std::is_sorted(red.begin(), red.end()));
   EXPECT_EQ(red.back(), 1.0);
+  // Both runs' first evaluations, each from 0 to 1 in steps.
+  ASSERT_GE(evaluate.size(), 6u);
+  EXPECT_EQ(std::count(evaluate.begin(), evaluate.end(), 0.0), 2);
+  EXPECT_EQ(std::count(evaluate.begin(), evaluate.end(), 1.0), 2);
+  const auto second = std::find(evaluate.begin() + 1, evaluate.end(), 0.0);
+  EXPECT_TRUE(std::is_sorted(evaluate.begin(), second));
+  EXPECT_TRUE(std::is_sorted(second, evaluate.end()));
 }
 
 // The runs past the valence made on a second thread while the first run collapses
@@ -497,7 +510,7 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
       other_while_past |= p.other_phase && p.past_valence;
       other_fraction_out |= p.other_phase && !(p.other_fraction >= 0 && p.other_fraction <= 1);
       if (phases.empty() || phases.back() != p.phase) phases.emplace_back(p.phase);
-      past_before_first_ends |= p.past_valence && phases.size() < 3;
+      past_before_first_ends |= p.past_valence && phases.size() < 4;
       first_after_past |= !p.past_valence && past_seen;
       past_seen |= p.past_valence;
     }));
@@ -519,16 +532,17 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
     EXPECT_EQ(a.alongside, a.tried);
     EXPECT_FALSE(b.alongside);
     EXPECT_FALSE(other_thread);
-    ASSERT_GE(phases.size(), 3u);
-    EXPECT_EQ(std::vector<std::string>(phases.begin(), phases.begin() + 3),
-              (std::vector<std::string>{"subdivide", "classify", "simplify"}));
+    ASSERT_GE(phases.size(), 4u);
+    EXPECT_EQ(std::vector<std::string>(phases.begin(), phases.begin() + 4),
+              (std::vector<std::string>{"subdivide", "classify", "evaluate edges", "simplify"}));
     if (a.tried && !a.stopped) {
       EXPECT_EQ(phases.back(), "simplify");
     }
-    for (size_t k = 3; k < phases.size(); ++k) {
+    for (size_t k = 4; k < phases.size(); ++k) {
       const std::string& phase = phases[k];
       EXPECT_TRUE(phase == "red levels" || phase == "subdivide" || phase == "edge removals" ||
-                  phase == "classify" || phase == "simplify")
+                  phase == "classify" || phase == "valence collapses" ||
+                  phase == "evaluate edges" || phase == "simplify")
           << phase;
     }
     // Each setting starts the other runs when the first run's subdivision ends, so its
@@ -538,8 +552,8 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
     EXPECT_FALSE(other_fraction_out);
     for (const std::string& phase : others)
       EXPECT_TRUE(phase == "starting" || phase == "red levels" || phase == "subdivide" ||
-                  phase == "edge removals" || phase == "classify" || phase == "simplify" ||
-                  phase == "done")
+                  phase == "edge removals" || phase == "classify" || phase == "valence collapses" ||
+                  phase == "evaluate edges" || phase == "simplify" || phase == "done")
           << phase;
   }
 }
@@ -728,8 +742,8 @@ TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
   expect_consistent_cancelled(result);
 }
 
-// The simplify phase is reported as it starts, before every edge is evaluated, and a
-// cancel then stops the run before its first collapse: the base is the output.
+// The first evaluations are reported as they start, and a cancel then stops the run
+// before its first collapse: the base is the output.
 TEST(SimplifyCancel, CancelledBeforeTheFirstCollapseLeavesTheBase) {
   TetMesh input;
   ReadInfo info;
@@ -743,7 +757,7 @@ TEST(SimplifyCancel, CancelledBeforeTheFirstCollapseLeavesTheBase) {
   ASSERT_TRUE(simplify(
       input, params, &result,
       [&](const SimplifyProgress& p) {
-        if (std::string(p.phase) == "simplify" && p.fraction == 0) cancel = true;
+        if (std::string(p.phase) == "evaluate edges" && p.fraction == 0) cancel = true;
       },
       &cancel));
   EXPECT_EQ(result.history.step_count(), 0u);
