@@ -898,6 +898,10 @@ TEST(Cli, ProgressLineOnlyOnATerminal) {
   const std::string terminal = on_terminal(simplify);
   EXPECT_EQ(terminal.rfind("\rtetlod simplify: subdivide ", 0), 0u) << terminal;
   EXPECT_NE(terminal.find("\rtetlod simplify: simplify "), std::string::npos) << terminal;
+  // Every edge's first evaluation is shown before the collapses.
+  const size_t evaluate = terminal.find("\rtetlod simplify: evaluate edges 0%");
+  EXPECT_NE(evaluate, std::string::npos) << terminal;
+  EXPECT_LT(evaluate, terminal.find("\rtetlod simplify: simplify ")) << terminal;
   // The run past the valence starts on a second thread when the first run's
   // subdivision ends (with a second processor): the first's collapses are shown with
   // where it is, then its own.
