@@ -22,8 +22,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <new>
+#include <queue>
 #include <system_error>
 #include <thread>
 
@@ -666,43 +668,126 @@ class Engine {
   // The three edges of the face opposite each corner.
   static constexpr int kFaceEdges[4][3] = {{3, 4, 5}, {1, 2, 5}, {0, 2, 4}, {0, 1, 3}};
 
+  // A red level works on the tets it may split and their edges only: the tets with an
+  // edge longer than its limit, and the tets a marking reaches from them. Edges and
+  // tets get level ids (tets: slots) in the order the level first meets them, so that
+  // a level which splits a few edges of a large mesh costs one pass over its tets
+  // (and the new tet array) rather than one over every edge and tet for each round.
+  // What a level does is what a pass over every edge and tet would do: the rules below
+  // read only tets around marked edges, loops whose order matters run in tet or vertex
+  // order, and the new vertices are numbered as before (midpoints in the order of their
+  // edges' sorted end pairs, centroids in tet order).
   struct RedLevel {
-    std::vector<std::array<uint32_t, 2>> ends;  // of each edge, by id
-    std::vector<uint32_t> tet_edge;             // 6 per tet: edge ids, order of kTetEdge
-    std::vector<uint32_t> edge_tets_first;      // tets of edge e: edge_tets[first[e], first[e+1])
-    std::vector<uint32_t> edge_tets;
+    std::vector<std::array<uint32_t, 2>> ends;  // of each edge (a < b)
+    std::vector<double> limit;                  // of each edge: the smallest of its tets'
+    std::vector<uint32_t> tets_first{0};        // tets of edge e: tets[first[e], first[e+1])
+    std::vector<uint32_t> tets;
     std::vector<uint8_t> marked, frozen;
+    std::vector<uint32_t> slot_of;    // of each tet of the mesh, or kInvalidIndex
+    std::vector<uint32_t> slot_tet;   // the tet in each slot
+    std::vector<uint32_t> slot_edge;  // 6 per slot: edge ids, in the order of kTetEdge
+    std::vector<int8_t> passed;       // of each slot: the mask whose pieces last passed
+    std::vector<uint8_t> queued;      // of each slot: on the closure's work list
+    std::vector<uint32_t> fresh;      // slots made since the last pass in tet order
+    // Edge ids by end pair: open addressing on a << 32 | b (never 0, as a < b).
+    std::vector<uint64_t> keys;
+    std::vector<uint32_t> ids;
+    int shift = 64;
   };
 
-  // The position of a plan vertex: a vertex id, or V + e for the midpoint of edge e.
+  // Plan ids: a vertex id v < V; V + 2e, the midpoint of edge e; V + 2s + 1, the
+  // centroid of the tet in slot s (a level has at most 6 edges per slot and 40M
+  // slots, so these fit in 32 bits).
   Vec3 plan_position(const RedLevel& level, uint32_t v) const {
-    const size_t n = pos_.size();
+    const uint32_t n = static_cast<uint32_t>(pos_.size());
     if (v < n) return pos_[v];
-    if (v < n + level.ends.size()) {
-      const auto& e = level.ends[v - n];
+    const uint32_t d = v - n;
+    if ((d & 1) == 0) {
+      const auto& e = level.ends[d >> 1];
       return (pos_[e[0]] + pos_[e[1]]) * 0.5;
     }
-    const Tet& q = tet_[v - n - level.ends.size()].v;
+    const Tet& q = tet_[level.slot_tet[d >> 1]].v;
     return (pos_[q[0]] + pos_[q[1]] + pos_[q[2]] + pos_[q[3]]) * 0.25;
   }
 
-  static int tet_mask(const RedLevel& level, uint32_t t) {
+  static int slot_mask(const RedLevel& level, uint32_t s) {
     int mask = 0;
-    for (int k = 0; k < 6; ++k) mask |= level.marked[level.tet_edge[6 * size_t{t} + k]] << k;
+    for (int k = 0; k < 6; ++k) mask |= level.marked[level.slot_edge[6 * size_t{s} + k]] << k;
     return mask;
   }
-  // The pieces of tet t under its marked edges, positively oriented, in plan ids
-  // (V + e: the midpoint of edge e; V + E + t: the centroid of tet t).
-  void red_pieces(const RedLevel& level, uint32_t t, std::vector<Tet>* out) const {
+
+  static uint64_t edge_hash(uint64_t key, int shift) {
+    return (key * 0x9E3779B97F4A7C15ull) >> shift;
+  }
+
+  // The id of edge (a, b), made (with its tets, its limit and whether it is kept) when
+  // first asked for.
+  uint32_t level_edge(RedLevel* level, uint32_t a, uint32_t b) const {
+    if (a > b) std::swap(a, b);
+    const uint64_t key = uint64_t{a} << 32 | b;
+    if (2 * (level->ends.size() + 1) > level->keys.size()) {  // grow: at most half full
+      const size_t capacity = std::max<size_t>(1024, 2 * level->keys.size());
+      level->keys.assign(capacity, 0);
+      level->ids.assign(capacity, 0);
+      level->shift = 64 - __builtin_ctzll(capacity);
+      for (uint32_t e = 0; e < level->ends.size(); ++e) {
+        const uint64_t k = uint64_t{level->ends[e][0]} << 32 | level->ends[e][1];
+        uint64_t h = edge_hash(k, level->shift);
+        while (level->keys[h] != 0) h = (h + 1) & (capacity - 1);
+        level->keys[h] = k, level->ids[h] = e;
+      }
+    }
+    const uint64_t mask = level->keys.size() - 1;
+    uint64_t h = edge_hash(key, level->shift);
+    for (; level->keys[h] != 0; h = (h + 1) & mask)
+      if (level->keys[h] == key) return level->ids[h];
+    const uint32_t e = static_cast<uint32_t>(level->ends.size());
+    level->keys[h] = key, level->ids[h] = e;
+    level->ends.push_back({a, b});
+    double limit = std::numeric_limits<double>::infinity();
+    for (uint32_t t : star_[a])
+      if (tet_has(tet_[t].v, b)) {
+        level->tets.push_back(t);
+        limit = std::min(limit, uniform_sizing_ ? params_.sizing.uniform : size_limit(t));
+      }
+    level->tets_first.push_back(static_cast<uint32_t>(level->tets.size()));
+    level->limit.push_back(limit);
+    level->marked.push_back(0);
+    level->frozen.push_back(
+        !kept_edges_.empty() &&
+        std::binary_search(kept_edges_.begin(), kept_edges_.end(), std::make_pair(a, b)));
+    return e;
+  }
+
+  // The slot of tet t, made (with its edges) when first asked for.
+  uint32_t level_slot(RedLevel* level, uint32_t t) const {
+    if (level->slot_of[t] != kInvalidIndex) return level->slot_of[t];
+    const uint32_t s = static_cast<uint32_t>(level->slot_tet.size());
+    level->slot_of[t] = s;
+    level->slot_tet.push_back(t);
+    const Tet& v = tet_[t].v;
+    for (const auto& k : kTetEdge) {
+      const uint32_t e = level_edge(level, v[k[0]], v[k[1]]);
+      level->slot_edge.push_back(e);
+    }
+    level->passed.push_back(-1);
+    level->queued.push_back(0);
+    level->fresh.push_back(s);
+    return s;
+  }
+
+  // The pieces of the tet in `slot` under its marked edges, positively oriented, in
+  // plan ids.
+  void red_pieces(const RedLevel& level, uint32_t slot, std::vector<Tet>* out) const {
     out->clear();
     const uint32_t n = static_cast<uint32_t>(pos_.size());
-    const Tet& v = tet_[t].v;
+    const Tet& v = tet_[level.slot_tet[slot]].v;
+    const uint32_t* te = &level.slot_edge[6 * size_t{slot}];
     uint32_t mid[6];
     int mask = 0;
     for (int k = 0; k < 6; ++k) {
-      const uint32_t e = level.tet_edge[6 * size_t{t} + k];
-      mid[k] = n + e;
-      mask |= level.marked[e] << k;
+      mid[k] = n + 2 * te[k];
+      mask |= level.marked[te[k]] << k;
     }
     auto bisect = [&](const Tet& q, uint32_t a, uint32_t b, uint32_t m, Tet* x, Tet* y) {
       *x = q, *y = q;
@@ -778,19 +863,17 @@ class Engine {
       // Any other marking (a face with two marked edges, whose third may not be
       // split): each face is cut by the rule of face_triangles(), the same from both
       // its tets, and joined to the tet's centroid.
-      const uint32_t g = n + static_cast<uint32_t>(level.ends.size()) + t;
+      const uint32_t g = n + 2 * slot + 1;
       for (int d = 0; d < 4; ++d) {
         const int* f = kFaceEdges[d];
         int corner[3], r = 0;
         for (int c = 0; c < 4; ++c)
           if (c != d) corner[r++] = c;
         std::array<uint32_t, 3> tri[4];
-        const int count = face_triangles(level, v[corner[0]], v[corner[1]], v[corner[2]],
-                                         {mid[f[0]], mid[f[1]], mid[f[2]]},
-                                         {level.marked[level.tet_edge[6 * size_t{t} + f[0]]] != 0,
-                                          level.marked[level.tet_edge[6 * size_t{t} + f[1]]] != 0,
-                                          level.marked[level.tet_edge[6 * size_t{t} + f[2]]] != 0},
-                                         tri);
+        const int count = face_triangles(
+            level, v[corner[0]], v[corner[1]], v[corner[2]], {mid[f[0]], mid[f[1]], mid[f[2]]},
+            {level.marked[te[f[0]]] != 0, level.marked[te[f[1]]] != 0, level.marked[te[f[2]]] != 0},
+            tri);
         for (int k = 0; k < count; ++k) {
           Tet x = {tri[k][0], tri[k][1], tri[k][2], g};
           orient_plan(level, &x);
@@ -866,123 +949,92 @@ class Engine {
       std::swap((*t)[2], (*t)[3]);
   }
 
-  // Builds the level's edges from the stars: ids in the order of their sorted end
-  // pairs (a < b), so deterministic; each edge's tets in increasing order. Linear but
-  // for each vertex's own short sort (a sort of the 6 edge slots of every tet, as
-  // before, took most of a level's time on meshes of millions of tets).
-  void build_level_edges(RedLevel* level) const {
-    const size_t tets = tet_.size();
-    const uint32_t n = static_cast<uint32_t>(pos_.size());
-    level->ends.clear();
-    level->tet_edge.assign(6 * tets, 0);
-    std::vector<uint32_t>& count = level->edge_tets_first;  // tets per edge, then offsets
-    count.assign(1, 0);
-    // In a's turn: seen[w] == a + 1 for each w > a next to a, and id[w] the id of (a, w).
-    std::vector<uint32_t> id(n), seen(n, 0);
-    std::vector<uint32_t> others;
-    for (uint32_t a = 0; a < n; ++a) {
-      others.clear();
-      for (uint32_t t : star_[a])
-        for (uint32_t w : tet_[t].v)
-          if (w > a && seen[w] != a + 1) seen[w] = a + 1, others.push_back(w);
-      std::sort(others.begin(), others.end());
-      for (uint32_t b : others) {
-        id[b] = static_cast<uint32_t>(level->ends.size());
-        level->ends.push_back({a, b});
-        count.push_back(0);
-      }
-      // Each tet edge under its smaller end.
-      for (uint32_t t : star_[a])
-        for (int k = 0; k < 6; ++k) {
-          const uint32_t x = tet_[t].v[kTetEdge[k][0]], y = tet_[t].v[kTetEdge[k][1]];
-          if (std::min(x, y) != a) continue;
-          const uint32_t e = id[std::max(x, y)];
-          level->tet_edge[6 * size_t{t} + k] = e;
-          ++count[e + 1];
-        }
-    }
-    const size_t edges = level->ends.size();
-    for (size_t e = 0; e < edges; ++e) count[e + 1] += count[e];
-    level->edge_tets.resize(6 * tets);
-    std::vector<uint32_t> next(count.begin(), count.end() - 1);
-    for (uint32_t t = 0; t < tets; ++t)
-      for (int k = 0; k < 6; ++k) level->edge_tets[next[level->tet_edge[6 * size_t{t} + k]]++] = t;
-  }
-
 #ifndef NDEBUG
-  // The valence of every plan vertex, from the edges of every tet's pieces: what
-  // red_level() counts from the split tets alone (checked in builds with assertions).
-  std::vector<uint32_t> plan_valences(const RedLevel& level) const {
-    std::vector<uint64_t> edges;
+  // The planned valence of each touched vertex, midpoint and centroid, counted again
+  // from the pieces of the tets around it: what red_level() counts from the split
+  // tets' new edges alone (checked in builds with assertions).
+  bool plan_valences_agree(const RedLevel& level, const std::vector<uint32_t>& touched,
+                           const std::vector<uint32_t>& after_old,
+                           const std::vector<uint32_t>& mid_after,
+                           const std::vector<uint32_t>& cen_after) const {
+    const uint32_t n = static_cast<uint32_t>(pos_.size());
     std::vector<Tet> pieces;
-    for (uint32_t t = 0; t < tet_.size(); ++t) {
-      red_pieces(level, t, &pieces);
-      for (const Tet& c : pieces)
-        for (const auto& k : kTetEdge) {
-          uint64_t a = c[k[0]], b = c[k[1]];
-          if (a > b) std::swap(a, b);
-          edges.push_back(a << 32 | b);
-        }
+    std::vector<uint32_t> around;
+    // The neighbours of plan vertex x in the pieces of the given tets.
+    auto count = [&](uint32_t x, const std::vector<uint32_t>& tets) {
+      around.clear();
+      for (uint32_t t : tets) {
+        const uint32_t s = level.slot_of[t];
+        if (s == kInvalidIndex || slot_mask(level, s) == 0)
+          pieces.assign(1, tet_[t].v);
+        else
+          red_pieces(level, s, &pieces);
+        for (const Tet& c : pieces)
+          if (tet_has(c, x))
+            for (uint32_t w : c)
+              if (w != x) around.push_back(w);
+      }
+      sort_unique(around);
+      return around.size();
+    };
+    for (uint32_t v : touched)
+      if (count(v, star_[v]) != after_old[v]) return false;
+    std::vector<uint32_t> tets;
+    for (uint32_t e = 0; e < mid_after.size(); ++e) {
+      if (!level.marked[e]) continue;
+      tets.assign(level.tets.begin() + level.tets_first[e],
+                  level.tets.begin() + level.tets_first[e + 1]);
+      if (count(n + 2 * e, tets) != mid_after[e]) return false;
     }
-    sort_unique(edges);
-    std::vector<uint32_t> valences(pos_.size() + level.ends.size() + tet_.size(), 0);
-    for (uint64_t ab : edges) ++valences[ab >> 32], ++valences[ab & 0xffffffffu];
-    return valences;
+    for (uint32_t s = 0; s < cen_after.size(); ++s) {
+      tets.assign(1, level.slot_tet[s]);
+      const size_t c = count(n + 2 * s + 1, tets);
+      if (c != cen_after[s]) return false;
+    }
+    return true;
   }
 #endif
 
   // One red level (see above); false if it split nothing.
   bool red_level(SimplifyResult* result) {
-    // An edge is marked below if it is longer than the limit of a tet around it: if no
-    // tet has one, the level would split nothing, and its edges need not be built.
-    bool any_long = false;
-    for (uint32_t t = 0; t < tet_.size() && !any_long; ++t) {
+    const size_t tets = tet_.size();
+    const uint32_t n = static_cast<uint32_t>(pos_.size());
+    // An edge longer than its limit (the smallest of its tets') is longer than the
+    // limit of one of its tets, so it is an edge of one of these.
+    std::vector<uint32_t> long_tets;
+    for (uint32_t t = 0; t < tets; ++t) {
       const Tet& v = tet_[t].v;
       const double l = uniform_sizing_ ? params_.sizing.uniform : size_limit(t);
-      any_long = tet_longest_edge2(pos_[v[0]], pos_[v[1]], pos_[v[2]], pos_[v[3]]) > l * l;
+      if (tet_longest_edge2(pos_[v[0]], pos_[v[1]], pos_[v[2]], pos_[v[3]]) > l * l)
+        long_tets.push_back(t);
     }
-    if (!any_long) return false;
+    if (long_tets.empty()) return false;
     RedLevel level;
-    build_level_edges(&level);
-    const size_t edges = level.ends.size(), tets = tet_.size();
-    const uint32_t n = static_cast<uint32_t>(pos_.size());
-    // Each edge's limit: the smallest of its tets'.
-    std::vector<double> limit(edges, std::numeric_limits<double>::infinity());
-    for (uint32_t t = 0; t < tets; ++t) {
-      const double l = uniform_sizing_ ? params_.sizing.uniform : size_limit(t);
-      for (int k = 0; k < 6; ++k) {
-        double& x = limit[level.tet_edge[6 * size_t{t} + k]];
-        x = std::min(x, l);
-      }
-    }
-    level.marked.assign(edges, 0);
-    level.frozen.assign(edges, 0);
-    size_t marked = 0;
+    level.slot_of.assign(tets, kInvalidIndex);
+    std::vector<uint32_t> marked_edges;
     double ratio2 = 1;  // the largest squared length over limit of a marked edge
-    for (size_t e = 0; e < edges; ++e) {
-      const auto& ab = level.ends[e];
-      if (!kept_edges_.empty() && std::binary_search(kept_edges_.begin(), kept_edges_.end(),
-                                                     std::make_pair(ab[0], ab[1]))) {
-        level.frozen[e] = 1;
-        continue;
+    for (uint32_t t : long_tets)
+      for (const auto& k : kTetEdge) {
+        const uint32_t e = level_edge(&level, tet_[t].v[k[0]], tet_[t].v[k[1]]);
+        if (level.marked[e] || level.frozen[e]) continue;
+        const auto& ab = level.ends[e];
+        const double length2 = squared_length(pos_[ab[0]] - pos_[ab[1]]);
+        if (length2 > level.limit[e] * level.limit[e]) {
+          level.marked[e] = 1;
+          marked_edges.push_back(e);
+          ratio2 = std::max(ratio2, length2 / (level.limit[e] * level.limit[e]));
+        }
       }
-      const double length2 = squared_length(pos_[ab[0]] - pos_[ab[1]]);
-      if (length2 > limit[e] * limit[e]) {
-        level.marked[e] = 1, ++marked;
-        ratio2 = std::max(ratio2, length2 / (limit[e] * limit[e]));
-      }
-    }
-    if (marked == 0) return false;
+    if (marked_edges.empty()) return false;
     // Progress: each level halves the edges it splits, so the first one's longest edge
     // over its limit says about how many levels there will be.
     if (result->red_levels == 0)
       red_levels_expected_ = std::max(1.0, std::ceil(0.5 * std::log2(ratio2)));
-    std::vector<uint8_t> queued(tets, 0);
-    std::vector<uint32_t> work;
+    std::vector<uint32_t> work;  // slots
     auto push_edge_tets = [&](uint32_t e) {
-      for (uint32_t s = level.edge_tets_first[e]; s < level.edge_tets_first[e + 1]; ++s) {
-        const uint32_t t = level.edge_tets[s];
-        if (!queued[t]) queued[t] = 1, work.push_back(t);
+      for (uint32_t k = level.tets_first[e]; k < level.tets_first[e + 1]; ++k) {
+        const uint32_t s = level_slot(&level, level.tets[k]);
+        if (!level.queued[s]) level.queued[s] = 1, work.push_back(s);
       }
     };
     auto mark = [&](uint32_t e) {
@@ -995,19 +1047,62 @@ class Engine {
       level.frozen[e] = 1;
       if (level.marked[e]) level.marked[e] = 0, push_edge_tets(e);
     };
-    // Tet t made red if none of its edges is frozen, else none of them split.
-    auto red_or_none = [&](uint32_t t) {
-      const uint32_t* te = &level.tet_edge[6 * size_t{t}];
+    // (Copies: making slots moves slot_edge.)
+    auto edges_of = [&](uint32_t s, uint32_t* te) {
+      std::copy_n(&level.slot_edge[6 * size_t{s}], 6, te);
+    };
+    // Tet s made red if none of its edges is frozen, else none of them split.
+    auto red_or_none = [&](uint32_t s) {
+      uint32_t te[6];
+      edges_of(s, te);
       bool can_red = true;
       for (int k = 0; k < 6; ++k) can_red = can_red && !level.frozen[te[k]];
       for (int k = 0; k < 6; ++k) can_red ? mark(te[k]) : freeze(te[k]);
     };
-    for (uint32_t e = 0; e < edges; ++e)
-      if (level.marked[e]) push_edge_tets(e);
-    std::vector<uint32_t> valence_before(n, 0);
-    for (const auto& ab : level.ends) ++valence_before[ab[0]], ++valence_before[ab[1]];
-    std::vector<int8_t> passed(tets, -1);  // the mask whose pieces last passed the shape rules
-    std::vector<uint32_t> valence_after;
+    for (uint32_t e : marked_edges) push_edge_tets(e);
+    // Visits the slots in tet order, as a pass over every tet would: slots made during
+    // the pass are visited in it if their tet comes after the one being visited.
+    std::vector<uint32_t> order;  // slots by tet
+    auto by_tet = [&](uint32_t x, uint32_t y) { return level.slot_tet[x] < level.slot_tet[y]; };
+    auto in_tet_order = [&](auto&& visit) {
+      const size_t before = order.size();
+      std::sort(level.fresh.begin(), level.fresh.end(), by_tet);
+      order.insert(order.end(), level.fresh.begin(), level.fresh.end());
+      std::inplace_merge(order.begin(), order.begin() + before, order.end(), by_tet);
+      level.fresh.clear();
+      std::priority_queue<uint64_t, std::vector<uint64_t>, std::greater<uint64_t>> later;
+      for (size_t i = 0;;) {
+        uint32_t s;
+        if (!later.empty() &&
+            (i == order.size() || (later.top() >> 32) < level.slot_tet[order[i]])) {
+          s = static_cast<uint32_t>(later.top());
+          later.pop();
+        } else if (i < order.size()) {
+          s = order[i++];
+        } else {
+          break;
+        }
+        const size_t made = level.fresh.size();
+        visit(s);
+        for (size_t k = made; k < level.fresh.size(); ++k) {
+          const uint32_t f = level.fresh[k];
+          if (level.slot_tet[f] > level.slot_tet[s])
+            later.push(uint64_t{level.slot_tet[f]} << 32 | f);
+        }
+      }
+    };
+    // Valences: of each vertex, memoised (0: not yet counted); planned, of the
+    // vertices the split tets touch, of the midpoints and of the centroids.
+    std::vector<uint32_t> valence_before(n, 0), after_old(n, 0);
+    std::vector<uint8_t> is_touched(n, 0);
+    std::vector<uint32_t> touched, mid_after, cen_after;
+    auto before_of = [&](uint32_t v) {
+      if (valence_before[v] == 0) valence_before[v] = valence(v);
+      return valence_before[v];
+    };
+    auto touch = [&](uint32_t v) {
+      if (!is_touched[v]) is_touched[v] = 1, touched.push_back(v), after_old[v] = before_of(v);
+    };
     std::vector<uint64_t> plan_edges;
     std::vector<Tet> pieces;
     constexpr int kMostRounds = 64;  // (the bundled motor at size 8: 6 and 9)
@@ -1018,10 +1113,11 @@ class Engine {
                                              red_levels_expected_));
       // Close the marking: a face with two marked edges gets its third.
       while (!work.empty()) {
-        const uint32_t t = work.back();
+        const uint32_t s = work.back();
         work.pop_back();
-        queued[t] = 0;
-        const uint32_t* te = &level.tet_edge[6 * size_t{t}];
+        level.queued[s] = 0;
+        uint32_t te[6];
+        edges_of(s, te);
         for (const auto& f : kFaceEdges) {
           const uint32_t e0 = te[f[0]], e1 = te[f[1]], e2 = te[f[2]];
           if (level.marked[e0] + level.marked[e1] + level.marked[e2] == 2)
@@ -1032,11 +1128,11 @@ class Engine {
       // red split's corner pieces are its parent's shape, and its inner ones the best
       // of three); a red one that fails is not split.
       bool changed = false;
-      for (uint32_t t = 0; t < tets; ++t) {
-        const int mask = tet_mask(level, t);
-        if (mask == 0 || mask == passed[t]) continue;
-        red_pieces(level, t, &pieces);
-        const TetRecord& r = tet_[t];
+      in_tet_order([&](uint32_t s) {
+        const int mask = slot_mask(level, s);
+        if (mask == 0 || mask == level.passed[s]) return;
+        red_pieces(level, s, &pieces);
+        const TetRecord& r = tet_[level.slot_tet[s]];
         const double floor = std::min(params_.min_stretch, r.stretch);
         bool ok = true;
         for (const Tet& c : pieces) {
@@ -1049,26 +1145,26 @@ class Engine {
             ok = false;
         }
         if (ok) {
-          passed[t] = static_cast<int8_t>(mask);
+          level.passed[s] = static_cast<int8_t>(mask);
         } else {
           if (mask == 63) {
-            for (int k = 0; k < 6; ++k) freeze(level.tet_edge[6 * size_t{t} + k]);
+            uint32_t te[6];
+            edges_of(s, te);
+            for (int k = 0; k < 6; ++k) freeze(te[k]);
           } else {
-            red_or_none(t);
+            red_or_none(s);
           }
           changed = true;
         }
-      }
+      });
       if (changed) continue;
+      const uint32_t slots = static_cast<uint32_t>(level.slot_tet.size());
       // More pieces than the run may make: stop before planning them all.
-      size_t piece_count = 0;
-      for (uint32_t t = 0; t < tets && piece_count <= max_tets_; ++t) {
-        if (tet_mask(level, t) == 0) {  // one piece: the tet
-          ++piece_count;
-          continue;
-        }
-        red_pieces(level, t, &pieces);
-        piece_count += pieces.size();
+      size_t piece_count = tets;  // a piece per tet, and the more of the split ones
+      for (uint32_t s = 0; s < slots && piece_count <= max_tets_; ++s) {
+        if (slot_mask(level, s) == 0) continue;
+        red_pieces(level, s, &pieces);
+        piece_count += pieces.size() - 1;
       }
       if (piece_count > max_tets_) {  // subdivide() stops with an error
         red_over_max_ = true;
@@ -1081,14 +1177,19 @@ class Engine {
       // A node keeps its edges but the marked ones (the pieces of a tet join two of its
       // corners only by an edge of it, not marked) and gains those to the midpoints and
       // centroids of the pieces around it: only the tets that are split are read.
-      valence_after.assign(n + edges + tets, 0);
-      std::copy(valence_before.begin(), valence_before.end(), valence_after.begin());
+      for (uint32_t v : touched) is_touched[v] = 0;
+      touched.clear();
+      mid_after.assign(level.ends.size(), 0);
+      cen_after.assign(slots, 0);
+      for (uint32_t e = 0; e < level.ends.size(); ++e)
+        if (level.marked[e]) {
+          touch(level.ends[e][0]), touch(level.ends[e][1]);
+          --after_old[level.ends[e][0]], --after_old[level.ends[e][1]];
+        }
       plan_edges.clear();
-      for (uint32_t e = 0; e < edges; ++e)
-        if (level.marked[e]) --valence_after[level.ends[e][0]], --valence_after[level.ends[e][1]];
-      for (uint32_t t = 0; t < tets; ++t) {
-        if (tet_mask(level, t) == 0) continue;
-        red_pieces(level, t, &pieces);
+      for (uint32_t s = 0; s < slots; ++s) {
+        if (slot_mask(level, s) == 0) continue;
+        red_pieces(level, s, &pieces);
         for (const Tet& c : pieces)
           for (const auto& k : kTetEdge) {
             uint64_t a = c[k[0]], b = c[k[1]];
@@ -1097,86 +1198,115 @@ class Engine {
           }
       }
       sort_unique(plan_edges);
-      for (uint64_t ab : plan_edges) ++valence_after[ab >> 32], ++valence_after[ab & 0xffffffffu];
-      assert(valence_after == plan_valences(level));
-      for (uint32_t v = 0; v < n; ++v) {
-        if (valence_after[v] <= valence_before[v] || valence_after[v] <= valence_cap(pos_[v]))
-          continue;
+      auto gain = [&](uint32_t x) {
+        if (x < n) {
+          touch(x);
+          ++after_old[x];
+        } else {
+          ++((x - n) & 1 ? cen_after : mid_after)[(x - n) >> 1];
+        }
+      };
+      for (uint64_t ab : plan_edges) gain(static_cast<uint32_t>(ab >> 32)), gain(ab & 0xffffffffu);
+      assert(plan_valences_agree(level, touched, after_old, mid_after, cen_after));
+      std::sort(touched.begin(), touched.end());
+      for (uint32_t v : touched) {
+        if (after_old[v] <= valence_before[v] || after_old[v] <= valence_cap(pos_[v])) continue;
         for (uint32_t t : star_[v]) {
-          const int mask = tet_mask(level, t);
-          if (mask != 0 && mask != 63) red_or_none(t), changed = true;
+          const uint32_t s = level.slot_of[t];
+          if (s == kInvalidIndex) continue;
+          const int mask = slot_mask(level, s);
+          if (mask != 0 && mask != 63) red_or_none(s), changed = true;
         }
       }
-      for (uint32_t e = 0; e < edges; ++e)
-        if (level.marked[e] && valence_after[n + e] > valence_cap(plan_position(level, n + e)))
+      for (uint32_t e = 0; e < mid_after.size(); ++e)
+        if (level.marked[e] && mid_after[e] > valence_cap(plan_position(level, n + 2 * e)))
           freeze(e), changed = true;
-      for (uint32_t t = 0; t < tets; ++t)
-        if (valence_after[n + edges + t] > valence_cap(plan_position(level, n + edges + t))) {
-          for (int k = 0; k < 6; ++k) freeze(level.tet_edge[6 * size_t{t} + k]);
+      for (uint32_t s = 0; s < slots; ++s)
+        if (cen_after[s] > valence_cap(plan_position(level, n + 2 * s + 1))) {
+          uint32_t te[6];
+          edges_of(s, te);
+          for (int k = 0; k < 6; ++k) freeze(te[k]);
           changed = true;
         }
       if (!changed) break;
     }
+    // The marked edges, in the order of their sorted end pairs.
+    std::vector<uint32_t> split_edges;
+    for (uint32_t e = 0; e < level.ends.size(); ++e)
+      if (level.marked[e]) split_edges.push_back(e);
+    std::sort(split_edges.begin(), split_edges.end(),
+              [&](uint32_t x, uint32_t y) { return level.ends[x] < level.ends[y]; });
     // A level that splits no edge longer than its limit (only edges the marking's
     // closure added, around frozen ones) would only refine; the levels end.
     bool splits_long = false;
-    for (size_t e = 0; e < edges && !splits_long; ++e)
-      splits_long = level.marked[e] && squared_length(pos_[level.ends[e][0]] -
-                                                      pos_[level.ends[e][1]]) > limit[e] * limit[e];
+    for (uint32_t e : split_edges)
+      splits_long = splits_long || squared_length(pos_[level.ends[e][0]] - pos_[level.ends[e][1]]) >
+                                       level.limit[e] * level.limit[e];
     if (!splits_long) return false;
     // Apply: the pieces in plan ids first (plan_position() reads pos_ as it is).
     std::vector<TetRecord> next;
     std::vector<uint8_t> is_piece;
+    next.reserve(tets + 8 * split_edges.size());
+    is_piece.reserve(next.capacity());
     for (uint32_t t = 0; t < tets; ++t) {
-      red_pieces(level, t, &pieces);
+      const uint32_t s = level.slot_of[t];
+      if (s == kInvalidIndex || slot_mask(level, s) == 0) {
+        next.push_back(tet_[t]);
+        is_piece.push_back(0);
+        continue;
+      }
+      red_pieces(level, s, &pieces);
       for (const Tet& c : pieces) {
         next.push_back(tet_[t]);  // material and allowance: a piece may break what t broke
         next.back().v = c;
-        is_piece.push_back(pieces.size() > 1);
+        is_piece.push_back(1);
       }
     }
     if (next.size() > max_tets_) {  // subdivide() stops with an error
       red_over_max_ = true;
       return false;
     }
-    std::vector<uint32_t> new_id(edges + tets, 0);  // of midpoints, then centroids
+    // New ids: midpoints in the order of their edges, then centroids in tet order.
+    std::vector<uint32_t> mid_id(level.ends.size(), 0), cen_id(level.slot_tet.size(), 0);
     std::vector<Vec3> added;
-    for (uint32_t e = 0; e < edges; ++e)
-      if (level.marked[e]) {
-        new_id[e] = static_cast<uint32_t>(n + added.size());
-        added.push_back(plan_position(level, n + e));
-      }
+    for (uint32_t e : split_edges) {
+      mid_id[e] = static_cast<uint32_t>(n + added.size());
+      added.push_back(plan_position(level, n + 2 * e));
+    }
     if (added.empty()) return false;
     const size_t splits = added.size();
-    for (const TetRecord& r : next)
-      for (uint32_t v : r.v)
-        if (v >= n + edges && new_id[v - n] == 0) {
-          new_id[v - n] = static_cast<uint32_t>(n + added.size());
+    for (size_t k = 0; k < next.size(); ++k) {
+      if (!is_piece[k]) continue;
+      for (uint32_t v : next[k].v)
+        if (v >= n && ((v - n) & 1) && cen_id[(v - n) >> 1] == 0) {
+          cen_id[(v - n) >> 1] = static_cast<uint32_t>(n + added.size());
           added.push_back(plan_position(level, v));
         }
-    // Centroids are numbered in the order of their first piece, which is tet order.
+    }
     pos_.insert(pos_.end(), added.begin(), added.end());
     mark_.resize(pos_.size(), 0);
     input_valence_.resize(pos_.size(), 0);
     for (size_t k = 0; k < next.size(); ++k) {
+      if (!is_piece[k]) continue;
       TetRecord& r = next[k];
       for (uint32_t& v : r.v)
-        if (v >= n) v = new_id[v - n];
-      if (is_piece[k])
-        r.stretch = tet_shape(pos_[r.v[0]], pos_[r.v[1]], pos_[r.v[2]], pos_[r.v[3]]).stretch;
+        if (v >= n) v = ((v - n) & 1 ? cen_id : mid_id)[(v - n) >> 1];
+      r.stretch = tet_shape(pos_[r.v[0]], pos_[r.v[1]], pos_[r.v[2]], pos_[r.v[3]]).stretch;
     }
     tet_.swap(next);
-    star_.assign(pos_.size(), {});
+    for (auto& star : star_) star.clear();  // (keeping their memory: most grow again)
+    star_.resize(pos_.size());
     for (uint32_t t = 0; t < tet_.size(); ++t)
       for (uint32_t v : tet_[t].v) star_[v].push_back(t);
     result->splits += splits;
     result->red_splits += splits;
     result->red_centroids += added.size() - splits;
     ++result->red_levels;
-    for (uint32_t v = 0; v < n + edges + tets; ++v) {
-      const bool grew = v >= n || valence_after[v] > valence_before[v];
-      if (valence_after[v] > params_.max_valence && grew) ++result->splits_past_valence;
-    }
+    const uint32_t cap = params_.max_valence;
+    for (uint32_t v : touched)
+      if (after_old[v] > cap && after_old[v] > valence_before[v]) ++result->splits_past_valence;
+    for (uint32_t x : mid_after) result->splits_past_valence += x > cap;
+    for (uint32_t x : cen_after) result->splits_past_valence += x > cap;
     return true;
   }
 
