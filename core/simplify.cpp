@@ -995,6 +995,20 @@ class Engine {
   }
 #endif
 
+  // The red levels' progress during round `round` of level `level` (from 0): a level
+  // a share of the levels expected, each round closer to the next; past them (a
+  // marking held back round long edges can go on for many levels, each splitting a
+  // few tets) each level halves what is left, so that the estimate still moves and
+  // reaches 1 only when the levels end.
+  double red_levels_fraction(size_t level, int round) const {
+    const double expected = red_levels_expected_;
+    const auto start = [&](double k) {
+      return k <= expected - 1 ? k / expected : 1 - std::exp2(expected - 1 - k) / expected;
+    };
+    const double k = static_cast<double>(level);
+    return start(k) + (start(k + 1) - start(k)) * (1 - 1.0 / (round + 1));
+  }
+
   // One red level (see above); false if it split nothing.
   bool red_level(SimplifyResult* result) {
     const size_t tets = tet_.size();
@@ -1109,8 +1123,7 @@ class Engine {
     for (int round = 0;; ++round) {
       if (round == kMostRounds || cancelled()) return false;
       // Within a level, each round of the planning closes more of the gap to the next.
-      report("red levels", std::min(1.0, (double(result->red_levels) + 1 - 1.0 / (round + 1)) /
-                                             red_levels_expected_));
+      report("red levels", red_levels_fraction(result->red_levels, round));
       // Close the marking: a face with two marked edges gets its third.
       while (!work.empty()) {
         const uint32_t s = work.back();
