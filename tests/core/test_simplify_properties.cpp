@@ -416,9 +416,9 @@ TEST(SimplifyPastValence, BisectsEdgesWithManyTetsRoundThemBeforeTheRedLevels) {
 // A run past the valence says what it does: after the first run's phases, "red
 // levels" (an estimate that only grows, ending at 1), bisection, edge removals, then
 // classification, collapses round the nodes still past the valence, the first
-// evaluations and the collapses again. The first evaluation
-// of every edge, before the first collapse, is a phase of its own whose fraction grows
-// to 1 (it takes seconds on millions of tets).
+// evaluations and the collapses again. The first evaluation of every edge, before the
+// first collapse, is a phase of its own whose fraction grows to 1 (it takes seconds on
+// millions of tets).
 TEST(SimplifyPastValence, ReportsItsPhases) {
   TetMesh input;
   ReadInfo info;
