@@ -1172,12 +1172,20 @@ class Engine {
       });
       if (changed) continue;
       const uint32_t slots = static_cast<uint32_t>(level.slot_tet.size());
-      // More pieces than the run may make: stop before planning them all.
+      // The planned pieces, once per round: their count (more than the run may make
+      // stops it before planning them all), and their edges to midpoints and centroids.
       size_t piece_count = tets;  // a piece per tet, and the more of the split ones
+      plan_edges.clear();
       for (uint32_t s = 0; s < slots && piece_count <= max_tets_; ++s) {
         if (slot_mask(level, s) == 0) continue;
         red_pieces(level, s, &pieces);
         piece_count += pieces.size() - 1;
+        for (const Tet& c : pieces)
+          for (const auto& k : kTetEdge) {
+            uint64_t a = c[k[0]], b = c[k[1]];
+            if (a > b) std::swap(a, b);
+            if (b >= n) plan_edges.push_back(a << 32 | b);  // a midpoint or centroid
+          }
       }
       if (piece_count > max_tets_) {  // subdivide() stops with an error
         red_over_max_ = true;
@@ -1199,17 +1207,6 @@ class Engine {
           touch(level.ends[e][0]), touch(level.ends[e][1]);
           --after_old[level.ends[e][0]], --after_old[level.ends[e][1]];
         }
-      plan_edges.clear();
-      for (uint32_t s = 0; s < slots; ++s) {
-        if (slot_mask(level, s) == 0) continue;
-        red_pieces(level, s, &pieces);
-        for (const Tet& c : pieces)
-          for (const auto& k : kTetEdge) {
-            uint64_t a = c[k[0]], b = c[k[1]];
-            if (a > b) std::swap(a, b);
-            if (b >= n) plan_edges.push_back(a << 32 | b);  // a midpoint or centroid
-          }
-      }
       sort_unique(plan_edges);
       auto gain = [&](uint32_t x) {
         if (x < n) {
