@@ -60,10 +60,8 @@ void text_disabled_wrapped(const char* format, ...) {
 // the same time on a second thread (nothing when none is).
 void other_run_bar(const ViewerStatus& status) {
   if (status.other_phase.empty()) return;
-  char overlay[96];
-  std::snprintf(overlay, sizeof(overlay), "past the valence: %s %.0f%%", status.other_phase.c_str(),
-                100 * status.other_fraction);
-  ImGui::ProgressBar(static_cast<float>(status.other_fraction), ImVec2(-1, 0), overlay);
+  ImGui::ProgressBar(static_cast<float>(status.other_fraction), ImVec2(-1, 0),
+                     other_run_progress_text(status).c_str());
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "Subdivision left tets above the size: a run allowed to take nodes past the\n"
@@ -331,11 +329,8 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   } else {
     if (ImGui::Button("Cancel")) commands->push_back({CommandKind::kCancel});
     ImGui::SameLine();
-    char overlay[96];
-    std::snprintf(overlay, sizeof(overlay), "%s%s %.0f%%",
-                  status.past_valence_run ? "past the valence: " : "", status.phase.c_str(),
-                  100 * status.phase_fraction);
-    ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
+    ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0),
+                       section_progress_text(status).c_str());
     other_run_bar(status);
     ImGui::TextWrapped("%zu collapses, %.0f /s, %.1f s", status.collapses,
                        status.collapses_per_second, status.elapsed_seconds);
@@ -831,6 +826,38 @@ AnalysisSettings analysis_settings_from(const ElectrostaticsProblem& problem,
   return settings;
 }
 
+namespace {
+std::string phase_percent(const char* prefix, const std::string& phase, double fraction) {
+  char text[128];
+  std::snprintf(text, sizeof(text), "%s%s %.0f%%", prefix, phase.c_str(), 100 * fraction);
+  return text;
+}
+}  // namespace
+
+std::string top_progress_text(const ViewerStatus& status) {
+  // Short enough for the panel's width: the collapses only while they are made (a run
+  // past the valence's are in the Thresholds section).
+  if (status.past_valence_run)
+    return phase_percent("past the valence: ", status.phase, status.phase_fraction);
+  if (status.phase == "simplify") {
+    char text[96];
+    std::snprintf(text, sizeof(text), "simplify %.0f%%, %zu collapses", 100 * status.phase_fraction,
+                  status.collapses);
+    return text;
+  }
+  return phase_percent("simplifying: ", status.phase, status.phase_fraction);
+}
+
+std::string section_progress_text(const ViewerStatus& status) {
+  return phase_percent(status.past_valence_run ? "past the valence: " : "", status.phase,
+                       status.phase_fraction);
+}
+
+std::string other_run_progress_text(const ViewerStatus& status) {
+  if (status.other_phase.empty()) return "";
+  return phase_percent("past the valence: ", status.other_phase, status.other_fraction);
+}
+
 ViewRect scene_rect(float display_width, float display_height, bool show_stats) {
   ViewRect r;
   r.x = kPanelWidth + 2 * kMargin;
@@ -860,18 +887,8 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   if (status.running) {  // always in sight, whatever the panel's scroll position
     if (ImGui::Button("Cancel##top")) commands->push_back({CommandKind::kCancel});
     ImGui::SameLine();
-    // Short enough for the panel's width: the collapses only while they are made.
-    char overlay[96];
-    if (status.past_valence_run)  // (the collapses are in the Thresholds section)
-      std::snprintf(overlay, sizeof(overlay), "past the valence: %s %.0f%%", status.phase.c_str(),
-                    100 * status.phase_fraction);
-    else if (status.phase == "simplify")
-      std::snprintf(overlay, sizeof(overlay), "simplify %.0f%%, %zu collapses",
-                    100 * status.phase_fraction, status.collapses);
-    else
-      std::snprintf(overlay, sizeof(overlay), "simplifying: %s %.0f%%", status.phase.c_str(),
-                    100 * status.phase_fraction);
-    ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0), overlay);
+    ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0),
+                       top_progress_text(status).c_str());
     other_run_bar(status);
   }
   if (status.analysis.solving) {  // also always in sight

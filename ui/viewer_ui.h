@@ -237,6 +237,18 @@ struct ViewRect {
 };
 ViewRect scene_rect(float display_width, float display_height, bool show_stats);
 
+// The texts of a run's progress bars, which draw_viewer_panels() shows:
+// - the bar at the top of the panel, always in sight and short enough for its width
+//   ("simplifying: evaluate edges 69%", "simplify 6%, 19958 collapses", "past the
+//   valence: red levels 50%");
+// - the bar in the Thresholds section, whose collapses are on the line below it
+//   ("evaluate edges 69%", "past the valence: valence collapses 20%");
+// - the bar under either for the run past the valence made alongside on a second
+//   thread ("past the valence: red levels 50%"; "" when there is none).
+std::string top_progress_text(const ViewerStatus& status);
+std::string section_progress_text(const ViewerStatus& status);
+std::string other_run_progress_text(const ViewerStatus& status);
+
 // Draws every panel. `commands` receives what the user asked for this frame.
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
                         ThresholdSettings* thresholds, AnalysisSettings* analysis,

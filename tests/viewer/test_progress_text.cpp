@@ -1,0 +1,117 @@
+// The texts of the viewer's progress bars (ui::top_progress_text() and its siblings),
+// for set statuses and for every report of real runs, as the viewer copies them from
+// SimplifyProgress into its status.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/io/mesh_io.h"
+#include "core/simplify.h"
+#include "ui/viewer_ui.h"
+
+namespace tetlod {
+namespace {
+
+ui::ViewerStatus running(const std::string& phase, double fraction, size_t collapses) {
+  ui::ViewerStatus s;
+  s.running = true;
+  s.phase = phase;
+  s.phase_fraction = fraction;
+  s.collapses = collapses;
+  return s;
+}
+
+TEST(ProgressText, FirstRun) {
+  const ui::ViewerStatus evaluate = running("evaluate edges", 0.694, 0);
+  EXPECT_EQ(ui::top_progress_text(evaluate), "simplifying: evaluate edges 69%");
+  EXPECT_EQ(ui::section_progress_text(evaluate), "evaluate edges 69%");
+  const ui::ViewerStatus collapsing = running("simplify", 0.06, 19958);
+  EXPECT_EQ(ui::top_progress_text(collapsing), "simplify 6%, 19958 collapses");
+  EXPECT_EQ(ui::section_progress_text(collapsing), "simplify 6%");
+  EXPECT_EQ(ui::other_run_progress_text(collapsing), "");  // no second run: no second bar
+  EXPECT_EQ(ui::top_progress_text(running("subdivide", 1, 0)), "simplifying: subdivide 100%");
+}
+
+TEST(ProgressText, RunPastTheValence) {
+  ui::ViewerStatus past = running("valence collapses", 0.2, 120);
+  past.past_valence_run = true;
+  EXPECT_EQ(ui::top_progress_text(past), "past the valence: valence collapses 20%");
+  EXPECT_EQ(ui::section_progress_text(past), "past the valence: valence collapses 20%");
+  ui::ViewerStatus alongside = running("simplify", 0.5, 3000);
+  alongside.other_phase = "red levels";
+  alongside.other_fraction = 0.655;
+  EXPECT_EQ(ui::top_progress_text(alongside), "simplify 50%, 3000 collapses");
+  EXPECT_EQ(ui::other_run_progress_text(alongside), "past the valence: red levels 66%");
+}
+
+// A phase name longer than the bars' buffers is cut, not overrun.
+TEST(ProgressText, LongPhaseIsCut) {
+  const std::string text = ui::top_progress_text(running(std::string(500, 'x'), 0.5, 0));
+  EXPECT_LT(text.size(), 200u);
+  EXPECT_EQ(text.rfind("simplifying: xxx", 0), 0u);
+}
+
+// Every report of real runs gives the bars a text naming its phase and percentage:
+// the bundled motor at size 18 makes a run past the valence, after the first run (its
+// phases then are the run past the valence's) or alongside it on a second thread (the
+// first run's reports then say where that run is).
+TEST(ProgressText, EveryReportOfRealRuns) {
+  TetMesh input;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(TETLOD_SOURCE_DIR "/assets/motor.mesh", &input, &info));
+  std::set<std::string> seen;
+  bool past_seen = false, other_seen = false;
+  for (const bool alongside : {false, true}) {
+    SimplifyParams params;
+    params.sizing.uniform = 18;
+    params.tolerance = 0.05;
+    params.past_valence_alongside = alongside;
+    SimplifyResult result;
+    std::vector<SimplifyProgress> reports;
+    std::vector<std::string> other_phases;  // the pointers live only during the call
+    ASSERT_TRUE(simplify(input, params, &result, [&](const SimplifyProgress& p) {
+      reports.push_back(p);
+      other_phases.emplace_back(p.other_phase ? p.other_phase : "");
+    }));
+    ASSERT_TRUE(result.past_valence.tried);
+    ASSERT_FALSE(reports.empty());
+    for (size_t i = 0; i < reports.size(); ++i) {
+      const SimplifyProgress& p = reports[i];
+      ui::ViewerStatus s = running(p.phase, p.fraction, p.collapses);
+      s.past_valence_run = p.past_valence;
+      s.other_phase = other_phases[i];
+      s.other_fraction = p.other_fraction;
+      const std::string top = ui::top_progress_text(s);
+      SCOPED_TRACE(top);
+      EXPECT_NE(top.find(p.phase), std::string::npos);
+      // "<phase> <percent>%", the percentage rounded.
+      const std::string section = ui::section_progress_text(s);
+      const std::string phase_space = std::string(p.phase) + " ";
+      const size_t at = section.find(phase_space);
+      ASSERT_NE(at, std::string::npos) << section;
+      ASSERT_EQ(section.back(), '%') << section;
+      const std::string digits =
+          section.substr(at + phase_space.size(), section.size() - 1 - at - phase_space.size());
+      EXPECT_NEAR(std::stod(digits), 100 * p.fraction, 0.5) << section;
+      EXPECT_NE(top.find(digits + "%"), std::string::npos);
+      EXPECT_EQ(top.rfind("past the valence: ", 0) == 0, p.past_valence);
+      const std::string other = ui::other_run_progress_text(s);
+      EXPECT_EQ(other.empty(), other_phases[i].empty());
+      if (!other.empty()) {
+        EXPECT_EQ(other.rfind("past the valence: " + other_phases[i], 0), 0u);
+      }
+      seen.insert(p.phase);
+      past_seen |= p.past_valence;
+      other_seen |= !other_phases[i].empty();
+    }
+  }
+  for (const char* phase : {"subdivide", "classify", "evaluate edges", "simplify", "red levels"})
+    EXPECT_EQ(seen.count(phase), 1u) << phase;
+  EXPECT_TRUE(past_seen);
+  EXPECT_TRUE(other_seen);
+}
+
+}  // namespace
+}  // namespace tetlod
