@@ -633,12 +633,16 @@ class Engine {
     return 2 * size_t{params_.max_valence};
   }
 
-  // Queues edge (a, b) for bisection if it is longer than half its size limit (in the
-  // hot phase: if it is a hot edge).
-  void push_if_long(std::vector<Split>& heap, uint32_t a, uint32_t b) {
+  // What a bisection splits: the edges longer than half their size limit, or (before
+  // a run past the valence's red levels) the hot edges (hot_edge()).
+  enum class Bisect { kHalfSize, kHotEdges };
+
+  // Queues edge (a, b) for bisection if it is one `mode` splits.
+  void push_if_long(std::vector<Split>& heap, uint32_t a, uint32_t b, Bisect mode) {
     const double length2 = squared_length(pos_[a] - pos_[b]);
     const double limit = edge_size_limit(a, b);
-    if (hot_phase_ ? length2 > limit * limit && hot_edge(a, b) : length2 > 0.25 * limit * limit) {
+    if (mode == Bisect::kHotEdges ? length2 > limit * limit && hot_edge(a, b)
+                                  : length2 > 0.25 * limit * limit) {
       heap.push_back({length2, std::min(a, b), std::max(a, b)});
       std::push_heap(heap.begin(), heap.end(), SplitLess());
     }
@@ -1352,10 +1356,7 @@ class Engine {
     if (past_valence_) {
       // Edges whose red split would give their midpoint more neighbours than tau_VL
       // are bisected first (see hot_edge()).
-      hot_phase_ = true;
-      Status s = bisect(result, &valence_now);
-      hot_phase_ = false;
-      if (!s) return s;
+      if (Status s = bisect(result, &valence_now, Bisect::kHotEdges); !s) return s;
       for (int level = 0; level < kMostRedLevels && red_level(result); ++level) {
       }
       report("red levels", 1);
@@ -1365,19 +1366,23 @@ class Engine {
       valence_now.resize(pos_.size());
       for (uint32_t v = 0; v < pos_.size(); ++v) valence_now[v] = valence(v);
     }
-    return bisect(result, &valence_now);
+    return bisect(result, &valence_now, Bisect::kHalfSize);
   }
 
   // Longest-edge bisection of the edges push_if_long() queues (see subdivide()), with
   // valence_now the valence of every node.
-  Status bisect(SimplifyResult* result, std::vector<uint32_t>* valences) {
+  Status bisect(SimplifyResult* result, std::vector<uint32_t>* valences, Bisect mode) {
     std::vector<uint32_t>& valence_now = *valences;
+    // The bisection of the hot edges reports no progress and counts no skipped split
+    // (the half-size bisection that follows counts what it skips); its splits are also
+    // counted in hot_splits.
+    const bool hot = mode == Bisect::kHotEdges;
     std::vector<Split> heap;
     std::vector<uint32_t> nb;
     for (uint32_t v = 0; v < pos_.size(); ++v) {
       neighbors(v, &nb);
       for (uint32_t w : nb)
-        if (w > v) push_if_long(heap, v, w);
+        if (w > v) push_if_long(heap, v, w, mode);
     }
     double fraction = 0;  // of the splits made, out of those and the edges still queued
     std::vector<uint32_t> ring, opposite;
@@ -1389,14 +1394,14 @@ class Engine {
         // (Splits queue new long edges, so this can fall: it is shown as it rose.)
         fraction =
             std::max(fraction, double(result->splits) / double(result->splits + heap.size()));
-        if (!hot_phase_) report("subdivide", fraction);
+        if (!hot) report("subdivide", fraction);
       }
       std::pop_heap(heap.begin(), heap.end(), SplitLess());
       const Split e = heap.back();
       heap.pop_back();
       if (!kept_edges_.empty() &&
           std::binary_search(kept_edges_.begin(), kept_edges_.end(), std::make_pair(e.a, e.b))) {
-        result->splits_skipped_inside += !hot_phase_;  // (counted by the last bisection)
+        result->splits_skipped_inside += !hot;  // (counted by the last bisection)
         continue;
       }
       ring.clear();
@@ -1426,7 +1431,7 @@ class Engine {
           if (w != e.a && w != e.b) opposite.push_back(w);
       }
       if (!ok) {
-        result->splits_skipped += !hot_phase_;
+        result->splits_skipped += !hot;
         continue;
       }
       sort_unique(opposite);
@@ -1437,8 +1442,8 @@ class Engine {
         if (valence_now[w] + 1 > valence_cap(pos_[w])) ok = false;
       }
       if (!ok) {
-        result->splits_skipped += !hot_phase_;
-        result->splits_skipped_valence += !hot_phase_;
+        result->splits_skipped += !hot;
+        result->splits_skipped_valence += !hot;
         continue;
       }
       if (tet_.size() + ring.size() > max_tets_) return too_many_tets();
@@ -1472,15 +1477,15 @@ class Engine {
         star_[mid].push_back(child);
       }
       ++result->splits;
-      result->hot_splits += hot_phase_;
+      result->hot_splits += hot;
       result->splits_past_valence += past;
-      push_if_long(heap, e.a, mid);
-      push_if_long(heap, mid, e.b);
-      for (uint32_t w : opposite) push_if_long(heap, mid, w);
+      push_if_long(heap, e.a, mid, mode);
+      push_if_long(heap, mid, e.b, mode);
+      for (uint32_t w : opposite) push_if_long(heap, mid, w, mode);
     }
     // The stars are no longer sorted: run() renumbers (reorder_for_locality()) after
     // any split, which rebuilds them.
-    if (!hot_phase_) report("subdivide", 1);
+    if (!hot) report("subdivide", 1);
     return Status();
   }
 
@@ -3147,7 +3152,6 @@ class Engine {
   std::vector<uint32_t> ring_tets_;    // the tets around the edge evaluated
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
   bool region_sizing_ = false;         // radial or box rules: sizes depend on the position
-  bool hot_phase_ = false;             // bisect() splits only hot_edge()s
   double red_levels_expected_ = 1;     // about how many red levels, for the progress
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
   const VectorKernels& kernels_ = vector_kernels();
