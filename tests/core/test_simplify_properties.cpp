@@ -34,6 +34,23 @@ std::string source_file(const std::string& name) {
   return std::string(TETLOD_SOURCE_DIR) + "/" + name;
 }
 
+// A mesh of the source tree (a failed read fails the test and gives an empty mesh).
+TetMesh read_source_mesh(const std::string& name) {
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh(source_file(name), &mesh, &info);
+  EXPECT_TRUE(s) << name << ": " << s.message();
+  return mesh;
+}
+
+// The default thresholds with a uniform size and a tolerance.
+SimplifyParams sized(double size, double tolerance) {
+  SimplifyParams params;
+  params.sizing.uniform = size;
+  params.tolerance = tolerance;
+  return params;
+}
+
 // Connected regions per material.
 std::map<int32_t, int> regions_per_material(const TetMesh& mesh) {
   int region_count = 0;
@@ -80,16 +97,12 @@ class SimplifyProperties : public ::testing::TestWithParam<Case> {};
 
 TEST_P(SimplifyProperties, HoldAfterEveryCollapse) {
   const Case& c = GetParam();
-  TetMesh input;
-  ReadInfo info;
-  const Status read = read_mesh(source_file(c.file), &input, &info);
-  ASSERT_TRUE(read) << read.message();
+  const TetMesh input = read_source_mesh(c.file);
+  ASSERT_GT(input.tet_count(), 0u);
 
-  SimplifyParams params;
-  params.sizing.uniform = c.size;
+  SimplifyParams params = sized(c.size, c.tolerance);
   params.min_stretch = c.stretch;
   params.max_valence = c.valence;
-  params.tolerance = c.tolerance;
   SimplifyResult result;
   const Status s = simplify(input, params, &result);
   ASSERT_TRUE(s) << s.message();
@@ -205,15 +218,12 @@ TEST(SimplifyTopology, NonManifoldMeshesKeepTheirRegions) {
                {"tests/data/topology/edge_touch.mesh", {{1, 1}, {2, 1}}},
                {"tests/data/topology/vertex_touch.mesh", {{1, 2}}}};
   for (const auto& c : cases) {
-    TetMesh input;
-    ReadInfo info;
-    ASSERT_TRUE(read_mesh(source_file(c.file), &input, &info)) << c.file;
+    const TetMesh input = read_source_mesh(c.file);
+    ASSERT_GT(input.tet_count(), 0u) << c.file;
     EXPECT_EQ(regions_per_material(input), c.regions) << c.file;
-    SimplifyParams params;
-    params.sizing.uniform = 3.0;
+    SimplifyParams params = sized(3.0, 0.3);
     params.min_stretch = 0.05;
     params.max_valence = 40;
-    params.tolerance = 0.3;
     SimplifyResult result;
     ASSERT_TRUE(simplify(input, params, &result)) << c.file;
     EXPECT_LT(result.output.tet_count() * 10, input.tet_count()) << c.file;
@@ -240,12 +250,8 @@ void expect_same_result(const SimplifyResult& a, const SimplifyResult& b) {
 }
 
 TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
-  TetMesh input;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/spheres.mesh"), &input, &info));
-  SimplifyParams params;
-  params.sizing.uniform = 1.0;
-  params.tolerance = 0.02;
+  const TetMesh input = read_source_mesh("assets/spheres.mesh");
+  SimplifyParams params = sized(1.0, 0.02);
   SimplifyResult first;
   ASSERT_TRUE(simplify(input, params, &first));
   for (int run = 1; run < 5; ++run) {
@@ -257,13 +263,9 @@ TEST(SimplifyDeterminism, FiveRunsGiveIdenticalOutput) {
 }
 
 SimplifyResult simplify_motor(double size, bool past_valence, uint32_t valence = 25) {
-  TetMesh input;
-  ReadInfo info;
-  EXPECT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
-  SimplifyParams params;
-  params.sizing.uniform = size;
+  const TetMesh input = read_source_mesh("assets/motor.mesh");
+  SimplifyParams params = sized(size, 0.05);
   params.max_valence = valence;
-  params.tolerance = 0.05;
   params.subdivide_past_valence = past_valence;
   SimplifyResult result;
   EXPECT_TRUE(simplify(input, params, &result));
@@ -302,9 +304,7 @@ TEST(SimplifyPastValence, BringsEveryNodeBackBeforeThePriorityOrder) {
 
   // The base has nodes past 25; once the first collapses are made, every node past
   // 25 is an input node (at its input position) within its input valence.
-  TetMesh input;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
+  const TetMesh input = read_source_mesh("assets/motor.mesh");
   const std::vector<uint32_t> input_valence = test::valences(input);
   std::map<std::array<double, 3>, uint32_t> input_node;
   for (uint32_t v = 0; v < input.vertex_count(); ++v) {
@@ -373,9 +373,7 @@ void expect_conforming_base(const TetMesh& input, const SimplifyResult& r) {
 // levels, each midpoint starts with 18, and one run brings every node back and leaves
 // no tet above the size.
 TEST(SimplifyPastValence, BisectsEdgesWithManyTetsRoundThemBeforeTheRedLevels) {
-  TetMesh motor;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &motor, &info));
+  const TetMesh motor = read_source_mesh("assets/motor.mesh");
   TetMesh shaft;
   std::map<uint32_t, uint32_t> vertex;
   for (size_t t = 0; t < motor.tets.size(); ++t) {
@@ -393,9 +391,7 @@ TEST(SimplifyPastValence, BisectsEdgesWithManyTetsRoundThemBeforeTheRedLevels) {
   ASSERT_EQ(shaft.tets.size(), 368u);
   for (double size : {6.0, 7.0}) {
     SCOPED_TRACE(size);
-    SimplifyParams params;
-    params.sizing.uniform = size;
-    params.tolerance = 0.05;
+    SimplifyParams params = sized(size, 0.05);
     SimplifyResult r;
     ASSERT_TRUE(simplify(shaft, params, &r));
     EXPECT_TRUE(r.past_valence.taken);
@@ -420,12 +416,8 @@ TEST(SimplifyPastValence, BisectsEdgesWithManyTetsRoundThemBeforeTheRedLevels) {
 // first collapse, is a phase of its own whose fraction grows to 1 (it takes seconds on
 // millions of tets).
 TEST(SimplifyPastValence, ReportsItsPhases) {
-  TetMesh input;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
-  SimplifyParams params;
-  params.sizing.uniform = 18;
-  params.tolerance = 0.05;
+  const TetMesh input = read_source_mesh("assets/motor.mesh");
+  SimplifyParams params = sized(18, 0.05);
   // One run after the other: alongside, the phases the run past the valence passes
   // while the first run collapses are not reported (see the test below).
   params.past_valence_alongside = false;
@@ -473,9 +465,7 @@ TEST(SimplifyPastValence, ReportsItsPhases) {
 // they are when it ends.
 TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one processor: never alongside";
-  TetMesh input;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
+  const TetMesh input = read_source_mesh("assets/motor.mesh");
   struct Setting {
     double size;
     uint32_t valence, factor;
@@ -483,11 +473,9 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
   for (const Setting& setting :
        {Setting{18, 25, 8}, Setting{17, 20, 8}, Setting{20, 25, 8}, Setting{12, 25, 2}}) {
     SCOPED_TRACE("size " + std::to_string(setting.size));
-    SimplifyParams params;
-    params.sizing.uniform = setting.size;
+    SimplifyParams params = sized(setting.size, 0.05);
     params.max_valence = setting.valence;
     params.past_valence_tets_factor = setting.factor;
-    params.tolerance = 0.05;
     params.past_valence_alongside = false;
     SimplifyResult sequential;
     bool other_in_sequential = false;
@@ -562,12 +550,8 @@ TEST(SimplifyPastValence, AlongsideGivesTheSameResult) {
 // collapses, and while the calling thread waits for the other. Either way the call
 // returns a cancelled, consistent result.
 TEST(SimplifyPastValence, AlongsideCanBeCancelled) {
-  TetMesh input;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
-  SimplifyParams params;
-  params.sizing.uniform = 12;
-  params.tolerance = 0.05;
+  const TetMesh input = read_source_mesh("assets/motor.mesh");
+  SimplifyParams params = sized(12, 0.05);
   for (int when = 0; when < 2; ++when) {
     SCOPED_TRACE(when == 0 ? "during the first run" : "waiting for the other");
     std::atomic<bool> cancel{false};
@@ -652,12 +636,8 @@ TEST(SimplifyPastValence, IsGivenUpWhereNodesCannotBeBroughtBack) {
 // it, that run stops, and the first run is the result, as with subdivide_past_valence
 // off.
 TEST(SimplifyPastValence, StopsWhereItsSubdivisionGrowsPastTheFactor) {
-  TetMesh input;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/motor.mesh"), &input, &info));
-  SimplifyParams params;
-  params.sizing.uniform = 12;
-  params.tolerance = 0.05;
+  const TetMesh input = read_source_mesh("assets/motor.mesh");
+  SimplifyParams params = sized(12, 0.05);
   params.past_valence_tets_factor = 2;
   SimplifyResult stopped;
   ASSERT_TRUE(simplify(input, params, &stopped));
@@ -705,9 +685,7 @@ TEST(SimplifyPastValence, RedLevelsKeepTheMeshConforming) {
     ReadInfo info;
     ASSERT_TRUE(read_mesh(source_file(setting.file), &input, &info));
     const SurfacePatches patches(input, info.surface_groups);
-    SimplifyParams params;
-    params.sizing.uniform = setting.size;
-    params.tolerance = 0.05;
+    SimplifyParams params = sized(setting.size, 0.05);
     SimplifyResult r;
     ASSERT_TRUE(simplify(input, params, &r, {}, nullptr, setting.groups ? &patches : nullptr));
     EXPECT_TRUE(r.past_valence.taken);
@@ -722,12 +700,8 @@ TEST(SimplifyPastValence, RedLevelsKeepTheMeshConforming) {
 }
 
 TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
-  TetMesh input;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/spheres.mesh"), &input, &info));
-  SimplifyParams params;
-  params.sizing.uniform = 1.0;
-  params.tolerance = 0.02;
+  const TetMesh input = read_source_mesh("assets/spheres.mesh");
+  SimplifyParams params = sized(1.0, 0.02);
   std::atomic<bool> cancel{false};
   size_t calls = 0;
   SimplifyResult result;
@@ -745,12 +719,8 @@ TEST(SimplifyCancel, CancelledRunLeavesAConsistentHistory) {
 // The first evaluations are reported as they start, and a cancel then stops the run
 // before its first collapse: the base is the output.
 TEST(SimplifyCancel, CancelledBeforeTheFirstCollapseLeavesTheBase) {
-  TetMesh input;
-  ReadInfo info;
-  ASSERT_TRUE(read_mesh(source_file("assets/spheres.mesh"), &input, &info));
-  SimplifyParams params;
-  params.sizing.uniform = 1.0;
-  params.tolerance = 0.02;
+  const TetMesh input = read_source_mesh("assets/spheres.mesh");
+  SimplifyParams params = sized(1.0, 0.02);
   params.subdivide_past_valence = false;
   std::atomic<bool> cancel{false};
   SimplifyResult result;
