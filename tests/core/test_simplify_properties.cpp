@@ -208,6 +208,16 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"vertex_touch_loose", "tests/data/topology/vertex_touch.mesh", 3.0, 0.05, 40, 0.3}),
     [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
+// A Gmsh patch antenna (tests/data/gmsh/antenna.geo): layers 0.2 thick (a patch, a
+// ground plane) whose flat tets break the stretch threshold, and a feed pin joining
+// them through the substrate; at size 4 subdivision goes past the valence.
+INSTANTIATE_TEST_SUITE_P(
+    Gmsh, SimplifyProperties,
+    ::testing::Values(Case{"antenna", "tests/data/gmsh/antenna.msh", 6.0, 0.15, 25, 0.05},
+                      Case{"antenna_past_valence", "tests/data/gmsh/antenna.msh", 4.0, 0.15, 25,
+                           0.05}),
+    [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
+
 // The non-manifold test meshes are what their .geo says, and stay so at the
 // coarsest level: the property test above only compares a level with the base.
 TEST(SimplifyTopology, NonManifoldMeshesKeepTheirRegions) {

@@ -45,3 +45,6 @@ gmsh apart.geo -3 -clmax 0.9 -v 0 -format msh22 -o apart.msh
 gmsh apart.geo -3 -clmax 0.9 -v 0 -setnumber gap 0 -format msh22 -o touch.msh
 # A bead in a shell's cavity, near its wall, meshed apart.
 gmsh bead.geo -3 -clmax 0.9 -v 0 -format msh22 -o bead.msh
+# A patch antenna: thin patch and ground plane (0.2 thick) and a feed pin (the
+# simplifier's property tests).
+gmsh antenna.geo -3 -clmax 2.5 -clmin 0.15 -v 0 -format msh22 -o antenna.msh
