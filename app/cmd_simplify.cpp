@@ -194,6 +194,13 @@ int cmd_simplify(const Args& args) {
   print_property_table(stats_of(input), &info.material_names);
   // The size: the uniform one, the local sizing, or the smaller of the two (sizing.h).
   std::printf("\nthresholds: %s\n", describe_thresholds(params).c_str());
+  // What the input breaks already: the final mesh's line below says how much of that
+  // is left (a collapse never makes a tet or node that breaks them).
+  const ThresholdCounts input_breaks = threshold_breaks(input, params);
+  std::printf(
+      "input, breaking them: %zu tets below the stretch, %zu above the size, %zu nodes "
+      "above the valence\n",
+      input_breaks.below_stretch, input_breaks.above_size, input_breaks.above_valence);
 
   SimplifyResult result;
   TerminalProgress progress("tetlod simplify");

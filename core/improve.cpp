@@ -146,13 +146,6 @@ class Improver {
   }
 
   // Over the mesh as it is.
-  ThresholdCounts breaks() {
-    double mean = 0, low = 0;
-    ThresholdCounts counts;
-    summarize(&mean, &low, &counts);
-    return counts;
-  }
-
  private:
   bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
 
@@ -592,9 +585,28 @@ class Improver {
 }  // namespace
 
 ThresholdCounts threshold_breaks(const TetMesh& mesh, const SimplifyParams& params) {
-  TetMesh copy = mesh;
-  Improver improver(&copy, params, nullptr, nullptr, /*moves=*/false);
-  return improver.breaks();
+  // As Improver::summarize() counts them, without an Improver's set-up (a copy of the
+  // mesh and a star per node).
+  ThresholdCounts counts;
+  const std::vector<Vec3>& p = mesh.positions;
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    const Tet& q = mesh.tets[t];
+    const TetShape shape = tet_shape(mesh, q);
+    const Vec3 centroid = (p[q[0]] + p[q[1]] + p[q[2]] + p[q[3]]) * 0.25;
+    counts.below_stretch += shape.stretch < params.min_stretch;
+    counts.above_size += shape.size > params.sizing.size_at(centroid, mesh.materials[t]);
+  }
+  const VertexTets stars = build_vertex_tets(mesh);
+  std::vector<uint32_t> mark(mesh.vertex_count(), kInvalidIndex);
+  for (uint32_t v = 0; v < mesh.vertex_count(); ++v) {
+    mark[v] = v;
+    uint32_t valence = 0;
+    for (const uint32_t* t = stars.begin(v); t != stars.end(v); ++t)
+      for (uint32_t w : mesh.tets[*t])
+        if (mark[w] != v) mark[w] = v, ++valence;
+    counts.above_valence += valence > params.max_valence;
+  }
+  return counts;
 }
 
 size_t shed_valence(TetMesh* mesh, const SimplifyParams& params, const std::vector<uint32_t>& nodes,

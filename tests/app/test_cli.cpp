@@ -19,6 +19,7 @@
 #include "app/cli_runner.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
+#include "core/metrics.h"
 #include "core/test_meshes.h"
 
 namespace tetlod {
@@ -939,6 +940,38 @@ TEST(Cli, ProgressLineOnlyOnATerminal) {
   const CommandResult solved = run(solve.substr(std::string(TETLOD_BINARY).size() + 1));
   ASSERT_EQ(solved.code, 0) << solved.output;
   EXPECT_EQ(solved.output.find('\r'), std::string::npos) << solved.output;
+}
+
+// `tetlod simplify` says what its input breaks of the thresholds before it starts: on
+// the Gmsh patch antenna, flat tets in its thin layers and nodes of many neighbours
+// round the feed pin, counted here from the file.
+TEST(Cli, SimplifySaysWhatTheInputBreaks) {
+  const std::string antenna = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/antenna.msh";
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(antenna, &mesh, &info));
+  const double size = 3, stretch = 0.2;
+  const uint32_t valence = 22;
+  size_t flat = 0, big = 0, crowded = 0;
+  for (const Tet& t : mesh.tets) {
+    const TetShape shape = tet_shape(mesh, t);
+    flat += shape.stretch < stretch;
+    big += shape.size > size;
+  }
+  for (uint32_t n : test::valences(mesh)) crowded += n > valence;
+  ASSERT_GT(flat, 0u);
+  ASSERT_GT(big, 0u);
+  ASSERT_GT(crowded, 0u);
+  const CommandResult r =
+      run("simplify " + antenna + " -o " + out_dir() +
+          "/input_breaks.mesh --size 3 --stretch 0.2 " + "--valence 22 --tolerance 0.05");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string line = "input, breaking them: " + std::to_string(flat) +
+                           " tets below the stretch, " + std::to_string(big) + " above the size, " +
+                           std::to_string(crowded) + " nodes above the valence\n";
+  EXPECT_NE(r.output.find("thresholds: size 3, stretch 0.2, valence 22, tolerance 0.05\n" + line),
+            std::string::npos)
+      << line << r.output;
 }
 
 // `tetlod lod` says what the level it writes breaks of the thresholds saved in the
