@@ -1751,6 +1751,11 @@ Status Viewer::run_action(const ScriptAction& a) {
       save_line_ = a.line;
       return save_level(a.path, a.flag, a.surfaces, a.binary);
     case Kind::kWait:
+      if (a.flag) {  // wait done: settled() holds the script until both have ended
+        wait_for_job_ = true;
+        wait_for_solve_ = true;
+        break;
+      }
       wait_frames_ = static_cast<int>(a.count);
       wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                        std::chrono::duration<double>(a.value));

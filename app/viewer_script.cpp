@@ -330,8 +330,12 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     a->kind = Kind::kWait;
     if (Status s = p.arg_count(1, 1); !s) return s;
     std::string key, value;
+    if (w[1] == "done") {
+      a->flag = true;
+      return Status();
+    }
     if (!LineParser::key_value(w[1], &key, &value) || (key != "frames" && key != "seconds"))
-      return p.error("'wait' takes frames=N or seconds=S");
+      return p.error("'wait' takes frames=N, seconds=S or done");
     if (key == "frames") {
       if (Status s = p.integer(key, value, &a->count); !s) return s;
       if (a->count < 0) return p.error("frames must be >= 0");

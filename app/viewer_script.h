@@ -40,6 +40,8 @@
 //                                    binary: .msh, .vtk, .vtu in binary (WriteOptions);
 //                                    PATH.tlh: the whole collapse history instead
 //   wait frames=N | seconds=S        keep drawing (and taking input) meanwhile
+//   wait done                        until the simplification and the solve started with
+//                                    wait=0 have ended (nothing to wait for: no wait)
 //   bench-scrub [frames=N] [out=CSV] drag the scrubber end to end and back over N
 //                                    frames each way; prints frame times
 //   bench-frames [frames=N] [out=CSV] times the next N frames as they are (e.g. while
@@ -113,7 +115,7 @@ struct ScriptAction {
   double value = 0;       // cut offset, highlight, range min, field-range percentile
   double value2 = 0;      // range max
   int axis = 0;           // cut: 0 x, 1 y, 2 z
-  bool flag = false;      // cut flip, wireframe on, screenshot ui, save improve
+  bool flag = false;      // cut flip, wireframe on, screenshot ui, save improve, wait done
   bool surfaces = false;  // save surfaces
   bool binary = false;    // save binary
   int width = 0, height = 0;

@@ -155,6 +155,17 @@ TEST(ViewerScript, CameraMoves) {
   EXPECT_EQ(parse_error("mouse 5\n"), "t.script:1: 'mouse' takes 2 argument(s), got 1");
 }
 
+// 'wait done' waits for the runs started with wait=0; 'wait frames=N' does not.
+TEST(ViewerScript, WaitDone) {
+  const auto a = parse_ok("simplify wait=0\nwait done\nwait frames=2\n");
+  ASSERT_EQ(a.size(), 3u);
+  EXPECT_EQ(a[1].kind, ScriptAction::Kind::kWait);
+  EXPECT_TRUE(a[1].flag);
+  EXPECT_EQ(a[2].kind, ScriptAction::Kind::kWait);
+  EXPECT_FALSE(a[2].flag);
+  EXPECT_EQ(a[2].count, 2);
+}
+
 TEST(ViewerScript, MaterialSizesAndRegions) {
   const auto a = parse_ok("thresholds material-sizes=1=40,2=10 region=radial:0,0,0,1,0.5\n");
   ASSERT_EQ(a.size(), 1u);
@@ -308,6 +319,8 @@ TEST(ViewerScript, RejectsBadValues) {
            "wait frames=-1\n",
            "wait seconds=-1\n",
            "wait minutes=1\n",
+           "wait done now\n",
+           "wait until=done\n",
            "bench-scrub frames=0\n",
            "bench-scrub speed=2\n",
            "quit now\n",

@@ -898,6 +898,20 @@ TEST(ViewerWindow, CancelAndQuitDuringARun) {
   EXPECT_EQ(running.height, 640);
 }
 
+// 'wait done' holds the script until a run started with wait=0 has ended: the scrubber
+// then has its history (bench-scrub fails without one).
+TEST(ViewerWindow, WaitDoneWaitsForTheRun) {
+  const fs::path dir = fresh_output_dir("viewer_wait_done");
+  std::ofstream(dir / "done.script") << "thresholds size=12 tolerance=0.05\n"
+                                        "simplify wait=0\n"
+                                        "wait done\n"
+                                        "bench-scrub frames=2\n"
+                                        "quit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 480x320 --script done.script");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+}
+
 // 'key value' lines of a report-analysis file.
 std::map<std::string, double> read_report(const fs::path& path) {
   std::map<std::string, double> values;
