@@ -66,6 +66,9 @@ double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
+// Frames a second while a simplification or solve runs and nothing moves (see frame()).
+constexpr double kWorkingFps = 30;
+
 // A loaded mesh and what is displayed of it: the LOD over the last simplification
 // result, or over the input alone (an empty history) before any.
 struct Scene {
@@ -286,11 +289,12 @@ std::filesystem::path recent_files_path() {
 }
 
 struct FrameRecord {
-  double frame_ms = 0;  // since the previous frame started
-  double scrub_ms = 0;  // seek + surface update + upload
-  double draw_ms = 0;   // 3D view draw + present (CPU side: the driver may defer work)
-  double ui_ms = 0;     // ImGui frame + its draw
-  double swap_ms = 0;   // swap buffers
+  double frame_ms = 0;   // since the previous frame started, less waited_ms
+  double waited_ms = 0;  // then waited to keep to kWorkingFps (see Viewer::frame())
+  double scrub_ms = 0;   // seek + surface update + upload
+  double draw_ms = 0;    // 3D view draw + present (CPU side: the driver may defer work)
+  double ui_ms = 0;      // ImGui frame + its draw
+  double swap_ms = 0;    // swap buffers
   size_t step = 0;
 };
 
@@ -417,6 +421,7 @@ class Viewer {
   // Timing.
   int busy_frames_ = 3;  // frames to draw before waiting for events when idle
   bool last_slept_ = false;
+  bool throttle_ = false;  // the next frame waits for kWorkingFps (see frame())
   Clock::time_point last_frame_start_ = Clock::now();
   double frame_ms_ = 0, fps_ = 0;
   FrameRecord current_;
@@ -530,9 +535,19 @@ int Viewer::run() {
 }
 
 void Viewer::frame() {
+  // A simplification or solve running and nothing moving on the last frame: at most
+  // kWorkingFps frames a second (an event wakes it at once), so that redrawing the same
+  // picture leaves the cores to the worker: on a software renderer (llvmpipe, as on
+  // machines without a GPU) every frame takes milliseconds on every core.
+  const Clock::time_point end = Clock::now();  // of the last frame
+  const double early = 1 / kWorkingFps - seconds_between(last_frame_start_, end);
+  const bool throttled = throttle_ && early > 0;
+  if (throttled) glfwWaitEventsTimeout(early);
   const Clock::time_point start = Clock::now();
+  const double waited_ms = throttled ? 1e3 * seconds_between(end, start) : 0;
   const double interval_ms = 1e3 * seconds_between(last_frame_start_, start);
-  current_.frame_ms = interval_ms;
+  current_.frame_ms = interval_ms - waited_ms;
+  current_.waited_ms = waited_ms;
   last_frame_start_ = start;
   if (bench_.active) bench_.records.push_back(current_);
   current_ = {};
@@ -625,10 +640,13 @@ void Viewer::frame() {
   if (scene_) current_.step = scene_->lod->step();
 
   // Frame-time readout (smoothed over about ten frames): the time between frame
-  // starts, except after sleeping for events, where it is this frame's own time.
-  const double total = slept ? 1e3 * seconds_between(start, Clock::now()) : interval_ms;
+  // starts, except after waiting for events, where it is this frame's own time.
+  const double total =
+      slept || throttled ? 1e3 * seconds_between(start, Clock::now()) : interval_ms;
   frame_ms_ = frame_ms_ == 0 ? total : 0.9 * frame_ms_ + 0.1 * total;
   fps_ = frame_ms_ > 0 ? 1e3 / frame_ms_ : 0;
+  throttle_ = (job_ || solve_job_) && !interacting_ && ui_capture_countdown_ < 0 &&
+              (!scene_ || scene_->lod->step() == static_cast<size_t>(panel_.target_step));
 }
 
 void Viewer::start_load(const std::string& path) {
@@ -1801,9 +1819,10 @@ void Viewer::bench_frame() {
   bench_.active = false;
   std::vector<FrameRecord>& r = bench_.records;
   if (!r.empty()) r.erase(r.begin());  // the frame before the first move
-  std::vector<double> frame_ms, scrub_ms, draw_ms, ui_ms, swap_ms;
+  std::vector<double> frame_ms, scrub_ms, draw_ms, ui_ms, swap_ms, waited_ms;
   for (const FrameRecord& f : r) {
     frame_ms.push_back(f.frame_ms);
+    waited_ms.push_back(f.waited_ms);
     scrub_ms.push_back(f.scrub_ms);
     draw_ms.push_back(f.draw_ms);
     ui_ms.push_back(f.ui_ms);
@@ -1832,12 +1851,17 @@ void Viewer::bench_frame() {
       total > 0 ? 1e3 * double(frame_ms.size()) / total : 0, name, quantile(scrub_ms, 0.5),
       quantile(scrub_ms, 0.95), quantile(scrub_ms, 1.0), quantile(draw_ms, 0.5),
       quantile(draw_ms, 1.0), quantile(ui_ms, 0.5), quantile(swap_ms, 0.5));
+  if (quantile(waited_ms, 1.0) > 0)
+    std::printf(
+        "%s: and between frames, waited ms (at most %.0f frames a second while a "
+        "worker runs and nothing moves): median %.1f\n",
+        name, kWorkingFps, quantile(waited_ms, 0.5));
   if (!bench_.out.empty()) {
     std::ofstream out(bench_.out, std::ios::trunc);
-    out << "frame,frame_ms,scrub_ms,draw_ms,ui_ms,swap_ms,step\n";
+    out << "frame,frame_ms,scrub_ms,draw_ms,ui_ms,swap_ms,step,waited_ms\n";
     for (size_t i = 0; i < r.size(); ++i)
       out << i << ',' << r[i].frame_ms << ',' << r[i].scrub_ms << ',' << r[i].draw_ms << ','
-          << r[i].ui_ms << ',' << r[i].swap_ms << ',' << r[i].step << '\n';
+          << r[i].ui_ms << ',' << r[i].swap_ms << ',' << r[i].step << ',' << r[i].waited_ms << '\n';
     if (!out) fail_script(bench_.line, "cannot write " + bench_.out);
   }
 }

@@ -912,6 +912,56 @@ TEST(ViewerWindow, WaitDoneWaitsForTheRun) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
 }
 
+// A column of a bench-frames CSV file, by its header name.
+std::vector<double> csv_column(const fs::path& path, const std::string& name) {
+  std::ifstream in(path);
+  EXPECT_TRUE(in.good()) << path;
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  for (std::istringstream cells(line); std::getline(cells, line, ',');) header.push_back(line);
+  const size_t column = std::find(header.begin(), header.end(), name) - header.begin();
+  EXPECT_LT(column, header.size()) << name;
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::istringstream cells(line);
+    std::string cell;
+    for (size_t c = 0; c <= column && std::getline(cells, cell, ','); ++c) {
+    }
+    values.push_back(std::atof(cell.c_str()));
+  }
+  return values;
+}
+
+// While a simplification runs and nothing moves, the viewer draws at most 30 frames a
+// second, so that redrawing the same picture leaves the cores to the worker (llvmpipe
+// draws on every core); with nothing running it does not wait.
+TEST(ViewerWindow, DrawsAtMostThirtyFramesASecondWhileAWorkerRuns) {
+  const fs::path dir = fresh_output_dir("viewer_working_fps");
+  std::ofstream(dir / "fps.script") << "bench-frames frames=8 out=still.csv\n"
+                                       "thresholds size=5 tolerance=0.05\n"
+                                       "simplify wait=0\n"
+                                       "bench-frames frames=8 out=working.csv\n"
+                                       "cancel\n"
+                                       "quit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 480x320 --script fps.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (double waited : csv_column(dir / "still.csv", "waited_ms")) EXPECT_EQ(waited, 0);
+  const std::vector<double> waited = csv_column(dir / "working.csv", "waited_ms");
+  const std::vector<double> frame = csv_column(dir / "working.csv", "frame_ms");
+  ASSERT_EQ(waited.size(), frame.size());
+  ASSERT_GE(waited.size(), 6u);
+  // Frame intervals (an event may end a wait early: the median).
+  std::vector<double> interval;
+  for (size_t i = 0; i < frame.size(); ++i) {
+    EXPECT_GT(waited[i], 0) << "frame " << i;
+    interval.push_back(frame[i] + waited[i]);
+  }
+  std::sort(interval.begin(), interval.end());
+  EXPECT_GE(interval[interval.size() / 2], 1000.0 / 30 - 1);
+}
+
 // 'key value' lines of a report-analysis file.
 std::map<std::string, double> read_report(const fs::path& path) {
   std::map<std::string, double> values;
