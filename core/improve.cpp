@@ -145,7 +145,6 @@ class Improver {
     return r;
   }
 
-  // Over the mesh as it is.
  private:
   bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
 
