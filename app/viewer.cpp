@@ -76,6 +76,7 @@ struct Scene {
   std::shared_ptr<const TetMesh> input;
   std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
   std::string above_size_reason;                 // of the result ("" if nothing is above)
+  ThresholdCounts input_breaks;                  // what the input broke of the result's thresholds
   SimplifyParams params;                         // of the result's run, if params_known
   bool params_known = false;                     // run here, or saved in the history file read
   // The input file's own surface groups (ReadInfo::surface_groups) on its surface:
@@ -793,8 +794,10 @@ void Viewer::start_simplify() {
       }
       const std::string reason =
           result->violations.above_size > 0 ? above_size_reason(params, *result) : "";
+      const ThresholdCounts input_breaks = threshold_breaks(*input, params);
       auto scene = make_scene(job->path, input, std::move(result), view);
       scene->above_size_reason = reason;
+      scene->input_breaks = input_breaks;
       scene->params = params;
       scene->params_known = true;
       scene->patches = patches;
@@ -1519,6 +1522,7 @@ void Viewer::fill_status() {
     s.rejections = scene.result->rejections;
     s.splits = scene.result->splits;
     s.violations = scene.result->violations;
+    s.input_breaks = scene.input_breaks;
     s.above_size_reason = scene.above_size_reason;
     s.past_valence = past_valence_summary(*scene.result);
     s.simplify_seconds = run_seconds(*scene.result);

@@ -356,16 +356,10 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
     if (v.below_stretch + v.above_size + v.above_valence == 0) {
-      ImGui::TextWrapped("Final mesh: every tet and node within the thresholds.");
+      ImGui::TextWrapped("%s", final_mesh_text(status).c_str());
     } else {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-      ImGui::TextWrapped(
-          "Final mesh: %zu %s below the stretch, %zu above the size, %zu %s above the "
-          "valence; %s.",
-          v.below_stretch, v.below_stretch == 1 ? "tet" : "tets", v.above_size, v.above_valence,
-          v.above_valence == 1 ? "node" : "nodes",
-          v.created == 0 ? "all input ones or pieces of input tets that already broke it"
-                         : "some new ones: please report it");
+      ImGui::TextWrapped("%s", final_mesh_text(status).c_str());
       ImGui::PopStyleColor();
       if (!status.above_size_reason.empty())
         ImGui::TextWrapped("Above the size: %s", status.above_size_reason.c_str());
@@ -851,6 +845,24 @@ std::string top_progress_text(const ViewerStatus& status) {
 std::string section_progress_text(const ViewerStatus& status) {
   return phase_percent(status.past_valence_run ? "past the valence: " : "", status.phase,
                        status.phase_fraction);
+}
+
+std::string final_mesh_text(const ViewerStatus& status) {
+  const auto counts = [](size_t thin, size_t big, size_t crowded) {
+    return std::to_string(thin) + (thin == 1 ? " tet" : " tets") + " below the stretch, " +
+           std::to_string(big) + " above the size, " + std::to_string(crowded) +
+           (crowded == 1 ? " node" : " nodes") + " above the valence";
+  };
+  const ThresholdViolations& v = status.violations;
+  const ThresholdCounts& in = status.input_breaks;
+  const std::string input =
+      "the input: " + counts(in.below_stretch, in.above_size, in.above_valence) + ".";
+  if (v.below_stretch + v.above_size + v.above_valence == 0)
+    return "Final mesh: every tet and node within the thresholds; " + input;
+  return "Final mesh: " + counts(v.below_stretch, v.above_size, v.above_valence) + "; " +
+         (v.created == 0 ? "all input ones or pieces of input tets that already broke it"
+                         : "some new ones: please report it") +
+         "; " + input;
 }
 
 std::string other_run_progress_text(const ViewerStatus& status) {

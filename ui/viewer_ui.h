@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/electrostatics.h"
+#include "core/improve.h"
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
 #include "render/colormap.h"
@@ -182,6 +183,7 @@ struct ViewerStatus {
   size_t splits = 0;
   double simplify_seconds = 0;
   ThresholdViolations violations;  // of the last run's final mesh
+  ThresholdCounts input_breaks;    // what its input broke of the same thresholds
   std::string above_size_reason;   // why it has tets above the size ("" if none)
   std::string past_valence;        // what subdivision past the valence did ("" if nothing)
 
@@ -248,6 +250,11 @@ ViewRect scene_rect(float display_width, float display_height, bool show_stats);
 std::string top_progress_text(const ViewerStatus& status);
 std::string section_progress_text(const ViewerStatus& status);
 std::string other_run_progress_text(const ViewerStatus& status);
+
+// After a run, what its final mesh still breaks of the thresholds and what the input
+// broke ("Final mesh: 4 tets below the stretch, ...; the input: 6 tets below the
+// stretch, ..."), as the Thresholds section says it.
+std::string final_mesh_text(const ViewerStatus& status);
 
 // Draws every panel. `commands` receives what the user asked for this frame.
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,

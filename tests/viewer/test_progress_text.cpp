@@ -1,6 +1,7 @@
 // The texts of the viewer's progress bars (ui::top_progress_text() and its siblings),
 // for set statuses and for every report of real runs, as the viewer copies them from
-// SimplifyProgress into its status.
+// SimplifyProgress into its status; and what the panel says after a run of what its
+// final mesh and its input break (ui::final_mesh_text()).
 #include <gtest/gtest.h>
 
 #include <set>
@@ -111,6 +112,25 @@ TEST(ProgressText, EveryReportOfRealRuns) {
     EXPECT_EQ(seen.count(phase), 1u) << phase;
   EXPECT_TRUE(past_seen);
   EXPECT_TRUE(other_seen);
+}
+
+// After a run: what the final mesh breaks, whether it is all the input's, and what the
+// input broke.
+TEST(FinalMeshText, SaysWhatTheFinalMeshAndTheInputBreak) {
+  ui::ViewerStatus s;
+  s.has_result = true;
+  s.violations = {4, 0, 1, 0};
+  s.input_breaks = {6, 0, 1};
+  EXPECT_EQ(ui::final_mesh_text(s),
+            "Final mesh: 4 tets below the stretch, 0 above the size, 1 node above the valence; "
+            "all input ones or pieces of input tets that already broke it; the input: 6 tets "
+            "below the stretch, 0 above the size, 1 node above the valence.");
+  s.violations = {};
+  EXPECT_EQ(ui::final_mesh_text(s),
+            "Final mesh: every tet and node within the thresholds; the input: 6 tets below the "
+            "stretch, 0 above the size, 1 node above the valence.");
+  s.violations = {1, 0, 0, 1};
+  EXPECT_NE(ui::final_mesh_text(s).find("some new ones: please report it"), std::string::npos);
 }
 
 }  // namespace
