@@ -952,12 +952,15 @@ TEST(ViewerWindow, DrawsAtMostThirtyFramesASecondWhileAWorkerRuns) {
   const std::vector<double> frame = csv_column(dir / "working.csv", "frame_ms");
   ASSERT_EQ(waited.size(), frame.size());
   ASSERT_GE(waited.size(), 6u);
-  // Frame intervals (an event may end a wait early: the median).
+  // Medians: a frame slower than 1/30 s (a loaded machine) waits for nothing, and an
+  // event may end a wait early.
   std::vector<double> interval;
+  size_t waiting = 0;
   for (size_t i = 0; i < frame.size(); ++i) {
-    EXPECT_GT(waited[i], 0) << "frame " << i;
+    waiting += waited[i] > 0;
     interval.push_back(frame[i] + waited[i]);
   }
+  EXPECT_GE(2 * waiting, frame.size());
   std::sort(interval.begin(), interval.end());
   EXPECT_GE(interval[interval.size() / 2], 1000.0 / 30 - 1);
 }
