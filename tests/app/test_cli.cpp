@@ -964,7 +964,7 @@ TEST(Cli, SimplifySaysWhatTheInputBreaks) {
   ASSERT_GT(crowded, 0u);
   const CommandResult r =
       run("simplify " + antenna + " -o " + out_dir() +
-          "/input_breaks.mesh --size 3 --stretch 0.2 " + "--valence 22 --tolerance 0.05");
+          "/input_breaks.mesh --size 3 --stretch 0.2 --valence 22 --tolerance 0.05");
   ASSERT_EQ(r.code, 0) << r.output;
   const std::string line = "input, breaking them: " + std::to_string(flat) +
                            " tets below the stretch, " + std::to_string(big) + " above the size, " +
