@@ -1,13 +1,16 @@
-// tetlod stats FILE [--json]
+// tetlod stats FILE [--json] [--size S --stretch D --valence V ... [--check]]
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
 
 #include "app/cli_util.h"
 #include "app/commands.h"
+#include "app/simplify_options.h"
 #include "core/adjacency.h"
 #include "core/classify.h"
+#include "core/improve.h"
 #include "core/mesh_stats.h"
 #include "core/surface.h"
 
@@ -15,7 +18,8 @@ namespace tetlod::app {
 namespace {
 
 constexpr const char* kStatsUsage =
-    "usage: tetlod stats FILE [--json]\n"
+    "usage: tetlod stats FILE [--json] [--size S] [--stretch D] [--valence V]\n"
+    "                         [--material-size M=S,...] [--size-field SPEC] [--check]\n"
     "\n"
     "Prints the mesh properties of the paper's Table I -- #nodes, #edges, #elements,\n"
     "average and minimum stretch, maximum valence, maximum size (longest edge) -- for the\n"
@@ -23,7 +27,13 @@ constexpr const char* kStatsUsage =
     "boundary/interface triangles per material pair, the file's own surface groups (as\n"
     "--surfaces writes them) and the vertex classification.\n"
     "FILE: .mesh .meshb .msh .node/.ele .vtk .vtu .bdf/.nas .inp\n"
-    "  --json   machine-readable output on stdout\n";
+    "  --json   machine-readable output on stdout\n"
+    "With thresholds (as 'tetlod simplify' takes them; --stretch 0.15 and --valence 25\n"
+    "unless given, no size limit unless --size, --material-size or --size-field), it\n"
+    "also counts the tets below the stretch or above their size and the nodes above the\n"
+    "valence: a check of a mesh from any tool against an analysis' requirements.\n"
+    "  --check  exit with status 3 if anything breaks them (implies the default\n"
+    "           thresholds if none is given)\n";
 
 struct SurfaceSummary {
   std::map<std::pair<int32_t, int32_t>, size_t> triangles_per_pair;
@@ -54,6 +64,17 @@ void print_row_json(const PropertyRow& r) {
       r.volume);
 }
 
+// "size 6, stretch 0.15, valence 25"; "no size limit, ..." without a size.
+std::string describe(const SimplifyParams& params) {
+  const SizingField& sizing = params.sizing;
+  if (std::isfinite(sizing.uniform) || sizing.has_local_rules())
+    return describe_thresholds(params, /*with_tolerance=*/false);
+  char text[96];
+  std::snprintf(text, sizeof text, "no size limit, stretch %g, valence %u", params.min_stretch,
+                params.max_valence);
+  return text;
+}
+
 }  // namespace
 
 int cmd_stats(const Args& args) {
@@ -62,10 +83,19 @@ int cmd_stats(const Args& args) {
     return kExitOk;
   }
   std::string path;
-  bool json = false;
-  for (const std::string& a : args) {
+  bool json = false, check = false, thresholds_given = false;
+  SimplifyOptions thresholds;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
     if (a == "--json") {
       json = true;
+    } else if (a == "--check") {
+      check = true;
+    } else if (a == "--size" || a == "--stretch" || a == "--valence" || a == "--material-size" ||
+               a == "--size-field") {
+      if (parse_simplify_option(args, &i, "stats", &thresholds) != OptionResult::kParsed)
+        return kExitUsage;
+      thresholds_given = true;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "tetlod stats: unknown option '%s'\n\n%s", a.c_str(), kStatsUsage);
       return kExitUsage;
@@ -95,6 +125,13 @@ int cmd_stats(const Args& args) {
     patches = SurfacePatches(mesh, info.surface_groups);
     print_patch_notes(patches, "stats");
   }
+  const bool counting = thresholds_given || check;
+  if (counting && !finish_simplify_options(mesh, info.material_names, "stats", &thresholds))
+    return kExitUsage;
+  const SimplifyParams& params = thresholds.params;
+  const ThresholdCounts breaks = counting ? threshold_breaks(mesh, params) : ThresholdCounts{};
+  const bool broken = breaks.below_stretch + breaks.above_size + breaks.above_valence > 0;
+  const int exit_code = check && broken ? kExitBreaks : kExitOk;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -138,10 +175,18 @@ int cmd_stats(const Args& args) {
     std::printf(patches.groups().empty() ? "]" : "\n  ]");
     std::printf(
         ",\n  \"vertices\": {\"corner\": %zu, \"curve\": %zu, \"surface\": %zu, "
-        "\"interior\": %zu},\n  \"feature_edges\": %zu,\n  \"seconds\": %.6f\n}\n",
+        "\"interior\": %zu},\n  \"feature_edges\": %zu,\n",
         surface.kind_counts[0], surface.kind_counts[1], surface.kind_counts[2],
-        surface.kind_counts[3], surface.feature_edges, seconds);
-    return kExitOk;
+        surface.kind_counts[3], surface.feature_edges);
+    if (counting) {
+      std::printf("  \"thresholds\": \"%s\",\n", json_escape(describe(params)).c_str());
+      std::printf(
+          "  \"breaking\": {\"below_stretch\": %zu, \"above_size\": %zu, "
+          "\"above_valence\": %zu},\n",
+          breaks.below_stretch, breaks.above_size, breaks.above_valence);
+    }
+    std::printf("  \"seconds\": %.6f\n}\n", seconds);
+    return exit_code;
   }
 
   std::printf("%s (%s)\n\n", path.c_str(), format_name(info.format));
@@ -171,8 +216,17 @@ int cmd_stats(const Args& args) {
   std::printf("\nvertices: %zu corner, %zu curve, %zu surface, %zu interior; %zu feature edges\n",
               surface.kind_counts[0], surface.kind_counts[1], surface.kind_counts[2],
               surface.kind_counts[3], surface.feature_edges);
+  if (counting) {
+    std::printf("\nthresholds: %s\n", describe(params).c_str());
+    std::printf(
+        "breaking them: %zu tets below the stretch, %zu above the size, %zu nodes above "
+        "the valence\n",
+        breaks.below_stretch, breaks.above_size, breaks.above_valence);
+  }
   std::printf("(%.3f s)\n", seconds);
-  return kExitOk;
+  if (exit_code == kExitBreaks)
+    std::fprintf(stderr, "tetlod stats: %s breaks them\n", path.c_str());
+  return exit_code;
 }
 
 }  // namespace tetlod::app

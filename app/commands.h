@@ -10,6 +10,7 @@ namespace tetlod::app {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;  // a file or value that cannot be used
 inline constexpr int kExitUsage = 2;     // a malformed command line
+inline constexpr int kExitBreaks = 3;    // stats --check: the mesh breaks a threshold
 
 using Args = std::vector<std::string>;
 

@@ -942,36 +942,73 @@ TEST(Cli, ProgressLineOnlyOnATerminal) {
   EXPECT_EQ(solved.output.find('\r'), std::string::npos) << solved.output;
 }
 
-// `tetlod simplify` says what its input breaks of the thresholds before it starts: on
-// the Gmsh patch antenna, flat tets in its thin layers and nodes of many neighbours
-// round the feed pin, counted here from the file.
-TEST(Cli, SimplifySaysWhatTheInputBreaks) {
-  const std::string antenna = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/antenna.msh";
+// What the Gmsh patch antenna breaks of size 3, stretch 0.2, valence 22, counted here
+// from the file: flat tets in its thin layers, tets larger than 3 in the air, nodes of
+// many neighbours round the feed pin ("N tets below the stretch, M above the size, K
+// nodes above the valence").
+std::string antenna_breaks() {
   TetMesh mesh;
   ReadInfo info;
-  ASSERT_TRUE(read_mesh(antenna, &mesh, &info));
-  const double size = 3, stretch = 0.2;
-  const uint32_t valence = 22;
+  EXPECT_TRUE(
+      read_mesh(std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/antenna.msh", &mesh, &info));
   size_t flat = 0, big = 0, crowded = 0;
   for (const Tet& t : mesh.tets) {
     const TetShape shape = tet_shape(mesh, t);
-    flat += shape.stretch < stretch;
-    big += shape.size > size;
+    flat += shape.stretch < 0.2;
+    big += shape.size > 3;
   }
-  for (uint32_t n : test::valences(mesh)) crowded += n > valence;
-  ASSERT_GT(flat, 0u);
-  ASSERT_GT(big, 0u);
-  ASSERT_GT(crowded, 0u);
-  const CommandResult r =
-      run("simplify " + antenna + " -o " + out_dir() +
-          "/input_breaks.mesh --size 3 --stretch 0.2 --valence 22 --tolerance 0.05");
+  for (uint32_t n : test::valences(mesh)) crowded += n > 22;
+  EXPECT_GT(flat, 0u);
+  EXPECT_GT(big, 0u);
+  EXPECT_GT(crowded, 0u);
+  return std::to_string(flat) + " tets below the stretch, " + std::to_string(big) +
+         " above the size, " + std::to_string(crowded) + " nodes above the valence";
+}
+
+// `tetlod simplify` says what its input breaks of the thresholds before it starts.
+TEST(Cli, SimplifySaysWhatTheInputBreaks) {
+  const std::string antenna = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/antenna.msh";
+  const CommandResult r = run("simplify " + antenna + " -o " + out_dir() +
+                              "/input_breaks.mesh --size 3 --stretch 0.2 --valence 22 "
+                              "--tolerance 0.05");
   ASSERT_EQ(r.code, 0) << r.output;
-  const std::string line = "input, breaking them: " + std::to_string(flat) +
-                           " tets below the stretch, " + std::to_string(big) + " above the size, " +
-                           std::to_string(crowded) + " nodes above the valence\n";
+  const std::string line = "input, breaking them: " + antenna_breaks() + "\n";
   EXPECT_NE(r.output.find("thresholds: size 3, stretch 0.2, valence 22, tolerance 0.05\n" + line),
             std::string::npos)
       << line << r.output;
+}
+
+// `tetlod stats` with thresholds counts what a mesh breaks of them, and with --check
+// exits with status 3 if anything does (0 if nothing does; 2 for a bad threshold).
+TEST(Cli, StatsChecksAMeshAgainstThresholds) {
+  const std::string antenna = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/antenna.msh";
+  const std::string breaks = antenna_breaks();
+  const CommandResult counted = run("stats " + antenna + " --size 3 --stretch 0.2 --valence 22");
+  ASSERT_EQ(counted.code, 0) << counted.output;
+  EXPECT_NE(counted.output.find(
+                "thresholds: size 3, stretch 0.2, valence 22\nbreaking them: " + breaks + "\n"),
+            std::string::npos)
+      << counted.output;
+  const CommandResult checked =
+      run("stats " + antenna + " --size 3 --stretch 0.2 --valence 22 --check --json");
+  EXPECT_EQ(checked.code, 3) << checked.output;
+  EXPECT_NE(checked.output.find("\"breaking\": {\"below_stretch\": "), std::string::npos)
+      << checked.output;
+  // The bundled motor within loose thresholds: nothing breaks them.
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const CommandResult within =
+      run("stats " + motor + " --size 30 --stretch 0.05 --valence 40 --check");
+  EXPECT_EQ(within.code, 0) << within.output;
+  EXPECT_NE(within.output.find("breaking them: 0 tets below the stretch, 0 above the size, 0 "
+                               "nodes above the valence\n"),
+            std::string::npos)
+      << within.output;
+  // Without thresholds, no such lines; a bad one is a usage error.
+  const CommandResult plain = run("stats " + motor);
+  EXPECT_EQ(plain.code, 0);
+  EXPECT_EQ(plain.output.find("breaking them"), std::string::npos);
+  EXPECT_EQ(run("stats " + motor + " --stretch 1.5").code, 2);
+  EXPECT_EQ(run("stats " + motor + " --material-size 99=3").code, 2);
 }
 
 // `tetlod lod` says what the level it writes breaks of the thresholds saved in the
