@@ -16,120 +16,53 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/adjacency.h"
+#include "core/improve.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_compare.h"
 #include "core/mesh_stats.h"
 #include "core/metrics.h"
-#include "core/surface.h"
-#include "core/triangle_grid.h"
 
 namespace {
 
 using namespace tetlod;
 
-// A triangle by its corners (core/triangle_grid.h), and the distance from p to the
-// nearest one of a grid.
-using Triangle = Triangle3;
-double nearest_distance(const TriangleGrid& grid, const Vec3& p) {
-  double d2 = INFINITY;
-  grid.nearest(p, &d2);
-  return std::sqrt(d2);
+std::string pair_name(const MaterialPair& p) {
+  return std::to_string(p.first) + "|" +
+         (p.second == kOutsideMaterial ? "out" : std::to_string(p.second));
 }
-
-using Pair = std::pair<int32_t, int32_t>;  // (inner, outer) material; outer -1: boundary
-
-std::map<Pair, std::vector<Triangle>> interface_triangles(const TetMesh& mesh,
-                                                          const MeshAdjacency& adjacency) {
-  std::map<Pair, std::vector<Triangle>> out;
-  for (const SurfaceTriangle& s : extract_surface(mesh, adjacency.tet_neighbors)) {
-    Triangle t;
-    for (int k = 0; k < 3; ++k) t[k] = mesh.positions[s.v[k]];
-    out[{s.inner, s.outer}].push_back(t);
-  }
-  return out;
-}
-
-// Largest distance from the sample points of `from` to the triangles in `to`.
-double one_sided(const std::vector<Triangle>& from, const TriangleGrid& to) {
-  double worst = 0;
-  for (const Triangle& t : from) {
-    const Vec3 samples[7] = {t[0],
-                             t[1],
-                             t[2],
-                             (t[0] + t[1]) * 0.5,
-                             (t[1] + t[2]) * 0.5,
-                             (t[2] + t[0]) * 0.5,
-                             (t[0] + t[1] + t[2]) * (1.0 / 3)};
-    for (const Vec3& p : samples) worst = std::max(worst, nearest_distance(to, p));
-  }
-  return worst;
-}
-
-std::string pair_name(const Pair& p) {
-  return std::to_string(p.first) + "|" + (p.second < 0 ? "out" : std::to_string(p.second));
-}
-
-struct Reference {
-  TetMesh mesh;
-  MeshStats stats;
-  std::map<Pair, std::vector<Triangle>> surfaces;
-  std::map<Pair, TriangleGrid> grids;
-};
 
 void print_row(const std::string& name, const std::string& seconds, const TetMesh& mesh,
-               const Reference& in, double size, double stretch, uint32_t valence) {
-  const MeshAdjacency adjacency = build_adjacency(mesh);
-  const VertexTets& vt = adjacency.vertex_tets;
-  const MeshStats st = compute_mesh_stats(mesh, vt);
-  size_t thin = 0, big = 0, crowded = 0;
-  for (const Tet& t : mesh.tets) {
-    const TetShape s = tet_shape(mesh, t);
-    thin += s.stretch < stretch;
-    big += s.size > size;
-  }
-  // Valence: distinct edge neighbours, from the vertex -> tets lists.
-  std::vector<uint32_t> seen(mesh.vertex_count(), kInvalidIndex);
-  for (uint32_t v = 0; v < mesh.vertex_count(); ++v) {
-    uint32_t n = 0;
-    for (const uint32_t* t = vt.begin(v); t != vt.end(v); ++t)
-      for (uint32_t w : mesh.tets[*t])
-        if (w != v && seen[w] != v) seen[w] = v, ++n;
-    crowded += n > valence;
-  }
-  // Volume change per material.
+               const TetMesh& input, double size, double stretch, uint32_t valence) {
+  const MeshStats st = compute_mesh_stats(mesh, build_vertex_tets(mesh));
+  SimplifyParams thresholds;
+  thresholds.sizing.uniform = size;
+  thresholds.min_stretch = stretch;
+  thresholds.max_valence = valence;
+  const ThresholdCounts breaks = threshold_breaks(mesh, thresholds);
+  const size_t thin = breaks.below_stretch, big = breaks.above_size, crowded = breaks.above_valence;
+  // Volume change per material (core/mesh_compare.h), of the input's materials.
+  const MeshComparison c = compare_meshes(input, mesh);
   double worst_volume = 0;
   int32_t worst_volume_material = 0;
-  for (const MaterialRow& r : in.stats.per_material) {
-    double after = 0;
-    for (const MaterialRow& q : st.per_material)
-      if (q.material == r.material) after = q.row.volume;
-    const double change = 100 * (after - r.row.volume) / r.row.volume;
+  for (const MaterialVolumes& v : c.volumes) {
+    if (v.before == 0) continue;
+    const double change = 100 * (v.after - v.before) / v.before;
     if (std::abs(change) > std::abs(worst_volume))
-      worst_volume = change, worst_volume_material = r.material;
+      worst_volume = change, worst_volume_material = v.material;
   }
   // Interface deviation, both ways, per material pair.
-  const auto out_surfaces = interface_triangles(mesh, adjacency);
   double worst_distance = 0;
   std::string worst_pair = "-", lost;
-  for (const auto& [pair, tris] : in.surfaces) {
-    auto found = out_surfaces.find(pair);
-    if (found == out_surfaces.end()) {
-      lost += (lost.empty() ? "" : ",") + pair_name(pair);
-      continue;
-    }
-    const TriangleGrid out_grid(found->second);
-    const double d =
-        std::max(one_sided(tris, out_grid), one_sided(found->second, in.grids.at(pair)));
-    if (d > worst_distance) worst_distance = d, worst_pair = pair_name(pair);
-  }
-  for (const auto& entry : out_surfaces)
-    if (!in.surfaces.count(entry.first))
-      lost += std::string(lost.empty() ? "" : ",") + "new " + pair_name(entry.first);
+  for (const PairDeviation& d : c.pairs)
+    if (d.distance > worst_distance) worst_distance = d.distance, worst_pair = pair_name(d.pair);
+  for (const MaterialPair& p : c.lost) lost += (lost.empty() ? "" : ",") + pair_name(p);
+  for (const MaterialPair& p : c.added)
+    lost += std::string(lost.empty() ? "" : ",") + "new " + pair_name(p);
   char volume[64], deviation[64];
   if (std::abs(worst_volume) < 1e-6)
     std::snprintf(volume, sizeof volume, "< 1e-6 %%");
@@ -158,16 +91,12 @@ int main(int argc, char** argv) {
   }
   const double size = std::atof(argv[3]), stretch = std::atof(argv[5]);
   const uint32_t valence = static_cast<uint32_t>(std::atoi(argv[7]));
-  Reference in;
-  Status s = read_mesh(argv[1], &in.mesh);
+  TetMesh input;
+  Status s = read_mesh(argv[1], &input);
   if (!s) {
     std::fprintf(stderr, "bench_compare: %s\n", s.message().c_str());
     return 1;
   }
-  const MeshAdjacency adjacency = build_adjacency(in.mesh);
-  in.stats = compute_mesh_stats(in.mesh, adjacency.vertex_tets);
-  in.surfaces = interface_triangles(in.mesh, adjacency);
-  for (const auto& [pair, tris] : in.surfaces) in.grids.emplace(pair, TriangleGrid(tris));
 
   std::printf(
       "thresholds: size %g, stretch %g, valence %d; deviation: largest distance between the "
@@ -181,7 +110,7 @@ int main(int argc, char** argv) {
   std::printf(
       "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: "
       "|\n");
-  print_row("input", "", in.mesh, in, size, stretch, valence);
+  print_row("input", "", input, input, size, stretch, valence);
   for (int i = 8; i < argc; ++i) {
     const std::string arg = argv[i];
     const size_t eq = arg.find('=');
@@ -200,7 +129,7 @@ int main(int argc, char** argv) {
                   s.message().c_str(), seconds.c_str());
       continue;
     }
-    print_row(name, seconds, mesh, in, size, stretch, valence);
+    print_row(name, seconds, mesh, input, size, stretch, valence);
   }
   return 0;
 }

@@ -1,0 +1,39 @@
+// How a mesh made from another keeps what that one has, whatever tool made it: each
+// material's volume, and how far each material pair's surface (an interface, or a
+// material's outer boundary) moved. For `tetlod compare` and bench_compare.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/tet_mesh.h"
+
+namespace tetlod {
+
+struct MaterialVolumes {
+  int32_t material = 0;
+  double before = 0, after = 0;  // 0 where the mesh has no tet of it
+};
+
+// (inner, outer) materials of a surface triangle; outer kOutsideMaterial: the boundary.
+using MaterialPair = std::pair<int32_t, int32_t>;
+
+struct PairDeviation {
+  MaterialPair pair;
+  // A two-sided estimate of the Hausdorff distance between the two meshes' triangles
+  // of the pair: the largest distance from the corners, edge midpoints and centroids of
+  // one side's triangles to the nearest triangle of the same pair on the other side.
+  double distance = 0;
+};
+
+struct MeshComparison {
+  std::vector<MaterialVolumes> volumes;  // every material of either mesh, by id
+  std::vector<PairDeviation> pairs;      // pairs both meshes have, by pair
+  std::vector<MaterialPair> lost;        // pairs only `before` has
+  std::vector<MaterialPair> added;       // pairs only `after` has
+};
+
+MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after);
+
+}  // namespace tetlod
