@@ -10,11 +10,12 @@ namespace tetlod::app {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;  // a file or value that cannot be used
 inline constexpr int kExitUsage = 2;     // a malformed command line
-inline constexpr int kExitBreaks = 3;    // stats --check: the mesh breaks a threshold
+inline constexpr int kExitBreaks = 3;    // stats, compare --check: the check failed
 
 using Args = std::vector<std::string>;
 
 int cmd_stats(const Args& args);
+int cmd_compare(const Args& args);
 int cmd_convert(const Args& args);
 int cmd_generate(const Args& args);
 int cmd_simplify(const Args& args);

@@ -17,6 +17,8 @@ constexpr const char* kUsage =
     "commands:\n"
     "  stats FILE [--json]              mesh properties (the paper's Table I row) and a\n"
     "                                   stretch histogram, whole mesh and per material\n"
+    "  compare BEFORE AFTER [--check]   each material's volume and how far each interface\n"
+    "                                   moved between two meshes (any tools')\n"
     "  convert IN OUT [--msh-version V] convert between .mesh .meshb .msh .node/.ele .vtk\n"
     "                                   .vtu .bdf/.nas .inp (--surfaces: with boundary groups)\n"
     "  generate MODEL -o FILE           make a bundled model (motor, spheres, box2) with TetGen\n"
@@ -29,7 +31,7 @@ constexpr const char* kUsage =
     "\n"
     "Run 'tetlod COMMAND --help' for the options of a command, 'tetlod --version' for the\n"
     "version.\n"
-    "Exit codes: 0 ok, 1 bad input, 2 bad usage.\n";
+    "Exit codes: 0 ok, 1 bad input, 2 bad usage, 3 a --check failed (stats, compare).\n";
 
 // Ctrl-C, `timeout`, a closed terminal: remove the temporaries of the files being
 // written, then end as the signal would have ended the process.
@@ -72,6 +74,7 @@ int main(int argc, char** argv) {
   }
   const Args args(argv + 2, argv + argc);
   if (command == "stats") return cmd_stats(args);
+  if (command == "compare") return cmd_compare(args);
   if (command == "convert") return cmd_convert(args);
   if (command == "generate") return cmd_generate(args);
   if (command == "simplify") return cmd_simplify(args);

@@ -1011,6 +1011,62 @@ TEST(Cli, StatsChecksAMeshAgainstThresholds) {
   EXPECT_EQ(run("stats " + motor + " --material-size 99=3").code, 2);
 }
 
+// The number after `label` in `text` (e.g. "largest: " -> 0.0356639).
+double number_after(const std::string& text, const std::string& label) {
+  const size_t at = text.find(label);
+  EXPECT_NE(at, std::string::npos) << label << " in " << text;
+  return at == std::string::npos ? NAN : std::atof(text.c_str() + at + label.size());
+}
+
+// `tetlod compare`: each material's volume and how far each surface moved. Exact on box2
+// moved by 0.25 along z (every surface moves by 0.25: the top and bottom faces along
+// their normal, the sides' ends past the old top and bottom), nothing on a mesh against
+// itself; within the tolerance after `simplify`; --check fails (status 3) past a
+// tolerance or where a material or surface is lost.
+TEST(Cli, CompareSaysHowFarEachSurfaceMoved) {
+  const std::string box2 = std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh";
+  TetMesh moved;
+  ASSERT_TRUE(read_mesh(box2, &moved));
+  for (Vec3& p : moved.positions) p.z += 0.25;
+  const std::string moved_path = out_dir() + "/box2_moved.mesh";
+  ASSERT_TRUE(write_mesh(moved_path, moved));
+  const CommandResult shifted = run("compare " + box2 + " " + moved_path);
+  ASSERT_EQ(shifted.code, 0) << shifted.output;
+  EXPECT_NEAR(number_after(shifted.output, "largest: "), 0.25, 1e-9) << shifted.output;
+  EXPECT_NE(shifted.output.find("surfaces lost 0, new 0; materials lost 0, new 0"),
+            std::string::npos)
+      << shifted.output;
+  EXPECT_EQ(run("compare " + box2 + " " + moved_path + " --check --tolerance 0.24").code, 3);
+  EXPECT_EQ(run("compare " + box2 + " " + moved_path + " --check --tolerance 0.26").code, 0);
+
+  const std::string antenna = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/antenna.msh";
+  const CommandResult same = run("compare " + antenna + " " + antenna + " --check --tolerance 0");
+  EXPECT_EQ(same.code, 0) << same.output;
+  EXPECT_NE(same.output.find("largest: 0 (-)"), std::string::npos) << same.output;
+  EXPECT_NE(same.output.find("3 patch | 4 feed"), std::string::npos) << same.output;
+
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const std::string simplified = out_dir() + "/compare_motor.mesh";
+  ASSERT_EQ(run("simplify " + motor + " -o " + simplified + " --size 12 --tolerance 0.05").code, 0);
+  const CommandResult kept =
+      run("compare " + motor + " " + simplified + " --check --tolerance 0.05");
+  EXPECT_EQ(kept.code, 0) << kept.output;
+  const double largest = number_after(kept.output, "largest: ");
+  EXPECT_GT(largest, 0);
+  EXPECT_LE(largest, 0.05);
+  EXPECT_EQ(run("compare " + motor + " " + simplified + " --check --tolerance " +
+                std::to_string(largest / 2))
+                .code,
+            3);
+
+  const CommandResult other = run("compare " + motor + " " + box2 + " --check");
+  EXPECT_EQ(other.code, 3) << other.output;
+  EXPECT_NE(other.output.find("lost"), std::string::npos) << other.output;
+  EXPECT_EQ(run("compare " + motor).code, 2);
+  EXPECT_EQ(run("compare " + motor + " " + box2 + " --tolerance -1").code, 2);
+  EXPECT_EQ(run("compare " + motor + " " + out_dir() + "/no_such.mesh").code, 1);
+}
+
 // `tetlod lod` says what the level it writes breaks of the thresholds saved in the
 // history: at the last level, what `simplify` said of its final mesh; at the first,
 // more (after a run past the valence, nodes subdivision took past it among them).
