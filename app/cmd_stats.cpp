@@ -225,7 +225,7 @@ int cmd_stats(const Args& args) {
   }
   std::printf("(%.3f s)\n", seconds);
   if (exit_code == kExitBreaks)
-    std::fprintf(stderr, "tetlod stats: %s breaks them\n", path.c_str());
+    std::fprintf(stderr, "tetlod stats: %s breaks the thresholds\n", path.c_str());
   return exit_code;
 }
 
