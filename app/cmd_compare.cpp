@@ -1,5 +1,4 @@
 // tetlod compare BEFORE AFTER [--tolerance T] [--check]
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -82,16 +81,9 @@ int cmd_compare(const Args& args) {
   const MeshComparison c = compare_meshes(before, after);
   // Below these, a difference is rounding (sums of tet volumes, positions moved and back):
   // printed as 0.
-  double diagonal = 0;
-  if (!before.positions.empty()) {
-    Vec3 lo = before.positions[0], hi = lo;
-    for (const Vec3& p : before.positions) {
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    diagonal = length(hi - lo);
-  }
-  const double rounding_distance = 1e-12 * diagonal, rounding_fraction = 1e-12;
+  Vec3 lo, hi;
+  mesh_bounds(before, &lo, &hi);
+  const double rounding_distance = 1e-12 * length(hi - lo), rounding_fraction = 1e-12;
 
   std::printf("%s (%zu tets) -> %s (%zu tets)\n\n", paths[0].c_str(), before.tet_count(),
               paths[1].c_str(), after.tet_count());

@@ -1,6 +1,5 @@
 // tetlod stats FILE [--json] [--size S --stretch D --valence V ... [--check]]
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -62,17 +61,6 @@ void print_row_json(const PropertyRow& r) {
       "\"min_stretch\": %.17g, \"max_valence\": %u, \"max_size\": %.17g, \"volume\": %.17g}",
       r.nodes, r.edges, r.elements, r.average_stretch, r.min_stretch, r.max_valence, r.max_size,
       r.volume);
-}
-
-// "size 6, stretch 0.15, valence 25"; "no size limit, ..." without a size.
-std::string describe(const SimplifyParams& params) {
-  const SizingField& sizing = params.sizing;
-  if (std::isfinite(sizing.uniform) || sizing.has_local_rules())
-    return describe_thresholds(params, /*with_tolerance=*/false);
-  char text[96];
-  std::snprintf(text, sizeof text, "no size limit, stretch %g, valence %u", params.min_stretch,
-                params.max_valence);
-  return text;
 }
 
 }  // namespace
@@ -179,7 +167,8 @@ int cmd_stats(const Args& args) {
         surface.kind_counts[0], surface.kind_counts[1], surface.kind_counts[2],
         surface.kind_counts[3], surface.feature_edges);
     if (counting) {
-      std::printf("  \"thresholds\": \"%s\",\n", json_escape(describe(params)).c_str());
+      std::printf("  \"thresholds\": \"%s\",\n",
+                  json_escape(describe_thresholds(params, /*with_tolerance=*/false)).c_str());
       std::printf(
           "  \"breaking\": {\"below_stretch\": %zu, \"above_size\": %zu, "
           "\"above_valence\": %zu},\n",
@@ -217,7 +206,8 @@ int cmd_stats(const Args& args) {
               surface.kind_counts[0], surface.kind_counts[1], surface.kind_counts[2],
               surface.kind_counts[3], surface.feature_edges);
   if (counting) {
-    std::printf("\nthresholds: %s\n", describe(params).c_str());
+    std::printf("\nthresholds: %s\n",
+                describe_thresholds(params, /*with_tolerance=*/false).c_str());
     std::printf(
         "breaking them: %zu tets below the stretch, %zu above the size, %zu nodes above "
         "the valence\n",

@@ -240,11 +240,8 @@ bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialNam
     }
   }
   if (options->tolerance_given || input.positions.empty()) return true;
-  Vec3 lo = input.positions[0], hi = input.positions[0];
-  for (const Vec3& p : input.positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
+  Vec3 lo, hi;
+  mesh_bounds(input, &lo, &hi);
   options->params.tolerance = 1e-3 * length(hi - lo);
   return true;
 }
@@ -264,7 +261,8 @@ std::string describe_violations(const ThresholdViolations& v) {
 }
 
 std::string describe_size(const SizingField& sizing) {
-  if (!std::isfinite(sizing.uniform)) return "from the local sizing";
+  if (!std::isfinite(sizing.uniform))
+    return sizing.has_local_rules() ? "from the local sizing" : "no limit";
   char text[64];
   std::snprintf(text, sizeof text, "%g", sizing.uniform);
   return text + std::string(sizing.has_local_rules() ? ", less where the local sizing asks" : "");

@@ -60,7 +60,8 @@ bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialNam
                              const char* command, SimplifyOptions* options);
 
 // The size threshold in words: "12", "12, less where the local sizing asks", or
-// "from the local sizing" (no uniform size: --material-size or --size-field alone).
+// "from the local sizing" (no uniform size: --material-size or --size-field alone), or
+// "no limit" (no size at all: `stats` with thresholds but no size).
 std::string describe_size(const SizingField& sizing);
 
 // "size 12, stretch 0.15, valence 25, tolerance 0.05" (", no subdivision", ",

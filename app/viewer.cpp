@@ -101,14 +101,6 @@ struct Scene {
   double default_size = 0, default_tolerance = 0;
 };
 
-void mesh_bounds(const TetMesh& mesh, Vec3* lo, Vec3* hi) {
-  *lo = *hi = mesh.positions.empty() ? Vec3{} : mesh.positions[0];
-  for (const Vec3& p : mesh.positions) {
-    *lo = {std::min(lo->x, p.x), std::min(lo->y, p.y), std::min(lo->z, p.z)};
-    *hi = {std::max(hi->x, p.x), std::max(hi->y, p.y), std::max(hi->z, p.z)};
-  }
-}
-
 // The bounds of the input's tets of the shown materials (`hidden` sorted), for the
 // camera to frame what is on screen (as `tetlod render --view`); the whole mesh's if
 // every material is hidden.

@@ -8,6 +8,7 @@
 //  - no two tets have the same vertex set.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -64,6 +65,15 @@ inline const std::string* find_material_name(const std::vector<MaterialName>* na
 // Whether vertex v is a corner of tet t (branch-free: the simplifier's hot loops use it).
 inline bool tet_has(const Tet& t, uint32_t v) {
   return static_cast<bool>(int{t[0] == v} | int{t[1] == v} | int{t[2] == v} | int{t[3] == v});
+}
+
+// The axis-aligned bounding box of the mesh's vertices (both the origin if it has none).
+inline void mesh_bounds(const TetMesh& mesh, Vec3* lo, Vec3* hi) {
+  *lo = *hi = mesh.positions.empty() ? Vec3{} : mesh.positions[0];
+  for (const Vec3& p : mesh.positions) {
+    *lo = {std::min(lo->x, p.x), std::min(lo->y, p.y), std::min(lo->z, p.z)};
+    *hi = {std::max(hi->x, p.x), std::max(hi->y, p.y), std::max(hi->z, p.z)};
+  }
 }
 
 // Six times the signed volume of the tet (a, b, c, d).
