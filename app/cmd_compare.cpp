@@ -1,4 +1,5 @@
 // tetlod compare BEFORE AFTER [--tolerance T] [--check]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -12,7 +13,7 @@ namespace tetlod::app {
 namespace {
 
 constexpr const char* kCompareUsage =
-    "usage: tetlod compare BEFORE AFTER [--tolerance T] [--check]\n"
+    "usage: tetlod compare BEFORE AFTER [--tolerance T] [--check] [--by-id]\n"
     "\n"
     "How AFTER, a mesh made from BEFORE by any tool (tetlod simplify, a remesher, ...),\n"
     "keeps what BEFORE has: each material's volume before and after, and for each\n"
@@ -20,10 +21,14 @@ constexpr const char* kCompareUsage =
     "two-sided estimate of the Hausdorff distance between the two meshes' triangles of\n"
     "that pair (from the corners, edge midpoints and centroids of one side's triangles\n"
     "to the nearest triangle of the pair on the other side); and the surfaces or\n"
-    "materials only one of them has. Materials are matched by id.\n"
+    "materials only one of them has. Where both files name their materials (Gmsh\n"
+    "physical groups, Abaqus sets, ...), a material of AFTER is matched to the one of\n"
+    "BEFORE with its name, whatever its id; otherwise (and for materials without a\n"
+    "name both files have) by id.\n"
     "  --tolerance T   the distance a surface may move (with --check)\n"
     "  --check         exit with status 3 if a material or surface is lost or new, or\n"
-    "                  (with --tolerance) a surface moved further than T\n";
+    "                  (with --tolerance) a surface moved further than T\n"
+    "  --by-id         match materials by id even where both files name them\n";
 
 std::string pair_text(const MaterialPair& p, const std::vector<MaterialName>* names) {
   auto one = [&](int32_t m) {
@@ -43,12 +48,14 @@ int cmd_compare(const Args& args) {
   }
   std::string paths[2];
   int given = 0;
-  bool check = false;
+  bool check = false, by_id = false;
   double tolerance = -1;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--check") {
       check = true;
+    } else if (a == "--by-id") {
+      by_id = true;
     } else if (a == "--tolerance") {
       const auto t = i + 1 < args.size() ? parse_double(args[i + 1]) : std::nullopt;
       if (!t || !(*t >= 0) || !std::isfinite(*t)) {
@@ -76,8 +83,27 @@ int cmd_compare(const Args& args) {
   ReadInfo info_before, info_after;
   if (!load_mesh(paths[0], &before, &info_before) || !load_mesh(paths[1], &after, &info_after))
     return kExitBadInput;
-  const std::vector<MaterialName>* names =
-      info_before.material_names.empty() ? &info_after.material_names : &info_before.material_names;
+  std::string matched = "by id";
+  if (!by_id) {
+    const MaterialMatch match =
+        match_materials_by_name(info_before.material_names, after, info_after.material_names);
+    renumber_materials(match, &after, &info_after.material_names);
+    if (!match.why_by_id.empty()) {
+      matched += " (" + match.why_by_id + ")";
+    } else {
+      matched = "by name";
+      for (size_t i = 0; i < match.renumbered.size(); ++i)
+        matched += (i == 0 ? ": AFTER's " : ", ") + std::to_string(match.renumbered[i].first) +
+                   " is " + std::to_string(match.renumbered[i].second);
+    }
+  }
+  // Labels: BEFORE's names, then AFTER's for materials BEFORE does not name.
+  std::vector<MaterialName> label_names = info_before.material_names;
+  for (const MaterialName& n : info_after.material_names)
+    if (!find_material_name(&info_before.material_names, n.material)) label_names.push_back(n);
+  std::sort(label_names.begin(), label_names.end(),
+            [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
+  const std::vector<MaterialName>* names = &label_names;
   const MeshComparison c = compare_meshes(before, after);
   // Below these, a difference is rounding (sums of tet volumes, positions moved and back):
   // printed as 0.
@@ -85,8 +111,8 @@ int cmd_compare(const Args& args) {
   mesh_bounds(before, &lo, &hi);
   const double rounding_distance = 1e-12 * length(hi - lo), rounding_fraction = 1e-12;
 
-  std::printf("%s (%zu tets) -> %s (%zu tets)\n\n", paths[0].c_str(), before.tet_count(),
-              paths[1].c_str(), after.tet_count());
+  std::printf("%s (%zu tets) -> %s (%zu tets)\nmaterials matched %s\n\n", paths[0].c_str(),
+              before.tet_count(), paths[1].c_str(), after.tet_count(), matched.c_str());
   std::printf("%-24s %16s %16s %12s\n", "material", "volume before", "volume after", "change");
   size_t materials_lost = 0, materials_new = 0;
   for (const MaterialVolumes& v : c.volumes) {

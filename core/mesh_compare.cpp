@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "core/adjacency.h"
 #include "core/metrics.h"
@@ -80,6 +81,83 @@ MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after) {
   for (const auto& entry : s1)
     if (!s0.count(entry.first)) c.added.push_back(entry.first);
   return c;
+}
+
+namespace {
+// name -> material of `names`; false (with `why`) if a name is given to two materials.
+bool by_name(const std::vector<MaterialName>& names, const char* which,
+             std::map<std::string, int32_t>* out, std::string* why) {
+  for (const MaterialName& n : names) {
+    const auto [at, inserted] = out->emplace(n.name, n.material);
+    if (!inserted) {
+      *why = std::string(which) + " names two materials '" + n.name + "' (" +
+             std::to_string(at->second) + " and " + std::to_string(n.material) + ")";
+      return false;
+    }
+  }
+  return true;
+}
+}  // namespace
+
+MaterialMatch match_materials_by_name(const std::vector<MaterialName>& before_names,
+                                      const TetMesh& after,
+                                      const std::vector<MaterialName>& after_names) {
+  MaterialMatch match;
+  if (before_names.empty() || after_names.empty()) {
+    match.why_by_id = before_names.empty() && after_names.empty() ? "neither file names them"
+                      : before_names.empty()                      ? "BEFORE does not name them"
+                                                                  : "AFTER does not name them";
+    return match;
+  }
+  std::map<std::string, int32_t> before_ids, after_ids;
+  if (!by_name(before_names, "BEFORE", &before_ids, &match.why_by_id) ||
+      !by_name(after_names, "AFTER", &after_ids, &match.why_by_id))
+    return match;
+  std::map<int32_t, int32_t> target;  // every material of AFTER's tets -> its id in BEFORE
+  for (const int32_t m : after.materials) target.emplace(m, m);
+  for (auto& [m, to] : target) {
+    const std::string* name = find_material_name(&after_names, m);
+    if (!name) continue;
+    const auto at = before_ids.find(*name);
+    if (at != before_ids.end()) to = at->second;
+  }
+  std::map<int32_t, int32_t> source;  // BEFORE's id -> the AFTER material that takes it
+  for (const auto& [m, to] : target) {
+    const auto [at, inserted] = source.emplace(to, m);
+    if (!inserted) {
+      match.why_by_id = "AFTER's materials " + std::to_string(at->second) + " and " +
+                        std::to_string(m) + " would both be " + std::to_string(to);
+      return match;
+    }
+  }
+  for (const auto& [m, to] : target)
+    if (m != to) match.renumbered.emplace_back(m, to);
+  return match;
+}
+
+void renumber_materials(const MaterialMatch& match, TetMesh* mesh,
+                        std::vector<MaterialName>* names) {
+  if (match.renumbered.empty()) return;
+  const std::map<int32_t, int32_t> to(match.renumbered.begin(), match.renumbered.end());
+  for (int32_t& m : mesh->materials) {
+    const auto at = to.find(m);
+    if (at != to.end()) m = at->second;
+  }
+  // A name of an id that another material takes (one without tets: a material with tets
+  // would have made match_materials_by_name() keep the ids) goes.
+  std::set<int32_t> taken;
+  for (const auto& entry : match.renumbered) taken.insert(entry.second);
+  std::vector<MaterialName> kept;
+  for (const MaterialName& n : *names) {
+    const auto at = to.find(n.material);
+    if (at != to.end())
+      kept.push_back({at->second, n.name});
+    else if (!taken.count(n.material))
+      kept.push_back(n);
+  }
+  *names = std::move(kept);
+  std::sort(names->begin(), names->end(),
+            [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
 }
 
 }  // namespace tetlod

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -35,5 +36,23 @@ struct MeshComparison {
 };
 
 MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after);
+
+// Which of AFTER's materials are BEFORE's, by name, when both files name them (another
+// tool may number the same materials differently: Gmsh's physical tags, Abaqus sets).
+// A material of AFTER whose name BEFORE has is matched to BEFORE's id for it; one
+// without a name, or with a name BEFORE does not have, keeps its id. Nothing is matched
+// (ids are used, and `why_by_id` says why) if either list is empty, a name is given to
+// two materials of one file, or two of AFTER's materials would become one.
+struct MaterialMatch {
+  std::vector<std::pair<int32_t, int32_t>> renumbered;  // (AFTER's id, BEFORE's id), ids differ
+  std::string why_by_id;                                // empty if names were used
+};
+MaterialMatch match_materials_by_name(const std::vector<MaterialName>& before_names,
+                                      const TetMesh& after,
+                                      const std::vector<MaterialName>& after_names);
+
+// Gives AFTER's tets (and its names list, sorted again) BEFORE's ids as `match` says.
+void renumber_materials(const MaterialMatch& match, TetMesh* mesh,
+                        std::vector<MaterialName>* names);
 
 }  // namespace tetlod

@@ -1067,6 +1067,43 @@ TEST(Cli, CompareSaysHowFarEachSurfaceMoved) {
   EXPECT_EQ(run("compare " + motor + " " + out_dir() + "/no_such.mesh").code, 1);
 }
 
+// Another tool's numbering: the same named materials under other ids are matched by
+// name (nothing lost or new), and by id with --by-id (both lost and new).
+TEST(Cli, CompareMatchesNamedMaterialsByName) {
+  const std::string apart = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/apart.msh";
+  TetMesh mesh;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(apart, &mesh, &info));
+  ASSERT_EQ(info.material_names.size(), 2u);  // shell = 1, core = 2
+  for (int32_t& m : mesh.materials) m = m == 1 ? 20 : 10;
+  std::vector<MaterialName> names = {{10, "core"}, {20, "shell"}};
+  WriteOptions options;
+  options.material_names = &names;
+  const std::string renumbered = out_dir() + "/apart_renumbered.msh";
+  ASSERT_TRUE(write_mesh(renumbered, mesh, options));
+
+  const CommandResult r = run("compare " + apart + " " + renumbered + " --check");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("materials matched by name: AFTER's 10 is 2, 20 is 1"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("materials lost 0, new 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("largest: 0 "), std::string::npos) << r.output;
+
+  const CommandResult ids = run("compare " + apart + " " + renumbered + " --check --by-id");
+  EXPECT_EQ(ids.code, 3) << ids.output;
+  EXPECT_NE(ids.output.find("materials matched by id\n"), std::string::npos) << ids.output;
+  EXPECT_NE(ids.output.find("materials lost 2, new 2"), std::string::npos) << ids.output;
+  EXPECT_NE(ids.output.find("10 core"), std::string::npos) << ids.output;  // AFTER's names
+
+  // A file without names: by id, and the output says why.
+  const std::string unnamed = out_dir() + "/apart_unnamed.mesh";
+  ASSERT_TRUE(write_mesh(unnamed, mesh));
+  const CommandResult plain = run("compare " + apart + " " + unnamed);
+  EXPECT_NE(plain.output.find("materials matched by id (AFTER does not name them)"),
+            std::string::npos)
+      << plain.output;
+}
+
 // `tetlod lod` says what the level it writes breaks of the thresholds saved in the
 // history: at the last level, what `simplify` said of its final mesh; at the first,
 // more (after a run past the valence, nodes subdivision took past it among them).

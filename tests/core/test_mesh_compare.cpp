@@ -62,5 +62,57 @@ TEST(MeshCompare, ARelabelledMaterialIsLostAndNew) {
   EXPECT_EQ(c.lost.size(), c.added.size());
 }
 
+// Materials numbered differently by another tool, with the same names: matched by
+// name, renumbered, nothing lost or new.
+TEST(MeshCompare, MaterialsNamedInBothFilesAreMatchedByName) {
+  const TetMesh mesh = box2();
+  std::vector<int32_t> ids(mesh.materials.begin(), mesh.materials.end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  ASSERT_EQ(ids.size(), 2u);
+  const std::vector<MaterialName> before_names = {{ids[0], "iron"}, {ids[1], "air"}};
+  // AFTER swaps the two ids.
+  TetMesh after = mesh;
+  for (int32_t& m : after.materials) m = m == ids[0] ? ids[1] : ids[0];
+  std::vector<MaterialName> after_names = {{ids[0], "air"}, {ids[1], "iron"}};
+  const MaterialMatch match = match_materials_by_name(before_names, after, after_names);
+  EXPECT_EQ(match.why_by_id, "");
+  ASSERT_EQ(match.renumbered.size(), 2u);
+  EXPECT_EQ(match.renumbered[0], std::make_pair(ids[0], ids[1]));
+  EXPECT_EQ(match.renumbered[1], std::make_pair(ids[1], ids[0]));
+  renumber_materials(match, &after, &after_names);
+  EXPECT_EQ(after.materials, mesh.materials);
+  ASSERT_EQ(after_names.size(), 2u);
+  EXPECT_EQ(after_names[0].material, ids[0]);
+  EXPECT_EQ(after_names[0].name, "iron");
+  const MeshComparison c = compare_meshes(mesh, after);
+  EXPECT_TRUE(c.lost.empty());
+  EXPECT_TRUE(c.added.empty());
+
+  // Without the swap, nothing to renumber.
+  EXPECT_TRUE(match_materials_by_name(before_names, mesh, before_names).renumbered.empty());
+}
+
+// Where names cannot say which is which, ids are used, and why is said.
+TEST(MeshCompare, NamesThatCannotMatchLeaveTheIds) {
+  const TetMesh mesh = box2();
+  const int32_t a = mesh.materials.front();
+  const std::vector<MaterialName> named = {{a, "iron"}};
+  EXPECT_EQ(match_materials_by_name({}, mesh, named).why_by_id, "BEFORE does not name them");
+  EXPECT_EQ(match_materials_by_name(named, mesh, {}).why_by_id, "AFTER does not name them");
+  EXPECT_EQ(match_materials_by_name({}, mesh, {}).why_by_id, "neither file names them");
+  const std::vector<MaterialName> twice = {{a, "iron"}, {a + 50, "iron"}};
+  EXPECT_NE(match_materials_by_name(twice, mesh, named).why_by_id.find("names two materials"),
+            std::string::npos);
+  // AFTER's material named "iron" would take the id of AFTER's unnamed one.
+  int32_t other = a;
+  for (const int32_t m : mesh.materials)
+    if (m != a) other = m;
+  ASSERT_NE(other, a);
+  const MaterialMatch match = match_materials_by_name(named, mesh, {{other, "iron"}});
+  EXPECT_TRUE(match.renumbered.empty());
+  EXPECT_NE(match.why_by_id.find("would both be"), std::string::npos) << match.why_by_id;
+}
+
 }  // namespace
 }  // namespace tetlod
