@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # How long a simplification takes in the viewer's worker thread against the same run
-# in `tetlod simplify`, while the window keeps drawing (at most 30 frames a second
+# in `tetlod simplify`, while the window keeps drawing (at most 32 frames a second
 # while nothing moves: app/viewer.cpp, Viewer::frame()). Under Xvfb, OpenGL is
 # llvmpipe, which draws on every core, so frames compete with the worker.
 #   bash bench/run_view_worker_bench.sh [TETS] [SIZE] [RUNS]

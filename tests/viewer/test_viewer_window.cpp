@@ -933,10 +933,10 @@ std::vector<double> csv_column(const fs::path& path, const std::string& name) {
   return values;
 }
 
-// While a simplification runs and nothing moves, the viewer draws at most 30 frames a
-// second, so that redrawing the same picture leaves the cores to the worker (llvmpipe
-// draws on every core); with nothing running it does not wait.
-TEST(ViewerWindow, DrawsAtMostThirtyFramesASecondWhileAWorkerRuns) {
+// While a simplification runs and nothing moves, the viewer draws at most 32 frames a
+// second (30 is the floor issue 5 sets), so that redrawing the same picture leaves the cores to the
+// worker (llvmpipe draws on every core); with nothing running it does not wait.
+TEST(ViewerWindow, DrawsAtMostThirtyTwoFramesASecondWhileAWorkerRuns) {
   const fs::path dir = fresh_output_dir("viewer_working_fps");
   std::ofstream(dir / "fps.script") << "bench-frames frames=8 out=still.csv\n"
                                        "thresholds size=5 tolerance=0.05\n"
@@ -952,7 +952,7 @@ TEST(ViewerWindow, DrawsAtMostThirtyFramesASecondWhileAWorkerRuns) {
   const std::vector<double> frame = csv_column(dir / "working.csv", "frame_ms");
   ASSERT_EQ(waited.size(), frame.size());
   ASSERT_GE(waited.size(), 6u);
-  // Medians: a frame slower than 1/30 s (a loaded machine) waits for nothing, and an
+  // Medians: a frame slower than 1/32 s (a loaded machine) waits for nothing, and an
   // event may end a wait early.
   std::vector<double> interval;
   size_t waiting = 0;
@@ -962,7 +962,12 @@ TEST(ViewerWindow, DrawsAtMostThirtyFramesASecondWhileAWorkerRuns) {
   }
   EXPECT_GE(2 * waiting, frame.size());
   std::sort(interval.begin(), interval.end());
-  EXPECT_GE(interval[interval.size() / 2], 1000.0 / 30 - 1);
+  EXPECT_GE(interval[interval.size() / 2], 1000.0 / 32 - 1);
+  // The rate it prints counts the waits (a frame slower than 1/32 s only lowers it).
+  const std::string rate = "with the waits, ";
+  const size_t at = run.output.find(rate);
+  ASSERT_NE(at, std::string::npos) << run.output;
+  EXPECT_LE(std::atof(run.output.c_str() + at + rate.size()), 32.5) << run.output;
 }
 
 // 'key value' lines of a report-analysis file.
