@@ -1,5 +1,4 @@
-// tetlod compare BEFORE AFTER [--tolerance T] [--check]
-#include <algorithm>
+// tetlod compare BEFORE AFTER [--tolerance T] [--check] [--by-id]
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -101,8 +100,7 @@ int cmd_compare(const Args& args) {
   std::vector<MaterialName> label_names = info_before.material_names;
   for (const MaterialName& n : info_after.material_names)
     if (!find_material_name(&info_before.material_names, n.material)) label_names.push_back(n);
-  std::sort(label_names.begin(), label_names.end(),
-            [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
+  sort_by_material(&label_names);
   const std::vector<MaterialName>* names = &label_names;
   const MeshComparison c = compare_meshes(before, after);
   // Below these, a difference is rounding (sums of tet volumes, positions moved and back):

@@ -156,8 +156,7 @@ void renumber_materials(const MaterialMatch& match, TetMesh* mesh,
       kept.push_back(n);
   }
   *names = std::move(kept);
-  std::sort(names->begin(), names->end(),
-            [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
+  sort_by_material(names);
 }
 
 }  // namespace tetlod

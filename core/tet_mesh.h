@@ -62,6 +62,12 @@ inline const std::string* find_material_name(const std::vector<MaterialName>* na
   return lo < names->size() && (*names)[lo].material == m ? &(*names)[lo].name : nullptr;
 }
 
+// Sorts a list of names by material, as find_material_name() needs.
+inline void sort_by_material(std::vector<MaterialName>* names) {
+  std::sort(names->begin(), names->end(),
+            [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
+}
+
 // Whether vertex v is a corner of tet t (branch-free: the simplifier's hot loops use it).
 inline bool tet_has(const Tet& t, uint32_t v) {
   return static_cast<bool>(int{t[0] == v} | int{t[1] == v} | int{t[2] == v} | int{t[3] == v});

@@ -552,8 +552,7 @@ class AbaqusParser {
           id[k] <= std::numeric_limits<int32_t>::max())
         out_->material_names.push_back({int32_t(id[k]), valid_utf8(spellings_[k])});
     }
-    std::sort(out_->material_names.begin(), out_->material_names.end(),
-              [](const MaterialName& a, const MaterialName& b) { return a.material < b.material; });
+    sort_by_material(&out_->material_names);
     TetMesh& mesh = out_->mesh;
     mesh.tets.reserve(tets_.size());
     mesh.materials.reserve(tets_.size());
