@@ -1,7 +1,8 @@
-// tetlod compare BEFORE AFTER [--tolerance T] [--check] [--by-id]
+// tetlod compare BEFORE AFTER [--tolerance T] [--check] [--by-id] [--json]
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "app/cli_util.h"
 #include "app/commands.h"
@@ -12,7 +13,7 @@ namespace tetlod::app {
 namespace {
 
 constexpr const char* kCompareUsage =
-    "usage: tetlod compare BEFORE AFTER [--tolerance T] [--check] [--by-id]\n"
+    "usage: tetlod compare BEFORE AFTER [--tolerance T] [--check] [--by-id] [--json]\n"
     "\n"
     "How AFTER, a mesh made from BEFORE by any tool (tetlod simplify, a remesher, ...),\n"
     "keeps what BEFORE has: each material's volume before and after, and for each\n"
@@ -27,7 +28,9 @@ constexpr const char* kCompareUsage =
     "  --tolerance T   the distance a surface may move (with --check)\n"
     "  --check         exit with status 3 if a material or surface is lost or new, or\n"
     "                  (with --tolerance) a surface moved further than T\n"
-    "  --by-id         match materials by id even where both files name them\n";
+    "  --by-id         match materials by id even where both files name them\n"
+    "  --json          machine-readable output on stdout (volumes and distances to\n"
+    "                  17 digits; a change is a fraction, or \"lost\" or \"new\")\n";
 
 std::string pair_text(const MaterialPair& p, const std::vector<MaterialName>* names) {
   auto one = [&](int32_t m) {
@@ -47,7 +50,7 @@ int cmd_compare(const Args& args) {
   }
   std::string paths[2];
   int given = 0;
-  bool check = false, by_id = false;
+  bool check = false, by_id = false, json = false;
   double tolerance = -1;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -55,6 +58,8 @@ int cmd_compare(const Args& args) {
       check = true;
     } else if (a == "--by-id") {
       by_id = true;
+    } else if (a == "--json") {
+      json = true;
     } else if (a == "--tolerance") {
       const auto t = i + 1 < args.size() ? parse_double(args[i + 1]) : std::nullopt;
       if (!t || !(*t >= 0) || !std::isfinite(*t)) {
@@ -109,44 +114,99 @@ int cmd_compare(const Args& args) {
   mesh_bounds(before, &lo, &hi);
   const double rounding_distance = 1e-12 * length(hi - lo), rounding_fraction = 1e-12;
 
-  std::printf("%s (%zu tets) -> %s (%zu tets)\nmaterials matched %s\n\n", paths[0].c_str(),
-              before.tet_count(), paths[1].c_str(), after.tet_count(), matched.c_str());
-  std::printf("%-24s %16s %16s %12s\n", "material", "volume before", "volume after", "change");
+  // Each material's change (a fraction; lost and new apart), each surface's distance,
+  // rounding taken as 0.
   size_t materials_lost = 0, materials_new = 0;
-  for (const MaterialVolumes& v : c.volumes) {
-    const std::string name = material_name_of(names, v.material);
-    const std::string label = std::to_string(v.material) + (name.empty() ? "" : " " + name);
-    char change[32];
-    if (v.before == 0) {
-      std::snprintf(change, sizeof change, "new");
-      ++materials_new;
-    } else if (v.after == 0) {
-      std::snprintf(change, sizeof change, "lost");
-      ++materials_lost;
-    } else {
+  std::vector<double> change(c.volumes.size(), 0);
+  for (size_t i = 0; i < c.volumes.size(); ++i) {
+    const MaterialVolumes& v = c.volumes[i];
+    materials_new += v.before == 0;
+    materials_lost += v.before != 0 && v.after == 0;
+    if (v.before != 0 && v.after != 0) {
       const double fraction = (v.after - v.before) / v.before;
-      if (std::abs(fraction) <= rounding_fraction)
-        std::snprintf(change, sizeof change, "0 %%");
-      else
-        std::snprintf(change, sizeof change, "%+.3g %%", 100 * fraction);
+      change[i] = std::abs(fraction) <= rounding_fraction ? 0 : fraction;
     }
-    std::printf("%-24s %16.9g %16.9g %12s\n", label.c_str(), v.before, v.after, change);
   }
-  std::printf("\n%-40s %12s\n", "surface (material | material)", "moved up to");
+  std::vector<double> moved;
   double worst = 0;
   std::string worst_pair = "-";
   for (const PairDeviation& d : c.pairs) {
-    const double distance = d.distance <= rounding_distance ? 0 : d.distance;
-    std::printf("%-40s %12.6g\n", pair_text(d.pair, names).c_str(), distance);
-    if (distance > worst) worst = distance, worst_pair = pair_text(d.pair, names);
+    moved.push_back(d.distance <= rounding_distance ? 0 : d.distance);
+    if (moved.back() > worst) worst = moved.back(), worst_pair = pair_text(d.pair, names);
   }
-  for (const MaterialPair& p : c.lost)
-    std::printf("%-40s %12s\n", pair_text(p, names).c_str(), "lost");
-  for (const MaterialPair& p : c.added)
-    std::printf("%-40s %12s\n", pair_text(p, names).c_str(), "new");
-  std::printf("\nlargest: %.6g (%s); surfaces lost %zu, new %zu; materials lost %zu, new %zu\n",
-              worst, worst_pair.c_str(), c.lost.size(), c.added.size(), materials_lost,
-              materials_new);
+
+  if (json) {
+    const auto number = [](double x) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", x);
+      return std::string(text);
+    };
+    const auto pair_json = [](const MaterialPair& p) {
+      return "\"inner\": " + std::to_string(p.first) + ", \"outer\": " +
+             (p.second == kOutsideMaterial ? std::string("\"outside\"") : std::to_string(p.second));
+    };
+    std::printf("{\n  \"before\": {\"file\": \"%s\", \"tets\": %zu},\n",
+                json_escape(paths[0]).c_str(), before.tet_count());
+    std::printf("  \"after\": {\"file\": \"%s\", \"tets\": %zu},\n", json_escape(paths[1]).c_str(),
+                after.tet_count());
+    std::printf("  \"materials_matched\": \"%s\",\n  \"materials\": [",
+                json_escape(matched).c_str());
+    for (size_t i = 0; i < c.volumes.size(); ++i) {
+      const MaterialVolumes& v = c.volumes[i];
+      const std::string name = material_name_of(names, v.material);
+      std::printf(
+          "%s\n    {\"material\": %d, %s\"volume_before\": %.17g, "
+          "\"volume_after\": %.17g, \"change\": %s}",
+          i ? "," : "", v.material,
+          name.empty() ? "" : ("\"name\": \"" + json_escape(name) + "\", ").c_str(), v.before,
+          v.after,
+          v.before == 0  ? "\"new\""
+          : v.after == 0 ? "\"lost\""
+                         : number(change[i]).c_str());
+    }
+    std::printf("\n  ],\n  \"surfaces\": [");
+    for (size_t i = 0; i < c.pairs.size(); ++i)
+      std::printf("%s\n    {%s, \"moved\": %.17g}", i ? "," : "",
+                  pair_json(c.pairs[i].pair).c_str(), moved[i]);
+    std::printf("\n  ],\n  \"surfaces_lost\": [");
+    for (size_t i = 0; i < c.lost.size(); ++i)
+      std::printf("%s{%s}", i ? ", " : "", pair_json(c.lost[i]).c_str());
+    std::printf("],\n  \"surfaces_new\": [");
+    for (size_t i = 0; i < c.added.size(); ++i)
+      std::printf("%s{%s}", i ? ", " : "", pair_json(c.added[i]).c_str());
+    std::printf(
+        "],\n  \"largest\": %.17g,\n  \"materials_lost\": %zu,\n  \"materials_new\": %zu\n}\n",
+        worst, materials_lost, materials_new);
+  } else {
+    std::printf("%s (%zu tets) -> %s (%zu tets)\nmaterials matched %s\n\n", paths[0].c_str(),
+                before.tet_count(), paths[1].c_str(), after.tet_count(), matched.c_str());
+    std::printf("%-24s %16s %16s %12s\n", "material", "volume before", "volume after", "change");
+    for (size_t i = 0; i < c.volumes.size(); ++i) {
+      const MaterialVolumes& v = c.volumes[i];
+      const std::string name = material_name_of(names, v.material);
+      const std::string label = std::to_string(v.material) + (name.empty() ? "" : " " + name);
+      char text[32];
+      if (v.before == 0)
+        std::snprintf(text, sizeof text, "new");
+      else if (v.after == 0)
+        std::snprintf(text, sizeof text, "lost");
+      else if (change[i] == 0)
+        std::snprintf(text, sizeof text, "0 %%");
+      else
+        std::snprintf(text, sizeof text, "%+.3g %%", 100 * change[i]);
+      std::printf("%-24s %16.9g %16.9g %12s\n", label.c_str(), v.before, v.after, text);
+    }
+    std::printf("\n%-40s %12s\n", "surface (material | material)", "moved up to");
+    for (size_t i = 0; i < c.pairs.size(); ++i)
+      std::printf("%-40s %12.6g\n", pair_text(c.pairs[i].pair, names).c_str(), moved[i]);
+    for (const MaterialPair& p : c.lost)
+      std::printf("%-40s %12s\n", pair_text(p, names).c_str(), "lost");
+    for (const MaterialPair& p : c.added)
+      std::printf("%-40s %12s\n", pair_text(p, names).c_str(), "new");
+    std::printf("\nlargest: %.6g (%s); surfaces lost %zu, new %zu; materials lost %zu, new %zu\n",
+                worst, worst_pair.c_str(), c.lost.size(), c.added.size(), materials_lost,
+                materials_new);
+  }
   if (!check) return kExitOk;
   std::string why;
   if (c.lost.size() + c.added.size() + materials_lost + materials_new > 0)

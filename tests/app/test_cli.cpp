@@ -1095,6 +1095,23 @@ TEST(Cli, CompareMatchesNamedMaterialsByName) {
   EXPECT_NE(ids.output.find("materials lost 2, new 2"), std::string::npos) << ids.output;
   EXPECT_NE(ids.output.find("10 core"), std::string::npos) << ids.output;  // AFTER's names
 
+  // The same in JSON: valid (Debian's Python reads it), the matching and each surface.
+  const CommandResult json = run("compare " + apart + " " + renumbered + " --json");
+  ASSERT_EQ(json.code, 0) << json.output;
+  EXPECT_NE(json.output.find("\"materials_matched\": \"by name: AFTER's 10 is 2, 20 is 1\""),
+            std::string::npos)
+      << json.output;
+  EXPECT_NE(json.output.find("{\"inner\": 2, \"outer\": \"outside\", \"moved\": 0}"),
+            std::string::npos)
+      << json.output;
+  const std::string json_path = out_dir() + "/compare.json";
+  std::ofstream(json_path) << json.output.substr(json.output.find('{'));
+  if (std::filesystem::exists("/usr/bin/python3")) {
+    const std::string check =
+        "/usr/bin/python3 -c 'import json,sys; json.load(open(sys.argv[1]))' ";
+    EXPECT_EQ(std::system((check + json_path).c_str()), 0) << json.output;
+  }
+
   // A file without names: by id, and the output says why.
   const std::string unnamed = out_dir() + "/apart_unnamed.mesh";
   ASSERT_TRUE(write_mesh(unnamed, mesh));
