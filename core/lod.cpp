@@ -474,7 +474,30 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
     if (!is_finite(box.low) || !is_finite(box.high) || !std::isfinite(box.size) || !(box.size > 0))
       return "thresholds: box rule " + std::to_string(i);
   }
-  if (Status status = check_params(*p); !status) return "thresholds: " + status.message();
+  return "";  // check_params() once the size map, if any, is read too
+}
+
+constexpr char kSizeMapMagic[8] = {'T', 'L', 'S', 'Z', 'M', 'A', 'P', '1'};
+
+// The size map (sizing.h) as its values at the base's vertices, a u64 count then the
+// f64 values: the map over the base that the reader builds from them is the one the
+// run used (linear in each input tet, so in each piece of one; subdivision cut the base
+// from the input), to the rounding of the interpolation.
+bool write_size_map(std::FILE* f, const TetMesh& base, const SizeMap& map) {
+  if (std::fwrite(kSizeMapMagic, 1, 8, f) != 8) return false;
+  ParamsWriter w{f};
+  w.put(uint64_t(base.positions.size()));
+  for (const Vec3& p : base.positions) w.put(map.at(p));
+  return w.ok;
+}
+
+// Reads the values after "TLSZMAP1"; an error message, or "" on success.
+std::string read_size_map(std::FILE* f, uint64_t bytes, std::vector<double>* values) {
+  ParamsReader r{f};
+  const uint64_t count = r.get_count(bytes, 8);
+  values->resize(count);
+  for (uint64_t i = 0; i < count && r.ok; ++i) (*values)[i] = r.get<double>();
+  if (!r.ok) return "truncated size map, or a list longer than the file";
   return "";
 }
 
@@ -500,7 +523,9 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
            write_array(f, base.tets) && write_array(f, base.materials) &&
            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
            write_array(f, history.rewired) && write_array(f, history.moved) &&
-           (!params || write_params(f, *params)) && (kept.empty() || write_names(f, kept)) &&
+           (!params || write_params(f, *params)) &&
+           (!params || !params->sizing.map || write_size_map(f, base, *params->sizing.map)) &&
+           (kept.empty() || write_names(f, kept)) &&
            (!patches || (!patches->any() && patches->inside_entries().empty()) ||
             write_patches(f, *patches)) &&
            write_end(f);
@@ -548,28 +573,32 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   std::optional<SimplifyParams> saved_params;
   std::vector<MaterialName> saved_names;
   SurfacePatches saved_patches;
-  int last_block = 0;  // 1 thresholds, 2 names, 3 surface groups, 4 the end
+  std::vector<double> saved_sizes;
+  bool has_size_map = false;
+  int last_block = 0;  // 1 thresholds, 2 size map, 3 names, 4 surface groups, 5 the end
   for (;;) {
     char block_magic[8] = {};
     const size_t magic_bytes = std::fread(block_magic, 1, 8, f);
     if (magic_bytes == 0) {
-      if (has_end && last_block != 4)
+      if (has_end && last_block != 5)
         return Status::error(path + ": truncated history file (it ends before its end block)");
       break;
     }
-    const int block = magic_bytes != 8                                 ? 0
-                      : std::memcmp(block_magic, kParamsMagic, 8) == 0 ? 1
-                      : std::memcmp(block_magic, kNamesMagic, 8) == 0  ? 2
-                      : std::memcmp(block_magic, kGroupsMagic, 8) == 0 ? 3
-                      : std::memcmp(block_magic, kEndMagic, 8) == 0    ? (has_end ? 4 : 0)
-                                                                       : 0;
+    const int block = magic_bytes != 8                                  ? 0
+                      : std::memcmp(block_magic, kParamsMagic, 8) == 0  ? 1
+                      : std::memcmp(block_magic, kSizeMapMagic, 8) == 0 ? 2
+                      : std::memcmp(block_magic, kNamesMagic, 8) == 0   ? 3
+                      : std::memcmp(block_magic, kGroupsMagic, 8) == 0  ? 4
+                      : std::memcmp(block_magic, kEndMagic, 8) == 0     ? (has_end ? 5 : 0)
+                                                                        : 0;
     std::string error;
-    if (block <= last_block) {
-      error = last_block == 4  ? "bytes after the end block"
+    if (block <= last_block || (block == 2 && last_block != 1)) {
+      error = last_block == 5                 ? "bytes after the end block"
+              : block == 2 && last_block == 0 ? "a size map without thresholds"
               : last_block > 0 ? "a block out of order, or unknown bytes, after the thresholds, "
                                  "names or surface groups"
                                : "bytes after the last step";
-    } else if (block == 4) {
+    } else if (block == 5) {
       uint64_t length = 0;
       const bool read = std::fread(&length, sizeof length, 1, f) == 1;
       const long at = std::ftell(f);
@@ -579,6 +608,9 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
       saved_params.emplace();
       error = read_params(f, bytes, &*saved_params);
     } else if (block == 2) {
+      has_size_map = true;
+      error = read_size_map(f, bytes, &saved_sizes);
+    } else if (block == 3) {
       error = read_names(f, bytes, &saved_names);
     } else {
       error = read_patches(f, bytes, &saved_patches);
@@ -683,6 +715,18 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
     if (uses[st.kept] !=
         (history->rewired_end(s) - st.rewired_begin) + (history->moved_end(s) - st.moved_begin))
       return bad(at("moved tets missing"));
+  }
+  // The saved size map, over the base (a mesh of positive tets, checked above), then
+  // the thresholds as a whole.
+  if (saved_params) {
+    if (has_size_map) {
+      std::shared_ptr<const SizeMap> map;
+      if (Status s = SizeMap::build(*base, std::move(saved_sizes), &map); !s)
+        return bad("size map: " + s.message());
+      saved_params->sizing.map = std::move(map);
+    }
+    if (Status status = check_params(*saved_params); !status)
+      return bad("thresholds: " + status.message());
   }
   // A saved material size names a material of the mesh (as --material-size must).
   if (saved_params) {

@@ -116,7 +116,9 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // written before 2026-11-24 have none and still read).
 // `params`, if given: the thresholds the history was made with (all but
 // target_elements, which is about a level), saved after it so that a level can be
-// improved later within them (improve.h) without the user giving them again.
+// improved later within them (improve.h) without the user giving them again; a size
+// map among them (sizing.h) is saved as its values at the base's vertices, over which
+// the reader builds it again.
 // `names`, if given and not empty: the input file's names of the materials (sorted,
 // each of a material the base has), saved next, so that levels written later
 // carry them. `patches`, if given and any() (or with inside_entries()): the input
@@ -133,7 +135,8 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
                      const SurfacePatches* patches = nullptr);
 // `params`, if given, receives the saved thresholds, or nullopt for a history saved
 // without them (as every one before 2026-11-24 was); saved thresholds that
-// check_params() refuses, or any byte after them, make the file corrupt. `names`, if
+// check_params() refuses, a saved size map that is not a size > 0 at each of the
+// base's vertices, or any byte after them, make the file corrupt. `names`, if
 // given, receives the saved material names (empty if none); a name list out of
 // order, of a material the base does not have, or with an empty or over-long name
 // makes the file corrupt. `patches`, if given, receives the saved surface groups (none:

@@ -391,6 +391,7 @@ class Engine {
     tolerance2_ = params.tolerance * params.tolerance;
     uniform_sizing_ = !params.sizing.has_local_rules();
     region_sizing_ = params.sizing.has_region_rules();
+    late_limits_ = params.sizing.map != nullptr;
     // For a test: TETLOD_REPEAT_EVALUATIONS (other than 0) makes every repeat again,
     // which must not change the result (evaluated_as_is()).
     const char* repeat = std::getenv("TETLOD_REPEAT_EVALUATIONS");
@@ -2025,20 +2026,35 @@ class Engine {
     // d_t^2 = 6 (6V)^2 / (s^2 A^2) <= 6 (6V)^2 / (s^2 sum a^2); a tet whose bound is
     // below tau_ST^2 (with a margin far above the rounding) fails the exact test too.
     const double floor2 = params_.min_stretch * params_.min_stretch * (1 - 1e-9);
+    // size_limit(f0, f1, f2, k, material), a block at a time: the same operations.
+    auto region_limits = [&](TetBlock& b) {
+      double cx[kLanes], cy[kLanes], cz[kLanes];  // the centroids with k in place
+      for (int l = 0; l < kLanes; ++l) {
+        cx[l] = (b.f0x[l] + b.f1x[l] + b.f2x[l] + k.x) * 0.25;
+        cy[l] = (b.f0y[l] + b.f1y[l] + b.f2y[l] + k.y) * 0.25;
+        cz[l] = (b.f0z[l] + b.f1z[l] + b.f2z[l] + k.z) * 0.25;
+        b.limit[l] = b.material_limit[l];
+      }
+      params_.sizing.apply_regions(kLanes, cx, cy, cz, b.limit);
+    };
     for (size_t k_block = 0; k_block < moving_blocks_; ++k_block) {
       if (!block_built_[k_block]) build_block(k_block);
       TetBlock& b = moving_[k_block];
-      if (region_sizing_) {  // else set by build_block()
-        // size_limit(f0, f1, f2, k, material), a block at a time: the same operations.
-        double cx[kLanes], cy[kLanes], cz[kLanes];  // the centroids with k in place
-        for (int l = 0; l < kLanes; ++l) {
-          cx[l] = (b.f0x[l] + b.f1x[l] + b.f2x[l] + k.x) * 0.25;
-          cy[l] = (b.f0y[l] + b.f1y[l] + b.f2y[l] + k.y) * 0.25;
-          cz[l] = (b.f0z[l] + b.f1z[l] + b.f2z[l] + k.z) * 0.25;
-          b.limit[l] = b.material_limit[l];
-        }
-        params_.sizing.apply_regions(kLanes, cx, cy, cz, b.limit);
+      if (late_limits_) {
+        for (double& limit : b.limit) limit = std::numeric_limits<double>::infinity();
+      } else if (region_sizing_) {  // else set by build_block()
+        region_limits(b);
       }
+      kernels_.first_pass(b, k.x, k.y, k.z, unmoved, floor2);
+      for (int l = 0; l < kLanes; ++l)
+        if (b.code[l] != 0) return b.code[l] == 2 ? Reject::kSize : Reject::kStretch;
+    }
+    // With a size map, whose lookups cost more than the pass, the sizes are checked only
+    // for a candidate that passed without them (the same candidates pass; one both
+    // too flat and too big counts as too flat).
+    for (size_t k_block = 0; late_limits_ && k_block < moving_blocks_; ++k_block) {
+      TetBlock& b = moving_[k_block];
+      region_limits(b);
       kernels_.first_pass(b, k.x, k.y, k.z, unmoved, floor2);
       for (int l = 0; l < kLanes; ++l)
         if (b.code[l] != 0) return b.code[l] == 2 ? Reject::kSize : Reject::kStretch;
@@ -3152,6 +3168,7 @@ class Engine {
   std::vector<uint32_t> ring_tets_;    // the tets around the edge evaluated
   bool uniform_sizing_ = false;        // only the uniform size is set: no per-tet field lookups
   bool region_sizing_ = false;         // radial or box rules: sizes depend on the position
+  bool late_limits_ = false;           // a size map: sizes checked last (check_position())
   double red_levels_expected_ = 1;     // about how many red levels, for the progress
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
   const VectorKernels& kernels_ = vector_kernels();

@@ -53,6 +53,7 @@ void SizingField::apply_regions(size_t n, const double* x, const double* y, cons
       }
     }
   }
+  if (map) map->apply(n, x, y, z, size);
 }
 
 double suggested_size(const TetMesh& mesh) {
@@ -80,11 +81,12 @@ double SizingField::smallest_size() const {
   for (const auto& m : material_sizes) size = std::min(size, m.second);
   for (const Radial& r : radial) size = std::min(size, r.size0);
   for (const Box& b : boxes) size = std::min(size, b.size);
+  if (map) size = std::min(size, map->smallest());
   return size;
 }
 
 bool SizingField::has_local_rules() const {
-  return !material_sizes.empty() || !radial.empty() || !boxes.empty();
+  return !material_sizes.empty() || !radial.empty() || !boxes.empty() || map;
 }
 
 bool SizingField::unlimited() const {

@@ -12,10 +12,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/size_map.h"
 #include "core/status.h"
 #include "core/tet_mesh.h"
 #include "core/vec3.h"
@@ -39,6 +41,7 @@ struct SizingField {
   std::vector<std::pair<int32_t, double>> material_sizes;  // sorted by material, unique
   std::vector<Radial> radial;
   std::vector<Box> boxes;
+  std::shared_ptr<const SizeMap> map;  // may be null; shared by copies, never changed
 
   // tau_SZ for a tet of `material` with centroid `p`; +inf if nothing limits it.
   double size_at(const Vec3& p, int32_t material) const;
@@ -50,11 +53,13 @@ struct SizingField {
   double material_size(int32_t material) const;
   void apply_regions(size_t n, const double* x, const double* y, const double* z,
                      double* size) const;
-  // True if any radial or box rule is set (sizes that depend on the position).
-  bool has_region_rules() const { return !radial.empty() || !boxes.empty(); }
+  // True if any radial or box rule or a size map is set (sizes that depend on the
+  // position).
+  bool has_region_rules() const { return !radial.empty() || !boxes.empty() || map; }
   // The smallest size any rule can give (a lower bound of size_at), for diagnostics.
   double smallest_size() const;
-  // True if any material, radial or box rule is set (besides the uniform size).
+  // True if any material, radial or box rule or a size map is set (besides the
+  // uniform size).
   bool has_local_rules() const;
   // True if no rule is set.
   bool unlimited() const;

@@ -179,6 +179,9 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
   }
   if (next != vertex_count) {
     rep.removed_unused_vertices = vertex_count - next;
+    rep.kept_vertices.reserve(next);
+    for (size_t i = 0; i < vertex_count; ++i)
+      if (remap[i] != kInvalidIndex) rep.kept_vertices.push_back(uint32_t(i));
     mesh->positions.resize(next);
     for (Tet& tet : mesh->tets)
       for (uint32_t& v : tet) v = remap[v];

@@ -15,6 +15,9 @@ namespace tetlod {
 struct ValidationReport {
   size_t reoriented_tets = 0;          // negatively oriented tets that were flipped
   size_t removed_unused_vertices = 0;  // vertices no tet used, dropped
+  // Where some were: the index each kept vertex had before (for data given by vertex
+  // of the file, as a size map is); empty where none was dropped.
+  std::vector<uint32_t> kept_vertices;
   // Vertices at exactly the position of an other vertex (not repaired: the mesh is
   // not conforming there, e.g. two volumes meshed apart), and the first position.
   size_t coincident_vertices = 0;

@@ -1,0 +1,31 @@
+// Medit .sol files of sizes at vertices, as MMG3D takes a size map with a mesh
+// (`mmg3d mesh.mesh -sol sizes.sol`): ASCII, '#' comments, keywords in any case.
+//
+//   MeshVersionFormatted 2
+//   Dimension 3
+//   SolAtVertices
+//   <number of vertices>
+//   1 1              one field, of type 1 (a scalar: the size)
+//   <size of vertex 1>
+//   ...
+//   End              (optional)
+//
+// A tensor (type 3, an anisotropic metric) or a vector field, several fields, fields
+// on other entities (SolAtTetrahedra, ...) and the binary .solb are refused with an
+// error that says so; so are sizes that are not finite numbers > 0. Every error
+// reads "path:line: message".
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/status.h"
+
+namespace tetlod {
+
+Status read_sol_sizes(const std::string& path, std::vector<double>* sizes);
+// The same on a file's text held in memory (tests, fuzzing); `name` for messages.
+Status parse_sol_sizes(std::string_view text, const std::string& name, std::vector<double>* sizes);
+
+}  // namespace tetlod
