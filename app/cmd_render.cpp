@@ -29,7 +29,8 @@ constexpr const char* kRenderUsageHead =
 constexpr const char* kRenderUsageTail =
     "  --simplify        render the simplified mesh; takes the flags of 'tetlod simplify':\n"
     "                    --size, --stretch, --valence, --tolerance, --material-size,\n"
-    "                    --size-field, --no-subdivide, --crease-angle, --improve, and\n"
+    "                    --size-field, --size-map, --no-subdivide, --crease-angle,\n"
+    "                    --improve, and\n"
     "  --elements N      the level of the collapse history nearest N elements\n";
 
 void print_usage(std::FILE* stream) {
@@ -84,8 +85,8 @@ int cmd_render(const Args& args) {
   if (!history && options.simplify && !options.simplify_options.size_given) {
     if (options.simplify_beyond_elements) {
       std::fputs(
-          "tetlod render: --simplify needs a target size (--size, --material-size or "
-          "--size-field)\n",
+          "tetlod render: --simplify needs a target size (--size, --material-size, "
+          "--size-field or --size-map)\n",
           stderr);
     } else {
       std::fprintf(stderr,

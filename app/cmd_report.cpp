@@ -32,7 +32,8 @@ constexpr const char* kReportUsageHead =
     "the thresholds saved in the history).\n"
     "  --levels N,...    levels of the collapse history nearest N elements each\n"
     "  --simplify        simplify with the flags of 'tetlod simplify' (--size, --stretch,\n"
-    "                    --valence, --tolerance, --material-size, --size-field, ...);\n"
+    "                    --valence, --tolerance, --material-size, --size-field,\n"
+    "                    --size-map, ...);\n"
     "                    with --improve, every level is drawn and measured after\n"
     "                    'tetlod simplify --improve' has improved its shapes\n"
     "View flags, as for 'tetlod render' (default picture 480 x 480):\n";
@@ -197,8 +198,8 @@ int cmd_report(const Args& args) {
     return kExitUsage;
   if (!from_history && options.simplify && !options.simplify_options.size_given) {
     std::fputs(
-        "tetlod report: --simplify and --levels need a target size (--size, --material-size or "
-        "--size-field)\n",
+        "tetlod report: --simplify and --levels need a target size (--size, --material-size, "
+        "--size-field or --size-map)\n",
         stderr);
     return kExitUsage;
   }

@@ -26,7 +26,8 @@ constexpr const char* kSimplifyUsageHead =
     "                       [--no-subdivide] [--within-valence] [--past-valence-factor F]\n"
     "                       [--one-thread]\n"
     "                       [--material-size M=S,...]\n"
-    "                       [--size-field SPEC] [--elements N] [--history FILE]\n"
+    "                       [--size-field SPEC] [--size-map FILE.sol] [--elements N]\n"
+    "                       [--history FILE]\n"
     "                       [--crease-angle DEG] [--improve]\n"
     "                       [--msh-version V] [--msh-binary] [--vtk-binary] [--surfaces]\n"
     "\n"
@@ -62,8 +63,9 @@ constexpr const char* kLodUsage =
     "                    within the thresholds saved in the history; a threshold given\n"
     "                    here replaces its saved value (--size the uniform size,\n"
     "                    --material-size the material sizes, --size-field the region\n"
-    "                    rules). Histories saved before 2026-11-24 have none: give the\n"
-    "                    ones it was made with.\n";
+    "                    rules; a size map saved with the history is kept). Histories\n"
+    "                    saved before 2026-11-24 have none: give the ones it was made\n"
+    "                    with.\n";
 
 void print_lod_usage(std::FILE* stream) {
   std::fputs(kLodUsage, stream);
@@ -137,8 +139,8 @@ int cmd_simplify(const Args& args) {
   }
   if (!options.size_given) {
     std::fprintf(stderr,
-                 "tetlod simplify: give a target size (--size, --material-size or "
-                 "--size-field)\n");
+                 "tetlod simplify: give a target size (--size, --material-size, --size-field or "
+                 "--size-map)\n");
     return kExitUsage;
   }
   if (!mesh_output_path_ok(out, "simplify", write_options)) return kExitUsage;
@@ -153,7 +155,8 @@ int cmd_simplify(const Args& args) {
   TetMesh input;
   ReadInfo info;
   if (!load_mesh(in, &input, &info, write_options.surface_groups)) return kExitBadInput;
-  if (!finish_simplify_options(input, info.material_names, "simplify", &options)) return kExitUsage;
+  if (!finish_simplify_options(input, info.material_names, "simplify", &options, &info.validation))
+    return kExitUsage;
   // The file's own surface groups: the simplifier keeps their borders as it keeps
   // those between materials, and their triangles inside a material as they are (so
   // does --improve), so that the output has them too (with --surfaces).
@@ -309,6 +312,12 @@ int cmd_lod(const Args& args) {
     // The thresholds (not --elements, which here may be 0, nor the simplifier's own
     // --tolerance, --no-subdivide, --within-valence, --past-valence-factor and
     // --one-thread, which a level does not use).
+    if (a == "--size-map") {
+      std::fprintf(stderr,
+                   "tetlod lod: --size-map: a level's vertices are not the input's; --improve "
+                   "keeps to the size map saved in the history, if it was made with one\n");
+      return kExitUsage;
+    }
     if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide" &&
         a != "--within-valence" && a != "--past-valence-factor" && a != "--one-thread" &&
         a != "--improve") {

@@ -18,7 +18,8 @@ namespace {
 
 constexpr const char* kStatsUsage =
     "usage: tetlod stats FILE [--json] [--size S] [--stretch D] [--valence V]\n"
-    "                         [--material-size M=S,...] [--size-field SPEC] [--check]\n"
+    "                         [--material-size M=S,...] [--size-field SPEC]\n"
+    "                         [--size-map FILE.sol] [--check]\n"
     "\n"
     "Prints the mesh properties of the paper's Table I -- #nodes, #edges, #elements,\n"
     "average and minimum stretch, maximum valence, maximum size (longest edge) -- for the\n"
@@ -28,7 +29,8 @@ constexpr const char* kStatsUsage =
     "FILE: .mesh .meshb .msh .node/.ele .vtk .vtu .bdf/.nas .inp\n"
     "  --json   machine-readable output on stdout\n"
     "With thresholds (as 'tetlod simplify' takes them; --stretch 0.15 and --valence 25\n"
-    "unless given, no size limit unless --size, --material-size or --size-field), it\n"
+    "unless given, no size limit unless --size, --material-size, --size-field or\n"
+    "--size-map, whose sizes are at FILE's vertices), it\n"
     "also counts the tets below the stretch or above their size and the nodes above the\n"
     "valence: a check of a mesh from any tool against an analysis' requirements.\n"
     "  --check  exit with status 3 if anything breaks them (implies the default\n"
@@ -80,7 +82,7 @@ int cmd_stats(const Args& args) {
     } else if (a == "--check") {
       check = true;
     } else if (a == "--size" || a == "--stretch" || a == "--valence" || a == "--material-size" ||
-               a == "--size-field") {
+               a == "--size-field" || a == "--size-map") {
       if (parse_simplify_option(args, &i, "stats", &thresholds) != OptionResult::kParsed)
         return kExitUsage;
       thresholds_given = true;
@@ -114,7 +116,8 @@ int cmd_stats(const Args& args) {
     print_patch_notes(patches, "stats");
   }
   const bool counting = thresholds_given || check;
-  if (counting && !finish_simplify_options(mesh, info.material_names, "stats", &thresholds))
+  if (counting &&
+      !finish_simplify_options(mesh, info.material_names, "stats", &thresholds, &info.validation))
     return kExitUsage;
   const SimplifyParams& params = thresholds.params;
   const ThresholdCounts breaks = counting ? threshold_breaks(mesh, params) : ThresholdCounts{};

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "app/cli_util.h"
+#include "core/io/sol.h"
+#include "core/size_map.h"
 
 namespace tetlod::app {
 
@@ -24,6 +26,9 @@ const char* const kSimplifyFlagsHelp =
     "                            axis:cx,cy,cz,dx,dy,dz,s0,growth  box:x0,y0,z0,x1,y1,z1,s\n"
     "                    the size of a tet is the smallest of --size and every rule above,\n"
     "                    taken at its centroid (a box holds the tets whose centroid it holds)\n"
+    "  --size-map FILE   sizes at the input's vertices (a Medit .sol file, as MMG3D takes\n"
+    "                    them), linear in each input tet: with the sizes above, no tet\n"
+    "                    above the map's value at its centroid\n"
     "  --no-subdivide    skip the subdivision step\n"
     "  --within-valence  one run only: where tets stay above the size, no other run whose\n"
     "                    subdivision (red levels, then bisection) may take nodes past the\n"
@@ -196,6 +201,14 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
       return OptionResult::kError;
     }
     options->size_given = true;
+  } else if (a == "--size-map") {
+    if (!options->size_map_path.empty()) {
+      std::fprintf(stderr, "tetlod %s: give --size-map once\n", command);
+      return OptionResult::kError;
+    }
+    if (!value()) return OptionResult::kError;
+    options->size_map_path = v;  // read by finish_simplify_options(), with the input
+    options->size_given = true;
   } else if (a == "--improve") {
     options->improve = true;
   } else if (a == "--elements") {
@@ -210,7 +223,39 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
 }
 
 bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
-                             const char* command, SimplifyOptions* options) {
+                             const char* command, SimplifyOptions* options,
+                             const ValidationReport* read) {
+  if (!options->size_map_path.empty()) {
+    const std::string& path = options->size_map_path;
+    std::vector<double> sizes;
+    if (Status s = read_sol_sizes(path, &sizes); !s) {
+      std::fprintf(stderr, "tetlod %s: --size-map: %s\n", command, s.message().c_str());
+      return false;
+    }
+    // One size a vertex of the file, in its order; the reader drops vertices no tet
+    // uses, and their sizes with them.
+    const size_t in_file = input.vertex_count() + (read ? read->removed_unused_vertices : 0);
+    if (sizes.size() != in_file) {
+      std::fprintf(stderr,
+                   "tetlod %s: --size-map %s: %zu sizes, but the input has %zu vertices (a size "
+                   "map gives one size to each vertex of the input, in its order)\n",
+                   command, path.c_str(), sizes.size(), in_file);
+      return false;
+    }
+    if (read && !read->kept_vertices.empty()) {
+      std::vector<double> kept(read->kept_vertices.size());
+      for (size_t v = 0; v < kept.size(); ++v) kept[v] = sizes[read->kept_vertices[v]];
+      sizes = std::move(kept);
+    }
+    std::shared_ptr<const SizeMap> map;
+    if (Status s = SizeMap::build(input, std::move(sizes), &map); !s) {
+      std::fprintf(stderr, "tetlod %s: --size-map %s: %s\n", command, path.c_str(),
+                   s.message().c_str());
+      return false;
+    }
+    options->params.sizing.map = std::move(map);
+    options->size_map_path.clear();  // read once
+  }
   std::vector<std::pair<int32_t, double>>& sizes = options->params.sizing.material_sizes;
   for (const auto& [name, size] : options->named_material_sizes) {
     int32_t id = 0;
@@ -261,11 +306,16 @@ std::string describe_violations(const ThresholdViolations& v) {
 }
 
 std::string describe_size(const SizingField& sizing) {
+  char map[96] = "";
+  if (sizing.map)
+    std::snprintf(map, sizeof map, " (a size map, %g to %g)", sizing.map->smallest(),
+                  sizing.map->largest());
   if (!std::isfinite(sizing.uniform))
-    return sizing.has_local_rules() ? "from the local sizing" : "no limit";
+    return (sizing.has_local_rules() ? "from the local sizing" : "no limit") + std::string(map);
   char text[64];
   std::snprintf(text, sizeof text, "%g", sizing.uniform);
-  return text + std::string(sizing.has_local_rules() ? ", less where the local sizing asks" : "");
+  return text + std::string(sizing.has_local_rules() ? ", less where the local sizing asks" : "") +
+         map;
 }
 
 std::string describe_thresholds(const SimplifyParams& params, bool with_tolerance) {

@@ -20,6 +20,8 @@ struct SimplifyOptions {
   // --material-size items that name their material ("copper=2"): added to
   // params.sizing by finish_simplify_options(), once the names are read.
   std::vector<std::pair<std::string, double>> named_material_sizes;
+  // --size-map FILE: read by finish_simplify_options() into params.sizing.map.
+  std::string size_map_path;
 };
 
 // The flag lines of the usage text (the thresholds and sizing, without --elements).
@@ -32,7 +34,8 @@ enum class OptionResult {
 };
 
 // Parses one simplifier flag at args[*i] (--size --stretch --valence --tolerance
-// --crease-angle --no-subdivide --material-size --size-field --elements --improve).
+// --crease-angle --no-subdivide --material-size --size-field --size-map --elements
+// --improve).
 OptionResult parse_simplify_option(const Args& args, size_t* i, const char* command,
                                    SimplifyOptions* options);
 
@@ -56,8 +59,12 @@ bool parse_output_value(const Args& args, size_t* i, const char* name, std::stri
 // material of --material-size is in the input: false, with a message to stderr
 // prefixed with "tetlod <command>: ", if one is not (a mistyped id would otherwise
 // be ignored without a word).
+// With --size-map, it reads the file and builds params.sizing.map over `input`;
+// `read`, the input's validation (if it was read from a file), maps the file's sizes
+// to the vertices the reader kept.
 bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
-                             const char* command, SimplifyOptions* options);
+                             const char* command, SimplifyOptions* options,
+                             const ValidationReport* read = nullptr);
 
 // The size threshold in words: "12", "12, less where the local sizing asks", or
 // "from the local sizing" (no uniform size: --material-size or --size-field alone), or

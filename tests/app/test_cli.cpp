@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <csignal>
@@ -15,6 +16,7 @@
 #include <iterator>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "app/cli_runner.h"
 #include "core/io/mesh_io.h"
@@ -536,6 +538,120 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
   }
   EXPECT_FALSE(fs::exists(out));
+}
+
+// Writes a Medit .sol file of the sizes, one per vertex.
+std::string write_sol(const std::string& name, const std::vector<double>& sizes) {
+  const std::string path = out_dir() + "/" + name;
+  std::ofstream out(path);
+  out << "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n" << sizes.size() << "\n1 1\n";
+  for (double s : sizes) out << s << "\n";
+  out << "End\n";
+  return path;
+}
+
+// --size-map: sizes at the input's vertices (a Medit .sol, as MMG3D takes them); the
+// output is finer where they are small; a history keeps the map for lod --improve;
+// a file that does not fit the input is an error that names it.
+TEST(Cli, SimplifyKeepsToASizeMap) {
+  const TetMesh grid = test::make_grid_mesh(
+      6, 3, 3, [](int i, int, int) { return i < 3 ? 1 : 2; }, 1.0 / 3);
+  const std::string in = out_dir() + "/map_grid.mesh";
+  ASSERT_TRUE(write_mesh(in, grid).ok());
+  std::vector<double> sizes;
+  for (const Vec3& p : grid.positions) sizes.push_back(p.x < 1 ? 0.3 : 1.2);
+  const std::string sol = write_sol("map_grid.sol", sizes);
+  const std::string out = out_dir() + "/map_out.mesh";
+  const std::string history = out_dir() + "/map_out.tlh";
+  const CommandResult r = run("simplify " + in + " -o " + out + " --size-map " + sol +
+                              " --tolerance 1e-9 --history " + history);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("thresholds: size from the local sizing (a size map, 0.3 to 1.2), "
+                          "stretch 0.15"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("0 of them new"), std::string::npos) << r.output;
+  TetMesh output;
+  ASSERT_TRUE(read_mesh(out, &output).ok());
+  size_t fine = 0, coarse = 0;
+  for (const Tet& t : output.tets) {
+    const Vec3 c = (output.positions[t[0]] + output.positions[t[1]] + output.positions[t[2]] +
+                    output.positions[t[3]]) *
+                   0.25;
+    double right = 0;
+    for (uint32_t v : t) right = std::max(right, output.positions[v].x);
+    // Where every input tet has sizes 0.3 at its corners (x <= 2/3; the map then grows
+    // to 1.2 at x = 1), the size is 0.3.
+    if (right <= 2.0 / 3 + 1e-12) {
+      EXPECT_LE(tet_shape(output, t).size, 0.3 * (1 + 1e-12));
+    }
+    fine += c.x < 0.5;
+    coarse += c.x > 1.5;
+  }
+  EXPECT_GT(fine, 4 * coarse) << fine << " tets where the sizes are 0.3, " << coarse
+                              << " where they are 1.2";
+  // The history keeps the map: lod --improve keeps to it without being given it.
+  const std::string level = out_dir() + "/map_level.mesh";
+  const CommandResult l = run("lod " + history + " --elements 1 -o " + level + " --improve");
+  ASSERT_EQ(l.code, 0) << l.output;
+  EXPECT_NE(l.output.find("improving within size from the local sizing (a size map, 0.3 to 1.2)"),
+            std::string::npos)
+      << l.output;
+  const CommandResult given =
+      run("lod " + history + " --step 0 -o " + level + " --improve --size-map " + sol);
+  EXPECT_EQ(given.code, 2) << given.output;
+  EXPECT_NE(given.output.find("a level's vertices are not the input's"), std::string::npos)
+      << given.output;
+
+  // stats checks a mesh against sizes at its own vertices: the grid's tets are 0.58
+  // long, above 0.3 in the cubes with x <= 2/3 (108) and in part of the next (18).
+  const CommandResult st = run("stats " + in + " --size-map " + sol + " --check");
+  EXPECT_EQ(st.code, 3) << st.output;
+  EXPECT_NE(st.output.find("breaking them: 0 tets below the stretch, 126 above the size"),
+            std::string::npos)
+      << st.output;
+
+  // Errors: what does not fit names the file; nothing is written.
+  const std::string none = out_dir() + "/map_none.mesh";
+  auto error = [&](const std::string& map_path) {
+    const CommandResult e = run("simplify " + in + " -o " + none + " --size-map " + map_path);
+    EXPECT_EQ(e.code, 2) << e.output;
+    return e.output;
+  };
+  std::vector<double> fewer(sizes.begin(), sizes.end() - 1);
+  EXPECT_NE(error(write_sol("map_fewer.sol", fewer))
+                .find("--size-map " + out_dir() +
+                      "/map_fewer.sol: 111 sizes, but the input has "
+                      "112 vertices"),
+            std::string::npos)
+      << error(write_sol("map_fewer.sol", fewer));
+  std::vector<double> negative = sizes;
+  negative[4] = -1;
+  EXPECT_NE(error(write_sol("map_negative.sol", negative))
+                .find(out_dir() + "/map_negative.sol:10: size 5 is -1: sizes must be > 0"),
+            std::string::npos)
+      << error(write_sol("map_negative.sol", negative));
+  EXPECT_NE(error(out_dir() + "/no_such.sol").find("no_such.sol: cannot"), std::string::npos);
+  EXPECT_NE(error(in).find("map_grid.mesh:5: unknown keyword 'Vertices'"), std::string::npos)
+      << error(in);
+  EXPECT_FALSE(fs::exists(none));
+
+  // A vertex no tet uses is dropped on reading, and its size with it: the sizes stay
+  // with their vertices (here the dropped one's is tiny: shifted, it would refine).
+  TetMesh spare = grid;
+  spare.positions.insert(spare.positions.begin(), Vec3{9, 9, 9});
+  for (Tet& t : spare.tets)
+    for (uint32_t& v : t) ++v;
+  const std::string spare_in = out_dir() + "/map_spare.mesh";
+  ASSERT_TRUE(write_mesh(spare_in, spare).ok());
+  std::vector<double> spare_sizes = sizes;
+  spare_sizes.insert(spare_sizes.begin(), 1e-4);
+  const std::string spare_out = out_dir() + "/map_spare_out.mesh";
+  const CommandResult d = run("simplify " + spare_in + " -o " + spare_out + " --size-map " +
+                              write_sol("map_spare.sol", spare_sizes) + " --tolerance 1e-9");
+  ASSERT_EQ(d.code, 0) << d.output;
+  EXPECT_NE(d.output.find("(a size map, 0.3 to 1.2)"), std::string::npos) << d.output;
+  EXPECT_EQ(read_file(spare_out), read_file(out));
 }
 
 // A --material-size for a material the mesh does not have (a mistyped id) is an
