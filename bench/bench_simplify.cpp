@@ -3,7 +3,8 @@
 // the peak memory per input tet. One thread.
 //
 //   bench_simplify FILE --size S [--tolerance T] [--stretch D] [--valence V]
-//                  [--size-field SPEC] [--material-size M=S,...] [--repeat N]
+//                  [--size-field SPEC] [--material-size M=S,...] [--size-map FILE.sol]
+//                  [--repeat N]
 #include <sys/resource.h>
 
 #include <algorithm>

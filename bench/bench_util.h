@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "core/io/mesh_io.h"
+#include "core/io/sol.h"
 #include "core/simplify.h"
+#include "core/size_map.h"
 
 namespace tetlod::bench {
 
@@ -25,14 +27,16 @@ inline double median(std::vector<double> v) {
 }
 
 // The simplifier benchmarks' command line, FILE --size S [--tolerance T] [--stretch D]
-// [--valence V] [--repeat N], and the mesh FILE. Returns 0, or the exit code after
+// [--valence V] [--size-field SPEC] [--material-size M=S,...] [--size-map FILE.sol]
+// [--repeat N], and the mesh FILE (--size inf: no uniform size). Returns 0, or the exit code after
 // printing the usage (2) or the read error (1) prefixed with `name`.
 inline int load_simplify_bench(const char* name, int argc, char** argv, TetMesh* mesh,
                                SimplifyParams* params, int* repeat) {
   if (argc < 4 || std::string(argv[2]) != "--size") {
     std::fprintf(stderr,
                  "usage: %s FILE --size S [--tolerance T] [--stretch D] [--valence V] "
-                 "[--size-field SPEC] [--material-size M=S,...] [--repeat N]\n",
+                 "[--size-field SPEC] [--material-size M=S,...] [--size-map FILE.sol] "
+                 "[--repeat N]\n",
                  name);
     return 2;
   }
@@ -56,6 +60,17 @@ inline int load_simplify_bench(const char* name, int argc, char** argv, TetMesh*
   if (!s) {
     std::fprintf(stderr, "%s: %s\n", name, s.message().c_str());
     return 1;
+  }
+  // --size-map FILE.sol: sizes at the vertices of FILE (which must use every vertex).
+  for (int i = 4; i + 1 < argc; i += 2) {
+    if (std::string(argv[i]) != "--size-map") continue;
+    std::vector<double> sizes;
+    Status m = read_sol_sizes(argv[i + 1], &sizes);
+    if (m) m = SizeMap::build(*mesh, std::move(sizes), &params->sizing.map);
+    if (!m) {
+      std::fprintf(stderr, "%s: %s: %s\n", name, argv[i + 1], m.message().c_str());
+      return 1;
+    }
   }
   return 0;
 }
