@@ -1,4 +1,4 @@
-// tetlod view [FILE] [--script SCRIPT] [--size WxH] [--hide M,...]
+// tetlod view [FILE] [--script SCRIPT] [--size WxH] [--hide M,...] [--size-map S.sol]
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -13,7 +13,7 @@ namespace {
 
 constexpr const char* kViewUsage =
     "usage: tetlod view [FILE] [--script SCRIPT] [--size WxH] [--hide M,M,...]\n"
-    "                   [--interactive-scale F]\n"
+    "                   [--interactive-scale F] [--size-map S.sol]\n"
     "\n"
     "Opens the interactive viewer (a window: needs a display) on FILE, or on the bundled\n"
     "motor model when none is given: threshold sliders, simplification in the background,\n"
@@ -27,6 +27,8 @@ constexpr const char* kViewUsage =
     "  --hide M,M,...         materials hidden at start, by id or by the file's name for them\n"
     "                         (e.g. the motor's air: --hide 1; a Gmsh volume: --hide shield)\n"
     "  --interactive-scale F  resolution of the 3D view while it moves, in (0, 1] (0.5)\n"
+    "  --size-map S.sol       sizes at FILE's vertices (as 'tetlod simplify --size-map'):\n"
+    "                         the panel's sizing starts as that size map\n"
     "Mouse: left drag orbits, right/middle or shift-left drag pans, the wheel zooms;\n"
     "keys F (fit), 0 (iso), 1/2/3 (x/y/z views).\n";
 
@@ -74,6 +76,8 @@ int cmd_view(const Args& args) {
       }
       options.width = static_cast<int>(*w);
       options.height = static_cast<int>(*h);
+    } else if (a == "--size-map") {
+      if (!parse_option_value(args, &i, "--size-map", &options.size_map_path)) return kExitUsage;
     } else if (a == "--hide") {
       if (!parse_option_value(args, &i, "--hide", &value)) return kExitUsage;
       std::vector<int32_t> ids;

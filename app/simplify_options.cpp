@@ -222,35 +222,37 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   return OptionResult::kParsed;
 }
 
+Status read_size_map(const std::string& path, const TetMesh& input, const ValidationReport* read,
+                     std::shared_ptr<const SizeMap>* map) {
+  std::vector<double> sizes;
+  if (Status s = read_sol_sizes(path, &sizes); !s)
+    return Status::error("--size-map: " + s.message());
+  // One size a vertex of the file, in its order; the reader drops vertices no tet
+  // uses, and their sizes with them.
+  const size_t in_file = input.vertex_count() + (read ? read->removed_unused_vertices : 0);
+  if (sizes.size() != in_file) {
+    return Status::error("--size-map " + path + ": " + std::to_string(sizes.size()) +
+                         " sizes, but the input has " + std::to_string(in_file) +
+                         " vertices (a size map gives one size to each vertex of the input, in "
+                         "its order)");
+  }
+  if (read && !read->kept_vertices.empty()) {
+    std::vector<double> kept(read->kept_vertices.size());
+    for (size_t v = 0; v < kept.size(); ++v) kept[v] = sizes[read->kept_vertices[v]];
+    sizes = std::move(kept);
+  }
+  if (Status s = SizeMap::build(input, std::move(sizes), map); !s)
+    return Status::error("--size-map " + path + ": " + s.message());
+  return Status();
+}
+
 bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
                              const char* command, SimplifyOptions* options,
                              const ValidationReport* read) {
   if (!options->size_map_path.empty()) {
-    const std::string& path = options->size_map_path;
-    std::vector<double> sizes;
-    if (Status s = read_sol_sizes(path, &sizes); !s) {
-      std::fprintf(stderr, "tetlod %s: --size-map: %s\n", command, s.message().c_str());
-      return false;
-    }
-    // One size a vertex of the file, in its order; the reader drops vertices no tet
-    // uses, and their sizes with them.
-    const size_t in_file = input.vertex_count() + (read ? read->removed_unused_vertices : 0);
-    if (sizes.size() != in_file) {
-      std::fprintf(stderr,
-                   "tetlod %s: --size-map %s: %zu sizes, but the input has %zu vertices (a size "
-                   "map gives one size to each vertex of the input, in its order)\n",
-                   command, path.c_str(), sizes.size(), in_file);
-      return false;
-    }
-    if (read && !read->kept_vertices.empty()) {
-      std::vector<double> kept(read->kept_vertices.size());
-      for (size_t v = 0; v < kept.size(); ++v) kept[v] = sizes[read->kept_vertices[v]];
-      sizes = std::move(kept);
-    }
     std::shared_ptr<const SizeMap> map;
-    if (Status s = SizeMap::build(input, std::move(sizes), &map); !s) {
-      std::fprintf(stderr, "tetlod %s: --size-map %s: %s\n", command, path.c_str(),
-                   s.message().c_str());
+    if (Status s = read_size_map(options->size_map_path, input, read, &map); !s) {
+      std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
       return false;
     }
     options->params.sizing.map = std::move(map);

@@ -3,6 +3,7 @@
 // `simplify` and `lod`, so every command reads them the same way.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "app/commands.h"
@@ -59,6 +60,12 @@ bool parse_output_value(const Args& args, size_t* i, const char* name, std::stri
 // material of --material-size is in the input: false, with a message to stderr
 // prefixed with "tetlod <command>: ", if one is not (a mistyped id would otherwise
 // be ignored without a word).
+// Reads a size map for `input` from the Medit .sol file at `path` (core/io/sol.h):
+// one size a vertex of the file `input` was read from (`read`, its validation, maps
+// them to the vertices the reader kept; null: none was dropped). Errors name the file.
+Status read_size_map(const std::string& path, const TetMesh& input, const ValidationReport* read,
+                     std::shared_ptr<const SizeMap>* map);
+
 // With --size-map, it reads the file and builds params.sizing.map over `input`;
 // `read`, the input's validation (if it was read from a file), maps the file's sizes
 // to the vertices the reader kept.

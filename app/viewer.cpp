@@ -89,6 +89,9 @@ struct Scene {
   // The input file's names of its materials (ReadInfo::material_names), for Save.
   std::shared_ptr<const std::vector<MaterialName>> material_names;
   bool from_history = false;  // the result was read from a history file, not run here
+  // Sizes at the input's vertices given with it (`--size-map`), and the file's name.
+  std::shared_ptr<const SizeMap> size_map;
+  std::string size_map_name;
   CollapseHistory empty_history;
   std::unique_ptr<Lod> lod;
   render::LodSurface surface;
@@ -220,6 +223,7 @@ double run_seconds(const SimplifyResult& result) {
 struct Job {
   bool is_load = false;
   std::string path;
+  std::string size_map_path;  // a load's --size-map, if any
   std::thread thread;
   std::atomic<bool> cancel{false};
   std::atomic<bool> done{false};
@@ -296,7 +300,9 @@ struct FrameRecord {
 class Viewer {
  public:
   explicit Viewer(const ViewerOptions& options)
-      : options_(options), hidden_names_(options.hidden_names) {
+      : options_(options),
+        hidden_names_(options.hidden_names),
+        size_map_path_(options.size_map_path) {
     view_.hidden_materials = options.hidden_materials;
     std::sort(view_.hidden_materials.begin(), view_.hidden_materials.end());
   }
@@ -346,6 +352,7 @@ class Viewer {
 
   ViewerOptions options_;
   std::vector<std::string> hidden_names_;  // --hide by name, until the first mesh is read
+  std::string size_map_path_;              // --size-map, until the first load starts
   std::string hide_note_;                  // the names it lacked, for the status line
   std::unique_ptr<render::WindowContext> window_;
   std::unique_ptr<render::Renderer> renderer_;
@@ -657,6 +664,8 @@ void Viewer::start_load(const std::string& path) {
   job_ = std::make_unique<Job>();
   job_->is_load = true;
   job_->path = path;
+  job_->size_map_path = std::move(size_map_path_);  // for the first mesh opened only
+  size_map_path_.clear();
   Job* job = job_.get();
   const ui::ViewSettings view = view_;
   job->thread = std::thread([job, view] {
@@ -670,6 +679,7 @@ void Viewer::start_load(const std::string& path) {
     std::shared_ptr<SimplifyResult> history;
     std::optional<SimplifyParams> saved_params;
     std::shared_ptr<const SurfacePatches> patches;
+    std::shared_ptr<const SizeMap> size_map;
     std::shared_ptr<const std::vector<MaterialName>> material_names;
     Status s;
     if (is_history_path(job->path)) {
@@ -683,6 +693,9 @@ void Viewer::start_load(const std::string& path) {
       if (s && !saved_names.empty())
         material_names = std::make_shared<const std::vector<MaterialName>>(std::move(saved_names));
       mesh = std::shared_ptr<const TetMesh>(history, &history->base);
+      if (s && !job->size_map_path.empty())
+        s = Status::error("--size-map " + job->size_map_path + ": " + job->path +
+                          " is a history, which keeps the size map it was made with, if any");
       if (s) {
         std::lock_guard<std::mutex> lock(job->mutex);
         job->notes.push_back(saved_params ? "made with " + describe_thresholds(*saved_params)
@@ -706,6 +719,13 @@ void Viewer::start_load(const std::string& path) {
         material_names =
             std::make_shared<const std::vector<MaterialName>>(std::move(info.material_names));
       }
+      if (s && !job->size_map_path.empty()) {
+        {
+          std::lock_guard<std::mutex> lock(job->mutex);
+          job->phase = "reading the size map";
+        }
+        s = read_size_map(job->size_map_path, *read, &info.validation, &size_map);
+      }
       mesh = std::move(read);
     }
     if (!s) {
@@ -723,6 +743,10 @@ void Viewer::start_load(const std::string& path) {
       scene->input_patches = patches;
       scene->patches = std::move(patches);
       scene->material_names = std::move(material_names);
+      if (size_map) {
+        scene->size_map = std::move(size_map);
+        scene->size_map_name = std::filesystem::path(job->size_map_path).filename().string();
+      }
       if (saved_params) {
         scene->params = *saved_params;
         scene->params_known = true;
@@ -898,6 +922,13 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     // A history's own thresholds, where the panel can hold them.
     thresholds_from_history_ = scene_->from_history && scene_->params_known &&
                                ui::from_simplify_params(scene_->params, &thresholds_);
+    // A size map given with the mesh: its sizing, capped where the map never reaches.
+    if (scene_->size_map) {
+      thresholds_.sizing_mode = ui::SizingMode::kMap;
+      thresholds_.size_map = scene_->size_map;
+      thresholds_.size_map_name = scene_->size_map_name;
+      thresholds_.size = scene_->size_map->largest();
+    }
     Vec3 lo, hi;
     shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
     camera_.fit(lo, hi, render::ViewDirection::kIso);
@@ -1611,6 +1642,11 @@ Status Viewer::run_action(const ScriptAction& a) {
       if (a.valence) thresholds_.valence = static_cast<int>(*a.valence);
       if (a.subdivide) thresholds_.subdivide = *a.subdivide;
       if (a.keep_inside) thresholds_.keep_inside_groups = *a.keep_inside;
+      if (a.size_map) {
+        if (*a.size_map && !thresholds_.size_map)
+          return Status::error("sizing=map: no size map (give one with the mesh: --size-map)");
+        thresholds_.sizing_mode = *a.size_map ? ui::SizingMode::kMap : ui::SizingMode::kUniform;
+      }
       if (a.region) {
         thresholds_.sizing_mode = ui::SizingMode::kRegion;
         thresholds_.region_spec = *a.region;

@@ -102,10 +102,14 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
       SizingField field;
       if (Status s = parse_size_field(value, &field); !s) return p.error(s.message());
       a->region = value;
+    } else if (key == "sizing") {
+      if (value != "map" && value != "uniform")
+        return p.error("sizing must be map or uniform (region= and material-sizes= set theirs)");
+      a->size_map = value == "map";
     } else {
       return p.error("unknown threshold '" + key +
                      "' (size, stretch, valence, tolerance, subdivide, keep-inside, "
-                     "material-sizes, region)");
+                     "material-sizes, region, sizing)");
     }
   }
   return Status();

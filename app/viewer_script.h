@@ -10,7 +10,8 @@
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h;
 //              a material material-sizes leaves out has no size limit, as in the CLI;
 //              size= on the same line as material-sizes= also caps every material, as
-//              --size with --material-size)
+//              --size with --material-size; sizing=map the size map given with the
+//              mesh, with size= its cap; sizing=uniform back to one size)
 //   simplify [wait=0]                run the simplifier with the thresholds (waits,
 //                                    unless wait=0: then the next actions run meanwhile)
 //   cancel                           cancel a running simplification and/or solve (waits
@@ -125,6 +126,7 @@ struct ScriptAction {
   std::optional<bool> subdivide;
   std::optional<bool> keep_inside;
   std::optional<std::string> material_sizes, region;
+  std::optional<bool> size_map;  // sizing=map (true) or sizing=uniform (false)
   // analysis
   ElectrostaticsProblem problem;
 };

@@ -245,16 +245,24 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   ImGui::SliderScalar("tolerance (TL)", ImGuiDataType_Double, &t->tolerance, &kToleranceRange[0],
                       &kToleranceRange[1], "%.4g", ImGuiSliderFlags_Logarithmic);
   if (t->sizing_mode != SizingMode::kPerMaterial)
-    ImGui::SliderScalar(t->sizing_mode == SizingMode::kRegion ? "size cap (SZ)" : "size (SZ)",
+    ImGui::SliderScalar(t->sizing_mode == SizingMode::kUniform ? "size (SZ)" : "size cap (SZ)",
                         ImGuiDataType_Double, &t->size, &kSizeRange[0], &kSizeRange[1], "%.4g",
                         ImGuiSliderFlags_Logarithmic);
   ImGui::SliderScalar("stretch (ST)", ImGuiDataType_Double, &t->stretch, &kStretchRange[0],
                       &kStretchRange[1], "%.3f");
   ImGui::SliderInt("valence (VL)", &t->valence, 4, 200);
   int mode = static_cast<int>(t->sizing_mode);
-  ImGui::Combo("Sizing", &mode, "uniform\0region\0per material\0");
+  // The size map is offered only where one was given (it belongs to the mesh opened).
+  ImGui::Combo("Sizing", &mode,
+               t->size_map ? "uniform\0region\0per material\0size map\0"
+                           : "uniform\0region\0per material\0");
   t->sizing_mode = static_cast<SizingMode>(mode);
-  if (t->sizing_mode == SizingMode::kRegion) {
+  if (t->sizing_mode == SizingMode::kMap && t->size_map) {
+    text_disabled_wrapped(
+        "sizes %.4g to %.4g at the input's vertices, linear in its tets (%s); the cap above "
+        "limits them too",
+        t->size_map->smallest(), t->size_map->largest(), t->size_map_name.c_str());
+  } else if (t->sizing_mode == SizingMode::kRegion) {
     char buffer[512];
     copy_path(t->region_spec, buffer, sizeof(buffer));
     if (ImGui::InputText("rules", buffer, sizeof(buffer))) t->region_spec = buffer;
@@ -711,11 +719,17 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
     *error = "size must be > 0";
     return false;
   }
-  // Uniform: the size everywhere; region: the cap besides the rules; per material:
-  // the materials' sizes, and the cap if it is ticked.
+  // Uniform: the size everywhere; region, size map: the cap besides the rules or the
+  // map; per material: the materials' sizes, and the cap if it is ticked.
   if (settings.sizing_mode != SizingMode::kPerMaterial || settings.material_cap)
     p.sizing.uniform = settings.size;
-  if (settings.sizing_mode == SizingMode::kRegion) {
+  if (settings.sizing_mode == SizingMode::kMap) {
+    if (!settings.size_map) {
+      *error = "no size map (give one with the mesh: tetlod view FILE --size-map S.sol)";
+      return false;
+    }
+    p.sizing.map = settings.size_map;
+  } else if (settings.sizing_mode == SizingMode::kRegion) {
     const Status s = parse_size_field(settings.region_spec, &p.sizing);
     if (!s) {
       *error = s.message();
@@ -744,8 +758,9 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
   const SizingField& sizing = params.sizing;
   const bool region = !sizing.radial.empty() || !sizing.boxes.empty();
   const bool uniform = std::isfinite(sizing.uniform);
-  if ((region && (!sizing.material_sizes.empty() || !uniform)) ||
-      (!uniform && sizing.material_sizes.empty()) ||
+  if ((sizing.map && (region || !sizing.material_sizes.empty())) ||
+      (region && (!sizing.material_sizes.empty() || !uniform)) ||
+      (!uniform && sizing.material_sizes.empty() && !sizing.map) ||
       params.crease_angle_degrees != SimplifyParams{}.crease_angle_degrees)
     return false;
   ThresholdSettings t;
@@ -754,7 +769,13 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
   t.valence = static_cast<int>(std::min<uint32_t>(params.max_valence, 1 << 30));
   t.subdivide = params.subdivide;
   if (uniform) t.size = sizing.uniform;
-  if (region) {
+  if (sizing.map) {
+    // Without a uniform size, a cap the map never reaches: the same limits.
+    t.sizing_mode = SizingMode::kMap;
+    t.size_map = sizing.map;
+    t.size_map_name = "saved in the history";
+    if (!uniform) t.size = sizing.map->largest();
+  } else if (region) {
     t.sizing_mode = SizingMode::kRegion;
     char rule[512];
     for (const SizingField::Radial& r : sizing.radial) {

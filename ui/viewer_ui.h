@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "core/improve.h"
 #include "core/mesh_stats.h"
 #include "core/simplify.h"
+#include "core/size_map.h"
 #include "render/colormap.h"
 #include "render/renderer.h"
 
@@ -42,7 +44,7 @@ struct ViewSettings {
   float highlight_below = 0.2f;  // tets with stretch below this are highlighted
 };
 
-enum class SizingMode { kUniform = 0, kRegion = 1, kPerMaterial = 2 };
+enum class SizingMode { kUniform = 0, kRegion = 1, kPerMaterial = 2, kMap = 3 };
 
 // The four thresholds of the paper (tau_TL, tau_SZ, tau_ST, tau_VL) and the sizing,
 // as doubles, so that a value typed here or set by a script gives the run `tetlod
@@ -58,6 +60,10 @@ struct ThresholdSettings {
   // kPerMaterial: `size` also caps every material (as --size with --material-size);
   // off, a material without a size of its own has no size limit.
   bool material_cap = false;
+  // kMap: sizes at the input's vertices (`tetlod view FILE --size-map S.sol`, or saved in
+  // the history opened), with `size` as a cap; the mode is offered only with one.
+  std::shared_ptr<const SizeMap> size_map;
+  std::string size_map_name;  // where it came from, for the panel
   bool subdivide = true;
   // The input's surface groups inside a material (a sheet, a port inside the air):
   // kept as they are, faces of every level, so that Save can write them (as `tetlod

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -333,6 +334,93 @@ TEST(ViewerWindow, TypedThresholdsGiveTheClisMesh) {
   EXPECT_EQ(viewer.materials, cli.materials);
 }
 
+// `tetlod view FILE --size-map S.sol`: the panel's sizing starts as that map (capped
+// where it never reaches), and Simplify gives `tetlod simplify --size-map`'s mesh;
+// sizing=uniform leaves it. A history made with a map keeps it: the viewer improves
+// within it as `lod --improve` does, and its panel holds it. Errors name the file or
+// the line.
+TEST(ViewerWindow, SizeMapGivesTheClisMesh) {
+  const fs::path dir = fresh_output_dir("viewer_size_map");
+  const std::string motor = kSource + "/assets/motor.mesh";
+  TetMesh input;
+  ASSERT_TRUE(read_mesh(motor, &input).ok());
+  {
+    std::ofstream sol(dir / "sizes.sol");
+    sol << "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n"
+        << input.vertex_count() << "\n1 1\n";
+    sol.precision(17);
+    for (const Vec3& p : input.positions) sol << 6 + 0.4 * std::abs(p.x + p.y) << "\n";
+    sol << "End\n";
+  }
+  std::ofstream(dir / "map.script") << "thresholds tolerance=0.05\nsimplify\nsave viewer.mesh\n"
+                                       "thresholds sizing=uniform size=12\nsimplify\n"
+                                       "save uniform.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + motor + "' --size-map sizes.sol --size 320x240 --script map.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string tetlod = TETLOD_BINARY;
+  const std::string cli = "cd '" + dir.string() + "' && " + tetlod + " simplify '" + motor +
+                          "' -o cli.mesh --size-map sizes.sol --tolerance 0.05 --history map.tlh" +
+                          " >cli_log.txt 2>&1";
+  ASSERT_EQ(std::system(cli.c_str()), 0) << cli;
+  TetMesh viewer, by_cli, uniform;
+  ASSERT_TRUE(read_mesh((dir / "viewer.mesh").string(), &viewer).ok());
+  ASSERT_TRUE(read_mesh((dir / "cli.mesh").string(), &by_cli).ok());
+  ASSERT_TRUE(read_mesh((dir / "uniform.mesh").string(), &uniform).ok());
+  EXPECT_EQ(viewer.tets, by_cli.tets);
+  EXPECT_EQ(viewer.positions, by_cli.positions);
+  EXPECT_EQ(viewer.materials, by_cli.materials);
+  EXPECT_NE(uniform.tets, by_cli.tets);
+
+  // The history's map, kept by the viewer's improve as by lod's.
+  ASSERT_EQ(std::system(("cd '" + dir.string() + "' && " + tetlod +
+                         " lod map.tlh --step 1000000000 --improve -o by_lod.mesh >/dev/null")
+                            .c_str()),
+            0);
+  std::ofstream(dir / "save.script")
+      << "save by_viewer.mesh improve\nthresholds subdivide=0\nsimplify\nsave again.tlh\nquit\n";
+  const ViewerRun saved = run_viewer(dir, "map.tlh --size 320x240 --script save.script");
+  ASSERT_EQ(saved.exit_code, 0) << saved.output;
+  EXPECT_NE(saved.output.find("made with size from the local sizing (a size map, 6 to"),
+            std::string::npos)
+      << saved.output;
+  auto bytes = [&](const char* name) {
+    std::ifstream f(dir / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  };
+  EXPECT_FALSE(bytes("by_lod.mesh").empty());
+  EXPECT_EQ(bytes("by_viewer.mesh"), bytes("by_lod.mesh"));
+  // The panel holds the history's thresholds, the map with them: a run from there
+  // (on the history's base, without subdividing it again) is made with the map.
+  const std::string again = "cd '" + dir.string() + "' && " + tetlod +
+                            " lod again.tlh --step 0 --improve -o again.mesh 2>&1";
+  std::string again_output;
+  if (std::FILE* pipe = popen(again.c_str(), "r")) {
+    char buffer[4096];
+    size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) again_output.append(buffer, n);
+    EXPECT_EQ(pclose(pipe), 0) << again_output;
+  }
+  EXPECT_NE(again_output.find("less where the local sizing asks (a size map, 6 to"),
+            std::string::npos)
+      << again_output;
+
+  // Errors: sizing=map without a map names the line; a map that does not fit names it.
+  std::ofstream(dir / "nomap.script") << "thresholds sizing=map\nquit\n";
+  const ViewerRun nomap = run_viewer(dir, "'" + motor + "' --size 320x240 --script nomap.script");
+  EXPECT_EQ(nomap.exit_code, 1) << nomap.output;
+  EXPECT_NE(nomap.output.find("nomap.script:1: sizing=map: no size map"), std::string::npos)
+      << nomap.output;
+  std::ofstream(dir / "quit.script") << "quit\n";
+  const std::string box = kSource + "/assets/box2.mesh";
+  const ViewerRun wrong =
+      run_viewer(dir, "'" + box + "' --size-map sizes.sol --size 320x240 --script quit.script");
+  EXPECT_NE(wrong.exit_code, 0) << wrong.output;
+  EXPECT_NE(wrong.output.find("--size-map sizes.sol: 4958 sizes, but the input has"),
+            std::string::npos)
+      << wrong.output;
+}
+
 // As `--material-size`: a size for a material the mesh lacks is an error naming it.
 TEST(ViewerWindow, MaterialSizeOfAnAbsentMaterialIsAnError) {
   const fs::path dir = fresh_output_dir("viewer_absent_material");
@@ -607,7 +695,8 @@ TEST(ViewerWindow, HistoryThresholdsAreUsedToImprove) {
                          (dir / "by_lod.mesh").string() + "' > /dev/null")
                             .c_str()),
             0);
-  std::ofstream(dir / "save.script") << "save by_viewer.mesh improve\nquit\n";
+  std::ofstream(dir / "save.script")
+      << "save by_viewer.mesh improve\nthresholds subdivide=0\nsimplify\nsave again.tlh\nquit\n";
   const ViewerRun run = run_viewer(dir, "'" + history + "' --size 320x240 --script save.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("made with size 12, stretch 0.2, valence 25, tolerance 0.05"),
