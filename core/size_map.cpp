@@ -167,8 +167,12 @@ Status SizeMap::build(const TetMesh& mesh, std::vector<double> sizes,
   // The starts: each cell's centre located by a walk from the previous cell's tet (a
   // neighbour, in x-fastest order), so that a query's walk begins within half a
   // cell of its point.
+  // (At most about eight cells a tet: a thin plate's box would hold far more.)
   Grid& starts = map->start_grid_;
-  starts.lay(lo, extent, mean_edge * 0.6);
+  for (double cell = mean_edge * 0.6;; cell *= 1.5) {
+    starts.lay(lo, extent, cell);
+    if (starts.cells() <= 8 * n + 64) break;
+  }
   map->start_.resize(starts.cells());
   uint32_t t = 0;
   double l[4];

@@ -65,6 +65,15 @@ TEST(SizeMap, ReproducesALinearField) {
   }
   for (size_t v = 0; v < mesh.positions.size(); ++v)
     ASSERT_NEAR(map->at(mesh.positions[v]), linear(mesh.positions[v]), 1e-12);
+  // A thin plate (its grids' cells are bounded by its tets, not by its box's volume).
+  TetMesh plate = test::make_grid_mesh(30, 30, 1, [](int, int, int) { return 1; });
+  for (Vec3& p : plate.positions) p.z *= 1e-3;
+  const auto plate_map = map_of(plate, sizes_of(plate, linear));
+  ASSERT_TRUE(plate_map);
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 p = point_in(plate, plate.tets[rng() % plate.tets.size()], &rng);
+    ASSERT_NEAR(plate_map->at(p), linear(p), 1e-9) << k;
+  }
 }
 
 // A field that is not linear: the value at p is the interpolation in the tet that holds
