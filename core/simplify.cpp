@@ -2051,10 +2051,23 @@ class Engine {
     }
     // With a size map, whose lookups cost more than the pass, the sizes are checked only
     // for a candidate that passed without them (the same candidates pass; one both
-    // too flat and too big counts as too flat).
+    // too flat and too big counts as too flat), and only for the lanes that are tets of
+    // t*(k) (not the ring's, which go, nor padding: nothing reads their limits).
     for (size_t k_block = 0; late_limits_ && k_block < moving_blocks_; ++k_block) {
       TetBlock& b = moving_[k_block];
-      region_limits(b);
+      double cx[kLanes], cy[kLanes], cz[kLanes], limit[kLanes];
+      int lane[kLanes], n = 0;
+      for (int l = 0; l < kLanes; ++l) {
+        b.limit[l] = b.material_limit[l];
+        if (b.skip[l] != 0) continue;
+        cx[n] = (b.f0x[l] + b.f1x[l] + b.f2x[l] + k.x) * 0.25;
+        cy[n] = (b.f0y[l] + b.f1y[l] + b.f2y[l] + k.y) * 0.25;
+        cz[n] = (b.f0z[l] + b.f1z[l] + b.f2z[l] + k.z) * 0.25;
+        limit[n] = b.material_limit[l];
+        lane[n++] = l;
+      }
+      params_.sizing.apply_regions(size_t(n), cx, cy, cz, limit);
+      for (int i = 0; i < n; ++i) b.limit[lane[i]] = limit[i];
       kernels_.first_pass(b, k.x, k.y, k.z, unmoved, floor2);
       for (int l = 0; l < kLanes; ++l)
         if (b.code[l] != 0) return b.code[l] == 2 ? Reject::kSize : Reject::kStretch;
