@@ -229,6 +229,11 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   ImGui::TextDisabled("ctrl-click a slider to type a value");
   if (status.thresholds_from_history) {
     text_disabled_wrapped("On open: the thresholds the history was made with");
+  } else if (t->size_map) {
+    text_disabled_wrapped(
+        "On open: the size map given with the mesh, capped at its largest size; tolerance "
+        "%.4g = 0.001 x diagonal",
+        status.default_tolerance);
   } else if (status.default_size > 0) {
     text_disabled_wrapped(
         "On open: size %.4g = 3 x median tet size, tolerance %.4g = 0.001 x "
