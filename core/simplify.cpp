@@ -34,6 +34,7 @@
 #include "core/face_grid.h"
 #include "core/improve.h"
 #include "core/metrics.h"
+#include "core/morton.h"
 #include "core/overlap.h"
 #include "core/surface.h"
 #include "core/triangle_cross.h"
@@ -537,22 +538,9 @@ class Engine {
       hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
     const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-300});
-    auto spread = [](uint64_t x) {  // 21 bits -> every third bit of 63
-      x &= 0x1fffff;
-      x = (x | x << 32) & 0x1f00000000ffffull;
-      x = (x | x << 16) & 0x1f0000ff0000ffull;
-      x = (x | x << 8) & 0x100f00f00f00f00full;
-      x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-      x = (x | x << 2) & 0x1249249249249249ull;
-      return x;
-    };
     std::vector<std::pair<uint64_t, uint32_t>> order(vertex_count);
-    for (uint32_t v = 0; v < vertex_count; ++v) {
-      const Vec3 q = (pos_[v] - lo) * (2097151.0 / extent);
-      order[v] = {spread(static_cast<uint64_t>(q.x)) | spread(static_cast<uint64_t>(q.y)) << 1 |
-                      spread(static_cast<uint64_t>(q.z)) << 2,
-                  v};
-    }
+    for (uint32_t v = 0; v < vertex_count; ++v)
+      order[v] = {morton_key((pos_[v] - lo) * (2097151.0 / extent)), v};
     std::sort(order.begin(), order.end());
     std::vector<uint32_t> new_id(vertex_count);
     for (uint32_t k = 0; k < vertex_count; ++k) new_id[order[k].second] = k;

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/adjacency.h"
+#include "core/morton.h"
 
 namespace tetlod {
 namespace {
@@ -62,15 +63,6 @@ Status SizeMap::build(const TetMesh& mesh, std::vector<double> sizes,
   mesh_bounds(mesh, &lo, &hi);
   const Vec3 extent = hi - lo;
   const double largest_extent = std::max({extent.x, extent.y, extent.z});
-  auto spread = [](uint64_t v) {  // 21 bits to every third of 63
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffull;
-    v = (v | v << 16) & 0x1f0000ff0000ffull;
-    v = (v | v << 8) & 0x100f00f00f00f00full;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-  };
   std::vector<std::pair<uint64_t, uint32_t>> order(n);
   const double scale = largest_extent > 0 ? 2097151.0 / largest_extent : 0;
   for (size_t t = 0; t < n; ++t) {
@@ -78,11 +70,7 @@ Status SizeMap::build(const TetMesh& mesh, std::vector<double> sizes,
     const Vec3 c = (mesh.positions[q[0]] + mesh.positions[q[1]] + mesh.positions[q[2]] +
                     mesh.positions[q[3]]) *
                    0.25;
-    const Vec3 g = (c - lo) * scale;
-    order[t] = {spread(uint64_t(std::clamp(g.x, 0.0, 2097151.0))) |
-                    spread(uint64_t(std::clamp(g.y, 0.0, 2097151.0))) << 1 |
-                    spread(uint64_t(std::clamp(g.z, 0.0, 2097151.0))) << 2,
-                uint32_t(t)};
+    order[t] = {morton_key((c - lo) * scale), uint32_t(t)};
   }
   std::sort(order.begin(), order.end());
   TetMesh sorted;
