@@ -30,9 +30,9 @@ constexpr const char* kStatsUsage =
     "  --json   machine-readable output on stdout\n"
     "With thresholds (as 'tetlod simplify' takes them; --stretch 0.15 and --valence 25\n"
     "unless given, no size limit unless --size, --material-size, --size-field or\n"
-    "--size-map, whose sizes are at FILE's vertices), it\n"
-    "also counts the tets below the stretch or above their size and the nodes above the\n"
-    "valence: a check of a mesh from any tool against an analysis' requirements.\n"
+    "--size-map, whose sizes are at FILE's vertices), it also counts the tets below the\n"
+    "stretch or above their size and the nodes above the valence: a check of a mesh from\n"
+    "any tool against an analysis' requirements.\n"
     "  --check  exit with status 3 if anything breaks them (implies the default\n"
     "           thresholds if none is given)\n";
 
