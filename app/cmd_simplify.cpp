@@ -26,8 +26,8 @@ constexpr const char* kSimplifyUsageHead =
     "                       [--no-subdivide] [--within-valence] [--past-valence-factor F]\n"
     "                       [--one-thread]\n"
     "                       [--material-size M=S,...]\n"
-    "                       [--size-field SPEC] [--size-map FILE.sol] [--elements N]\n"
-    "                       [--history FILE]\n"
+    "                       [--size-field SPEC] [--size-map FILE.sol [--size-map-mesh MESH]]\n"
+    "                       [--elements N] [--history FILE]\n"
     "                       [--crease-angle DEG] [--improve]\n"
     "                       [--msh-version V] [--msh-binary] [--vtk-binary] [--surfaces]\n"
     "\n"
@@ -312,10 +312,11 @@ int cmd_lod(const Args& args) {
     // The thresholds (not --elements, which here may be 0, nor the simplifier's own
     // --tolerance, --no-subdivide, --within-valence, --past-valence-factor and
     // --one-thread, which a level does not use).
-    if (a == "--size-map") {
+    if (a == "--size-map" || a == "--size-map-mesh") {
       std::fprintf(stderr,
-                   "tetlod lod: --size-map: a level's vertices are not the input's; --improve "
-                   "keeps to the size map saved in the history, if it was made with one\n");
+                   "tetlod lod: %s: --improve keeps to the size map saved in the history, if "
+                   "it was made with one\n",
+                   a.c_str());
       return kExitUsage;
     }
     if (a != "--elements" && a != "--tolerance" && a != "--no-subdivide" &&

@@ -19,7 +19,7 @@ namespace {
 constexpr const char* kStatsUsage =
     "usage: tetlod stats FILE [--json] [--size S] [--stretch D] [--valence V]\n"
     "                         [--material-size M=S,...] [--size-field SPEC]\n"
-    "                         [--size-map FILE.sol] [--check]\n"
+    "                         [--size-map FILE.sol [--size-map-mesh MESH]] [--check]\n"
     "\n"
     "Prints the mesh properties of the paper's Table I -- #nodes, #edges, #elements,\n"
     "average and minimum stretch, maximum valence, maximum size (longest edge) -- for the\n"
@@ -82,7 +82,7 @@ int cmd_stats(const Args& args) {
     } else if (a == "--check") {
       check = true;
     } else if (a == "--size" || a == "--stretch" || a == "--valence" || a == "--material-size" ||
-               a == "--size-field" || a == "--size-map") {
+               a == "--size-field" || a == "--size-map" || a == "--size-map-mesh") {
       if (parse_simplify_option(args, &i, "stats", &thresholds) != OptionResult::kParsed)
         return kExitUsage;
       thresholds_given = true;

@@ -29,6 +29,9 @@ const char* const kSimplifyFlagsHelp =
     "  --size-map FILE   sizes at the input's vertices (a Medit .sol file, as MMG3D takes\n"
     "                    them), linear in each input tet: with the sizes above, no tet\n"
     "                    above the map's value at its centroid\n"
+    "  --size-map-mesh MESH  the mesh whose vertices those sizes are at, if not the\n"
+    "                    input (a background mesh over the same domain: the level an\n"
+    "                    analysis was solved on, when the input is the dense original)\n"
     "  --no-subdivide    skip the subdivision step\n"
     "  --within-valence  one run only: where tets stay above the size, no other run whose\n"
     "                    subdivision (red levels, then bisection) may take nodes past the\n"
@@ -201,14 +204,15 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
       return OptionResult::kError;
     }
     options->size_given = true;
-  } else if (a == "--size-map") {
-    if (!options->size_map_path.empty()) {
-      std::fprintf(stderr, "tetlod %s: give --size-map once\n", command);
+  } else if (a == "--size-map" || a == "--size-map-mesh") {
+    std::string& path = a == "--size-map" ? options->size_map_path : options->size_map_mesh_path;
+    if (!path.empty()) {
+      std::fprintf(stderr, "tetlod %s: give %s once\n", command, a.c_str());
       return OptionResult::kError;
     }
     if (!value()) return OptionResult::kError;
-    options->size_map_path = v;  // read by finish_simplify_options(), with the input
-    options->size_given = true;
+    path = v;  // read by finish_simplify_options(), with the input
+    if (a == "--size-map") options->size_given = true;
   } else if (a == "--improve") {
     options->improve = true;
   } else if (a == "--elements") {
@@ -222,26 +226,26 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   return OptionResult::kParsed;
 }
 
-Status read_size_map(const std::string& path, const TetMesh& input, const ValidationReport* read,
-                     std::shared_ptr<const SizeMap>* map) {
+Status read_size_map(const std::string& path, const TetMesh& mesh, const ValidationReport* read,
+                     std::shared_ptr<const SizeMap>* map, const std::string& mesh_name) {
   std::vector<double> sizes;
   if (Status s = read_sol_sizes(path, &sizes); !s)
     return Status::error("--size-map: " + s.message());
   // One size a vertex of the file, in its order; the reader drops vertices no tet
   // uses, and their sizes with them.
-  const size_t in_file = input.vertex_count() + (read ? read->removed_unused_vertices : 0);
+  const size_t in_file = mesh.vertex_count() + (read ? read->removed_unused_vertices : 0);
   if (sizes.size() != in_file) {
     return Status::error("--size-map " + path + ": " + std::to_string(sizes.size()) +
-                         " sizes, but the input has " + std::to_string(in_file) +
-                         " vertices (a size map gives one size to each vertex of the input, in "
-                         "its order)");
+                         " sizes, but " + mesh_name + " has " + std::to_string(in_file) +
+                         " vertices (a size map gives one size to each of its vertices, in "
+                         "their order)");
   }
   if (read && !read->kept_vertices.empty()) {
     std::vector<double> kept(read->kept_vertices.size());
     for (size_t v = 0; v < kept.size(); ++v) kept[v] = sizes[read->kept_vertices[v]];
     sizes = std::move(kept);
   }
-  if (Status s = SizeMap::build(input, std::move(sizes), map); !s)
+  if (Status s = SizeMap::build(mesh, std::move(sizes), map); !s)
     return Status::error("--size-map " + path + ": " + s.message());
   return Status();
 }
@@ -249,14 +253,35 @@ Status read_size_map(const std::string& path, const TetMesh& input, const Valida
 bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
                              const char* command, SimplifyOptions* options,
                              const ValidationReport* read) {
+  if (!options->size_map_mesh_path.empty() && options->size_map_path.empty()) {
+    std::fprintf(stderr, "tetlod %s: --size-map-mesh %s: give the sizes too (--size-map)\n",
+                 command, options->size_map_mesh_path.c_str());
+    return false;
+  }
   if (!options->size_map_path.empty()) {
+    // The sizes are at the input's vertices, or at those of another mesh over the same
+    // domain (where the input reaches past it, the nearest of its tets gives them).
+    TetMesh other;
+    ReadInfo other_info;
+    const std::string& other_path = options->size_map_mesh_path;
+    if (!other_path.empty()) {
+      if (Status s = read_mesh(other_path, &other, &other_info); !s) {
+        std::fprintf(stderr, "tetlod %s: --size-map-mesh: %s\n", command, s.message().c_str());
+        return false;
+      }
+    }
     std::shared_ptr<const SizeMap> map;
-    if (Status s = read_size_map(options->size_map_path, input, read, &map); !s) {
+    const Status s = other_path.empty()
+                         ? read_size_map(options->size_map_path, input, read, &map)
+                         : read_size_map(options->size_map_path, other, &other_info.validation,
+                                         &map, "--size-map-mesh " + other_path);
+    if (!s) {
       std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
       return false;
     }
     options->params.sizing.map = std::move(map);
     options->size_map_path.clear();  // read once
+    options->size_map_mesh_path.clear();
   }
   std::vector<std::pair<int32_t, double>>& sizes = options->params.sizing.material_sizes;
   for (const auto& [name, size] : options->named_material_sizes) {

@@ -21,8 +21,10 @@ struct SimplifyOptions {
   // --material-size items that name their material ("copper=2"): added to
   // params.sizing by finish_simplify_options(), once the names are read.
   std::vector<std::pair<std::string, double>> named_material_sizes;
-  // --size-map FILE: read by finish_simplify_options() into params.sizing.map.
-  std::string size_map_path;
+  // --size-map FILE: read by finish_simplify_options() into params.sizing.map, with its
+  // sizes at the vertices of --size-map-mesh MESH if given (a background mesh: the mesh
+  // an analysis was solved on, say), else at the input's.
+  std::string size_map_path, size_map_mesh_path;
 };
 
 // The flag lines of the usage text (the thresholds and sizing, without --elements).
@@ -35,8 +37,8 @@ enum class OptionResult {
 };
 
 // Parses one simplifier flag at args[*i] (--size --stretch --valence --tolerance
-// --crease-angle --no-subdivide --material-size --size-field --size-map --elements
-// --improve).
+// --crease-angle --no-subdivide --material-size --size-field --size-map
+// --size-map-mesh --elements --improve).
 OptionResult parse_simplify_option(const Args& args, size_t* i, const char* command,
                                    SimplifyOptions* options);
 
@@ -60,11 +62,13 @@ bool parse_output_value(const Args& args, size_t* i, const char* name, std::stri
 // material of --material-size is in the input: false, with a message to stderr
 // prefixed with "tetlod <command>: ", if one is not (a mistyped id would otherwise
 // be ignored without a word).
-// Reads a size map for `input` from the Medit .sol file at `path` (core/io/sol.h):
-// one size a vertex of the file `input` was read from (`read`, its validation, maps
-// them to the vertices the reader kept; null: none was dropped). Errors name the file.
-Status read_size_map(const std::string& path, const TetMesh& input, const ValidationReport* read,
-                     std::shared_ptr<const SizeMap>* map);
+// Reads a size map over `mesh` from the Medit .sol file at `path` (core/io/sol.h): one
+// size a vertex of the file `mesh` was read from (`read`, its validation, maps them to
+// the vertices the reader kept; null: none was dropped). Errors name the file, and the
+// mesh as `mesh_name` ("the input").
+Status read_size_map(const std::string& path, const TetMesh& mesh, const ValidationReport* read,
+                     std::shared_ptr<const SizeMap>* map,
+                     const std::string& mesh_name = "the input");
 
 // With --size-map, it reads the file and builds params.sizing.map over `input`;
 // `read`, the input's validation (if it was read from a file), maps the file's sizes

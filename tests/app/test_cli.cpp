@@ -600,8 +600,54 @@ TEST(Cli, SimplifyKeepsToASizeMap) {
   const CommandResult given =
       run("lod " + history + " --step 0 -o " + level + " --improve --size-map " + sol);
   EXPECT_EQ(given.code, 2) << given.output;
-  EXPECT_NE(given.output.find("a level's vertices are not the input's"), std::string::npos)
+  EXPECT_NE(given.output.find("--size-map: --improve keeps to the size map saved in the history"),
+            std::string::npos)
       << given.output;
+
+  const std::vector<double> fewer_sizes(sizes.begin(), sizes.end() - 1);
+  // The sizes may be given at the vertices of another mesh over the same domain (the
+  // level an analysis was solved on): a field linear in x, at the input's vertices or at
+  // those of a coarse grid, gives the same function, so (to rounding) the same mesh.
+  {
+    const TetMesh background = test::make_grid_mesh(2, 1, 1, [](int, int, int) { return 1; });
+    const std::string coarse_path = out_dir() + "/map_coarse.mesh";
+    ASSERT_TRUE(write_mesh(coarse_path, background).ok());
+    std::vector<double> on_coarse, on_input;
+    for (const Vec3& p : background.positions) on_coarse.push_back(0.3 + 0.45 * p.x);
+    for (const Vec3& p : grid.positions) on_input.push_back(0.3 + 0.45 * p.x);
+    const std::string a = out_dir() + "/map_linear_input.mesh";
+    const std::string b = out_dir() + "/map_linear_coarse.mesh";
+    const CommandResult ra = run("simplify " + in + " -o " + a + " --size-map " +
+                                 write_sol("map_linear_input.sol", on_input) + " --tolerance 1e-9");
+    const CommandResult rb = run("simplify " + in + " -o " + b + " --size-map " +
+                                 write_sol("map_linear_coarse.sol", on_coarse) +
+                                 " --size-map-mesh " + coarse_path + " --tolerance 1e-9");
+    ASSERT_EQ(ra.code, 0) << ra.output;
+    ASSERT_EQ(rb.code, 0) << rb.output;
+    EXPECT_NE(rb.output.find("(a size map, 0.3 to 1.2)"), std::string::npos) << rb.output;
+    EXPECT_NE(rb.output.find("0 of them new"), std::string::npos) << rb.output;
+    TetMesh ma, mb;
+    ASSERT_TRUE(read_mesh(a, &ma).ok());
+    ASSERT_TRUE(read_mesh(b, &mb).ok());
+    EXPECT_NEAR(double(mb.tet_count()), double(ma.tet_count()), 0.02 * double(ma.tet_count()));
+    // Sizes at the coarse mesh's vertices, given without it: a count that does not fit.
+    const CommandResult wrong = run("simplify " + in + " -o " + b + " --size-map " +
+                                    write_sol("map_linear_coarse.sol", on_coarse));
+    EXPECT_EQ(wrong.code, 2) << wrong.output;
+    EXPECT_NE(wrong.output.find("12 sizes, but the input has 112 vertices"), std::string::npos)
+        << wrong.output;
+    const CommandResult fewer =
+        run("simplify " + in + " -o " + b + " --size-map " +
+            write_sol("map_fewer.sol", fewer_sizes) + " --size-map-mesh " + coarse_path);
+    EXPECT_NE(fewer.output.find("but --size-map-mesh " + coarse_path + " has 12 vertices"),
+              std::string::npos)
+        << fewer.output;
+    const CommandResult alone =
+        run("simplify " + in + " -o " + b + " --size 1 --size-map-mesh " + coarse_path);
+    EXPECT_EQ(alone.code, 2) << alone.output;
+    EXPECT_NE(alone.output.find("give the sizes too (--size-map)"), std::string::npos)
+        << alone.output;
+  }
 
   // stats checks a mesh against sizes at its own vertices: the grid's tets are 0.58
   // long, above 0.3 in the cubes with x <= 2/3 (108) and in part of the next (18).
