@@ -480,9 +480,10 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
 constexpr char kSizeMapMagic[8] = {'T', 'L', 'S', 'Z', 'M', 'A', 'P', '1'};
 
 // The size map (sizing.h) as its values at the base's vertices, a u64 count then the
-// f64 values: the map over the base that the reader builds from them is the one the
-// run used (linear in each input tet, so in each piece of one; subdivision cut the base
-// from the input), to the rounding of the interpolation.
+// f64 values: where the run's map was over the input, the map over the base that the
+// reader builds from them is the same function (linear in each input tet, so in each
+// piece of one: subdivision cut the base from the input), to the rounding of the
+// interpolation; over another mesh (--size-map-mesh), its interpolation at the base.
 bool write_size_map(std::FILE* f, const TetMesh& base, const SizeMap& map) {
   if (std::fwrite(kSizeMapMagic, 1, 8, f) != 8) return false;
   ParamsWriter w{f};
