@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 
+#include "app/cli_runner.h"
 #include "core/adjacency.h"
 #include "core/electrostatics.h"
 #include "core/improve.h"
@@ -392,15 +393,11 @@ TEST(ViewerWindow, SizeMapGivesTheClisMesh) {
   EXPECT_EQ(bytes("by_viewer.mesh"), bytes("by_lod.mesh"));
   // The panel holds the history's thresholds, the map with them: a run from there
   // (on the history's base, without subdividing it again) is made with the map.
-  const std::string again = "cd '" + dir.string() + "' && " + tetlod +
-                            " lod again.tlh --step 0 --improve -o again.mesh 2>&1";
-  std::string again_output;
-  if (std::FILE* pipe = popen(again.c_str(), "r")) {
-    char buffer[4096];
-    size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) again_output.append(buffer, n);
-    EXPECT_EQ(pclose(pipe), 0) << again_output;
-  }
+  const test::CommandResult again =
+      test::run_tetlod("lod '" + (dir / "again.tlh").string() + "' --step 0 --improve -o '" +
+                       (dir / "again.mesh").string() + "'");
+  EXPECT_EQ(again.code, 0) << again.output;
+  const std::string& again_output = again.output;
   EXPECT_NE(again_output.find("less where the local sizing asks (a size map, 6 to"),
             std::string::npos)
       << again_output;
