@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/io/binary_values.h"
+#include "core/io/gmf_binary.h"
 #include "core/io/mesh_formats.h"
 #include "core/io/text_scanner.h"
 #include "core/io/text_writer.h"
@@ -236,29 +237,7 @@ Status finish(const std::string& name, Sections& s, ParsedMesh* out) {
   return Status();
 }
 
-// Medit binary (.meshb), libMeshb's files: a 4-byte 1, whose byte order is the file's;
-// the version (1: 4-byte reals; 2: 8-byte reals; 3: and 8-byte keyword positions; 4:
-// and 8-byte integers); then keywords, Dimension first: a 4-byte code, the file
-// position of the next keyword (0 after the last), for a keyword with entries their
-// count (an integer), then the entries. Keywords TetLOD does not read are skipped by
-// that position, so any keyword of any libMeshb version can be there.
-enum MeditCode : int64_t {
-  kCodeDimension = 3,
-  kCodeVertices = 4,
-  kCodeTriangles = 6,
-  kCodeQuadrilaterals = 7,
-  kCodeTetrahedra = 8,
-  kCodePrisms = 9,
-  kCodeHexahedra = 10,
-  kCodeTrianglesP2 = 24,
-  kCodeQuadrilateralsQ2 = 27,
-  kCodeTetrahedraP2 = 30,
-  kCodeHexahedraQ2 = 33,
-  kCodePyramids = 49,
-  kCodeEnd = 54,
-  kCodeFloatingPointPrecision = 155,
-};
-
+// Medit binary (.meshb): libMeshb's layout (core/io/gmf_binary.h).
 // The keywords with entries of integers only that a reader counts (surface elements
 // and other volumes, for the notes): name, integers per entry.
 struct CountedKeyword {
@@ -267,111 +246,37 @@ struct CountedKeyword {
   int integers;
 };
 constexpr CountedKeyword kCountedKeywords[] = {
-    {kCodeQuadrilaterals, "Quadrilaterals", 5},
-    {kCodeQuadrilateralsQ2, "QuadrilateralsQ2", 10},
-    {kCodePrisms, "Prisms", 7},
-    {kCodePyramids, "Pyramids", 6},
-    {kCodeHexahedra, "Hexahedra", 9},
-    {kCodeHexahedraQ2, "HexahedraQ2", 28},
+    {kGmfQuadrilaterals, "Quadrilaterals", 5},
+    {kGmfQuadrilateralsQ2, "QuadrilateralsQ2", 10},
+    {kGmfPrisms, "Prisms", 7},
+    {kGmfPyramids, "Pyramids", 6},
+    {kGmfHexahedra, "Hexahedra", 9},
+    {kGmfHexahedraQ2, "HexahedraQ2", 28},
 };
 
 class MeditBinaryReader {
  public:
   MeditBinaryReader(std::string_view data, const std::string& name, ParsedMesh* out)
-      : data_(data), name_(name), out_(out) {}
+      : gmf_(data, name, "Medit", ".meshb", ".mesh"), name_(name), out_(out) {}
 
   Status read() {
-    if (data_.size() < 8) return error(0, "too short for a binary Medit (.meshb) file");
-    const uint64_t code = value_bits(data_.data(), 4, false);
-    if (code == 0x01000000) {
-      big_endian_ = true;
-    } else if (code != 1) {
-      const bool ascii = data_.find("MeshVersionFormatted") < 256;
-      return error(0, ascii ? "not a binary Medit file: it is an ASCII one (name it .mesh)"
-                            : "not a binary Medit (.meshb) file: it starts with " +
-                                  std::to_string(code) + ", not the 4-byte 1 in either byte order");
-    }
-    const int64_t version = integer(4, 4);
-    if (version < 1 || version > 4) {
-      return error(4, "version " + std::to_string(version) + " (libMeshb knows 1 to 4)");
-    }
-    real_size_ = version == 1 ? 4 : 8;
-    position_size_ = version >= 3 ? 8 : 4;
-    integer_size_ = version == 4 ? 8 : 4;
-    size_t at = 8;
-    for (bool first = true;; first = false) {
-      // libMeshb refuses a file without the End keyword too.
-      if (at == data_.size())
-        return error(at, "the file ends before the End keyword (truncated file?)");
-      if (data_.size() - at < 4 + position_size_) {
-        return error(at, "the file ends inside a keyword's header (truncated file?)");
-      }
-      const int64_t keyword = integer(at, 4);
-      const int64_t next = integer(at + 4, position_size_);
-      if (first && keyword != kCodeDimension) {
-        return error(
-            at, "the first keyword is code " + std::to_string(keyword) + ", not Dimension (3)");
-      }
-      if (keyword == kCodeEnd) break;
-      // Positions only go forward, past this keyword's header, so a hostile file can
-      // neither loop nor make a section end before it starts.
-      const size_t body = at + 4 + position_size_;
-      if (next != 0 && (next < int64_t(body) || uint64_t(next) > data_.size())) {
-        return error(at + 4, "keyword " + std::to_string(keyword) +
-                                 ": the next keyword's position " + std::to_string(next) +
-                                 (next < int64_t(body) ? " is not after this one"
-                                                       : " is past the end of the file (" +
-                                                             std::to_string(data_.size()) +
-                                                             " bytes; truncated file?)"));
-      }
-      const size_t end = next == 0 ? data_.size() : size_t(next);
-      if (!section(keyword, body, end)) return status_;
-      if (next == 0) break;  // the last keyword, as libMeshb reads it
-      at = size_t(next);
-    }
+    const Status walked = gmf_.walk(
+        [this](int64_t keyword, size_t body, size_t end) { return section(keyword, body, end); });
+    if (!walked) return walked;
     return finish(name_, sections_, out_);
   }
 
  private:
-  Status error(size_t at, const std::string& message) {
-    return Status::error(name_ + ": byte " + std::to_string(at) + ": " + message);
-  }
-  bool fail(size_t at, const std::string& message) {
-    status_ = error(at, message);
-    return false;
-  }
-
-  // A signed integer of `size` bytes at `at` (which the caller checked is in the file).
-  int64_t integer(size_t at, size_t size) const {
-    int64_t value = 0;
-    binary_integer(value_bits(data_.data() + at, size, big_endian_), {BinaryType::kSigned, size},
-                   &value);
-    return value;
-  }
-  double real(size_t at) const {
-    return binary_real(value_bits(data_.data() + at, real_size_, big_endian_),
-                       {BinaryType::kFloat, real_size_});
-  }
-
-  // The entry count at *at, whose `entry_size`-byte entries must end by `end`; *at
-  // moves to the first entry.
+  bool fail(size_t at, const std::string& message) { return gmf_.fail(at, message); }
+  int64_t integer(size_t at, size_t size) const { return gmf_.integer(at, size); }
+  double real(size_t at) const { return gmf_.real(at); }
   bool count(size_t* at, size_t end, size_t entry_size, const char* what, uint64_t* n) {
-    if (end - *at < integer_size_) return fail(*at, std::string(what) + ": no entry count");
-    const int64_t value = integer(*at, integer_size_);
-    *at += integer_size_;
-    if (value < 0 || uint64_t(value) > (end - *at) / entry_size) {
-      return fail(*at - integer_size_, std::string(what) + ": " + std::to_string(value) +
-                                           " entries of " + std::to_string(entry_size) +
-                                           " bytes do not fit in the " + std::to_string(end - *at) +
-                                           " bytes before the next keyword (truncated file?)");
-    }
-    *n = uint64_t(value);
-    return true;
+    return gmf_.count(at, end, entry_size, what, n);
   }
 
   // A vertex index (1-based) at `at`, checked as the ASCII reader does.
   bool vertex_index(size_t at, uint32_t* index) {
-    const int64_t value = integer(at, integer_size_);
+    const int64_t value = integer(at, gmf_.integer_size());
     if (value < 1 || value > int64_t{kInvalidIndex}) {
       return fail(at, "vertex index " + std::to_string(value) +
                           " is out of range (Medit indices start at 1)");
@@ -383,51 +288,32 @@ class MeditBinaryReader {
   bool section(int64_t keyword, size_t at, size_t end) {
     uint64_t n = 0;
     switch (keyword) {
-      case kCodeDimension: {
-        if (end - at < 4) return fail(at, "Dimension: no value");
-        const int64_t dimension = integer(at, 4);
-        if (dimension != 3) {
-          return fail(at, "only 3-dimensional meshes are supported (Dimension " +
-                              std::to_string(dimension) + ")");
-        }
-        return true;
-      }
-      case kCodeFloatingPointPrecision: {
-        // One integer, 32 or 64: the size of the reals after it, whatever the version
-        // (libMeshb's GmfSetFloatPrecision(); it ignores other values, and so do we).
-        if (end - at < integer_size_) return fail(at, "FloatingPointPrecision: no value");
-        const int64_t bits = integer(at, integer_size_);
-        if (bits != 32 && bits != 64) return true;
-        if (sections_.seen_vertices && size_t(bits / 8) != real_size_) {
-          return fail(at, "FloatingPointPrecision " + std::to_string(bits) +
-                              " after the Vertices section, read with " +
-                              std::to_string(8 * real_size_) + "-bit reals");
-        }
-        real_size_ = size_t(bits / 8);
-        return true;
-      }
-      case kCodeVertices: {
+      case kGmfDimension:
+        return gmf_.dimension(at, end, "meshes");
+      case kGmfFloatingPointPrecision:
+        return gmf_.precision(at, end, sections_.seen_vertices ? "Vertices" : nullptr);
+      case kGmfVertices: {
         if (sections_.seen_vertices) return fail(at, "a second Vertices section");
         sections_.seen_vertices = true;
-        const size_t entry = 3 * real_size_ + integer_size_;
+        const size_t entry = 3 * gmf_.real_size() + gmf_.integer_size();
         if (!count(&at, end, entry, "Vertices", &n)) return false;
         if (n >= kInvalidIndex) return fail(at, "too many vertices");
         auto& positions = out_->mesh.positions;
         positions.resize(n);
         for (uint64_t i = 0; i < n; ++i, at += entry) {
           Vec3& p = positions[i];
-          p = {real(at), real(at + real_size_), real(at + 2 * real_size_)};
+          p = {real(at), real(at + gmf_.real_size()), real(at + 2 * gmf_.real_size())};
           if (!is_finite(p))
             return fail(at, "vertex " + std::to_string(i + 1) + ": a coordinate is not finite");
         }
         return true;
       }
-      case kCodeTetrahedra:
-      case kCodeTetrahedraP2: {
+      case kGmfTetrahedra:
+      case kGmfTetrahedraP2: {
         sections_.seen_tets = true;
-        const size_t nodes = keyword == kCodeTetrahedra ? 4 : 10;
-        const size_t entry = (nodes + 1) * integer_size_;
-        if (!count(&at, end, entry, keyword == kCodeTetrahedra ? "Tetrahedra" : "TetrahedraP2", &n))
+        const size_t nodes = keyword == kGmfTetrahedra ? 4 : 10;
+        const size_t entry = (nodes + 1) * gmf_.integer_size();
+        if (!count(&at, end, entry, keyword == kGmfTetrahedra ? "Tetrahedra" : "TetrahedraP2", &n))
           return false;
         TetMesh& mesh = out_->mesh;
         if (n >= kInvalidIndex - mesh.tets.size()) return fail(at, "too many tetrahedra");
@@ -437,33 +323,34 @@ class MeditBinaryReader {
           Tet tet;
           for (size_t k = 0; k < nodes; ++k) {
             uint32_t index = 0;
-            if (!vertex_index(at + k * integer_size_, &index)) return false;
+            if (!vertex_index(at + k * gmf_.integer_size(), &index)) return false;
             if (k < 4) tet[k] = index;
           }
-          const int64_t material = integer(at + nodes * integer_size_, integer_size_);
+          const int64_t material = integer(at + nodes * gmf_.integer_size(), gmf_.integer_size());
           if (material < std::numeric_limits<int32_t>::min() ||
               material > std::numeric_limits<int32_t>::max()) {
-            return fail(at + nodes * integer_size_, "tetrahedron reference (material) " +
-                                                        std::to_string(material) +
-                                                        " is out of range");
+            return fail(at + nodes * gmf_.integer_size(), "tetrahedron reference (material) " +
+                                                              std::to_string(material) +
+                                                              " is out of range");
           }
           mesh.tets.push_back(tet);
           mesh.materials.push_back(int32_t(material));
         }
-        if (keyword == kCodeTetrahedraP2) sections_.quadratic_tets += n;
+        if (keyword == kGmfTetrahedraP2) sections_.quadratic_tets += n;
         return true;
       }
-      case kCodeTriangles:
-      case kCodeTrianglesP2: {
-        const size_t nodes = keyword == kCodeTriangles ? 3 : 6;
-        const size_t entry = (nodes + 1) * integer_size_;
-        if (!count(&at, end, entry, keyword == kCodeTriangles ? "Triangles" : "TrianglesP2", &n))
+      case kGmfTriangles:
+      case kGmfTrianglesP2: {
+        const size_t nodes = keyword == kGmfTriangles ? 3 : 6;
+        const size_t entry = (nodes + 1) * gmf_.integer_size();
+        if (!count(&at, end, entry, keyword == kGmfTriangles ? "Triangles" : "TrianglesP2", &n))
           return false;
         sections_.surface.count(n);
         for (uint64_t i = 0; i < n; ++i, at += entry) {
           PendingTriangle t;
-          for (size_t k = 0; k < 3; ++k) t.v[k] = integer(at + k * integer_size_, integer_size_);
-          t.ref = integer(at + nodes * integer_size_, integer_size_);
+          for (size_t k = 0; k < 3; ++k)
+            t.v[k] = integer(at + k * gmf_.integer_size(), gmf_.integer_size());
+          t.ref = integer(at + nodes * gmf_.integer_size(), gmf_.integer_size());
           if (t.ref >= 1 && t.ref <= std::numeric_limits<int32_t>::max())
             sections_.triangles.push_back(t);
         }
@@ -472,9 +359,9 @@ class MeditBinaryReader {
       default:
         for (const CountedKeyword& counted : kCountedKeywords) {
           if (keyword != counted.code) continue;
-          if (!count(&at, end, size_t(counted.integers) * integer_size_, counted.name, &n))
+          if (!count(&at, end, size_t(counted.integers) * gmf_.integer_size(), counted.name, &n))
             return false;
-          if (keyword == kCodeQuadrilaterals || keyword == kCodeQuadrilateralsQ2) {
+          if (keyword == kGmfQuadrilaterals || keyword == kGmfQuadrilateralsQ2) {
             sections_.surface.count(n);
           } else {
             sections_.skip_volumes(counted.name, n);
@@ -484,12 +371,9 @@ class MeditBinaryReader {
     }
   }
 
-  std::string_view data_;
+  GmfBinary gmf_;
   const std::string& name_;
   ParsedMesh* out_;
-  Status status_;
-  bool big_endian_ = false;
-  size_t real_size_ = 8, position_size_ = 4, integer_size_ = 4;
   Sections sections_;
 };
 
@@ -628,11 +512,11 @@ void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std:
   // bytes of count and entries); the End keyword's next position is 0.
   auto keyword = [&](int64_t code, uint64_t body) {
     put(out, uint64_t(code), 4);
-    put(out, code == kCodeEnd ? 0 : out->size() - base + position + body, position);
+    put(out, code == kGmfEnd ? 0 : out->size() - base + position + body, position);
   };
-  keyword(kCodeDimension, 4);
+  keyword(kGmfDimension, 4);
   put(out, 3, 4);
-  keyword(kCodeVertices, integer + vertices * (24 + integer));
+  keyword(kGmfVertices, integer + vertices * (24 + integer));
   put(out, vertices, integer);
   for (const Vec3& p : mesh.positions) {
     put_real(out, p.x);
@@ -641,7 +525,7 @@ void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std:
     put(out, 0, integer);
   }
   if (triangles > 0) {  // reference = the group's tag, as MMG reads boundary references
-    keyword(kCodeTriangles, integer + triangles * 4 * integer);
+    keyword(kGmfTriangles, integer + triangles * 4 * integer);
     put(out, triangles, integer);
     for (const SurfaceGroup& group : surfaces->groups) {
       for (uint32_t i : group.triangles) {
@@ -650,13 +534,13 @@ void write_medit_binary(const TetMesh& mesh, const SurfaceGroups* surfaces, std:
       }
     }
   }
-  keyword(kCodeTetrahedra, integer + tets * 5 * integer);
+  keyword(kGmfTetrahedra, integer + tets * 5 * integer);
   put(out, tets, integer);
   for (size_t t = 0; t < tets; ++t) {
     for (uint32_t v : mesh.tets[t]) put(out, uint64_t(v) + 1, integer);
     put(out, uint64_t(int64_t(mesh.materials[t])), integer);
   }
-  keyword(kCodeEnd, 0);
+  keyword(kGmfEnd, 0);
 }
 
 }  // namespace tetlod::io

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -83,6 +84,51 @@ class Bytes {
   }
   bool swap_;
   std::string data_;
+};
+
+// A libMeshb file (.meshb, .solb) written by hand: each keyword's next position is filled in when
+// the next keyword starts; the last one's stays 0.
+class GmfWriter {
+ public:
+  GmfWriter(int version, bool swap) : version_(version), bytes_(swap) {
+    i32(1);
+    i32(version);
+  }
+  void keyword(int64_t code) {
+    if (header_ != 0) patch(header_, bytes_.data().size());
+    i32(code);
+    header_ = bytes_.data().size();
+    position(0);
+  }
+  void i32(int64_t v) { bytes_.i32(v); }
+  void position(int64_t v) { version_ >= 3 ? bytes_.i64(v) : bytes_.i32(v); }
+  void integer(int64_t v) { version_ == 4 ? bytes_.i64(v) : bytes_.i32(v); }
+  void real(double v) { version_ == 1 ? bytes_.f32(v) : bytes_.f64(v); }
+  void real32(double v) { bytes_.f32(v); }
+  void real64(double v) { bytes_.f64(v); }
+  // Gives the keyword begun last this next position instead of where the next starts.
+  void override_next(int64_t v) {
+    override_at_ = header_;
+    next_override_ = v;
+  }
+  std::string finish(bool end_keyword = true) {
+    if (end_keyword) keyword(54);  // End
+    if (next_override_) patch(override_at_, *next_override_);
+    return bytes_.data();
+  }
+
+ private:
+  void patch(size_t at, int64_t value) {
+    std::string& data = bytes_.data();
+    const std::string saved = data.substr(at + (version_ >= 3 ? 8 : 4));
+    data.resize(at);
+    position(value);
+    data += saved;
+  }
+  int version_;
+  Bytes bytes_;
+  size_t header_ = 0, override_at_ = 0;
+  std::optional<int64_t> next_override_;
 };
 
 // A failed read whose message starts with `start` and contains `words`.

@@ -23,51 +23,7 @@ namespace {
 
 // libMeshb's keyword codes used here.
 constexpr int32_t kDimension = 3, kVertices = 4, kTriangles = 6, kTetrahedra = 8, kPrisms = 9,
-                  kCorners = 13, kTetrahedraP2 = 30, kEnd = 54, kFloatingPointPrecision = 155;
-
-// A .meshb written by hand: each keyword's next position is filled in when the next
-// keyword starts; the last one's stays 0.
-class Gmf {
- public:
-  Gmf(int version, bool swap) : version_(version), bytes_(swap) {
-    i32(1);
-    i32(version);
-  }
-  void keyword(int64_t code) {
-    if (header_ != 0) patch(header_, bytes_.data().size());
-    i32(code);
-    header_ = bytes_.data().size();
-    position(0);
-  }
-  void i32(int64_t v) { bytes_.i32(v); }
-  void position(int64_t v) { version_ >= 3 ? bytes_.i64(v) : bytes_.i32(v); }
-  void integer(int64_t v) { version_ == 4 ? bytes_.i64(v) : bytes_.i32(v); }
-  void real(double v) { version_ == 1 ? bytes_.f32(v) : bytes_.f64(v); }
-  void real32(double v) { bytes_.f32(v); }
-  // Gives the keyword begun last this next position instead of where the next starts.
-  void override_next(int64_t v) {
-    override_at_ = header_;
-    next_override_ = v;
-  }
-  std::string finish(bool end_keyword = true) {
-    if (end_keyword) keyword(kEnd);
-    if (next_override_) patch(override_at_, *next_override_);
-    return bytes_.data();
-  }
-
- private:
-  void patch(size_t at, int64_t value) {
-    std::string& data = bytes_.data();
-    const std::string saved = data.substr(at + (version_ >= 3 ? 8 : 4));
-    data.resize(at);
-    position(value);
-    data += saved;
-  }
-  int version_;
-  test::Bytes bytes_;
-  size_t header_ = 0, override_at_ = 0;
-  std::optional<int64_t> next_override_;
-};
+                  kCorners = 13, kTetrahedraP2 = 30, kFloatingPointPrecision = 155;
 
 // What a test changes in the otherwise valid file.
 struct Damage {
@@ -88,7 +44,7 @@ struct Damage {
 // keyword TetLOD skips (Corners), a triangle of reference 5, and a prism.
 std::string meshb(int version, bool swap, const Damage& d = {}) {
   const TetMesh mesh = test::make_io_mesh();
-  Gmf f(version, swap);
+  test::GmfWriter f(version, swap);
   if (!d.dimension_first) {
     f.keyword(kCorners);
     f.integer(0);
@@ -190,7 +146,7 @@ TEST(IoMeditBinary, ReadsEveryVersionInBothByteOrders) {
 TEST(IoMeditBinary, FloatingPointPrecisionSetsTheRealSize) {
   const TetMesh mesh = test::make_single_tet();
   auto file = [&](int version, int64_t bits, bool before_vertices) {
-    Gmf f(version, false);
+    test::GmfWriter f(version, false);
     f.keyword(kDimension);
     f.i32(3);
     if (before_vertices) {
