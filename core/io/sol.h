@@ -10,10 +10,12 @@
 //   ...
 //   End              (optional)
 //
-// A tensor (type 3, an anisotropic metric) or a vector field, several fields, fields
-// on other entities (SolAtTetrahedra, ...) and the binary .solb are refused with an
-// error that says so; so are sizes that are not finite numbers > 0. Every error
-// reads "path:line: message".
+// The binary .solb (libMeshb's layout, versions 1 to 4 in either byte order, as MMG
+// and FreeFEM write it) is read too, told from ASCII by its first four bytes.
+// A tensor (type 3, an anisotropic metric) or a vector field, several fields, and
+// fields on other entities (SolAtTetrahedra, ...) are refused with an error that
+// says so; so are sizes that are not finite numbers > 0. Every error reads
+// "path:line: message" ("path: byte N: message" in a binary file).
 #pragma once
 
 #include <string>

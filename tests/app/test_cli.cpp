@@ -657,6 +657,17 @@ TEST(Cli, SimplifyKeepsToASizeMap) {
             std::string::npos)
       << st.output;
 
+  // A binary .solb as FreeFEM writes it, with its cube (tests/data/other_tools): every
+  // tet of the cube (0.58 long) is above the sizes, 0.1 to 0.35.
+  const std::string ff = std::string(TETLOD_SOURCE_DIR) + "/tests/data/other_tools/";
+  const CommandResult fs = run("stats " + ff + "meshb_freefem_cube.meshb --size-map " + ff +
+                               "solb_freefem_cube.solb --check");
+  EXPECT_EQ(fs.code, 3) << fs.output;
+  EXPECT_NE(fs.output.find("(a size map, 0.1 to 0.35)"), std::string::npos) << fs.output;
+  EXPECT_NE(fs.output.find("breaking them: 0 tets below the stretch, 162 above the size"),
+            std::string::npos)
+      << fs.output;
+
   // Errors: what does not fit names the file; nothing is written.
   const std::string none = out_dir() + "/map_none.mesh";
   auto error = [&](const std::string& map_path) {

@@ -22,6 +22,7 @@
 #include "core/simplify.h"
 #include "core/size_map.h"
 #include "core/sizing.h"
+#include "core/test_io_helpers.h"
 #include "core/test_meshes.h"
 
 namespace tetlod {
@@ -227,13 +228,161 @@ TEST(SolFile, ErrorsNameTheFileLineAndWhat) {
             std::string::npos)
       << error("MeshVersionFormatted 2\nSolAtTetrahedra 1 1 1 1\n");
   EXPECT_EQ(error("MeshVersionFormatted 2\nDimension 3\nEnd\n"), "m.sol: no SolAtVertices section");
-  EXPECT_NE(error(std::string("\1\0\0\0\2\0\0\0", 8)).find("binary solution file (.solb)"),
-            std::string::npos);
+  EXPECT_NE(error(std::string("\1\0\0\0\2\0\0\0", 8)).find("m.sol: byte 8: the file ends"),
+            std::string::npos)
+      << error(std::string("\1\0\0\0\2\0\0\0", 8));
   EXPECT_NE(error("Vertices 3").find("not a Medit .sol file"), std::string::npos);
   EXPECT_NE(
       error(head + "1\n1 1\n1\n" + "SolAtVertices\n1\n1 1\n1\n").find("a second SolAtVertices"),
       std::string::npos);
   EXPECT_NE(error(head + "99999999999\n1 1\n1\n").find("m.sol:4:"), std::string::npos);
+}
+
+// FreeFEM's savesol() (libMeshb; tests/data/other_tools/make_freefem.edp) wrote
+// h = 0.1 + 0.2 x + 0.05 y z at the vertices of its cube, as a version 1 .solb (4-byte
+// reals) and as ASCII .sol (6 digits): both read as that function at the vertices of
+// the cube it wrote alongside.
+TEST(SolFile, ReadsFreeFemsBinaryAndAsciiFiles) {
+  TetMesh cube;
+  ASSERT_TRUE(read_mesh(test::data_path("other_tools/meshb_freefem_cube.meshb"), &cube).ok());
+  std::vector<double> binary, ascii;
+  Status s = read_sol_sizes(test::data_path("other_tools/solb_freefem_cube.solb"), &binary);
+  ASSERT_TRUE(s.ok()) << s.message();
+  s = read_sol_sizes(test::data_path("other_tools/sol_freefem_cube.sol"), &ascii);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_EQ(binary.size(), cube.vertex_count());
+  ASSERT_EQ(ascii.size(), cube.vertex_count());
+  double largest = 0;
+  for (size_t v = 0; v < cube.vertex_count(); ++v) {
+    const Vec3& p = cube.positions[v];
+    const double h = 0.1 + 0.2 * p.x + 0.05 * p.y * p.z;
+    EXPECT_EQ(binary[v], double(float(h))) << v;
+    EXPECT_NEAR(ascii[v], h, 5e-6 * h) << v;
+    largest = std::max(largest, binary[v]);
+  }
+  EXPECT_NEAR(largest, 0.35, 1e-7);
+}
+
+// A .solb written by hand: `reals` sizes in SolAtVertices of a file of `version` in
+// this machine's byte order or the other, with other keywords before it.
+std::string solb(int version, bool swap, const std::vector<double>& reals, int type = 1) {
+  test::GmfWriter f(version, swap);
+  f.keyword(3);  // Dimension
+  f.i32(3);
+  f.keyword(59);  // Tangents, skipped: any keyword may be there
+  f.integer(1);
+  f.real(1), f.real(0), f.real(0);
+  f.keyword(62);  // SolAtVertices
+  f.integer(int64_t(reals.size()));
+  f.i32(1);
+  f.i32(type);
+  for (double r : reals) f.real(r);
+  return f.finish();
+}
+
+TEST(SolFile, ReadsBinaryFilesOfEveryVersionInBothByteOrders) {
+  const std::vector<double> sizes{0.5, 1e-3, 2, 1.0 / 3};
+  for (int version = 1; version <= 4; ++version)
+    for (bool swap : {false, true}) {
+      std::vector<double> read;
+      const Status s = parse_sol_sizes(solb(version, swap, sizes), "m.solb", &read);
+      ASSERT_TRUE(s.ok()) << version << swap << ": " << s.message();
+      ASSERT_EQ(read.size(), sizes.size());
+      for (size_t i = 0; i < sizes.size(); ++i)
+        EXPECT_EQ(read[i], version == 1 ? double(float(sizes[i])) : sizes[i]) << version << swap;
+    }
+  // FloatingPointPrecision 64 in a version 1 file: 8-byte reals after it.
+  test::GmfWriter f(1, false);
+  f.keyword(3);
+  f.i32(3);
+  f.keyword(155);
+  f.integer(64);
+  f.keyword(62);
+  f.integer(1);
+  f.i32(1);
+  f.i32(1);
+  f.real64(1.0 / 3);
+  std::vector<double> read;
+  ASSERT_TRUE(parse_sol_sizes(f.finish(), "m.solb", &read).ok());
+  EXPECT_EQ(read, std::vector<double>{1.0 / 3});
+}
+
+TEST(SolFile, BinaryErrorsNameTheFileByteAndWhat) {
+  auto error = [](const std::string& data) {
+    std::vector<double> sizes{7};
+    const Status s = parse_sol_sizes(data, "m.solb", &sizes);
+    EXPECT_EQ(sizes, std::vector<double>{7}) << "changed on error";
+    return s.ok() ? std::string("accepted") : s.message();
+  };
+  auto has = [](const std::string& message, const std::string& words) {
+    return message.rfind("m.solb: byte ", 0) == 0 && message.find(words) != std::string::npos;
+  };
+  // Version 2: the header is 8 bytes, Dimension 4 + 4 + 4, Tangents 4 + 4 + 4 + 24,
+  // SolAtVertices' body starts at byte 64.
+  EXPECT_EQ(error(solb(2, false, {1, 2}, 3)),
+            "m.solb: byte 68: a tensor field (type 3, an anisotropic metric): TetLOD reads "
+            "isotropic sizes, one number a vertex (type 1)");
+  EXPECT_TRUE(has(error(solb(2, true, {1, 2}, 2)), "a vector field (type 2)"));
+  EXPECT_EQ(error(solb(2, false, {1, -2, 3})), "m.solb: byte 84: size 2 is -2: sizes must be > 0");
+  EXPECT_EQ(error(solb(2, false, {1, std::numeric_limits<double>::infinity()})),
+            "m.solb: byte 84: size 2 is inf: sizes must be finite");
+  EXPECT_TRUE(has(error(solb(2, false, {1, std::nan("")})), "size 2 is nan"));
+  EXPECT_EQ(error(solb(3, false, {1}).substr(0, 60)),
+            "m.solb: byte 28: keyword 59: the next keyword's position 64 is past the end of "
+            "the file (60 bytes; truncated file?)")
+      << "(version 3: 8-byte positions)";
+  auto file = [](auto&& body) {
+    test::GmfWriter f(2, false);
+    f.keyword(3);
+    f.i32(3);
+    body(f);
+    return f.finish();
+  };
+  EXPECT_TRUE(has(error(file([](test::GmfWriter& f) {
+                    f.keyword(62);
+                    f.integer(1);
+                    f.i32(2);
+                    f.i32(1);
+                    f.i32(1);
+                    f.real(1), f.real(1);
+                  })),
+                  "2 fields at each vertex: TetLOD reads one, the size (type 1)"));
+  EXPECT_TRUE(has(error(file([](test::GmfWriter& f) {
+                    f.keyword(66);  // SolAtTetrahedra
+                    f.integer(0);
+                    f.i32(1);
+                    f.i32(1);
+                  })),
+                  "SolAtTetrahedra: sizes on other entities than vertices are not read"));
+  EXPECT_TRUE(has(error(file([](test::GmfWriter& f) {
+                    f.keyword(62);
+                    f.integer(5);
+                    f.i32(1);
+                    f.i32(1);
+                    f.real(1);
+                  })),
+                  "SolAtVertices: 5 sizes of 8 bytes do not fit in the 8 bytes"));
+  EXPECT_TRUE(has(error(file([](test::GmfWriter& f) {
+                    for (int k = 0; k < 2; ++k) {
+                      f.keyword(62);
+                      f.integer(1);
+                      f.i32(1);
+                      f.i32(1);
+                      f.real(1);
+                    }
+                  })),
+                  "a second SolAtVertices section"));
+  EXPECT_EQ(error(file([](test::GmfWriter&) {})), "m.solb: no SolAtVertices section");
+  test::GmfWriter flat(2, false);
+  flat.keyword(3);
+  flat.i32(2);
+  EXPECT_TRUE(has(error(flat.finish()), "only 3-dimensional sizes are supported (Dimension 2)"));
+  // Every truncation of a valid file fails, naming the file.
+  const std::string whole = solb(4, true, {1, 2, 3});
+  for (size_t n = 0; n < whole.size(); ++n) {
+    const std::string message = error(whole.substr(0, n));
+    EXPECT_EQ(message.rfind("m.solb", 0), 0u) << n << ": " << message;
+  }
 }
 
 // The run keeps every tet it makes within the map's size at its centroid, and the
