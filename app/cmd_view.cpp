@@ -13,7 +13,7 @@ namespace {
 
 constexpr const char* kViewUsage =
     "usage: tetlod view [FILE] [--script SCRIPT] [--size WxH] [--hide M,M,...]\n"
-    "                   [--interactive-scale F] [--size-map S.sol]\n"
+    "                   [--interactive-scale F] [--size-map S.sol [--size-map-mesh M]]\n"
     "\n"
     "Opens the interactive viewer (a window: needs a display) on FILE, or on the bundled\n"
     "motor model when none is given: threshold sliders, simplification in the background,\n"
@@ -29,6 +29,8 @@ constexpr const char* kViewUsage =
     "  --interactive-scale F  resolution of the 3D view while it moves, in (0, 1] (0.5)\n"
     "  --size-map S.sol       sizes at FILE's vertices (as 'tetlod simplify --size-map'):\n"
     "                         the panel's sizing starts as that size map\n"
+    "  --size-map-mesh M      the mesh whose vertices those sizes are at, if not FILE's\n"
+    "                         (a background mesh over the same domain)\n"
     "Mouse: left drag orbits, right/middle or shift-left drag pans, the wheel zooms;\n"
     "keys F (fit), 0 (iso), 1/2/3 (x/y/z views).\n";
 
@@ -78,6 +80,9 @@ int cmd_view(const Args& args) {
       options.height = static_cast<int>(*h);
     } else if (a == "--size-map") {
       if (!parse_option_value(args, &i, "--size-map", &options.size_map_path)) return kExitUsage;
+    } else if (a == "--size-map-mesh") {
+      if (!parse_option_value(args, &i, "--size-map-mesh", &options.size_map_mesh_path))
+        return kExitUsage;
     } else if (a == "--hide") {
       if (!parse_option_value(args, &i, "--hide", &value)) return kExitUsage;
       std::vector<int32_t> ids;
@@ -106,6 +111,11 @@ int cmd_view(const Args& args) {
       std::fprintf(stderr, "tetlod view: more than one FILE given\n\n%s", kViewUsage);
       return kExitUsage;
     }
+  }
+  if (!options.size_map_mesh_path.empty() && options.size_map_path.empty()) {
+    std::fprintf(stderr, "tetlod view: --size-map-mesh %s: give the sizes too (--size-map)\n",
+                 options.size_map_mesh_path.c_str());
+    return kExitUsage;
   }
   if (options.mesh_path.empty() && !options.has_script) options.mesh_path = default_model();
   options.hidden_materials = hidden;

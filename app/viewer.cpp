@@ -223,7 +223,8 @@ double run_seconds(const SimplifyResult& result) {
 struct Job {
   bool is_load = false;
   std::string path;
-  std::string size_map_path;  // a load's --size-map, if any
+  std::string size_map_path;       // a load's --size-map, if any
+  std::string size_map_mesh_path;  // and its --size-map-mesh
   std::thread thread;
   std::atomic<bool> cancel{false};
   std::atomic<bool> done{false};
@@ -302,7 +303,8 @@ class Viewer {
   explicit Viewer(const ViewerOptions& options)
       : options_(options),
         hidden_names_(options.hidden_names),
-        size_map_path_(options.size_map_path) {
+        size_map_path_(options.size_map_path),
+        size_map_mesh_path_(options.size_map_mesh_path) {
     view_.hidden_materials = options.hidden_materials;
     std::sort(view_.hidden_materials.begin(), view_.hidden_materials.end());
   }
@@ -353,6 +355,7 @@ class Viewer {
   ViewerOptions options_;
   std::vector<std::string> hidden_names_;  // --hide by name, until the first mesh is read
   std::string size_map_path_;              // --size-map, until the first load starts
+  std::string size_map_mesh_path_;         // --size-map-mesh, as long
   std::string hide_note_;                  // the names it lacked, for the status line
   std::unique_ptr<render::WindowContext> window_;
   std::unique_ptr<render::Renderer> renderer_;
@@ -665,7 +668,9 @@ void Viewer::start_load(const std::string& path) {
   job_->is_load = true;
   job_->path = path;
   job_->size_map_path = std::move(size_map_path_);  // for the first mesh opened only
+  job_->size_map_mesh_path = std::move(size_map_mesh_path_);
   size_map_path_.clear();
+  size_map_mesh_path_.clear();
   Job* job = job_.get();
   const ui::ViewSettings view = view_;
   job->thread = std::thread([job, view] {
@@ -724,7 +729,19 @@ void Viewer::start_load(const std::string& path) {
           std::lock_guard<std::mutex> lock(job->mutex);
           job->phase = "reading the size map";
         }
-        s = read_size_map(job->size_map_path, *read, &info.validation, &size_map);
+        const std::string& other_path = job->size_map_mesh_path;
+        if (other_path.empty()) {
+          s = read_size_map(job->size_map_path, *read, &info.validation, &size_map);
+        } else {
+          // Sizes at a background mesh's vertices, as `simplify --size-map-mesh` reads them.
+          TetMesh other;
+          ReadInfo other_info;
+          s = read_mesh(other_path, &other, &other_info);
+          if (!s) s = Status::error("--size-map-mesh: " + s.message());
+          if (s)
+            s = read_size_map(job->size_map_path, other, &other_info.validation, &size_map,
+                              "--size-map-mesh " + other_path);
+        }
       }
       mesh = std::move(read);
     }

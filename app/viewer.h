@@ -23,8 +23,9 @@ struct ViewerOptions {
   // Hidden at start by the name the first mesh opened gives them (looked up once it is read).
   std::vector<std::string> hidden_names;
   // --size-map: a Medit .sol of sizes at the vertices of the first mesh opened, read with
-  // it (the panel's "size map" sizing; a history keeps its own).
-  std::string size_map_path;
+  // it (the panel's "size map" sizing; a history keeps its own), or at the vertices of
+  // --size-map-mesh (a background mesh over the same domain), as the CLI takes them.
+  std::string size_map_path, size_map_mesh_path;
 };
 
 // Runs the window until it is closed (or the script quits). Returns the exit code:

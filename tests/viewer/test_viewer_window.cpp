@@ -337,7 +337,8 @@ TEST(ViewerWindow, TypedThresholdsGiveTheClisMesh) {
 
 // `tetlod view FILE --size-map S.sol`: the panel's sizing starts as that map (capped
 // where it never reaches), and Simplify gives `tetlod simplify --size-map`'s mesh;
-// sizing=uniform leaves it. A history made with a map keeps it: the viewer improves
+// sizing=uniform leaves it; with --size-map-mesh, sizes at a background mesh's vertices
+// give the CLI's mesh too. A history made with a map keeps it: the viewer improves
 // within it as `lod --improve` does, and its panel holds it. Errors name the file or
 // the line.
 TEST(ViewerWindow, SizeMapGivesTheClisMesh) {
@@ -372,6 +373,39 @@ TEST(ViewerWindow, SizeMapGivesTheClisMesh) {
   EXPECT_EQ(viewer.positions, by_cli.positions);
   EXPECT_EQ(viewer.materials, by_cli.materials);
   EXPECT_NE(uniform.tets, by_cli.tets);
+
+  // Sizes at a background mesh's vertices (here the CLI's level, as an adaptive loop
+  // would give them): the viewer's run equals `simplify --size-map-mesh`'s.
+  {
+    std::ofstream sol(dir / "background.sol");
+    sol << "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n"
+        << by_cli.vertex_count() << "\n1 1\n";
+    sol.precision(17);
+    for (const Vec3& p : by_cli.positions) sol << 5 + 0.3 * std::abs(p.x - p.y) << "\n";
+    sol << "End\n";
+  }
+  std::ofstream(dir / "background.script")
+      << "thresholds tolerance=0.05\nsimplify\nsave viewer_bg.mesh\nquit\n";
+  const ViewerRun bg = run_viewer(dir, "'" + motor +
+                                           "' --size-map background.sol --size-map-mesh cli.mesh "
+                                           "--size 320x240 --script background.script");
+  ASSERT_EQ(bg.exit_code, 0) << bg.output;
+  const test::CommandResult bg_cli =
+      test::run_tetlod("simplify '" + motor + "' -o '" + (dir / "cli_bg.mesh").string() +
+                       "' --size-map '" + (dir / "background.sol").string() +
+                       "' --size-map-mesh '" + (dir / "cli.mesh").string() + "' --tolerance 0.05");
+  ASSERT_EQ(bg_cli.code, 0) << bg_cli.output;
+  TetMesh viewer_bg, cli_bg;
+  ASSERT_TRUE(read_mesh((dir / "viewer_bg.mesh").string(), &viewer_bg).ok());
+  ASSERT_TRUE(read_mesh((dir / "cli_bg.mesh").string(), &cli_bg).ok());
+  EXPECT_EQ(viewer_bg.tets, cli_bg.tets);
+  EXPECT_EQ(viewer_bg.positions, cli_bg.positions);
+  EXPECT_NE(viewer_bg.tets, viewer.tets);
+  const test::CommandResult alone = test::run_tetlod("view '" + motor + "' --size-map-mesh '" +
+                                                     (dir / "cli.mesh").string() + "'");
+  EXPECT_EQ(alone.code, 2) << alone.output;
+  EXPECT_NE(alone.output.find("give the sizes too (--size-map)"), std::string::npos)
+      << alone.output;
 
   // The history's map, kept by the viewer's improve as by lod's.
   ASSERT_EQ(std::system(("cd '" + dir.string() + "' && " + tetlod +
