@@ -355,7 +355,7 @@ class Viewer {
   ViewerOptions options_;
   std::vector<std::string> hidden_names_;  // --hide by name, until the first mesh is read
   std::string size_map_path_;              // --size-map, until the first load starts
-  std::string size_map_mesh_path_;         // --size-map-mesh, as long
+  std::string size_map_mesh_path_;         // and --size-map-mesh, as long
   std::string hide_note_;                  // the names it lacked, for the status line
   std::unique_ptr<render::WindowContext> window_;
   std::unique_ptr<render::Renderer> renderer_;
