@@ -13,7 +13,8 @@ namespace tetlod::app {
 namespace {
 
 constexpr const char* kRenderUsageHead =
-    "usage: tetlod render FILE -o SHOT.png [--width W --height H] [--color stretch|material]\n"
+    "usage: tetlod render FILE -o SHOT.png [--width W --height H]\n"
+    "                     [--color stretch|material|size]\n"
     "                     [--materials 1,2,3 | --hide 1] [--cut AXIS=VALUE | --cut-plane "
     "NX,NY,NZ,D]\n"
     "                     [--view iso|x|y|z | --camera EX,EY,EZ,TX,TY,TZ] [--wireframe]\n"

@@ -14,9 +14,11 @@ namespace tetlod::app {
 
 const char* const kRenderFlagsHelp =
     "  --width W --height H   image size in pixels, 16 to 4096\n"
-    "  --color stretch|material   face colour: the tet's stretch (default) or material\n"
-    "  --colormap viridis|turbo   colour map for stretch (default viridis)\n"
-    "  --range LO,HI          stretch at the ends of the colour map (default 0,1)\n"
+    "  --color stretch|material|size   face colour: the tet's stretch (default), material,\n"
+    "                         or size (its longest edge, in the mesh's units)\n"
+    "  --colormap viridis|turbo   colour map for stretch or size (default viridis)\n"
+    "  --range LO,HI          stretch or size at the ends of the colour map (default: 0,1\n"
+    "                         for stretch, the drawn tets' smallest and largest size)\n"
     "  --materials 1,2,3      show only these materials (ids, or the input's names)\n"
     "  --hide 1,air           hide these materials (e.g. the air)\n"
     "  --cut AXIS=VALUE       keep whole tets with centroid AXIS <= VALUE (AXIS x, y or z;\n"
@@ -78,8 +80,10 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
       s.draw.color_mode = render::ColorMode::kStretch;
     } else if (v == "material") {
       s.draw.color_mode = render::ColorMode::kMaterial;
+    } else if (v == "size") {
+      s.draw.color_mode = render::ColorMode::kSize;
     } else {
-      return bad_value("stretch or material");
+      return bad_value("stretch, material or size");
     }
   } else if (a == "--colormap") {
     if (!value()) return OptionResult::kError;
@@ -96,6 +100,7 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
     if (!d || d->size() != 2 || (*d)[0] >= (*d)[1]) return bad_value("LO,HI with LO < HI");
     s.draw.range_min = (*d)[0];
     s.draw.range_max = (*d)[1];
+    s.size_range_from_faces = false;
   } else if (a == "--materials" || a == "--hide") {
     if (!value()) return OptionResult::kError;
     const bool shown = a == "--materials";

@@ -395,7 +395,9 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     const std::string hi = format_value(settings.range_max);
     add_text(&v, x0, y1 + 3 * scale, lo, ink, scale);
     add_text(&v, x0 + bar_w - text_pixels(hi, scale), y1 + 3 * scale, hi, ink, scale);
-    const std::string title = settings.color_mode == ColorMode::kField ? "|E|" : "stretch";
+    const std::string title = settings.color_mode == ColorMode::kField  ? "|E|"
+                              : settings.color_mode == ColorMode::kSize ? "size"
+                                                                        : "stretch";
     add_text(&v, x0 + 0.5f * (bar_w - text_pixels(title, scale)), y1 + 3 * scale, title, ink,
              scale);
   }

@@ -16,10 +16,11 @@
 
 namespace tetlod::render {
 
-// kStretch and kField both map the per-vertex scalar through the colour map between
-// range_min and range_max; they differ in the legend's title ("stretch" or "|E|", the
-// field magnitude of an electrostatic solve, core/electrostatics.h).
-enum class ColorMode { kStretch, kMaterial, kField };
+// kStretch, kField and kSize map the per-vertex scalar through the colour map between
+// range_min and range_max; they differ in the legend's title ("stretch"; "|E|", the
+// field magnitude of an electrostatic solve, core/electrostatics.h; "size", the tet's
+// longest edge, in model units).
+enum class ColorMode { kStretch, kMaterial, kField, kSize };
 
 // How to draw (no rebuild of the buffers needed to change any of these).
 struct DrawSettings {

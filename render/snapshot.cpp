@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/adjacency.h"
+#include "core/metrics.h"
 
 namespace tetlod::render {
 
@@ -24,7 +25,14 @@ PreparedMesh prepare_mesh(TetMesh mesh) {
   PreparedMesh prepared;
   prepared.mesh = std::move(mesh);
   build_face_neighbors(prepared.mesh, &prepared.neighbors);
-  prepared.stretch = tet_stretches(prepared.mesh);
+  const TetMesh& m = prepared.mesh;
+  prepared.stretch.resize(m.tet_count());
+  prepared.size.resize(m.tet_count());
+  for (size_t t = 0; t < m.tet_count(); ++t) {
+    const TetShape shape = tet_shape(m, m.tets[t]);
+    prepared.stretch[t] = static_cast<float>(shape.stretch);
+    prepared.size[t] = static_cast<float>(shape.size);
+  }
   return prepared;
 }
 
@@ -67,9 +75,19 @@ Status check_drawable(const TetMesh& mesh) {
 Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
                       const SnapshotSettings& settings) {
   SurfaceBuffers buffers;
-  build_surface(mesh.surface_input(), settings.filter, &buffers);
+  SurfaceInput input = mesh.surface_input();
+  const bool by_size = settings.draw.color_mode == ColorMode::kSize;
+  if (by_size) input.values = mesh.size.data();
+  build_surface(input, settings.filter, &buffers);
   renderer->upload(buffers);
   DrawSettings draw = settings.draw;
+  if (by_size && settings.size_range_from_faces && !buffers.triangles.empty()) {
+    const auto [lo, hi] = std::minmax_element(
+        buffers.triangles.begin(), buffers.triangles.end(),
+        [](const SurfaceVertex& a, const SurfaceVertex& b) { return a.stretch < b.stretch; });
+    draw.range_min = lo->stretch;
+    draw.range_max = hi->stretch > lo->stretch ? hi->stretch : lo->stretch * 1.001 + 1e-30;
+  }
   if (settings.filter.highlight) draw.highlight_below = settings.filter.highlight_below;
   const Camera camera = snapshot_camera(mesh, buffers, settings.view);
   if (!renderer->draw(draw, camera, settings.width, settings.height)) return {};

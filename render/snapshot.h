@@ -13,11 +13,12 @@
 
 namespace tetlod::render {
 
-// A mesh with what drawing needs derived once: face neighbours and stretches.
+// A mesh with what drawing needs derived once: face neighbours, stretches and sizes.
 struct PreparedMesh {
   TetMesh mesh;
   std::vector<uint32_t> neighbors;  // 4 per tet
   std::vector<float> stretch;       // per tet
+  std::vector<float> size;          // per tet: its longest edge
 
   SurfaceInput surface_input() const;
 };
@@ -37,6 +38,9 @@ struct SnapshotSettings {
   SurfaceFilter filter;
   DrawSettings draw;
   ViewSpec view;
+  // With ColorMode::kSize, the colour map spans the drawn faces' sizes (smallest to
+  // largest) instead of draw.range_min..range_max.
+  bool size_range_from_faces = true;
 };
 
 // The camera `settings.view` gives for `buffers` (framed on the shown materials'

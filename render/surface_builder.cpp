@@ -15,7 +15,7 @@ constexpr uint8_t kHighlighted = 4;
 void emit_face(const SurfaceInput& input, uint32_t tet, int corner,
                std::vector<SurfaceVertex>* out) {
   const Tet& t = input.tets[tet];
-  const float stretch = input.stretch[tet];
+  const float stretch = input.values ? input.values[tet] : input.stretch[tet];
   const auto material = static_cast<uint32_t>(input.materials[tet]);
   for (int k = 0; k < 3; ++k) {
     const Vec3& p = input.positions[t[kTetFace[corner][k]]];

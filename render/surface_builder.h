@@ -63,6 +63,7 @@ struct SurfaceInput {
   const uint8_t* alive = nullptr;       // null: every tet is alive
   const uint32_t* neighbors = nullptr;  // 4 per tet (core/adjacency.h), of this state
   const float* stretch = nullptr;       // one per tet (core/metrics.h)
+  const float* values = nullptr;        // one per tet: the colour's scalar, if not stretch
   size_t vertex_count = 0;
   size_t tet_count = 0;
 };
@@ -70,7 +71,7 @@ struct SurfaceInput {
 // One corner of a drawn triangle (20 bytes; the layout of the vertex buffer).
 struct SurfaceVertex {
   float position[3];
-  float stretch;      // of the face's tet
+  float stretch;      // of the face's tet (or SurfaceInput::values')
   uint32_t material;  // of the face's tet
 };
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "app/cli_runner.h"
 #include "core/io/mesh_io.h"
+#include "core/test_meshes.h"
 #include "render/image.h"
 
 namespace tetlod {
@@ -257,6 +259,48 @@ TEST(CliRender, AnyModelSizeDrawsTheSamePicture) {
         << r.output;
     EXPECT_FALSE(fs::exists(out_dir() + "/out_of_range.png"));
   }
+}
+
+// --color size: a face takes its tet's longest edge, the colour map spanning the drawn
+// tets' sizes (or --range): two cubes, the right one stretched 2.5x along x (tets
+// 2.87 long against 1.73), seen from +z, come out in the map's two ends (viridis: dark
+// purple, yellow); with --range 0,100 both are at its low end.
+TEST(CliRender, ColorsBySize) {
+  TetMesh mesh = test::make_grid_mesh(2, 1, 1, [](int, int, int) { return 1; });
+  for (Vec3& p : mesh.positions)
+    if (p.x > 1.5) p.x = 3.5;
+  const std::string in = out_dir() + "/two_sizes.mesh", out = out_dir() + "/two_sizes.png";
+  ASSERT_TRUE(write_mesh(in, mesh).ok());
+  auto picture = [&](const std::string& flags) {
+    fs::remove(out);
+    const CommandResult r = run("render " + in + " --view z --no-legend --width 200 --height 200 " +
+                                flags + " -o " + out);
+    EXPECT_EQ(r.code, 0) << r.output;
+    render::Image image;
+    EXPECT_TRUE(render::read_png(out, &image).ok());
+    return image;
+  };
+  // Green at a fraction of the way across the drawn box, along the middle row: viridis'
+  // low end has almost none (1 of 255), its high end most (231).
+  auto green = [](const render::Image& image, double x) {
+    const int y = image.height / 2;
+    int left = image.width, right = -1;
+    for (int i = 0; i < image.width; ++i) {
+      const uint8_t* p = image.pixel(i, y);
+      if (p[0] != 255 || p[1] != 255 || p[2] != 255) left = std::min(left, i), right = i;
+    }
+    EXPECT_GT(right - left, image.width / 3) << "the box is drawn across the picture";
+    return int(image.pixel(left + int(x * (right - left)), y)[1]);
+  };
+  const render::Image by_size = picture("--color size");
+  ASSERT_EQ(by_size.width, 200);
+  EXPECT_LT(green(by_size, 0.1), 40) << "the small tets' end";
+  EXPECT_GT(green(by_size, 0.8), 150) << "the large tets' end";
+  const render::Image ranged = picture("--color size --range 0,100");
+  EXPECT_LT(green(ranged, 0.1), 40);
+  EXPECT_LT(green(ranged, 0.8), 40);
+  const render::Image by_stretch = picture("--color stretch");
+  EXPECT_GT(std::abs(green(by_stretch, 0.8) - green(by_size, 0.8)), 50);
 }
 
 // --materials and --hide take the input's names as well as ids.
