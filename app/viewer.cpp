@@ -150,14 +150,31 @@ bool same_filter(const render::SurfaceFilter& a, const render::SurfaceFilter& b)
          a.highlight == b.highlight && (!a.highlight || a.highlight_below == b.highlight_below);
 }
 
+// The smallest and largest scalar of the drawn faces ({0, 1} if none is drawn).
+std::pair<double, double> drawn_range(const std::vector<render::SurfaceVertex>& triangles) {
+  if (triangles.empty()) return {0, 1};
+  float lo = triangles[0].stretch, hi = lo;
+  for (const render::SurfaceVertex& v : triangles) {
+    lo = std::min(lo, v.stretch);
+    hi = std::max(hi, v.stretch);
+  }
+  return {lo, hi > lo ? double(hi) : double(lo) * 1.001 + 1e-30};
+}
+
 // `field_max` > 0: the field |E| is on the surface, drawn over [0, field_max]; else a
-// field colour mode falls back to stretch (nothing solved, or a stale solve).
-render::DrawSettings make_draw_settings(const ui::ViewSettings& view, double field_max) {
+// field colour mode falls back to stretch (nothing solved, or a stale solve). Sizes
+// are drawn over `size_range`, the drawn faces' (drawn_range()).
+render::DrawSettings make_draw_settings(const ui::ViewSettings& view, double field_max,
+                                        std::pair<double, double> size_range) {
   render::DrawSettings draw;
   draw.color_mode = view.color_mode;
   draw.color_map = view.color_map;
   draw.range_min = view.range_min;
   draw.range_max = std::max(view.range_max, view.range_min + 1e-6f);
+  if (view.color_mode == render::ColorMode::kSize) {
+    draw.range_min = size_range.first;
+    draw.range_max = size_range.second;
+  }
   if (view.color_mode == render::ColorMode::kField) {
     if (field_max > 0) {
       draw.range_min = 0;
@@ -332,6 +349,8 @@ class Viewer {
   void poll_solve();
   bool field_shown() const;  // the last solve is of the displayed level
   double field_range_max() const;
+  // The drawn faces' sizes, while the faces are coloured by size.
+  std::pair<double, double> size_range() const;
   void sync_field_colors();
   Status report_analysis(const std::string& path) const;
   struct ViewPixels {
@@ -1198,7 +1217,7 @@ void Viewer::draw_scene(int fb_width, int fb_height) {
   gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (!scene_) return;
   const ViewPixels view = view_pixels(fb_width, fb_height);
-  const render::DrawSettings draw = make_draw_settings(view_, field_range_max());
+  const render::DrawSettings draw = make_draw_settings(view_, field_range_max(), size_range());
   const render::Camera camera = camera_.camera();
   const bool camera_moved = !same_camera(camera, drawn_camera_);
   if (camera_moved) interacting_ = true;
@@ -1228,7 +1247,8 @@ Status Viewer::screenshot(const std::string& path, int width, int height) {
     width = view.width;
     height = view.height;
   }
-  renderer_->draw(make_draw_settings(view_, field_range_max()), camera_.camera(), width, height);
+  renderer_->draw(make_draw_settings(view_, field_range_max(), size_range()), camera_.camera(),
+                  width, height);
   const render::Image image = renderer_->read_pixels();
   needs_redraw_ = true;  // the targets now have the screenshot's size
   return render::write_png(path, image);
@@ -1438,10 +1458,22 @@ double Viewer::field_range_max() const {
   return top > 0 ? top : 1;  // a zero field: any range shows it
 }
 
+std::pair<double, double> Viewer::size_range() const {
+  if (!scene_ || view_.color_mode != render::ColorMode::kSize) return {0, 1};
+  return drawn_range(scene_->surface.triangles());
+}
+
 // Puts the |E| values on the surface while the field colour mode is on and the
-// displayed level is the solved one; takes them off otherwise.
+// displayed level is the solved one; takes them off otherwise. Colours by size in
+// the size colour mode.
 void Viewer::sync_field_colors() {
   if (!scene_) return;
+  const bool by_size = view_.color_mode == render::ColorMode::kSize;
+  if (by_size != scene_->surface.color_by_size()) {
+    scene_->surface.set_color_by_size(by_size);
+    renderer_->update_triangles(scene_->surface.triangles(), scene_->surface.take_triangle_dirty());
+    needs_redraw_ = true;
+  }
   const bool want = view_.color_mode == render::ColorMode::kField && field_shown();
   if (want == surface_has_field_ && want == scene_->surface.has_tet_values()) return;
   if (want) {
@@ -1745,6 +1777,7 @@ Status Viewer::run_action(const ScriptAction& a) {
     case Kind::kColor:
       view_.color_mode = a.word == "material" ? render::ColorMode::kMaterial
                          : a.word == "field"  ? render::ColorMode::kField
+                         : a.word == "size"   ? render::ColorMode::kSize
                                               : render::ColorMode::kStretch;
       break;
     case Kind::kFieldRange:

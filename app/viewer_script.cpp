@@ -247,8 +247,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
   } else if (command == "color") {
     a->kind = Kind::kColor;
     if (Status s = p.arg_count(1, 1); !s) return s;
-    if (w[1] != "stretch" && w[1] != "material" && w[1] != "field")
-      return p.error("'color' takes stretch, material or field, got '" + w[1] + "'");
+    if (w[1] != "stretch" && w[1] != "material" && w[1] != "field" && w[1] != "size")
+      return p.error("'color' takes stretch, material, field or size, got '" + w[1] + "'");
     a->word = w[1];
   } else if (command == "colormap") {
     a->kind = Kind::kColormap;

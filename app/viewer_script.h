@@ -21,9 +21,10 @@
 //   cut x|y|z=VALUE [flip] | cut off
 //   hide M | show M                  material visibility, by id or by the mesh's name for
 //                                    it (looked up when the line runs)
-//   color stretch|material|field     range MIN MAX          colormap viridis|turbo
+//   color stretch|material|field|size  range MIN MAX        colormap viridis|turbo
 //                                    (field: |E| of the last solve while it matches the
-//                                    displayed level; stretch otherwise)
+//                                    displayed level; stretch otherwise. size: each tet's
+//                                    longest edge, over the drawn tets' range)
 //   field-range max | P              |E| colour map over [0, max] or [0, percentile P of
 //                                    the solved tets' |E|], 0 < P <= 100
 //   wireframe on|off                 highlight D | highlight off

@@ -157,6 +157,12 @@ void LodSurface::set_tet_values(std::vector<float> values) {
   rewrite_scalars();
 }
 
+void LodSurface::set_color_by_size(bool by_size) {
+  if (by_size == by_size_) return;
+  by_size_ = by_size;
+  if (values_.empty()) rewrite_scalars();
+}
+
 void LodSurface::clear_tet_values() {
   if (values_.empty()) return;
   values_.clear();
@@ -241,7 +247,9 @@ void LodSurface::add_tet(const LodState& state, uint32_t tet) {
   const Tet& t = (*state.tets)[tet];
   const std::vector<Vec3>& p = *state.positions;
   corners_[tet] = t;
-  stretch_[tet] = static_cast<float>(tet_shape(p[t[0]], p[t[1]], p[t[2]], p[t[3]]).stretch);
+  const TetShape shape = tet_shape(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
+  stretch_[tet] = static_cast<float>(shape.stretch);
+  size_[tet] = static_cast<float>(shape.size);
   in_[tet] = 1;
   ++visible_count_;
   for (int corner = 0; corner < 4; ++corner) add_face(face_key(tet, corner), 4 * tet + corner);
@@ -265,6 +273,7 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
   in_.assign(n, 0);
   corners_.resize(n);
   stretch_.assign(n, 0);
+  size_.assign(n, 0);
   highlight_slot_.assign(n, kInvalidIndex);
   visible_count_ = 0;
   // About two distinct faces per tet (interior faces are shared); grows if needed.
@@ -282,8 +291,9 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
     if (!tet_visible(state, t)) continue;
     const Tet& corners = (*state.tets)[t];
     corners_[t] = corners;
-    stretch_[t] = static_cast<float>(
-        tet_shape(p[corners[0]], p[corners[1]], p[corners[2]], p[corners[3]]).stretch);
+    const TetShape shape = tet_shape(p[corners[0]], p[corners[1]], p[corners[2]], p[corners[3]]);
+    stretch_[t] = static_cast<float>(shape.stretch);
+    size_[t] = static_cast<float>(shape.size);
     in_[t] = 1;
     ++visible_count_;
     for (int corner = 0; corner < 4; ++corner) {

@@ -54,6 +54,11 @@ class LodSurface {
   void set_tet_values(std::vector<float> values);
   void clear_tet_values();
   bool has_tet_values() const { return !values_.empty(); }
+  // Colours the drawn faces by their tet's size (its longest edge) instead of its
+  // stretch, where no tet values are set: every drawn slot is rewritten and marked
+  // dirty. Kept through update() and reset().
+  void set_color_by_size(bool by_size);
+  bool color_by_size() const { return by_size_; }
 
   // The vertex ranges written since the last call, sorted and merged (the arrays may
   // also have shrunk; ranges are clamped to the current size). reset() marks all.
@@ -103,9 +108,11 @@ class LodSurface {
   // Makes the face's drawn slot match its owner count.
   void refresh_face(const FaceKey& key, FaceEntry* entry);
   void write_face_slot(uint32_t slot, uint32_t owner);
-  // Rewrites the scalar of every drawn slot from values_ (or stretch_ if empty).
+  // Rewrites the scalar of every drawn slot from values_ (or stretch_ or size_ if empty).
   void rewrite_scalars();
-  float scalar(uint32_t tet) const { return values_.empty() ? stretch_[tet] : values_[tet]; }
+  float scalar(uint32_t tet) const {
+    return !values_.empty() ? values_[tet] : by_size_ ? size_[tet] : stretch_[tet];
+  }
   void add_highlight(uint32_t tet);
   void remove_highlight(uint32_t tet);
   FaceKey face_key(uint32_t tet, int corner) const;
@@ -122,6 +129,8 @@ class LodSurface {
   std::vector<uint8_t> in_;
   std::vector<Tet> corners_;
   std::vector<float> stretch_;
+  std::vector<float> size_;  // of each tet in: its longest edge
+  bool by_size_ = false;
   std::vector<float> values_;  // set_tet_values(); empty: colour by stretch_
   std::vector<uint32_t> highlight_slot_;
   size_t visible_count_ = 0;

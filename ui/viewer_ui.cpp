@@ -111,7 +111,8 @@ void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Com
 void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Command>* commands) {
   int mode = view->color_mode == render::ColorMode::kStretch    ? 0
              : view->color_mode == render::ColorMode::kMaterial ? 1
-                                                                : 2;
+             : view->color_mode == render::ColorMode::kField    ? 2
+                                                                : 3;
   ImGui::Text("Colour by");
   ImGui::SameLine();
   ImGui::RadioButton("stretch", &mode, 0);
@@ -119,9 +120,14 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
   ImGui::RadioButton("material", &mode, 1);
   ImGui::SameLine();
   ImGui::RadioButton("field |E|", &mode, 2);
+  ImGui::SameLine();
+  ImGui::RadioButton("size", &mode, 3);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("each tet's longest edge, over the drawn tets' range: how the sizing grades");
   view->color_mode = mode == 0   ? render::ColorMode::kStretch
                      : mode == 1 ? render::ColorMode::kMaterial
-                                 : render::ColorMode::kField;
+                     : mode == 2 ? render::ColorMode::kField
+                                 : render::ColorMode::kSize;
   if (view->color_mode != render::ColorMode::kMaterial) {
     int map = view->color_map == render::ColorMap::kViridis ? 0 : 1;
     ImGui::Combo("Colour map", &map, "viridis\0turbo\0");
@@ -149,6 +155,8 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
     ImGui::SliderFloat("|E| top (%ile)", &view->field_percentile, 50.0f, 100.0f, "%.1f");
     ImGui::TextWrapped("|E| range [0, %.4g] (max %.4g)", analysis.field_range_max,
                        analysis.field_max);
+  } else if (view->color_mode == render::ColorMode::kSize) {
+    ImGui::TextWrapped("Range: the drawn tets' smallest and largest size");
   } else if (view->color_mode != render::ColorMode::kMaterial) {
     ImGui::DragFloatRange2("Range", &view->range_min, &view->range_max, 0.005f, 0.0f, 1.0f, "%.3f",
                            "%.3f", ImGuiSliderFlags_AlwaysClamp);

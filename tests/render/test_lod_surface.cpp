@@ -64,11 +64,15 @@ const SimplifyResult& simplified_box2() {
   return result;
 }
 
+// `by_size`: the full build coloured by the tets' sizes (render --color size).
 void expect_same_as_full_build(const Lod& lod, const LodSurface& surface,
-                               const SurfaceFilter& filter, const std::string& where) {
+                               const SurfaceFilter& filter, const std::string& where,
+                               bool by_size = false) {
   const PreparedMesh level = prepare_mesh(lod.extract());
   SurfaceBuffers full;
-  build_surface(level.surface_input(), filter, &full);
+  SurfaceInput input = level.surface_input();
+  if (by_size) input.values = level.size.data();
+  build_surface(input, filter, &full);
   ASSERT_EQ(surface.triangles().size(), full.triangles.size()) << where;
   EXPECT_TRUE(canonical(surface.triangles()) == canonical(full.triangles)) << where;
   EXPECT_EQ(surface.visible_tets(), full.visible_tets) << where;
@@ -195,6 +199,35 @@ TEST(LodSurface, TetValuesRecolourTheDrawnFacesUntilTheLevelChanges) {
   surface.update(state, delta);
   EXPECT_FALSE(surface.has_tet_values());
   expect_same_as_full_build(lod, surface, {}, "after an update with values set");
+}
+
+// Coloured by size, every drawn face carries its tet's longest edge through seeks and
+// resets, as a full build with the sizes as its values; back to stretch, as before.
+TEST(LodSurface, ColoursBySizeThroughSeeksAndResets) {
+  const SimplifyResult& r = simplified_box2();
+  Lod lod(r.base, &r.history);
+  LodSurface surface;
+  const LodState state = lod_state(lod);
+  surface.reset(state, {});
+  (void)surface.take_triangle_dirty();
+  surface.set_color_by_size(true);
+  EXPECT_TRUE(surface.color_by_size());
+  const std::vector<DirtyRange> dirty = surface.take_triangle_dirty();
+  ASSERT_EQ(dirty.size(), 1u);
+  EXPECT_EQ(dirty[0].end - dirty[0].begin, surface.triangles().size());
+  expect_same_as_full_build(lod, surface, {}, "sizes at step 0", true);
+  LodDelta delta;
+  for (const size_t target : {lod.step_count(), size_t{0}, lod.step_count() / 3}) {
+    lod.seek(target, &delta);
+    surface.update(state, delta);
+    expect_same_as_full_build(lod, surface, {}, "sizes at step " + std::to_string(target), true);
+  }
+  SurfaceFilter filter;
+  filter.hidden_materials = {1};
+  surface.reset(state, filter);
+  expect_same_as_full_build(lod, surface, filter, "sizes after a reset", true);
+  surface.set_color_by_size(false);
+  expect_same_as_full_build(lod, surface, filter, "stretch again");
 }
 
 }  // namespace
