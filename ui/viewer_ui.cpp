@@ -113,17 +113,19 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
              : view->color_mode == render::ColorMode::kMaterial ? 1
              : view->color_mode == render::ColorMode::kField    ? 2
                                                                 : 3;
+  // Two rows of two (four in one row do not fit the panel).
   ImGui::Text("Colour by");
   ImGui::SameLine();
+  const float column = ImGui::GetCursorPosX();
   ImGui::RadioButton("stretch", &mode, 0);
   ImGui::SameLine();
   ImGui::RadioButton("material", &mode, 1);
-  ImGui::SameLine();
-  ImGui::RadioButton("field |E|", &mode, 2);
-  ImGui::SameLine();
+  ImGui::SetCursorPosX(column);
   ImGui::RadioButton("size", &mode, 3);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("each tet's longest edge, over the drawn tets' range: how the sizing grades");
+  ImGui::SameLine();
+  ImGui::RadioButton("field |E|", &mode, 2);
   view->color_mode = mode == 0   ? render::ColorMode::kStretch
                      : mode == 1 ? render::ColorMode::kMaterial
                      : mode == 2 ? render::ColorMode::kField
