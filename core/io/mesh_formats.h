@@ -141,13 +141,18 @@ inline void finish_vtk_materials(int rank, ParsedMesh* out) {
 }
 
 // The names of materials and surface groups in a .vtk or .vtu, as TetLOD writes them
-// in the dataset's field data and reads them back: the arrays "group_tag" (integers)
-// and "group_name" (strings), row by row a material's id or a group's tag and its
-// name (ParaView shows them as a table in its spreadsheet view, Field Data).
+// in the dataset's field data and reads them back: the arrays "group_tag" (integers),
+// "group_dim" (integers: 3 for a material, 2 for a surface group, as Gmsh's physical
+// dimensions: a material and a group may have the same number) and "group_name"
+// (strings), row by row (ParaView shows them as a table in its spreadsheet view, Field
+// Data). Files without "group_dim" (TetLOD's before 2026-11-28) name by tag both a
+// material and a group that have it.
 inline constexpr std::string_view kVtkNameTagArray = "group_tag";
+inline constexpr std::string_view kVtkNameDimArray = "group_dim";
 inline constexpr std::string_view kVtkNameArray = "group_name";
 struct VtkNameRow {
   int32_t tag = 0;
+  int32_t dim = 3;   // 3: a material; 2: a surface group
   std::string name;  // no NUL bytes
 };
 // The rows to write: the named materials of `mesh` (`names`: WriteOptions'), then
@@ -155,10 +160,11 @@ struct VtkNameRow {
 std::vector<VtkNameRow> vtk_name_rows(const TetMesh& mesh, const SurfaceGroups* surfaces,
                                       const std::vector<MaterialName>* names);
 // After the reader made the mesh and its surface groups: the names of `tags` (read
-// from the two arrays) given to the materials and groups of those tags; others are
-// ignored, and arrays of unequal length are ignored with a note.
-void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<std::string>& names,
-                     ParsedMesh* out);
+// from the arrays) given to the materials (`dims` 3) and groups (2) of those tags, or
+// with no `dims` to both; others are ignored, and arrays of unequal length are
+// ignored with a note.
+void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<int64_t>& dims,
+                     const std::vector<std::string>& names, ParsedMesh* out);
 
 // A name from a file as valid UTF-8: each byte that does not start or continue a
 // well-formed sequence becomes '?' (so that JSON, meshio and Gmsh take what is

@@ -65,9 +65,9 @@
 //  - VTK legacy (3.0 and 5.1 cell layouts) and VTK XML: cell type 10 (tet) and 24
 //    (quadratic tet: its four corners) are read, other cells skipped; material =
 //    cell data array "material" (legacy: SCALARS or FIELD), else 0. The names of
-//    materials and surface groups: the dataset's field data arrays "group_tag" and
-//    "group_name", as TetLOD writes them (kVtkNameTagArray in mesh_formats.h); other
-//    field data, and string arrays anywhere, are skipped.
+//    materials and surface groups: the dataset's field data arrays "group_tag",
+//    "group_dim" and "group_name", as TetLOD writes them (kVtkNameTagArray in mesh_formats.h);
+//    other field data, and string arrays anywhere, are skipped.
 // A file cut short either fails to read or, when the cut removed only text that
 // carries no mesh data (Medit `End`, trailing comments, cell data after
 // "material", sections after $EndElements in .msh), reads as the full mesh. A
@@ -191,8 +191,8 @@ struct WriteOptions {
   // the format has a place for them: .msh physical volume names ("material_<m>" for
   // a material without one, and always for material 0, whose Gmsh tag is not its
   // id); .inp element sets <NAME>_<m> (MATERIAL_<m> without); .vtk and .vtu field
-  // data "group_tag" and "group_name", row by row, with the surface groups'. Names of materials the
-  // mesh does not have are ignored; characters the format cannot hold become '_'.
+  // data "group_tag", "group_dim" and "group_name", row by row, with the surface groups'. Names of
+  // materials the mesh does not have are ignored; characters the format cannot hold become '_'.
   const std::vector<MaterialName>* material_names = nullptr;
 };
 

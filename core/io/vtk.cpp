@@ -600,6 +600,8 @@ class VtkLegacyParser {
         if (!read_strings(value_count, &names_)) return false;
       } else if (dataset && array_name == kVtkNameTagArray && integer_type(type)) {
         if (!read_integers(value_count, type, &name_tags_)) return false;
+      } else if (dataset && array_name == kVtkNameDimArray && integer_type(type)) {
+        if (!read_integers(value_count, type, &name_dims_)) return false;
       } else if (strings) {
         if (!read_strings(value_count, nullptr)) return false;
       } else if (binary_ ? !skip_binary(value_count, type, "field array")
@@ -752,12 +754,13 @@ class VtkLegacyParser {
     if (has_materials_) finish_vtk_materials(material_rank_, out_);
     if (!has_materials_ && !cell_arrays_.empty())
       out_->notes.push_back(no_material_note(cell_arrays_));
-    apply_vtk_names(name_tags_, names_, out_);
+    apply_vtk_names(name_tags_, name_dims_, names_, out_);
     return true;
   }
 
   std::string_view text_;
   std::vector<int64_t> name_tags_;  // the field data's kVtkNameTagArray
+  std::vector<int64_t> name_dims_;  // kVtkNameDimArray
   std::vector<std::string> names_;  // and kVtkNameArray
   TextScanner scanner_;
   ParsedMesh* out_;
@@ -864,24 +867,24 @@ void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh*
 std::vector<VtkNameRow> vtk_name_rows(const TetMesh& mesh, const SurfaceGroups* surfaces,
                                       const std::vector<MaterialName>* names) {
   std::vector<VtkNameRow> rows;
-  auto add = [&](int32_t tag, std::string name) {
+  auto add = [&](int32_t tag, int32_t dim, std::string name) {
     std::replace(name.begin(), name.end(), '\0', '_');
-    rows.push_back({tag, std::move(name)});
+    rows.push_back({tag, dim, std::move(name)});
   };
   if (names) {
     std::vector<int32_t> present = mesh.materials;
     std::sort(present.begin(), present.end());
     for (const MaterialName& m : *names)
       if (!m.name.empty() && std::binary_search(present.begin(), present.end(), m.material))
-        add(m.material, m.name);
+        add(m.material, 3, m.name);
   }
   if (surfaces)
-    for (const SurfaceGroup& g : surfaces->groups) add(g.tag, g.name);
+    for (const SurfaceGroup& g : surfaces->groups) add(g.tag, 2, g.name);
   return rows;
 }
 
-void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<std::string>& names,
-                     ParsedMesh* out) {
+void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<int64_t>& dims,
+                     const std::vector<std::string>& names, ParsedMesh* out) {
   if (tags.empty() && names.empty()) return;
   if (tags.size() != names.size()) {
     out->notes.push_back("the field data's " + std::string(kVtkNameTagArray) + " and " +
@@ -889,6 +892,14 @@ void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<std::st
                          std::to_string(tags.size()) + " and " + std::to_string(names.size()) +
                          " values: their names are not read");
     return;
+  }
+  const bool has_dims = dims.size() == tags.size();
+  if (!dims.empty() && !has_dims) {
+    out->notes.push_back("the field data's " + std::string(kVtkNameDimArray) + " array has " +
+                         std::to_string(dims.size()) + " values for " +
+                         std::to_string(tags.size()) +
+                         " names: each name goes to the material "
+                         "and the surface group of its tag");
   }
   std::vector<int32_t> present = out->mesh.materials;
   std::sort(present.begin(), present.end());
@@ -902,8 +913,9 @@ void apply_vtk_names(const std::vector<int64_t>& tags, const std::vector<std::st
         tags[i] > std::numeric_limits<int32_t>::max())
       continue;
     const int32_t tag = int32_t(tags[i]);
-    const bool material = std::binary_search(present.begin(), present.end(), tag);
-    const auto group = groups.find(tag);
+    const bool material =
+        (!has_dims || dims[i] == 3) && std::binary_search(present.begin(), present.end(), tag);
+    const auto group = has_dims && dims[i] != 2 ? groups.end() : groups.find(tag);
     if (!material && group == groups.end()) continue;
     const std::string name = valid_utf8(names[i]);
     if (material) material_names.emplace(tag, name);
@@ -1002,9 +1014,11 @@ void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces,
   // The names of the materials and groups (vtk_name_rows()) as the dataset's field data.
   const std::vector<VtkNameRow> rows = vtk_name_rows(mesh, surfaces, names);
   if (!rows.empty()) {
-    out->append("FIELD FieldData 2\n");
+    out->append("FIELD FieldData 3\n");
     r.keywords(std::string(kVtkNameTagArray) + " 1 " + std::to_string(rows.size()) + " int\n");
     for (const VtkNameRow& row : rows) r.record(row.tag);
+    r.keywords(std::string(kVtkNameDimArray) + " 1 " + std::to_string(rows.size()) + " int\n");
+    for (const VtkNameRow& row : rows) r.record(row.dim);
     r.keywords(std::string(kVtkNameArray) + " 1 " + std::to_string(rows.size()) + " string\n");
     for (const VtkNameRow& row : rows) {
       if (!binary) {

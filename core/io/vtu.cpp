@@ -294,8 +294,9 @@ class VtuParser {
     }
   }
 
-  // kNameTags, kNames: the names TetLOD writes in the dataset's field data
-  // (kVtkNameTagArray, kVtkNameArray: integers, and strings as their bytes).
+  // kNameTags, kNameDims, kNames: the names TetLOD writes in the dataset's field data
+  // (kVtkNameTagArray, kVtkNameDimArray, kVtkNameArray: integers, integers, and
+  // strings as their bytes).
   enum class Target {
     kNone,
     kPoints,
@@ -304,6 +305,7 @@ class VtuParser {
     kTypes,
     kMaterial,
     kNameTags,
+    kNameDims,
     kNames
   };
 
@@ -313,8 +315,9 @@ class VtuParser {
     if (parent == "Points") return Target::kPoints;
     if (parent == "FieldData") {
       const std::string_view type = tag.attribute("type");
-      if (name == kVtkNameTagArray && (type.rfind("Int", 0) == 0 || type.rfind("UInt", 0) == 0))
-        return Target::kNameTags;
+      const bool integers = type.rfind("Int", 0) == 0 || type.rfind("UInt", 0) == 0;
+      if (name == kVtkNameTagArray && integers) return Target::kNameTags;
+      if (name == kVtkNameDimArray && integers) return Target::kNameDims;
       if (name == kVtkNameArray && type == "String") return Target::kNames;
       return Target::kNone;
     }
@@ -355,7 +358,8 @@ class VtuParser {
       content = rest.substr(0, end);
     }
     const Target target = target_of(tag, parent);
-    const bool names = target == Target::kNameTags || target == Target::kNames;
+    const bool names =
+        target == Target::kNameTags || target == Target::kNameDims || target == Target::kNames;
     if (target != Target::kNone) {
       if (!seen_piece_ && !names) {
         fail("<DataArray> outside a <Piece>");
@@ -544,6 +548,7 @@ class VtuParser {
         *bound = 64 * cell_count_;  // a generous bound on the points of all cells
         return 0;
       case Target::kNameTags:
+      case Target::kNameDims:
       case Target::kNames:
         *bound = kMaxNameBytes;
         return 0;
@@ -690,14 +695,17 @@ class VtuParser {
         has_materials_ = true;
         return true;
       case Target::kNameTags:
-        name_tags_.resize(count);
+      case Target::kNameDims: {
+        std::vector<int64_t>& read = array.target == Target::kNameTags ? name_tags_ : name_dims_;
+        read.resize(count);
         for (uint64_t i = 0; i < count; ++i) {
           if (!integer(i, std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max(),
-                       &name_tags_[i])) {
+                       &read[i])) {
             return false;
           }
         }
         return true;
+      }
       case Target::kNames:
         name_bytes_.assign(values.data(), count);
         return true;
@@ -756,12 +764,15 @@ class VtuParser {
         has_materials_ = true;
         break;
       case Target::kNameTags:
-        name_tags_.clear();
-        while (ok && !values.at_end() && name_tags_.size() < kMaxNameBytes) {
-          ok = values.read_int(&value, "tag");
-          name_tags_.push_back(value);
+      case Target::kNameDims: {
+        std::vector<int64_t>& read = target == Target::kNameTags ? name_tags_ : name_dims_;
+        read.clear();
+        while (ok && !values.at_end() && read.size() < kMaxNameBytes) {
+          ok = values.read_int(&value, target == Target::kNameTags ? "tag" : "dimension");
+          read.push_back(value);
         }
         break;
+      }
       case Target::kNames:
         name_bytes_.clear();
         while (ok && !values.at_end() && name_bytes_.size() < kMaxNameBytes) {
@@ -858,7 +869,7 @@ class VtuParser {
       names.push_back(name_bytes_.substr(from, to - from));
       from = to + 1;
     }
-    apply_vtk_names(name_tags_, names, out_);
+    apply_vtk_names(name_tags_, name_dims_, names, out_);
   }
 
   // The most bytes of names, or tags, read from the field data.
@@ -881,6 +892,7 @@ class VtuParser {
   std::vector<int32_t> materials_;
   std::vector<std::string> cell_arrays_;  // names of the <CellData> arrays, in file order
   std::vector<int64_t> name_tags_;        // Target::kNameTags
+  std::vector<int64_t> name_dims_;        // Target::kNameDims
   std::string name_bytes_;                // Target::kNames
   // Binary data.
   bool big_endian_ = false;
@@ -1015,6 +1027,8 @@ void write_vtu_cells(const TetMesh& mesh, const MeshFields& fields, const Surfac
     out->append("    <FieldData>\n");
     arrays.add<int32_t>("Int32", kVtkNameTagArray, tuples, rows.size(), 16,
                         [&](size_t i) { return rows[i].tag; });
+    arrays.add<int32_t>("Int32", kVtkNameDimArray, tuples, rows.size(), 16,
+                        [&](size_t i) { return rows[i].dim; });
     auto byte = [&](size_t i) { return uint8_t(bytes[i]); };
     if (binary) {
       arrays.add<uint8_t>("String", kVtkNameArray, tuples, bytes.size(), 32, byte);

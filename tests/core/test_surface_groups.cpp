@@ -421,6 +421,68 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   EXPECT_EQ(info.surface_groups[2].name, "1st _outer_ wall");
 }
 
+// A surface group and a material of the same number (Gmsh numbers each dimension's
+// physical groups apart) keep their own names through .vtk and .vtu (the field data's
+// group_dim says which row is which); a file without group_dim, as TetLOD wrote
+// before, still names the materials.
+TEST(SurfaceGroups, AGroupAndAMaterialOfTheSameNumberKeepTheirNames) {
+  const TetMesh mesh = box2();
+  const SurfaceGroups plain = groups_of(mesh);
+  std::vector<InputSurfaceGroup> input(2);
+  for (size_t g = 0; g < 2; ++g) {
+    input[g].tag = int32_t(g + 1);
+    input[g].name = g == 0 ? "bottom" : "top";
+    for (uint32_t i : plain.groups[g].triangles) {
+      const auto& v = plain.surface[i].v;
+      input[g].triangles.push_back(
+          {mesh.positions[v[2]], mesh.positions[v[1]], mesh.positions[v[0]]});
+    }
+  }
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(mesh, &groups, SurfacePatches(mesh, input)).ok());
+  const std::vector<MaterialName> names = {{1, "air"}, {2, "copper"}};
+  WriteOptions options;
+  options.surface_groups = true;
+  options.groups = &groups;
+  options.material_names = &names;
+  const std::string dir = test::output_dir("surface_groups_same_number");
+  for (const bool binary : {false, true})
+    for (const char* extension : {".vtk", ".vtu"}) {
+      SCOPED_TRACE(std::string(extension) + (binary ? " binary" : ""));
+      options.vtk_binary = binary;
+      const std::string path = dir + "/same" + extension;
+      ASSERT_TRUE(write_mesh(path, mesh, options).ok());
+      TetMesh back;
+      ReadInfo info;
+      ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+      ASSERT_EQ(info.material_names.size(), 2u);
+      EXPECT_EQ(info.material_names[0].name, "air");
+      EXPECT_EQ(info.material_names[1].name, "copper");
+      std::map<int32_t, std::string> by_tag;
+      for (const InputSurfaceGroup& g : info.surface_groups) by_tag[g.tag] = g.name;
+      EXPECT_EQ(by_tag[1], "bottom");
+      EXPECT_EQ(by_tag[2], "top");
+    }
+  // Without group_dim (the ASCII .vtk's lines taken out): the materials' names.
+  options.vtk_binary = false;
+  ASSERT_TRUE(write_mesh(dir + "/same.vtk", mesh, options).ok());
+  std::string text = test::read_text(dir + "/same.vtk");
+  const size_t at = text.find("group_dim");
+  ASSERT_NE(at, std::string::npos);
+  const size_t end = text.find("group_name", at);
+  text.erase(at, end - at);
+  const size_t field = text.find("FIELD FieldData 3");
+  ASSERT_NE(field, std::string::npos);
+  text.replace(field, 17, "FIELD FieldData 2");
+  test::write_text(dir + "/old.vtk", text);
+  TetMesh back;
+  ReadInfo info;
+  const Status s = read_mesh(dir + "/old.vtk", &back, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_EQ(info.material_names.size(), 2u);
+  EXPECT_EQ(info.material_names[0].name, "air");
+}
+
 // Face neighbours a caller already has (validation's, kept in ReadInfo) give the same
 // patches and groups as those built anew.
 TEST(SurfaceGroups, GivenFaceNeighboursGiveTheSameGroups) {
