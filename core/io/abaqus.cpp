@@ -891,6 +891,21 @@ std::string material_set_name(int32_t m, const std::vector<MaterialName>* names)
   return "MATERIAL_" + number;
 }
 
+// A coordinate in at most 20 characters: CalculiX reads each number of a *NODE line
+// from its first 20 (Fortran's f20.0), so "-9.184850993605149e-15" (22) stops it
+// and a 21-digit decimal would lose its last digit. The shortest text that reads back
+// to the same value where it fits (nearly always); else the most digits that fit (13
+// at least, for a 3-digit exponent), a relative change of at most 5e-13.
+void append_inp_real(std::string* out, double value) {
+  constexpr int kWidth = 20;
+  char buffer[32];
+  auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  for (int digits = 16; result.ptr - buffer > kWidth && digits > 0; --digits)
+    result =
+        std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::general, digits);
+  out->append(buffer, result.ptr);
+}
+
 void write_abaqus_surfaces(const SurfaceGroups& surfaces, std::string* out) {
   // Abaqus face labels of C3D4 by the corner opposite the face: S1 = nodes 1-2-3,
   // S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
@@ -952,7 +967,7 @@ void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
     append_number(out, v + 1);
     for (int k = 0; k < 3; ++k) {
       out->append(", ");
-      append_number(out, p[k]);
+      append_inp_real(out, p[k]);
     }
     out->push_back('\n');
   }
