@@ -477,24 +477,53 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
   return "";  // check_params() once the size map, if any, is read too
 }
 
-constexpr char kSizeMapMagic[8] = {'T', 'L', 'S', 'Z', 'M', 'A', 'P', '1'};
+// The size map (sizing.h). TLSZMAP2 (since 2026-11-28): what it was built from, so
+// that the reader builds the same map, value for value: a u64 vertex count, the
+// vertices (3 f64 each), a u64 tet count, the tets (4 u32 each), the sizes (an f64 a
+// vertex). TLSZMAP1 (read only): its values at the base's vertices, over which the
+// reader builds a map, which is the run's only where the base's tets lie inside those
+// the map was built on: not where edge removals or flips made them (a run past the
+// valence), nor for a map over another mesh (--size-map-mesh).
+constexpr char kSizeMapMagicV1[8] = {'T', 'L', 'S', 'Z', 'M', 'A', 'P', '1'};
+constexpr char kSizeMapMagic[8] = {'T', 'L', 'S', 'Z', 'M', 'A', 'P', '2'};
 
-// The size map (sizing.h) as its values at the base's vertices, a u64 count then the
-// f64 values: where the run's map was over the input, the map over the base that the
-// reader builds from them is the same function (linear in each input tet, so in each
-// piece of one: subdivision cut the base from the input), to the rounding of the
-// interpolation; over another mesh (--size-map-mesh), its interpolation at the base.
-bool write_size_map(std::FILE* f, const TetMesh& base, const SizeMap& map) {
+bool write_size_map(std::FILE* f, const SizeMap& map) {
   if (std::fwrite(kSizeMapMagic, 1, 8, f) != 8) return false;
+  const TetMesh& source = map.source();
   ParamsWriter w{f};
-  w.put(uint64_t(base.positions.size()));
-  for (const Vec3& p : base.positions) w.put(map.at(p));
+  w.put(uint64_t(source.positions.size()));
+  for (const Vec3& p : source.positions) w.put(p.x), w.put(p.y), w.put(p.z);
+  w.put(uint64_t(source.tets.size()));
+  for (const Tet& t : source.tets)
+    for (uint32_t v : t) w.put(v);
+  for (double size : map.sizes()) w.put(size);
   return w.ok;
 }
 
-// Reads the values after "TLSZMAP1"; an error message, or "" on success.
-std::string read_size_map(std::FILE* f, uint64_t bytes, std::vector<double>* values) {
+// Reads the block after its magic (`v1`: TLSZMAP1, values only); an error message, or
+// "" on success.
+std::string read_size_map(std::FILE* f, uint64_t bytes, bool v1, TetMesh* mesh,
+                          std::vector<double>* values) {
   ParamsReader r{f};
+  if (!v1) {
+    const uint64_t vertices = r.get_count(bytes, 32);  // a position and a size
+    mesh->positions.resize(vertices);
+    for (uint64_t i = 0; i < vertices && r.ok; ++i) mesh->positions[i] = r.get_vec3();
+    const uint64_t tets = r.get_count(bytes, 16);
+    mesh->tets.resize(tets);
+    for (uint64_t i = 0; i < tets && r.ok; ++i)
+      for (uint32_t& v : mesh->tets[i]) v = r.get<uint32_t>();
+    mesh->materials.assign(mesh->tets.size(), 0);
+    values->resize(vertices);
+    for (uint64_t i = 0; i < vertices && r.ok; ++i) (*values)[i] = r.get<double>();
+    if (!r.ok) return "truncated size map, or a list longer than the file";
+    for (const Vec3& p : mesh->positions)
+      if (!is_finite(p)) return "size map: a vertex that is not finite";
+    for (const Tet& t : mesh->tets)
+      for (uint32_t v : t)
+        if (v >= vertices) return "size map: a tet's vertex out of range";
+    return "";
+  }
   const uint64_t count = r.get_count(bytes, 8);
   values->resize(count);
   for (uint64_t i = 0; i < count && r.ok; ++i) (*values)[i] = r.get<double>();
@@ -525,7 +554,7 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
            write_array(f, history.steps) && write_array(f, history.removed_tets) &&
            write_array(f, history.rewired) && write_array(f, history.moved) &&
            (!params || write_params(f, *params)) &&
-           (!params || !params->sizing.map || write_size_map(f, base, *params->sizing.map)) &&
+           (!params || !params->sizing.map || write_size_map(f, *params->sizing.map)) &&
            (kept.empty() || write_names(f, kept)) &&
            (!patches || (!patches->any() && patches->inside_entries().empty()) ||
             write_patches(f, *patches)) &&
@@ -575,7 +604,8 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   std::vector<MaterialName> saved_names;
   SurfacePatches saved_patches;
   std::vector<double> saved_sizes;
-  bool has_size_map = false;
+  TetMesh size_map_mesh;  // TLSZMAP2's (TLSZMAP1: none, the map is over the base)
+  bool has_size_map = false, size_map_v1 = false;
   int last_block = 0;  // 1 thresholds, 2 size map, 3 names, 4 surface groups, 5 the end
   for (;;) {
     char block_magic[8] = {};
@@ -585,13 +615,15 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
         return Status::error(path + ": truncated history file (it ends before its end block)");
       break;
     }
-    const int block = magic_bytes != 8                                  ? 0
-                      : std::memcmp(block_magic, kParamsMagic, 8) == 0  ? 1
-                      : std::memcmp(block_magic, kSizeMapMagic, 8) == 0 ? 2
-                      : std::memcmp(block_magic, kNamesMagic, 8) == 0   ? 3
-                      : std::memcmp(block_magic, kGroupsMagic, 8) == 0  ? 4
-                      : std::memcmp(block_magic, kEndMagic, 8) == 0     ? (has_end ? 5 : 0)
-                                                                        : 0;
+    const int block = magic_bytes != 8                                 ? 0
+                      : std::memcmp(block_magic, kParamsMagic, 8) == 0 ? 1
+                      : std::memcmp(block_magic, kSizeMapMagic, 8) == 0 ||
+                              std::memcmp(block_magic, kSizeMapMagicV1, 8) == 0
+                          ? 2
+                      : std::memcmp(block_magic, kNamesMagic, 8) == 0  ? 3
+                      : std::memcmp(block_magic, kGroupsMagic, 8) == 0 ? 4
+                      : std::memcmp(block_magic, kEndMagic, 8) == 0    ? (has_end ? 5 : 0)
+                                                                       : 0;
     std::string error;
     if (block <= last_block || (block == 2 && last_block != 1)) {
       error = last_block == 5                 ? "bytes after the end block"
@@ -610,7 +642,8 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
       error = read_params(f, bytes, &*saved_params);
     } else if (block == 2) {
       has_size_map = true;
-      error = read_size_map(f, bytes, &saved_sizes);
+      size_map_v1 = std::memcmp(block_magic, kSizeMapMagicV1, 8) == 0;
+      error = read_size_map(f, bytes, size_map_v1, &size_map_mesh, &saved_sizes);
     } else if (block == 3) {
       error = read_names(f, bytes, &saved_names);
     } else {
@@ -717,12 +750,15 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
         (history->rewired_end(s) - st.rewired_begin) + (history->moved_end(s) - st.moved_begin))
       return bad(at("moved tets missing"));
   }
-  // The saved size map, over the base (a mesh of positive tets, checked above), then
-  // the thresholds as a whole.
+  // The saved size map, over the mesh it was built on (or, TLSZMAP1, the base: a mesh
+  // of positive tets, checked above; SizeMap::build() checks any), then the
+  // thresholds as a whole.
   if (saved_params) {
     if (has_size_map) {
       std::shared_ptr<const SizeMap> map;
-      if (Status s = SizeMap::build(*base, std::move(saved_sizes), &map); !s)
+      if (Status s =
+              SizeMap::build(size_map_v1 ? *base : size_map_mesh, std::move(saved_sizes), &map);
+          !s)
         return bad("size map: " + s.message());
       saved_params->sizing.map = std::move(map);
     }

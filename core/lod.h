@@ -117,8 +117,8 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // `params`, if given: the thresholds the history was made with (all but
 // target_elements, which is about a level), saved after it so that a level can be
 // improved later within them (improve.h) without the user giving them again; a size
-// map among them (sizing.h) is saved as its values at the base's vertices, over which
-// the reader builds it again.
+// map among them (sizing.h) is saved as what it was built from (SizeMap::source(),
+// sizes()), from which the reader builds the same map.
 // `names`, if given and not empty: the input file's names of the materials (sorted,
 // each of a material the base has), saved next, so that levels written later
 // carry them. `patches`, if given and any() (or with inside_entries()): the input
@@ -135,8 +135,9 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
                      const SurfacePatches* patches = nullptr);
 // `params`, if given, receives the saved thresholds, or nullopt for a history saved
 // without them (as every one before 2026-11-24 was); saved thresholds that
-// check_params() refuses, a saved size map that is not a size > 0 at each of the
-// base's vertices, or any byte after them, make the file corrupt. `names`, if
+// check_params() refuses, a saved size map that SizeMap::build() refuses (or, as
+// saved before 2026-11-28, not a size > 0 at each of the base's vertices), or any
+// byte after them, make the file corrupt. `names`, if
 // given, receives the saved material names (empty if none); a name list out of
 // order, of a material the base does not have, or with an empty or over-long name
 // makes the file corrupt. `patches`, if given, receives the saved surface groups (none:

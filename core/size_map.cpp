@@ -56,6 +56,9 @@ Status SizeMap::build(const TetMesh& mesh, std::vector<double> sizes,
     map->largest_ = std::max(map->largest_, sizes[v]);
   }
   map->vertex_count_ = sizes.size();
+  map->source_.positions = mesh.positions;
+  map->source_.tets = mesh.tets;
+  map->sizes_ = sizes;
 
   // The tets in Morton order of their centroids (ties by their order in `mesh`).
   const size_t n = mesh.tets.size();

@@ -40,6 +40,10 @@ class SizeMap {
   double largest() const { return largest_; }
   size_t vertex_count() const { return vertex_count_; }
   size_t tet_count() const { return tets_.size(); }
+  // What it was built from: build(source(), sizes()) makes the same map, value for
+  // value (a history saves these; lod.h).
+  const TetMesh& source() const { return source_; }
+  const std::vector<double>& sizes() const { return sizes_; }
 
  private:
   // What a walk reads of a tet, in one place: barycentric coordinates of p are
@@ -81,6 +85,8 @@ class SizeMap {
   Grid start_grid_;
   std::vector<uint32_t> start_;
   double smallest_ = 0, largest_ = 0;
+  TetMesh source_;  // positions and tets (no materials)
+  std::vector<double> sizes_;
 };
 
 }  // namespace tetlod

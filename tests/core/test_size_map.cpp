@@ -419,41 +419,69 @@ TEST(SizeMap, SimplifierKeepsToTheMap) {
   EXPECT_GT(left, 2 * right) << left << " tets on the fine side, " << right << " on the other";
 }
 
-// A history made with a map carries it (as its values at the base's vertices), so
-// that `lod --improve` keeps to it; a damaged map block is refused, naming it.
+// A history made with a map carries what the map was built from, so that lod
+// --improve keeps to the same map, value for value: over the input, and over another
+// mesh (--size-map-mesh; the values at the base's vertices that histories saved
+// before, TLSZMAP1, still read, gave there another function). Damaged blocks are
+// refused, naming them.
 TEST(SizeMap, HistoriesCarryTheMap) {
   const TetMesh mesh = test::make_grid_mesh(
       6, 3, 3, [](int i, int, int) { return i < 3 ? 1 : 2; }, 1.0 / 3);
-  SimplifyParams p;
-  p.tolerance = 1e-9;
-  p.min_stretch = 0.05;
-  p.max_valence = 40;
-  std::vector<double> sizes;
-  for (const Vec3& v : mesh.positions) sizes.push_back(0.3 + v.x * v.x);
-  p.sizing.map = map_of(mesh, sizes);
-  SimplifyResult r;
-  ASSERT_TRUE(simplify(mesh, p, &r).ok());
+  // The same domain in 12 tets: a background mesh.
+  const TetMesh coarse = test::make_grid_mesh(2, 1, 1, [](int, int, int) { return 1; });
   const std::string dir = std::string(TETLOD_TEST_OUTPUT_DIR) + "/size_map";
   std::filesystem::create_directories(dir);
-  const std::string path = dir + "/with_map.tlh";
-  ASSERT_TRUE(write_history(path, r.base, r.history, &p).ok());
+  std::string bytes;  // the first history's, its base and map
+  TetMesh first_base;
+  std::shared_ptr<const SizeMap> first_map;
+  for (const TetMesh* over : {&mesh, &coarse}) {
+    SCOPED_TRACE(over == &mesh ? "over the input" : "over a background mesh");
+    SimplifyParams p;
+    p.tolerance = 1e-9;
+    p.min_stretch = 0.05;
+    p.max_valence = 40;
+    std::vector<double> sizes;
+    for (const Vec3& v : over->positions) sizes.push_back(0.3 + v.x * v.x);
+    p.sizing.map = map_of(*over, sizes);
+    SimplifyResult r;
+    ASSERT_TRUE(simplify(mesh, p, &r).ok());
+    const std::string path = dir + "/with_map.tlh";
+    ASSERT_TRUE(write_history(path, r.base, r.history, &p).ok());
+    TetMesh base;
+    CollapseHistory history;
+    std::optional<SimplifyParams> read;
+    const Status s = read_history(path, &base, &history, &read);
+    ASSERT_TRUE(s.ok()) << s.message();
+    ASSERT_TRUE(read && read->sizing.map);
+    EXPECT_EQ(read->sizing.map->vertex_count(), over->vertex_count());
+    std::mt19937 rng(5);
+    for (int k = 0; k < 600; ++k) {
+      Vec3 q = point_in(base, base.tets[rng() % base.tets.size()], &rng);
+      if (k % 3 == 0) q = q * 1.5 - Vec3{0.5, 0.25, 0.25};  // outside too
+      ASSERT_EQ(read->sizing.map->at(q), p.sizing.map->at(q)) << k;
+    }
+    if (over == &mesh) {
+      std::ifstream in(path, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), {});
+      first_base = r.base;
+      first_map = p.sizing.map;
+    }
+  }
+
+  // The block, after the thresholds: "TLSZMAP2", the vertex count, the vertices, the
+  // tet count, the tets, the sizes; the end block holds the file's length last.
+  const size_t at = bytes.find("TLSZMAP2");
+  ASSERT_NE(at, std::string::npos);
+  const size_t nv = mesh.vertex_count(), nt = mesh.tet_count();
+  const size_t tets_at = at + 16 + 24 * nv + 8, sizes_at = tets_at + 16 * nt;
+  auto with_length = [](std::string file) {
+    const uint64_t length = file.size();
+    std::memcpy(&file[file.size() - 8], &length, 8);
+    return file;
+  };
   TetMesh base;
   CollapseHistory history;
   std::optional<SimplifyParams> read;
-  Status s = read_history(path, &base, &history, &read);
-  ASSERT_TRUE(s.ok()) << s.message();
-  ASSERT_TRUE(read && read->sizing.map);
-  EXPECT_EQ(read->sizing.map->vertex_count(), r.base.vertex_count());
-  std::mt19937 rng(5);
-  for (int k = 0; k < 300; ++k) {
-    const Vec3 q = point_in(base, base.tets[rng() % base.tets.size()], &rng);
-    ASSERT_NEAR(read->sizing.map->at(q), p.sizing.map->at(q), 1e-12) << k;
-  }
-  // The block: after the thresholds, "TLSZMAP1", the count, then the values.
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), {});
-  const size_t at = bytes.find("TLSZMAP1");
-  ASSERT_NE(at, std::string::npos);
   auto error_with = [&](const std::string& damaged) {
     const std::string other = dir + "/damaged.tlh";
     std::ofstream(other, std::ios::binary) << damaged;
@@ -462,20 +490,47 @@ TEST(SizeMap, HistoriesCarryTheMap) {
   };
   std::string bytes_bad = bytes;
   const double negative = -1;
-  std::memcpy(&bytes_bad[at + 16 + 8 * 4], &negative, 8);
+  std::memcpy(&bytes_bad[sizes_at + 8 * 4], &negative, 8);
   EXPECT_NE(error_with(bytes_bad).find("corrupt history: size map: size 5 (vertex 5) is -1"),
             std::string::npos)
       << error_with(bytes_bad);
   bytes_bad = bytes;
-  const uint64_t fewer = r.base.vertex_count() - 1;
+  const uint32_t beyond = uint32_t(nv);
+  std::memcpy(&bytes_bad[tets_at + 4], &beyond, 4);
+  EXPECT_NE(error_with(bytes_bad).find("size map: a tet's vertex out of range"), std::string::npos)
+      << error_with(bytes_bad);
+  bytes_bad = bytes;
+  const uint64_t fewer = nv - 1;
   std::memcpy(&bytes_bad[at + 8], &fewer, 8);
   EXPECT_NE(error_with(bytes_bad).find("corrupt history"), std::string::npos);
   // Without the thresholds before it.
   const size_t params_at = bytes.find("TLPARAM1");
   ASSERT_NE(params_at, std::string::npos);
-  bytes_bad = bytes.substr(0, params_at) + bytes.substr(at);
+  bytes_bad = with_length(bytes.substr(0, params_at) + bytes.substr(at));
   EXPECT_NE(error_with(bytes_bad).find("a size map without thresholds"), std::string::npos)
       << error_with(bytes_bad);
+
+  // A TLSZMAP1 block (the map's values at the base's vertices) in its place: a map
+  // over the base, the same function over the input's tets to rounding.
+  const size_t block_end = sizes_at + 8 * nv;
+  std::string v1 = "TLSZMAP1";
+  const uint64_t count = first_base.vertex_count();
+  v1.append(reinterpret_cast<const char*>(&count), 8);
+  for (const Vec3& q : first_base.positions) {
+    const double value = first_map->at(q);
+    v1.append(reinterpret_cast<const char*>(&value), 8);
+  }
+  const Status old = (std::ofstream(dir + "/v1.tlh", std::ios::binary)
+                          << with_length(bytes.substr(0, at) + v1 + bytes.substr(block_end)),
+                      read_history(dir + "/v1.tlh", &base, &history, &read));
+  ASSERT_TRUE(old.ok()) << old.message();
+  ASSERT_TRUE(read && read->sizing.map);
+  EXPECT_EQ(read->sizing.map->vertex_count(), first_base.vertex_count());
+  std::mt19937 rng(6);
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 q = point_in(base, base.tets[rng() % base.tets.size()], &rng);
+    ASSERT_NEAR(read->sizing.map->at(q), first_map->at(q), 1e-12) << k;
+  }
 }
 
 }  // namespace
