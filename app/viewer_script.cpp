@@ -1,10 +1,13 @@
 #include "app/viewer_script.h"
 
+#include <sys/stat.h>
+
 #include <fstream>
 #include <optional>
 #include <sstream>
 
 #include "app/cli_util.h"
+#include "core/io/file_access.h"
 #include "core/sizing.h"
 
 namespace tetlod::app {
@@ -432,11 +435,20 @@ Status parse_script_text(const std::string& text, const std::string& name,
 }
 
 Status parse_script(const std::string& path, std::vector<ScriptAction>* actions) {
-  // A script is small; an endless file (/dev/zero) is not one.
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::error(path + ": cannot open the script");
+  // A script is small; an endless file (/dev/zero) is not one. A named pipe (a
+  // shell's <(...)) is read as io::read_file() reads one: one nobody writes to is an
+  // error after a wait, not a wait without end in opening it.
   constexpr size_t kMaxScriptBytes = size_t(16) << 20;
   std::string text;
+  struct stat info;
+  if (stat(path.c_str(), &info) == 0 && S_ISFIFO(info.st_mode)) {
+    if (Status s = io::read_file(path, &text); !s) return s;
+    if (text.size() > kMaxScriptBytes)
+      return Status::error(path + ": more than 16 MiB: not a script");
+    return parse_script_text(text, path, actions);
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status::error(path + ": cannot open the script");
   char buffer[1 << 16];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
     text.append(buffer, size_t(in.gcount()));

@@ -573,15 +573,17 @@ Status write_history(const std::string& path, const TetMesh& base, const Collaps
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
                     std::optional<SimplifyParams>* params, std::vector<MaterialName>* names,
                     SurfacePatches* patches) {
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  std::FILE* f = file.get();
-  if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
+  // A regular file, checked before opening: opening a named pipe would wait for a
+  // writer without end.
   struct stat info;
-  if (fstat(fileno(f), &info) == 0 && !S_ISREG(info.st_mode)) {
+  if (stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) {
     return Status::error(path + ": cannot read: " +
                          (S_ISDIR(info.st_mode) ? "it is a directory"
                                                 : "it is not a regular file (a history is one)"));
   }
+  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+  std::FILE* f = file.get();
+  if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
   std::fseek(f, 0, SEEK_END);
   const long size = std::ftell(f);
   std::fseek(f, 0, SEEK_SET);

@@ -1,6 +1,9 @@
 #include "core/io/file_access.h"
 
+#include <fcntl.h>
+#include <poll.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -15,13 +18,37 @@ std::string reason(int error_number) {
 
 }  // namespace
 
-Status read_file(const std::string& path, std::string* contents) {
+Status read_file(const std::string& path, std::string* contents, int pipe_wait_ms) {
   // Before opening: a device could be endless, and opening some blocks.
   struct stat before;
   if (stat(path.c_str(), &before) == 0 && (S_ISCHR(before.st_mode) || S_ISBLK(before.st_mode)))
     return Status::error(path + ": cannot read: it is a device, not a mesh file");
-  FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) return Status::error(path + ": cannot open: " + reason(errno));
+  // Opened without blocking (a named pipe no program writes to would block open()
+  // for ever); a pipe is then given kPipeWriterSeconds for a writer to send data or
+  // close it (Linux's poll() reports neither while no writer has come), then read,
+  // blocking, to its end: a shell's <(...) is read, a pipe nobody opens is an error.
+  const int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return Status::error(path + ": cannot open: " + reason(errno));
+  struct stat opened;
+  if (fstat(fd, &opened) == 0 && S_ISFIFO(opened.st_mode)) {
+    pollfd wait = {fd, POLLIN, 0};
+    if (poll(&wait, 1, pipe_wait_ms) == 0) {
+      close(fd);
+      const std::string waited = pipe_wait_ms % 1000 == 0
+                                     ? std::to_string(pipe_wait_ms / 1000) + " s"
+                                     : std::to_string(pipe_wait_ms) + " ms";
+      return Status::error(path + ": cannot read: it is a named pipe, and no program wrote to " +
+                           "it within " + waited);
+    }
+  }
+  const int flags = fcntl(fd, F_GETFL);
+  FILE* file =
+      flags < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) < 0 ? nullptr : fdopen(fd, "rb");
+  if (!file) {
+    const int error_number = errno;
+    close(fd);
+    return Status::error(path + ": cannot open: " + reason(error_number));
+  }
   struct stat info;
   if (fstat(fileno(file), &info) != 0) {
     const int error_number = errno;

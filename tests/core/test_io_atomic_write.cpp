@@ -4,10 +4,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
 
+#include "core/io/file_access.h"
 #include "core/io/mesh_io.h"
 #include "core/io/output_files.h"
 #include "core/test_io_helpers.h"
@@ -217,6 +219,22 @@ TEST(IoAtomicWrite, ReadingADeviceIsAnErrorAndAPipeIsRead) {
   ASSERT_TRUE(piped.ok()) << piped.message();
   EXPECT_EQ(mesh.tet_count(), 1u);
   EXPECT_EQ(mesh.materials[0], 7);
+}
+
+// A named pipe that no program opens to write is an error after a wait, not a read
+// that never ends (it blocked in open(), found by a hostile-input test).
+TEST(IoAtomicWrite, ANamedPipeNobodyWritesToIsAnError) {
+  const std::string dir = test::output_dir("atomic_read_lonely_pipe");
+  const std::string fifo = dir + "/lonely.mesh";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::string contents;
+  const auto start = std::chrono::steady_clock::now();
+  const Status status = io::read_file(fifo, &contents, 200);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(status.message(),
+            fifo + ": cannot read: it is a named pipe, and no program wrote to it within 200 ms");
+  EXPECT_LT(seconds, 5);
 }
 
 // What a signal handler calls (app/main.cpp): the temporaries of every set not yet

@@ -251,7 +251,7 @@ TEST(ViewerScript, AnalysisSolveAndReport) {
             "t.script:1: the percentile must be in (0, 100], got '101'");
   EXPECT_EQ(parse_error("field-range\n"), "t.script:1: 'field-range' takes 1 argument(s), got 0");
   EXPECT_EQ(parse_error("color e\n"),
-            "t.script:1: 'color' takes stretch, material or field, got 'e'");
+            "t.script:1: 'color' takes stretch, material, field or size, got 'e'");
 }
 
 TEST(ViewerScript, ErrorsNameTheFileAndLine) {
