@@ -1,9 +1,11 @@
 // tetlod: the command-line tool.
 #include <signal.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <string>
 
 #include "app/commands.h"
@@ -41,6 +43,22 @@ extern "C" void remove_temporaries_and_reraise(int signal_number) {
   std::raise(signal_number);
 }
 
+int run_command(const std::string& command, const tetlod::app::Args& args) {
+  using namespace tetlod::app;
+  if (command == "stats") return cmd_stats(args);
+  if (command == "compare") return cmd_compare(args);
+  if (command == "convert") return cmd_convert(args);
+  if (command == "generate") return cmd_generate(args);
+  if (command == "simplify") return cmd_simplify(args);
+  if (command == "lod") return cmd_lod(args);
+  if (command == "solve") return cmd_solve(args);
+  if (command == "render") return cmd_render(args);
+  if (command == "report") return cmd_report(args);
+  if (command == "view") return cmd_view(args);
+  std::fprintf(stderr, "tetlod: unknown command '%s'\n\n%s", command.c_str(), kUsage);
+  return kExitUsage;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,16 +91,23 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   const Args args(argv + 2, argv + argc);
-  if (command == "stats") return cmd_stats(args);
-  if (command == "compare") return cmd_compare(args);
-  if (command == "convert") return cmd_convert(args);
-  if (command == "generate") return cmd_generate(args);
-  if (command == "simplify") return cmd_simplify(args);
-  if (command == "lod") return cmd_lod(args);
-  if (command == "solve") return cmd_solve(args);
-  if (command == "render") return cmd_render(args);
-  if (command == "report") return cmd_report(args);
-  if (command == "view") return cmd_view(args);
-  std::fprintf(stderr, "tetlod: unknown command '%s'\n\n%s", command.c_str(), kUsage);
-  return kExitUsage;
+  int code = kExitUsage;
+  try {
+    code = run_command(command, args);
+  } catch (const std::bad_alloc&) {
+    // Outputs are staged (core/io/output_files.h): none is half written.
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "tetlod %s: out of memory (ask for less: a larger size, fewer elements, or a "
+                 "smaller mesh)\n",
+                 command.c_str());
+    return kExitBadInput;
+  }
+  // What went to standard output must have got there (a full disk, a closed pipe).
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "tetlod %s: cannot write to standard output: %s\n", command.c_str(),
+                 std::strerror(errno));
+    return kExitBadInput;
+  }
+  return code;
 }

@@ -110,6 +110,44 @@ TEST(Cli, StatsPrintsTableOneAndJson) {
   EXPECT_NE(json.output.find("\"surface_groups\": []"), std::string::npos) << json.output;
 }
 
+// Standard output that cannot be written (a full disk, a closed descriptor) is an
+// error, not a success with nothing written (found by a hostile-input test).
+TEST(Cli, AStandardOutputThatCannotBeWrittenIsAnError) {
+  const std::string path = write_grid("grid_full.mesh");
+  for (const char* to : {"> /dev/full", ">&-"}) {
+    // stderr to the pipe, stdout where asked.
+    const std::string command =
+        std::string(TETLOD_BINARY) + " stats --json " + path + " 2>&1 " + to;
+    std::FILE* pipe = popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string output;
+    char buffer[4096];
+    size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
+    const int status = pclose(pipe);
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << to << "\n" << output;
+    EXPECT_NE(output.find("tetlod stats: cannot write to standard output"), std::string::npos)
+        << to << "\n"
+        << output;
+  }
+}
+
+// Running out of memory is an error that says so, with no output file, not an abort
+// (std::bad_alloc ended the process; found by a hostile-input test): box2 at a size
+// that subdivides it into millions of tets, in 200 MB of address space.
+TEST(Cli, OutOfMemoryIsAnErrorThatSaysSo) {
+  const std::string out = out_dir() + "/oom.mesh";
+  std::filesystem::remove(out);
+  for (const char* threads : {" --one-thread", ""}) {
+    const CommandResult r = run("simplify " + std::string(TETLOD_SOURCE_DIR) +
+                                    "/assets/box2.mesh -o " + out + " --size 0.023" + threads,
+                                "ulimit -v 200000;");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("tetlod simplify: out of memory"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
 // The file's own surface groups as --surfaces writes them (a partitioned Gmsh file's),
 // and a note for a group that is not on the surface.
 TEST(Cli, StatsListsTheFilesSurfaceGroups) {
