@@ -259,7 +259,7 @@ int cmd_report(const Args& args) {
     }
   } else if (options.simplify) {
     SimplifyOptions& so = options.simplify_options;
-    if (!finish_simplify_options(input, names, "report", &so)) return kExitUsage;
+    if (const int code = finish_simplify_options(input, names, "report", &so)) return code;
     SimplifyResult result;
     TerminalProgress progress("tetlod report");
     const Status s =

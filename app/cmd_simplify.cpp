@@ -155,8 +155,9 @@ int cmd_simplify(const Args& args) {
   TetMesh input;
   ReadInfo info;
   if (!load_mesh(in, &input, &info, write_options.surface_groups)) return kExitBadInput;
-  if (!finish_simplify_options(input, info.material_names, "simplify", &options, &info.validation))
-    return kExitUsage;
+  if (const int code = finish_simplify_options(input, info.material_names, "simplify", &options,
+                                               &info.validation))
+    return code;
   // The file's own surface groups: the simplifier keeps their borders as it keeps
   // those between materials, and their triangles inside a material as they are (so
   // does --improve), so that the output has them too (with --surfaces).
@@ -422,8 +423,9 @@ int cmd_lod(const Args& args) {
                                  : beyond_levels_note(elements, level.step, level.step_count,
                                                       level.mesh.tet_count());
   if (!beyond.empty()) beyond = " (" + beyond + ")";
-  if (improve && !finish_simplify_options(level.mesh, level.names, "lod", &options))
-    return kExitUsage;
+  if (improve)
+    if (const int code = finish_simplify_options(level.mesh, level.names, "lod", &options))
+      return code;
   ImproveResult improved;
   double seconds_improve = 0;
   if (improve) {

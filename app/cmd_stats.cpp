@@ -116,9 +116,10 @@ int cmd_stats(const Args& args) {
     print_patch_notes(patches, "stats");
   }
   const bool counting = thresholds_given || check;
-  if (counting &&
-      !finish_simplify_options(mesh, info.material_names, "stats", &thresholds, &info.validation))
-    return kExitUsage;
+  if (counting)
+    if (const int code = finish_simplify_options(mesh, info.material_names, "stats", &thresholds,
+                                                 &info.validation))
+      return code;
   const SimplifyParams& params = thresholds.params;
   const ThresholdCounts breaks = counting ? threshold_breaks(mesh, params) : ThresholdCounts{};
   const bool broken = breaks.below_stretch + breaks.above_size + breaks.above_valence > 0;

@@ -252,7 +252,7 @@ int simplified_mesh(const TetMesh& input, const std::vector<MaterialName>& names
                     const char* command, RenderOptions* options, TetMesh* out,
                     const SurfacePatches* patches) {
   SimplifyOptions& so = options->simplify_options;
-  if (!finish_simplify_options(input, names, command, &so)) return kExitUsage;
+  if (const int code = finish_simplify_options(input, names, command, &so)) return code;
   SimplifyResult result;
   TerminalProgress progress(std::string("tetlod ") + command);
   const Status status =

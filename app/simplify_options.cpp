@@ -250,13 +250,13 @@ Status read_size_map(const std::string& path, const TetMesh& mesh, const Validat
   return Status();
 }
 
-bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
-                             const char* command, SimplifyOptions* options,
-                             const ValidationReport* read) {
+int finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
+                            const char* command, SimplifyOptions* options,
+                            const ValidationReport* read) {
   if (!options->size_map_mesh_path.empty() && options->size_map_path.empty()) {
     std::fprintf(stderr, "tetlod %s: --size-map-mesh %s: give the sizes too (--size-map)\n",
                  command, options->size_map_mesh_path.c_str());
-    return false;
+    return kExitUsage;
   }
   if (!options->size_map_path.empty()) {
     // The sizes are at the input's vertices, or at those of another mesh over the same
@@ -267,7 +267,7 @@ bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialNam
     if (!other_path.empty()) {
       if (Status s = read_mesh(other_path, &other, &other_info); !s) {
         std::fprintf(stderr, "tetlod %s: --size-map-mesh: %s\n", command, s.message().c_str());
-        return false;
+        return kExitBadInput;
       }
     }
     std::shared_ptr<const SizeMap> map;
@@ -275,9 +275,9 @@ bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialNam
                          ? read_size_map(options->size_map_path, input, read, &map)
                          : read_size_map(options->size_map_path, other, &other_info.validation,
                                          &map, "--size-map-mesh " + other_path);
-    if (!s) {
+    if (!s) {  // the file, or the mesh it goes with, is at fault
       std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
-      return false;
+      return kExitBadInput;
     }
     options->params.sizing.map = std::move(map);
     options->size_map_path.clear();  // read once
@@ -286,12 +286,12 @@ bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialNam
   std::vector<std::pair<int32_t, double>>& sizes = options->params.sizing.material_sizes;
   for (const auto& [name, size] : options->named_material_sizes) {
     int32_t id = 0;
-    if (!material_by_name(name, names, command, "--material-size " + name, &id)) return false;
+    if (!material_by_name(name, names, command, "--material-size " + name, &id)) return kExitUsage;
     for (const auto& given : sizes) {
       if (given.first == id) {
         std::fprintf(stderr, "tetlod %s: --material-size: material %d (%s) is given twice\n",
                      command, id, name.c_str());
-        return false;
+        return kExitUsage;
       }
     }
     sizes.push_back({id, size});
@@ -308,14 +308,14 @@ bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialNam
                    "tetlod %s: --material-size %d=%g: the mesh has no material %d (its "
                    "materials: %s)\n",
                    command, material, size, material, list.c_str());
-      return false;
+      return kExitUsage;
     }
   }
-  if (options->tolerance_given || input.positions.empty()) return true;
+  if (options->tolerance_given || input.positions.empty()) return kExitOk;
   Vec3 lo, hi;
   mesh_bounds(input, &lo, &hi);
   options->params.tolerance = 1e-3 * length(hi - lo);
-  return true;
+  return kExitOk;
 }
 
 std::string describe_rejections(const RejectionCounts& r) {

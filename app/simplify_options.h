@@ -73,9 +73,9 @@ Status read_size_map(const std::string& path, const TetMesh& mesh, const Validat
 // With --size-map, it reads the file and builds params.sizing.map over `input`;
 // `read`, the input's validation (if it was read from a file), maps the file's sizes
 // to the vertices the reader kept.
-bool finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
-                             const char* command, SimplifyOptions* options,
-                             const ValidationReport* read = nullptr);
+int finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
+                            const char* command, SimplifyOptions* options,
+                            const ValidationReport* read = nullptr);
 
 // The size threshold in words: "12", "12, less where the local sizing asks", or
 // "from the local sizing" (no uniform size: --material-size or --size-field alone), or

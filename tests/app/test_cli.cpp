@@ -671,7 +671,7 @@ TEST(Cli, SimplifyKeepsToASizeMap) {
     // Sizes at the coarse mesh's vertices, given without it: a count that does not fit.
     const CommandResult wrong = run("simplify " + in + " -o " + b + " --size-map " +
                                     write_sol("map_linear_coarse.sol", on_coarse));
-    EXPECT_EQ(wrong.code, 2) << wrong.output;
+    EXPECT_EQ(wrong.code, 1) << wrong.output;
     EXPECT_NE(wrong.output.find("12 sizes, but the input has 112 vertices"), std::string::npos)
         << wrong.output;
     const CommandResult fewer =
@@ -706,11 +706,12 @@ TEST(Cli, SimplifyKeepsToASizeMap) {
             std::string::npos)
       << fs.output;
 
-  // Errors: what does not fit names the file; nothing is written.
+  // Errors: what does not fit names the file, as bad input (exit 1); nothing is
+  // written.
   const std::string none = out_dir() + "/map_none.mesh";
   auto error = [&](const std::string& map_path) {
     const CommandResult e = run("simplify " + in + " -o " + none + " --size-map " + map_path);
-    EXPECT_EQ(e.code, 2) << e.output;
+    EXPECT_EQ(e.code, 1) << e.output;
     return e.output;
   };
   std::vector<double> fewer(sizes.begin(), sizes.end() - 1);
