@@ -171,6 +171,7 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
     if (a == "--material-size") {
       // Items that name their material wait for the names (finish_simplify_options()).
       std::string ids;
+      const size_t named_before = options->named_material_sizes.size();
       size_t start = 0;
       while (start <= v.size()) {
         size_t end = v.find(',', start);
@@ -191,11 +192,12 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
         }
         start = end + 1;
       }
-      v = ids;
-      if (v.empty()) {
+      // Only named items: done (an empty specification is parse_material_sizes()'s error).
+      if (ids.empty() && options->named_material_sizes.size() > named_before) {
         options->size_given = true;
         return OptionResult::kParsed;
       }
+      v = ids;
     }
     const Status s = a == "--material-size" ? parse_material_sizes(v, &params.sizing)
                                             : parse_size_field(v, &params.sizing);

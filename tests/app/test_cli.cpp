@@ -571,10 +571,15 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
   for (const char* flags :
        {"--size -1", "--size nan", "--size 1 --stretch 1", "--size 1 --stretch 0",
         "--size 1 --valence 3", "--size 1 --tolerance -2", "--stretch 0.2",
-        "--size 1 --material-size 1=0", "--size 1 --size-field box:0,0,0,1,1"}) {
+        "--size 1 --material-size 1=0", "--size 1 --size-field box:0,0,0,1,1", "--material-size ''",
+        "--material-size ,"}) {
     const CommandResult r = run("simplify " + path + " -o " + out + " " + flags);
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
   }
+  // (An empty --material-size named nothing: "no size limit given", exit 1.)
+  EXPECT_NE(run("simplify " + path + " -o " + out + " --material-size ''")
+                .output.find("--material-size: empty specification"),
+            std::string::npos);
   EXPECT_FALSE(fs::exists(out));
 }
 
