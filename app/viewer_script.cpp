@@ -13,6 +13,10 @@
 namespace tetlod::app {
 namespace {
 
+// The most frames a wait or a frame benchmark may take (a bound, as seconds= has one:
+// at 60 frames a second, about half an hour).
+constexpr long long kMostFrames = 100000;
+
 using Kind = ScriptAction::Kind;
 
 struct LineParser {
@@ -303,6 +307,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     a->kind = Kind::kScreenshot;
     if (Status s = p.arg_count(1, 4); !s) return s;
     a->path = w[1];
+    if (!has_extension(a->path, ".png"))
+      return p.error("a screenshot is written as PNG: give a .png name, got '" + a->path + "'");
     for (size_t i = 2; i < w.size(); ++i) {
       std::string key, value;
       long long v = 0;
@@ -345,7 +351,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
       return p.error("'wait' takes frames=N, seconds=S or done");
     if (key == "frames") {
       if (Status s = p.integer(key, value, &a->count); !s) return s;
-      if (a->count < 0) return p.error("frames must be >= 0");
+      if (a->count < 0 || a->count > kMostFrames)
+        return p.error("frames must be in [0, " + std::to_string(kMostFrames) + "]");
     } else {
       if (Status s = p.number(key, value, &a->value); !s) return s;
       if (!(a->value >= 0 && a->value <= 3600)) return p.error("seconds must be in [0, 3600]");
@@ -360,7 +367,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
         return p.error("expected key=value, got '" + w[i] + "'");
       if (key == "frames") {
         if (Status s = p.integer(key, value, &a->count); !s) return s;
-        if (a->count < 1) return p.error("frames must be >= 1");
+        if (a->count < 1 || a->count > kMostFrames)
+          return p.error("frames must be in [1, " + std::to_string(kMostFrames) + "]");
       } else if (key == "out") {
         a->path = value;
       } else {

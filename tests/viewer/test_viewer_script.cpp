@@ -166,6 +166,20 @@ TEST(ViewerScript, WaitDone) {
   EXPECT_EQ(a[2].count, 2);
 }
 
+// Waits and frame benchmarks are bounded, and screenshots are PNGs by name too (a
+// script waited without end, or wrote PNG data under a .jpg name; found by a
+// hostile-input test).
+TEST(ViewerScript, WaitsAreBoundedAndScreenshotsArePngs) {
+  EXPECT_EQ(parse_ok("wait frames=100000\nbench-frames frames=100000\n").size(), 2u);
+  EXPECT_EQ(parse_error("wait frames=99999999999\n"), "t.script:1: frames must be in [0, 100000]");
+  EXPECT_EQ(parse_error("bench-frames frames=100001\n"),
+            "t.script:1: frames must be in [1, 100000]");
+  EXPECT_EQ(parse_error("bench-scrub frames=0\n"), "t.script:1: frames must be in [1, 100000]");
+  EXPECT_EQ(parse_error("screenshot out/a.jpg\n"),
+            "t.script:1: a screenshot is written as PNG: give a .png name, got 'out/a.jpg'");
+  EXPECT_EQ(parse_ok("screenshot A.PNG\n").size(), 1u);
+}
+
 TEST(ViewerScript, MaterialSizesAndRegions) {
   const auto a = parse_ok("thresholds material-sizes=1=40,2=10 region=radial:0,0,0,1,0.5\n");
   ASSERT_EQ(a.size(), 1u);
