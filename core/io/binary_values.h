@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -61,6 +62,19 @@ inline bool binary_integer(uint64_t bits, BinaryType type, int64_t* value) {
   const unsigned shift = unsigned(64 - 8 * type.size);
   *value = int64_t(bits << shift) >> shift;
   return true;
+}
+
+// A value as text, for messages: an integer as it is, a real as "%.17g" would.
+inline std::string binary_value_text(uint64_t bits, BinaryType type) {
+  if (type.kind == BinaryType::kUnsigned) return std::to_string(bits);
+  if (type.kind == BinaryType::kSigned) {
+    int64_t value = 0;
+    binary_integer(bits, type, &value);
+    return std::to_string(value);
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", binary_real(bits, type));
+  return text;
 }
 
 // Appends the bytes of `value` (an integer or floating-point number) in the given

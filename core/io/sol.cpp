@@ -13,7 +13,7 @@ namespace tetlod {
 namespace {
 
 // Why a field of `fields` fields of type `type` (the first) is not a size field, or "".
-std::string not_sizes(uint64_t fields, int64_t type) {
+std::string not_sizes(int64_t fields, int64_t type) {
   if (fields != 1)
     return std::to_string(fields) + " fields at each vertex: TetLOD reads one, the size (type 1)";
   if (type == 1) return "";
@@ -53,11 +53,10 @@ Status parse_solb_sizes(std::string_view data, const std::string& name,
           return gmf.fail(at, "SolAtVertices: its header ends early (truncated file?)");
         const int64_t count = gmf.integer(at, w);
         const int64_t fields = gmf.integer(at + w, 4);
-        if (fields < 1) return gmf.fail(at + w, not_sizes(0, 0));
+        if (fields < 1) return gmf.fail(at + w, not_sizes(fields, 0));
         if (end - at < w + 8)
           return gmf.fail(at + w + 4, "SolAtVertices: no field type (truncated file?)");
-        if (const std::string why = not_sizes(uint64_t(fields), gmf.integer(at + w + 4, 4));
-            !why.empty())
+        if (const std::string why = not_sizes(fields, gmf.integer(at + w + 4, 4)); !why.empty())
           return gmf.fail(at + w, why);
         const size_t first = at + w + 8;
         if (count < 0 || uint64_t(count) > (end - first) / gmf.real_size()) {
@@ -134,7 +133,7 @@ Status parse_sol_sizes(std::string_view text, const std::string& name, std::vect
       if (!scanner.read_count(&count, "vertex count", 2)) break;
       if (!scanner.read_count(&fields, "number of fields", 2)) break;
       if (fields == 1 && !scanner.read_int(&type, "field type")) break;
-      if (const std::string why = not_sizes(fields, type); !why.empty()) {
+      if (const std::string why = not_sizes(int64_t(fields), type); !why.empty()) {
         scanner.fail(why);
         break;
       }

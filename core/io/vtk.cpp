@@ -64,6 +64,10 @@ bool binary_integer(const char* p, BinaryType type, int64_t* value) {
   return binary_integer(value_bits(p, type.size, true), type, value);
 }
 
+std::string value_text(const char* p, BinaryType type) {
+  return binary_value_text(value_bits(p, type.size, true), type);
+}
+
 class VtkLegacyParser {
  public:
   VtkLegacyParser(std::string_view text, const std::string& name, ParsedMesh* out)
@@ -174,10 +178,11 @@ class VtkLegacyParser {
       int64_t value = 0;
       if (!binary_integer(data + i * type.size, type, &value) || value < min_value ||
           value > max_value) {
+        const std::string text = value_text(data + i * type.size, type);
         end_binary(i, type);
-        return scanner_.fail(std::string(what) + " value " + std::to_string(i) +
-                             " is not an integer from " + std::to_string(min_value) + " to " +
-                             std::to_string(max_value));
+        return scanner_.fail(std::string(what) + ": value " + std::to_string(i + 1) + " of " +
+                             std::to_string(count) + ", " + text + ", is not an integer from " +
+                             std::to_string(min_value) + " to " + std::to_string(max_value));
       }
       out->push_back(value);
     }

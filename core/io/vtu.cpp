@@ -637,8 +637,10 @@ class VtuParser {
     auto integer = [&](uint64_t i, int64_t min_value, int64_t max_value, int64_t* value) {
       if (binary_integer(bits(i), type, value) && *value >= min_value && *value <= max_value)
         return true;
-      return fail_at(array.line, "DataArray \"" + array.name + "\" value " + std::to_string(i) +
-                                     " is not an integer from " + std::to_string(min_value) +
+      return fail_at(array.line, "DataArray \"" + array.name + "\": value " +
+                                     std::to_string(i + 1) + " of " + std::to_string(count) + ", " +
+                                     binary_value_text(bits(i), type) +
+                                     ", is not an integer from " + std::to_string(min_value) +
                                      " to " + std::to_string(max_value));
     };
     int64_t value = 0;

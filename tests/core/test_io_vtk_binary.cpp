@@ -166,6 +166,14 @@ TEST(IoVtkBinary, BrokenArraysNameTheProblem) {
   const size_t at = data.find("CONNECTIVITY vtktypeint64\n") + 26 + 8 * 3 + 7;
   data[at] = 100;
   EXPECT_NE(message(data).find("only 6"), std::string::npos) << message(data);
+  // A negative index is named by its value and place (the place was given as the
+  // value; found by a hostile-input test).
+  data = valid;
+  const size_t first = data.find("CONNECTIVITY vtktypeint64\n") + 26 + 8 * 4;
+  for (int k = 0; k < 8; ++k) data[first + k] = char(0xff);  // -1, big-endian
+  EXPECT_NE(message(data).find("CONNECTIVITY: value 5 of 21, -1, is not an integer from 0"),
+            std::string::npos)
+      << message(data);
 }
 
 TEST(IoVtkBinary, RandomDamageNeverCrashes) {

@@ -348,6 +348,12 @@ TEST(SolFile, BinaryErrorsNameTheFileByteAndWhat) {
                   })),
                   "2 fields at each vertex: TetLOD reads one, the size (type 1)"));
   EXPECT_TRUE(has(error(file([](test::GmfWriter& f) {
+                    f.keyword(62);
+                    f.integer(1);
+                    f.i32(-1);  // fields
+                  })),
+                  "-1 fields at each vertex"));
+  EXPECT_TRUE(has(error(file([](test::GmfWriter& f) {
                     f.keyword(66);  // SolAtTetrahedra
                     f.integer(0);
                     f.i32(1);
