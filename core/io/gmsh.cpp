@@ -176,6 +176,19 @@ class GmshParser {
           seen_nodes_ = true;
           finish_nodes();
         }
+      } else if (section == "$ParametricNodes" && version_ == 22) {
+        // Gmsh's -setnumber Mesh.SaveParametric 1: the nodes with where they lie on
+        // the geometry, in ASCII only.
+        if (seen_nodes_) {
+          scanner_.fail("a second $Nodes (or $ParametricNodes) section");
+        } else if (binary_) {
+          scanner_.fail(
+              "$ParametricNodes in a binary file: Gmsh writes them in ASCII only; save without "
+              "Mesh.SaveParametric, or as ASCII");
+        } else if (parse_parametric_nodes_22()) {
+          seen_nodes_ = true;
+          finish_nodes();
+        }
       } else if (section == "$Elements") {
         if (!seen_nodes_ || seen_elements_) {
           scanner_.fail(seen_elements_ ? "a second $Elements section" : "$Elements before $Nodes");
@@ -815,6 +828,25 @@ class GmshParser {
       if (!read_node_tag() || !read_position()) return false;
     }
     return expect_end("$EndNodes");
+  }
+
+  // "tag x y z dimension entity [u [v]]": as many parameters as the dimension of the
+  // entity the node lies on, for curves and surfaces (none on points and volumes).
+  bool parse_parametric_nodes_22() {
+    uint64_t count = 0;
+    // "tag x y z dim entity\n" takes at least 12 bytes.
+    if (!scanner_.read_count(&count, "node count", 12) || !reserve_nodes(count)) return false;
+    for (uint64_t i = 0; i < count; ++i) {
+      int64_t dimension = 0, entity = 0;
+      if (!read_node_tag() || !read_position() ||
+          !scanner_.read_int_in_range(&dimension, "entity dimension", 0, 3) ||
+          !scanner_.read_int(&entity, "entity tag") ||
+          !scanner_.skip_numbers(dimension == 1 || dimension == 2 ? uint64_t(dimension) : 0,
+                                 "parametric coordinates")) {
+        return false;
+      }
+    }
+    return expect_end("$EndParametricNodes");
   }
 
   bool parse_nodes_41() {
