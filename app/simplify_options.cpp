@@ -24,6 +24,8 @@ const char* const kSimplifyFlagsHelp =
     "                            its id or its name in the input (copper=2)\n"
     "  --size-field SPEC         region sizes, ';'-separated: radial:cx,cy,cz,s0,growth\n"
     "                            axis:cx,cy,cz,dx,dy,dz,s0,growth  box:x0,y0,z0,x1,y1,z1,s\n"
+    "                    (radial, axis: size s0 + growth x the distance from the point c,\n"
+    "                    or from the line through c along d; box: s inside it)\n"
     "                    the size of a tet is the smallest of --size and every rule above,\n"
     "                    taken at its centroid (a box holds the tets whose centroid it holds)\n"
     "  --size-map FILE   sizes at the input's vertices (a Medit .sol or .solb file, as\n"

@@ -3500,23 +3500,28 @@ std::string past_valence_summary(const SimplifyResult& result) {
   if (!p.tried) return "";
   const std::string within = "subdivision within the valence threshold left " +
                              std::to_string(p.above_size_within) + " tets above the size; ";
-  std::string subdivision;  // what the last run's subdivision did
+  std::string did;  // what the last run's subdivision did
   if (p.hot_splits > 0)
-    subdivision = "bisected " + std::to_string(p.hot_splits) +
-                  (p.hot_splits == 1 ? " edge whose red split" : " edges whose red split") +
-                  " would have given the midpoint more neighbours than the threshold, then ";
+    did = "bisected " + std::to_string(p.hot_splits) +
+          (p.hot_splits == 1 ? " edge whose red split" : " edges whose red split") +
+          " would have given the midpoint more neighbours than the threshold";
   if (p.red_levels > 0)
-    subdivision +=
-        "split " + std::to_string(p.red_splits) + " edges in " + std::to_string(p.red_levels) +
-        (p.red_levels == 1 ? " red level" : " red levels") + " (Bey's 1:8 refinement) and ";
-  subdivision += p.nodes > 0 ? "took " + std::to_string(p.nodes) + " nodes past the threshold"
-                             : std::string("could pass the threshold");
+    did += (did.empty() ? "" : ", then ") + std::string("split ") + std::to_string(p.red_splits) +
+           " edges in " + std::to_string(p.red_levels) +
+           (p.red_levels == 1 ? " red level" : " red levels") + " (Bey's 1:8 refinement)";
+  // (It may take nodes past the threshold: "took N" if it did.)
+  const std::string subdivision = p.nodes > 0
+                                      ? (did.empty() ? "" : did + " and ") + "took " +
+                                            std::to_string(p.nodes) + " nodes past the threshold"
+                                      : (did.empty() ? std::string("was allowed past the threshold")
+                                                     : did + ", allowed past the threshold,");
+  const bool comma = subdivision.back() == ',';
   const std::string past =
       p.runs == 1 ? "a run whose subdivision " + subdivision + " "
                   : std::to_string(p.runs) +
                         " runs, each but the first with the nodes the one before could not bring "
                         "back kept within the threshold; the last one's subdivision " +
-                        subdivision + ", and it ";
+                        subdivision + (comma ? " and it " : ", and it ");
   if (p.stopped)
     return within + past + "stopped before its end" +
            (p.stopped_why.empty() ? std::string() : ": " + p.stopped_why);
