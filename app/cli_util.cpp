@@ -153,7 +153,19 @@ bool is_history_path(const std::string& path) {
 bool mesh_output_path_ok(const std::string& path, const char* command, const WriteOptions& options,
                          const char* flag) {
   const Status status = check_mesh_path(path, options);
-  if (status) return true;
+  if (status) {
+    // A binary flag for another format would be ignored: say so rather than write text.
+    const char* unused =
+        options.gmsh_binary && !has_extension(path, ".msh") ? "--msh-binary"
+        : options.vtk_binary && !has_extension(path, ".vtk") && !has_extension(path, ".vtu")
+            ? "--vtk-binary"
+            : nullptr;
+    if (!unused) return true;
+    std::fprintf(stderr, "tetlod %s: %s: %s%s%s is not a %s file, which the flag is for\n", command,
+                 unused, flag, *flag ? " " : "", path.c_str(),
+                 unused[2] == 'm' ? ".msh" : ".vtk or .vtu");
+    return false;
+  }
   std::fprintf(stderr, "tetlod %s: %s%s%s\n", command, flag, *flag ? " " : "",
                status.message().c_str());
   if (is_history_path(path))

@@ -308,6 +308,14 @@ TEST(Cli, ConvertKeepsCountsAcrossFormats) {
     ASSERT_EQ(s.code, 0) << s.output;
     EXPECT_NE(s.output.find("\"elements\": 96"), std::string::npos) << ext;
   }
+  // A binary flag for another format is an error, not ignored (found by a user test).
+  const std::string none = out_dir() + "/conv_none.mesh";
+  const CommandResult msh = run("convert " + path + " " + none + " --msh-binary");
+  EXPECT_EQ(msh.code, 2) << msh.output;
+  EXPECT_NE(msh.output.find("--msh-binary: " + none + " is not a .msh file"), std::string::npos)
+      << msh.output;
+  EXPECT_EQ(run("convert " + path + " " + none + " --vtk-binary").code, 2);
+  EXPECT_FALSE(fs::exists(none));
 }
 
 // The materials' names of a Gmsh input (its physical volumes) are in what convert and
