@@ -556,6 +556,25 @@ class OverlapSearch {
 }  // namespace
 
 OverlapFinding find_overlap(const TetMesh& mesh, const std::vector<uint32_t>& neighbors) {
+  // The search's tests multiply up to eight coordinates, which overflow beyond about
+  // 2^127 (a valid mesh 2^130 across was found overlapping by a hostile-input test).
+  // A power of two scales a mesh exactly, so one far from 1 is searched at a scale
+  // near 1: the same geometry, the same tets and faces.
+  double largest = 0;
+  for (const Vec3& p : mesh.positions)
+    largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  if (largest > 0 && std::isfinite(largest) && std::abs(exponent) > 64) {
+    TetMesh scaled;
+    scaled.tets = mesh.tets;
+    scaled.materials = mesh.materials;
+    scaled.positions.reserve(mesh.positions.size());
+    for (const Vec3& p : mesh.positions)
+      scaled.positions.push_back(
+          {std::ldexp(p.x, -exponent), std::ldexp(p.y, -exponent), std::ldexp(p.z, -exponent)});
+    return OverlapSearch(scaled, neighbors).run();
+  }
   return OverlapSearch(mesh, neighbors).run();
 }
 

@@ -169,6 +169,27 @@ TEST(Overlap, ABodyWrittenTwiceIsRefused) {
             "written twice)");
 }
 
+// The bundled spheres (bodies nested in one another) at scales 2^-130 to 2^130 (a
+// power of two: the same geometry) are one valid mesh; a body written twice is still
+// found. At 2^130 the spheres were refused as overlapping (the search's products of
+// coordinates overflowed; found by a hostile-input test).
+TEST(Overlap, AnyScaleGivesTheSameAnswer) {
+  TetMesh spheres;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh", &spheres).ok());
+  const TetMesh body = test::make_grid_mesh(3, 3, 3, [](int, int, int) { return 1; });
+  for (const int exponent : {-130, -70, 70, 130}) {
+    SCOPED_TRACE(exponent);
+    TetMesh scaled = spheres;
+    for (Vec3& p : scaled.positions) p = p * std::ldexp(1.0, exponent);
+    const Status s = validate(&scaled);
+    EXPECT_TRUE(s.ok()) << s.message();
+    TetMesh twice = body;
+    append(&twice, body, 2);
+    for (Vec3& p : twice.positions) p = p * std::ldexp(1.0, exponent);
+    EXPECT_NE(validate(&twice).message().find("overlaps tetrahedron"), std::string::npos);
+  }
+}
+
 // A small body inside a large one's material, or inside a hole of it.
 TEST(Overlap, ABodyInsideAnotherIsRefusedAndOneInAHoleIsNot) {
   // A 3x3x3 grid with its middle cube left out: a hollow body.
