@@ -111,8 +111,17 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
     }
     const double scale = longest2 * std::sqrt(longest2);
     if (!(std::abs(volume6) > 1e-12 * scale)) {
+      // Zero, or so small next to its longest edge (cubed) that its shape is lost in
+      // rounding: a tet 1e6 long and 1e-6 thin has a volume, but no shape.
+      if (volume6 == 0)
+        return Status::error(where(source, tet_lines, t) + tet_name(t) +
+                             " is degenerate (zero volume)");
+      char text[96];
+      std::snprintf(text, sizeof text, "%.3g of its longest edge cubed",
+                    std::abs(volume6) / 6 / scale);
       return Status::error(where(source, tet_lines, t) + tet_name(t) +
-                           " is degenerate (zero volume)");
+                           " is degenerate (nearly flat: its volume is " + text +
+                           ", below 1.7e-13)");
     }
     if (volume6 < 0) {
       std::swap(tet[2], tet[3]);

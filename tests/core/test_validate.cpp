@@ -54,6 +54,26 @@ TEST(Validate, CountsVerticesAtThePositionOfAnother) {
   EXPECT_EQ(report.coincident_position.x, 0);
 }
 
+// A tet with no volume, or so little next to its longest edge that its shape is lost
+// in rounding, is refused, and the message says which (a nearly flat tet was called
+// "zero volume"; found by a hostile-input test).
+TEST(Validate, FlatTetsAreNamedForWhatTheyAre) {
+  TetMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 0}};
+  mesh.tets = {{0, 1, 2, 3}};
+  mesh.materials = {1};
+  TetMesh flat = mesh;
+  EXPECT_EQ(validate(&flat).message(), "m.mesh: tetrahedron 1 is degenerate (zero volume)");
+  TetMesh nearly = mesh;
+  nearly.positions[3].z = 1e-13;
+  EXPECT_EQ(validate(&nearly).message(),
+            "m.mesh: tetrahedron 1 is degenerate (nearly flat: its volume is 5.89e-15 of its "
+            "longest edge cubed, below 1.7e-13)");
+  TetMesh thin = mesh;
+  thin.positions[3].z = 1e-9;
+  EXPECT_TRUE(validate(&thin).ok());
+}
+
 TEST(Validate, ReorientsNegativeTets) {
   TetMesh mesh = test::make_grid_mesh(1, 1, 1, [](int, int, int) { return 0; });
   std::swap(mesh.tets[0][0], mesh.tets[0][1]);
