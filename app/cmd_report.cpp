@@ -355,6 +355,7 @@ int cmd_report(const Args& args) {
       "</p>\n<h2>Properties (Table I)</h2>\n<table>\n" + kTableHead + summary + "</table>\n" +
       figures + "</body></html>\n";
   std::error_code ec;
+  const bool made = !std::filesystem::exists(dir, ec);
   std::filesystem::create_directories(dir, ec);
   if (ec) {
     std::fprintf(stderr, "tetlod report: %s: cannot create the directory: %s\n", dir.c_str(),
@@ -373,6 +374,9 @@ int cmd_report(const Args& args) {
   if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
+    // Nothing was written: a directory made for the report goes too (a full disk left
+    // it behind, empty; found by a hostile-input test). remove() keeps one not empty.
+    if (made) std::filesystem::remove(dir, ec);
     return kExitBadInput;
   }
   // Pictures of an earlier, longer report in the same directory (levelN.png and
