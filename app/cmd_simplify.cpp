@@ -340,10 +340,12 @@ int cmd_lod(const Args& args) {
       if (!parse_output_value(args, &i, "-o", &out)) return kExitUsage;
     } else if (a == "--elements" || a == "--step") {
       if (!parse_option_value(args, &i, a.c_str(), &v)) return kExitUsage;
+      // A step from 0; a number of elements from 1, as simplify and render take it.
       const auto n = parse_integer(v);
-      if (!n || *n < 0) {
-        std::fprintf(stderr, "tetlod lod: %s '%s' is not a whole number >= 0\n", a.c_str(),
-                     v.c_str());
+      const int64_t least = a == "--step" ? 0 : 1;
+      if (!n || *n < least) {
+        std::fprintf(stderr, "tetlod lod: %s '%s' is not a whole number >= %d\n", a.c_str(),
+                     v.c_str(), int(least));
         return kExitUsage;
       }
       (a == "--step" ? step : elements) = *n;

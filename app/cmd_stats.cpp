@@ -115,6 +115,23 @@ int cmd_stats(const Args& args) {
     patches = SurfacePatches(mesh, info.surface_groups);
     print_patch_notes(patches, "stats");
   }
+  // The name --surfaces writes each of them under (group_surface()): the file's, or
+  // for an unnamed one (a Medit reference, a TetGen marker) its material pair's if it
+  // is one pair's, else surface_<tag>; "" if none of it is written.
+  std::vector<std::string> written_as;
+  if (!patches.groups().empty()) {
+    SurfaceGroups grouped;
+    if (!group_surface(mesh, &grouped, patches, true).ok()) grouped.groups.clear();
+    for (const SurfacePatches::Group& g : patches.groups()) {
+      std::string name;
+      for (const SurfaceGroup& out : grouped.groups)
+        if (out.tag == g.tag) {
+          name = out.name;
+          break;
+        }
+      written_as.push_back(name);
+    }
+  }
   const bool counting = thresholds_given || check;
   if (counting)
     if (const int code = finish_simplify_options(mesh, info.material_names, "stats", &thresholds,
@@ -159,10 +176,10 @@ int cmd_stats(const Args& args) {
     for (size_t i = 0; i < patches.groups().size(); ++i) {
       const SurfacePatches::Group& g = patches.groups()[i];
       std::printf(
-          "%s\n    {\"tag\": %d, \"name\": \"%s\", \"triangles\": %zu, "
+          "%s\n    {\"tag\": %d, \"name\": \"%s\", \"written_as\": \"%s\", \"triangles\": %zu, "
           "\"in_a_smaller_group\": %zu, \"inside_a_material\": %zu, \"not_faces\": %zu}",
-          i ? "," : "", g.tag, json_escape(g.name).c_str(), g.triangles, g.shared, g.inside,
-          g.missing);
+          i ? "," : "", g.tag, json_escape(g.name).c_str(), json_escape(written_as[i]).c_str(),
+          g.triangles, g.shared, g.inside, g.missing);
     }
     std::printf(patches.groups().empty() ? "]" : "\n  ]");
     std::printf(
@@ -199,9 +216,13 @@ int cmd_stats(const Args& args) {
   if (!patches.groups().empty()) {
     std::printf("\nthe file's surface groups (tag name: triangles on the surface):");
     const char* separator = " ";
-    for (const SurfacePatches::Group& g : patches.groups()) {
-      std::printf("%s%d %s: %zu", separator, g.tag, g.name.empty() ? "(unnamed)" : g.name.c_str(),
-                  g.triangles);
+    for (size_t i = 0; i < patches.groups().size(); ++i) {
+      const SurfacePatches::Group& g = patches.groups()[i];
+      const std::string name = !g.name.empty() ? g.name
+                               : written_as[i].empty()
+                                   ? std::string("(unnamed)")
+                                   : "(unnamed, written as " + written_as[i] + ")";
+      std::printf("%s%d %s: %zu", separator, g.tag, name.c_str(), g.triangles);
       if (g.inside > 0) std::printf(" (+%zu inside a material)", g.inside);
       separator = ", ";
     }

@@ -160,9 +160,11 @@ TEST(Cli, StatsListsTheFilesSurfaceGroups) {
       << r.output;
   r = run("stats --json " + coax);
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("{\"tag\": 21, \"name\": \"jacket\", \"triangles\": 180, "
-                          "\"in_a_smaller_group\": 0, \"inside_a_material\": 0, \"not_faces\": 0}"),
-            std::string::npos)
+  EXPECT_NE(
+      r.output.find(
+          "{\"tag\": 21, \"name\": \"jacket\", \"written_as\": \"jacket\", \"triangles\": 180, "
+          "\"in_a_smaller_group\": 0, \"inside_a_material\": 0, \"not_faces\": 0}"),
+      std::string::npos)
       << r.output;
   // A Medit triangle inside the grid that is no face of it is noted; its group has
   // none on the surface.
@@ -201,7 +203,8 @@ TEST(Cli, GroupsInsideAMaterialAreKept) {
       << r.output;
   r = run("stats --json " + sheet);
   EXPECT_NE(
-      r.output.find("{\"tag\": 300, \"name\": \"top_and_sheet\", \"triangles\": 112, "
+      r.output.find("{\"tag\": 300, \"name\": \"top_and_sheet\", \"written_as\": "
+                    "\"top_and_sheet\", \"triangles\": 112, "
                     "\"in_a_smaller_group\": 0, \"inside_a_material\": 38, \"not_faces\": 0}"),
       std::string::npos)
       << r.output;
@@ -346,6 +349,8 @@ TEST(Cli, ConvertAndSimplifyKeepMaterialNames) {
   r = run("lod " + history + " --elements 1000 -o " + level);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(read_file(level).find(names), std::string::npos);
+  // --elements from 1, as simplify and render take it (0 was taken as the last level).
+  EXPECT_EQ(run("lod " + history + " --elements 0 -o " + level).code, 2);
   // stats names them too, in its table and its JSON.
   r = run("stats " + input);
   ASSERT_EQ(r.code, 0) << r.output;
