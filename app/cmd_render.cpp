@@ -121,7 +121,7 @@ int cmd_render(const Args& args) {
       patches = SurfacePatches(mesh, info.surface_groups);
     patches.drop_inside();  // no groups are written: the mesh may coarsen there
   }
-  if (!resolve_materials(mesh, names, "render", &options)) return kExitBadInput;
+  if (!resolve_materials(mesh, names, "render", &options)) return kExitUsage;
   if (const Status s = render::check_drawable(mesh); !s) {
     std::fprintf(stderr, "tetlod render: %s: %s\n", in.c_str(), s.message().c_str());
     return kExitBadInput;

@@ -225,7 +225,7 @@ int cmd_report(const Args& args) {
       patches = SurfacePatches(input, info.surface_groups);
     patches.drop_inside();  // no groups are written: the mesh may coarsen there
   }
-  if (!resolve_materials(input, names, "report", &options)) return kExitBadInput;
+  if (!resolve_materials(input, names, "report", &options)) return kExitUsage;
   if (const Status s = render::check_drawable(input); !s) {
     std::fprintf(stderr, "tetlod report: %s: %s\n", in.c_str(), s.message().c_str());
     return kExitBadInput;

@@ -229,18 +229,24 @@ int cmd_solve(const Args& args) {
   // The materials given by name, now that the names are read.
   for (const auto& [text, potential] : conductors) {
     int32_t id = 0;
-    if (!resolve(text, info.material_names, "--conductor", &id)) return kExitBadInput;
+    if (!resolve(text, info.material_names, "--conductor", &id)) return kExitUsage;
     problem.conductors.push_back({id, potential});
   }
   for (const auto& [text, eps] : permittivities) {
     int32_t id = 0;
-    if (!resolve(text, info.material_names, "--eps", &id)) return kExitBadInput;
+    if (!resolve(text, info.material_names, "--eps", &id)) return kExitUsage;
     problem.permittivities.push_back({id, eps});
   }
   for (const MaterialText& text : grounds) {
     int32_t id = 0;
-    if (!resolve(text, info.material_names, "--ground", &id)) return kExitBadInput;
+    if (!resolve(text, info.material_names, "--ground", &id)) return kExitUsage;
     problem.ground_materials.push_back(id);
+  }
+  // What the options say, checked against the mesh: an error of theirs is one of usage
+  // (a potential or permittivity out of range, a material twice or not in the mesh).
+  if (const Status s = check_electrostatics_problem(problem, mesh); !s) {
+    std::fprintf(stderr, "tetlod solve: %s\n", s.message().c_str());
+    return kExitUsage;
   }
   const auto start = std::chrono::steady_clock::now();
   ElectrostaticsSolution solution;

@@ -645,4 +645,8 @@ double concentric_spheres_capacitance(const std::vector<double>& radii,
   return 1 / inverse;
 }
 
+Status check_electrostatics_problem(const ElectrostaticsProblem& problem, const TetMesh& mesh) {
+  return check_problem(problem, mesh_materials(mesh));
+}
+
 }  // namespace tetlod

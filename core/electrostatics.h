@@ -107,6 +107,12 @@ struct SolveProgress {
 };
 using SolveProgressCallback = std::function<void(const SolveProgress&)>;
 
+// The problem's own checks (solve_electrostatics() makes them too): every material it
+// names is one of `mesh`'s, none twice, permittivities (> 0) and potentials finite
+// and within 1e30 in magnitude; the error names the value. A caller that took them
+// from a user can tell a bad option from a bad mesh.
+Status check_electrostatics_problem(const ElectrostaticsProblem& problem, const TetMesh& mesh);
+
 // Checks the problem against the mesh, assembles and solves. Errors, which name the
 // offending value, for: a mesh that breaks the invariants of tet_mesh.h (an index out
 // of range, non-finite coordinates, an inverted or degenerate tet), a material id in

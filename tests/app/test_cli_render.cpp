@@ -319,7 +319,7 @@ TEST(CliRender, MaterialsByName) {
     EXPECT_EQ(faces, first) << flags;
   }
   const CommandResult r = run("render " + coax + " --hide air -o " + out);
-  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--hide: the mesh has no material named 'air'"), std::string::npos)
       << r.output;
 }
@@ -346,8 +346,9 @@ TEST(CliRender, FailuresNameTheProblemAndWriteNothing) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.output.find("missing.mesh"), std::string::npos) << r.output;
 
+  // A material the mesh lacks is bad usage (exit 2), as in simplify and solve.
   r = run("render " + asset("box2.mesh") + " --materials 9 -o " + out);
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("material 9 is not in the mesh"), std::string::npos) << r.output;
 
   // No GL available: a clear message, not a crash.
