@@ -865,11 +865,14 @@ class AbaqusParser {
 // the tets' positions + 1, as write_abaqus() numbers them.
 // A user's name made a valid Abaqus label: letters (in their case; Abaqus compares
 // labels case-insensitively), digits, '_' and '-' (as in Abaqus/CAE's "Set-1";
-// CalculiX 2.20 reads them), starting with a letter (else after `prefix`).
+// CalculiX 2.20 reads them), starting with a letter (else after `prefix`). A
+// character of several UTF-8 bytes ("ü") becomes one '_', not one a byte.
 std::string abaqus_label(const std::string& name, const char* prefix) {
-  std::string label = name;
-  for (char& c : label) {
-    if (!std::isalnum(uint8_t(c)) && c != '_' && c != '-') c = '_';
+  std::string label;
+  for (const char c : name) {
+    const uint8_t byte = uint8_t(c);
+    if ((byte & 0xC0) == 0x80) continue;  // a continuation byte of a UTF-8 character
+    label += std::isalnum(byte) || c == '_' || c == '-' ? c : '_';
   }
   if (label.empty() || !std::isalpha(uint8_t(label[0]))) label = prefix + label;
   return label;

@@ -9,6 +9,7 @@
 
 #include "core/io/mesh_io.h"
 #include "core/test_io_helpers.h"
+#include "core/test_meshes.h"
 
 namespace tetlod {
 namespace {
@@ -181,6 +182,23 @@ TEST(IoAbaqus, OverlappingSetsWithoutSectionsAreNamedInANote) {
 
 // A node line ending in a comma is one node (CalculiX reads it so), not continued on
 // the next line.
+// A name's character of several UTF-8 bytes becomes one '_' in a set name, as any
+// other character a label cannot hold (it was one a byte: "Kupfer_______2"; found by
+// a user test), and the name reads back to its material.
+TEST(IoAbaqus, NamesAreMadeLabelsACharacterAtATime) {
+  const TetMesh mesh = test::make_grid_mesh(2, 1, 1, [](int i, int, int) { return i + 1; });
+  const std::vector<MaterialName> names = {{2, "Kupfer \xc3\xbc \xc2\xb5"}};
+  WriteOptions options;
+  options.material_names = &names;
+  const std::string dir = test::output_dir("abaqus_labels");
+  ASSERT_TRUE(write_mesh(dir + "/k.inp", mesh, options).ok());
+  const std::string text = test::read_text(dir + "/k.inp");
+  EXPECT_NE(text.find("ELSET=Kupfer_____2\n"), std::string::npos) << text.substr(0, 600);
+  TetMesh back;
+  ASSERT_TRUE(read_mesh(dir + "/k.inp", &back).ok());
+  EXPECT_EQ(back.materials, mesh.materials);
+}
+
 TEST(IoAbaqus, NodeLinesWithATrailingCommaAreOneNodeEach) {
   const std::string deck =
       "*NODE\n1, 0, 0, 0,\n2, 1, 0, 0,\n3, 0, 1, 0,\n4, 0, 0, 1,\n5, 1, 1, 1,\n6, 0, 0, -1,\n"
