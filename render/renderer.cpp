@@ -115,9 +115,13 @@ float text_pixels(const std::string& text, float scale) {
   return static_cast<float>(stb_easy_font_width(copy.data())) * scale;
 }
 
+// A colour bar's end: two decimals for values from 0.01 to 10^5 (stretch, sizes in
+// mm), else three significant digits ("7.07e-04" for a size in metres, not "0.00").
 std::string format_value(double v) {
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.2f", v);
+  const double magnitude = std::abs(v);
+  std::snprintf(buffer, sizeof buffer,
+                magnitude == 0 || (magnitude >= 0.01 && magnitude < 1e5) ? "%.2f" : "%.2e", v);
   return buffer;
 }
 

@@ -178,14 +178,10 @@ class GmshParser {
         }
       } else if (section == "$ParametricNodes" && version_ == 22) {
         // Gmsh's -setnumber Mesh.SaveParametric 1: the nodes with where they lie on
-        // the geometry, in ASCII only.
+        // the geometry.
         if (seen_nodes_) {
           scanner_.fail("a second $Nodes (or $ParametricNodes) section");
-        } else if (binary_) {
-          scanner_.fail(
-              "$ParametricNodes in a binary file: Gmsh writes them in ASCII only; save without "
-              "Mesh.SaveParametric, or as ASCII");
-        } else if (parse_parametric_nodes_22()) {
+        } else if (binary_ ? parse_parametric_nodes_22_binary() : parse_parametric_nodes_22()) {
           seen_nodes_ = true;
           finish_nodes();
         }
@@ -847,6 +843,32 @@ class GmshParser {
       }
     }
     return expect_end("$EndParametricNodes");
+  }
+
+  // Binary: int tag, three doubles, int dimension, int entity, and a double per
+  // dimension for curves and surfaces (as Gmsh 4.8 writes them with -bin).
+  bool parse_parametric_nodes_22_binary() {
+    uint64_t count = 0;
+    if (!scanner_.read_count(&count, "node count", 36) || !reserve_nodes(count) ||
+        !begin_binary()) {
+      return false;
+    }
+    BinaryCursor c = binary_cursor();
+    if (!c.fits(count, 36)) return truncated("$ParametricNodes");
+    for (uint64_t i = 0; i < count; ++i) {
+      const int32_t tag = c.i32();
+      if (tag < 1) return fail_binary(c, "node tag " + std::to_string(tag) + " is below 1");
+      node_tags_.push_back(uint64_t(tag));
+      if (!add_binary_position(c)) return false;
+      const int32_t dimension = c.i32();
+      c.i32();  // the entity
+      if (dimension < 0 || dimension > 3)
+        return fail_binary(c, "node " + std::to_string(tag) + ": entity dimension " +
+                                  std::to_string(dimension) + " is not 0 to 3");
+      for (int k = 0; k < (dimension == 1 || dimension == 2 ? dimension : 0); ++k) c.f64();
+      if (!c.ok()) return truncated("$ParametricNodes");
+    }
+    return end_binary(c, "$ParametricNodes") && expect_end("$EndParametricNodes");
   }
 
   bool parse_nodes_41() {

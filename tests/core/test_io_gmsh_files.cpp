@@ -243,7 +243,7 @@ TEST(IoGmshFiles, ElementsInTwoGroupsAreReadOnce) {
 // Gmsh 2.2 with -setnumber Mesh.SaveParametric 1 writes $ParametricNodes: "tag x y z
 // dimension entity" and a parameter per dimension for curves and surfaces. They read
 // as the same nodes (they were refused as "$Elements before $Nodes"; found by a user
-// test); in a binary file, which Gmsh does not write, an error says what to do.
+// test), in ASCII and in binary.
 TEST(IoGmshFiles, ParametricNodesAreRead) {
   const std::string head = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
   const std::string elements = "$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n";
@@ -264,14 +264,33 @@ TEST(IoGmshFiles, ParametricNodesAreRead) {
   short_node.replace(short_node.find("1 3 0.5"), 7, "1 3");
   const Status broken = read_mesh_from_memory(short_node, MeshFormat::kGmsh22, "c.msh", &b);
   EXPECT_NE(broken.message().find("c.msh:"), std::string::npos) << broken.message();
-  std::string binary = parametric;
-  binary.replace(binary.find("2.2 0 8"), 7, "2.2 1 8");
-  binary.insert(binary.find("$EndMeshFormat"), std::string("\1\0\0\0\n", 5));
-  EXPECT_NE(read_mesh_from_memory(binary, MeshFormat::kGmsh22, "d.msh", &b)
-                .message()
-                .find("$ParametricNodes in a binary file"),
-            std::string::npos)
-      << read_mesh_from_memory(binary, MeshFormat::kGmsh22, "d.msh", &b).message();
+  // Binary, as Gmsh 4.8 writes it with -bin: int tag, three doubles, int dimension, int
+  // entity, a double per dimension of a curve or surface.
+  test::Bytes binary(false);
+  binary.text("$MeshFormat\n2.2 1 8\n");
+  binary.i32(1);
+  binary.text("\n$EndMeshFormat\n$ParametricNodes\n4\n");
+  const double xyz[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int dims[4] = {0, 1, 2, 3};
+  for (int n = 0; n < 4; ++n) {
+    binary.i32(n + 1);
+    for (double x : xyz[n]) binary.f64(x);
+    binary.i32(dims[n]);
+    binary.i32(7);
+    for (int k = 0; k < (dims[n] == 1 || dims[n] == 2 ? dims[n] : 0); ++k) binary.f64(0.5);
+  }
+  binary.text("\n$EndParametricNodes\n$Elements\n1\n");
+  // Type 4, one element, two tags; the element: its number, its tags, its nodes.
+  for (int v : {4, 1, 2, 1, 1, 1, 1, 2, 3, 4}) binary.i32(v);
+  binary.text("\n$EndElements\n");
+  TetMesh c;
+  const Status read_binary = read_mesh_from_memory(binary.data(), MeshFormat::kGmsh22, "d.msh", &c);
+  ASSERT_TRUE(read_binary.ok()) << read_binary.message();
+  EXPECT_EQ(c.positions, a.positions);
+  EXPECT_EQ(c.tets, a.tets);
+  const std::string cut = binary.data().substr(0, binary.data().find("$EndParametricNodes") - 9);
+  EXPECT_NE(read_mesh_from_memory(cut, MeshFormat::kGmsh22, "e.msh", &c).message().find("e.msh"),
+            std::string::npos);
 }
 
 // Prisms are not read: the note says so, and that the group they made has no tets.
