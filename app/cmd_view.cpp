@@ -16,10 +16,11 @@ constexpr const char* kViewUsage =
     "                   [--interactive-scale F] [--size-map S.sol [--size-map-mesh M]]\n"
     "\n"
     "Opens the interactive viewer (a window: needs a display) on FILE, or on the bundled\n"
-    "motor model when none is given: threshold sliders, simplification in the background,\n"
-    "a level-of-detail scrubber, statistics, save and screenshots. FILE may be a collapse\n"
-    "history (.tlh, from 'tetlod simplify --history' or saved in the viewer): its levels\n"
-    "are there at once, without simplifying again.\n"
+    "motor model when none is given (with --script, none: the script opens one):\n"
+    "threshold sliders, simplification in the background, a level-of-detail scrubber,\n"
+    "statistics, save and screenshots. FILE may be a collapse history (.tlh, from\n"
+    "'tetlod simplify --history' or saved in the viewer): its levels are there at once,\n"
+    "without simplifying again (and its size map, if it was made with one).\n"
     "  --script SCRIPT        run the actions in SCRIPT in the window (see app/viewer_script.h:\n"
     "                         thresholds, simplify, scrub, cut, hide, color, screenshot, save,\n"
     "                         bench-scrub, quit); a bad line is an error naming SCRIPT:LINE\n"
@@ -115,6 +116,13 @@ int cmd_view(const Args& args) {
   if (!options.size_map_mesh_path.empty() && options.size_map_path.empty()) {
     std::fprintf(stderr, "tetlod view: --size-map-mesh %s: give the sizes too (--size-map)\n",
                  options.size_map_mesh_path.c_str());
+    return kExitUsage;
+  }
+  if (!options.size_map_path.empty() && is_history_path(options.mesh_path)) {
+    std::fprintf(stderr,
+                 "tetlod view: --size-map %s: %s is a history, which keeps the size map it was "
+                 "made with, if any\n",
+                 options.size_map_path.c_str(), options.mesh_path.c_str());
     return kExitUsage;
   }
   if (options.mesh_path.empty() && !options.has_script) options.mesh_path = default_model();

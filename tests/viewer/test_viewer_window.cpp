@@ -406,6 +406,14 @@ TEST(ViewerWindow, SizeMapGivesTheClisMesh) {
   EXPECT_EQ(alone.code, 2) << alone.output;
   EXPECT_NE(alone.output.find("give the sizes too (--size-map)"), std::string::npos)
       << alone.output;
+  // A history keeps its own map: another is bad usage (exit 2, as for lod and render).
+  const test::CommandResult on_history =
+      test::run_tetlod("view '" + (dir / "map.tlh").string() + "' --size-map '" +
+                       (dir / "sizes.sol").string() + "'");
+  EXPECT_EQ(on_history.code, 2) << on_history.output;
+  EXPECT_NE(on_history.output.find("is a history, which keeps the size map it was made with"),
+            std::string::npos)
+      << on_history.output;
 
   // The history's map, kept by the viewer's improve as by lod's.
   ASSERT_EQ(std::system(("cd '" + dir.string() + "' && " + tetlod +
