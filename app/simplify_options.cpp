@@ -254,6 +254,27 @@ Status read_size_map(const std::string& path, const TetMesh& mesh, const Validat
   return Status();
 }
 
+std::string outside_background_note(const TetMesh& input, const TetMesh& background,
+                                    const std::string& background_name) {
+  Vec3 lo, hi, in_lo, in_hi;
+  mesh_bounds(background, &lo, &hi);
+  mesh_bounds(input, &in_lo, &in_hi);
+  // A margin of 1e-6 of the larger box's diagonal: the same domain meshed twice.
+  const double margin = 1e-6 * std::max(length(hi - lo), length(in_hi - in_lo));
+  size_t outside = 0;
+  for (const Vec3& p : input.positions)
+    outside += p.x < lo.x - margin || p.y < lo.y - margin || p.z < lo.z - margin ||
+               p.x > hi.x + margin || p.y > hi.y + margin || p.z > hi.z + margin;
+  if (outside == 0) return "";
+  char box[160];
+  std::snprintf(box, sizeof box, "(%g, %g, %g) to (%g, %g, %g)", lo.x, lo.y, lo.z, hi.x, hi.y,
+                hi.z);
+  return std::to_string(outside) + " of the input's " + std::to_string(input.vertex_count()) +
+         " vertices lie outside " + background_name + "'s box, " + box +
+         ": the sizes there are those of the nearest of its tets (not the same domain, or "
+         "not the same units?)";
+}
+
 int finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
                             const char* command, SimplifyOptions* options,
                             const ValidationReport* read) {
@@ -282,6 +303,11 @@ int finish_simplify_options(const TetMesh& input, const std::vector<MaterialName
     if (!s) {  // the file, or the mesh it goes with, is at fault
       std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
       return kExitBadInput;
+    }
+    if (!other_path.empty()) {
+      const std::string note =
+          outside_background_note(input, other, "--size-map-mesh " + other_path);
+      if (!note.empty()) std::fprintf(stderr, "tetlod %s: note: %s\n", command, note.c_str());
     }
     options->params.sizing.map = std::move(map);
     options->size_map_path.clear();  // read once

@@ -70,6 +70,11 @@ Status read_size_map(const std::string& path, const TetMesh& mesh, const Validat
                      std::shared_ptr<const SizeMap>* map,
                      const std::string& mesh_name = "the input");
 
+// A note if vertices of `input` lie outside `background`'s bounding box (a size map's
+// background mesh over another domain, or in other units), else "".
+std::string outside_background_note(const TetMesh& input, const TetMesh& background,
+                                    const std::string& background_name);
+
 // With --size-map, it reads the file and builds params.sizing.map over `input`;
 // `read`, the input's validation (if it was read from a file), maps the file's sizes
 // to the vertices the reader kept.

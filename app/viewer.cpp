@@ -760,6 +760,12 @@ void Viewer::start_load(const std::string& path) {
           if (s)
             s = read_size_map(job->size_map_path, other, &other_info.validation, &size_map,
                               "--size-map-mesh " + other_path);
+          if (s) {
+            const std::string note =
+                outside_background_note(*read, other, "--size-map-mesh " + other_path);
+            std::lock_guard<std::mutex> lock(job->mutex);
+            if (!note.empty()) job->notes.push_back(note);
+          }
         }
       }
       mesh = std::move(read);

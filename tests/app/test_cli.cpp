@@ -682,6 +682,20 @@ TEST(Cli, SimplifyKeepsToASizeMap) {
     ASSERT_EQ(rb.code, 0) << rb.output;
     EXPECT_NE(rb.output.find("(a size map, 0.3 to 1.2)"), std::string::npos) << rb.output;
     EXPECT_NE(rb.output.find("0 of them new"), std::string::npos) << rb.output;
+    EXPECT_EQ(rb.output.find("lie outside"), std::string::npos) << rb.output;  // one domain
+    // A background over another box (here moved by 10): a note says so.
+    TetMesh moved = background;
+    for (Vec3& p : moved.positions) p.x += 10;
+    const std::string moved_path = out_dir() + "/map_moved.mesh";
+    ASSERT_TRUE(write_mesh(moved_path, moved).ok());
+    const CommandResult rm =
+        run("stats " + in + " --size-map " + write_sol("map_linear_coarse.sol", on_coarse) +
+            " --size-map-mesh " + moved_path);
+    EXPECT_NE(rm.output.find("note: 112 of the input's 112 vertices lie outside "
+                             "--size-map-mesh " +
+                             moved_path + "'s box"),
+              std::string::npos)
+        << rm.output;
     TetMesh ma, mb;
     ASSERT_TRUE(read_mesh(a, &ma).ok());
     ASSERT_TRUE(read_mesh(b, &mb).ok());
