@@ -28,7 +28,8 @@ constexpr const char* kRenderUsageHead =
     "thresholds saved in the history. The picture is 800 x 800 unless --width and --height\n"
     "say otherwise.\n";
 constexpr const char* kRenderUsageTail =
-    "  --simplify        render the simplified mesh; takes the flags of 'tetlod simplify':\n"
+    "  --simplify        render the simplified mesh (any flag of 'tetlod simplify' asks\n"
+    "                    for it too); takes the flags of 'tetlod simplify':\n"
     "                    --size, --stretch, --valence, --tolerance, --material-size,\n"
     "                    --size-field, --size-map, --no-subdivide, --crease-angle,\n"
     "                    --improve, and\n"
@@ -71,6 +72,11 @@ int cmd_render(const Args& args) {
   if (in.empty() || out.empty()) {
     std::fputs("tetlod render: need FILE and -o SHOT.png\n\n", stderr);
     print_usage(stderr);
+    return kExitUsage;
+  }
+  if (options.snapshot.draw.color_mode == render::ColorMode::kMaterial &&
+      !options.snapshot.size_range_from_faces) {
+    std::fputs("tetlod render: --range is for --color stretch or size, not material\n", stderr);
     return kExitUsage;
   }
   if (!has_extension(out, ".png")) {

@@ -78,9 +78,18 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
   const std::string command = argv[1];
+  // What went to standard output must have got there (a full disk, a closed pipe).
+  const auto written = [&command](int code) {
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      std::fprintf(stderr, "tetlod %s: cannot write to standard output: %s\n", command.c_str(),
+                   std::strerror(errno));
+      return kExitBadInput;
+    }
+    return code;
+  };
   if (command == "--help" || command == "-h" || command == "help") {
     std::fputs(kUsage, stdout);
-    return kExitOk;
+    return written(kExitOk);
   }
   if (command == "--version" || command == "version") {
     std::printf(
@@ -88,7 +97,7 @@ int main(int argc, char** argv) {
         "It links TetGen 1.5 (for 'tetlod generate'), so it is covered by the GNU AGPLv3;\n"
         "see the README's Licensing.\n",
         TETLOD_VERSION);
-    return kExitOk;
+    return written(kExitOk);
   }
   const Args args(argv + 2, argv + argc);
   int code = kExitUsage;
@@ -103,11 +112,5 @@ int main(int argc, char** argv) {
                  command.c_str());
     return kExitBadInput;
   }
-  // What went to standard output must have got there (a full disk, a closed pipe).
-  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-    std::fprintf(stderr, "tetlod %s: cannot write to standard output: %s\n", command.c_str(),
-                 std::strerror(errno));
-    return kExitBadInput;
-  }
-  return code;
+  return written(code);
 }

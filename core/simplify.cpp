@@ -3333,6 +3333,8 @@ class PastRunsAlongside {
             changed_.notify_one();
           },
           &stop_, patches, max_tets);
+    } catch (const std::bad_alloc&) {
+      runs_.status = Status::error("the run past the valence ran out of memory");
     } catch (const std::exception& e) {
       runs_.status = Status::error(std::string("the run past the valence failed: ") + e.what());
     }

@@ -103,8 +103,16 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
     // Face areas square the squared lengths: beyond these the metrics (stretch,
     // quadrics) under- or overflow, and a regular tet would measure as flat.
     if (!(longest2 >= kMinEdge * kMinEdge && longest2 <= kMaxEdge * kMaxEdge)) {
+      // (Its length without squaring, which over- or underflows out there.)
+      double longest = 0;
+      const Vec3* corners[4] = {&a, &b, &c, &d};
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          const Vec3 e = *corners[j] - *corners[i];
+          longest = std::max(longest, std::hypot(std::hypot(e.x, e.y), e.z));
+        }
       char text[64];
-      std::snprintf(text, sizeof text, "%g", std::sqrt(longest2));
+      std::snprintf(text, sizeof text, "%g", longest);
       return Status::error(where(source, tet_lines, t) + tet_name(t) + " has edges of length " +
                            text + ", outside [1e-60, 1e60] where TetLOD's metrics are exact; " +
                            "rescale the mesh");

@@ -114,10 +114,16 @@ TEST(Cli, StatsPrintsTableOneAndJson) {
 // error, not a success with nothing written (found by a hostile-input test).
 TEST(Cli, AStandardOutputThatCannotBeWrittenIsAnError) {
   const std::string path = write_grid("grid_full.mesh");
-  for (const char* to : {"> /dev/full", ">&-"}) {
+  struct Case {
+    std::string arguments, to, says;
+  };
+  const Case cases[] = {{"stats --json " + path, "> /dev/full", "tetlod stats: cannot write"},
+                        {"stats --json " + path, ">&-", "tetlod stats: cannot write"},
+                        // The help too (it exited 0).
+                        {"--help", "> /dev/full", "tetlod --help: cannot write"}};
+  for (const Case& c : cases) {
     // stderr to the pipe, stdout where asked.
-    const std::string command =
-        std::string(TETLOD_BINARY) + " stats --json " + path + " 2>&1 " + to;
+    const std::string command = std::string(TETLOD_BINARY) + " " + c.arguments + " 2>&1 " + c.to;
     std::FILE* pipe = popen(command.c_str(), "r");
     ASSERT_NE(pipe, nullptr);
     std::string output;
@@ -125,10 +131,9 @@ TEST(Cli, AStandardOutputThatCannotBeWrittenIsAnError) {
     size_t n;
     while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
     const int status = pclose(pipe);
-    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << to << "\n" << output;
-    EXPECT_NE(output.find("tetlod stats: cannot write to standard output"), std::string::npos)
-        << to << "\n"
-        << output;
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << command << "\n" << output;
+    EXPECT_NE(output.find(c.says + " to standard output"), std::string::npos) << command << "\n"
+                                                                              << output;
   }
 }
 

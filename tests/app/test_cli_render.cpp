@@ -169,7 +169,7 @@ TEST(CliRender, BadValuesAreUsageErrors) {
        {"--width 0", "--width 5000", "--width abc", "--color hue", "--colormap jet", "--cut w=1",
         "--cut x", "--cut-plane 0,0,0,1", "--cut-plane 1,2", "--view top", "--camera 1,2,3,1,2,3",
         "--highlight-below 2", "--range 1,0", "--materials 1,-2", "--bogus", "--simplify",
-        "--size -1"}) {
+        "--color material --range 0,1", "--size -1"}) {
     const CommandResult r = run("render " + in + " -o " + out + " " + flags);
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
     EXPECT_NE(r.output.find("tetlod"), std::string::npos) << flags;
