@@ -1627,7 +1627,8 @@ void Viewer::fill_status() {
 // --- Scripted runs ---------------------------------------------------------------
 
 void Viewer::fail_script(int line, const std::string& message) {
-  std::fprintf(stderr, "%s:%d: %s\n", options_.script_name.c_str(), line, message.c_str());
+  std::fprintf(stderr, "tetlod view: %s:%d: %s\n", options_.script_name.c_str(), line,
+               message.c_str());
   exit_code_ = kExitBadInput;
   quit_ = true;
 }
