@@ -63,8 +63,8 @@ int cmd_compare(const Args& args) {
     } else if (a == "--tolerance") {
       const auto t = i + 1 < args.size() ? parse_double(args[i + 1]) : std::nullopt;
       if (!t || !(*t >= 0) || !std::isfinite(*t)) {
-        std::fprintf(stderr, "tetlod compare: --tolerance needs a length >= 0\n\n%s",
-                     kCompareUsage);
+        std::fprintf(stderr, "tetlod compare: --tolerance '%s' is not a finite length >= 0\n\n%s",
+                     i + 1 < args.size() ? args[i + 1].c_str() : "", kCompareUsage);
         return kExitUsage;
       }
       tolerance = *t;

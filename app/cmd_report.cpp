@@ -318,6 +318,12 @@ int cmd_report(const Args& args) {
       std::fprintf(stderr, "tetlod report: %s\n", offscreen.renderer->last_error().c_str());
       return kExitBadInput;
     }
+    if (k == 0 && offscreen.renderer->triangle_count() == 0) {  // as render says it
+      std::fputs(
+          "tetlod report: note: the pictures are empty: every tet is hidden (--materials, "
+          "--hide) or cut away (--cut, --cut-plane)\n",
+          stderr);
+    }
     const render::Image chart = render::draw_histogram_chart(
         stats.stretch_histogram, options.snapshot.draw.color_map, 480, 260,
         "stretch histogram, " + std::to_string(stats.whole.elements) + " tets");

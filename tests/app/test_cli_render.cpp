@@ -603,6 +603,19 @@ TEST(CliReport, ReportsTheLevelsOfASavedHistory) {
   EXPECT_NE(html(saved).find("; levels improved (--improve)"), std::string::npos);
 }
 
+// Pictures with nothing in them are said to be empty, as render says it (a report
+// with every material hidden was silent; found by a user test).
+TEST(CliReport, EmptyPicturesAreNoted) {
+  const CommandResult r =
+      run("report " + asset("box2.mesh") + " --hide 1,2 -o " + out_dir() + "/report_empty");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tetlod report: note: the pictures are empty"), std::string::npos)
+      << r.output;
+  const CommandResult shown =
+      run("report " + asset("box2.mesh") + " -o " + out_dir() + "/report_shown");
+  EXPECT_EQ(shown.output.find("pictures are empty"), std::string::npos) << shown.output;
+}
+
 TEST(CliReport, ErrorsAreClear) {
   EXPECT_EQ(run("report --help").code, 0);
   EXPECT_EQ(run("report " + asset("box2.mesh")).code, 2);                        // no -o
