@@ -129,7 +129,7 @@ class LodSurface {
   std::vector<uint8_t> in_;
   std::vector<Tet> corners_;
   std::vector<float> stretch_;
-  std::vector<float> size_;  // of each tet in: its longest edge
+  std::vector<float> size_;  // of each tet shown (in_): its longest edge
   bool by_size_ = false;
   std::vector<float> values_;  // set_tet_values(); empty: colour by stretch_
   std::vector<uint32_t> highlight_slot_;

@@ -101,11 +101,4 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
   }
 }
 
-std::vector<float> tet_stretches(const TetMesh& mesh) {
-  std::vector<float> stretch(mesh.tet_count());
-  for (size_t i = 0; i < mesh.tet_count(); ++i)
-    stretch[i] = static_cast<float>(tet_shape(mesh, mesh.tets[i]).stretch);
-  return stretch;
-}
-
 }  // namespace tetlod::render

@@ -101,7 +101,4 @@ struct SurfaceBuffers {
 // their capacity between builds, so a rebuild does not reallocate them.
 void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, SurfaceBuffers* out);
 
-// Stretch of every tet (paper eq. 2), as floats for the vertex buffer.
-std::vector<float> tet_stretches(const TetMesh& mesh);
-
 }  // namespace tetlod::render
