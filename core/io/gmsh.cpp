@@ -171,8 +171,9 @@ class GmshParser {
       } else if (section == "$Nodes") {
         if (seen_nodes_) {
           scanner_.fail("a second $Nodes section");
-        } else if (binary_ ? (version_ == 22 ? parse_nodes_22_binary() : parse_nodes_41_binary())
-                           : (version_ == 22 ? parse_nodes_22() : parse_nodes_41())) {
+        } else if (binary_
+                       ? (version_ == 22 ? parse_nodes_22_binary(false) : parse_nodes_41_binary())
+                       : (version_ == 22 ? parse_nodes_22(false) : parse_nodes_41())) {
           seen_nodes_ = true;
           finish_nodes();
         }
@@ -181,7 +182,7 @@ class GmshParser {
         // the geometry.
         if (seen_nodes_) {
           scanner_.fail("a second $Nodes (or $ParametricNodes) section");
-        } else if (binary_ ? parse_parametric_nodes_22_binary() : parse_parametric_nodes_22()) {
+        } else if (binary_ ? parse_nodes_22_binary(true) : parse_nodes_22(true)) {
           seen_nodes_ = true;
           finish_nodes();
         }
@@ -474,22 +475,34 @@ class GmshParser {
     return true;
   }
 
-  bool parse_nodes_22_binary() {
+  // A node takes 28 bytes (int tag, three doubles); in $ParametricNodes (as Gmsh 4.8
+  // writes them with -bin) also an int dimension, an int entity and a double per
+  // dimension of a curve or surface: 36 bytes at least.
+  bool parse_nodes_22_binary(bool parametric) {
+    const char* section = parametric ? "$ParametricNodes" : "$Nodes";
+    const uint64_t least = parametric ? 36 : 28;
     uint64_t count = 0;
-    // A node takes 28 bytes (int tag, three doubles).
-    if (!scanner_.read_count(&count, "node count", 28) || !reserve_nodes(count) ||
+    if (!scanner_.read_count(&count, "node count", least) || !reserve_nodes(count) ||
         !begin_binary()) {
       return false;
     }
     BinaryCursor c = binary_cursor();
-    if (!c.fits(count, 28)) return truncated("$Nodes");
+    if (!c.fits(count, least)) return truncated(section);
     for (uint64_t i = 0; i < count; ++i) {
       const int32_t tag = c.i32();
       if (tag < 1) return fail_binary(c, "node tag " + std::to_string(tag) + " is below 1");
       node_tags_.push_back(uint64_t(tag));
       if (!add_binary_position(c)) return false;
+      if (!parametric) continue;
+      const int32_t dimension = c.i32();
+      c.i32();  // the entity
+      if (dimension < 0 || dimension > 3)
+        return fail_binary(c, "node " + std::to_string(tag) + ": entity dimension " +
+                                  std::to_string(dimension) + " is not 0 to 3");
+      for (int k = 0; k < (dimension == 1 || dimension == 2 ? dimension : 0); ++k) c.f64();
+      if (!c.ok()) return truncated(section);
     }
-    return end_binary(c, "$Nodes") && expect_end("$EndNodes");
+    return end_binary(c, section) && expect_end(parametric ? "$EndParametricNodes" : "$EndNodes");
   }
 
   bool parse_nodes_41_binary() {
@@ -816,59 +829,24 @@ class GmshParser {
     return true;
   }
 
-  bool parse_nodes_22() {
+  // "tag x y z\n" (at least 8 bytes); in $ParametricNodes (Gmsh's -setnumber
+  // Mesh.SaveParametric 1) then "dimension entity" and as many parameters as the
+  // dimension of a curve or surface (none on points and volumes): at least 12 bytes.
+  bool parse_nodes_22(bool parametric) {
     uint64_t count = 0;
-    // "tag x y z\n" takes at least 8 bytes.
-    if (!scanner_.read_count(&count, "node count", 8) || !reserve_nodes(count)) return false;
+    if (!scanner_.read_count(&count, "node count", parametric ? 12 : 8) || !reserve_nodes(count))
+      return false;
     for (uint64_t i = 0; i < count; ++i) {
       if (!read_node_tag() || !read_position()) return false;
-    }
-    return expect_end("$EndNodes");
-  }
-
-  // "tag x y z dimension entity [u [v]]": as many parameters as the dimension of the
-  // entity the node lies on, for curves and surfaces (none on points and volumes).
-  bool parse_parametric_nodes_22() {
-    uint64_t count = 0;
-    // "tag x y z dim entity\n" takes at least 12 bytes.
-    if (!scanner_.read_count(&count, "node count", 12) || !reserve_nodes(count)) return false;
-    for (uint64_t i = 0; i < count; ++i) {
       int64_t dimension = 0, entity = 0;
-      if (!read_node_tag() || !read_position() ||
-          !scanner_.read_int_in_range(&dimension, "entity dimension", 0, 3) ||
-          !scanner_.read_int(&entity, "entity tag") ||
-          !scanner_.skip_numbers(dimension == 1 || dimension == 2 ? uint64_t(dimension) : 0,
-                                 "parametric coordinates")) {
+      if (parametric &&
+          (!scanner_.read_int_in_range(&dimension, "entity dimension", 0, 3) ||
+           !scanner_.read_int(&entity, "entity tag") ||
+           !scanner_.skip_numbers(dimension == 1 || dimension == 2 ? uint64_t(dimension) : 0,
+                                  "parametric coordinates")))
         return false;
-      }
     }
-    return expect_end("$EndParametricNodes");
-  }
-
-  // Binary: int tag, three doubles, int dimension, int entity, and a double per
-  // dimension for curves and surfaces (as Gmsh 4.8 writes them with -bin).
-  bool parse_parametric_nodes_22_binary() {
-    uint64_t count = 0;
-    if (!scanner_.read_count(&count, "node count", 36) || !reserve_nodes(count) ||
-        !begin_binary()) {
-      return false;
-    }
-    BinaryCursor c = binary_cursor();
-    if (!c.fits(count, 36)) return truncated("$ParametricNodes");
-    for (uint64_t i = 0; i < count; ++i) {
-      const int32_t tag = c.i32();
-      if (tag < 1) return fail_binary(c, "node tag " + std::to_string(tag) + " is below 1");
-      node_tags_.push_back(uint64_t(tag));
-      if (!add_binary_position(c)) return false;
-      const int32_t dimension = c.i32();
-      c.i32();  // the entity
-      if (dimension < 0 || dimension > 3)
-        return fail_binary(c, "node " + std::to_string(tag) + ": entity dimension " +
-                                  std::to_string(dimension) + " is not 0 to 3");
-      for (int k = 0; k < (dimension == 1 || dimension == 2 ? dimension : 0); ++k) c.f64();
-      if (!c.ok()) return truncated("$ParametricNodes");
-    }
-    return end_binary(c, "$ParametricNodes") && expect_end("$EndParametricNodes");
+    return expect_end(parametric ? "$EndParametricNodes" : "$EndNodes");
   }
 
   bool parse_nodes_41() {
