@@ -150,20 +150,9 @@ bool same_filter(const render::SurfaceFilter& a, const render::SurfaceFilter& b)
          a.highlight == b.highlight && (!a.highlight || a.highlight_below == b.highlight_below);
 }
 
-// The smallest and largest scalar of the drawn faces ({0, 1} if none is drawn).
-std::pair<double, double> drawn_range(const std::vector<render::SurfaceVertex>& triangles) {
-  if (triangles.empty()) return {0, 1};
-  float lo = triangles[0].stretch, hi = lo;
-  for (const render::SurfaceVertex& v : triangles) {
-    lo = std::min(lo, v.stretch);
-    hi = std::max(hi, v.stretch);
-  }
-  return {lo, hi > lo ? double(hi) : double(lo) * 1.001 + 1e-30};
-}
-
 // `field_max` > 0: the field |E| is on the surface, drawn over [0, field_max]; else a
 // field colour mode falls back to stretch (nothing solved, or a stale solve). Sizes
-// are drawn over `size_range`, the drawn faces' (drawn_range()).
+// are drawn over `size_range`, the drawn faces' (render::scalar_range()).
 render::DrawSettings make_draw_settings(const ui::ViewSettings& view, double field_max,
                                         std::pair<double, double> size_range) {
   render::DrawSettings draw;
@@ -1466,7 +1455,7 @@ double Viewer::field_range_max() const {
 
 std::pair<double, double> Viewer::size_range() const {
   if (!scene_ || view_.color_mode != render::ColorMode::kSize) return {0, 1};
-  return drawn_range(scene_->surface.triangles());
+  return render::scalar_range(scene_->surface.triangles());
 }
 
 // Puts the |E| values on the surface while the field colour mode is on and the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "core/adjacency.h"
 #include "core/metrics.h"
@@ -81,13 +82,8 @@ Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
   build_surface(input, settings.filter, &buffers);
   renderer->upload(buffers);
   DrawSettings draw = settings.draw;
-  if (by_size && settings.size_range_from_faces && !buffers.triangles.empty()) {
-    const auto [lo, hi] = std::minmax_element(
-        buffers.triangles.begin(), buffers.triangles.end(),
-        [](const SurfaceVertex& a, const SurfaceVertex& b) { return a.stretch < b.stretch; });
-    draw.range_min = lo->stretch;
-    draw.range_max = hi->stretch > lo->stretch ? hi->stretch : lo->stretch * 1.001 + 1e-30;
-  }
+  if (by_size && settings.size_range_from_faces && !buffers.triangles.empty())
+    std::tie(draw.range_min, draw.range_max) = scalar_range(buffers.triangles);
   if (settings.filter.highlight) draw.highlight_below = settings.filter.highlight_below;
   const Camera camera = snapshot_camera(mesh, buffers, settings.view);
   if (!renderer->draw(draw, camera, settings.width, settings.height)) return {};

@@ -34,6 +34,16 @@ bool MaterialSet::lookup(int32_t material) const {
   return std::binary_search(ids_.begin(), ids_.end(), material);
 }
 
+std::pair<double, double> scalar_range(const std::vector<SurfaceVertex>& triangles) {
+  if (triangles.empty()) return {0, 1};
+  float lo = triangles[0].stretch, hi = lo;
+  for (const SurfaceVertex& v : triangles) {
+    lo = std::min(lo, v.stretch);
+    hi = std::max(hi, v.stretch);
+  }
+  return {lo, hi > lo ? double(hi) : double(lo) * 1.001 + 1e-30};
+}
+
 void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, SurfaceBuffers* out) {
   out->triangles.clear();
   out->highlight.clear();

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/tet_mesh.h"
@@ -96,6 +97,10 @@ struct SurfaceBuffers {
   // Scratch kept between builds so rebuilding does not allocate.
   std::vector<uint8_t> visible;
 };
+
+// The smallest and largest scalar of `triangles` (a range of some width where all are
+// equal; {0, 1} if there are none): a colour map spanning the drawn faces.
+std::pair<double, double> scalar_range(const std::vector<SurfaceVertex>& triangles);
 
 // Rebuilds `out` completely: two passes over the tets, O(tets); `out`'s arrays keep
 // their capacity between builds, so a rebuild does not reallocate them.
