@@ -489,8 +489,8 @@ class VtuParser {
     return read_binary_array(array, raw);
   }
 
-  // Base64 appended data: the header and the values of an array are encoded apart,
-  // so the header is decoded first to learn how many characters the values take.
+  // Base64 appended data: the header of a compressed array and its values are encoded
+  // apart, so the header is decoded first to learn how many characters the values take.
   bool decode_appended_base64(const PendingArray& array, std::string_view text, std::string* raw) {
     auto chars_for = [](uint64_t bytes) { return (bytes + 2) / 3 * 4; };
     auto decode = [&](size_t at, uint64_t bytes, std::string* out) {
@@ -523,6 +523,13 @@ class VtuParser {
     } else {
       if (!decode(0, header_bytes, &header)) return false;
       value_bytes = header_value(header, 0);
+      // VTK encodes an uncompressed array's header and values as one block (its header
+      // alone would end in '=' padding: 4 or 8 bytes are not a multiple of 3).
+      if (text[chars_for(header_bytes) - 1] != '=') {
+        if (value_bytes > text.size()) value_bytes = text.size() + 1;  // cut short: fails below
+        if (!decode(0, header_bytes + value_bytes, raw)) return false;
+        return true;
+      }
     }
     if (value_bytes > text.size()) value_bytes = text.size() + 1;  // cut short: fails below
     if (!decode(size_t(chars_for(header_bytes)), value_bytes, &values)) return false;

@@ -6,6 +6,7 @@
 // of them again, in each of its encodings, reads as what TetLOD wrote.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -191,10 +192,16 @@ TEST(IoVtkInterop, WeReadWhatVtkWritesOfOurFiles) {
     ASSERT_EQ(our_info.material_names.size(), 2u);
     ASSERT_FALSE(our_info.surface_groups.empty());
     const bool xml = path.substr(path.size() - 4) == ".vtu";
-    for (const char* mode : xml ? std::vector<const char*>{"ascii", "binary", "appended"}
-                                : std::vector<const char*>{"ascii", "binary"}) {
+    // (VTK encodes an uncompressed array's header with its values, a compressed one's
+    // apart.)
+    for (const std::string& mode :
+         xml ? std::vector<std::string>{"ascii", "binary", "appended", "binary+uncompressed",
+                                        "appended+uncompressed", "appended+uncompressed+uint64"}
+             : std::vector<std::string>{"ascii", "binary"}) {
+      std::string tag = mode;
+      std::replace(tag.begin(), tag.end(), '+', '_');
       const std::string again =
-          path.substr(0, path.size() - 4) + "_vtk_" + mode + path.substr(path.size() - 4);
+          path.substr(0, path.size() - 4) + "_vtk_" + tag + path.substr(path.size() - 4);
       SCOPED_TRACE(again);
       run_vtk_read(python, {"--resave", path, again, mode});
       TetMesh theirs;

@@ -80,9 +80,16 @@ def report(path, grid):
 def resave(path, out, mode):
     grid = read(path)
     if out.endswith(".vtu"):
+        # MODE[+uncompressed][+uint64]: VTK's data mode, without its default zlib
+        # compression, with 64-bit block headers.
+        mode, *options = mode.split("+")
         writer = vtk.vtkXMLUnstructuredGridWriter()
         {"ascii": writer.SetDataModeToAscii, "binary": writer.SetDataModeToBinary,
          "appended": writer.SetDataModeToAppended}[mode]()
+        if "uncompressed" in options:
+            writer.SetCompressorTypeToNone()
+        if "uint64" in options:
+            writer.SetHeaderTypeToUInt64()
     else:
         writer = vtk.vtkUnstructuredGridWriter()
         {"ascii": writer.SetFileTypeToASCII, "binary": writer.SetFileTypeToBinary}[mode]()
