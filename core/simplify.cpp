@@ -130,6 +130,22 @@ struct Quadric {
   }
 };
 
+// The point the quadrics are taken about. Their expanded form cancels: error(p) has a
+// rounding of about 1e-16 |p|^2 (Quadric::rounding()), so about the coordinates'
+// origin a mesh 1e7 across from it, as a part placed in a plant's coordinates, would
+// have a rounding far above any tolerance, and pass every collapse's test. About the
+// centre of the mesh's box it is about 1e-16 times its size squared. A mesh round the
+// origin (within 8 times its half-diagonal) keeps the origin, where the rounding is
+// already of that order.
+Vec3 quadric_origin(const TetMesh& mesh) {
+  Vec3 lo, hi;
+  mesh_bounds(mesh, &lo, &hi);
+  const Vec3 centre = (lo + hi) * 0.5;
+  const double half_diagonal = 0.5 * length(hi - lo);
+  const double far = std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)});
+  return far > 8 * half_diagonal ? centre : Vec3{};
+}
+
 enum class Reject : uint8_t { kNone, kTolerance, kStretch, kSize, kValence, kTopology, kOverlap };
 
 // What the queue keeps of a valid collapse, in 32 bytes (the queue holds a few hundred
@@ -1545,6 +1561,7 @@ class Engine {
     ring_mark_.assign(pos_.size(), 0);
     ring_slot_.assign(pos_.size(), 0);
     quadric_.assign(pos_.size(), Quadric());
+    quadric_origin_ = quadric_origin(mesh);
     for (const SurfaceTriangle& s : surface) {
       if (s.outer == kOutsideMaterial)
         for (uint32_t v : s.v) state_[v].outer = 1;
@@ -1553,7 +1570,7 @@ class Engine {
       const double len = length(n);
       if (!(len > 0)) continue;
       n = n * (1.0 / len);
-      const Quadric q = Quadric::plane(n, -dot(n, p));
+      const Quadric q = Quadric::plane(n, -dot(n, p - quadric_origin_));
       for (uint32_t v : s.v) quadric_[v].add(q);
     }
     if (!patch.empty()) add_border_quadrics(surface, patch);
@@ -1592,7 +1609,7 @@ class Engine {
           const double len = length(across);
           if (len > 0) {
             const Vec3 n = across * (1.0 / len);
-            const Quadric q = Quadric::plane(n, -dot(n, pa));
+            const Quadric q = Quadric::plane(n, -dot(n, pa - quadric_origin_));
             quadric_[uses[i].a].add(q);
             quadric_[uses[i].b].add(q);
           }
@@ -2008,7 +2025,8 @@ class Engine {
   // one that meets every threshold needs only its size, for eq. (3).
   Reject check_position(const Quadric& q, const Vec3& k, int unmoved, double old_stretch_mean,
                         double* priority) {
-    if (q.error(k) > tolerance2_ + q.rounding(k)) return Reject::kTolerance;
+    const Vec3 local = k - quadric_origin_;
+    if (q.error(local) > tolerance2_ + q.rounding(local)) return Reject::kTolerance;
     if (moving_count_ == 0) return Reject::kTopology;
     // The bound: with a_1..a_4 the face areas, (sum a)^2 >= sum a^2, so
     // d_t^2 = 6 (6V)^2 / (s^2 A^2) <= 6 (6V)^2 / (s^2 sum a^2); a tet whose bound is
@@ -3107,6 +3125,7 @@ class Engine {
 
  private:
   double tolerance2_ = 0;
+  Vec3 quadric_origin_;  // the quadrics' planes are through positions less this (quadric_origin())
 
   std::vector<Vec3> pos_;
   std::vector<TetRecord> tet_;

@@ -10,6 +10,7 @@
 
 #include "core/adjacency.h"
 #include "core/lod.h"
+#include "core/mesh_compare.h"
 #include "core/metrics.h"
 #include "core/simplify.h"
 #include "core/test_meshes.h"
@@ -92,6 +93,40 @@ TEST(Simplify, CoarsensTheTwoMaterialBoxKeepingItsShape) {
   for (double x : {0.0, 1.0, 2.0})
     for (double y : {0.0, 1.0})
       for (double z : {0.0, 1.0}) EXPECT_TRUE(points.count({x, y, z})) << x << " " << y << " " << z;
+}
+
+// A part placed far from the coordinates' origin (a plant's or a vehicle's frame) is
+// held to the tolerance as it is at the origin: the quadrics' rounding grows with the
+// square of the distance from the point they are taken about.
+TEST(Simplify, KeepsTheToleranceFarFromTheOrigin) {
+  // Two materials meeting on a wavy sheet, for collapses the tolerance refuses.
+  const int n = 8;
+  TetMesh at_origin = two_material_box(n);
+  for (Vec3& v : at_origin.positions) v.x += 0.1 * std::sin(3.0 * v.y) * std::sin(3.0 * v.z);
+  SimplifyParams p = loose_params(1);
+  p.tolerance = 0.02;
+  auto largest_move = [](const TetMesh& before, const TetMesh& after) {
+    double largest = 0;
+    for (const PairDeviation& d : compare_meshes(before, after).pairs)
+      largest = std::max(largest, d.distance);
+    return largest;
+  };
+  SimplifyResult near;
+  ASSERT_TRUE(simplify(at_origin, p, &near));
+  const double near_move = largest_move(at_origin, near.output);
+  ASSERT_GT(near.rejections.tolerance, 0u);
+  ASSERT_LE(near_move, 2 * p.tolerance);
+  for (double offset : {1e7, -3e9}) {
+    TetMesh far = at_origin;
+    for (Vec3& v : far.positions) v = v + Vec3{offset, offset / 2, 0};
+    SimplifyResult r;
+    ASSERT_TRUE(simplify(far, p, &r));
+    EXPECT_LE(largest_move(far, r.output), 2 * p.tolerance) << offset;
+    EXPECT_GT(r.rejections.tolerance, near.rejections.tolerance / 2) << offset;
+    EXPECT_NEAR(double(r.output.tet_count()), double(near.output.tet_count()),
+                0.1 * double(near.output.tet_count()))
+        << offset;
+  }
 }
 
 TEST(Simplify, NothingCollapsesWhenEveryThresholdForbidsIt) {
