@@ -1004,6 +1004,7 @@ class GmshParser {
     if (!binary_) out_->tet_lines.push_back(line_number(line));
     element_tags_.push_back(element_tag);
     if (version_ == 22) tet_elementary_.push_back(current_elementary_);
+    tet_from_elementary_.push_back(from_elementary_);
     ++(from_elementary_ ? elementary_tets_ : physical_tets_);
     return true;
   }
@@ -1234,6 +1235,12 @@ class GmshParser {
                           : "; " + quoted_list(shared) +
                                 " is also a physical group's number, so both are one material"));
     }
+    if (!renumbered_entities_.empty()) {
+      out_->notes.push_back(
+          "tetrahedra in no physical group whose volume entity's tag is also a volume "
+          "group's number are read as materials of their own: entity " +
+          quoted_list(renumbered_entities_));
+    }
   }
 
   // Orders the tets by element tag and rejects repeated tags.
@@ -1279,10 +1286,12 @@ class GmshParser {
       mesh.tets[kept] = mesh.tets[t];
       mesh.materials[kept] = mesh.materials[t];
       element_tags_[kept] = element_tags_[t];
+      tet_from_elementary_[kept] = tet_from_elementary_[t];
       if (!out_->tet_lines.empty()) out_->tet_lines[kept] = out_->tet_lines[t];
       ++kept;
     }
     mesh.tets.resize(kept);
+    tet_from_elementary_.resize(kept);
     mesh.materials.resize(kept);
     element_tags_.resize(kept);
     if (!out_->tet_lines.empty()) out_->tet_lines.resize(kept);
@@ -1295,8 +1304,46 @@ class GmshParser {
                           groups);
   }
 
+  // Tets in no physical group take their volume entity's tag as material. Where that
+  // number is also a volume group's (one that holds tets, or one $PhysicalNames names),
+  // those tets get a number above every group's and material's, so that two bodies are
+  // not read as one material, nor named after a group they are not in (Gmsh numbers
+  // entities and groups apart: Mesh.SaveAll writes 2.2 files with every element in no
+  // group, and their volume groups' names).
+  void separate_entity_materials() {
+    if (elementary_tets_ == 0) return;
+    std::vector<int32_t>& materials = out_->mesh.materials;
+    std::set<int64_t> groups;
+    for (size_t t = 0; t < materials.size(); ++t)
+      if (!tet_from_elementary_[t]) groups.insert(materials[t]);
+    for (const auto& entry : physical_names_)
+      if (entry.first.first == 3) groups.insert(entry.first.second);
+    for (const auto& [tag, material] : named_materials_) groups.insert(tag);
+    std::map<int32_t, int32_t> renumbered;
+    int64_t next = groups.empty() ? 0 : *groups.rbegin();
+    for (int32_t m : materials) next = std::max<int64_t>(next, m);
+    for (size_t t = 0; t < materials.size(); ++t)
+      if (tet_from_elementary_[t] && groups.count(materials[t])) renumbered[materials[t]] = 0;
+    for (auto& [from, to] : renumbered) {
+      if (++next > std::numeric_limits<int32_t>::max()) return;  // (left as one material)
+      to = int32_t(next);
+    }
+    if (renumbered.empty()) return;
+    elementary_materials_.clear();
+    for (size_t t = 0; t < materials.size(); ++t) {
+      if (!tet_from_elementary_[t]) continue;
+      if (const auto it = renumbered.find(materials[t]); it != renumbered.end())
+        materials[t] = it->second;
+      if (elementary_materials_.size() < 1000) elementary_materials_.insert(materials[t]);
+    }
+    for (const auto& [from, to] : renumbered)
+      if (renumbered_entities_.size() < 10)
+        renumbered_entities_.push_back(std::to_string(from) + " as " + std::to_string(to));
+  }
+
   bool finish_elements() {
     drop_repeated_tets();
+    separate_entity_materials();
     add_notes();
     for (auto& [tag, triangles] : surface_triangles_) {
       if (tag > std::numeric_limits<int32_t>::max()) continue;
@@ -1365,9 +1412,11 @@ class GmshParser {
   std::vector<uint64_t> node_tags_;                              // sorted by finish_nodes()
   std::vector<uint32_t> node_lines_;
   uint64_t first_tag_ = 0;
-  std::vector<uint32_t> dense_index_;    // node tag - first_tag_ -> vertex, when compact
-  std::vector<int64_t> element_tags_;    // per tet
-  std::vector<int64_t> tet_elementary_;  // per tet: its elementary entity's tag
+  std::vector<uint32_t> dense_index_;             // node tag - first_tag_ -> vertex, when compact
+  std::vector<int64_t> element_tags_;             // per tet
+  std::vector<int64_t> tet_elementary_;           // per tet: its elementary entity's tag
+  std::vector<uint8_t> tet_from_elementary_;      // per tet: its material is its entity's tag
+  std::vector<std::string> renumbered_entities_;  // separate_entity_materials(), the first 10
   // The tags of the last resolve_material() and its answer.
   bool has_last_tags_ = false;
   int64_t last_physical_ = 0, current_elementary_ = 0;

@@ -304,34 +304,55 @@ TEST(IoGmshFiles, SkippedElementsAreNamed) {
   EXPECT_GT(info.validation.removed_unused_vertices, 0u);
 }
 
-// Tets without a physical group take their volume's tag, which here is also a
-// physical group's number: the note says both are one material. Tets all without a
-// group (the documented fallback) or all with one give no such note.
-TEST(IoGmshFiles, ElementaryTagsSharedWithAPhysicalGroupAreNoted) {
-  auto file = [](const std::string& second_tags) {
-    return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
-           "4 0 0 1\n5 0 0 -1\n$EndNodes\n$Elements\n2\n1 4 2 4 1 1 2 3 4\n2 4 2 " +
-           second_tags + " 1 3 2 5\n$EndElements\n";
+// Tets without a physical group take their volume's tag, unless it is also a volume
+// group's number (of tets read in a group, or one $PhysicalNames names): then they are
+// a material of their own, numbered above the rest, and a note says so; before, the
+// two bodies were read as one material (Gmsh 4.1), or a body was named after a group
+// it is not in (2.2 with Mesh.SaveAll, which writes every element in no group).
+TEST(IoGmshFiles, ElementaryTagsSharedWithAVolumeGroupGetANumberOfTheirOwn) {
+  auto file = [](const std::string& names, const std::string& first_tags,
+                 const std::string& second_tags) {
+    return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n" + names +
+           "$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+           "4 0 0 1\n5 0 0 -1\n$EndNodes\n$Elements\n2\n1 4 2 " +
+           first_tags + " 1 2 3 4\n2 4 2 " + second_tags + " 1 3 2 5\n$EndElements\n";
   };
+  const std::string air = "$PhysicalNames\n1\n3 4 \"air\"\n$EndPhysicalNames\n";
   const struct {
-    std::string tags;  // physical and elementary tag of the second tet
+    std::string names, first, second;  // physical and elementary tags of each tet
+    std::vector<int32_t> materials;
     const char* note;
   } cases[] = {
-      {"0 4",
+      {"",
+       "4 1",
+       "0 4",
+       {4, 5},
        "1 tetrahedra are in no physical group: their material is their volume's entity "
-       "tag (4); 4 is also a physical group's number, so both are one material"},
-      {"0 7",
+       "tag (5)\n"},
+      {"",
+       "4 1",
+       "0 7",
+       {4, 7},
        "1 tetrahedra are in no physical group: their material is their volume's entity "
        "tag (7)\n"},
-      {"2 7", nullptr},
+      {"", "4 1", "2 7", {4, 2}, nullptr},
+      // Mesh.SaveAll: no tet in a group, and the name of group 4 (entity 1's).
+      {air, "0 4", "0 1", {5, 1}, "'air' = 4 (no tetrahedra: not in the mesh)"},
   };
   for (const auto& c : cases) {
-    SCOPED_TRACE(c.tags);
+    SCOPED_TRACE(c.second);
     TetMesh mesh;
     ReadInfo info;
-    const Status s =
-        read_mesh_from_memory(file(c.tags), MeshFormat::kGmsh22, "m.msh", &mesh, &info);
+    const Status s = read_mesh_from_memory(file(c.names, c.first, c.second), MeshFormat::kGmsh22,
+                                           "m.msh", &mesh, &info);
     ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(mesh.materials, c.materials);
+    const bool renumbered = c.materials[0] == 5 || c.materials[1] == 5;
+    EXPECT_EQ(all_notes(info).find("are read as materials of their own: entity 4 as 5") !=
+                  std::string::npos,
+              renumbered)
+        << all_notes(info);
+    EXPECT_TRUE(info.material_names.empty() || info.material_names[0].material != 5);
     if (c.note) {
       EXPECT_NE(all_notes(info).find(c.note), std::string::npos) << all_notes(info);
     } else {
