@@ -12,8 +12,10 @@
 //
 // Surface groups (ParsedMesh::surface_groups): each element-based *SURFACE
 // (TYPE=ELEMENT, the default) whose data lines read "element or element set, Sn"
-// is a group named after the surface, tagged 1, 2, ... in the order of the file (a
-// name given again adds to the first). Tet faces, as the Abaqus and CalculiX manuals
+// is a group named after the surface, tagged in the order of the file from the
+// largest material number on (M + 1, M + 2, ...: GetDP, which reads the .msh files made
+// from them, numbers volume and surface regions alike; a name given again adds to the
+// first). Tet faces, as the Abaqus and CalculiX manuals
 // number them: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1 (C3D10: the
 // same corners). A surface <X>_FACES is named X when the file has a node set X and
 // no surface X: TetLOD writes each group as *NSET X and *SURFACE X_FACES, so that a
@@ -686,7 +688,7 @@ class AbaqusParser {
       }
       if (faces.empty()) continue;
       InputSurfaceGroup group;
-      group.tag = int32_t(out_->surface_groups.size() + 1);
+      group.tag = next_surface_tag();
       group.name = valid_utf8(group_name(surface.name));
       group.triangles.reserve(faces.size());
       const TetMesh& mesh = out_->mesh;
@@ -715,6 +717,17 @@ class AbaqusParser {
     return true;
   }
 
+  // The tag of the next surface group: after the largest material number (and 0).
+  int32_t next_surface_tag() {
+    if (surface_tag_base_ < 0) {
+      int64_t largest = 0;
+      for (int32_t m : out_->mesh.materials) largest = std::max<int64_t>(largest, m);
+      // (Numbers this high: from 1.)
+      surface_tag_base_ = largest < std::numeric_limits<int32_t>::max() / 2 ? largest : 0;
+    }
+    return int32_t(surface_tag_base_ + 1 + int64_t(out_->surface_groups.size()));
+  }
+
   // The sets of triangle elements (as Gmsh writes a physical surface: CPS3 elements in
   // an *ELSET named after it) as surface groups, tagged after the *SURFACEs': the
   // *ELSETs that hold triangles, else the triangle *ELEMENT blocks' ELSETs.
@@ -735,7 +748,7 @@ class AbaqusParser {
     size_t unknown_nodes = 0;
     for (const auto& [name, members] : sets) {
       InputSurfaceGroup group;
-      group.tag = int32_t(out_->surface_groups.size() + 1);
+      group.tag = next_surface_tag();
       group.name = valid_utf8(name);
       std::unordered_set<int64_t> listed;  // an element listed twice is one triangle
       for (int64_t e : *members) {
@@ -856,6 +869,7 @@ class AbaqusParser {
   std::vector<Surface> surfaces_;                          // element-based, in order of the file
   std::unordered_map<std::string, size_t> surface_index_;  // by upper-case name
   size_t current_surface_ = 0;
+  int64_t surface_tag_base_ = -1;             // next_surface_tag(): the largest material number
   std::vector<std::string> unread_surfaces_;  // "NAME (reason)", for the note
 };
 

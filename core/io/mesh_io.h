@@ -56,7 +56,8 @@
 //    or no markers, none. A malformed .face is an error naming it.
 //  - Abaqus: each element-based *SURFACE ("element or element set, Sn"; S1 = nodes
 //    1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1) is a surface group named after it,
-//    tags 1, 2, ... in the order of the file; <X>_FACES is named X when a node set
+//    tags M + 1, M + 2, ... (M: the largest material number) in the order of the
+//    file; <X>_FACES is named X when a node set
 //    X exists and no surface X (as TetLOD writes a group X). Node surfaces, other
 //    forms and references to elements or sets that are not there are skipped, and
 //    faces of elements that are not tets dropped, with a note. Then the *ELSETs of

@@ -144,9 +144,12 @@ TEST(IoInputGroups, AbaqusSurfacesByElementAndBySet) {
       {5, "SKIN", {{a, b, c}}},                   // the shell S3's set, after the surfaces
   };
   ASSERT_EQ(info.surface_groups.size(), expected.size());
+  // Tagged after the largest material number (GetDP numbers volumes and surfaces alike).
+  const int32_t largest = *std::max_element(mesh.materials.begin(), mesh.materials.end());
+  ASSERT_GT(largest, 0);
   for (size_t i = 0; i < expected.size(); ++i) {
     SCOPED_TRACE(expected[i].name);
-    EXPECT_EQ(info.surface_groups[i].tag, expected[i].tag);
+    EXPECT_EQ(info.surface_groups[i].tag, largest + expected[i].tag);
     EXPECT_EQ(info.surface_groups[i].name, expected[i].name);
     EXPECT_EQ(canonical(info.surface_groups[i].triangles), canonical(expected[i].triangles));
   }
@@ -195,7 +198,8 @@ TEST(IoInputGroups, AbaqusTriangleElementSetsAreGroups) {
   ASSERT_EQ(info.surface_groups.size(), 2u);
   EXPECT_EQ(info.surface_groups[0].name, "Side");  // the *SURFACE first
   EXPECT_EQ(info.surface_groups[1].name, "port");
-  EXPECT_EQ(info.surface_groups[1].tag, 2);
+  EXPECT_EQ(info.surface_groups[1].tag,
+            *std::max_element(read.materials.begin(), read.materials.end()) + 2);
   const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0}, d{0, 0, 1};
   EXPECT_EQ(canonical(info.surface_groups[1].triangles), canonical(Corners{{a, b, c}}));
   // No *ELSET holds triangles: the block's set, its triangle with an unknown node left out.
@@ -257,7 +261,8 @@ TEST(IoInputGroups, AbaqusBrokenSurfacesNameTheLine) {
     EXPECT_EQ(read.tet_count(), 2u);
     ASSERT_EQ(info.surface_groups.size(), 1u) << c.surface;
     EXPECT_EQ(info.surface_groups[0].name, "Y");
-    EXPECT_EQ(info.surface_groups[0].tag, 1);
+    EXPECT_EQ(info.surface_groups[0].tag,
+              *std::max_element(read.materials.begin(), read.materials.end()) + 1);
     EXPECT_EQ(info.surface_groups[0].triangles.size(), 2u) << c.surface;
     const std::string notes = join(info.notes);
     EXPECT_NE(notes.find("not read as surface groups: *SURFACE " + std::string(c.note)),
@@ -313,8 +318,9 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
   ASSERT_TRUE(read_mesh(dir + "/box2.inp", &back, &info).ok());
   ASSERT_EQ(info.surface_groups.size(), plain.groups.size());
   const auto written = written_triangles(mesh, plain);
+  const int32_t largest = *std::max_element(back.materials.begin(), back.materials.end());
   for (size_t i = 0; i < plain.groups.size(); ++i) {
-    EXPECT_EQ(info.surface_groups[i].tag, int32_t(i + 1));
+    EXPECT_EQ(info.surface_groups[i].tag, largest + int32_t(i + 1));
     EXPECT_EQ(info.surface_groups[i].name, plain.groups[i].name);  // in its case
     // A face's corners in the order of its Abaqus face, not of the writer's
     // triangle: compare them as sets of corners.
@@ -330,7 +336,7 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
   ASSERT_TRUE(group_surface(back, &groups, SurfacePatches(back, info.surface_groups)).ok());
   std::vector<std::string> expected;
   for (size_t i = 0; i < plain.groups.size(); ++i)
-    expected.push_back(info.surface_groups[i].name + "=" + std::to_string(i + 1) + ":" +
+    expected.push_back(info.surface_groups[i].name + "=" + std::to_string(largest + i + 1) + ":" +
                        std::to_string(plain.groups[i].triangles.size()));
   EXPECT_EQ(names_and_tags(groups), expected);
 
