@@ -229,6 +229,11 @@ int cmd_simplify(const Args& args) {
   std::string beyond = beyond_levels_note(elements > 0 ? elements : -1, step,
                                           result.history.step_count(), output.tet_count());
   if (!beyond.empty()) beyond = "; " + beyond;
+  // A level before the last may break what the final mesh does not (tets not yet
+  // collapsed): what it breaks is said apart.
+  const bool before_last = step < result.history.step_count();
+  ThresholdCounts level_breaks;
+  if (before_last && !improve) level_breaks = threshold_breaks(output, params);
   ImproveResult improved;
   double seconds_improve = 0;
   if (improve) improved = improve_timed(&output, params, patches, &seconds_improve);
@@ -267,10 +272,18 @@ int cmd_simplify(const Args& args) {
                            .c_str(),
       static_cast<unsigned long long>(e.total()), static_cast<unsigned long long>(e.repeated));
   const ThresholdViolations& v = result.violations;
-  std::printf("final mesh%s, breaking a threshold: %s\n", improve ? " (before --improve)" : "",
+  std::printf("final mesh%s, breaking a threshold: %s\n",
+              before_last ? " (the history's last step)"
+              : improve   ? " (before --improve)"
+                          : "",
               describe_violations(v).c_str());
   if (v.above_size > 0) std::printf("why: %s\n", above_size_reason(params, result).c_str());
-  if (improve) print_improve(improved, seconds_improve);
+  if (improve) {
+    print_improve(improved, seconds_improve);
+  } else if (before_last) {
+    std::printf("the level written (step %zu), breaking a threshold: %s\n", step,
+                describe_breaks(level_breaks).c_str());
+  }
   std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)",
               result.seconds_subdivide, result.seconds_classify, result.seconds_simplify,
               result.kernels);
@@ -459,11 +472,8 @@ int cmd_lod(const Args& args) {
     // A level before the last may break what the final mesh does not: tets not yet
     // collapsed, and after a run past the valence, before its first collapses, nodes
     // subdivision took past it (docs/RESULTS.md).
-    const ThresholdCounts b = threshold_breaks(level.mesh, *level.params);
-    std::printf(
-        "this level, breaking the thresholds saved in the history: %zu tets below the stretch, "
-        "%zu above the size, %zu nodes above the valence\n",
-        b.below_stretch, b.above_size, b.above_valence);
+    std::printf("this level, breaking the thresholds saved in the history: %s\n",
+                describe_breaks(threshold_breaks(level.mesh, *level.params)).c_str());
   }
   print_staged_mesh_notes(staged);
   return kExitOk;

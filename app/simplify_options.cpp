@@ -362,6 +362,12 @@ std::string describe_violations(const ThresholdViolations& v) {
          "already broke it)";
 }
 
+std::string describe_breaks(const ThresholdCounts& b) {
+  return std::to_string(b.below_stretch) + " tets below the stretch, " +
+         std::to_string(b.above_size) + " above the size, " + std::to_string(b.above_valence) +
+         " nodes above the valence";
+}
+
 std::string describe_size(const SizingField& sizing) {
   char map[96] = "";
   if (sizing.map)

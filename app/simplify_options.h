@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "core/improve.h"
 #include "core/io/mesh_io.h"
 #include "core/simplify.h"
 
@@ -98,5 +99,7 @@ std::string describe_rejections(const RejectionCounts& r);
 // "2 tets below the stretch, 0 above the size, 1 nodes above the valence (0 of them
 // new: ...)": what a run's final mesh still breaks.
 std::string describe_violations(const ThresholdViolations& v);
+// "N tets below the stretch, N above the size, N nodes above the valence".
+std::string describe_breaks(const ThresholdCounts& b);
 
 }  // namespace tetlod::app

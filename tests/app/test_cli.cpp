@@ -372,6 +372,34 @@ TEST(Cli, ConvertAndSimplifyKeepMaterialNames) {
   EXPECT_NE(r.output.find("-o needs a file"), std::string::npos) << r.output;
 }
 
+// simplify --elements writes a level before the last: what that level breaks is said
+// apart from what the final mesh breaks (the same counts stats gives for the file), as
+// the final mesh's line described the history's last step.
+TEST(Cli, SimplifyElementsSaysWhatTheLevelWrittenBreaks) {
+  const std::string input = std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh";
+  const std::string level = out_dir() + "/spheres_level.mesh";
+  const std::string thresholds = " --size 1.6 --stretch 0.25 --valence 25";
+  CommandResult r =
+      run("simplify " + input + " -o " + level + thresholds + " --tolerance 0.05 --elements 30000");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("final mesh (the history's last step), breaking a threshold: "),
+            std::string::npos)
+      << r.output;
+  const std::string said = "the level written (step 0), breaking a threshold: ";
+  const size_t at = r.output.find(said);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string counts =
+      r.output.substr(at + said.size(), r.output.find('\n', at) - at - said.size());
+  const CommandResult stats = run("stats " + level + thresholds);
+  ASSERT_EQ(stats.code, 0) << stats.output;
+  EXPECT_NE(stats.output.find("breaking them: " + counts + "\n"), std::string::npos)
+      << counts << "\n"
+      << stats.output;
+  // Its counts are not the final mesh's (the level is the subdivided input).
+  EXPECT_EQ(r.output.find("final mesh (the history's last step), breaking a threshold: " + counts),
+            std::string::npos);
+}
+
 // A Gmsh input's surface groups go through simplification: a round port on a flat
 // face, and a coax's ends (four materials' boundaries) and jacket (part of the
 // shield's), each written under its name and tag.
