@@ -99,6 +99,10 @@ struct Keyword {
   }
 };
 
+// The comment line TetLOD writes for each named material: "** TetLOD material
+// <set> <id> <name>", its name as given, which the set's label may not spell.
+constexpr const char* kMaterialNameComment = "** TetLOD material ";
+
 class AbaqusParser {
  public:
   AbaqusParser(std::string_view text, const std::string& name, ParsedMesh* out)
@@ -110,7 +114,11 @@ class AbaqusParser {
     bool have_keyword = false;
     while (next_line(&line)) {
       const std::string_view content = trim_blanks(line);
-      if (content.empty() || content.substr(0, 2) == "**") continue;
+      if (content.substr(0, 2) == "**") {
+        read_material_name_comment(content);
+        continue;
+      }
+      if (content.empty()) continue;
       if (content.front() == '*') {
         read_keyword(content, &keyword);
         have_keyword = true;
@@ -548,11 +556,18 @@ class AbaqusParser {
     for (size_t k = 0; k < keys_.size(); ++k) {
       if (used[k] && id[k] < 0) id[k] = ++largest;
     }
-    // The names, but not our own MATERIAL_<id>, which only says the number.
+    // The names, but not our own MATERIAL_<id>, which only says the number; where
+    // TetLOD wrote the set, the name it had (kMaterialNameComment).
     for (size_t k = 0; k < keys_.size(); ++k) {
       if (used[k] && keys_[k] != "MATERIAL_" + std::to_string(id[k]) &&
-          id[k] <= std::numeric_limits<int32_t>::max())
-        out_->material_names.push_back({int32_t(id[k]), valid_utf8(spellings_[k])});
+          id[k] <= std::numeric_limits<int32_t>::max()) {
+        const auto given = commented_names_.find(keys_[k]);
+        out_->material_names.push_back(
+            {int32_t(id[k]),
+             valid_utf8(given != commented_names_.end() && given->second.first == id[k]
+                            ? given->second.second
+                            : spellings_[k])});
+      }
     }
     sort_by_material(&out_->material_names);
     TetMesh& mesh = out_->mesh;
@@ -717,6 +732,24 @@ class AbaqusParser {
     return true;
   }
 
+  // "** TetLOD material SET ID NAME" (kMaterialNameComment): the name the material of
+  // the element set SET had before it was made an Abaqus label (spaces and all).
+  void read_material_name_comment(std::string_view comment) {
+    constexpr std::string_view kPrefix = kMaterialNameComment;
+    if (comment.substr(0, kPrefix.size()) != kPrefix) return;
+    std::string_view rest = comment.substr(kPrefix.size());
+    const size_t space = rest.find(' ');
+    if (space == std::string_view::npos) return;
+    const std::string set(rest.substr(0, space));
+    rest.remove_prefix(space + 1);
+    int64_t id = 0;
+    const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), id);
+    if (error != std::errc() || end == rest.data() + rest.size() || *end != ' ') return;
+    const std::string_view name = rest.substr(size_t(end - rest.data()) + 1);
+    if (!name.empty() && commented_names_.size() < 100000)
+      commented_names_[upper(set)] = {id, std::string(name)};
+  }
+
   // The tag of the next surface group: after the largest material number (and 0).
   int32_t next_surface_tag() {
     if (surface_tag_base_ < 0) {
@@ -869,6 +902,8 @@ class AbaqusParser {
   std::vector<Surface> surfaces_;                          // element-based, in order of the file
   std::unordered_map<std::string, size_t> surface_index_;  // by upper-case name
   size_t current_surface_ = 0;
+  // From kMaterialNameComment lines: set name (upper case) -> its material and name.
+  std::map<std::string, std::pair<int64_t, std::string>> commented_names_;
   int64_t surface_tag_base_ = -1;             // next_surface_tag(): the largest material number
   std::vector<std::string> unread_surfaces_;  // "NAME (reason)", for the note
 };
@@ -978,7 +1013,24 @@ void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
       " C3D4 elements, one element set per material (MATERIAL_<id>, or the "
       "material's name ending in its id)");
   if (surfaces) out->append(", a node set and a surface (<name>_FACES) per surface group");
-  out->append("\n*NODE\n");
+  out->push_back('\n');
+  // The names as they were (a label has no spaces and ends in the id), in comments,
+  // for TetLOD to read back.
+  if (names) {
+    std::vector<int32_t> materials(mesh.materials.begin(), mesh.materials.end());
+    std::sort(materials.begin(), materials.end());
+    materials.erase(std::unique(materials.begin(), materials.end()), materials.end());
+    for (int32_t m : materials) {
+      const std::string* name = find_material_name(names, m);
+      if (!name || name->empty()) continue;
+      std::string one_line = *name;
+      for (char& c : one_line)
+        if (c == '\n' || c == '\r') c = ' ';
+      out->append(std::string(kMaterialNameComment) + material_set_name(m, names) + " " +
+                  std::to_string(m) + " " + one_line + "\n");
+    }
+  }
+  out->append("*NODE\n");
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     const Vec3& p = mesh.positions[v];
     append_number(out, v + 1);
