@@ -229,10 +229,27 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
   text_disabled_wrapped("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
 }
 
-// The sliders' ranges (ctrl-click types any value).
-constexpr double kToleranceRange[2] = {0.0, 5.0};
-constexpr double kSizeRange[2] = {0.1, 100.0};
+// The stretch slider's range. The size and tolerance sliders follow the model:
+// size_slider_range(), tolerance_slider_range().
 constexpr double kStretchRange[2] = {0.01, 0.9};
+
+// The input's bounding-box diagonal, which the size and tolerance sliders follow.
+double diagonal(const ViewerStatus& status) {
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = double(status.bounds_max[k]) - double(status.bounds_min[k]);
+    sum += d * d;
+  }
+  return std::sqrt(sum);
+}
+
+// A logarithmic slider over a length in `range`, clamping typed values to it.
+bool length_slider(const char* label, double* value, const SliderRange& range,
+                   const std::string& prefix = "") {
+  return ImGui::SliderScalar(label, ImGuiDataType_Double, value, &range.min, &range.max,
+                             log_slider_format(range, prefix).c_str(),
+                             ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+}
 
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                         std::vector<Command>* commands) {
@@ -257,12 +274,20 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
           "diagonal (as tetlod simplify); stretch %.3g, valence %d, uniform sizing.",
           ThresholdSettings{}.stretch, ThresholdSettings{}.valence);
   }
-  ImGui::SliderScalar("tolerance (TL)", ImGuiDataType_Double, &t->tolerance, &kToleranceRange[0],
-                      &kToleranceRange[1], "%.4g", ImGuiSliderFlags_Logarithmic);
-  if (t->sizing_mode != SizingMode::kPerMaterial)
-    ImGui::SliderScalar(t->sizing_mode == SizingMode::kUniform ? "size (SZ)" : "size cap (SZ)",
-                        ImGuiDataType_Double, &t->size, &kSizeRange[0], &kSizeRange[1], "%.4g",
-                        ImGuiSliderFlags_Logarithmic);
+  const double model_diagonal = diagonal(status);
+  const SliderRange tolerance_range = tolerance_slider_range(model_diagonal, t->tolerance);
+  length_slider("tolerance (TL)", &t->tolerance, tolerance_range);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%.4g to %.4g, from the model's diagonal (%.4g)", tolerance_range.min,
+                      tolerance_range.max, model_diagonal);
+  if (t->sizing_mode != SizingMode::kPerMaterial) {
+    const SliderRange size_range = size_slider_range(model_diagonal, t->size);
+    length_slider(t->sizing_mode == SizingMode::kUniform ? "size (SZ)" : "size cap (SZ)", &t->size,
+                  size_range);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%.4g to %.4g, from the model's diagonal (%.4g)", size_range.min,
+                        size_range.max, model_diagonal);
+  }
   ImGui::SliderScalar("stretch (ST)", ImGuiDataType_Double, &t->stretch, &kStretchRange[0],
                       &kStretchRange[1], "%.3f");
   ImGui::SliderInt("valence (VL)", &t->valence, 4, 200);
@@ -297,8 +322,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     ImGui::SameLine(90);
     if (t->material_cap) {
       ImGui::SetNextItemWidth(-1);
-      ImGui::SliderScalar("##cap", ImGuiDataType_Double, &t->size, &kSizeRange[0], &kSizeRange[1],
-                          "cap %.4g", ImGuiSliderFlags_Logarithmic);
+      length_slider("##cap", &t->size, size_slider_range(model_diagonal, t->size), "cap ");
     } else {
       ImGui::TextDisabled("no size cap");
     }
@@ -325,8 +349,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       ImGui::SameLine(90);
       if (it != sizes.end()) {
         ImGui::SetNextItemWidth(-1);
-        ImGui::SliderScalar("##size", ImGuiDataType_Double, &it->second, &kSizeRange[0],
-                            &kSizeRange[1], "%.4g", ImGuiSliderFlags_Logarithmic);
+        length_slider("##size", &it->second, size_slider_range(model_diagonal, it->second));
       } else {
         ImGui::TextDisabled("no size limit");
       }
@@ -722,6 +745,43 @@ void empty_view_note(const ViewerStatus& status, const ViewSettings& view, bool 
 }
 
 }  // namespace
+
+namespace {
+
+double usable_diagonal(double diagonal) {
+  return std::isfinite(diagonal) && diagonal > 0 ? diagonal : 1.0;
+}
+
+// `range` widened to hold `current` (a negative or non-finite one is not a length: the
+// panel shows it, and Simplify says what is wrong with it).
+SliderRange holding(SliderRange range, double current) {
+  if (std::isfinite(current) && current >= 0) {
+    range.min = std::min(range.min, current);
+    range.max = std::max(range.max, current);
+  }
+  return range;
+}
+
+}  // namespace
+
+SliderRange size_slider_range(double diagonal, double current) {
+  const double d = usable_diagonal(diagonal);
+  return current > 0 ? holding({d * 1e-4, d}, current) : SliderRange{d * 1e-4, d};
+}
+
+SliderRange tolerance_slider_range(double diagonal, double current) {
+  const double d = usable_diagonal(diagonal);
+  return holding({d * 1e-7, d * 0.1}, current);
+}
+
+std::string log_slider_format(const SliderRange& range, const std::string& prefix) {
+  // A range from 0 (a tolerance of 0) is as fine near 0 as one from max x 1e-7.
+  const double low = range.min > 0 ? range.min : range.max * 1e-7;
+  int digits = 4;
+  if (std::isfinite(low) && low > 0)
+    digits = std::clamp(static_cast<int>(std::ceil(-std::log10(low))) + 1, 4, 30);
+  return prefix + "%." + std::to_string(digits) + "g";
+}
 
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
                         std::string* error) {

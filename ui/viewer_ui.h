@@ -76,6 +76,25 @@ struct ThresholdSettings {
 // value (a region spec that does not parse, a size <= 0, ...).
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
                         std::string* error);
+// The range of a threshold slider (ImGui's SliderScalar over doubles).
+struct SliderRange {
+  double min = 0, max = 1;
+};
+// The size and tolerance sliders follow the loaded model's extent, its bounding-box
+// `diagonal` (model units), on a logarithmic scale, so that a model in metres and one a
+// million times larger are equally easy to set: size from diagonal / 10^4 to the
+// diagonal, tolerance from diagonal x 10^-7 to diagonal / 10. Each range is widened to
+// hold `current` (a default, a history's or a script's value), so that showing it
+// never moves it; a value typed with ctrl-click is clamped to the range. A diagonal
+// that is not > 0 (no mesh, a flat one) is taken as 1.
+SliderRange size_slider_range(double diagonal, double current);
+SliderRange tolerance_slider_range(double diagonal, double current);
+// The printf format of a logarithmic slider over `range`: "%.4g", or more digits where
+// the range starts below 10^-4, since ImGui's logarithmic slider takes values below
+// 10^-(the format's digits) as zero (a tolerance slider from 1e-8 with "%.4g" could not
+// go below 1e-4). `prefix` goes before the number ("cap ").
+std::string log_slider_format(const SliderRange& range, const std::string& prefix = "");
+
 // The reverse, for the panel to show the thresholds a history was made with: the
 // settings that give `params` back. False, leaving `settings`
 // alone, where the panel cannot hold them: material sizes and region rules together,
