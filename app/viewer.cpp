@@ -365,6 +365,7 @@ class Viewer {
   std::string size_map_path_;              // --size-map, until the first load starts
   std::string size_map_mesh_path_;         // and --size-map-mesh, as long
   std::string hide_note_;                  // the names it lacked, for the status line
+  bool opened_mesh_ = false;               // a mesh was opened (--hide applied to it)
   std::unique_ptr<render::WindowContext> window_;
   std::unique_ptr<render::Renderer> renderer_;
   bool imgui_glfw_ = false, imgui_gl_ = false;
@@ -680,7 +681,8 @@ void Viewer::start_load(const std::string& path) {
   size_map_path_.clear();
   size_map_mesh_path_.clear();
   Job* job = job_.get();
-  const ui::ViewSettings view = view_;
+  ui::ViewSettings view = view_;
+  if (opened_mesh_) view.hidden_materials.clear();  // as swap_in() will
   job->thread = std::thread([job, view] {
     {
       std::lock_guard<std::mutex> lock(job->mutex);
@@ -928,8 +930,12 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   panel_.jump_elements = static_cast<int>(
       std::min<size_t>(scene_->lod->alive_tet_count(), std::numeric_limits<int>::max()));
   if (is_load) {
-    // Keep the hidden materials that this mesh has; centre the cut; frame the model.
+    // Every material shown (an id names another material in another mesh), except in
+    // the first mesh opened, which --hide's ids and names are for; centre the cut; frame
+    // the model.
     auto& hidden = view_.hidden_materials;
+    if (opened_mesh_) hidden.clear();
+    opened_mesh_ = true;
     hide_by_name();
     hidden.erase(std::remove_if(hidden.begin(), hidden.end(),
                                 [&](int32_t m) {

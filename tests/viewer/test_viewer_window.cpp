@@ -274,6 +274,36 @@ TEST(ViewerWindow, OpeningAMeshResetsEveryThreshold) {
   EXPECT_EQ(saved.tet_count(), 12u);
 }
 
+// Opening another mesh shows every material: material 1 hidden in the spheres is
+// another material in box2, and stays shown there (the picture is that of box2 opened
+// first). --hide is for the first mesh opened, and holds there.
+TEST(ViewerWindow, OpeningAMeshShowsEveryMaterial) {
+  const fs::path dir = fresh_output_dir("viewer_open_shows_materials");
+  const std::string box2 = kSource + "/assets/box2.mesh";
+  std::ofstream(dir / "first.script") << "color material\nscreenshot first.png width=320 "
+                                         "height=240\nquit\n";
+  std::ofstream(dir / "second.script")
+      << "hide 1\nopen " << box2
+      << "\ncolor material\nscreenshot second.png width=320 height=240\nquit\n";
+  std::ofstream(dir / "hidden.script") << "color material\nscreenshot hidden.png width=320 "
+                                          "height=240\nquit\n";
+  const ViewerRun first = run_viewer(dir, "'" + box2 + "' --size 640x480 --script first.script");
+  const ViewerRun second = run_viewer(dir, "'" + kSource +
+                                               "/assets/spheres.mesh' --size 640x480 "
+                                               "--script second.script");
+  const ViewerRun hidden =
+      run_viewer(dir, "'" + box2 + "' --hide 1 --size 640x480 --script hidden.script");
+  for (const ViewerRun* run : {&first, &second, &hidden})
+    ASSERT_EQ(run->exit_code, 0) << run->output;
+  const render::Image first_image = load_png(dir / "first.png");
+  EXPECT_EQ(render::compare_images(first_image, load_png(dir / "second.png"), 0, nullptr)
+                .differing_pixels,
+            0u);
+  EXPECT_GT(render::compare_images(first_image, load_png(dir / "hidden.png"), 8, nullptr)
+                .differing_pixels,
+            1000u);
+}
+
 // Per-material sizing as in the CLI: a material the list leaves out (3 here) gets no
 // size limit of its own, not the uniform size, so the viewer's final mesh is the one
 // `tetlod simplify --material-size` writes for the same list. (Giving material 3 the
