@@ -229,9 +229,11 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
   text_disabled_wrapped("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
 }
 
-// The stretch slider's range. The size and tolerance sliders follow the model:
+// The stretch and valence sliders' ranges (core/simplify.h check_params(): stretch in
+// (0, 1), valence >= 4). The size and tolerance sliders follow the model:
 // size_slider_range(), tolerance_slider_range().
 constexpr double kStretchRange[2] = {0.01, 0.9};
+constexpr int kValenceRange[2] = {4, 200};
 
 // The input's bounding-box diagonal, which the size and tolerance sliders follow.
 double diagonal(const ViewerStatus& status) {
@@ -288,9 +290,11 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       ImGui::SetTooltip("%.4g to %.4g, from the model's diagonal (%.4g)", size_range.min,
                         size_range.max, model_diagonal);
   }
+  // A typed value is clamped to the slider's range, within the valid one.
   ImGui::SliderScalar("stretch (ST)", ImGuiDataType_Double, &t->stretch, &kStretchRange[0],
-                      &kStretchRange[1], "%.3f");
-  ImGui::SliderInt("valence (VL)", &t->valence, 4, 200);
+                      &kStretchRange[1], "%.3f", ImGuiSliderFlags_AlwaysClamp);
+  ImGui::SliderInt("valence (VL)", &t->valence, kValenceRange[0], kValenceRange[1], "%d",
+                   ImGuiSliderFlags_AlwaysClamp);
   int mode = static_cast<int>(t->sizing_mode);
   // The size map is offered only where one was given (it belongs to the mesh opened).
   ImGui::Combo("Sizing", &mode,
@@ -790,39 +794,50 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
   p.min_stretch = settings.stretch;
   p.max_valence = static_cast<uint32_t>(std::max(0, settings.valence));
   p.subdivide = settings.subdivide;
-  if (!(settings.size > 0)) {
-    *error = "size must be > 0";
-    return false;
-  }
+  // Every bad value is named at once (a user who typed two should not learn of the
+  // second only after fixing the first): each threshold is checked by check_params()
+  // alone, the others set to valid values, so that the rules and words are core's.
+  std::vector<std::string> errors;
+  const auto check_alone = [&errors](auto set) {
+    SimplifyParams q;
+    q.sizing.uniform = 1;
+    set(&q);
+    if (const Status s = check_params(q); !s) errors.push_back(s.message());
+  };
+  check_alone([&p](SimplifyParams* q) { q->tolerance = p.tolerance; });
+  check_alone([&p](SimplifyParams* q) { q->min_stretch = p.min_stretch; });
+  check_alone([&p](SimplifyParams* q) { q->max_valence = p.max_valence; });
   // Uniform: the size everywhere; region, size map: the cap besides the rules or the
   // map; per material: the materials' sizes, and the cap if it is ticked.
-  if (settings.sizing_mode != SizingMode::kPerMaterial || settings.material_cap)
-    p.sizing.uniform = settings.size;
+  if (settings.sizing_mode != SizingMode::kPerMaterial || settings.material_cap) {
+    if (settings.size > 0)
+      p.sizing.uniform = settings.size;
+    else
+      errors.push_back("size must be > 0");
+  }
   if (settings.sizing_mode == SizingMode::kMap) {
-    if (!settings.size_map) {
-      *error = "no size map (give one with the mesh: tetlod view FILE --size-map S.sol)";
-      return false;
-    }
-    p.sizing.map = settings.size_map;
+    if (settings.size_map)
+      p.sizing.map = settings.size_map;
+    else
+      errors.push_back("no size map (give one with the mesh: tetlod view FILE --size-map S.sol)");
   } else if (settings.sizing_mode == SizingMode::kRegion) {
-    const Status s = parse_size_field(settings.region_spec, &p.sizing);
-    if (!s) {
-      *error = s.message();
-      return false;
-    }
+    if (const Status s = parse_size_field(settings.region_spec, &p.sizing); !s)
+      errors.push_back(s.message());
   } else if (settings.sizing_mode == SizingMode::kPerMaterial) {
     for (const auto& [material, size] : settings.material_sizes) {
-      if (!(size > 0)) {
-        *error = "size of material " + std::to_string(material) + " must be > 0";
-        return false;
-      }
-      p.sizing.material_sizes.push_back({material, size});
+      if (size > 0)
+        p.sizing.material_sizes.push_back({material, size});
+      else
+        errors.push_back("size of material " + std::to_string(material) + " must be > 0");
     }
     std::sort(p.sizing.material_sizes.begin(), p.sizing.material_sizes.end());
   }
-  const Status s = check_params(p);
-  if (!s) {
-    *error = s.message();
+  if (errors.empty()) {  // what only the whole set can break (no size limit at all, ...)
+    if (const Status s = check_params(p); !s) errors.push_back(s.message());
+  }
+  if (!errors.empty()) {
+    error->clear();
+    for (const std::string& e : errors) *error += (error->empty() ? "" : "; ") + e;
     return false;
   }
   *params = std::move(p);

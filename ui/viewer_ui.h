@@ -72,8 +72,9 @@ struct ThresholdSettings {
   bool keep_inside_groups = true;
 };
 
-// Turns the settings into core parameters. False with a message naming the bad
-// value (a region spec that does not parse, a size <= 0, ...).
+// Turns the settings into core parameters. False with a message naming every bad
+// value, joined by "; " (a region spec that does not parse, a size <= 0, a stretch
+// outside (0, 1), a valence below 4, ...).
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
                         std::string* error);
 // The range of a threshold slider (ImGui's SliderScalar over doubles).

@@ -81,6 +81,32 @@ TEST(ThresholdSettings, HistoryThresholdsRoundTripThroughThePanel) {
   EXPECT_EQ(settings.size, 99);
 }
 
+// Several bad thresholds (as typed before the sliders clamped typed values, or given
+// by a script) are all named at once, in check_params()'s words; a good set passes.
+TEST(ThresholdSettings, EveryBadThresholdIsNamedAtOnce) {
+  ui::ThresholdSettings settings;
+  settings.stretch = 5.0;
+  settings.valence = 1;
+  settings.tolerance = -1;
+  settings.size = 0;
+  SimplifyParams params;
+  std::string error;
+  EXPECT_FALSE(ui::to_simplify_params(settings, &params, &error));
+  for (const char* part : {"tolerance -1 must be", "stretch 5 must lie strictly between 0 and 1",
+                           "valence 1 must be at least 4", "size must be > 0"})
+    EXPECT_NE(error.find(part), std::string::npos) << part << " in: " << error;
+  settings.sizing_mode = ui::SizingMode::kPerMaterial;
+  settings.material_sizes = {{1, 2}, {2, -3}};
+  EXPECT_FALSE(ui::to_simplify_params(settings, &params, &error));
+  EXPECT_NE(error.find("size of material 2 must be > 0"), std::string::npos) << error;
+  EXPECT_EQ(error.find("size must be > 0"), std::string::npos) << error;  // no cap: unused
+  EXPECT_NE(error.find("valence 1"), std::string::npos) << error;
+  settings = {};
+  EXPECT_TRUE(ui::to_simplify_params(settings, &params, &error)) << error;
+  EXPECT_EQ(params.min_stretch, settings.stretch);
+  EXPECT_EQ(params.sizing.uniform, settings.size);
+}
+
 // The size and tolerance sliders follow the model's extent: a model in metres (the
 // user's: diagonal 0.18, defaults size 0.023 and tolerance 0.00018) and one 10^6 times
 // larger get the same ranges relative to the model, with the defaults well inside. (The
