@@ -1597,6 +1597,9 @@ void Viewer::fill_status() {
     s.rejections = scene.result->rejections;
     s.splits = scene.result->splits;
     s.violations = scene.result->violations;
+    s.result_thresholds = scene.params_known ? describe_thresholds(scene.params) : "";
+    s.result_thresholds_changed =
+        scene.params_known && !ui::same_thresholds(thresholds_, scene.params);
     s.input_breaks = scene.input_breaks;
     s.above_size_reason = scene.above_size_reason;
     s.past_valence = past_valence_summary(*scene.result);

@@ -405,7 +405,11 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       ImGui::TextWrapped("Past the valence: %s.", status.past_valence.c_str());
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
-    if (v.below_stretch + v.above_size + v.above_valence == 0) {
+    if (status.result_thresholds_changed) {  // of other thresholds than the sliders': greyed
+      text_disabled_wrapped("%s", final_mesh_text(status).c_str());
+      if (!status.above_size_reason.empty())
+        text_disabled_wrapped("Above the size: %s", status.above_size_reason.c_str());
+    } else if (v.below_stretch + v.above_size + v.above_valence == 0) {
       ImGui::TextWrapped("%s", final_mesh_text(status).c_str());
     } else {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
@@ -844,6 +848,25 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
   return true;
 }
 
+bool same_thresholds(const ThresholdSettings& settings, const SimplifyParams& run) {
+  SimplifyParams p;
+  std::string error;
+  if (!to_simplify_params(settings, &p, &error)) return false;
+  const SizingField &a = p.sizing, &b = run.sizing;
+  const auto same_radial = [](const SizingField::Radial& x, const SizingField::Radial& y) {
+    return x.center == y.center && x.axis == y.axis && x.size0 == y.size0 && x.growth == y.growth;
+  };
+  const auto same_box = [](const SizingField::Box& x, const SizingField::Box& y) {
+    return x.low == y.low && x.high == y.high && x.size == y.size;
+  };
+  return p.tolerance == run.tolerance && p.min_stretch == run.min_stretch &&
+         p.max_valence == run.max_valence && p.subdivide == run.subdivide &&
+         a.uniform == b.uniform && a.material_sizes == b.material_sizes && a.map == b.map &&
+         std::equal(a.radial.begin(), a.radial.end(), b.radial.begin(), b.radial.end(),
+                    same_radial) &&
+         std::equal(a.boxes.begin(), a.boxes.end(), b.boxes.begin(), b.boxes.end(), same_box);
+}
+
 bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings) {
   const SizingField& sizing = params.sizing;
   const bool region = !sizing.radial.empty() || !sizing.boxes.empty();
@@ -968,9 +991,16 @@ std::string final_mesh_text(const ViewerStatus& status) {
   const ThresholdCounts& in = status.input_breaks;
   const std::string input =
       "the input: " + counts(in.below_stretch, in.above_size, in.above_valence) + ".";
+  // Which thresholds: the run's, which the sliders may no longer show.
+  std::string final_mesh = "Final mesh";
+  if (!status.result_thresholds.empty())
+    final_mesh += ", for the run's thresholds (" + status.result_thresholds + ")";
+  if (status.result_thresholds_changed)
+    final_mesh += status.result_thresholds.empty() ? ", for the run's thresholds, not the panel's"
+                                                   : ", not the panel's, changed since";
   if (v.below_stretch + v.above_size + v.above_valence == 0)
-    return "Final mesh: every tet and node within the thresholds; " + input;
-  return "Final mesh: " + counts(v.below_stretch, v.above_size, v.above_valence) + "; " +
+    return final_mesh + ": every tet and node within the thresholds; " + input;
+  return final_mesh + ": " + counts(v.below_stretch, v.above_size, v.above_valence) + "; " +
          (v.created == 0 ? "all input ones or pieces of input tets that already broke it"
                          : "some new ones: please report it") +
          "; " + input;

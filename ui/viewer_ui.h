@@ -102,6 +102,10 @@ std::string log_slider_format(const SliderRange& range, const std::string& prefi
 // region rules without a uniform size, a crease angle other than the default.
 bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings);
 
+// Whether the panel's settings give the run `run` was made with (the same thresholds
+// and sizing; false where the settings do not make parameters at all).
+bool same_thresholds(const ThresholdSettings& settings, const SimplifyParams& run);
+
 // The Analysis panel's set-up (issue 6): an electrostatic problem over the materials
 // of the loaded mesh (core/electrostatics.h).
 enum class MaterialRole { kDielectric = 0, kConductor = 1, kGround = 2 };
@@ -209,9 +213,14 @@ struct ViewerStatus {
   size_t splits = 0;
   double simplify_seconds = 0;
   ThresholdViolations violations;  // of the last run's final mesh
-  ThresholdCounts input_breaks;    // what its input broke of the same thresholds
-  std::string above_size_reason;   // why it has tets above the size ("" if none)
-  std::string past_valence;        // what subdivision past the valence did ("" if nothing)
+  // The thresholds the last run was made with, in words ("size 23, stretch 0.15, valence
+  // 25, tolerance 0.05"), and whether the panel's have changed since (then what the
+  // final mesh breaks is not of the panel's).
+  std::string result_thresholds;
+  bool result_thresholds_changed = false;
+  ThresholdCounts input_breaks;   // what its input broke of the same thresholds
+  std::string above_size_reason;  // why it has tets above the size ("" if none)
+  std::string past_valence;       // what subdivision past the valence did ("" if nothing)
 
   // The displayed level.
   size_t step = 0, step_count = 0;
@@ -277,9 +286,11 @@ std::string top_progress_text(const ViewerStatus& status);
 std::string section_progress_text(const ViewerStatus& status);
 std::string other_run_progress_text(const ViewerStatus& status);
 
-// After a run, what its final mesh still breaks of the thresholds and what the input
-// broke ("Final mesh: 4 tets below the stretch, ...; the input: 6 tets below the
-// stretch, ..."), as the Thresholds section says it.
+// After a run, what its final mesh still breaks of the run's thresholds and what the
+// input broke ("Final mesh, for the run's thresholds (size 23, stretch 0.15, ...): 4
+// tets below the stretch, ...; the input: 6 tets below the stretch, ..."), as the
+// Thresholds section says it; once the panel's thresholds differ from the run's it
+// says so ("..., not the panel's, changed since: ...").
 std::string final_mesh_text(const ViewerStatus& status);
 
 // Draws every panel. `commands` receives what the user asked for this frame.

@@ -940,12 +940,16 @@ size_t orange_panel_pixels(const render::Image& image) {
 
 // After a run, the panel says what the final mesh still breaks and why: the bundled
 // motor is too coarse for subdivision to reach size 12 within stretch 0.15 and
-// valence 25 everywhere, but not within 0.05 and 200.
+// valence 25 everywhere, but not within 0.05 and 200. Once the sliders leave the run's
+// thresholds the warning, which is of the run's, is greyed (it read as if of the new
+// values), and it is orange again when they are back.
 TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
   const fs::path dir = fresh_output_dir("viewer_violations");
   std::ofstream(dir / "run.script")
       << "thresholds size=12 stretch=0.15 valence=25 tolerance=0.05 subdivide=1\nsimplify\n"
          "screenshot broken_ui.png ui=1\n"
+         "thresholds size=13\nscreenshot stale_ui.png ui=1\n"
+         "thresholds size=12\nscreenshot again_ui.png ui=1\n"
          "thresholds stretch=0.05 valence=200\nsimplify\nscreenshot clean_ui.png ui=1\nquit\n";
   // Tall enough for the warning, under the Thresholds section, to be in sight without
   // scrolling the panel.
@@ -956,6 +960,12 @@ TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
   const size_t clean = orange_panel_pixels(load_png(dir / "clean_ui.png"));
   EXPECT_GT(broken, clean + 300) << "no warning in the panel (" << broken << " against " << clean
                                  << " orange pixels)";
+  const size_t stale = orange_panel_pixels(load_png(dir / "stale_ui.png"));
+  const size_t again = orange_panel_pixels(load_png(dir / "again_ui.png"));
+  EXPECT_GT(broken, stale + 300) << "the warning of the run's thresholds still orange (" << stale
+                                 << " orange pixels)";
+  EXPECT_GT(again, stale + 300) << "no warning with the run's thresholds back (" << again
+                                << " orange pixels)";
 }
 
 // --hide takes the input file's names for its materials, as render and report do:
