@@ -1022,11 +1022,11 @@ void Viewer::execute(const ui::Command& command) {
         panel_.target_step = static_cast<long long>(
             scene_->lod->step_for_elements(static_cast<size_t>(std::max(0LL, command.value))));
       break;
-    case ui::CommandKind::kFit:
+    case ui::CommandKind::kFit:  // reframes from the current direction (the views set one)
       if (scene_) {
         Vec3 lo, hi;
         shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-        camera_.fit(lo, hi, render::ViewDirection::kIso);
+        camera_.refit(lo, hi);
       }
       break;
     case ui::CommandKind::kAxisView:

@@ -225,6 +225,10 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
       else
         commands->push_back({CommandKind::kAxisView, "", i - 1});
     }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(i == 0 ? "frame the shown materials from the current direction (key F)"
+                               : "frame the shown materials from this direction (key %d)",
+                        i - 1);
   }
   text_disabled_wrapped("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
 }

@@ -134,7 +134,7 @@ enum class CommandKind {
   kSimplify,      // with the current ThresholdSettings
   kCancel,        // the running simplification
   kJumpElements,  // value: target number of elements
-  kFit,           // fit the camera to the model
+  kFit,           // fit the camera to the shown materials, from the current direction
   kAxisView,      // value: 0 iso, 1 x, 2 y, 3 z
   kSave,          // path: the displayed level; value: kSaveImproved | kSaveSurfaces | kSaveBinary
   kScreenshot,    // path, width, height (0: window size), with_ui

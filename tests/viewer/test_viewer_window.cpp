@@ -304,6 +304,26 @@ TEST(ViewerWindow, OpeningAMeshShowsEveryMaterial) {
             1000u);
 }
 
+// Fit (view fit, the F key) frames the model again from the direction the user orbited
+// to, not from the iso view: after a zoom and a pan it gives the picture of the orbit
+// alone.
+TEST(ViewerWindow, FitKeepsTheViewDirection) {
+  const fs::path dir = fresh_output_dir("viewer_fit_direction");
+  std::ofstream(dir / "orbit.script")
+      << "orbit 120 -40\nscreenshot orbit.png width=320 height=240\nquit\n";
+  std::ofstream(dir / "fit.script") << "orbit 120 -40\nzoom 3\npan 30 20\nview fit\n"
+                                       "screenshot fit.png width=320 height=240\nquit\n";
+  const std::string box2 = "'" + kSource + "/assets/box2.mesh' --size 640x480 ";
+  const ViewerRun orbit = run_viewer(dir, box2 + "--script orbit.script");
+  const ViewerRun fit = run_viewer(dir, box2 + "--script fit.script");
+  ASSERT_EQ(orbit.exit_code, 0) << orbit.output;
+  ASSERT_EQ(fit.exit_code, 0) << fit.output;
+  EXPECT_EQ(
+      render::compare_images(load_png(dir / "orbit.png"), load_png(dir / "fit.png"), 0, nullptr)
+          .differing_pixels,
+      0u);
+}
+
 // Per-material sizing as in the CLI: a material the list leaves out (3 here) gets no
 // size limit of its own, not the uniform size, so the viewer's final mesh is the one
 // `tetlod simplify --material-size` writes for the same list. (Giving material 3 the
