@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -249,12 +250,22 @@ double diagonal(const ViewerStatus& status) {
   return std::sqrt(sum);
 }
 
-// A logarithmic slider over a length in `range`, clamping typed values to it.
+// A logarithmic slider over a length in `range`, clamping typed values to it. Its
+// format may have many digits (log_slider_format()); a value set by dragging is
+// rounded to 4 significant ones (a pixel moves it by about 4 %), so that it reads as
+// it did with "%.4g"; a typed one is kept as typed.
 bool length_slider(const char* label, double* value, const SliderRange& range,
                    const std::string& prefix = "") {
-  return ImGui::SliderScalar(label, ImGuiDataType_Double, value, &range.min, &range.max,
-                             log_slider_format(range, prefix).c_str(),
-                             ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  const bool changed =
+      ImGui::SliderScalar(label, ImGuiDataType_Double, value, &range.min, &range.max,
+                          log_slider_format(range, prefix).c_str(),
+                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  if (changed && ImGui::IsMouseDown(ImGuiMouseButton_Left) && *value > 0) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.4g", *value);
+    *value = std::clamp(std::strtod(text, nullptr), range.min, range.max);
+  }
+  return changed;
 }
 
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
