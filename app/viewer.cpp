@@ -366,6 +366,8 @@ class Viewer {
   std::string size_map_mesh_path_;         // and --size-map-mesh, as long
   std::string hide_note_;                  // the names it lacked, for the status line
   bool opened_mesh_ = false;               // a mesh was opened (--hide applied to it)
+  // Opening a file cancelled the running simplification: said until the load ends.
+  std::string run_cancelled_note_;
   std::unique_ptr<render::WindowContext> window_;
   std::unique_ptr<render::Renderer> renderer_;
   bool imgui_glfw_ = false, imgui_gl_ = false;
@@ -668,10 +670,13 @@ void Viewer::start_load(const std::string& path) {
     status_.load_error = "still loading " + job_->path;
     return;
   }
-  if (job_) {  // a simplification of the old mesh is no longer wanted
+  if (job_) {  // a simplification of the old mesh is no longer wanted: say so
     job_->cancel = true;
     job_->thread.join();
     job_.reset();
+    run_cancelled_note_ = "the running simplification was cancelled: another file was opened";
+    status_.message = run_cancelled_note_;
+    std::fprintf(stderr, "tetlod view: %s\n", run_cancelled_note_.c_str());
   }
   job_ = std::make_unique<Job>();
   job_->is_load = true;
@@ -867,7 +872,8 @@ void Viewer::poll_job() {
   std::unique_ptr<Job> job = std::move(job_);
   if (!job->error.empty()) {
     status_.load_error = job->error;  // the current mesh stays as it was
-    status_.message.clear();
+    status_.message = run_cancelled_note_;
+    run_cancelled_note_.clear();
     last_job_error_ = job->error;
     return;
   }
@@ -884,6 +890,8 @@ void Viewer::poll_job() {
   if (job->is_load) {
     std::snprintf(text, sizeof(text), " in %.2f s", total);
     status_.message = "loaded " + job->path + text;
+    if (!run_cancelled_note_.empty()) status_.message += "; " + run_cancelled_note_;
+    run_cancelled_note_.clear();
     if (!hide_note_.empty()) status_.message += "; " + hide_note_;
     hide_note_.clear();
     for (const std::string& note : job->notes) {

@@ -324,6 +324,20 @@ TEST(ViewerWindow, FitKeepsTheViewDirection) {
       0u);
 }
 
+// Opening a file while a simplification runs cancels it, and says so (it was
+// silently discarded): in the panel, with the file loaded, and on stderr.
+TEST(ViewerWindow, OpeningAFileSaysTheRunningSimplificationWasCancelled) {
+  const fs::path dir = fresh_output_dir("viewer_open_cancels_run");
+  std::ofstream(dir / "run.script") << "thresholds size=12\nsimplify wait=0\nopen " << kSource
+                                    << "/assets/box2.mesh\nscreenshot open_ui.png ui=1\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 1280x800 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("the running simplification was cancelled: another file was opened"),
+            std::string::npos)
+      << run.output;
+}
+
 // Per-material sizing as in the CLI: a material the list leaves out (3 here) gets no
 // size limit of its own, not the uniform size, so the viewer's final mesh is the one
 // `tetlod simplify --material-size` writes for the same list. (Giving material 3 the
