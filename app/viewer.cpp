@@ -799,16 +799,17 @@ void Viewer::start_load(const std::string& path) {
 void Viewer::start_simplify() {
   if (!scene_) return;
   if (job_) {
-    status_.load_error = job_->is_load ? "wait for the load to finish" : "already simplifying";
+    status_.simplify_error = job_->is_load ? "wait for the load to finish" : "already simplifying";
     return;
   }
   SimplifyParams params;
   std::string error;
   if (!ui::to_simplify_params(thresholds_, &params, &error)) {
-    status_.load_error = "thresholds: " + error;
-    last_job_error_ = status_.load_error;
+    last_job_error_ = "thresholds: " + error;
+    status_.simplify_error = ui::simplify_error_text(last_job_error_);
     return;
   }
+  status_.simplify_error.clear();
   job_ = std::make_unique<Job>();
   job_->path = scene_->path;
   Job* job = job_.get();
@@ -870,6 +871,11 @@ void Viewer::poll_job() {
   if (!job_ || !job_->done) return;
   job_->thread.join();
   std::unique_ptr<Job> job = std::move(job_);
+  if (!job->error.empty() && !job->is_load) {  // the previous result stays
+    status_.simplify_error = ui::simplify_error_text(job->error);
+    last_job_error_ = job->error;
+    return;
+  }
   if (!job->error.empty()) {
     status_.load_error = job->error;  // the current mesh stays as it was
     status_.message = run_cancelled_note_;
@@ -937,6 +943,7 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   panel_.target_step = static_cast<long long>(scene_->lod->step());
   panel_.jump_elements = static_cast<int>(
       std::min<size_t>(scene_->lod->alive_tet_count(), std::numeric_limits<int>::max()));
+  status_.simplify_error.clear();  // of another run, or of the mesh before
   if (is_load) {
     // Every material shown (an id names another material in another mesh), except in
     // the first mesh opened, which --hide's ids and names are for; centre the cut; frame

@@ -391,6 +391,11 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   if (!status.running) {
     if (ImGui::Button("Simplify") && !status.mesh_name.empty())
       commands->push_back({CommandKind::kSimplify});
+    if (!status.simplify_error.empty()) {  // here, where the thresholds can be changed
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+      ImGui::TextWrapped("Error: %s", status.simplify_error.c_str());
+      ImGui::PopStyleColor();
+    }
   } else {
     if (ImGui::Button("Cancel")) commands->push_back({CommandKind::kCancel});
     ImGui::SameLine();
@@ -1019,6 +1024,20 @@ std::string final_mesh_text(const ViewerStatus& status) {
          (v.created == 0 ? "all input ones or pieces of input tets that already broke it"
                          : "some new ones: please report it") +
          "; " + input;
+}
+
+std::string simplify_error_text(const std::string& message) {
+  // The command line's flags the simplifier's messages name, and the panel's controls.
+  static const std::pair<const char*, const char*> kControls[] = {
+      {"--no-subdivide", "untick \"Subdivide first\" above"},
+      {"(set --size)", "(set the size)"},
+  };
+  std::string text = message;
+  for (const auto& [flag, control] : kControls) {
+    const size_t at = text.find(flag);
+    if (at != std::string::npos) text.replace(at, std::strlen(flag), control);
+  }
+  return text;
 }
 
 std::string other_run_progress_text(const ViewerStatus& status) {

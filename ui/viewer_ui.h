@@ -188,7 +188,11 @@ struct ViewerStatus {
   std::vector<MaterialName> material_names;
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {1, 1, 1};  // of the input
   std::string load_error;  // last failed load or action, shown until replaced
-  std::string message;     // last success message (saved, screenshot, ...)
+  // The last Simplify's error (bad thresholds, or the run's), in the panel's words
+  // (simplify_error_text()), shown under the Simplify button until the next run or
+  // another mesh.
+  std::string simplify_error;
+  std::string message;  // last success message (saved, screenshot, ...)
   bool loading = false;
   std::string loading_path;
   // The thresholds opening the mesh set (the viewer's defaults for it).
@@ -292,6 +296,11 @@ std::string other_run_progress_text(const ViewerStatus& status);
 // Thresholds section says it; once the panel's thresholds differ from the run's it
 // says so ("..., not the panel's, changed since: ...").
 std::string final_mesh_text(const ViewerStatus& status);
+
+// A simplifier's error as the panel shows it: where it names a command-line flag, the
+// panel's own control instead ("... or --no-subdivide" becomes "... or untick
+// \"Subdivide first\" above").
+std::string simplify_error_text(const std::string& message);
 
 // Draws every panel. `commands` receives what the user asked for this frame.
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,

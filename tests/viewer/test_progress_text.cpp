@@ -188,5 +188,19 @@ TEST(FinalMeshText, SameThresholdsComparesEveryThresholdAndTheSizing) {
   EXPECT_FALSE(ui::same_thresholds(changed, run));
 }
 
+// The simplifier's errors name the command line's flags; the panel names its own
+// controls instead.
+TEST(SimplifyErrorText, NamesThePanelsControlsNotTheFlags) {
+  EXPECT_EQ(ui::simplify_error_text("size 0.001 would subdivide the mesh into about 90000000000 "
+                                    "tets (limit 40000000); choose a larger size or "
+                                    "--no-subdivide"),
+            "size 0.001 would subdivide the mesh into about 90000000000 tets (limit 40000000); "
+            "choose a larger size or untick \"Subdivide first\" above");
+  EXPECT_EQ(ui::simplify_error_text("no size limit given (set --size)"),
+            "no size limit given (set the size)");
+  EXPECT_EQ(ui::simplify_error_text("stretch 5 must lie strictly between 0 and 1"),
+            "stretch 5 must lie strictly between 0 and 1");
+}
+
 }  // namespace
 }  // namespace tetlod

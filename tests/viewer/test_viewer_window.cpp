@@ -338,6 +338,32 @@ TEST(ViewerWindow, OpeningAFileSaysTheRunningSimplificationWasCancelled) {
       << run.output;
 }
 
+// A size that would subdivide the mesh past the limit: the panel shows the error
+// under the Simplify button, where the thresholds are (not in the File section), in
+// its own words (unit test: SimplifyErrorText); the run ends without a result.
+TEST(ViewerWindow, SimplifyErrorShowsUnderTheSimplifyButton) {
+  const fs::path dir = fresh_output_dir("viewer_simplify_error");
+  std::ofstream(dir / "run.script") << "thresholds size=0.001\nsimplify wait=0\nwait done\n"
+                                       "screenshot error_ui.png ui=1\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 1280x1000 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const render::Image image = load_png(dir / "error_ui.png");
+  // Red text in the File section (rows 100 to 260) and in the Thresholds section
+  // (rows 500 to 850), away from the materials' coloured ticks and labels.
+  size_t file = 0, thresholds = 0;
+  const auto red = [&image](int x, int y) {
+    const uint8_t* p = image.pixel(x, y);
+    return p[0] > 150 && p[1] < 120 && p[2] < 120 ? 1u : 0u;
+  };
+  for (int x = 0; x < 390; ++x) {
+    for (int y = 100; y < 260; ++y) file += red(x, y);
+    for (int y = 500; y < 850; ++y) thresholds += red(x, y);
+  }
+  EXPECT_LT(file, 10u) << "an error in the File section";
+  EXPECT_GT(thresholds, 100u) << "no error under the Simplify button";
+}
+
 // Per-material sizing as in the CLI: a material the list leaves out (3 here) gets no
 // size limit of its own, not the uniform size, so the viewer's final mesh is the one
 // `tetlod simplify --material-size` writes for the same list. (Giving material 3 the
