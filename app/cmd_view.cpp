@@ -5,8 +5,11 @@
 
 #include "app/cli_util.h"
 #include "app/commands.h"
+#include "app/render_options.h"
 #include "app/simplify_options.h"
 #include "app/viewer.h"
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
 
 namespace tetlod::app {
 namespace {
@@ -26,7 +29,8 @@ constexpr const char* kViewUsage =
     "                         bench-scrub, quit); a bad line is an error naming SCRIPT:LINE\n"
     "  --size WxH             window size (default 1280x800)\n"
     "  --hide M,M,...         materials hidden at start, by id or by the file's name for them\n"
-    "                         (e.g. the motor's air: --hide 1; a Gmsh volume: --hide shield)\n"
+    "                         (e.g. the motor's air: --hide 1; a Gmsh volume: --hide shield);\n"
+    "                         one FILE lacks is an error, as in 'tetlod render'\n"
     "  --interactive-scale F  resolution of the 3D view while it moves, in (0, 1] (0.5)\n"
     "  --size-map S.sol       sizes at FILE's vertices (as 'tetlod simplify --size-map'):\n"
     "                         the panel's sizing starts as that size map\n"
@@ -126,6 +130,31 @@ int cmd_view(const Args& args) {
     return kExitUsage;
   }
   if (options.mesh_path.empty() && !options.has_script) options.mesh_path = default_model();
+  // As render's --hide: an id or a name the mesh lacks is a usage error, said before a
+  // window opens. The mesh is read here for it (only with --hide); one that does not
+  // read is left to the window, which says why. (With a script that opens the first
+  // mesh, the window looks the names up in it and says which it lacks.)
+  if (!options.mesh_path.empty() && (!hidden.empty() || !options.hidden_names.empty())) {
+    TetMesh mesh;
+    std::vector<MaterialName> names;
+    Status s;
+    if (is_history_path(options.mesh_path)) {
+      CollapseHistory history;
+      s = read_history(options.mesh_path, &mesh, &history, nullptr, &names);
+    } else {
+      ReadInfo info;
+      s = read_mesh(options.mesh_path, &mesh, &info);
+      names = std::move(info.material_names);
+    }
+    if (s) {
+      RenderOptions check;
+      check.hidden_materials = hidden;
+      check.hidden_names = options.hidden_names;
+      if (!resolve_materials(mesh, names, "view", &check)) return kExitUsage;
+      hidden = check.hidden_materials;
+      options.hidden_names.clear();
+    }
+  }
   options.hidden_materials = hidden;
   return run_viewer(options);
 }

@@ -29,6 +29,14 @@ void OrbitCamera::fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view
   yaw_ = (std::abs(d.x) + std::abs(d.y) > 1e-9 * distance_) ? std::atan2(d.y, d.x) : -kPi / 2;
 }
 
+void OrbitCamera::refit(const Vec3& lo, const Vec3& hi) {
+  // frame_camera()'s distance fits the box's bounding sphere, from any direction.
+  const double yaw = yaw_, pitch = pitch_;
+  fit(lo, hi, render::ViewDirection::kIso);
+  yaw_ = yaw;
+  pitch_ = pitch;
+}
+
 void OrbitCamera::orbit(double dx, double dy) {
   yaw_ -= dx * 0.008;
   pitch_ = std::clamp(pitch_ + dy * 0.008, -kMaxPitch, kMaxPitch);

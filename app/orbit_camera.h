@@ -12,6 +12,10 @@ class OrbitCamera {
  public:
   // Frames the box [lo, hi] from `view` (and remembers the box for near/far).
   void fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view);
+  // Frames the box [lo, hi] as fit() does (target at its centre, at the distance that
+  // shows it whole), looking from the current direction (the Fit button: only the
+  // views set a direction).
+  void refit(const Vec3& lo, const Vec3& hi);
   // Mouse drags in pixels; `viewport_height` in pixels scales the pan.
   void orbit(double dx, double dy);
   void pan(double dx, double dy, int viewport_height);

@@ -365,6 +365,9 @@ class Viewer {
   std::string size_map_path_;              // --size-map, until the first load starts
   std::string size_map_mesh_path_;         // and --size-map-mesh, as long
   std::string hide_note_;                  // the names it lacked, for the status line
+  bool opened_mesh_ = false;               // a mesh was opened (--hide applied to it)
+  // Opening a file cancelled the running simplification: said until the load ends.
+  std::string run_cancelled_note_;
   std::unique_ptr<render::WindowContext> window_;
   std::unique_ptr<render::Renderer> renderer_;
   bool imgui_glfw_ = false, imgui_gl_ = false;
@@ -667,10 +670,13 @@ void Viewer::start_load(const std::string& path) {
     status_.load_error = "still loading " + job_->path;
     return;
   }
-  if (job_) {  // a simplification of the old mesh is no longer wanted
+  if (job_) {  // a simplification of the old mesh is no longer wanted: say so
     job_->cancel = true;
     job_->thread.join();
     job_.reset();
+    run_cancelled_note_ = "the running simplification was cancelled: another file was opened";
+    status_.message = run_cancelled_note_;
+    std::fprintf(stderr, "tetlod view: %s\n", run_cancelled_note_.c_str());
   }
   job_ = std::make_unique<Job>();
   job_->is_load = true;
@@ -680,7 +686,8 @@ void Viewer::start_load(const std::string& path) {
   size_map_path_.clear();
   size_map_mesh_path_.clear();
   Job* job = job_.get();
-  const ui::ViewSettings view = view_;
+  ui::ViewSettings view = view_;
+  if (opened_mesh_) view.hidden_materials.clear();  // as swap_in() will
   job->thread = std::thread([job, view] {
     {
       std::lock_guard<std::mutex> lock(job->mutex);
@@ -792,16 +799,17 @@ void Viewer::start_load(const std::string& path) {
 void Viewer::start_simplify() {
   if (!scene_) return;
   if (job_) {
-    status_.load_error = job_->is_load ? "wait for the load to finish" : "already simplifying";
+    status_.simplify_error = job_->is_load ? "wait for the load to finish" : "already simplifying";
     return;
   }
   SimplifyParams params;
   std::string error;
   if (!ui::to_simplify_params(thresholds_, &params, &error)) {
-    status_.load_error = "thresholds: " + error;
-    last_job_error_ = status_.load_error;
+    last_job_error_ = "thresholds: " + error;
+    status_.simplify_error = ui::simplify_error_text(last_job_error_);
     return;
   }
+  status_.simplify_error.clear();
   job_ = std::make_unique<Job>();
   job_->path = scene_->path;
   Job* job = job_.get();
@@ -863,9 +871,15 @@ void Viewer::poll_job() {
   if (!job_ || !job_->done) return;
   job_->thread.join();
   std::unique_ptr<Job> job = std::move(job_);
+  if (!job->error.empty() && !job->is_load) {  // the previous result stays
+    status_.simplify_error = ui::simplify_error_text(job->error);
+    last_job_error_ = job->error;
+    return;
+  }
   if (!job->error.empty()) {
     status_.load_error = job->error;  // the current mesh stays as it was
-    status_.message.clear();
+    status_.message = run_cancelled_note_;
+    run_cancelled_note_.clear();
     last_job_error_ = job->error;
     return;
   }
@@ -882,6 +896,8 @@ void Viewer::poll_job() {
   if (job->is_load) {
     std::snprintf(text, sizeof(text), " in %.2f s", total);
     status_.message = "loaded " + job->path + text;
+    if (!run_cancelled_note_.empty()) status_.message += "; " + run_cancelled_note_;
+    run_cancelled_note_.clear();
     if (!hide_note_.empty()) status_.message += "; " + hide_note_;
     hide_note_.clear();
     for (const std::string& note : job->notes) {
@@ -927,9 +943,14 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   panel_.target_step = static_cast<long long>(scene_->lod->step());
   panel_.jump_elements = static_cast<int>(
       std::min<size_t>(scene_->lod->alive_tet_count(), std::numeric_limits<int>::max()));
+  status_.simplify_error.clear();  // of another run, or of the mesh before
   if (is_load) {
-    // Keep the hidden materials that this mesh has; centre the cut; frame the model.
+    // Every material shown (an id names another material in another mesh), except in
+    // the first mesh opened, which --hide's ids and names are for; centre the cut; frame
+    // the model.
     auto& hidden = view_.hidden_materials;
+    if (opened_mesh_) hidden.clear();
+    opened_mesh_ = true;
     hide_by_name();
     hidden.erase(std::remove_if(hidden.begin(), hidden.end(),
                                 [&](int32_t m) {
@@ -1016,11 +1037,11 @@ void Viewer::execute(const ui::Command& command) {
         panel_.target_step = static_cast<long long>(
             scene_->lod->step_for_elements(static_cast<size_t>(std::max(0LL, command.value))));
       break;
-    case ui::CommandKind::kFit:
+    case ui::CommandKind::kFit:  // reframes from the current direction (the views set one)
       if (scene_) {
         Vec3 lo, hi;
         shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-        camera_.fit(lo, hi, render::ViewDirection::kIso);
+        camera_.refit(lo, hi);
       }
       break;
     case ui::CommandKind::kAxisView:
@@ -1591,6 +1612,9 @@ void Viewer::fill_status() {
     s.rejections = scene.result->rejections;
     s.splits = scene.result->splits;
     s.violations = scene.result->violations;
+    s.result_thresholds = scene.params_known ? describe_thresholds(scene.params) : "";
+    s.result_thresholds_changed =
+        scene.params_known && !ui::same_thresholds(thresholds_, scene.params);
     s.input_breaks = scene.input_breaks;
     s.above_size_reason = scene.above_size_reason;
     s.past_valence = past_valence_summary(*scene.result);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -225,14 +226,47 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
       else
         commands->push_back({CommandKind::kAxisView, "", i - 1});
     }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(i == 0 ? "frame the shown materials from the current direction (key F)"
+                               : "frame the shown materials from this direction (key %d)",
+                        i - 1);
   }
   text_disabled_wrapped("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
 }
 
-// The sliders' ranges (ctrl-click types any value).
-constexpr double kToleranceRange[2] = {0.0, 5.0};
-constexpr double kSizeRange[2] = {0.1, 100.0};
+// The stretch and valence sliders' ranges (core/simplify.h check_params(): stretch in
+// (0, 1), valence >= 4). The size and tolerance sliders follow the model:
+// size_slider_range(), tolerance_slider_range().
 constexpr double kStretchRange[2] = {0.01, 0.9};
+constexpr int kValenceRange[2] = {4, 200};
+
+// The input's bounding-box diagonal, which the size and tolerance sliders follow.
+double diagonal(const ViewerStatus& status) {
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = double(status.bounds_max[k]) - double(status.bounds_min[k]);
+    sum += d * d;
+  }
+  return std::sqrt(sum);
+}
+
+// A logarithmic slider over a length in `range`, clamping typed values to it. Its
+// format may have many digits (log_slider_format()); a value set by dragging is
+// rounded to 4 significant ones (a pixel moves it by about 4 %), so that it reads as
+// it did with "%.4g"; a typed one is kept as typed.
+bool length_slider(const char* label, double* value, const SliderRange& range,
+                   const std::string& prefix = "") {
+  const bool changed =
+      ImGui::SliderScalar(label, ImGuiDataType_Double, value, &range.min, &range.max,
+                          log_slider_format(range, prefix).c_str(),
+                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  if (changed && ImGui::IsMouseDown(ImGuiMouseButton_Left) && *value > 0) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.4g", *value);
+    *value = std::clamp(std::strtod(text, nullptr), range.min, range.max);
+  }
+  return changed;
+}
 
 void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                         std::vector<Command>* commands) {
@@ -257,15 +291,25 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
           "diagonal (as tetlod simplify); stretch %.3g, valence %d, uniform sizing.",
           ThresholdSettings{}.stretch, ThresholdSettings{}.valence);
   }
-  ImGui::SliderScalar("tolerance (TL)", ImGuiDataType_Double, &t->tolerance, &kToleranceRange[0],
-                      &kToleranceRange[1], "%.4g", ImGuiSliderFlags_Logarithmic);
-  if (t->sizing_mode != SizingMode::kPerMaterial)
-    ImGui::SliderScalar(t->sizing_mode == SizingMode::kUniform ? "size (SZ)" : "size cap (SZ)",
-                        ImGuiDataType_Double, &t->size, &kSizeRange[0], &kSizeRange[1], "%.4g",
-                        ImGuiSliderFlags_Logarithmic);
+  const double model_diagonal = diagonal(status);
+  const SliderRange tolerance_range = tolerance_slider_range(model_diagonal, t->tolerance);
+  length_slider("tolerance (TL)", &t->tolerance, tolerance_range);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%.4g to %.4g, from the model's diagonal (%.4g)", tolerance_range.min,
+                      tolerance_range.max, model_diagonal);
+  if (t->sizing_mode != SizingMode::kPerMaterial) {
+    const SliderRange size_range = size_slider_range(model_diagonal, t->size);
+    length_slider(t->sizing_mode == SizingMode::kUniform ? "size (SZ)" : "size cap (SZ)", &t->size,
+                  size_range);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%.4g to %.4g, from the model's diagonal (%.4g)", size_range.min,
+                        size_range.max, model_diagonal);
+  }
+  // A typed value is clamped to the slider's range, within the valid one.
   ImGui::SliderScalar("stretch (ST)", ImGuiDataType_Double, &t->stretch, &kStretchRange[0],
-                      &kStretchRange[1], "%.3f");
-  ImGui::SliderInt("valence (VL)", &t->valence, 4, 200);
+                      &kStretchRange[1], "%.3f", ImGuiSliderFlags_AlwaysClamp);
+  ImGui::SliderInt("valence (VL)", &t->valence, kValenceRange[0], kValenceRange[1], "%d",
+                   ImGuiSliderFlags_AlwaysClamp);
   int mode = static_cast<int>(t->sizing_mode);
   // The size map is offered only where one was given (it belongs to the mesh opened).
   ImGui::Combo("Sizing", &mode,
@@ -297,8 +341,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     ImGui::SameLine(90);
     if (t->material_cap) {
       ImGui::SetNextItemWidth(-1);
-      ImGui::SliderScalar("##cap", ImGuiDataType_Double, &t->size, &kSizeRange[0], &kSizeRange[1],
-                          "cap %.4g", ImGuiSliderFlags_Logarithmic);
+      length_slider("##cap", &t->size, size_slider_range(model_diagonal, t->size), "cap ");
     } else {
       ImGui::TextDisabled("no size cap");
     }
@@ -325,8 +368,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       ImGui::SameLine(90);
       if (it != sizes.end()) {
         ImGui::SetNextItemWidth(-1);
-        ImGui::SliderScalar("##size", ImGuiDataType_Double, &it->second, &kSizeRange[0],
-                            &kSizeRange[1], "%.4g", ImGuiSliderFlags_Logarithmic);
+        length_slider("##size", &it->second, size_slider_range(model_diagonal, it->second));
       } else {
         ImGui::TextDisabled("no size limit");
       }
@@ -349,6 +391,11 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   if (!status.running) {
     if (ImGui::Button("Simplify") && !status.mesh_name.empty())
       commands->push_back({CommandKind::kSimplify});
+    if (!status.simplify_error.empty()) {  // here, where the thresholds can be changed
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+      ImGui::TextWrapped("Error: %s", status.simplify_error.c_str());
+      ImGui::PopStyleColor();
+    }
   } else {
     if (ImGui::Button("Cancel")) commands->push_back({CommandKind::kCancel});
     ImGui::SameLine();
@@ -378,7 +425,11 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       ImGui::TextWrapped("Past the valence: %s.", status.past_valence.c_str());
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
-    if (v.below_stretch + v.above_size + v.above_valence == 0) {
+    if (status.result_thresholds_changed) {  // of other thresholds than the sliders': greyed
+      text_disabled_wrapped("%s", final_mesh_text(status).c_str());
+      if (!status.above_size_reason.empty())
+        text_disabled_wrapped("Above the size: %s", status.above_size_reason.c_str());
+    } else if (v.below_stretch + v.above_size + v.above_valence == 0) {
       ImGui::TextWrapped("%s", final_mesh_text(status).c_str());
     } else {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
@@ -723,6 +774,43 @@ void empty_view_note(const ViewerStatus& status, const ViewSettings& view, bool 
 
 }  // namespace
 
+namespace {
+
+double usable_diagonal(double diagonal) {
+  return std::isfinite(diagonal) && diagonal > 0 ? diagonal : 1.0;
+}
+
+// `range` widened to hold `current` (a negative or non-finite one is not a length: the
+// panel shows it, and Simplify says what is wrong with it).
+SliderRange holding(SliderRange range, double current) {
+  if (std::isfinite(current) && current >= 0) {
+    range.min = std::min(range.min, current);
+    range.max = std::max(range.max, current);
+  }
+  return range;
+}
+
+}  // namespace
+
+SliderRange size_slider_range(double diagonal, double current) {
+  const double d = usable_diagonal(diagonal);
+  return current > 0 ? holding({d * 1e-4, d}, current) : SliderRange{d * 1e-4, d};
+}
+
+SliderRange tolerance_slider_range(double diagonal, double current) {
+  const double d = usable_diagonal(diagonal);
+  return holding({d * 1e-7, d * 0.1}, current);
+}
+
+std::string log_slider_format(const SliderRange& range, const std::string& prefix) {
+  // A range from 0 (a tolerance of 0) is as fine near 0 as one from max x 1e-7.
+  const double low = range.min > 0 ? range.min : range.max * 1e-7;
+  int digits = 4;
+  if (std::isfinite(low) && low > 0)
+    digits = std::clamp(static_cast<int>(std::ceil(-std::log10(low))) + 1, 4, 30);
+  return prefix + "%." + std::to_string(digits) + "g";
+}
+
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
                         std::string* error) {
   SimplifyParams p;
@@ -730,43 +818,73 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
   p.min_stretch = settings.stretch;
   p.max_valence = static_cast<uint32_t>(std::max(0, settings.valence));
   p.subdivide = settings.subdivide;
-  if (!(settings.size > 0)) {
-    *error = "size must be > 0";
-    return false;
-  }
+  // Every bad value is named at once (a user who typed two should not learn of the
+  // second only after fixing the first): each threshold is checked by check_params()
+  // alone, the others set to valid values, so that the rules and words are core's.
+  std::vector<std::string> errors;
+  const auto check_alone = [&errors](auto set) {
+    SimplifyParams q;
+    q.sizing.uniform = 1;
+    set(&q);
+    if (const Status s = check_params(q); !s) errors.push_back(s.message());
+  };
+  check_alone([&p](SimplifyParams* q) { q->tolerance = p.tolerance; });
+  check_alone([&p](SimplifyParams* q) { q->min_stretch = p.min_stretch; });
+  check_alone([&p](SimplifyParams* q) { q->max_valence = p.max_valence; });
   // Uniform: the size everywhere; region, size map: the cap besides the rules or the
   // map; per material: the materials' sizes, and the cap if it is ticked.
-  if (settings.sizing_mode != SizingMode::kPerMaterial || settings.material_cap)
-    p.sizing.uniform = settings.size;
+  if (settings.sizing_mode != SizingMode::kPerMaterial || settings.material_cap) {
+    if (settings.size > 0)
+      p.sizing.uniform = settings.size;
+    else
+      errors.push_back("size must be > 0");
+  }
   if (settings.sizing_mode == SizingMode::kMap) {
-    if (!settings.size_map) {
-      *error = "no size map (give one with the mesh: tetlod view FILE --size-map S.sol)";
-      return false;
-    }
-    p.sizing.map = settings.size_map;
+    if (settings.size_map)
+      p.sizing.map = settings.size_map;
+    else
+      errors.push_back("no size map (give one with the mesh: tetlod view FILE --size-map S.sol)");
   } else if (settings.sizing_mode == SizingMode::kRegion) {
-    const Status s = parse_size_field(settings.region_spec, &p.sizing);
-    if (!s) {
-      *error = s.message();
-      return false;
-    }
+    if (const Status s = parse_size_field(settings.region_spec, &p.sizing); !s)
+      errors.push_back(s.message());
   } else if (settings.sizing_mode == SizingMode::kPerMaterial) {
     for (const auto& [material, size] : settings.material_sizes) {
-      if (!(size > 0)) {
-        *error = "size of material " + std::to_string(material) + " must be > 0";
-        return false;
-      }
-      p.sizing.material_sizes.push_back({material, size});
+      if (size > 0)
+        p.sizing.material_sizes.push_back({material, size});
+      else
+        errors.push_back("size of material " + std::to_string(material) + " must be > 0");
     }
     std::sort(p.sizing.material_sizes.begin(), p.sizing.material_sizes.end());
   }
-  const Status s = check_params(p);
-  if (!s) {
-    *error = s.message();
+  if (errors.empty()) {  // what only the whole set can break (no size limit at all, ...)
+    if (const Status s = check_params(p); !s) errors.push_back(s.message());
+  }
+  if (!errors.empty()) {
+    error->clear();
+    for (const std::string& e : errors) *error += (error->empty() ? "" : "; ") + e;
     return false;
   }
   *params = std::move(p);
   return true;
+}
+
+bool same_thresholds(const ThresholdSettings& settings, const SimplifyParams& run) {
+  SimplifyParams p;
+  std::string error;
+  if (!to_simplify_params(settings, &p, &error)) return false;
+  const SizingField &a = p.sizing, &b = run.sizing;
+  const auto same_radial = [](const SizingField::Radial& x, const SizingField::Radial& y) {
+    return x.center == y.center && x.axis == y.axis && x.size0 == y.size0 && x.growth == y.growth;
+  };
+  const auto same_box = [](const SizingField::Box& x, const SizingField::Box& y) {
+    return x.low == y.low && x.high == y.high && x.size == y.size;
+  };
+  return p.tolerance == run.tolerance && p.min_stretch == run.min_stretch &&
+         p.max_valence == run.max_valence && p.subdivide == run.subdivide &&
+         a.uniform == b.uniform && a.material_sizes == b.material_sizes && a.map == b.map &&
+         std::equal(a.radial.begin(), a.radial.end(), b.radial.begin(), b.radial.end(),
+                    same_radial) &&
+         std::equal(a.boxes.begin(), a.boxes.end(), b.boxes.begin(), b.boxes.end(), same_box);
 }
 
 bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings) {
@@ -893,12 +1011,33 @@ std::string final_mesh_text(const ViewerStatus& status) {
   const ThresholdCounts& in = status.input_breaks;
   const std::string input =
       "the input: " + counts(in.below_stretch, in.above_size, in.above_valence) + ".";
+  // Which thresholds: the run's, which the sliders may no longer show.
+  std::string final_mesh = "Final mesh";
+  if (!status.result_thresholds.empty())
+    final_mesh += ", for the run's thresholds (" + status.result_thresholds + ")";
+  if (status.result_thresholds_changed)
+    final_mesh += status.result_thresholds.empty() ? ", for the run's thresholds, not the panel's"
+                                                   : ", not the panel's, changed since";
   if (v.below_stretch + v.above_size + v.above_valence == 0)
-    return "Final mesh: every tet and node within the thresholds; " + input;
-  return "Final mesh: " + counts(v.below_stretch, v.above_size, v.above_valence) + "; " +
+    return final_mesh + ": every tet and node within the thresholds; " + input;
+  return final_mesh + ": " + counts(v.below_stretch, v.above_size, v.above_valence) + "; " +
          (v.created == 0 ? "all input ones or pieces of input tets that already broke it"
                          : "some new ones: please report it") +
          "; " + input;
+}
+
+std::string simplify_error_text(const std::string& message) {
+  // The command line's flags the simplifier's messages name, and the panel's controls.
+  static const std::pair<const char*, const char*> kControls[] = {
+      {"--no-subdivide", "untick \"Subdivide first\" above"},
+      {"(set --size)", "(set the size)"},
+  };
+  std::string text = message;
+  for (const auto& [flag, control] : kControls) {
+    const size_t at = text.find(flag);
+    if (at != std::string::npos) text.replace(at, std::strlen(flag), control);
+  }
+  return text;
 }
 
 std::string other_run_progress_text(const ViewerStatus& status) {

@@ -72,15 +72,39 @@ struct ThresholdSettings {
   bool keep_inside_groups = true;
 };
 
-// Turns the settings into core parameters. False with a message naming the bad
-// value (a region spec that does not parse, a size <= 0, ...).
+// Turns the settings into core parameters. False with a message naming every bad
+// value, joined by "; " (a region spec that does not parse, a size <= 0, a stretch
+// outside (0, 1), a valence below 4, ...).
 bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* params,
                         std::string* error);
+// The range of a threshold slider (ImGui's SliderScalar over doubles).
+struct SliderRange {
+  double min = 0, max = 1;
+};
+// The size and tolerance sliders follow the loaded model's extent, its bounding-box
+// `diagonal` (model units), on a logarithmic scale, so that a model in metres and one a
+// million times larger are equally easy to set: size from diagonal / 10^4 to the
+// diagonal, tolerance from diagonal x 10^-7 to diagonal / 10. Each range is widened to
+// hold `current` (a default, a history's or a script's value), so that showing it
+// never moves it; a value typed with ctrl-click is clamped to the range. A diagonal
+// that is not > 0 (no mesh, a flat one) is taken as 1.
+SliderRange size_slider_range(double diagonal, double current);
+SliderRange tolerance_slider_range(double diagonal, double current);
+// The printf format of a logarithmic slider over `range`: "%.4g", or more digits where
+// the range starts below 10^-4, since ImGui's logarithmic slider takes values below
+// 10^-(the format's digits) as zero (a tolerance slider from 1e-8 with "%.4g" could not
+// go below 1e-4). `prefix` goes before the number ("cap ").
+std::string log_slider_format(const SliderRange& range, const std::string& prefix = "");
+
 // The reverse, for the panel to show the thresholds a history was made with: the
 // settings that give `params` back. False, leaving `settings`
 // alone, where the panel cannot hold them: material sizes and region rules together,
 // region rules without a uniform size, a crease angle other than the default.
 bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings);
+
+// Whether the panel's settings give the run `run` was made with (the same thresholds
+// and sizing; false where the settings do not make parameters at all).
+bool same_thresholds(const ThresholdSettings& settings, const SimplifyParams& run);
 
 // The Analysis panel's set-up (issue 6): an electrostatic problem over the materials
 // of the loaded mesh (core/electrostatics.h).
@@ -110,7 +134,7 @@ enum class CommandKind {
   kSimplify,      // with the current ThresholdSettings
   kCancel,        // the running simplification
   kJumpElements,  // value: target number of elements
-  kFit,           // fit the camera to the model
+  kFit,           // fit the camera to the shown materials, from the current direction
   kAxisView,      // value: 0 iso, 1 x, 2 y, 3 z
   kSave,          // path: the displayed level; value: kSaveImproved | kSaveSurfaces | kSaveBinary
   kScreenshot,    // path, width, height (0: window size), with_ui
@@ -164,7 +188,11 @@ struct ViewerStatus {
   std::vector<MaterialName> material_names;
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {1, 1, 1};  // of the input
   std::string load_error;  // last failed load or action, shown until replaced
-  std::string message;     // last success message (saved, screenshot, ...)
+  // The last Simplify's error (bad thresholds, or the run's), in the panel's words
+  // (simplify_error_text()), shown under the Simplify button until the next run or
+  // another mesh.
+  std::string simplify_error;
+  std::string message;  // last success message (saved, screenshot, ...)
   bool loading = false;
   std::string loading_path;
   // The thresholds opening the mesh set (the viewer's defaults for it).
@@ -189,9 +217,14 @@ struct ViewerStatus {
   size_t splits = 0;
   double simplify_seconds = 0;
   ThresholdViolations violations;  // of the last run's final mesh
-  ThresholdCounts input_breaks;    // what its input broke of the same thresholds
-  std::string above_size_reason;   // why it has tets above the size ("" if none)
-  std::string past_valence;        // what subdivision past the valence did ("" if nothing)
+  // The thresholds the last run was made with, in words ("size 23, stretch 0.15, valence
+  // 25, tolerance 0.05"), and whether the panel's have changed since (then what the
+  // final mesh breaks is not of the panel's).
+  std::string result_thresholds;
+  bool result_thresholds_changed = false;
+  ThresholdCounts input_breaks;   // what its input broke of the same thresholds
+  std::string above_size_reason;  // why it has tets above the size ("" if none)
+  std::string past_valence;       // what subdivision past the valence did ("" if nothing)
 
   // The displayed level.
   size_t step = 0, step_count = 0;
@@ -257,10 +290,17 @@ std::string top_progress_text(const ViewerStatus& status);
 std::string section_progress_text(const ViewerStatus& status);
 std::string other_run_progress_text(const ViewerStatus& status);
 
-// After a run, what its final mesh still breaks of the thresholds and what the input
-// broke ("Final mesh: 4 tets below the stretch, ...; the input: 6 tets below the
-// stretch, ..."), as the Thresholds section says it.
+// After a run, what its final mesh still breaks of the run's thresholds and what the
+// input broke ("Final mesh, for the run's thresholds (size 23, stretch 0.15, ...): 4
+// tets below the stretch, ...; the input: 6 tets below the stretch, ..."), as the
+// Thresholds section says it; once the panel's thresholds differ from the run's it
+// says so ("..., not the panel's, changed since: ...").
 std::string final_mesh_text(const ViewerStatus& status);
+
+// A simplifier's error as the panel shows it: where it names a command-line flag, the
+// panel's own control instead ("... or --no-subdivide" becomes "... or untick
+// \"Subdivide first\" above").
+std::string simplify_error_text(const std::string& message);
 
 // Draws every panel. `commands` receives what the user asked for this frame.
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,

@@ -15,17 +15,18 @@ namespace tetlod::test {
 
 class BackgroundViewer {
  public:
-  // Starts `tetlod view MESH --size 800x600 --script s.script` in a fresh directory
+  // Starts `tetlod view MESH --size SIZE --script s.script` in a fresh directory
   // TETLOD_TEST_OUTPUT_DIR/name, the script being `script`. Its output goes to
   // log.txt and its exit code to rc.txt. False if the shell could not start it.
-  bool start(const std::string& name, const std::string& mesh, const std::string& script) {
+  bool start(const std::string& name, const std::string& mesh, const std::string& script,
+             const std::string& size = "800x600") {
     dir_ = std::filesystem::path(TETLOD_TEST_OUTPUT_DIR) / name;
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
     std::ofstream(dir_ / "s.script") << script;
     const std::string command = "cd '" + dir_.string() + "' && (" + TETLOD_BINARY + " view '" +
-                                mesh +
-                                "' --size 800x600 --script s.script "
+                                mesh + "' --size " + size +
+                                " --script s.script "
                                 ">log.txt 2>&1; echo $? >rc.txt) &";
     return std::system(command.c_str()) == 0;
   }

@@ -88,6 +88,29 @@ TEST(OrbitCamera, MovesAreReversible) {
   expect_near(camera.camera().target, start.target, 1e-9);
 }
 
+// Fit (refit) frames the box again, centre and distance as fit() gives them, from the
+// direction the user orbited to: it does not turn the view back to iso (the views
+// 0-3 do that).
+TEST(OrbitCamera, RefitKeepsTheDirection) {
+  OrbitCamera camera;
+  camera.fit(kLo, kHi, render::ViewDirection::kIso);
+  camera.orbit(120, -40);
+  const render::Camera orbited = camera.camera();
+  camera.zoom(3);
+  camera.pan(30, 20, 500);
+  const Vec3 lo{0, 0, 0}, hi{1, 1, 1};  // another box: the materials shown changed
+  camera.refit(lo, hi);
+  const render::Camera c = camera.camera();
+  const render::Camera framed = render::frame_camera(lo, hi, render::ViewDirection::kIso);
+  expect_near(c.target, framed.target, 1e-12);
+  EXPECT_NEAR(length(c.eye - c.target), length(framed.eye - framed.target), 1e-9);
+  const Vec3 before = orbited.eye - orbited.target, after = c.eye - c.target;
+  expect_near(after * (1 / length(after)), before * (1 / length(before)), 1e-9);
+  EXPECT_GT(length(after * (1 / length(after)) -
+                   (framed.eye - framed.target) * (1 / length(framed.eye - framed.target))),
+            0.1);  // not the iso direction
+}
+
 TEST(OrbitCamera, PitchIsClampedBelowTheVertical) {
   OrbitCamera camera;
   camera.fit(kLo, kHi, render::ViewDirection::kIso);

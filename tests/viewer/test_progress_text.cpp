@@ -133,5 +133,74 @@ TEST(FinalMeshText, SaysWhatTheFinalMeshAndTheInputBreak) {
   EXPECT_NE(ui::final_mesh_text(s).find("some new ones: please report it"), std::string::npos);
 }
 
+// The verdict names the thresholds it was computed with, and once the panel's differ
+// from them it says it is not of the panel's (it stayed under the sliders after they
+// were changed, as if it applied to the new values).
+TEST(FinalMeshText, NamesTheRunsThresholdsAndWhetherThePanelsDiffer) {
+  ui::ViewerStatus s;
+  s.has_result = true;
+  s.violations = {0, 2, 0, 0};
+  s.result_thresholds = "size 30, stretch 0.1, valence 25, tolerance 0.05";
+  EXPECT_EQ(ui::final_mesh_text(s),
+            "Final mesh, for the run's thresholds (size 30, stretch 0.1, valence 25, tolerance "
+            "0.05): 0 tets below the stretch, 2 above the size, 0 nodes above the valence; all "
+            "input ones or pieces of input tets that already broke it; the input: 0 tets below "
+            "the stretch, 0 above the size, 0 nodes above the valence.");
+  s.result_thresholds_changed = true;
+  const std::string stale = ui::final_mesh_text(s);
+  EXPECT_EQ(stale.substr(0, stale.find(':')),
+            "Final mesh, for the run's thresholds (size 30, stretch 0.1, valence 25, tolerance "
+            "0.05), not the panel's, changed since");
+}
+
+// Whether the panel still shows the run's thresholds: any threshold or the sizing
+// changed makes it differ.
+TEST(FinalMeshText, SameThresholdsComparesEveryThresholdAndTheSizing) {
+  ui::ThresholdSettings panel;
+  panel.size = 30;
+  SimplifyParams run;
+  std::string error;
+  ASSERT_TRUE(ui::to_simplify_params(panel, &run, &error)) << error;
+  EXPECT_TRUE(ui::same_thresholds(panel, run));
+  ui::ThresholdSettings changed = panel;
+  changed.stretch = 0.2;
+  EXPECT_FALSE(ui::same_thresholds(changed, run));
+  changed = panel;
+  changed.valence = 20;
+  EXPECT_FALSE(ui::same_thresholds(changed, run));
+  changed = panel;
+  changed.tolerance *= 2;
+  EXPECT_FALSE(ui::same_thresholds(changed, run));
+  changed = panel;
+  changed.subdivide = false;
+  EXPECT_FALSE(ui::same_thresholds(changed, run));
+  changed = panel;
+  changed.sizing_mode = ui::SizingMode::kRegion;
+  changed.region_spec = "box:0,0,0,1,1,1,5";
+  EXPECT_FALSE(ui::same_thresholds(changed, run));
+  SimplifyParams region_run;
+  ASSERT_TRUE(ui::to_simplify_params(changed, &region_run, &error)) << error;
+  EXPECT_TRUE(ui::same_thresholds(changed, region_run));
+  changed.region_spec = "box:0,0,0,1,1,2,5";
+  EXPECT_FALSE(ui::same_thresholds(changed, region_run));
+  changed = panel;
+  changed.stretch = 5;  // no parameters at all: not the run's
+  EXPECT_FALSE(ui::same_thresholds(changed, run));
+}
+
+// The simplifier's errors name the command line's flags; the panel names its own
+// controls instead.
+TEST(SimplifyErrorText, NamesThePanelsControlsNotTheFlags) {
+  EXPECT_EQ(ui::simplify_error_text("size 0.001 would subdivide the mesh into about 90000000000 "
+                                    "tets (limit 40000000); choose a larger size or "
+                                    "--no-subdivide"),
+            "size 0.001 would subdivide the mesh into about 90000000000 tets (limit 40000000); "
+            "choose a larger size or untick \"Subdivide first\" above");
+  EXPECT_EQ(ui::simplify_error_text("no size limit given (set --size)"),
+            "no size limit given (set the size)");
+  EXPECT_EQ(ui::simplify_error_text("stretch 5 must lie strictly between 0 and 1"),
+            "stretch 5 must lie strictly between 0 and 1");
+}
+
 }  // namespace
 }  // namespace tetlod

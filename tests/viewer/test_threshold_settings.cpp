@@ -4,8 +4,10 @@
 // has; and it declines what the panel cannot hold.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
 
 #include "core/simplify.h"
 #include "ui/viewer_ui.h"
@@ -77,6 +79,82 @@ TEST(ThresholdSettings, HistoryThresholdsRoundTripThroughThePanel) {
   crease.crease_angle_degrees = 30;
   EXPECT_FALSE(ui::from_simplify_params(crease, &settings));
   EXPECT_EQ(settings.size, 99);
+}
+
+// Several bad thresholds (as typed before the sliders clamped typed values, or given
+// by a script) are all named at once, in check_params()'s words; a good set passes.
+TEST(ThresholdSettings, EveryBadThresholdIsNamedAtOnce) {
+  ui::ThresholdSettings settings;
+  settings.stretch = 5.0;
+  settings.valence = 1;
+  settings.tolerance = -1;
+  settings.size = 0;
+  SimplifyParams params;
+  std::string error;
+  EXPECT_FALSE(ui::to_simplify_params(settings, &params, &error));
+  for (const char* part : {"tolerance -1 must be", "stretch 5 must lie strictly between 0 and 1",
+                           "valence 1 must be at least 4", "size must be > 0"})
+    EXPECT_NE(error.find(part), std::string::npos) << part << " in: " << error;
+  settings.sizing_mode = ui::SizingMode::kPerMaterial;
+  settings.material_sizes = {{1, 2}, {2, -3}};
+  EXPECT_FALSE(ui::to_simplify_params(settings, &params, &error));
+  EXPECT_NE(error.find("size of material 2 must be > 0"), std::string::npos) << error;
+  EXPECT_EQ(error.find("size must be > 0"), std::string::npos) << error;  // no cap: unused
+  EXPECT_NE(error.find("valence 1"), std::string::npos) << error;
+  settings = {};
+  EXPECT_TRUE(ui::to_simplify_params(settings, &params, &error)) << error;
+  EXPECT_EQ(params.min_stretch, settings.stretch);
+  EXPECT_EQ(params.sizing.uniform, settings.size);
+}
+
+// The size and tolerance sliders follow the model's extent: a model in metres (the
+// user's: diagonal 0.18, defaults size 0.023 and tolerance 0.00018) and one 10^6 times
+// larger get the same ranges relative to the model, with the defaults well inside. (The
+// fixed ranges, size 0.1 to 100 and tolerance 0 to 5, held neither model's defaults.)
+TEST(ThresholdSettings, SliderRangesFollowTheModel) {
+  for (const double scale : {1.0, 1e6}) {
+    const double diagonal = 0.18 * scale;
+    const double size = 0.023 * scale, tolerance = 0.00018 * scale;
+    const ui::SliderRange s = ui::size_slider_range(diagonal, size);
+    EXPECT_DOUBLE_EQ(s.min, diagonal / 1e4);
+    EXPECT_DOUBLE_EQ(s.max, diagonal);
+    EXPECT_LT(s.min, size / 100);  // room on both sides, on a log scale
+    EXPECT_GT(s.max, size * 5);
+    const ui::SliderRange t = ui::tolerance_slider_range(diagonal, tolerance);
+    EXPECT_DOUBLE_EQ(t.min, diagonal * 1e-7);
+    EXPECT_DOUBLE_EQ(t.max, diagonal / 10);
+    EXPECT_LT(t.min, tolerance / 100);
+    EXPECT_GT(t.max, tolerance * 10);
+  }
+}
+
+// A value outside the model's range (a history's, a script's) widens the range rather
+// than being moved by showing it; a tolerance of 0 puts the range's start at 0.
+TEST(ThresholdSettings, SliderRangesHoldTheCurrentValue) {
+  EXPECT_EQ(ui::size_slider_range(10, 25).max, 25);
+  EXPECT_EQ(ui::size_slider_range(10, 1e-5).min, 1e-5);
+  EXPECT_EQ(ui::tolerance_slider_range(10, 3).max, 3);
+  EXPECT_EQ(ui::tolerance_slider_range(10, 0).min, 0);
+  // Not a length: left out (Simplify says what is wrong with it).
+  EXPECT_EQ(ui::size_slider_range(10, -1).min, 1e-3);
+  EXPECT_EQ(ui::size_slider_range(10, 0).min, 1e-3);
+  // No mesh, or a flat one: a diagonal of 1.
+  EXPECT_EQ(ui::size_slider_range(0, 0.5).max, 1);
+}
+
+// ImGui's logarithmic slider takes values below 10^-(the format's digits) as 0: the
+// format has enough digits for the range's start.
+TEST(ThresholdSettings, LogSliderFormatReachesTheRangesStart) {
+  EXPECT_EQ(ui::log_slider_format({0.01, 100}), "%.4g");
+  EXPECT_EQ(ui::log_slider_format({0.01, 100}, "cap "), "cap %.4g");
+  for (const ui::SliderRange r : {ui::SliderRange{1.8e-8, 0.018}, ui::SliderRange{0, 0.018},
+                                  ui::SliderRange{2.3e-13, 1e-5}}) {
+    const std::string format = ui::log_slider_format(r);
+    ASSERT_EQ(format.substr(0, 2), "%.");
+    const int digits = std::stoi(format.substr(2));
+    const double low = r.min > 0 ? r.min : r.max * 1e-7;
+    EXPECT_LE(std::pow(10.0, -digits), low / 5) << format;
+  }
 }
 
 }  // namespace

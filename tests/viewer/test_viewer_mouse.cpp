@@ -6,9 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <thread>
 
+#include "core/io/mesh_io.h"
+#include "core/lod.h"
+#include "core/simplify.h"
 #include "viewer/background_viewer.h"
 
 // Last, and their macros that clash with C++ names removed.
@@ -68,6 +76,47 @@ TEST(ViewerMouse, DragOverTheViewOrbits) {
 TEST(ViewerMouse, DragStartedOverThePanelLeavesTheCamera) {
   // From an empty spot of the side panel (right of the "visible tets" line) into the view.
   EXPECT_EQ(pixels_moved_by_drag("viewer_mouse_panel", 340, 58, 640, 200), 0u);
+}
+
+// The size slider follows the model: on the motor in metres (diagonal 0.18, default
+// size 0.023) a short drag of its grab to the right gives a size a little above the
+// default, rounded to 4 digits, which Simplify then uses (saved with the history). With
+// the fixed range 0.1 to 100 it jumped past 0.1, above half the model's diagonal.
+TEST(ViewerMouse, SizeSliderFollowsAModelInMetres) {
+  namespace fs = std::filesystem;
+  const fs::path mesh_dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "vms";
+  fs::create_directories(mesh_dir);
+  TetMesh motor;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh", &motor).ok());
+  for (Vec3& p : motor.positions) p = p * 1e-3;
+  ASSERT_TRUE(write_mesh((mesh_dir / "m.mesh").string(), motor).ok());
+  test::BackgroundViewer viewer;
+  // A short path keeps the panel's lines from wrapping: the slider stays at its place.
+  ASSERT_TRUE(viewer.start("viewer_mouse_size_slider", "../vms/m.mesh",
+                           "screenshot a.png ui=1\n"
+                           "wait seconds=3\n"
+                           "screenshot b.png ui=1\n"
+                           "simplify\nsave run.tlh\nquit\n",
+                           "1280x800"));
+  ASSERT_TRUE(viewer.wait_for("a.png"));
+  std::this_thread::sleep_for(200ms);
+  Display* display = XOpenDisplay(nullptr);
+  ASSERT_NE(display, nullptr);
+  // The size slider's row (y 612) from its grab at the default (x 200) 15 pixels right.
+  drag(display, 200, 612, 215, 612);
+  XCloseDisplay(display);
+  ASSERT_EQ(viewer.finish(std::chrono::seconds(120)), 0);
+  TetMesh base;
+  CollapseHistory history;
+  std::optional<SimplifyParams> params;
+  ASSERT_TRUE(read_history((viewer.dir() / "run.tlh").string(), &base, &history, &params).ok());
+  ASSERT_TRUE(params.has_value());
+  const double size = params->sizing.uniform;
+  EXPECT_GT(size, 0.023 * 1.05) << "the drag did not move the size";
+  EXPECT_LT(size, 0.023 * 2) << "the size jumped";
+  char rounded[32];
+  std::snprintf(rounded, sizeof rounded, "%.4g", size);
+  EXPECT_EQ(std::strtod(rounded, nullptr), size);
 }
 
 }  // namespace

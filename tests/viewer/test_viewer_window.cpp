@@ -274,6 +274,96 @@ TEST(ViewerWindow, OpeningAMeshResetsEveryThreshold) {
   EXPECT_EQ(saved.tet_count(), 12u);
 }
 
+// Opening another mesh shows every material: material 1 hidden in the spheres is
+// another material in box2, and stays shown there (the picture is that of box2 opened
+// first). --hide is for the first mesh opened, and holds there.
+TEST(ViewerWindow, OpeningAMeshShowsEveryMaterial) {
+  const fs::path dir = fresh_output_dir("viewer_open_shows_materials");
+  const std::string box2 = kSource + "/assets/box2.mesh";
+  std::ofstream(dir / "first.script") << "color material\nscreenshot first.png width=320 "
+                                         "height=240\nquit\n";
+  std::ofstream(dir / "second.script")
+      << "hide 1\nopen " << box2
+      << "\ncolor material\nscreenshot second.png width=320 height=240\nquit\n";
+  std::ofstream(dir / "hidden.script") << "color material\nscreenshot hidden.png width=320 "
+                                          "height=240\nquit\n";
+  const ViewerRun first = run_viewer(dir, "'" + box2 + "' --size 640x480 --script first.script");
+  const ViewerRun second = run_viewer(dir, "'" + kSource +
+                                               "/assets/spheres.mesh' --size 640x480 "
+                                               "--script second.script");
+  const ViewerRun hidden =
+      run_viewer(dir, "'" + box2 + "' --hide 1 --size 640x480 --script hidden.script");
+  for (const ViewerRun* run : {&first, &second, &hidden})
+    ASSERT_EQ(run->exit_code, 0) << run->output;
+  const render::Image first_image = load_png(dir / "first.png");
+  EXPECT_EQ(render::compare_images(first_image, load_png(dir / "second.png"), 0, nullptr)
+                .differing_pixels,
+            0u);
+  EXPECT_GT(render::compare_images(first_image, load_png(dir / "hidden.png"), 8, nullptr)
+                .differing_pixels,
+            1000u);
+}
+
+// Fit (view fit, the F key) frames the model again from the direction the user orbited
+// to, not from the iso view: after a zoom and a pan it gives the picture of the orbit
+// alone.
+TEST(ViewerWindow, FitKeepsTheViewDirection) {
+  const fs::path dir = fresh_output_dir("viewer_fit_direction");
+  std::ofstream(dir / "orbit.script")
+      << "orbit 120 -40\nscreenshot orbit.png width=320 height=240\nquit\n";
+  std::ofstream(dir / "fit.script") << "orbit 120 -40\nzoom 3\npan 30 20\nview fit\n"
+                                       "screenshot fit.png width=320 height=240\nquit\n";
+  const std::string box2 = "'" + kSource + "/assets/box2.mesh' --size 640x480 ";
+  const ViewerRun orbit = run_viewer(dir, box2 + "--script orbit.script");
+  const ViewerRun fit = run_viewer(dir, box2 + "--script fit.script");
+  ASSERT_EQ(orbit.exit_code, 0) << orbit.output;
+  ASSERT_EQ(fit.exit_code, 0) << fit.output;
+  EXPECT_EQ(
+      render::compare_images(load_png(dir / "orbit.png"), load_png(dir / "fit.png"), 0, nullptr)
+          .differing_pixels,
+      0u);
+}
+
+// Opening a file while a simplification runs cancels it, and says so (it was
+// silently discarded): in the panel, with the file loaded, and on stderr.
+TEST(ViewerWindow, OpeningAFileSaysTheRunningSimplificationWasCancelled) {
+  const fs::path dir = fresh_output_dir("viewer_open_cancels_run");
+  std::ofstream(dir / "run.script") << "thresholds size=12\nsimplify wait=0\nopen " << kSource
+                                    << "/assets/box2.mesh\nscreenshot open_ui.png ui=1\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 1280x800 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("the running simplification was cancelled: another file was opened"),
+            std::string::npos)
+      << run.output;
+}
+
+// A size that would subdivide the mesh past the limit: the panel shows the error
+// under the Simplify button, where the thresholds are (not in the File section), in
+// its own words (unit test: SimplifyErrorText); the run ends without a result.
+TEST(ViewerWindow, SimplifyErrorShowsUnderTheSimplifyButton) {
+  const fs::path dir = fresh_output_dir("viewer_simplify_error");
+  std::ofstream(dir / "run.script") << "thresholds size=0.001\nsimplify wait=0\nwait done\n"
+                                       "screenshot error_ui.png ui=1\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 1280x1000 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const render::Image image = load_png(dir / "error_ui.png");
+  // Red text in the File section (rows 100 to 260) and in the Thresholds section
+  // (rows 500 to 850), away from the materials' coloured ticks and labels.
+  size_t file = 0, thresholds = 0;
+  const auto red = [&image](int x, int y) {
+    const uint8_t* p = image.pixel(x, y);
+    return p[0] > 150 && p[1] < 120 && p[2] < 120 ? 1u : 0u;
+  };
+  for (int x = 0; x < 390; ++x) {
+    for (int y = 100; y < 260; ++y) file += red(x, y);
+    for (int y = 500; y < 850; ++y) thresholds += red(x, y);
+  }
+  EXPECT_LT(file, 10u) << "an error in the File section";
+  EXPECT_GT(thresholds, 100u) << "no error under the Simplify button";
+}
+
 // Per-material sizing as in the CLI: a material the list leaves out (3 here) gets no
 // size limit of its own, not the uniform size, so the viewer's final mesh is the one
 // `tetlod simplify --material-size` writes for the same list. (Giving material 3 the
@@ -910,12 +1000,16 @@ size_t orange_panel_pixels(const render::Image& image) {
 
 // After a run, the panel says what the final mesh still breaks and why: the bundled
 // motor is too coarse for subdivision to reach size 12 within stretch 0.15 and
-// valence 25 everywhere, but not within 0.05 and 200.
+// valence 25 everywhere, but not within 0.05 and 200. Once the sliders leave the run's
+// thresholds the warning, which is of the run's, is greyed (it read as if of the new
+// values), and it is orange again when they are back.
 TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
   const fs::path dir = fresh_output_dir("viewer_violations");
   std::ofstream(dir / "run.script")
       << "thresholds size=12 stretch=0.15 valence=25 tolerance=0.05 subdivide=1\nsimplify\n"
          "screenshot broken_ui.png ui=1\n"
+         "thresholds size=13\nscreenshot stale_ui.png ui=1\n"
+         "thresholds size=12\nscreenshot again_ui.png ui=1\n"
          "thresholds stretch=0.05 valence=200\nsimplify\nscreenshot clean_ui.png ui=1\nquit\n";
   // Tall enough for the warning, under the Thresholds section, to be in sight without
   // scrolling the panel.
@@ -926,12 +1020,18 @@ TEST(ViewerWindow, PanelSaysWhatTheFinalMeshStillBreaks) {
   const size_t clean = orange_panel_pixels(load_png(dir / "clean_ui.png"));
   EXPECT_GT(broken, clean + 300) << "no warning in the panel (" << broken << " against " << clean
                                  << " orange pixels)";
+  const size_t stale = orange_panel_pixels(load_png(dir / "stale_ui.png"));
+  const size_t again = orange_panel_pixels(load_png(dir / "again_ui.png"));
+  EXPECT_GT(broken, stale + 300) << "the warning of the run's thresholds still orange (" << stale
+                                 << " orange pixels)";
+  EXPECT_GT(again, stale + 300) << "no warning with the run's thresholds back (" << again
+                                << " orange pixels)";
 }
 
 // --hide takes the input file's names for its materials, as render and report do:
 // Gmsh's coax with its shield and outer dielectric hidden by name (the second in
-// another case) draws the same picture as by id, and one hidden by a name the mesh
-// lacks is said on stderr and in the status line, the other names still applying.
+// another case) draws the same picture as by id; a name or an id the mesh lacks is a
+// usage error (exit code 2) naming what it has, as in render.
 TEST(ViewerWindow, HideTakesMaterialNames) {
   const fs::path dir = fresh_output_dir("viewer_hide_names");
   const std::string mesh = "'" + kSource + "/tests/data/gmsh/coax_part3.msh' --size 400x300 ";
@@ -943,19 +1043,24 @@ TEST(ViewerWindow, HideTakesMaterialNames) {
       run_viewer(dir, mesh + "--hide shield,Dielectric_Outer --script by_name.script");
   const ViewerRun shown = run_viewer(dir, mesh + "--hide 4 --script shown.script");
   const ViewerRun unknown = run_viewer(dir, mesh + "--hide copper,shield --script unknown.script");
-  for (const ViewerRun* run : {&by_id, &by_name, &shown, &unknown})
+  const ViewerRun absent = run_viewer(dir, mesh + "--hide 9 --script unknown.script");
+  for (const ViewerRun* run : {&by_id, &by_name, &shown})
     ASSERT_EQ(run->exit_code, 0) << run->output;
   const render::Image id_image = load_png(dir / "by_id.png");
   const render::ImageDifference same =
       render::compare_images(id_image, load_png(dir / "by_name.png"), 0, nullptr);
   EXPECT_EQ(same.differing_pixels, 0u);
-  // Only the shield hidden, the outer dielectric drawn: another picture, the same as
-  // the one with an unknown name beside the shield.
+  // Only the shield hidden, the outer dielectric drawn: another picture.
   const render::Image shown_image = load_png(dir / "shown.png");
   EXPECT_GT(render::compare_images(id_image, shown_image, 8, nullptr).differing_pixels, 1000u);
-  EXPECT_EQ(render::compare_images(shown_image, load_png(dir / "unknown.png"), 0, nullptr)
-                .differing_pixels,
-            0u);
+  // A name or an id the mesh lacks is a usage error, as in render, before any window
+  // (it was a note in the panel, or silently dropped, with exit code 0).
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+  EXPECT_EQ(absent.exit_code, 2) << absent.output;
+  EXPECT_FALSE(fs::exists(dir / "unknown.png"));
+  EXPECT_NE(absent.output.find("tetlod view: material 9 is not in the mesh (materials: 1 2 3 4)"),
+            std::string::npos)
+      << absent.output;
   EXPECT_NE(
       unknown.output.find("--hide: the mesh has no material named 'copper' (its names: 1 "
                           "inner_conductor, 2 dielectric_inner, 3 dielectric_outer, 4 shield)"),
