@@ -276,6 +276,7 @@ SurfacePatches::SurfacePatches(const TetMesh& input, const std::vector<InputSurf
         if (g.tag < 1) ++group.missing;
       } else if (entries_[e].group == kNone) {
         entries_[e].group = id;
+        entries_[e].p = t;  // the group's corner order: its facing
         ++group.triangles;
         any_ = true;
       } else if (entries_[e].group != id) {
@@ -375,40 +376,66 @@ uint32_t SurfacePatches::find_exact(const Vec3& a, const Vec3& b, const Vec3& c)
 }
 
 uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner,
-                                int32_t outer) const {
+                                int32_t outer, bool* reversed) const {
+  if (reversed) *reversed = false;
   if (!any_) return kNone;
   if (outer != kOutsideMaterial && outer < inner) std::swap(inner, outer);
   // An input triangle itself: the nearest to its centroid, found at once (on a valid
   // surface no other triangle of the pair holds that point).
-  if (const uint32_t e = find_exact(a, b, c);
-      e != kNone && entries_[e].inner == inner && entries_[e].outer == outer)
-    return entries_[e].group;
-  const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), std::make_pair(inner, outer));
-  if (it == pairs_.end() || *it != std::make_pair(inner, outer)) return kNone;
-  const size_t pair = size_t(it - pairs_.begin());
-  // Within a budget of cells, far more than a mesh made from the input needs (its
-  // triangles lie within the tolerance of the input's).
-  const uint32_t i = grids_[pair].nearest((a + b + c) * (1.0 / 3.0), nullptr, 1 << 14);
-  return i == TriangleGrid::kNone ? kNone : entries_[grid_entries_[pair][i]].group;
+  uint32_t e = find_exact(a, b, c);
+  if (e == kNone || entries_[e].inner != inner || entries_[e].outer != outer) {
+    const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), std::make_pair(inner, outer));
+    if (it == pairs_.end() || *it != std::make_pair(inner, outer)) return kNone;
+    const size_t pair = size_t(it - pairs_.begin());
+    // Within a budget of cells, far more than a mesh made from the input needs (its
+    // triangles lie within the tolerance of the input's).
+    const uint32_t i = grids_[pair].nearest((a + b + c) * (1.0 / 3.0), nullptr, 1 << 14);
+    if (i == TriangleGrid::kNone) return kNone;
+    e = grid_entries_[pair][i];
+  }
+  const Entry& entry = entries_[e];
+  if (reversed && entry.group != kNone) {
+    const Vec3 mine = cross(b - a, c - a);
+    const Vec3 its = cross(entry.p[1] - entry.p[0], entry.p[2] - entry.p[0]);
+    *reversed = dot(mine, its) < 0;
+  }
+  return entry.group;
 }
 
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
                      bool inside, const std::vector<uint32_t>* neighbors) {
   SurfaceGroups result;
   std::vector<uint32_t> built;
-  result.surface = extract_surface(mesh, given_or_built(mesh, neighbors, &built));
+  const std::vector<uint32_t>& across = given_or_built(mesh, neighbors, &built);
+  result.surface = extract_surface(mesh, across);
   const auto& p = mesh.positions;
   std::map<PairKey, std::vector<uint32_t>> by_pair, unlabelled;
   std::vector<std::vector<uint32_t>> in_group(patches.groups().size());
   std::vector<uint32_t> label(result.surface.size());
   for (uint32_t i = 0; i < result.surface.size(); ++i) {
-    const SurfaceTriangle& t = result.surface[i];
-    const uint32_t g = label[i] = patches.locate(p[t.v[0]], p[t.v[1]], p[t.v[2]], t.inner, t.outer);
+    SurfaceTriangle& t = result.surface[i];
+    bool reversed = false;
+    const uint32_t g = label[i] =
+        patches.locate(p[t.v[0]], p[t.v[1]], p[t.v[2]], t.inner, t.outer, &reversed);
     by_pair[pair_key(t)].push_back(i);
-    if (g == SurfacePatches::kNone)
+    if (g == SurfacePatches::kNone) {
       unlabelled[pair_key(t)].push_back(i);
-    else
-      in_group[g].push_back(i);
+      continue;
+    }
+    in_group[g].push_back(i);
+    // An interface triangle of an input group faces as the input's did there: seen
+    // from the tet across (a boundary triangle keeps facing out: no tet is across).
+    const uint32_t other =
+        t.outer == kOutsideMaterial ? kInvalidIndex : across[4 * t.tet + t.corner];
+    if (reversed && other != kInvalidIndex) {
+      uint8_t c = 0;
+      const Tet& o = mesh.tets[other];
+      while (c < 3 && (o[c] == t.v[0] || o[c] == t.v[1] || o[c] == t.v[2])) ++c;
+      std::swap(t.v[1], t.v[2]);
+      std::swap(t.inner, t.outer);
+      t.tet = other;
+      t.corner = c;
+    }
   }
   if (inside) {
     // After the surface's, so that each group's indices still increase.
@@ -464,6 +491,7 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePa
       const SurfaceTriangle& t = result.surface[in_group[g].front()];
       group.material = t.inner;
       group.other = t.outer;
+      if (t.outer != kOutsideMaterial && t.outer < t.inner) std::swap(group.material, group.other);
       group.tag = input.tag;
       group.name = input.name;
       if (group.name.empty()) {

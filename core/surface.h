@@ -90,9 +90,10 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 // With `inside`, the groups' triangles inside one material
 // (SurfacePatches::inside_entries()) that are faces of `mesh` go to their groups too,
 // after the surface's triangles (material == other == that material; oriented as in
-// the input, `tet` on their back side); a group of such triangles only comes after
-// the others. That is for the input's mesh itself (convert), and for the meshes made
-// from it by simplify() and improve_mesh() with these patches, which keep those faces;
+// the input, `tet` on their back side); an input group's interface triangles face the
+// way the input's faced there (their `inner` is then the larger material); a group of such
+// triangles only comes after the others. That is for the input's mesh itself (convert), and for the
+// meshes made from it by simplify() and improve_mesh() with these patches, which keep those faces;
 // a mesh made otherwise may keep only some of them.
 //
 // `face_neighbors`, here and below: those of `mesh`'s tets (build_face_neighbors(), or
@@ -156,8 +157,11 @@ class SurfacePatches {
   // missing.
   void drop_inside();
   // The group (index into groups()) of the triangle (a, b, c) between materials
-  // `inner` and `outer` (kOutsideMaterial on the boundary), or kNone.
-  uint32_t locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner, int32_t outer) const;
+  // `inner` and `outer` (kOutsideMaterial on the boundary), or kNone. With `reversed`:
+  // whether the input's triangle there faces the other way (an entry in a group keeps
+  // its group's corner order; the others face from `inner` to `outer`).
+  uint32_t locate(const Vec3& a, const Vec3& b, const Vec3& c, int32_t inner, int32_t outer,
+                  bool* reversed = nullptr) const;
 
  private:
   void build_index();

@@ -421,6 +421,66 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   EXPECT_EQ(info.surface_groups[2].name, "1st _outer_ wall");
 }
 
+// An input group's interface triangles face as the input's did (Gmsh's facing out of
+// the larger material, here: a flux through it keeps its sign), in the input's mesh
+// and in a simplified one, seen from the tet on their back (an Abaqus face is a tet's);
+// a boundary group faces out of the mesh whatever its input's facing.
+TEST(SurfaceGroups, InputGroupsKeepTheirFacingOnInterfaces) {
+  const TetMesh mesh = box2();
+  const SurfaceGroups plain = groups_of(mesh);  // boundary_1, boundary_2, interface_1_2
+  ASSERT_EQ(plain.groups[2].name, "interface_1_2");
+  auto reversed = [&](const SurfaceGroup& g, int32_t tag) {
+    InputSurfaceGroup in;
+    in.tag = tag;
+    for (uint32_t i : g.triangles) {
+      const auto& v = plain.surface[i].v;
+      in.triangles.push_back({mesh.positions[v[2]], mesh.positions[v[1]], mesh.positions[v[0]]});
+    }
+    return in;
+  };
+  const std::vector<InputSurfaceGroup> input = {reversed(plain.groups[0], 40),
+                                                reversed(plain.groups[2], 60)};
+  const SurfacePatches patches(mesh, input);
+  // Each triangle of a group faces away from its tet's opposite corner, from `inner`.
+  auto check = [](const TetMesh& m, const SurfaceGroups& groups, int32_t tag, int32_t back) {
+    const auto it = std::find_if(groups.groups.begin(), groups.groups.end(),
+                                 [&](const SurfaceGroup& g) { return g.tag == tag; });
+    ASSERT_NE(it, groups.groups.end());
+    EXPECT_EQ(it->material, 1);  // the pair, smaller first, whatever the facing
+    ASSERT_FALSE(it->triangles.empty());
+    for (uint32_t i : it->triangles) {
+      const SurfaceTriangle& t = groups.surface[i];
+      ASSERT_EQ(t.inner, back);
+      ASSERT_EQ(m.materials[t.tet], back);
+      const Tet& tet = m.tets[t.tet];
+      for (uint32_t v : t.v) ASSERT_TRUE(tet_has(tet, v));
+      ASSERT_FALSE(tet_has({t.v[0], t.v[1], t.v[2], t.v[0]}, tet[t.corner]));
+      const Vec3& a = m.positions[t.v[0]];
+      const Vec3 normal = cross(m.positions[t.v[1]] - a, m.positions[t.v[2]] - a);
+      ASSERT_LT(dot(normal, m.positions[tet[t.corner]] - a), 0);
+    }
+  };
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(mesh, &groups, patches).ok());
+  check(mesh, groups, 60, 2);  // as the input: out of material 2
+  check(mesh, groups, 40, 1);  // a boundary: out of the mesh
+  std::vector<PositionTriangle> want, got;
+  for (const auto& t : input[1].triangles) want.push_back(by_positions(t));
+  got = triangles_by_tag(mesh, groups).at(60);
+  std::sort(want.begin(), want.end());
+  EXPECT_EQ(got, want);
+  // Simplified with the patches: the same facing.
+  SimplifyParams params;
+  params.sizing.uniform = 10;
+  params.tolerance = 0.01;
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(mesh, params, &r, {}, nullptr, &patches).ok());
+  ASSERT_LT(r.output.tet_count(), mesh.tet_count());
+  ASSERT_TRUE(group_surface(r.output, &groups, patches).ok());
+  check(r.output, groups, 60, 2);
+  check(r.output, groups, 40, 1);
+}
+
 // A surface group and a material of the same number (Gmsh numbers each dimension's
 // physical groups apart) keep their own names through .vtk and .vtu (the field data's
 // group_dim says which row is which); a file without group_dim, as TetLOD wrote
