@@ -196,6 +196,7 @@ class GmshParser {
           finish_elements();
         }
       } else if (section.size() > 1 && section[0] == '$' && section.substr(0, 4) != "$End") {
+        periodic_ = periodic_ || section == "$Periodic";
         skip_section(section);
       } else {
         scanner_.fail("expected a section such as '$Nodes', found " + TextScanner::quote(section));
@@ -203,6 +204,11 @@ class GmshParser {
     }
     if (scanner_.failed()) return scanner_.status();
     if (!seen_elements_) return Status::error(scanner_.name() + ": no $Elements section");
+    if (periodic_) {  // (Gmsh writes it after $Elements)
+      out_->notes.push_back(
+          "the $Periodic section is not kept: the nodes it matches across periodic surfaces "
+          "are read as any others, and simplify does not keep them matched");
+    }
     *version = version_;
     return Status();
   }
@@ -1155,11 +1161,19 @@ class GmshParser {
       return text;
     };
     std::map<std::string, size_t> skipped_volumes;
-    uint64_t surface_elements = 0;
+    uint64_t surface_elements = 0, lines = 0, points = 0;
     for (const auto& [type, count] : element_counts_) {
       if (const char* name = skipped_volume_elements(type)) skipped_volumes[name] += count;
       if (is_surface_element(type)) surface_elements += count;
+      if (type == 1 || type == 8 || type == 26 || type == 27 || type == 28) lines += count;
+      if (type == 15) points += count;
     }
+    if (lines + points > 0) {
+      out_->notes.push_back(std::to_string(lines) + " line and " + std::to_string(points) +
+                            " point elements (physical curves and points) are not kept: TetLOD "
+                            "keeps the tetrahedra, their volume groups and the surface groups");
+    }
+
     if (!skipped_volumes.empty()) {
       out_->notes.push_back("skipped " + count_list(skipped_volumes) +
                             ": TetLOD reads tetrahedra only, so a region "
@@ -1407,6 +1421,7 @@ class GmshParser {
   std::vector<std::string> renamed_;  // groups named twice, for a note (at most 10)
   std::map<int64_t, uint64_t> element_counts_;
   bool from_elementary_ = false;  // of the last resolve_material()
+  bool periodic_ = false;         // the file has a $Periodic section (not read)
   uint64_t physical_tets_ = 0, elementary_tets_ = 0;
   std::set<int32_t> elementary_materials_, physical_materials_;  // the first 1000
   std::vector<uint64_t> node_tags_;                              // sorted by finish_nodes()

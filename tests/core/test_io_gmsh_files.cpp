@@ -361,5 +361,25 @@ TEST(IoGmshFiles, ElementaryTagsSharedWithAVolumeGroupGetANumberOfTheirOwn) {
   }
 }
 
+// Physical curves and points, and a $Periodic section, are not kept: notes say so
+// (they were dropped silently).
+TEST(IoGmshFiles, CurvesPointsAndPeriodicNodesAreNotedAsNotKept) {
+  const std::string file =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n"
+      "$EndNodes\n$Elements\n4\n1 15 2 301 1 1\n2 1 2 201 1 1 2\n3 1 2 201 1 2 3\n"
+      "4 4 2 1 1 1 2 3 4\n$EndElements\n$Periodic\n1\n2 1 2\n1\n1 2\n$EndPeriodic\n";
+  TetMesh mesh;
+  ReadInfo info;
+  const Status s = read_mesh_from_memory(file, MeshFormat::kGmsh22, "p.msh", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(mesh.tet_count(), 1u);
+  EXPECT_NE(all_notes(info).find("2 line and 1 point elements (physical curves and points) are "
+                                 "not kept"),
+            std::string::npos)
+      << all_notes(info);
+  EXPECT_NE(all_notes(info).find("the $Periodic section is not kept"), std::string::npos)
+      << all_notes(info);
+}
+
 }  // namespace
 }  // namespace tetlod
