@@ -1170,8 +1170,9 @@ class GmshParser {
     }
     if (lines + points > 0) {
       out_->notes.push_back(std::to_string(lines) + " line and " + std::to_string(points) +
-                            " point elements (physical curves and points) are not kept: TetLOD "
-                            "keeps the tetrahedra, their volume groups and the surface groups");
+                            " point elements (Gmsh writes those of physical curves and points, or "
+                            "all with Mesh.SaveAll) are not kept: TetLOD keeps the tetrahedra, "
+                            "their volume groups and the surface groups");
     }
 
     if (!skipped_volumes.empty()) {
@@ -1238,8 +1239,12 @@ class GmshParser {
     if (elementary_tets_ > 0 && physical_tets_ > 0) {
       std::vector<std::string> ids, shared;
       for (int32_t m : elementary_materials_) {
-        ids.push_back(std::to_string(m));
-        if (physical_materials_.count(m)) shared.push_back(std::to_string(m));
+        const auto as = renumbered_entities_.find(m);
+        ids.push_back(std::to_string(m) + (as != renumbered_entities_.end()
+                                               ? " as " + std::to_string(as->second)
+                                               : ""));
+        if (as == renumbered_entities_.end() && physical_materials_.count(m))
+          shared.push_back(std::to_string(m));
       }
       out_->notes.push_back(
           std::to_string(elementary_tets_) +
@@ -1250,10 +1255,13 @@ class GmshParser {
                                 " is also a physical group's number, so both are one material"));
     }
     if (!renumbered_entities_.empty()) {
+      std::vector<std::string> list;
+      for (const auto& [from, to] : renumbered_entities_)
+        list.push_back(std::to_string(from) + " as " + std::to_string(to));
       out_->notes.push_back(
           "tetrahedra in no physical group whose volume entity's tag is also a volume "
           "group's number are read as materials of their own: entity " +
-          quoted_list(renumbered_entities_));
+          quoted_list(list));
     }
   }
 
@@ -1342,17 +1350,12 @@ class GmshParser {
       if (++next > std::numeric_limits<int32_t>::max()) return;  // (left as one material)
       to = int32_t(next);
     }
-    if (renumbered.empty()) return;
-    elementary_materials_.clear();
     for (size_t t = 0; t < materials.size(); ++t) {
       if (!tet_from_elementary_[t]) continue;
       if (const auto it = renumbered.find(materials[t]); it != renumbered.end())
         materials[t] = it->second;
-      if (elementary_materials_.size() < 1000) elementary_materials_.insert(materials[t]);
     }
-    for (const auto& [from, to] : renumbered)
-      if (renumbered_entities_.size() < 10)
-        renumbered_entities_.push_back(std::to_string(from) + " as " + std::to_string(to));
+    renumbered_entities_ = std::move(renumbered);
   }
 
   bool finish_elements() {
@@ -1427,11 +1430,11 @@ class GmshParser {
   std::vector<uint64_t> node_tags_;                              // sorted by finish_nodes()
   std::vector<uint32_t> node_lines_;
   uint64_t first_tag_ = 0;
-  std::vector<uint32_t> dense_index_;             // node tag - first_tag_ -> vertex, when compact
-  std::vector<int64_t> element_tags_;             // per tet
-  std::vector<int64_t> tet_elementary_;           // per tet: its elementary entity's tag
-  std::vector<uint8_t> tet_from_elementary_;      // per tet: its material is its entity's tag
-  std::vector<std::string> renumbered_entities_;  // separate_entity_materials(), the first 10
+  std::vector<uint32_t> dense_index_;               // node tag - first_tag_ -> vertex, when compact
+  std::vector<int64_t> element_tags_;               // per tet
+  std::vector<int64_t> tet_elementary_;             // per tet: its elementary entity's tag
+  std::vector<uint8_t> tet_from_elementary_;        // per tet: its material is its entity's tag
+  std::map<int32_t, int32_t> renumbered_entities_;  // separate_entity_materials(): tag -> material
   // The tags of the last resolve_material() and its answer.
   bool has_last_tags_ = false;
   int64_t last_physical_ = 0, current_elementary_ = 0;

@@ -328,7 +328,7 @@ TEST(IoGmshFiles, ElementaryTagsSharedWithAVolumeGroupGetANumberOfTheirOwn) {
        "0 4",
        {4, 5},
        "1 tetrahedra are in no physical group: their material is their volume's entity "
-       "tag (5)\n"},
+       "tag (4 as 5)\n"},
       {"",
        "4 1",
        "0 7",
@@ -373,8 +373,8 @@ TEST(IoGmshFiles, CurvesPointsAndPeriodicNodesAreNotedAsNotKept) {
   const Status s = read_mesh_from_memory(file, MeshFormat::kGmsh22, "p.msh", &mesh, &info);
   ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_EQ(mesh.tet_count(), 1u);
-  EXPECT_NE(all_notes(info).find("2 line and 1 point elements (physical curves and points) are "
-                                 "not kept"),
+  EXPECT_NE(all_notes(info).find("2 line and 1 point elements (Gmsh writes those of physical "
+                                 "curves and points, or all with Mesh.SaveAll) are not kept"),
             std::string::npos)
       << all_notes(info);
   EXPECT_NE(all_notes(info).find("the $Periodic section is not kept"), std::string::npos)
