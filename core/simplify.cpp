@@ -132,7 +132,7 @@ struct Quadric {
 
 // The point the quadrics are taken about. Their expanded form cancels: error(p) has a
 // rounding of about 1e-16 |p|^2 (Quadric::rounding()), so about the coordinates'
-// origin a mesh 1e7 across from it, as a part placed in a plant's coordinates, would
+// origin a mesh 1e7 away from it, as a part placed in a plant's coordinates, would
 // have a rounding far above any tolerance, and pass every collapse's test. About the
 // centre of the mesh's box it is about 1e-16 times its size squared. A mesh round the
 // origin (within 8 times its half-diagonal) keeps the origin, where the rounding is
@@ -673,7 +673,8 @@ class Engine {
   // be, its edges are frozen; so are edges whose midpoint would exceed the valence
   // cap, and a tet split but not red around a node that would exceed it, where it
   // grows, is made red or frozen. The marking is closed again until nothing breaks.
-  // Levels repeat while they split an edge longer than its limit.
+  // Levels repeat while they split an edge longer than its limit; from the fourth on,
+  // one that splits under 1/64 of the long edges it marks is the last.
   // The three edges of the face opposite each corner.
   static constexpr int kFaceEdges[4][3] = {{3, 4, 5}, {1, 2, 5}, {0, 2, 4}, {0, 1, 3}};
 
@@ -1257,11 +1258,17 @@ class Engine {
               [&](uint32_t x, uint32_t y) { return level.ends[x] < level.ends[y]; });
     // A level that splits no edge longer than its limit (only edges the marking's
     // closure added, around frozen ones) would only refine; the levels end.
-    bool splits_long = false;
+    size_t long_splits = 0;
     for (uint32_t e : split_edges)
-      splits_long = splits_long || squared_length(pos_[level.ends[e][0]] - pos_[level.ends[e][1]]) >
-                                       level.limit[e] * level.limit[e];
-    if (!splits_long) return false;
+      long_splits += squared_length(pos_[level.ends[e][0]] - pos_[level.ends[e][1]]) >
+                     level.limit[e] * level.limit[e];
+    if (long_splits == 0) return false;
+    // From the fourth level on, one that splits under 1/64 of the long edges it marked
+    // is the last: the levels after it would each re-plan every tet still long round
+    // edges the rules freeze, to split a few more (docs/PERFORMANCE.md: on the bundled
+    // motor at size 2, 640k long tets of 7.2M a level, 3 to 6 s each, to split 5,000
+    // down to 50 edges). The bisection that follows splits what is left where it can.
+    if (result->red_levels >= 3 && 64 * long_splits < marked_edges.size()) red_levels_end_ = true;
     // Apply: the pieces in plan ids first (plan_position() reads pos_ as it is).
     std::vector<TetRecord> next;
     std::vector<uint8_t> is_piece;
@@ -1362,7 +1369,9 @@ class Engine {
       // Edges whose red split would give their midpoint more neighbours than tau_VL
       // are bisected first (see hot_edge()).
       if (Status s = bisect(result, &valence_now, Bisect::kHotEdges); !s) return s;
-      for (int level = 0; level < kMostRedLevels && red_level(result); ++level) {
+      red_levels_end_ = false;
+      for (int level = 0; level < kMostRedLevels && !red_levels_end_ && red_level(result);
+           ++level) {
       }
       report("red levels", 1);
     }
@@ -3190,6 +3199,7 @@ class Engine {
   bool region_sizing_ = false;         // radial or box rules: sizes depend on the position
   bool late_limits_ = false;           // a size map: sizes checked last (check_position())
   double red_levels_expected_ = 1;     // about how many red levels, for the progress
+  bool red_levels_end_ = false;        // the last red level is made (red_level())
   double predicted_splits_ = 0;        // tets subdivision would add, about: sum of (2 s / tau_SZ)^3
   const VectorKernels& kernels_ = vector_kernels();
   // The tet across each face: across_[4 * t + c] is across the face of t opposite
