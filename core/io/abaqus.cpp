@@ -710,9 +710,14 @@ class AbaqusParser {
       for (uint64_t face : faces) {
         const Tet& tet = mesh.tets[face / 4];
         const int* corners = kAbaqusTetFace[face % 4];
-        group.triangles.push_back({mesh.positions[tet[size_t(corners[0])]],
-                                   mesh.positions[tet[size_t(corners[1])]],
-                                   mesh.positions[tet[size_t(corners[2])]]});
+        // Facing out of its element, as Abaqus takes an element-based surface's normal
+        // (a group's facing is kept: surface.h), whatever the element's node order.
+        std::array<Vec3, 3> t = {mesh.positions[tet[size_t(corners[0])]],
+                                 mesh.positions[tet[size_t(corners[1])]],
+                                 mesh.positions[tet[size_t(corners[2])]]};
+        const Vec3& apex = mesh.positions[tet[size_t(6 - corners[0] - corners[1] - corners[2])]];
+        if (dot(cross(t[1] - t[0], t[2] - t[0]), apex - t[0]) > 0) std::swap(t[1], t[2]);
+        group.triangles.push_back(t);
       }
       out_->surface_groups.push_back(std::move(group));
     }

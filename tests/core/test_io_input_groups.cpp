@@ -130,18 +130,23 @@ TEST(IoInputGroups, AbaqusSurfacesByElementAndBySet) {
   ASSERT_TRUE(s.ok()) << s.message();
   ASSERT_EQ(mesh.tet_count(), 4u);
   const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0}, d{0, 0, 1}, e{1, 1, 1}, f{0, 0, -1}, g{0, -1, 0};
-  // Faces: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
+  // Faces: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1, in node order facing
+  // into an element of positive volume: read facing out of it, as Abaqus takes an
+  // element-based surface's normal (so reversed below); a shell keeps its node order.
   struct Expected {
     int32_t tag;
     const char* name;
     std::vector<std::array<Vec3, 3>> triangles;
+    bool element_faces = true;
   };
   const std::vector<Expected> expected = {
-      {1, "Cap", {{b, e, c}}},                          // element 2 (B C D E), S2
-      {2, "Lower", {{c, f, a}, {d, g, a}, {a, b, d}}},  // 3 (A B C F) and 4 (A B D G), S4; 4, S1
+      {1, "Cap", {{b, e, c}}},  // element 2 (B C D E), S2
+      // 3 (A B C F, of negative volume: its S4 in node order, c f a, faces out) and
+      // 4 (A B D G), S4; 4, S1
+      {2, "Lower", {{c, a, f}, {d, g, a}, {a, b, d}}},
       {3, "Mixed", {{a, b, c}}},                  // element 1, S1 (the shell and the hex dropped)
       {4, "Pair_FACES", {{b, d, c}, {c, e, d}}},  // elements 1 and 2, S3
-      {5, "SKIN", {{a, b, c}}},                   // the shell S3's set, after the surfaces
+      {5, "SKIN", {{a, b, c}}, false},            // the shell S3's set, after the surfaces
   };
   ASSERT_EQ(info.surface_groups.size(), expected.size());
   // Tagged after the largest material number (GetDP numbers volumes and surfaces alike).
@@ -151,7 +156,10 @@ TEST(IoInputGroups, AbaqusSurfacesByElementAndBySet) {
     SCOPED_TRACE(expected[i].name);
     EXPECT_EQ(info.surface_groups[i].tag, largest + expected[i].tag);
     EXPECT_EQ(info.surface_groups[i].name, expected[i].name);
-    EXPECT_EQ(canonical(info.surface_groups[i].triangles), canonical(expected[i].triangles));
+    std::vector<std::array<Vec3, 3>> want = expected[i].triangles;
+    if (expected[i].element_faces)
+      for (auto& t : want) std::swap(t[1], t[2]);
+    EXPECT_EQ(canonical(info.surface_groups[i].triangles), canonical(want));
   }
   const std::string notes = join(info.notes);
   EXPECT_NE(notes.find("2 faces of *SURFACE Mixed are on elements that are not tetrahedra"),
