@@ -41,6 +41,19 @@ TetMesh box2() {
   return mesh;
 }
 
+// Group g of `plain` (group_surface(mesh)) as an input file's group of that tag, its
+// triangles facing the other way.
+InputSurfaceGroup reversed_input_group(const TetMesh& mesh, const SurfaceGroups& plain,
+                                       const SurfaceGroup& g, int32_t tag) {
+  InputSurfaceGroup in;
+  in.tag = tag;
+  for (uint32_t i : g.triangles) {
+    const auto& v = plain.surface[i].v;
+    in.triangles.push_back({mesh.positions[v[2]], mesh.positions[v[1]], mesh.positions[v[0]]});
+  }
+  return in;
+}
+
 // A triangle by its corner positions, rotated to start at the smallest, so that it
 // compares equal across renumberings but keeps its orientation.
 using PositionTriangle = std::array<std::array<double, 3>, 3>;
@@ -374,13 +387,7 @@ TEST(SurfaceGroups, InputGroupsKeepTheirNamesTagsAndTriangles) {
   TetMesh mesh = box2();
   const SurfaceGroups plain = groups_of(mesh);
   auto input_of = [&](const SurfaceGroup& g, int32_t tag) {
-    InputSurfaceGroup in;
-    in.tag = tag;
-    for (uint32_t i : g.triangles) {
-      const auto& v = plain.surface[i].v;
-      in.triangles.push_back({mesh.positions[v[2]], mesh.positions[v[1]], mesh.positions[v[0]]});
-    }
-    return in;
+    return reversed_input_group(mesh, plain, g, tag);
   };
   std::vector<InputSurfaceGroup> input = {
       input_of(plain.groups[0], 4), input_of(plain.groups[1], 50), input_of(plain.groups[2], 60)};
@@ -429,17 +436,9 @@ TEST(SurfaceGroups, InputGroupsKeepTheirFacingOnInterfaces) {
   const TetMesh mesh = box2();
   const SurfaceGroups plain = groups_of(mesh);  // boundary_1, boundary_2, interface_1_2
   ASSERT_EQ(plain.groups[2].name, "interface_1_2");
-  auto reversed = [&](const SurfaceGroup& g, int32_t tag) {
-    InputSurfaceGroup in;
-    in.tag = tag;
-    for (uint32_t i : g.triangles) {
-      const auto& v = plain.surface[i].v;
-      in.triangles.push_back({mesh.positions[v[2]], mesh.positions[v[1]], mesh.positions[v[0]]});
-    }
-    return in;
-  };
-  const std::vector<InputSurfaceGroup> input = {reversed(plain.groups[0], 40),
-                                                reversed(plain.groups[2], 60)};
+  const std::vector<InputSurfaceGroup> input = {
+      reversed_input_group(mesh, plain, plain.groups[0], 40),
+      reversed_input_group(mesh, plain, plain.groups[2], 60)};
   const SurfacePatches patches(mesh, input);
   // Each triangle of a group faces away from its tet's opposite corner, from `inner`.
   auto check = [](const TetMesh& m, const SurfaceGroups& groups, int32_t tag, int32_t back) {
