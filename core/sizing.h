@@ -31,10 +31,14 @@ struct SizingField {
                 // `center` along `axis` (normalised on parse)
     double size0 = 0;
     double growth = 0;  // size per unit distance, >= 0
+    bool operator==(const Radial& o) const {
+      return center == o.center && axis == o.axis && size0 == o.size0 && growth == o.growth;
+    }
   };
   struct Box {
     Vec3 low, high;
     double size = 0;
+    bool operator==(const Box& o) const { return low == o.low && high == o.high && size == o.size; }
   };
 
   double uniform = std::numeric_limits<double>::infinity();

@@ -772,10 +772,6 @@ void empty_view_note(const ViewerStatus& status, const ViewSettings& view, bool 
                 nullptr, wrap);
 }
 
-}  // namespace
-
-namespace {
-
 double usable_diagonal(double diagonal) {
   return std::isfinite(diagonal) && diagonal > 0 ? diagonal : 1.0;
 }
@@ -873,18 +869,10 @@ bool same_thresholds(const ThresholdSettings& settings, const SimplifyParams& ru
   std::string error;
   if (!to_simplify_params(settings, &p, &error)) return false;
   const SizingField &a = p.sizing, &b = run.sizing;
-  const auto same_radial = [](const SizingField::Radial& x, const SizingField::Radial& y) {
-    return x.center == y.center && x.axis == y.axis && x.size0 == y.size0 && x.growth == y.growth;
-  };
-  const auto same_box = [](const SizingField::Box& x, const SizingField::Box& y) {
-    return x.low == y.low && x.high == y.high && x.size == y.size;
-  };
   return p.tolerance == run.tolerance && p.min_stretch == run.min_stretch &&
          p.max_valence == run.max_valence && p.subdivide == run.subdivide &&
          a.uniform == b.uniform && a.material_sizes == b.material_sizes && a.map == b.map &&
-         std::equal(a.radial.begin(), a.radial.end(), b.radial.begin(), b.radial.end(),
-                    same_radial) &&
-         std::equal(a.boxes.begin(), a.boxes.end(), b.boxes.begin(), b.boxes.end(), same_box);
+         a.radial == b.radial && a.boxes == b.boxes;
 }
 
 bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings) {
