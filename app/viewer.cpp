@@ -1107,6 +1107,17 @@ void Viewer::handle_camera_input() {
     if (ImGui::IsKeyPressed(GLFW_KEY_F)) execute({ui::CommandKind::kFit});
     for (int k = 0; k < 4; ++k)
       if (ImGui::IsKeyPressed(GLFW_KEY_0 + k)) execute({ui::CommandKind::kAxisView, "", k});
+    // The level of detail: held keys repeat, as on the strip's arrow buttons.
+    const long long last = static_cast<long long>(scene_->lod->step_count());
+    const long long page = std::max(1LL, last / 100);
+    long long& step = panel_.target_step;
+    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) step -= 1;
+    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) step += 1;
+    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_UP)) step -= page;
+    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_DOWN)) step += page;
+    if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) step = 0;
+    if (ImGui::IsKeyPressed(GLFW_KEY_END)) step = last;
+    step = std::clamp(step, 0LL, last);
   }
 }
 

@@ -34,6 +34,7 @@ std::string material_label(const ViewerStatus& status, int32_t m, const char* un
 
 constexpr float kPanelWidth = 380;   // the side panel
 constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
+constexpr float kLodHeight = 58;     // the level-of-detail strip above it
 constexpr float kMargin = 6;
 // Lists of materials (shown, sized, analysed) hold at most this many, the lowest ids:
 // a mesh can have thousands of materials (one per CAD volume), and a panel of
@@ -441,16 +442,36 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   }
 }
 
-void lod_section(const ViewerStatus& status, PanelState* panel, std::vector<Command>* commands) {
+// The level-of-detail strip: a bar across the bottom of the 3D view (above the statistics),
+// always in sight, whose slider is as wide as the view, so that a history of thousands of
+// steps can be scrubbed a few steps a pixel.
+void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Command>* commands) {
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  const float x = viewport->WorkPos.x + kPanelWidth + 2 * kMargin;
+  const float below = panel->show_stats ? kStatsHeight + kMargin : 0.0f;
+  ImGui::SetNextWindowPos(
+      ImVec2(x, viewport->WorkPos.y + viewport->WorkSize.y - below - kLodHeight - kMargin),
+      ImGuiCond_Always);
+  ImGui::SetNextWindowSize(
+      ImVec2(std::max(200.0f, viewport->WorkSize.x - kPanelWidth - 3 * kMargin), kLodHeight),
+      ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  ImGui::Begin("Level of detail", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextUnformatted("Level of detail");
+  ImGui::SameLine();
   if (status.step_count == 0) {
-    ImGui::TextDisabled("Simplify to get a collapse history.");
-    ImGui::Text("Elements: %zu", status.elements);
+    ImGui::TextDisabled("(simplify to get a collapse history; %zu elements)", status.elements);
+    ImGui::End();
     return;
   }
   const long long last = static_cast<long long>(status.step_count);
   int step = static_cast<int>(panel->target_step);
   char format[64];
-  std::snprintf(format, sizeof(format), "step %%d: %zu elements", status.elements_at_target);
+  std::snprintf(format, sizeof(format), "step %%d of %lld: %zu elements", last,
+                status.elements_at_target);
   ImGui::SetNextItemWidth(-1);
   if (ImGui::SliderInt("##step", &step, 0, static_cast<int>(last), format,
                        ImGuiSliderFlags_AlwaysClamp))
@@ -463,13 +484,32 @@ void lod_section(const ViewerStatus& status, PanelState* panel, std::vector<Comm
   ImGui::SameLine();
   if (ImGui::Button("Coarsest")) panel->target_step = last;
   panel->target_step = std::clamp(panel->target_step, 0LL, last);
-  ImGui::SetNextItemWidth(140);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(110);
   ImGui::InputInt("##elements", &panel->jump_elements, 100, 1000);
   ImGui::SameLine();
-  if (ImGui::Button("Jump to #elements"))
+  if (ImGui::Button("Jump"))
     commands->push_back({CommandKind::kJumpElements, "", panel->jump_elements});
-  ImGui::TextWrapped("Shown: step %zu of %zu, %zu elements (%zu at the end)", status.step,
-                     status.step_count, status.elements, status.elements_at_end);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("to the level nearest this number of elements");
+  // What is on screen (behind the slider while the mesh catches up), shorter if the strip
+  // is narrow; the whole line and the keys in a tooltip.
+  char shown[128], shown_short[64];
+  std::snprintf(shown, sizeof(shown), "shown: step %zu, %zu elements (%zu at the end)", status.step,
+                status.elements, status.elements_at_end);
+  std::snprintf(shown_short, sizeof(shown_short), "shown: %zu", status.step);
+  ImGui::SameLine();
+  const float room = ImGui::GetContentRegionAvail().x;
+  if (ImGui::CalcTextSize(shown_short).x > room) {
+    ImGui::End();
+    return;
+  }
+  ImGui::TextUnformatted(ImGui::CalcTextSize(shown).x <= room ? shown : shown_short);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "%s\nKeys: left/right one step, page up/down a hundredth of the history, "
+        "home/end the finest/coarsest level",
+        shown);
+  ImGui::End();
 }
 
 void output_section(PanelState* panel, std::vector<Command>* commands) {
@@ -1038,7 +1078,8 @@ ViewRect scene_rect(float display_width, float display_height, bool show_stats) 
   r.x = kPanelWidth + 2 * kMargin;
   r.y = 0;
   r.width = std::max(1.0f, display_width - r.x);
-  r.height = std::max(1.0f, display_height - (show_stats ? kStatsHeight + 2 * kMargin : 0.0f));
+  r.height = std::max(1.0f, display_height - kLodHeight - 2 * kMargin -
+                                (show_stats ? kStatsHeight + kMargin : 0.0f));
   return r;
 }
 
@@ -1085,11 +1126,10 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
   if (ImGui::CollapsingHeader("Thresholds")) thresholds_section(status, thresholds, commands);
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
-  if (ImGui::CollapsingHeader("Level of detail")) lod_section(status, panel, commands);
-  ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
   if (ImGui::CollapsingHeader("Analysis")) analysis_section(status, analysis, commands);
   if (ImGui::CollapsingHeader("Output")) output_section(panel, commands);
   ImGui::End();
+  lod_strip(status, panel, commands);
   stats_window(status, panel);
   empty_view_note(status, *view, panel->show_stats);
 }

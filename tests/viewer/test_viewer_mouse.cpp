@@ -1,6 +1,7 @@
-// Mouse input through the X server (XTest), as from a hand on the mouse: a drag over
+// Mouse and key input through the X server (XTest), as from a hand on the mouse: a drag over
 // the 3D view orbits the camera; the same drag started over the side panel does not
-// move it, even when it ends over the view (ImGui wants the mouse for it). Runs under
+// move it, even when it ends over the view (ImGui wants the mouse for it); keys move
+// the level of detail. Runs under
 // xvfb-run with the other window tests; the viewer's window sits at the screen's
 // origin (no window manager).
 #include <gtest/gtest.h>
@@ -22,6 +23,7 @@
 // Last, and their macros that clash with C++ names removed.
 #include <X11/Xlib.h>
 #include <X11/extensions/XTest.h>
+#include <X11/keysym.h>
 #undef Status
 #undef None
 #undef Bool
@@ -117,6 +119,47 @@ TEST(ViewerMouse, SizeSliderFollowsAModelInMetres) {
   char rounded[32];
   std::snprintf(rounded, sizeof rounded, "%.4g", size);
   EXPECT_EQ(std::strtod(rounded, nullptr), size);
+}
+
+// A key pressed and released as by a hand (held 80 ms: shorter taps can fall between
+// two frames of a loaded machine).
+void press(Display* display, KeySym key) {
+  const KeyCode code = XKeysymToKeycode(display, key);
+  XTestFakeKeyEvent(display, code, True, CurrentTime);
+  XFlush(display);
+  std::this_thread::sleep_for(80ms);
+  XTestFakeKeyEvent(display, code, False, CurrentTime);
+  XFlush(display);
+  std::this_thread::sleep_for(150ms);
+}
+
+// Home goes to the finest level, page down a hundredth of the history on, the right arrow
+// one step: the level saved after Home, page down twice and right is that step's.
+TEST(ViewerMouse, KeysMoveTheLevelOfDetail) {
+  test::BackgroundViewer viewer;
+  ASSERT_TRUE(viewer.start("viewer_keys_lod",
+                           std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh",
+                           "simplify\nscreenshot a.png\nwait seconds=4\n"
+                           "save level.mesh\nsave run.tlh\nquit\n",
+                           "1280x800"));
+  ASSERT_TRUE(viewer.wait_for("a.png", std::chrono::seconds(120)));
+  Display* display = XOpenDisplay(nullptr);
+  ASSERT_NE(display, nullptr);
+  XTestFakeMotionEvent(display, -1, 800, 200, CurrentTime);  // over the 3D view
+  XFlush(display);
+  std::this_thread::sleep_for(100ms);
+  for (const KeySym key : {XK_Home, XK_Next, XK_Next, XK_Right}) press(display, key);
+  XCloseDisplay(display);
+  ASSERT_EQ(viewer.finish(std::chrono::seconds(120)), 0);
+  TetMesh base, level;
+  CollapseHistory history;
+  ASSERT_TRUE(read_history((viewer.dir() / "run.tlh").string(), &base, &history).ok());
+  ASSERT_TRUE(read_mesh((viewer.dir() / "level.mesh").string(), &level).ok());
+  ASSERT_GE(history.step_count(), 200u);
+  const Lod lod(base, &history);
+  const size_t page = history.step_count() / 100;
+  EXPECT_EQ(level.tet_count(), lod.tet_count_at(2 * page + 1));
+  EXPECT_LT(level.tet_count(), lod.tet_count_at(2 * page));
 }
 
 }  // namespace
