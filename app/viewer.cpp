@@ -1682,9 +1682,9 @@ void Viewer::run_script() {
     if (!last_job_error_.empty()) {
       const int line = pending_job_line_ > 0 ? pending_job_line_ : 0;
       if (line > 0) {
-        fail_script(line, last_job_error_);
+        fail_script(line, ui::script_error_text(last_job_error_));
       } else {
-        std::fprintf(stderr, "tetlod view: %s\n", last_job_error_.c_str());
+        std::fprintf(stderr, "tetlod view: %s\n", ui::script_error_text(last_job_error_).c_str());
         exit_code_ = kExitBadInput;
         quit_ = true;
       }
@@ -1751,7 +1751,7 @@ Status Viewer::run_action(const ScriptAction& a) {
       last_job_error_.clear();
       if (job_) return Status::error("a simplification or load is already running");
       start_simplify();
-      if (!last_job_error_.empty()) return Status::error(last_job_error_);
+      if (!last_job_error_.empty()) return Status::error(ui::script_error_text(last_job_error_));
       wait_for_job_ = a.flag;
       pending_job_line_ = a.flag ? a.line : 0;
       break;

@@ -1054,18 +1054,28 @@ std::string final_mesh_text(const ViewerStatus& status) {
          "; " + input;
 }
 
-std::string simplify_error_text(const std::string& message) {
-  // The command line's flags the simplifier's messages name, and the panel's controls.
-  static const std::pair<const char*, const char*> kControls[] = {
-      {"--no-subdivide", "untick \"Subdivide first\" above"},
-      {"(set --size)", "(set the size)"},
-  };
+namespace {
+
+// `message` with the command line's flags the simplifier's messages name replaced by
+// `words[0]` (for --no-subdivide) and `words[1]` (for "(set --size)").
+std::string reword_flags(const std::string& message, const char* const (&words)[2]) {
+  static const char* const kFlags[] = {"--no-subdivide", "(set --size)"};
   std::string text = message;
-  for (const auto& [flag, control] : kControls) {
-    const size_t at = text.find(flag);
-    if (at != std::string::npos) text.replace(at, std::strlen(flag), control);
+  for (int k = 0; k < 2; ++k) {
+    const size_t at = text.find(kFlags[k]);
+    if (at != std::string::npos) text.replace(at, std::strlen(kFlags[k]), words[k]);
   }
   return text;
+}
+
+}  // namespace
+
+std::string simplify_error_text(const std::string& message) {
+  return reword_flags(message, {"untick \"Subdivide first\" above", "(set the size)"});
+}
+
+std::string script_error_text(const std::string& message) {
+  return reword_flags(message, {"'thresholds subdivide=0'", "(set 'thresholds size=S')"});
 }
 
 std::string other_run_progress_text(const ViewerStatus& status) {

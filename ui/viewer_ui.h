@@ -301,6 +301,8 @@ std::string final_mesh_text(const ViewerStatus& status);
 // panel's own control instead ("... or --no-subdivide" becomes "... or untick
 // \"Subdivide first\" above").
 std::string simplify_error_text(const std::string& message);
+// The same for a script, in its words ("... or 'thresholds subdivide=0'").
+std::string script_error_text(const std::string& message);
 
 // Draws every panel. `commands` receives what the user asked for this frame.
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,

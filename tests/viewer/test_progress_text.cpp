@@ -200,6 +200,13 @@ TEST(SimplifyErrorText, NamesThePanelsControlsNotTheFlags) {
             "no size limit given (set the size)");
   EXPECT_EQ(ui::simplify_error_text("stretch 5 must lie strictly between 0 and 1"),
             "stretch 5 must lie strictly between 0 and 1");
+  // A script's error names the script's words.
+  EXPECT_EQ(ui::script_error_text("size 0.001 would subdivide the mesh into about 9 tets; "
+                                  "choose a larger size or --no-subdivide"),
+            "size 0.001 would subdivide the mesh into about 9 tets; choose a larger size or "
+            "'thresholds subdivide=0'");
+  EXPECT_EQ(ui::script_error_text("no size limit given (set --size)"),
+            "no size limit given (set 'thresholds size=S')");
 }
 
 }  // namespace
