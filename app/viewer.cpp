@@ -1226,7 +1226,7 @@ Viewer::ViewPixels Viewer::view_pixels(int fb_width, int fb_height) const {
   const ImGuiIO& io = ImGui::GetIO();
   const float display_width = io.DisplaySize.x > 0 ? io.DisplaySize.x : float(fb_width);
   const float display_height = io.DisplaySize.y > 0 ? io.DisplaySize.y : float(fb_height);
-  const ui::ViewRect rect = ui::scene_rect(display_width, display_height, panel_.show_stats);
+  const ui::ViewRect rect = ui::scene_rect(display_width, display_height, panel_);
   const double sx = fb_width / double(display_width), sy = fb_height / double(display_height);
   ViewPixels v;
   v.x = static_cast<int>(std::lround(rect.x * sx));

@@ -36,6 +36,12 @@ constexpr float kPanelWidth = 380;   // the side panel
 constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
 constexpr float kLodHeight = 58;     // the level-of-detail strip above it
 constexpr float kMargin = 6;
+
+// Where the 3D view (and the strips under it) start: right of the side panel, or at the
+// window's edge when the panel is folded to its title bar.
+float scene_left(const PanelState& panel) {
+  return panel.panel_collapsed ? 0.0f : kPanelWidth + 2 * kMargin;
+}
 // Lists of materials (shown, sized, analysed) hold at most this many, the lowest ids:
 // a mesh can have thousands of materials (one per CAD volume), and a panel of
 // thousands of rows would be unusable and slow every frame.
@@ -447,13 +453,14 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
 // steps can be scrubbed a few steps a pixel.
 void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Command>* commands) {
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
-  const float x = viewport->WorkPos.x + kPanelWidth + 2 * kMargin;
+  const float left = std::max(scene_left(*panel), kMargin);
   const float below = panel->show_stats ? kStatsHeight + kMargin : 0.0f;
   ImGui::SetNextWindowPos(
-      ImVec2(x, viewport->WorkPos.y + viewport->WorkSize.y - below - kLodHeight - kMargin),
+      ImVec2(viewport->WorkPos.x + left,
+             viewport->WorkPos.y + viewport->WorkSize.y - below - kLodHeight - kMargin),
       ImGuiCond_Always);
   ImGui::SetNextWindowSize(
-      ImVec2(std::max(200.0f, viewport->WorkSize.x - kPanelWidth - 3 * kMargin), kLodHeight),
+      ImVec2(std::max(200.0f, viewport->WorkSize.x - left - kMargin), kLodHeight),
       ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.9f);
   ImGui::Begin("Level of detail", nullptr,
@@ -679,12 +686,13 @@ void row_cells(const PropertyRow& r) {
 void stats_window(const ViewerStatus& status, PanelState* panel) {
   if (!panel->show_stats) return;
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
-  const float x = viewport->WorkPos.x + kPanelWidth + 2 * kMargin;
+  const float strip_left = std::max(scene_left(*panel), kMargin);
   ImGui::SetNextWindowPos(
-      ImVec2(x, viewport->WorkPos.y + viewport->WorkSize.y - kStatsHeight - kMargin),
+      ImVec2(viewport->WorkPos.x + strip_left,
+             viewport->WorkPos.y + viewport->WorkSize.y - kStatsHeight - kMargin),
       ImGuiCond_Always);
   ImGui::SetNextWindowSize(
-      ImVec2(std::max(200.0f, viewport->WorkSize.x - kPanelWidth - 3 * kMargin), kStatsHeight),
+      ImVec2(std::max(200.0f, viewport->WorkSize.x - strip_left - kMargin), kStatsHeight),
       ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.9f);
   const ImGuiWindowFlags window_flags =
@@ -782,7 +790,8 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
 
 // When nothing is drawn, a line in the middle of the 3D view says why: every material
 // hidden, or the cut leaving none of the shown tets.
-void empty_view_note(const ViewerStatus& status, const ViewSettings& view, bool show_stats) {
+void empty_view_note(const ViewerStatus& status, const ViewSettings& view,
+                     const PanelState& panel) {
   if (status.mesh_name.empty() || status.loading || status.visible_tets > 0) return;
   bool all_hidden = true;
   for (const int32_t m : status.materials)
@@ -802,7 +811,7 @@ void empty_view_note(const ViewerStatus& status, const ViewSettings& view, bool 
     std::snprintf(text, sizeof(text), "Nothing to show at this level.");
   }
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
-  const ViewRect r = scene_rect(viewport->WorkSize.x, viewport->WorkSize.y, show_stats);
+  const ViewRect r = scene_rect(viewport->WorkSize.x, viewport->WorkSize.y, panel);
   const float wrap = std::min(420.0f, r.width - 40);
   const ImVec2 size = ImGui::CalcTextSize(text, nullptr, false, wrap);
   const ImVec2 at(viewport->WorkPos.x + r.x + 0.5f * (r.width - size.x),
@@ -1083,13 +1092,13 @@ std::string other_run_progress_text(const ViewerStatus& status) {
   return phase_percent("past the valence: ", status.other_phase, status.other_fraction);
 }
 
-ViewRect scene_rect(float display_width, float display_height, bool show_stats) {
+ViewRect scene_rect(float display_width, float display_height, const PanelState& panel) {
   ViewRect r;
-  r.x = kPanelWidth + 2 * kMargin;
+  r.x = scene_left(panel);
   r.y = 0;
   r.width = std::max(1.0f, display_width - r.x);
   r.height = std::max(1.0f, display_height - kLodHeight - 2 * kMargin -
-                                (show_stats ? kStatsHeight + kMargin : 0.0f));
+                                (panel.show_stats ? kStatsHeight + kMargin : 0.0f));
   return r;
 }
 
@@ -1102,7 +1111,8 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, viewport->WorkSize.y - 2 * kMargin),
                            ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.95f);
-  ImGui::Begin("TetLOD", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+  panel->panel_collapsed =
+      !ImGui::Begin("TetLOD", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   ImGui::Text("%.1f FPS, %.2f ms/frame", status.fps, status.frame_ms);
   if (status.scene_scale < 1) {
     ImGui::SameLine();
@@ -1141,7 +1151,7 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   ImGui::End();
   lod_strip(status, panel, commands);
   stats_window(status, panel);
-  empty_view_note(status, *view, panel->show_stats);
+  empty_view_note(status, *view, *panel);
 }
 
 bool add_name_glyphs(const std::string& path) {

@@ -173,6 +173,7 @@ struct PanelState {
   int screenshot_size[2] = {0, 0};  // width, height; 0: the 3D view's size
   bool screenshot_ui = false;
   bool show_stats = true;
+  bool panel_collapsed = false;  // the side panel folded to its title bar: the 3D view widens
 };
 
 // What the panels show, filled in by the app each frame.
@@ -271,12 +272,13 @@ struct ViewerStatus {
   double scene_scale = 1;  // resolution factor of the 3D view this frame
 };
 
-// The part of the window left for the 3D view beside the side panel and above the
-// statistics strip, in ImGui's coordinates (pixels from the top left).
+// The part of the window left for the 3D view beside the side panel (unless it is folded)
+// and above the level-of-detail and statistics strips, in ImGui's coordinates (pixels from the top
+// left).
 struct ViewRect {
   float x = 0, y = 0, width = 0, height = 0;
 };
-ViewRect scene_rect(float display_width, float display_height, bool show_stats);
+ViewRect scene_rect(float display_width, float display_height, const PanelState& panel);
 
 // The texts of a run's progress bars, which draw_viewer_panels() shows:
 // - the bar at the top of the panel, always in sight and short enough for its width

@@ -53,12 +53,17 @@ class BackgroundViewer {
     return exit_code;
   }
 
+  // A screenshot in its directory (empty if it cannot be read).
+  render::Image load(const std::string& name) const {
+    render::Image image;
+    if (!render::read_png((dir_ / name).string(), &image).ok()) return {};
+    return image;
+  }
+
   // Pixels of screenshots a and b (in its directory) that differ by more than 8.
   size_t differing_pixels(const std::string& a, const std::string& b) const {
-    render::Image image_a, image_b;
-    if (!render::read_png((dir_ / a).string(), &image_a).ok() ||
-        !render::read_png((dir_ / b).string(), &image_b).ok())
-      return 0;
+    const render::Image image_a = load(a), image_b = load(b);
+    if (image_a.width == 0 || image_b.width == 0) return 0;
     return render::compare_images(image_a, image_b, 8, nullptr).differing_pixels;
   }
 

@@ -121,6 +121,28 @@ TEST(ViewerMouse, SizeSliderFollowsAModelInMetres) {
   EXPECT_EQ(std::strtod(rounded, nullptr), size);
 }
 
+// Folding the side panel (its title bar's arrow) gives its place to the 3D view: a
+// screenshot of the view is then as wide as the window.
+TEST(ViewerMouse, FoldingThePanelWidensTheView) {
+  test::BackgroundViewer viewer;
+  ASSERT_TRUE(viewer.start("viewer_fold_panel",
+                           std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh",
+                           "screenshot a.png\nwait seconds=3\nscreenshot b.png\n"
+                           "screenshot ui.png ui=1\nquit\n",
+                           "800x600"));
+  ASSERT_TRUE(viewer.wait_for("a.png"));
+  std::this_thread::sleep_for(200ms);
+  Display* display = XOpenDisplay(nullptr);
+  ASSERT_NE(display, nullptr);
+  drag(display, 17, 15, 17, 15);  // a click on the arrow of the panel's title bar
+  XCloseDisplay(display);
+  ASSERT_EQ(viewer.finish(), 0);
+  const render::Image a = viewer.load("a.png"), b = viewer.load("b.png");
+  EXPECT_EQ(a.width, 800 - 392);
+  EXPECT_EQ(b.width, 800);
+  EXPECT_EQ(a.height, b.height);
+}
+
 // A key pressed and released as by a hand (held 80 ms: shorter taps can fall between
 // two frames of a loaded machine).
 void press(Display* display, KeySym key) {
