@@ -1114,10 +1114,10 @@ TEST(ViewerWindow, AnEmptyViewSaysWhy) {
   const ViewerRun run =
       run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 960x640 --script empty.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  // The middle band of the view, right of the panel and above the statistics strip,
-  // away from the material key at its top left.
+  // The middle band of the view, right of the panel and above the level-of-detail and
+  // statistics strips, away from the material key at its top left.
   const auto middle = [](const render::Image& image) {
-    return non_background(image, 400, 120, image.width, image.height - 260);
+    return non_background(image, 400, 120, image.width, image.height - 330);
   };
   for (const char* name : {"hidden_ui.png", "cut_ui.png"}) {
     const render::Image image = load_png(dir / name);
