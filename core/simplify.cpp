@@ -3559,7 +3559,13 @@ std::string past_valence_summary(const SimplifyResult& result) {
   if (p.nodes_left > 0)
     return within + past + (p.runs == 1 ? "was given up: " : "was given up as the others: ") +
            std::to_string(p.nodes_left) + (p.nodes_left == 1 ? " node" : " nodes") +
-           " could not be brought back";
+           " could not be brought back" +
+           (p.runs == PastRuns::kRuns
+                ? " (the last of " + std::to_string(PastRuns::kRuns) + " runs)"
+            : p.nodes_left > PastRuns::kMostLeft
+                ? " (more than " + std::to_string(PastRuns::kMostLeft) +
+                      ": a run that leaves so many is not made again)"
+                : std::string());
   const std::string back =
       p.nodes == 0 ? std::string()
       : p.taken    ? "brought them all back by " + std::to_string(result.valence_edge_removals) +

@@ -630,6 +630,9 @@ TEST(SimplifyPastValence, IsGivenUpWhereNodesCannotBeBroughtBack) {
   EXPECT_NE(past_valence_summary(past).find("and it was given up as the others: "),
             std::string::npos)
       << past_valence_summary(past);
+  EXPECT_NE(past_valence_summary(past).find(" could not be brought back (the last of 4 runs)"),
+            std::string::npos)
+      << past_valence_summary(past);
 
   // With valence 18 at size 18 the first run leaves more than 16 nodes: it is not made
   // again.
@@ -639,6 +642,11 @@ TEST(SimplifyPastValence, IsGivenUpWhereNodesCannotBeBroughtBack) {
   EXPECT_EQ(more.past_valence.runs, 1);
   EXPECT_GT(more.past_valence.nodes_left, 16u);
   EXPECT_NE(past_valence_summary(more).find("was given up: "), std::string::npos);
+  EXPECT_NE(past_valence_summary(more).find(
+                " could not be brought back (more than 16: a run that leaves so many is not "
+                "made again)"),
+            std::string::npos)
+      << past_valence_summary(more);
 }
 
 // A run past the valence may not subdivide into more than past_valence_tets_factor
