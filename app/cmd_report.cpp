@@ -361,7 +361,11 @@ int cmd_report(const Args& args) {
       "</p>\n<h2>Properties (Table I)</h2>\n<table>\n" + kTableHead + summary + "</table>\n" +
       figures + "</body></html>\n";
   std::error_code ec;
-  const bool made = !std::filesystem::exists(dir, ec);
+  // The directories made for the report (DIR and any missing parents), deepest first.
+  std::vector<std::filesystem::path> made;
+  for (std::filesystem::path d = std::filesystem::absolute(dir, ec).lexically_normal();
+       !d.empty() && !std::filesystem::exists(d, ec) && d != d.parent_path(); d = d.parent_path())
+    made.push_back(d);
   std::filesystem::create_directories(dir, ec);
   if (ec) {
     std::fprintf(stderr, "tetlod report: %s: cannot create the directory: %s\n", dir.c_str(),
@@ -380,9 +384,9 @@ int cmd_report(const Args& args) {
   if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
-    // Nothing was written: a directory made for the report goes too (a full disk left
-    // it behind, empty; found by a hostile-input test). remove() keeps one not empty.
-    if (made) std::filesystem::remove(dir, ec);
+    // Nothing was written: the directories made for the report go too (a full disk left
+    // them behind, empty; found by hostile-input tests). remove() keeps one not empty.
+    for (const std::filesystem::path& d : made) std::filesystem::remove(d, ec);
     return kExitBadInput;
   }
   // Pictures of an earlier, longer report in the same directory (levelN.png and
