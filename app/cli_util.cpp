@@ -21,6 +21,55 @@ bool wants_help(const Args& args) {
   return false;
 }
 
+bool normalize_args(const std::string& command, Args* args) {
+  Args split;
+  split.reserve(args->size());
+  for (const std::string& a : *args) {
+    const size_t equals = a.find('=');
+    const bool named = a.size() > 2 && a.compare(0, 2, "--") == 0 && equals != std::string::npos &&
+                       equals > 2 &&
+                       std::all_of(a.begin() + 2, a.begin() + static_cast<long>(equals),
+                                   [](char c) { return (c >= 'a' && c <= 'z') || c == '-'; });
+    if (named) {
+      split.push_back(a.substr(0, equals));
+      split.push_back(a.substr(equals + 1));
+    } else {
+      split.push_back(a);
+    }
+  }
+  static const char* const kAddUp[] = {"--material-size", "--size-field", "--conductor", "--eps",
+                                       "--ground"};
+  std::vector<std::string> seen;
+  for (const std::string& a : split) {
+    const bool option = a == "-o" || (a.size() > 2 && a.compare(0, 2, "--") == 0);
+    if (!option) continue;
+    const std::string name = a == "--output" ? "-o" : a;
+    const bool adds_up = std::any_of(std::begin(kAddUp), std::end(kAddUp),
+                                     [&](const char* f) { return name == f; }) ||
+                         (command == "view" && name == "--hide");
+    if (adds_up || name == "--help") continue;
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
+      std::fprintf(stderr,
+                   "tetlod %s: %s given twice: give it once (--material-size, --size-field, "
+                   "--conductor, --eps and --ground add up)\n",
+                   command.c_str(), name.c_str());
+      return false;
+    }
+    seen.push_back(name);
+  }
+  *args = std::move(split);
+  return true;
+}
+
+void more_than_one_input(const char* command, const std::string& first, const std::string& second) {
+  const bool to_dir = std::strcmp(command, "report") == 0;
+  std::fprintf(stderr,
+               "tetlod %s: two inputs given, '%s' and '%s' (the output %s goes after -o: "
+               "-o %s); see 'tetlod %s --help'\n",
+               command, first.c_str(), second.c_str(), to_dir ? "directory" : "file",
+               second.c_str(), command);
+}
+
 std::optional<double> parse_double(const std::string& text) {
   double value = 0;
   const char* end = text.data() + text.size();

@@ -19,6 +19,17 @@ namespace tetlod::app {
 // True if `args` holds -h or --help.
 bool wants_help(const Args& args);
 
+// The command line as every command reads it: "--name=value" becomes "--name" "value";
+// an option given twice is refused (one that adds up: --material-size, --size-field,
+// --conductor, --eps, --ground, and view's --hide), as "-o" twice always was: a second
+// --size silently replaced the first. On a refusal prints "tetlod <command>: ..." and
+// returns false (a usage error).
+bool normalize_args(const std::string& command, Args* args);
+
+// Prints "tetlod <command>: two inputs given, 'first' and 'second' (...)", which says
+// where an output goes: most often -o was forgotten.
+void more_than_one_input(const char* command, const std::string& first, const std::string& second);
+
 // Parses a finite double / a whole number; nullopt if `text` is not one entirely.
 std::optional<double> parse_double(const std::string& text);
 std::optional<long long> parse_integer(const std::string& text);

@@ -64,8 +64,7 @@ int cmd_render(const Args& args) {
     } else if (in.empty()) {
       in = a;
     } else {
-      std::fputs("tetlod render: more than one input given\n\n", stderr);
-      print_usage(stderr);
+      more_than_one_input("render", in, a);
       return kExitUsage;
     }
   }

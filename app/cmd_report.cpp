@@ -181,8 +181,7 @@ int cmd_report(const Args& args) {
     } else if (in.empty()) {
       in = a;
     } else {
-      std::fputs("tetlod report: more than one input given\n\n", stderr);
-      print_usage(stderr);
+      more_than_one_input("report", in, a);
       return kExitUsage;
     }
   }

@@ -129,8 +129,7 @@ int cmd_simplify(const Args& args) {
     } else if (in.empty()) {
       in = a;
     } else {
-      std::fputs("tetlod simplify: more than one input given\n\n", stderr);
-      print_simplify_usage(stderr);
+      more_than_one_input("simplify", in, a);
       return kExitUsage;
     }
   }

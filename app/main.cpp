@@ -8,6 +8,7 @@
 #include <new>
 #include <string>
 
+#include "app/cli_util.h"
 #include "app/commands.h"
 #include "core/io/output_files.h"
 
@@ -99,7 +100,8 @@ int main(int argc, char** argv) {
         TETLOD_VERSION);
     return written(kExitOk);
   }
-  const Args args(argv + 2, argv + argc);
+  Args args(argv + 2, argv + argc);
+  if (!normalize_args(command, &args)) return kExitUsage;
   int code = kExitUsage;
   try {
     code = run_command(command, args);

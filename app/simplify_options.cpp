@@ -144,7 +144,8 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   } else if (a == "--valence") {
     if (!value()) return OptionResult::kError;
     const auto n = parse_integer(v);
-    if (!n || *n < 4 || *n > 100000) return bad_value("a valence in [4, 100000]");
+    if (!n || *n < 4 || *n > 100000)
+      return bad_value("a valence, a whole number of neighbours in [4, 100000]");
     params.max_valence = static_cast<uint32_t>(*n);
   } else if (a == "--tolerance") {
     if (!value()) return OptionResult::kError;

@@ -364,9 +364,12 @@ TEST(Cli, ConvertAndSimplifyKeepMaterialNames) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("{\"material\": 4, \"name\": \"shield\", \"row\": "), std::string::npos)
       << r.output;
-  r = run("convert " + input + " -o " + converted + " -o " + deck);
+  r = run("convert " + input + " " + converted + " -o " + deck);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("give the output once"), std::string::npos) << r.output;
+  r = run("convert " + input + " -o " + converted + " -o " + deck);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("-o given twice"), std::string::npos) << r.output;
   r = run("convert " + input + " -o");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("-o needs a file"), std::string::npos) << r.output;
@@ -626,6 +629,43 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
   EXPECT_NE(run("simplify " + path + " -o " + out + " --material-size ''")
                 .output.find("--material-size: empty specification"),
             std::string::npos);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// How options are written: "--size=2" as "--size 2"; an option given twice is refused
+// (a second --size replaced the first silently), but for those that add up; a second
+// input names both and where the output goes (-o forgotten); a valence that is not a
+// whole number says so.
+TEST(Cli, OptionsAreGivenOnceWithOrWithoutEquals) {
+  const std::string path = write_grid("opt.mesh");
+  const std::string out = out_dir() + "/opt_out.mesh";
+  CommandResult r = run("simplify " + path + " -o " + out + " --size=2 --tolerance=0.1");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out));
+  fs::remove(out);
+  r = run("simplify " + path + " -o " + out + " --size 1 --size 2");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("tetlod simplify: --size given twice: give it once"), std::string::npos)
+      << r.output;
+  r = run("simplify " + path + " -o " + out + " --output " + out + " --size 2");
+  EXPECT_NE(r.output.find("-o given twice"), std::string::npos) << r.output;
+  r = run("simplify " + path + " -o " + out + " --size=1 --size=2");
+  EXPECT_NE(r.output.find("--size given twice"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // Rules add up.
+  r = run("simplify " + path + " -o " + out +
+          " --size 2 --size-field box:0,0,0,1,1,1,0.5 --size-field=box:1,1,1,2,2,2,0.6");
+  EXPECT_EQ(r.code, 0) << r.output;
+  fs::remove(out);
+  r = run("simplify " + path + " " + out + " --size 2");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("two inputs given, '" + path + "' and '" + out +
+                          "' (the output file goes after -o: -o " + out + ")"),
+            std::string::npos)
+      << r.output;
+  r = run("simplify " + path + " -o " + out + " --size 2 --valence 25.0");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("a whole number"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
 }
 
@@ -1605,7 +1645,9 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
       {"--conductor 1=1 --ground boundary", 1, "touches the grounded outer boundary"},
   };
   for (const Case& c : cases) {
-    const CommandResult r = run("solve " + path + " " + c.flags + " -o " + field);
+    const bool has_output = std::string(c.flags).find("-o ") != std::string::npos;
+    const CommandResult r =
+        run("solve " + path + " " + c.flags + (has_output ? "" : " -o " + field));
     EXPECT_EQ(r.code, c.code) << c.flags << "\n" << r.output;
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.flags << "\n" << r.output;
     EXPECT_FALSE(fs::exists(field)) << c.flags;
