@@ -140,7 +140,7 @@ int cmd_solve(const Args& args) {
   std::vector<std::pair<MaterialText, double>> conductors, permittivities;
   std::vector<MaterialText> grounds;
   SolveOptions options;
-  bool ground_given = false;
+  bool ground_given = false, preconditioner_given = false, tolerance_given = false;
   bool binary = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -178,6 +178,7 @@ int cmd_solve(const Args& args) {
       }
     } else if (a == "--preconditioner") {
       if (!next_value(args, &i, &v)) return kExitUsage;
+      preconditioner_given = true;
       if (v == "jacobi") {
         options.preconditioner = Preconditioner::kJacobi;
       } else if (v == "ic") {
@@ -198,6 +199,7 @@ int cmd_solve(const Args& args) {
         return kExitUsage;
       }
       options.tolerance = *d;
+      tolerance_given = true;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "tetlod solve: unknown option '%s'\n\n%s", a.c_str(), kSolveUsage);
       return kExitUsage;
@@ -213,6 +215,15 @@ int cmd_solve(const Args& args) {
   bool two_potentials = false;
   for (const auto& c : conductors)
     two_potentials = two_potentials || c.second != conductors.front().second;
+  if (binary && out.empty()) {
+    std::fputs("tetlod solve: --vtk-binary without -o FIELD.vtu: no field is written\n", stderr);
+    return kExitUsage;
+  }
+  if (options.method == SolverMethod::kDirect && (preconditioner_given || tolerance_given)) {
+    std::fprintf(stderr, "tetlod solve: --%s is for --solver cg, not direct\n",
+                 preconditioner_given ? "preconditioner" : "tolerance");
+    return kExitUsage;
+  }
   if (in.empty() || conductors.empty() || (!ground_given && !two_potentials)) {
     std::fprintf(stderr,
                  "tetlod solve: need MESH, --conductor and --ground (or conductors at two "
@@ -270,8 +281,12 @@ int cmd_solve(const Args& args) {
       solution.capacitance);
   std::printf("energy       W = %.10g (V = %.10g)\n", solution.energy, solution.voltage);
   if (solution.method == SolverMethod::kDirect) {
-    std::printf("solver       direct (LDL^T), relative residual %.3g\n",
-                solution.relative_residual);
+    std::printf("solver       direct (LDL^T), relative residual %.3g%s\n",
+                solution.relative_residual,
+                preconditioner_given || tolerance_given
+                    ? " (auto chose it for this size: --preconditioner and --tolerance are for "
+                      "cg, --solver cg to use them)"
+                    : "");
   } else {
     std::printf("solver       cg + %s, %d iterations, relative residual %.3g\n",
                 options.preconditioner == Preconditioner::kJacobi ? "jacobi" : "ic",

@@ -1588,6 +1588,19 @@ TEST(Cli, SolveSpheresPrintsCapacitanceAndWritesTheField) {
   EXPECT_EQ(one.code, 2) << one.output;
   EXPECT_NE(one.output.find("--ground (or conductors at two potentials)"), std::string::npos)
       << one.output;
+  // cg's options where auto takes the direct solver (886 unknowns) are said to be unused;
+  // with --solver direct, or --vtk-binary with no field file, they are usage errors.
+  const CommandResult unused =
+      run("solve " + spheres + " --conductor 1=1 --ground 4 --preconditioner ic");
+  ASSERT_EQ(unused.code, 0) << unused.output;
+  EXPECT_NE(unused.output.find("(auto chose it for this size: --preconditioner and --tolerance "
+                               "are for cg, --solver cg to use them)"),
+            std::string::npos)
+      << unused.output;
+  for (const char* flags : {"--solver direct --tolerance 1e-8", "--vtk-binary"}) {
+    const CommandResult bad = run("solve " + spheres + " --conductor 1=1 --ground 4 " + flags);
+    EXPECT_EQ(bad.code, 2) << flags << "\n" << bad.output;
+  }
   std::ifstream file(field);
   std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("<PointData Scalars=\"potential\">"), std::string::npos);
