@@ -22,7 +22,8 @@ constexpr const char* kRenderUsageHead =
     "[--improve]]\n"
     "\n"
     "Draws the boundary and interface faces of the visible tets offscreen (OpenGL 3.3 core\n"
-    "through OSMesa: no display or GPU needed) and writes a PNG. FILE may be a collapse\n"
+    "through OSMesa, else EGL surfaceless; TETLOD_GL_BACKEND=osmesa|egl picks one: no\n"
+    "display or GPU needed) and writes a PNG. FILE may be a collapse\n"
     "history (.tlh, from 'tetlod simplify --history'): then --elements N picks its level\n"
     "(default: the last), without simplifying again, and --improve improves it within the\n"
     "thresholds saved in the history. The picture is 800 x 800 unless --width and --height\n"
@@ -31,8 +32,9 @@ constexpr const char* kRenderUsageTail =
     "  --simplify        render the simplified mesh (any flag of 'tetlod simplify' asks\n"
     "                    for it too); takes the flags of 'tetlod simplify':\n"
     "                    --size, --stretch, --valence, --tolerance, --material-size,\n"
-    "                    --size-field, --size-map, --no-subdivide, --crease-angle,\n"
-    "                    --improve, and\n"
+    "                    --size-field, --size-map, --size-map-mesh, --no-subdivide,\n"
+    "                    --within-valence, --past-valence-factor, --one-thread,\n"
+    "                    --crease-angle, --improve, and\n"
     "  --elements N      the level of the collapse history nearest N elements\n";
 
 void print_usage(std::FILE* stream) {

@@ -31,6 +31,7 @@ constexpr const char* kReportUsageHead =
     "its levels are reported without simplifying again (--levels, and --improve within\n"
     "the thresholds saved in the history).\n"
     "  --levels N,...    levels of the collapse history nearest N elements each\n"
+    "  --elements N      one more level, nearest N elements (as simplify's --elements)\n"
     "  --simplify        simplify with the flags of 'tetlod simplify' (--size, --stretch,\n"
     "                    --valence, --tolerance, --material-size, --size-field,\n"
     "                    --size-map, ...);\n"
@@ -126,7 +127,7 @@ std::string level_label(long long n, size_t step, const Lod& lod) {
     label += ", the first: " + beyond;
   }
   if (!beyond.empty()) {
-    std::fprintf(stderr, "tetlod report: note: --levels %lld: %s; the %s level is reported\n", n,
+    std::fprintf(stderr, "tetlod report: note: level ~%lld: %s; the %s level is reported\n", n,
                  beyond.c_str(), step == 0 ? "first" : "last");
   }
   return label + ")";

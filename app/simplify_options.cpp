@@ -46,7 +46,8 @@ const char* const kSimplifyFlagsHelp =
     "                    second thread, where there are two processors, as soon as the\n"
     "                    first run's subdivision leaves tets above the size: the same\n"
     "                    result, sooner)\n"
-    "  --crease-angle A  dihedral angle (degrees) above which an edge is a feature (default 40)\n";
+    "  --crease-angle DEG  dihedral angle (degrees) above which an edge is a feature\n"
+    "                    (default 40)\n";
 
 const char* const kWriteFlagsHelp =
     "  --msh-version V   Gmsh version to write: 4.1 (default) or 2.2\n"

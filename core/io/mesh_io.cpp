@@ -124,7 +124,7 @@ const char* format_name(MeshFormat format) {
     case MeshFormat::kVtu:
       return "VTK XML .vtu";
     case MeshFormat::kNastran:
-      return "Nastran bulk data .bdf";
+      return "Nastran bulk data .bdf/.nas";
     case MeshFormat::kAbaqus:
       return "Abaqus input .inp";
     case MeshFormat::kMeditBinary:

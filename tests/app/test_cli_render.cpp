@@ -487,9 +487,9 @@ TEST(CliReport, LevelsBeyondTheRunAreNamed) {
     fs::remove_all(dir);
     r = run("report " + source + view + dir);
     ASSERT_EQ(r.code, 0) << r.output;
-    EXPECT_NE(r.output.find("note: --levels 1: no level has fewer than "), std::string::npos)
+    EXPECT_NE(r.output.find("note: level ~1: no level has fewer than "), std::string::npos)
         << r.output;
-    EXPECT_NE(r.output.find("note: --levels 100000: no level has more than 136 tets; the first "
+    EXPECT_NE(r.output.find("note: level ~100000: no level has more than 136 tets; the first "
                             "level is reported"),
               std::string::npos)
         << r.output;
