@@ -25,6 +25,7 @@
 #include <functional>
 #include <mutex>
 #include <new>
+#include <optional>
 #include <queue>
 #include <system_error>
 #include <thread>
@@ -130,20 +131,22 @@ struct Quadric {
   }
 };
 
-// The point the quadrics are taken about. Their expanded form cancels: error(p) has a
-// rounding of about 1e-16 |p|^2 (Quadric::rounding()), so about the coordinates'
-// origin a mesh 1e7 away from it, as a part placed in a plant's coordinates, would
-// have a rounding far above any tolerance, and pass every collapse's test. About the
-// centre of the mesh's box it is about 1e-16 times its size squared. A mesh round the
-// origin (within 8 times its half-diagonal) keeps the origin, where the rounding is
-// already of that order.
-Vec3 quadric_origin(const TetMesh& mesh) {
+// How far simplify() moves a mesh to work on it: the centre of its box in each
+// coordinate where that lies more than 8 half-diagonals from 0, else 0. Far from the
+// origin the coordinates' rounding is far above the mesh's own scale: the quadric
+// error's expanded form cancels to about 1e-16 |p|^2 (a part 1e7 away passed every
+// tolerance test), and a run past the valence that brings every node back at the
+// origin gave up at 1e6 (the motor at size 10 left 5,416 tets above the size at 1e7,
+// none at the origin). A coordinate there lies within 1/8 of the shift, so p - shift
+// is exact (Sterbenz), and (p - shift) + shift gives p back, bit for bit.
+Vec3 far_shift(const TetMesh& mesh) {
+  if (mesh.positions.empty()) return {};
   Vec3 lo, hi;
   mesh_bounds(mesh, &lo, &hi);
   const Vec3 centre = (lo + hi) * 0.5;
-  const double half_diagonal = 0.5 * length(hi - lo);
-  const double far = std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)});
-  return far > 8 * half_diagonal ? centre : Vec3{};
+  const double near = 8 * 0.5 * length(hi - lo);
+  return {std::abs(centre.x) > near ? centre.x : 0.0, std::abs(centre.y) > near ? centre.y : 0.0,
+          std::abs(centre.z) > near ? centre.z : 0.0};
 }
 
 enum class Reject : uint8_t { kNone, kTolerance, kStretch, kSize, kValence, kTopology, kOverlap };
@@ -1570,7 +1573,6 @@ class Engine {
     ring_mark_.assign(pos_.size(), 0);
     ring_slot_.assign(pos_.size(), 0);
     quadric_.assign(pos_.size(), Quadric());
-    quadric_origin_ = quadric_origin(mesh);
     for (const SurfaceTriangle& s : surface) {
       if (s.outer == kOutsideMaterial)
         for (uint32_t v : s.v) state_[v].outer = 1;
@@ -1579,7 +1581,7 @@ class Engine {
       const double len = length(n);
       if (!(len > 0)) continue;
       n = n * (1.0 / len);
-      const Quadric q = Quadric::plane(n, -dot(n, p - quadric_origin_));
+      const Quadric q = Quadric::plane(n, -dot(n, p));
       for (uint32_t v : s.v) quadric_[v].add(q);
     }
     if (!patch.empty()) add_border_quadrics(surface, patch);
@@ -1618,7 +1620,7 @@ class Engine {
           const double len = length(across);
           if (len > 0) {
             const Vec3 n = across * (1.0 / len);
-            const Quadric q = Quadric::plane(n, -dot(n, pa - quadric_origin_));
+            const Quadric q = Quadric::plane(n, -dot(n, pa));
             quadric_[uses[i].a].add(q);
             quadric_[uses[i].b].add(q);
           }
@@ -2034,8 +2036,7 @@ class Engine {
   // one that meets every threshold needs only its size, for eq. (3).
   Reject check_position(const Quadric& q, const Vec3& k, int unmoved, double old_stretch_mean,
                         double* priority) {
-    const Vec3 local = k - quadric_origin_;
-    if (q.error(local) > tolerance2_ + q.rounding(local)) return Reject::kTolerance;
+    if (q.error(k) > tolerance2_ + q.rounding(k)) return Reject::kTolerance;
     if (moving_count_ == 0) return Reject::kTopology;
     // The bound: with a_1..a_4 the face areas, (sum a)^2 >= sum a^2, so
     // d_t^2 = 6 (6V)^2 / (s^2 A^2) <= 6 (6V)^2 / (s^2 sum a^2); a tet whose bound is
@@ -3134,7 +3135,6 @@ class Engine {
 
  private:
   double tolerance2_ = 0;
-  Vec3 quadric_origin_;  // the quadrics' planes are through positions less this (quadric_origin())
 
   std::vector<Vec3> pos_;
   std::vector<TetRecord> tet_;
@@ -3381,13 +3381,11 @@ class PastRunsAlongside {
   bool fresh_ = false, reported_ = false, done_ = false;
 };
 
-}  // namespace
-
-Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
-                const ProgressCallback& progress, const std::atomic<bool>* cancel,
-                const SurfacePatches* patches) {
-  Status s = check_params(params);
-  if (!s) return s;
+// simplify() on a mesh round the origin (far_shift() is zero).
+Status simplify_near_origin(const TetMesh& input, const SimplifyParams& params,
+                            SimplifyResult* result, const ProgressCallback& progress,
+                            const std::atomic<bool>* cancel, const SurfacePatches* patches) {
+  Status s;
   // Subdivision keeps every node within tau_VL, which on a coarse, graded input leaves
   // long edges unsplit (longest-edge bisection adds a neighbour to every node opposite
   // a split edge), and so tets above the size. If the run leaves such tets, another
@@ -3479,6 +3477,60 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
     s = run_engine(input, params, p.taken, progress, cancel, patches, result,
                    p.taken ? &runs.pinned : nullptr, p.taken ? max_tets : kMaxTets);
   result->past_valence = p;
+  return s;
+}
+
+// The sizing rules of `sizing` moved by -shift (a size map is made again over its
+// mesh moved so); `sizing` itself is shared, never changed.
+Status shifted_sizing(const SizingField& sizing, const Vec3& shift, SizingField* out) {
+  *out = sizing;
+  for (SizingField::Radial& r : out->radial) r.center = r.center - shift;
+  for (SizingField::Box& b : out->boxes) {
+    b.low = b.low - shift;
+    b.high = b.high - shift;
+  }
+  if (!sizing.map) return Status();
+  TetMesh source = sizing.map->source();
+  for (Vec3& p : source.positions) p = p - shift;
+  std::shared_ptr<const SizeMap> map;
+  const Status s = SizeMap::build(source, sizing.map->sizes(), &map);
+  out->map = map;
+  return s;
+}
+
+}  // namespace
+
+Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResult* result,
+                const ProgressCallback& progress, const std::atomic<bool>* cancel,
+                const SurfacePatches* patches) {
+  Status s = check_params(params);
+  if (!s) return s;
+  // A mesh far from the origin is simplified where its coordinates keep their
+  // precision, round it (far_shift()), and moved back.
+  const Vec3 shift = far_shift(input);
+  if (shift == Vec3{})
+    return simplify_near_origin(input, params, result, progress, cancel, patches);
+  TetMesh local = input;
+  for (Vec3& p : local.positions) p = p - shift;
+  SimplifyParams local_params = params;
+  if (s = shifted_sizing(params.sizing, shift, &local_params.sizing); !s) return s;
+  std::optional<SurfacePatches> local_patches;
+  if (patches) {
+    std::vector<SurfacePatches::Entry> entries = patches->entries();
+    entries.insert(entries.end(), patches->inside_entries().begin(),
+                   patches->inside_entries().end());
+    for (SurfacePatches::Entry& e : entries)
+      for (Vec3& p : e.p) p = p - shift;
+    local_patches.emplace(patches->groups(), std::move(entries));
+  }
+  s = simplify_near_origin(local, local_params, result, progress, cancel,
+                           local_patches ? &*local_patches : nullptr);
+  for (TetMesh* mesh : {&result->base, &result->output})
+    for (Vec3& p : mesh->positions) p = p + shift;
+  for (CollapseHistory::Step& step : result->history.steps) {
+    step.old_position = step.old_position + shift;
+    step.new_position = step.new_position + shift;
+  }
   return s;
 }
 

@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
 #include <set>
+#include <string>
 
 #include "core/adjacency.h"
+#include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/mesh_compare.h"
 #include "core/metrics.h"
@@ -123,10 +126,60 @@ TEST(Simplify, KeepsTheToleranceFarFromTheOrigin) {
     ASSERT_TRUE(simplify(far, p, &r));
     EXPECT_LE(largest_move(far, r.output), 2 * p.tolerance) << offset;
     EXPECT_GT(r.rejections.tolerance, near.rejections.tolerance / 2) << offset;
+    // (The moved input carries the rounding of the move, 5e-7 at 3e9, and the grid's
+    // many equal priorities then fall otherwise: a count within 15 %.)
     EXPECT_NEAR(double(r.output.tet_count()), double(near.output.tet_count()),
-                0.1 * double(near.output.tet_count()))
+                0.15 * double(near.output.tet_count()))
         << offset;
   }
+}
+
+// Far from the origin a mesh is simplified round it and moved back: the bundled spheres
+// 1e6 away (the helper-found case: a run past the valence that brings every node back
+// at the origin gave up there, and 108 tets stayed above the size) keep the size as at
+// the origin, with a region rule moved with them; the input's vertices come back bit
+// for bit, and the history's last level is the output.
+TEST(Simplify, AMeshFarFromTheOriginIsSimplifiedAsAtIt) {
+  TetMesh at_origin;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh", &at_origin).ok());
+  SimplifyParams p;  // the command line's defaults
+  p.sizing.uniform = 1.5;
+  p.tolerance = 0.02;
+  p.past_valence_alongside = false;
+  SimplifyParams radial = p;
+  radial.sizing.uniform = 3;
+  radial.sizing.radial.push_back({{1, 0, 0}, {}, 0.4, 0.3});
+  SimplifyResult near, near_radial;
+  ASSERT_TRUE(simplify(at_origin, p, &near));
+  ASSERT_TRUE(simplify(at_origin, radial, &near_radial));
+  ASSERT_EQ(near.violations.above_size, 0u);
+  const Vec3 offset{1e6, 1e6, 1e6};
+  TetMesh far = at_origin;
+  for (Vec3& v : far.positions) v = v + offset;
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(far, p, &r));
+  EXPECT_EQ(r.violations.above_size, 0u);
+  EXPECT_EQ(r.violations.created, 0u);
+  EXPECT_NEAR(double(r.output.tet_count()), double(near.output.tet_count()),
+              0.05 * double(near.output.tet_count()));
+  for (const Vec3& v : r.output.positions) EXPECT_GT(v.x, 1e6 - 5);
+  std::set<std::array<double, 3>> base;
+  for (const Vec3& v : r.base.positions) base.insert({v.x, v.y, v.z});
+  for (const Vec3& v : far.positions) EXPECT_EQ(base.count({v.x, v.y, v.z}), 1u);
+  Lod lod(r.base, &r.history);
+  lod.seek(r.history.step_count());
+  const TetMesh last = lod.extract();
+  ASSERT_EQ(last.positions.size(), r.output.positions.size());
+  EXPECT_EQ(std::memcmp(last.positions.data(), r.output.positions.data(),
+                        last.positions.size() * sizeof(Vec3)),
+            0);
+  // The rule's centre moves with the mesh.
+  radial.sizing.radial[0].center = radial.sizing.radial[0].center + offset;
+  SimplifyResult far_radial;
+  ASSERT_TRUE(simplify(far, radial, &far_radial));
+  EXPECT_EQ(far_radial.violations.above_size, near_radial.violations.above_size);
+  EXPECT_NEAR(double(far_radial.output.tet_count()), double(near_radial.output.tet_count()),
+              0.05 * double(near_radial.output.tet_count()));
 }
 
 TEST(Simplify, NothingCollapsesWhenEveryThresholdForbidsIt) {
