@@ -126,8 +126,9 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   const std::string& a = args[*i];
   SimplifyParams& params = options->params;
   std::string v;
-  auto bad_value = [&](const char* what) {
-    std::fprintf(stderr, "tetlod %s: %s '%s' is not %s\n", command, a.c_str(), v.c_str(), what);
+  auto bad_value = [&](const std::string& what) {
+    std::fprintf(stderr, "tetlod %s: %s '%s' is not %s\n", command, a.c_str(), v.c_str(),
+                 what.c_str());
     return OptionResult::kError;
   };
   auto value = [&]() { return parse_option_value(args, i, a.c_str(), &v); };
@@ -145,8 +146,9 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   } else if (a == "--valence") {
     if (!value()) return OptionResult::kError;
     const auto n = parse_integer(v);
-    if (!n || *n < 4 || *n > 100000)
-      return bad_value("a valence, a whole number of neighbours in [4, 100000]");
+    if (!n || *n < 4 || *n > kMaxValence)
+      return bad_value("a valence, a whole number of neighbours in [4, " +
+                       std::to_string(kMaxValence) + "]");
     params.max_valence = static_cast<uint32_t>(*n);
   } else if (a == "--tolerance") {
     if (!value()) return OptionResult::kError;
@@ -168,7 +170,7 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   } else if (a == "--past-valence-factor") {
     if (!value()) return OptionResult::kError;
     const auto n = parse_integer(v);
-    if (!n || *n < 1 || *n > 1000) return bad_value("a factor in [1, 1000]");
+    if (!n || *n < 1 || *n > 1000) return bad_value("a whole number in [1, 1000]");
     params.past_valence_tets_factor = static_cast<uint32_t>(*n);
   } else if (a == "--material-size" || a == "--size-field") {
     if (!value()) return OptionResult::kError;

@@ -65,6 +65,10 @@ Status check_params(const SimplifyParams& p) {
     return Status::error("valence " + std::to_string(p.max_valence) +
                          " must be at least 4 (a tet's corner already has 3 neighbours)");
   }
+  if (p.max_valence > kMaxValence) {
+    return Status::error("valence " + std::to_string(p.max_valence) + " must be at most " +
+                         std::to_string(kMaxValence) + " (no valence at all)");
+  }
   if (p.sizing.unlimited()) return Status::error("no size limit given (set --size)");
   const double smallest = p.sizing.smallest_size();
   if (!(smallest > 0) || std::isnan(p.sizing.uniform) || p.sizing.uniform <= 0) {

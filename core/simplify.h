@@ -60,8 +60,12 @@ struct SimplifyParams {
   size_t boundary_guard_budget = size_t{1} << 16;
 };
 
+// The largest valence threshold taken (a node with more neighbours than this is no
+// mesh an analysis runs on; as good as none).
+constexpr uint32_t kMaxValence = 100000;
+
 // Checks thresholds for absurd values (NaN, negative, stretch >= 1 or <= 0,
-// valence < 4, no size limit at all) and names the offending one.
+// valence < 4 or > kMaxValence, no size limit at all) and names the offending one.
 Status check_params(const SimplifyParams& params);
 
 // Why candidate collapses were rejected (each evaluation counts its first failure).

@@ -1159,7 +1159,7 @@ TEST(Cli, PastValenceFactorBoundsTheRunPastTheValence) {
     r = run(base + " --past-valence-factor " + bad);
     EXPECT_EQ(r.code, 2) << bad;
     EXPECT_NE(r.output.find("--past-valence-factor '" + std::string(bad) +
-                            "' is not a factor in [1, 1000]"),
+                            "' is not a whole number in [1, 1000]"),
               std::string::npos)
         << r.output;
   }
