@@ -188,25 +188,88 @@ TetMesh Lod::extract() const {
 }
 
 // ---------------------------------------------------------------------------------
-// History files: "TETLODH2", then counts and raw little-endian arrays; then,
+// History files: "TETLODH3", then counts and raw little-endian arrays; then,
 // optionally, "TLPARAM1" and the thresholds (write_params()); then, optionally,
 // "TLNAMES1" and the material names (write_names()); then, optionally, "TLGROUP1" and
-// the input's surface groups (write_patches()); then "TLENDOF1" and the file's length
-// in bytes (u64), so that a file cut anywhere, even between two blocks, is an error.
-// "TETLODH1" files (before 2026-11-24) are the same without the end block.
+// the input's surface groups (write_patches()); then "TLENDOF2" and the checksum
+// (history_checksum()) of every byte before it, so that a file cut anywhere, even
+// between two blocks, or changed anywhere, is an error. "TETLODH2" files (before
+// 2026-11-29) end with "TLENDOF1" and the file's length in bytes (u64) instead;
+// "TETLODH1" files (before 2026-11-24) have no end block.
 
 namespace {
 
-constexpr char kHistoryMagic[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '2'};
+constexpr char kHistoryMagic[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '3'};
+constexpr char kHistoryMagicV2[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '2'};
 constexpr char kHistoryMagicV1[8] = {'T', 'E', 'T', 'L', 'O', 'D', 'H', '1'};
-constexpr char kEndMagic[8] = {'T', 'L', 'E', 'N', 'D', 'O', 'F', '1'};
+constexpr char kEndMagic[8] = {'T', 'L', 'E', 'N', 'D', 'O', 'F', '2'};
+constexpr char kEndMagicV1[8] = {'T', 'L', 'E', 'N', 'D', 'O', 'F', '1'};
 
-// The end block: its magic and the length of the whole file, itself included.
+// history_checksum() of a stream given in pieces of any size.
+class Checksum {
+ public:
+  void add(const unsigned char* data, size_t n) {
+    length_ += n;
+    size_t i = 0;
+    for (; i < n && fill_ > 0; ++i) take(data[i]);
+    for (; i + 8 <= n; i += 8) {
+      uint64_t word;
+      std::memcpy(&word, data + i, 8);
+      mix(word);
+    }
+    for (; i < n; ++i) take(data[i]);
+  }
+  uint64_t finish() {
+    mix(word_ ^ (uint64_t{fill_} << 56) ^ length_);
+    uint64_t h = hash_;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
+    return h;
+  }
+
+ private:
+  // Each word changes the state one to one (an odd multiplier, then a shift-xor), so
+  // a file that differs from another in one word always has another checksum.
+  void mix(uint64_t word) {
+    hash_ = (hash_ ^ word) * 0x9e3779b97f4a7c15ull;
+    hash_ ^= hash_ >> 29;
+  }
+  void take(unsigned char byte) {
+    word_ |= uint64_t{byte} << (8 * fill_);
+    if (++fill_ == 8) {
+      mix(word_);
+      word_ = 0;
+      fill_ = 0;
+    }
+  }
+  uint64_t hash_ = 0x243f6a8885a308d3ull, word_ = 0, length_ = 0;
+  unsigned fill_ = 0;
+};
+
+// The checksum of the first `length` bytes of `f` (read from its start).
+bool checksum_of_file(std::FILE* f, uint64_t length, uint64_t* sum) {
+  if (std::fseek(f, 0, SEEK_SET) != 0) return false;
+  Checksum checksum;
+  std::vector<unsigned char> buffer(1 << 20);
+  while (length > 0) {
+    const size_t n = static_cast<size_t>(std::min<uint64_t>(length, buffer.size()));
+    if (std::fread(buffer.data(), 1, n, f) != n) return false;
+    checksum.add(buffer.data(), n);
+    length -= n;
+  }
+  *sum = checksum.finish();
+  return true;
+}
+
+// The end block: its magic, then the checksum of every byte before it, magic
+// included (read back from the file, which is open for update).
 bool write_end(std::FILE* f) {
+  if (std::fwrite(kEndMagic, 1, 8, f) != 8 || std::fflush(f) != 0) return false;
   const long at = std::ftell(f);
-  if (at < 0) return false;
-  const uint64_t length = static_cast<uint64_t>(at) + 16;
-  return std::fwrite(kEndMagic, 1, 8, f) == 8 && std::fwrite(&length, sizeof length, 1, f) == 1;
+  uint64_t sum = 0;
+  return at >= 0 && checksum_of_file(f, static_cast<uint64_t>(at), &sum) &&
+         std::fseek(f, 0, SEEK_END) == 0 && std::fwrite(&sum, sizeof sum, 1, f) == 1;
 }
 
 struct FileCloser {
@@ -589,11 +652,22 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   std::fseek(f, 0, SEEK_SET);
   const uint64_t bytes = size > 0 ? static_cast<uint64_t>(size) : 0;
   char magic[8] = {};
-  if (std::fread(magic, 1, 8, f) != 8 ||
-      (std::memcmp(magic, kHistoryMagic, 8) != 0 && std::memcmp(magic, kHistoryMagicV1, 8) != 0)) {
+  const bool read_magic = std::fread(magic, 1, 8, f) == 8;
+  const int version = !read_magic                                   ? 0
+                      : std::memcmp(magic, kHistoryMagic, 8) == 0   ? 3
+                      : std::memcmp(magic, kHistoryMagicV2, 8) == 0 ? 2
+                      : std::memcmp(magic, kHistoryMagicV1, 8) == 0 ? 1
+                                                                    : 0;
+  if (version == 0) {
+    if (read_magic && std::memcmp(magic, kHistoryMagic, 7) == 0 && magic[7] > '3' &&
+        magic[7] <= '9')
+      return Status::error(path + ": a history of a newer TetLOD (format " +
+                           std::string(1, magic[7]) + "); this one reads formats 1 to 3");
     return Status::error(path + ": not a TetLOD history file");
   }
-  const bool has_end = std::memcmp(magic, kHistoryMagic, 8) == 0;
+  const bool has_end = version >= 2;
+  const char* const end_magic = version == 3 ? kEndMagic : kEndMagicV1;
+  uint64_t saved_checksum = 0, checksum_at = 0;  // version 3: the checksum, and where it is
   if (!read_array(f, bytes, &base->positions) || !read_array(f, bytes, &base->tets) ||
       !read_array(f, bytes, &base->materials) || !read_array(f, bytes, &history->steps) ||
       !read_array(f, bytes, &history->removed_tets) || !read_array(f, bytes, &history->rewired) ||
@@ -624,7 +698,7 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
                           ? 2
                       : std::memcmp(block_magic, kNamesMagic, 8) == 0  ? 3
                       : std::memcmp(block_magic, kGroupsMagic, 8) == 0 ? 4
-                      : std::memcmp(block_magic, kEndMagic, 8) == 0    ? (has_end ? 5 : 0)
+                      : std::memcmp(block_magic, end_magic, 8) == 0    ? (has_end ? 5 : 0)
                                                                        : 0;
     std::string error;
     if (block <= last_block || (block == 2 && last_block != 1)) {
@@ -633,6 +707,11 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
               : last_block > 0 ? "a block out of order, or unknown bytes, after the thresholds, "
                                  "names or surface groups"
                                : "bytes after the last step";
+    } else if (block == 5 && version == 3) {
+      const long at = std::ftell(f);
+      if (at < 0 || std::fread(&saved_checksum, sizeof saved_checksum, 1, f) != 1)
+        error = "truncated end block";
+      checksum_at = at < 0 ? 0 : static_cast<uint64_t>(at);
     } else if (block == 5) {
       uint64_t length = 0;
       const bool read = std::fread(&length, sizeof length, 1, f) == 1;
@@ -788,10 +867,27 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
                    ", which the mesh does not have");
     }
   }
+  // Last, what every check above can miss: a byte changed where any value would do
+  // (a position's low bits made a level of flat tets).
+  if (version == 3) {
+    uint64_t sum = 0;
+    if (!checksum_of_file(f, checksum_at, &sum))
+      return Status::error(path + ": cannot read: " + std::strerror(errno));
+    if (sum != saved_checksum)
+      return bad(
+          "its checksum does not match: the file was changed or damaged after it was "
+          "written");
+  }
   if (params) *params = std::move(saved_params);
   if (names) *names = std::move(saved_names);
   if (patches) *patches = std::move(saved_patches);
   return Status();
+}
+
+uint64_t history_checksum(std::string_view bytes) {
+  Checksum checksum;
+  checksum.add(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size());
+  return checksum.finish();
 }
 
 }  // namespace tetlod

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/io/output_files.h"
@@ -112,8 +113,10 @@ TetMesh extract_alive(const std::vector<Vec3>& positions, const std::vector<Tet>
 // and replays the steps once to check that they are collapses of the base mesh that
 // leave every tet positive, so every level of an accepted history is made of
 // positive tets (not that they never overlap: a forged file can still do that). The
-// file ends with a block giving its length, so a file cut anywhere is refused (files
-// written before 2026-11-24 have none and still read).
+// file ends with a block holding the checksum of every byte before it
+// (history_checksum()), so a file cut or changed anywhere is refused (files written
+// before 2026-11-29 end with their length instead, those before 2026-11-24 with
+// nothing; both still read).
 // `params`, if given: the thresholds the history was made with (all but
 // target_elements, which is about a level), saved after it so that a level can be
 // improved later within them (improve.h) without the user giving them again; a size
@@ -145,5 +148,10 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
                     std::optional<SimplifyParams>* params = nullptr,
                     std::vector<MaterialName>* names = nullptr, SurfacePatches* patches = nullptr);
+// The checksum a history file's end block holds: of `bytes`, the file up to it (for
+// tests and fuzzers that forge histories: a file changed by hand must be sealed again).
+// A 64-bit hash, one to one on each 8-byte word, so a change of one word is always
+// found; not a defence against a forger, only against damage.
+uint64_t history_checksum(std::string_view bytes);
 
 }  // namespace tetlod

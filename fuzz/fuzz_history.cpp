@@ -8,8 +8,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <unistd.h>
@@ -34,9 +36,16 @@ void check_level(const tetlod::TetMesh& level) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // read_history() reads a file: give it one (per process, reused).
   static const std::string path = "/tmp/tetlod_fuzz_history_" + std::to_string(getpid()) + ".tlh";
+  // A file that ends as a history does (an end block) is sealed again with the checksum
+  // of its bytes (history_checksum()), so that the mutations reach every check after it.
+  std::string bytes(reinterpret_cast<const char*>(data), size);
+  if (size >= 16 && bytes.compare(size - 16, 8, "TLENDOF2") == 0) {
+    const uint64_t sum = tetlod::history_checksum(std::string_view(bytes).substr(0, size - 8));
+    std::memcpy(&bytes[size - 8], &sum, 8);
+  }
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) return 0;
-  std::fwrite(data, 1, size, f);
+  std::fwrite(bytes.data(), 1, bytes.size(), f);
   std::fclose(f);
   tetlod::TetMesh base;
   tetlod::CollapseHistory history;

@@ -103,7 +103,7 @@ FILE* create_temporary(const std::string& target, std::string* temp_path, int* s
     *temp_path = target + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(counter++);
     // Published first, so that no signal finds the file made but not listed.
     *slot = add_live(*temp_path);
-    FILE* file = std::fopen(temp_path->c_str(), "wbx");
+    FILE* file = std::fopen(temp_path->c_str(), "w+bx");  // read back by some writers
     if (file) return file;
     const int error_number = errno;
     remove_live(*slot);

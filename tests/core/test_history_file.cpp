@@ -297,13 +297,32 @@ TEST(HistoryFile, MaterialNamesRoundTripAndAreChecked) {
           .substr(at, body(read_bytes(with_params)).size() - body(whole).size());
   ASSERT_EQ(params_block.substr(0, 8), "TLPARAM1");
   EXPECT_NE(error_with(body(whole) + params_block).find("a block out of order"), std::string::npos);
-  // The end block must give the file's length.
+  // The end block must hold the checksum of the bytes before it; a change of any one
+  // of them is found.
   {
     std::string bytes = whole;
     bytes[bytes.size() - 8] ^= 1;
-    EXPECT_NE(error_with(bytes).find("the end block does not match the file's length"),
-              std::string::npos)
+    EXPECT_NE(error_with(bytes).find("its checksum does not match"), std::string::npos)
         << error_with(bytes);
+    for (size_t where : {size_t{8}, whole.size() / 2, whole.size() - 17}) {
+      bytes = whole;
+      bytes[where] ^= 0x40;
+      EXPECT_NE(error_with(bytes), "accepted") << where;
+    }
+  }
+  // A history of the second format (its end block gives its length) still reads.
+  {
+    std::string old = body(whole) + "TLENDOF1";
+    old[7] = '2';
+    const uint64_t length = old.size() + 8;
+    old.append(reinterpret_cast<const char*>(&length), 8);
+    EXPECT_EQ(error_with(old), "accepted");
+    old[old.size() - 8] ^= 1;
+    EXPECT_NE(error_with(old).find("the end block does not match the file's length"),
+              std::string::npos);
+    old = whole;
+    old[7] = '4';
+    EXPECT_NE(error_with(old).find("a history of a newer TetLOD (format 4)"), std::string::npos);
   }
   // Two names of one material: out of order.
   {
@@ -516,22 +535,30 @@ TEST(HistoryFile, TruncatedAndDamagedFilesNeverReplayBadly) {
     EXPECT_NE(read_error(cut_path, body(full)).find("ends before its end block"),
               std::string::npos);
   }
+  // Random flips: the checksum refuses every damaged file; sealed again (as a forger
+  // would), the replay's checks still keep every level positive.
   std::mt19937 random(7);
-  size_t accepted = 0;
+  size_t accepted = 0, accepted_sealed = 0;
   for (int trial = 0; trial < 300; ++trial) {
     std::string damaged = whole;
     const int flips = 1 + static_cast<int>(random() % 4);
     for (int k = 0; k < flips; ++k) damaged[random() % damaged.size()] ^= 1 << (random() % 8);
-    write_bytes(cut_path, damaged);
+    if (damaged == whole) continue;
     TetMesh base;
     CollapseHistory history;
+    write_bytes(cut_path, damaged);
+    accepted += read_history(cut_path, &base, &history).ok();
+    const uint64_t sum = history_checksum(std::string_view(damaged).substr(0, damaged.size() - 8));
+    std::memcpy(&damaged[damaged.size() - 8], &sum, 8);
+    write_bytes(cut_path, damaged);
     if (!read_history(cut_path, &base, &history).ok()) continue;
-    ++accepted;
+    ++accepted_sealed;
     expect_positive_levels(base, history);
     if (testing::Test::HasFatalFailure()) return;
   }
-  // Flips in low mantissa bits of positions pass every check (and are harmless).
-  EXPECT_GT(accepted, 0u);
+  EXPECT_EQ(accepted, 0u);
+  // Flips in low mantissa bits of positions pass every other check.
+  EXPECT_GT(accepted_sealed, 0u);
 }
 
 }  // namespace

@@ -480,9 +480,9 @@ TEST(SizeMap, HistoriesCarryTheMap) {
   ASSERT_NE(at, std::string::npos);
   const size_t nv = mesh.vertex_count(), nt = mesh.tet_count();
   const size_t tets_at = at + 16 + 24 * nv + 8, sizes_at = tets_at + 16 * nt;
-  auto with_length = [](std::string file) {
-    const uint64_t length = file.size();
-    std::memcpy(&file[file.size() - 8], &length, 8);
+  auto sealed = [](std::string file) {  // sealed again: the end block's checksum
+    const uint64_t sum = history_checksum(std::string_view(file).substr(0, file.size() - 8));
+    std::memcpy(&file[file.size() - 8], &sum, 8);
     return file;
   };
   TetMesh base;
@@ -512,7 +512,7 @@ TEST(SizeMap, HistoriesCarryTheMap) {
   // Without the thresholds before it.
   const size_t params_at = bytes.find("TLPARAM1");
   ASSERT_NE(params_at, std::string::npos);
-  bytes_bad = with_length(bytes.substr(0, params_at) + bytes.substr(at));
+  bytes_bad = sealed(bytes.substr(0, params_at) + bytes.substr(at));
   EXPECT_NE(error_with(bytes_bad).find("a size map without thresholds"), std::string::npos)
       << error_with(bytes_bad);
 
@@ -527,7 +527,7 @@ TEST(SizeMap, HistoriesCarryTheMap) {
     v1.append(reinterpret_cast<const char*>(&value), 8);
   }
   const Status old = (std::ofstream(dir + "/v1.tlh", std::ios::binary)
-                          << with_length(bytes.substr(0, at) + v1 + bytes.substr(block_end)),
+                          << sealed(bytes.substr(0, at) + v1 + bytes.substr(block_end)),
                       read_history(dir + "/v1.tlh", &base, &history, &read));
   ASSERT_TRUE(old.ok()) << old.message();
   ASSERT_TRUE(read && read->sizing.map);
