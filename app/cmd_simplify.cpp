@@ -444,6 +444,7 @@ int cmd_lod(const Args& args) {
       return code;
   ImproveResult improved;
   double seconds_improve = 0;
+  const size_t level_tets = level.mesh.tet_count(), level_nodes = level.mesh.vertex_count();
   if (improve) {
     std::printf("improving within %s (%s)\n", describe_thresholds(options.params, false).c_str(),
                 source.c_str());
@@ -460,11 +461,16 @@ int cmd_lod(const Args& args) {
     std::fprintf(stderr, "tetlod: %s\n", s.message().c_str());
     return kExitBadInput;
   }
-  std::printf("%s: step %zu of %zu%s, %zu elements, %zu nodes (moved there in %.4f s)\n",
-              out.c_str(), level.step, level.step_count,
-              step > static_cast<long long>(level.step_count) ? " (the last: --step is past it)"
-                                                              : beyond.c_str(),
-              level.mesh.tet_count(), level.mesh.vertex_count(), level.seek_seconds);
+  // The level's counts (the improvement's own line gives those written, if they differ).
+  std::printf(
+      "%s: step %zu of %zu%s, %zu elements, %zu nodes (moved there in %.4f s)%s\n", out.c_str(),
+      level.step, level.step_count,
+      step > static_cast<long long>(level.step_count) ? " (the last: --step is past it)"
+                                                      : beyond.c_str(),
+      level_tets, level_nodes, level.seek_seconds,
+      improve && level.mesh.tet_count() != level_tets
+          ? (", improved to " + std::to_string(level.mesh.tet_count()) + " elements").c_str()
+          : "");
   if (improve) {
     print_improve(improved, seconds_improve);
   } else if (level.params) {

@@ -13,20 +13,28 @@
 namespace tetlod {
 namespace {
 
-std::map<int32_t, double> volume_per_material(const TetMesh& mesh) {
+// Both measured with positions less `shift` (far_shift() of the mesh compared
+// against: far from the origin, a surface compared with itself moved 3.7e-8 at 1e8).
+std::map<int32_t, double> volume_per_material(const TetMesh& mesh, const Vec3& shift) {
   std::map<int32_t, double> volume;
-  for (size_t t = 0; t < mesh.tet_count(); ++t)
-    volume[mesh.materials[t]] += signed_volume6(mesh, mesh.tets[t]) / 6;
+  for (size_t t = 0; t < mesh.tet_count(); ++t) {
+    const Tet& q = mesh.tets[t];
+    volume[mesh.materials[t]] +=
+        signed_volume6(mesh.positions[q[0]] - shift, mesh.positions[q[1]] - shift,
+                       mesh.positions[q[2]] - shift, mesh.positions[q[3]] - shift) /
+        6;
+  }
   return volume;
 }
 
-std::map<MaterialPair, std::vector<Triangle3>> pair_triangles(const TetMesh& mesh) {
+std::map<MaterialPair, std::vector<Triangle3>> pair_triangles(const TetMesh& mesh,
+                                                              const Vec3& shift) {
   std::vector<uint32_t> neighbors;
   build_face_neighbors(mesh, &neighbors);
   std::map<MaterialPair, std::vector<Triangle3>> out;
   for (const SurfaceTriangle& s : extract_surface(mesh, neighbors)) {
     Triangle3 t;
-    for (int k = 0; k < 3; ++k) t[k] = mesh.positions[s.v[k]];
+    for (int k = 0; k < 3; ++k) t[k] = mesh.positions[s.v[k]] - shift;
     out[{s.inner, s.outer}].push_back(t);
   }
   return out;
@@ -56,8 +64,9 @@ double one_sided(const std::vector<Triangle3>& from, const TriangleGrid& to) {
 
 MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after) {
   MeshComparison c;
-  const std::map<int32_t, double> v0 = volume_per_material(before);
-  const std::map<int32_t, double> v1 = volume_per_material(after);
+  const Vec3 shift = far_shift(before);
+  const std::map<int32_t, double> v0 = volume_per_material(before, shift);
+  const std::map<int32_t, double> v1 = volume_per_material(after, shift);
   std::map<int32_t, MaterialVolumes> volumes;
   for (const auto& [m, v] : v0) volumes[m] = {m, v, 0};
   for (const auto& [m, v] : v1) {
@@ -66,8 +75,8 @@ MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after) {
   }
   for (const auto& [m, v] : volumes) c.volumes.push_back(v);
 
-  const auto s0 = pair_triangles(before);
-  const auto s1 = pair_triangles(after);
+  const auto s0 = pair_triangles(before, shift);
+  const auto s1 = pair_triangles(after, shift);
   for (const auto& [pair, triangles] : s0) {
     const auto other = s1.find(pair);
     if (other == s1.end()) {

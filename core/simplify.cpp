@@ -135,24 +135,6 @@ struct Quadric {
   }
 };
 
-// How far simplify() moves a mesh to work on it: the centre of its box in each
-// coordinate where that lies more than 8 half-diagonals from 0, else 0. Far from the
-// origin the coordinates' rounding is far above the mesh's own scale: the quadric
-// error's expanded form cancels to about 1e-16 |p|^2 (a part 1e7 away passed every
-// tolerance test), and a run past the valence that brings every node back at the
-// origin gave up at 1e6 (the motor at size 10 left 5,416 tets above the size at 1e7,
-// none at the origin). A coordinate there lies within 1/8 of the shift, so p - shift
-// is exact (Sterbenz), and (p - shift) + shift gives p back, bit for bit.
-Vec3 far_shift(const TetMesh& mesh) {
-  if (mesh.positions.empty()) return {};
-  Vec3 lo, hi;
-  mesh_bounds(mesh, &lo, &hi);
-  const Vec3 centre = (lo + hi) * 0.5;
-  const double near = 8 * 0.5 * length(hi - lo);
-  return {std::abs(centre.x) > near ? centre.x : 0.0, std::abs(centre.y) > near ? centre.y : 0.0,
-          std::abs(centre.z) > near ? centre.z : 0.0};
-}
-
 enum class Reject : uint8_t { kNone, kTolerance, kStretch, kSize, kValence, kTopology, kOverlap };
 
 // What the queue keeps of a valid collapse, in 32 bytes (the queue holds a few hundred
@@ -3510,7 +3492,11 @@ Status simplify(const TetMesh& input, const SimplifyParams& params, SimplifyResu
   Status s = check_params(params);
   if (!s) return s;
   // A mesh far from the origin is simplified where its coordinates keep their
-  // precision, round it (far_shift()), and moved back.
+  // precision, round it (far_shift()), and moved back. There the quadric error's
+  // expanded form cancels to about 1e-16 |p|^2 (a part 1e7 away passed every tolerance
+  // test), and a run past the valence that brings every node back at the origin gave up
+  // at 1e6 (the motor at size 10 left 5,416 tets above the size at 1e7, none at the
+  // origin).
   const Vec3 shift = far_shift(input);
   if (shift == Vec3{})
     return simplify_near_origin(input, params, result, progress, cancel, patches);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -80,6 +81,22 @@ inline void mesh_bounds(const TetMesh& mesh, Vec3* lo, Vec3* hi) {
     *lo = {std::min(lo->x, p.x), std::min(lo->y, p.y), std::min(lo->z, p.z)};
     *hi = {std::max(hi->x, p.x), std::max(hi->y, p.y), std::max(hi->z, p.z)};
   }
+}
+
+// Where to move a mesh to compute on it: the centre of its box in each coordinate
+// where that lies more than 8 half-diagonals from 0, else 0. Far from the origin the
+// coordinates' rounding is far above the mesh's own scale (a part placed 1e7 away in
+// a plant's coordinates keeps 1e-9 of its own size); there, a coordinate lies within
+// 1/8 of the shift, so p - shift is exact (Sterbenz) and (p - shift) + shift gives p
+// back, bit for bit.
+inline Vec3 far_shift(const TetMesh& mesh) {
+  if (mesh.positions.empty()) return {};
+  Vec3 lo, hi;
+  mesh_bounds(mesh, &lo, &hi);
+  const Vec3 centre = (lo + hi) * 0.5;
+  const double near = 8 * 0.5 * length(hi - lo);
+  return {std::abs(centre.x) > near ? centre.x : 0.0, std::abs(centre.y) > near ? centre.y : 0.0,
+          std::abs(centre.z) > near ? centre.z : 0.0};
 }
 
 // Six times the signed volume of the tet (a, b, c, d).

@@ -1089,7 +1089,7 @@ TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
   std::string bytes = file_bytes(history);
   const size_t at = bytes.find("TLPARAM1");
   ASSERT_NE(at, std::string::npos);
-  ASSERT_EQ(bytes.substr(0, 8), "TETLODH2");
+  ASSERT_EQ(bytes.substr(0, 8), "TETLODH3");
   bytes[7] = '1';
   const std::string legacy = out_dir() + "/improve_legacy.tlh";
   std::ofstream(legacy, std::ios::binary) << bytes.substr(0, at);

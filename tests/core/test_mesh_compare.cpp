@@ -32,6 +32,22 @@ TEST(MeshCompare, AMeshAgainstItself) {
   EXPECT_TRUE(c.added.empty());
 }
 
+// Far from the origin a mesh against itself has not moved, and one moved by a
+// thousandth of its size moved by that (measured round the mesh: at 1e8, a surface
+// against itself moved 3.7e-8).
+TEST(MeshCompare, FarFromTheOriginAMeshAgainstItself) {
+  TetMesh far = box2();
+  for (Vec3& p : far.positions) p = p + Vec3{1e8, -3e8, 2e8};
+  const MeshComparison c = compare_meshes(far, far);
+  ASSERT_FALSE(c.pairs.empty());
+  for (const PairDeviation& d : c.pairs) EXPECT_LE(d.distance, 1e-12);  // (as at the origin)
+  for (const MaterialVolumes& v : c.volumes) EXPECT_EQ(v.before, v.after);
+  TetMesh moved = far;
+  for (Vec3& p : moved.positions) p.z += 1.0 / 1024;
+  for (const PairDeviation& d : compare_meshes(far, moved).pairs)
+    EXPECT_NEAR(d.distance, 1.0 / 1024, 1e-7);
+}
+
 // Moved by 0.25 along z: every surface moves by 0.25 (the top and bottom along their
 // normal; the sides' ends stick out past the old top and bottom by as much).
 TEST(MeshCompare, AShiftedMeshMovesEverySurfaceByTheShift) {
