@@ -15,7 +15,9 @@ namespace tetlod {
 namespace {
 
 std::string where(const std::string& source, const std::vector<uint32_t>& tet_lines, size_t tet) {
-  if (tet < tet_lines.size()) return source + ":" + std::to_string(tet_lines[tet]) + ": ";
+  // (A reader of binary data gives line 0: there is no line to name.)
+  if (tet < tet_lines.size() && tet_lines[tet] > 0)
+    return source + ":" + std::to_string(tet_lines[tet]) + ": ";
   return source + ": ";
 }
 

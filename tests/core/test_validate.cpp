@@ -72,6 +72,15 @@ TEST(Validate, FlatTetsAreNamedForWhatTheyAre) {
   TetMesh thin = mesh;
   thin.positions[3].z = 1e-9;
   EXPECT_TRUE(validate(&thin).ok());
+  // With the tet's line ("path:7: "), or without one where a binary reader gives 0
+  // (a binary .vtu's said "path:0: ").
+  ValidationReport report;
+  flat = mesh;
+  EXPECT_EQ(validate_mesh(&flat, "m.mesh", {7}, &report).message(),
+            "m.mesh:7: tetrahedron 1 is degenerate (zero volume)");
+  flat = mesh;
+  EXPECT_EQ(validate_mesh(&flat, "m.vtu", {0}, &report).message(),
+            "m.vtu: tetrahedron 1 is degenerate (zero volume)");
 }
 
 TEST(Validate, ReorientsNegativeTets) {
