@@ -85,6 +85,14 @@ int cmd_view(const Args& args) {
       options.height = static_cast<int>(*h);
     } else if (a == "--size-map") {
       if (!parse_option_value(args, &i, "--size-map", &options.size_map_path)) return kExitUsage;
+      if (!has_extension(options.size_map_path, ".sol") &&
+          !has_extension(options.size_map_path, ".solb")) {
+        std::fprintf(stderr,
+                     "tetlod view: --size-map '%s' is not a size map: a Medit .sol or .solb "
+                     "file (the mesh its sizes are at goes in --size-map-mesh)\n",
+                     options.size_map_path.c_str());
+        return kExitUsage;
+      }
     } else if (a == "--size-map-mesh") {
       if (!parse_option_value(args, &i, "--size-map-mesh", &options.size_map_mesh_path))
         return kExitUsage;

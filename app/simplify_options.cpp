@@ -222,6 +222,10 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
       return OptionResult::kError;
     }
     if (!value()) return OptionResult::kError;
+    if (a == "--size-map" && !has_extension(v, ".sol") && !has_extension(v, ".solb"))
+      return bad_value(
+          "a size map: a Medit .sol or .solb file (the mesh its sizes are at goes "
+          "in --size-map-mesh)");
     path = v;  // read by finish_simplify_options(), with the input
     if (a == "--size-map") options->size_given = true;
   } else if (a == "--improve") {
