@@ -37,7 +37,8 @@ constexpr const char* kViewUsage =
     "  --size-map-mesh M      the mesh whose vertices those sizes are at, if not FILE's\n"
     "                         (a background mesh over the same domain)\n"
     "Mouse: left drag orbits, right/middle or shift-left drag pans, the wheel zooms;\n"
-    "keys F (fit), 0 (iso), 1/2/3 (x/y/z views).\n";
+    "keys F (fit), 0 (iso), 1/2/3 (x/y/z views); the level of detail: left/right one\n"
+    "step, page up/down a hundredth of the history, home/end the finest/coarsest level.\n";
 
 std::string default_model() {
   // The bundled motor, found next to the source tree the binary was built from, or

@@ -32,9 +32,10 @@ std::string material_label(const ViewerStatus& status, int32_t m, const char* un
   return label;
 }
 
-constexpr float kPanelWidth = 380;   // the side panel
-constexpr float kStatsHeight = 236;  // the statistics strip under the 3D view
-constexpr float kLodHeight = 58;     // the level-of-detail strip above it
+constexpr float kPanelWidth = 380;        // the side panel
+constexpr float kStatsHeight = 236;       // the statistics strip under the 3D view
+constexpr float kLodHeight = 58;          // the level-of-detail strip above it
+constexpr float kFoldedPanelHeight = 32;  // the side panel folded to its title bar, margins in
 constexpr float kMargin = 6;
 
 // Where the 3D view (and the strips under it) start: right of the side panel, or at the
@@ -239,6 +240,10 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
                         i - 1);
   }
   text_disabled_wrapped("drag: orbit, right/middle or shift-drag: pan, wheel: zoom");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Keys: F fit, 0 iso, 1/2/3 x/y/z views; the level of detail: left/right one step,\n"
+        "page up/down a hundredth of the history, home/end the finest/coarsest level");
 }
 
 // The stretch and valence sliders' ranges (core/simplify.h check_params(): stretch in
@@ -466,13 +471,19 @@ void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Comman
   ImGui::Begin("Level of detail", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
-  ImGui::AlignTextToFramePadding();
-  ImGui::TextUnformatted("Level of detail");
-  ImGui::SameLine();
+  const bool wide = ImGui::GetContentRegionAvail().x >= 520;  // room for the label
   if (status.step_count == 0) {
-    ImGui::TextDisabled("(simplify to get a collapse history; %zu elements)", status.elements);
+    ImGui::PushTextWrapPos(0);  // over both rows if need be
+    ImGui::TextDisabled("%sSimplify to get a collapse history (%zu elements).",
+                        wide ? "Level of detail: " : "", status.elements);
+    ImGui::PopTextWrapPos();
     ImGui::End();
     return;
+  }
+  if (wide) {
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted("Level of detail");
+    ImGui::SameLine();
   }
   const long long last = static_cast<long long>(status.step_count);
   int step = static_cast<int>(panel->target_step);
@@ -483,39 +494,46 @@ void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Comman
   if (ImGui::SliderInt("##step", &step, 0, static_cast<int>(last), format,
                        ImGuiSliderFlags_AlwaysClamp))
     panel->target_step = step;
+  const auto key_tip = [](const char* keys) {
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (over the view)", keys);
+  };
   if (ImGui::ArrowButton("##back", ImGuiDir_Left)) panel->target_step -= 1;
+  key_tip("one step finer: the left arrow key; page up: a hundredth of the history");
   ImGui::SameLine();
   if (ImGui::ArrowButton("##forward", ImGuiDir_Right)) panel->target_step += 1;
+  key_tip("one step coarser: the right arrow key; page down: a hundredth of the history");
   ImGui::SameLine();
   if (ImGui::Button("Finest")) panel->target_step = 0;
+  key_tip("the finest level: the Home key");
   ImGui::SameLine();
   if (ImGui::Button("Coarsest")) panel->target_step = last;
+  key_tip("the coarsest level: the End key");
   panel->target_step = std::clamp(panel->target_step, 0LL, last);
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(110);
-  ImGui::InputInt("##elements", &panel->jump_elements, 100, 1000);
+  // The number of elements to jump to (Enter or Jump), as wide as the strip allows.
+  const float jump_width = ImGui::CalcTextSize("Jump").x + 2 * ImGui::GetStyle().FramePadding.x;
+  const float spacing = ImGui::GetStyle().ItemSpacing.x;
+  ImGui::SetNextItemWidth(
+      std::clamp(ImGui::GetContentRegionAvail().x - jump_width - spacing, 60.0f, 100.0f));
+  bool jump = ImGui::InputInt("##elements", &panel->jump_elements, 0, 0,
+                              ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  if (ImGui::Button("Jump"))
-    commands->push_back({CommandKind::kJumpElements, "", panel->jump_elements});
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("to the level nearest this number of elements");
+  jump |= ImGui::Button("Jump");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("to the level nearest this number of elements (or Enter in the box)");
+  if (jump) commands->push_back({CommandKind::kJumpElements, "", panel->jump_elements});
   // What is on screen (behind the slider while the mesh catches up), shorter if the strip
-  // is narrow; the whole line and the keys in a tooltip.
+  // is narrow, left out if it is narrower still.
   char shown[128], shown_short[64];
   std::snprintf(shown, sizeof(shown), "shown: step %zu, %zu elements (%zu at the end)", status.step,
                 status.elements, status.elements_at_end);
-  std::snprintf(shown_short, sizeof(shown_short), "shown: %zu", status.step);
+  std::snprintf(shown_short, sizeof(shown_short), "shown: step %zu", status.step);
   ImGui::SameLine();
   const float room = ImGui::GetContentRegionAvail().x;
-  if (ImGui::CalcTextSize(shown_short).x > room) {
-    ImGui::End();
-    return;
+  if (ImGui::CalcTextSize(shown_short).x <= room) {
+    ImGui::TextUnformatted(ImGui::CalcTextSize(shown).x <= room ? shown : shown_short);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", shown);
   }
-  ImGui::TextUnformatted(ImGui::CalcTextSize(shown).x <= room ? shown : shown_short);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "%s\nKeys: left/right one step, page up/down a hundredth of the history, "
-        "home/end the finest/coarsest level",
-        shown);
   ImGui::End();
 }
 
@@ -706,8 +724,11 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
     ImGui::End();
     return;
   }
-  constexpr float kChartWidth = 250;
-  const float table_width = std::max(200.0f, ImGui::GetContentRegionAvail().x - kChartWidth - 8);
+  // The chart narrows with the window (down to 120 px) before the table does (to 200 px,
+  // then it scrolls): a chart cut at the window's edge looked like another distribution.
+  const float room = ImGui::GetContentRegionAvail().x;
+  const float chart_width = std::clamp(room - 208, 120.0f, 250.0f);
+  const float table_width = std::max(200.0f, room - chart_width - 8);
   ImGui::BeginGroup();
   ImGui::Text("Table I at step %zu%s", status.stats_step,
               status.stats_step == status.step ? "" : " (updating...)");
@@ -751,7 +772,7 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   const float line = ImGui::GetTextLineHeightWithSpacing();
   ImGui::PlotHistogram("##hist", bins.data(), static_cast<int>(bins.size()), 0, nullptr, 0,
                        top * 1.1f,
-                       ImVec2(kChartWidth, ImGui::GetContentRegionAvail().y - 24 - line));
+                       ImVec2(chart_width, ImGui::GetContentRegionAvail().y - 24 - line));
   // Tick labels under stretch 0, 0.5 and 1: the bars span the plot's frame less its
   // padding (as PlotHistogram draws them), each label centred on its stretch and kept
   // inside the frame.
@@ -769,7 +790,7 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
     draw->AddLine(ImVec2(at, frame_max.y), ImVec2(at, frame_max.y + 3), tick_color);
     draw->AddText(ImVec2(left, frame_max.y + 3), tick_color, text);
   }
-  ImGui::Dummy(ImVec2(kChartWidth, line));
+  ImGui::Dummy(ImVec2(chart_width, line));
   ImGui::EndGroup();
   if (status.has_result) {
     const RejectionCounts& r = status.rejections;
@@ -1095,9 +1116,9 @@ std::string other_run_progress_text(const ViewerStatus& status) {
 ViewRect scene_rect(float display_width, float display_height, const PanelState& panel) {
   ViewRect r;
   r.x = scene_left(panel);
-  r.y = 0;
+  r.y = panel.panel_collapsed ? kFoldedPanelHeight : 0;  // below the folded panel's bar
   r.width = std::max(1.0f, display_width - r.x);
-  r.height = std::max(1.0f, display_height - kLodHeight - 2 * kMargin -
+  r.height = std::max(1.0f, display_height - r.y - kLodHeight - 2 * kMargin -
                                 (panel.show_stats ? kStatsHeight + kMargin : 0.0f));
   return r;
 }
