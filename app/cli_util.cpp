@@ -26,10 +26,11 @@ bool normalize_args(const std::string& command, Args* args) {
   split.reserve(args->size());
   for (const std::string& a : *args) {
     const size_t equals = a.find('=');
-    const bool named = a.size() > 2 && a.compare(0, 2, "--") == 0 && equals != std::string::npos &&
-                       equals > 2 &&
-                       std::all_of(a.begin() + 2, a.begin() + static_cast<long>(equals),
-                                   [](char c) { return (c >= 'a' && c <= 'z') || c == '-'; });
+    const bool named =
+        (a.size() > 2 && a.compare(0, 2, "--") == 0 && equals != std::string::npos && equals > 2 &&
+         std::all_of(a.begin() + 2, a.begin() + static_cast<long>(equals),
+                     [](char c) { return (c >= 'a' && c <= 'z') || c == '-'; })) ||
+        a.compare(0, 3, "-o=") == 0;
     if (named) {
       split.push_back(a.substr(0, equals));
       split.push_back(a.substr(equals + 1));
@@ -51,7 +52,7 @@ bool normalize_args(const std::string& command, Args* args) {
     if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
       std::fprintf(stderr,
                    "tetlod %s: %s given twice: give it once (--material-size, --size-field, "
-                   "--conductor, --eps and --ground add up)\n",
+                   "--conductor, --eps, --ground and view's --hide add up)\n",
                    command.c_str(), name.c_str());
       return false;
     }
@@ -61,13 +62,17 @@ bool normalize_args(const std::string& command, Args* args) {
   return true;
 }
 
-void more_than_one_input(const char* command, const std::string& first, const std::string& second) {
+void more_than_one_input(const char* command, const Args& args, const std::string& first,
+                         const std::string& second) {
+  const bool has_output = std::find(args.begin(), args.end(), "-o") != args.end() ||
+                          std::find(args.begin(), args.end(), "--output") != args.end();
   const bool to_dir = std::strcmp(command, "report") == 0;
-  std::fprintf(stderr,
-               "tetlod %s: two inputs given, '%s' and '%s' (the output %s goes after -o: "
-               "-o %s); see 'tetlod %s --help'\n",
-               command, first.c_str(), second.c_str(), to_dir ? "directory" : "file",
-               second.c_str(), command);
+  const std::string hint = has_output
+                               ? "it takes one"
+                               : std::string("the output ") + (to_dir ? "directory" : "file") +
+                                     " goes after -o: -o " + second;
+  std::fprintf(stderr, "tetlod %s: two inputs given, '%s' and '%s' (%s); see 'tetlod %s --help'\n",
+               command, first.c_str(), second.c_str(), hint.c_str(), command);
 }
 
 std::optional<double> parse_double(const std::string& text) {

@@ -28,7 +28,9 @@ bool normalize_args(const std::string& command, Args* args);
 
 // Prints "tetlod <command>: two inputs given, 'first' and 'second' (...)", which says
 // where an output goes: most often -o was forgotten.
-void more_than_one_input(const char* command, const std::string& first, const std::string& second);
+// (`args`: the command's, to say so where an output was given.)
+void more_than_one_input(const char* command, const Args& args, const std::string& first,
+                         const std::string& second);
 
 // Parses a finite double / a whole number; nullopt if `text` is not one entirely.
 std::optional<double> parse_double(const std::string& text);

@@ -66,7 +66,7 @@ int cmd_render(const Args& args) {
     } else if (in.empty()) {
       in = a;
     } else {
-      more_than_one_input("render", in, a);
+      more_than_one_input("render", args, in, a);
       return kExitUsage;
     }
   }

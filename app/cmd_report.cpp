@@ -182,7 +182,7 @@ int cmd_report(const Args& args) {
     } else if (in.empty()) {
       in = a;
     } else {
-      more_than_one_input("report", in, a);
+      more_than_one_input("report", args, in, a);
       return kExitUsage;
     }
   }
@@ -373,19 +373,22 @@ int cmd_report(const Args& args) {
     return kExitBadInput;
   }
   const std::string path = dir + "/report.html";
-  OutputFiles files;
   Status s;
-  for (const auto& [name, png] : pictures) {
-    if (s)
-      s = files.stage(dir + "/" + name,
-                      std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  {
+    OutputFiles files;  // (its temporaries go when it does, if not committed)
+    for (const auto& [name, png] : pictures) {
+      if (s)
+        s = files.stage(dir + "/" + name,
+                        std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+    }
+    if (s) s = files.stage(path, html);
+    if (s) s = files.commit();
   }
-  if (s) s = files.stage(path, html);
-  if (s) s = files.commit();
   if (!s) {
     std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
-    // Nothing was written: the directories made for the report go too (a full disk left
-    // them behind, empty; found by hostile-input tests). remove() keeps one not empty.
+    // Nothing was written, and the staged files' temporaries are gone: the directories
+    // made for the report go too (a full disk left them behind; found by hostile-input
+    // tests). remove() keeps one not empty.
     for (const std::filesystem::path& d : made) std::filesystem::remove(d, ec);
     return kExitBadInput;
   }

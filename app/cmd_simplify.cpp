@@ -129,7 +129,7 @@ int cmd_simplify(const Args& args) {
     } else if (in.empty()) {
       in = a;
     } else {
-      more_than_one_input("simplify", in, a);
+      more_than_one_input("simplify", args, in, a);
       return kExitUsage;
     }
   }
@@ -369,7 +369,7 @@ int cmd_lod(const Args& args) {
     } else if (history_path.empty()) {
       history_path = a;
     } else {
-      std::fprintf(stderr, "tetlod lod: more than one history given\n\n%s", kLodUsage);
+      more_than_one_input("lod", args, history_path, a);
       return kExitUsage;
     }
   }

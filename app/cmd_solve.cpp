@@ -206,7 +206,7 @@ int cmd_solve(const Args& args) {
     } else if (in.empty()) {
       in = a;
     } else {
-      std::fprintf(stderr, "tetlod solve: more than one mesh given\n\n%s", kSolveUsage);
+      more_than_one_input("solve", args, in, a);
       return kExitUsage;
     }
   }

@@ -663,6 +663,13 @@ TEST(Cli, OptionsAreGivenOnceWithOrWithoutEquals) {
                           "' (the output file goes after -o: -o " + out + ")"),
             std::string::npos)
       << r.output;
+  // With -o given, the second is a second input: no advice to write over it.
+  r = run("simplify " + path + " " + path + " -o " + out + " --size 2");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("' (it takes one)"), std::string::npos) << r.output;
+  r = run("simplify " + path + " -o=" + out + " --size 2");  // -o=OUT as --output=OUT
+  EXPECT_EQ(r.code, 0) << r.output;
+  fs::remove(out);
   r = run("simplify " + path + " -o " + out + " --size 2 --valence 25.0");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("a whole number"), std::string::npos) << r.output;
