@@ -155,16 +155,34 @@ void press(Display* display, KeySym key) {
   std::this_thread::sleep_for(150ms);
 }
 
+// The viewer on the spheres in the background at 1280x800: it simplifies, takes a.png,
+// waits 4 s for the test's input, then saves the level shown and the history.
+void start_simplified_spheres(test::BackgroundViewer* viewer, const std::string& name) {
+  ASSERT_TRUE(viewer->start(name, std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh",
+                            "simplify\nscreenshot a.png ui=1\nwait seconds=4\n"
+                            "screenshot b.png ui=1\nsave level.mesh\nsave run.tlh\nquit\n",
+                            "1280x800"));
+  ASSERT_TRUE(viewer->wait_for("a.png", std::chrono::seconds(120)));
+}
+
+// What such a viewer saved, once it has quit.
+struct SavedLevel {
+  TetMesh base, level;
+  CollapseHistory history;
+};
+void read_saved(test::BackgroundViewer* viewer, SavedLevel* saved) {
+  ASSERT_EQ(viewer->finish(std::chrono::seconds(120)), 0);
+  ASSERT_TRUE(
+      read_history((viewer->dir() / "run.tlh").string(), &saved->base, &saved->history).ok());
+  ASSERT_TRUE(read_mesh((viewer->dir() / "level.mesh").string(), &saved->level).ok());
+}
+
 // Home goes to the finest level, page down a hundredth of the history on, the right arrow
 // one step: the level saved after Home, page down twice and right is that step's.
 TEST(ViewerMouse, KeysMoveTheLevelOfDetail) {
   test::BackgroundViewer viewer;
-  ASSERT_TRUE(viewer.start("viewer_keys_lod",
-                           std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh",
-                           "simplify\nscreenshot a.png\nwait seconds=4\n"
-                           "save level.mesh\nsave run.tlh\nquit\n",
-                           "1280x800"));
-  ASSERT_TRUE(viewer.wait_for("a.png", std::chrono::seconds(120)));
+  start_simplified_spheres(&viewer, "viewer_keys_lod");
+  if (HasFatalFailure()) return;
   Display* display = XOpenDisplay(nullptr);
   ASSERT_NE(display, nullptr);
   XTestFakeMotionEvent(display, -1, 800, 200, CurrentTime);  // over the 3D view
@@ -172,28 +190,22 @@ TEST(ViewerMouse, KeysMoveTheLevelOfDetail) {
   std::this_thread::sleep_for(100ms);
   for (const KeySym key : {XK_Home, XK_Next, XK_Next, XK_Right}) press(display, key);
   XCloseDisplay(display);
-  ASSERT_EQ(viewer.finish(std::chrono::seconds(120)), 0);
-  TetMesh base, level;
-  CollapseHistory history;
-  ASSERT_TRUE(read_history((viewer.dir() / "run.tlh").string(), &base, &history).ok());
-  ASSERT_TRUE(read_mesh((viewer.dir() / "level.mesh").string(), &level).ok());
-  ASSERT_GE(history.step_count(), 200u);
-  const Lod lod(base, &history);
-  const size_t page = history.step_count() / 100;
-  EXPECT_EQ(level.tet_count(), lod.tet_count_at(2 * page + 1));
-  EXPECT_LT(level.tet_count(), lod.tet_count_at(2 * page));
+  SavedLevel saved;
+  read_saved(&viewer, &saved);
+  if (HasFatalFailure()) return;
+  ASSERT_GE(saved.history.step_count(), 200u);
+  const Lod lod(saved.base, &saved.history);
+  const size_t page = saved.history.step_count() / 100;
+  EXPECT_EQ(saved.level.tet_count(), lod.tet_count_at(2 * page + 1));
+  EXPECT_LT(saved.level.tet_count(), lod.tet_count_at(2 * page));
 }
 
 // The strip's box of elements jumps on Enter, as on Jump: a click in it, ctrl+A, 17000
 // and Enter save the level nearest 17000 elements (not the coarsest, 14222, shown then).
 TEST(ViewerMouse, EnterInTheElementsBoxJumps) {
   test::BackgroundViewer viewer;
-  ASSERT_TRUE(viewer.start("viewer_jump_enter",
-                           std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh",
-                           "simplify\nscreenshot a.png ui=1\nwait seconds=4\n"
-                           "screenshot b.png ui=1\nsave level.mesh\nsave run.tlh\nquit\n",
-                           "1280x800"));
-  ASSERT_TRUE(viewer.wait_for("a.png", std::chrono::seconds(120)));
+  start_simplified_spheres(&viewer, "viewer_jump_enter");
+  if (HasFatalFailure()) return;
   Display* display = XOpenDisplay(nullptr);
   ASSERT_NE(display, nullptr);
   drag(display, 630, 534, 630, 534);  // a click in the box (left of Jump, on the strip)
@@ -203,14 +215,12 @@ TEST(ViewerMouse, EnterInTheElementsBoxJumps) {
   XTestFakeKeyEvent(display, control, False, CurrentTime);
   for (const KeySym key : {XK_1, XK_7, XK_0, XK_0, XK_0, XK_Return}) press(display, key);
   XCloseDisplay(display);
-  ASSERT_EQ(viewer.finish(std::chrono::seconds(120)), 0);
-  TetMesh base, level;
-  CollapseHistory history;
-  ASSERT_TRUE(read_history((viewer.dir() / "run.tlh").string(), &base, &history).ok());
-  ASSERT_TRUE(read_mesh((viewer.dir() / "level.mesh").string(), &level).ok());
-  const Lod lod(base, &history);
-  EXPECT_EQ(level.tet_count(), lod.tet_count_at(lod.step_for_elements(17000)));
-  EXPECT_NE(level.tet_count(), lod.tet_count_at(history.step_count()));
+  SavedLevel saved;
+  read_saved(&viewer, &saved);
+  if (HasFatalFailure()) return;
+  const Lod lod(saved.base, &saved.history);
+  EXPECT_EQ(saved.level.tet_count(), lod.tet_count_at(lod.step_for_elements(17000)));
+  EXPECT_NE(saved.level.tet_count(), lod.tet_count_at(saved.history.step_count()));
 }
 
 }  // namespace
