@@ -36,8 +36,12 @@ constexpr const char* kGenerateUsage =
     "  -o, --output FILE the mesh to write; the format follows the extension\n"
     "                    (.mesh .meshb .msh .node/.ele .vtk .vtu .bdf/.nas .inp)\n";
 
-int usage_error(const std::string& message) {
-  std::fprintf(stderr, "tetlod generate: %s\n\n%s", message.c_str(), kGenerateUsage);
+// A bad value names itself; a command line of the wrong shape also gets the usage.
+int usage_error(const std::string& message, bool with_usage = false) {
+  if (with_usage)
+    std::fprintf(stderr, "tetlod generate: %s\n\n%s", message.c_str(), kGenerateUsage);
+  else
+    std::fprintf(stderr, "tetlod generate: %s (see 'tetlod generate --help')\n", message.c_str());
   return kExitUsage;
 }
 
@@ -95,19 +99,19 @@ int cmd_generate(const Args& args) {
         return usage_error("-o needs a file, not the option '" + args[i + 1] + "'");
       output = args[++i];
     } else if (!a.empty() && a[0] == '-') {
-      return usage_error("unknown option '" + a + "'");
+      return usage_error("unknown option '" + a + "'", true);
     } else if (model_text.empty()) {
       model_text = a;
     } else {
-      return usage_error("unexpected argument '" + a + "'");
+      return usage_error("unexpected argument '" + a + "'", true);
     }
   }
-  if (model_text.empty()) return usage_error("no MODEL given");
+  if (model_text.empty()) return usage_error("no MODEL given", true);
   Model model;
   if (!parse_model_name(model_text, &model)) {
     return usage_error("unknown model '" + model_text + "' (motor, spheres, box2)");
   }
-  if (output.empty()) return usage_error("no output file given (-o FILE)");
+  if (output.empty()) return usage_error("no output file given (-o FILE)", true);
   if (const Status s = check_mesh_path(output); !s) return usage_error("-o " + s.message());
   if (sphere_level_given && model != Model::kSpheres)
     return usage_error("--sphere-level applies to the spheres model only");

@@ -93,6 +93,13 @@ TEST(Cli, GenerateRefusesWhatItWouldIgnore) {
     EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
   }
   EXPECT_FALSE(fs::exists(out));
+  // A bad value is named, without the whole usage; a line of the wrong shape gets it.
+  CommandResult r = run("generate box2 --tets -5 -o " + out);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("(see 'tetlod generate --help')"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("usage: tetlod generate"), std::string::npos) << r.output;
+  r = run("generate box2 --bogus -o " + out);
+  EXPECT_NE(r.output.find("usage: tetlod generate"), std::string::npos) << r.output;
 }
 
 TEST(Cli, StatsPrintsTableOneAndJson) {
