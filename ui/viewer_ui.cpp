@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 namespace tetlod::ui {
 namespace {
@@ -515,8 +516,18 @@ void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Comman
   const float spacing = ImGui::GetStyle().ItemSpacing.x;
   ImGui::SetNextItemWidth(
       std::clamp(ImGui::GetContentRegionAvail().x - jump_width - spacing, 60.0f, 100.0f));
+  // The box follows the level the slider, keys or buttons go to, unless it is being
+  // typed in (then the level a jump reaches shows what it holds).
+  if (!panel->jump_editing && status.elements_at_target != panel->jump_synced) {
+    panel->jump_elements = static_cast<int>(
+        std::min<size_t>(status.elements_at_target, std::numeric_limits<int>::max()));
+    panel->jump_synced = status.elements_at_target;
+  }
   bool jump = ImGui::InputInt("##elements", &panel->jump_elements, 0, 0,
                               ImGuiInputTextFlags_EnterReturnsTrue);
+  // (InputInt returns true on Enter only if the number changed: Enter jumps anyway.)
+  jump |= ImGui::IsItemDeactivated() && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter));
+  panel->jump_editing = ImGui::IsItemActive();
   ImGui::SameLine();
   jump |= ImGui::Button("Jump");
   if (ImGui::IsItemHovered())

@@ -165,6 +165,8 @@ struct PanelState {
   std::vector<std::string> recent_files;  // most recent first
   long long target_step = 0;              // the LOD scrubber; the app follows it
   int jump_elements = 0;
+  bool jump_editing = false;  // the box of elements has the keyboard
+  size_t jump_synced = 0;     // the elements at the target step it last followed
   char save_path[1024] = "level.mesh";
   bool save_improved = false;  // improve the level's shapes before saving (improve.h)
   bool save_surfaces = false;  // with the boundary and interface triangles (surface.h)

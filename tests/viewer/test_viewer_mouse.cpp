@@ -223,5 +223,30 @@ TEST(ViewerMouse, EnterInTheElementsBoxJumps) {
   EXPECT_NE(saved.level.tet_count(), lod.tet_count_at(saved.history.step_count()));
 }
 
+// The box of elements follows the level the keys go to: after Home and page down three
+// times, Enter in it jumps to that level's count, so the level stays there (without
+// following, the box held the count of the level shown when the run ended).
+TEST(ViewerMouse, TheElementsBoxFollowsTheLevel) {
+  test::BackgroundViewer viewer;
+  start_simplified_spheres(&viewer, "viewer_box_follows");
+  if (HasFatalFailure()) return;
+  Display* display = XOpenDisplay(nullptr);
+  ASSERT_NE(display, nullptr);
+  XTestFakeMotionEvent(display, -1, 800, 200, CurrentTime);  // over the 3D view
+  XFlush(display);
+  std::this_thread::sleep_for(100ms);
+  for (const KeySym key : {XK_Home, XK_Next, XK_Next, XK_Next}) press(display, key);
+  std::this_thread::sleep_for(500ms);
+  drag(display, 630, 534, 630, 534);  // a click in the box
+  press(display, XK_Return);
+  XCloseDisplay(display);
+  SavedLevel saved;
+  read_saved(&viewer, &saved);
+  if (HasFatalFailure()) return;
+  const Lod lod(saved.base, &saved.history);
+  const size_t step = 3 * (saved.history.step_count() / 100);
+  EXPECT_EQ(saved.level.tet_count(), lod.tet_count_at(step));
+}
+
 }  // namespace
 }  // namespace tetlod
