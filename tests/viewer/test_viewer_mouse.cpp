@@ -155,6 +155,13 @@ void press(Display* display, KeySym key) {
   std::this_thread::sleep_for(150ms);
 }
 
+// The pointer over the 3D view (of a 1280x800 window), where the keys go to the viewer.
+void hover_view(Display* display) {
+  XTestFakeMotionEvent(display, -1, 800, 200, CurrentTime);
+  XFlush(display);
+  std::this_thread::sleep_for(100ms);
+}
+
 // The viewer on the spheres in the background at 1280x800: it simplifies, takes a.png,
 // waits 4 s for the test's input, then saves the level shown and the history.
 void start_simplified_spheres(test::BackgroundViewer* viewer, const std::string& name) {
@@ -185,9 +192,7 @@ TEST(ViewerMouse, KeysMoveTheLevelOfDetail) {
   if (HasFatalFailure()) return;
   Display* display = XOpenDisplay(nullptr);
   ASSERT_NE(display, nullptr);
-  XTestFakeMotionEvent(display, -1, 800, 200, CurrentTime);  // over the 3D view
-  XFlush(display);
-  std::this_thread::sleep_for(100ms);
+  hover_view(display);
   for (const KeySym key : {XK_Home, XK_Next, XK_Next, XK_Right}) press(display, key);
   XCloseDisplay(display);
   SavedLevel saved;
@@ -232,9 +237,7 @@ TEST(ViewerMouse, TheElementsBoxFollowsTheLevel) {
   if (HasFatalFailure()) return;
   Display* display = XOpenDisplay(nullptr);
   ASSERT_NE(display, nullptr);
-  XTestFakeMotionEvent(display, -1, 800, 200, CurrentTime);  // over the 3D view
-  XFlush(display);
-  std::this_thread::sleep_for(100ms);
+  hover_view(display);
   for (const KeySym key : {XK_Home, XK_Next, XK_Next, XK_Next}) press(display, key);
   std::this_thread::sleep_for(500ms);
   drag(display, 630, 534, 630, 534);  // a click in the box
