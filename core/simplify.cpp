@@ -67,7 +67,7 @@ Status check_params(const SimplifyParams& p) {
   }
   if (p.max_valence > kMaxValence) {
     return Status::error("valence " + std::to_string(p.max_valence) + " must be at most " +
-                         std::to_string(kMaxValence) + " (no valence at all)");
+                         std::to_string(kMaxValence) + " (a larger one limits nothing)");
   }
   if (p.sizing.unlimited()) return Status::error("no size limit given (set --size)");
   const double smallest = p.sizing.smallest_size();
