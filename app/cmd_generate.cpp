@@ -93,8 +93,6 @@ int cmd_generate(const Args& args) {
       options.sphere_level = static_cast<int>(*value);
       sphere_level_given = true;
     } else if (a == "-o" || a == "--output") {
-      if (!output.empty())
-        return usage_error("give -o once (" + output + ", then " + args[i + 1] + ")");
       if (args[i + 1].rfind("--", 0) == 0)
         return usage_error("-o needs a file, not the option '" + args[i + 1] + "'");
       output = args[++i];

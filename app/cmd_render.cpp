@@ -58,7 +58,7 @@ int cmd_render(const Args& args) {
     if (parsed == OptionResult::kError) return kExitUsage;
     if (parsed == OptionResult::kParsed) continue;
     if (a == "-o" || a == "--output") {
-      if (!parse_output_value(args, &i, "-o", &out)) return kExitUsage;
+      if (!parse_option_value(args, &i, "-o", &out)) return kExitUsage;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "tetlod render: unknown option '%s'\n\n", a.c_str());
       print_usage(stderr);

@@ -164,7 +164,7 @@ int cmd_report(const Args& args) {
     if (parsed == OptionResult::kParsed) continue;
     std::string v;
     if (a == "-o" || a == "--output") {
-      if (!parse_output_value(args, &i, "-o", &dir)) return kExitUsage;
+      if (!parse_option_value(args, &i, "-o", &dir)) return kExitUsage;
     } else if (a == "--levels") {
       if (!parse_option_value(args, &i, "--levels", &v)) return kExitUsage;
       const auto parsed_levels = parse_levels(v);

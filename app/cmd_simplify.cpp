@@ -119,9 +119,9 @@ int cmd_simplify(const Args& args) {
     if (parsed == OptionResult::kError) return kExitUsage;
     if (parsed == OptionResult::kParsed) continue;
     if (a == "-o" || a == "--output") {
-      if (!parse_output_value(args, &i, "-o", &out)) return kExitUsage;
+      if (!parse_option_value(args, &i, "-o", &out)) return kExitUsage;
     } else if (a == "--history") {
-      if (!parse_output_value(args, &i, "--history", &history_path)) return kExitUsage;
+      if (!parse_option_value(args, &i, "--history", &history_path)) return kExitUsage;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "tetlod simplify: unknown option '%s'\n\n", a.c_str());
       print_simplify_usage(stderr);
@@ -351,7 +351,7 @@ int cmd_lod(const Args& args) {
     if (a == "--improve") {
       improve = true;
     } else if (a == "-o" || a == "--output") {
-      if (!parse_output_value(args, &i, "-o", &out)) return kExitUsage;
+      if (!parse_option_value(args, &i, "-o", &out)) return kExitUsage;
     } else if (a == "--elements" || a == "--step") {
       if (!parse_option_value(args, &i, a.c_str(), &v)) return kExitUsage;
       // A step from 0; a number of elements from 1, as simplify and render take it.

@@ -146,7 +146,7 @@ int cmd_solve(const Args& args) {
     const std::string& a = args[i];
     std::string v;
     if (a == "-o" || a == "--output") {
-      if (!parse_output_value(args, &i, "-o", &out)) return kExitUsage;
+      if (!parse_option_value(args, &i, "-o", &out)) return kExitUsage;
       if (!has_extension(out, ".vtu")) {
         std::fprintf(stderr, "tetlod solve: -o '%s': the field is written as .vtu only\n",
                      out.c_str());

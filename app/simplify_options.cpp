@@ -115,15 +115,6 @@ bool parse_option_value(const Args& args, size_t* i, const char* name, std::stri
   return true;
 }
 
-bool parse_output_value(const Args& args, size_t* i, const char* name, std::string* path) {
-  if (!path->empty()) {
-    std::fprintf(stderr, "tetlod: give %s once (%s, then %s)\n", name, path->c_str(),
-                 *i + 1 < args.size() ? args[*i + 1].c_str() : "nothing");
-    return false;
-  }
-  return parse_option_value(args, i, name, path);
-}
-
 OptionResult parse_simplify_option(const Args& args, size_t* i, const char* command,
                                    SimplifyOptions* options) {
   const std::string& a = args[*i];
@@ -217,10 +208,6 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
     options->size_given = true;
   } else if (a == "--size-map" || a == "--size-map-mesh") {
     std::string& path = a == "--size-map" ? options->size_map_path : options->size_map_mesh_path;
-    if (!path.empty()) {
-      std::fprintf(stderr, "tetlod %s: give %s once\n", command, a.c_str());
-      return OptionResult::kError;
-    }
     if (!value()) return OptionResult::kError;
     if (a == "--size-map" && !has_extension(v, ".sol") && !has_extension(v, ".solb"))
       return bad_value(

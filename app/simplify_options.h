@@ -54,9 +54,8 @@ OptionResult parse_write_option(const Args& args, size_t* i, const char* command
 // Reads "--flag VALUE": false with a message if VALUE is missing (or is another
 // option, "--..." or "-o": "-o --size 5" lacks its file).
 bool parse_option_value(const Args& args, size_t* i, const char* name, std::string* value);
-// The same for an output file, which may be given once: false with a message if
-// `*path` is already set.
-bool parse_output_value(const Args& args, size_t* i, const char* name, std::string* path);
+// (An option given twice, an output among them, is refused before any command reads
+// its options: normalize_args(), cli_util.h.)
 
 // Fills in the defaults that depend on the input (the tolerance), looks up the
 // materials --material-size names in `names` (the input's), and checks that every
