@@ -1016,11 +1016,31 @@ void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces,
     return text + after;
   };
   out->append("DATASET UNSTRUCTURED_GRID\n");
-  // The names of the materials and groups (vtk_name_rows()) as the dataset's field data.
+  r.keywords(line("POINTS ", mesh.vertex_count(), " double\n"));
+  for (const Vec3& p : mesh.positions) r.record(p.x, p.y, p.z);
+  std::string cells = line("CELLS ", cell_count, " ");
+  append_line(&cells, uint64_t(5 * tet_count + 4 * triangle_count));
+  r.keywords(cells);
+  for (const Tet& tet : mesh.tets) r.record(int32_t{4}, tet[0], tet[1], tet[2], tet[3]);
+  // The surface groups' triangles after the tets, as Gmsh's VTK export writes physical
+  // surfaces: cell type 5, the group's tag in the material array.
+  auto for_each_triangle = [&](auto visit) {
+    if (!surfaces) return;
+    for (const SurfaceGroup& group : surfaces->groups)
+      for (uint32_t i : group.triangles) visit(surfaces->surface[i].v, group.tag);
+  };
+  for_each_triangle(
+      [&](const std::array<uint32_t, 3>& v, int32_t) { r.record(int32_t{3}, v[0], v[1], v[2]); });
+  r.keywords(line("CELL_TYPES ", cell_count, "\n"));
+  for (size_t t = 0; t < tet_count; ++t) r.record(int32_t{10});
+  for (size_t t = 0; t < triangle_count; ++t) r.record(int32_t{5});
+  // The names of the materials and groups (vtk_name_rows()) as the dataset's field data,
+  // after the cells: VTK reads a dataset's FIELD anywhere before CELL_DATA, but Gmsh's
+  // reader (4.8) refuses any line between DATASET and POINTS.
   const std::vector<VtkNameRow> rows = vtk_name_rows(mesh, surfaces, names);
   if (!rows.empty()) {
-    out->append("FIELD FieldData 3\n");
-    r.keywords(std::string(kVtkNameTagArray) + " 1 " + std::to_string(rows.size()) + " int\n");
+    r.keywords("FIELD FieldData 3\n" + std::string(kVtkNameTagArray) + " 1 " +
+               std::to_string(rows.size()) + " int\n");
     for (const VtkNameRow& row : rows) r.record(row.tag);
     r.keywords(std::string(kVtkNameDimArray) + " 1 " + std::to_string(rows.size()) + " int\n");
     for (const VtkNameRow& row : rows) r.record(row.dim);
@@ -1045,24 +1065,6 @@ void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces,
       out->append(row.name);
     }
   }
-  r.keywords(line("POINTS ", mesh.vertex_count(), " double\n"));
-  for (const Vec3& p : mesh.positions) r.record(p.x, p.y, p.z);
-  std::string cells = line("CELLS ", cell_count, " ");
-  append_line(&cells, uint64_t(5 * tet_count + 4 * triangle_count));
-  r.keywords(cells);
-  for (const Tet& tet : mesh.tets) r.record(int32_t{4}, tet[0], tet[1], tet[2], tet[3]);
-  // The surface groups' triangles after the tets, as Gmsh's VTK export writes physical
-  // surfaces: cell type 5, the group's tag in the material array.
-  auto for_each_triangle = [&](auto visit) {
-    if (!surfaces) return;
-    for (const SurfaceGroup& group : surfaces->groups)
-      for (uint32_t i : group.triangles) visit(surfaces->surface[i].v, group.tag);
-  };
-  for_each_triangle(
-      [&](const std::array<uint32_t, 3>& v, int32_t) { r.record(int32_t{3}, v[0], v[1], v[2]); });
-  r.keywords(line("CELL_TYPES ", cell_count, "\n"));
-  for (size_t t = 0; t < tet_count; ++t) r.record(int32_t{10});
-  for (size_t t = 0; t < triangle_count; ++t) r.record(int32_t{5});
   r.keywords(line("CELL_DATA ", cell_count, "\nSCALARS material int 1\nLOOKUP_TABLE default\n"));
   for (int32_t material : mesh.materials) r.record(material);
   for_each_triangle([&](const std::array<uint32_t, 3>&, int32_t tag) { r.record(tag); });

@@ -83,6 +83,42 @@ TEST(IoGmshInterop, GmshReadsOurFilesWithTheirPhysicalGroups) {
   }
 }
 
+// Gmsh reads our legacy .vtk, text and binary, with the surface groups and the names
+// in the dataset's field data (Gmsh 4.8 refused the file when those came before POINTS).
+TEST(IoGmshInterop, GmshReadsOurVtkWithNames) {
+  TETLOD_NEED_PROGRAM("gmsh");
+  const std::string dir = test::output_dir("gmsh_vtk");
+  TetMesh mesh = test::make_grid_mesh(3, 2, 2, [](int i, int j, int) { return (i + j) % 3; });
+  for (bool binary : {false, true}) {
+    SCOPED_TRACE(binary ? "binary" : "text");
+    const std::string ours = dir + (binary ? "/ours_binary.vtk" : "/ours.vtk");
+    WriteOptions options;
+    options.vtk_binary = binary;
+    options.surface_groups = true;
+    ASSERT_TRUE(write_mesh(ours, mesh, options).ok());
+    TetMesh back;
+    ReadInfo info;
+    ASSERT_TRUE(read_mesh(ours, &back, &info).ok());
+    ASSERT_FALSE(info.surface_groups.empty());
+    size_t triangles = 0;
+    for (const auto& group : info.surface_groups) triangles += group.triangles.size();
+    const std::string log = ours + ".log";
+    ASSERT_TRUE(run_gmsh("'" + ours + "' -0 -format msh41 -o '" + ours + ".msh'", log))
+        << test::read_text(log);
+    const std::string output = test::read_text(log);
+    EXPECT_EQ(output.find("Error"), std::string::npos) << output;
+    EXPECT_NE(output.find("Reading " + std::to_string(mesh.tet_count() + triangles) + " cells"),
+              std::string::npos)
+        << output;
+    // What Gmsh wrote holds our tets (Gmsh keeps no material from a .vtk).
+    TetMesh theirs;
+    ReadInfo theirs_info;
+    const Status status = read_mesh(ours + ".msh", &theirs, &theirs_info);
+    ASSERT_TRUE(status.ok()) << status.message();
+    EXPECT_EQ(theirs.tet_count(), mesh.tet_count());
+  }
+}
+
 // Nastran bulk data both ways: Gmsh reads what we write (PID = material), and we
 // read what Gmsh writes in each of its three field formats.
 TEST(IoGmshInterop, NastranBothWays) {
