@@ -245,13 +245,17 @@ int cmd_simplify(const Args& args) {
           : "; and " + std::to_string(result.splits_skipped_inside) +
                 (result.splits_skipped_inside == 1 ? " edge" : " edges") +
                 " of surface groups inside a material, which are kept as they are";
-  std::printf(
-      "\nsubdivision: %zu splits (%zu edges longer than half the size left unsplit to keep the "
-      "thresholds: %zu for a piece's stretch or size, %zu for a node's valence%s), %zu tets\n"
-      "collapses: %zu\nrejected evaluations: %s\n",
-      result.splits, result.splits_skipped, result.splits_skipped - result.splits_skipped_valence,
-      result.splits_skipped_valence, kept_unsplit.c_str(), result.base.tet_count(),
-      result.history.step_count(), describe_rejections(result.rejections).c_str());
+  if (params.subdivide) {
+    std::printf(
+        "\nsubdivision: %zu splits (%zu edges longer than half the size left unsplit to keep the "
+        "thresholds: %zu for a piece's stretch or size, %zu for a node's valence%s), %zu tets\n",
+        result.splits, result.splits_skipped, result.splits_skipped - result.splits_skipped_valence,
+        result.splits_skipped_valence, kept_unsplit.c_str(), result.base.tet_count());
+  } else {
+    std::printf("\nsubdivision: off (--no-subdivide), %zu tets\n", result.base.tet_count());
+  }
+  std::printf("collapses: %zu\nrejected evaluations: %s\n", result.history.step_count(),
+              describe_rejections(result.rejections).c_str());
   const std::string past = past_valence_summary(result);
   if (!past.empty()) std::printf("past the valence: %s\n", past.c_str());
   if (result.past_valence.stopped_by_factor)
@@ -283,8 +287,9 @@ int cmd_simplify(const Args& args) {
     std::printf("the level written (step %zu), breaking a threshold: %s\n", step,
                 describe_breaks(level_breaks).c_str());
   }
-  std::printf("time: subdivide %.3f s, classify %.3f s, simplify %.3f s (%s kernels)",
-              result.seconds_subdivide, result.seconds_classify, result.seconds_simplify,
+  if (params.subdivide) std::printf("time: subdivide %.3f s, ", result.seconds_subdivide);
+  std::printf("%sclassify %.3f s, simplify %.3f s (%s kernels)",
+              params.subdivide ? "" : "time: ", result.seconds_classify, result.seconds_simplify,
               result.kernels);
   if (result.past_valence.tried)
     std::printf("; and %.3f s for the %s", result.past_valence.seconds_other,
