@@ -246,7 +246,9 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
   } else if (command == "hide" || command == "show") {
     a->kind = command == "hide" ? Kind::kHide : Kind::kShow;
     if (Status s = p.arg_count(1, 1); !s) return s;
-    if (is_material_name(w[1])) {
+    if (!is_material_name(w[1]) && w[1].find(',') != std::string::npos) {  // as --hide's list
+      return p.error("'" + command + "' takes one material a line, got '" + w[1] + "'");
+    } else if (is_material_name(w[1])) {
       a->word = w[1];
     } else if (Status s = p.integer("material", w[1], &a->count); !s) {
       return s;

@@ -272,6 +272,8 @@ TEST(ViewerScript, ErrorsNameTheFileAndLine) {
   EXPECT_EQ(parse_error("quit\nfrobnicate\n"), "t.script:2: unknown command 'frobnicate'");
   EXPECT_EQ(parse_error("\n\nthresholds size=abc\n"),
             "t.script:3: 'size' needs a number, got 'abc'");
+  // A list as --hide takes: one a line here (it said 'material' needs a whole number).
+  EXPECT_EQ(parse_error("hide 1,2\n"), "t.script:1: 'hide' takes one material a line, got '1,2'");
 }
 
 // An endless file is refused after 16 MiB; /dev/null is an empty script.
