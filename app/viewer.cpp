@@ -24,10 +24,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -36,6 +38,8 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+
+#include <unistd.h>
 
 #include "app/cli_util.h"
 #include "app/commands.h"
@@ -323,7 +327,8 @@ class Viewer {
   void shutdown();
   void frame();
 
-  void start_load(const std::string& path);
+  // Starts loading `path`; an error (also shown in the panel) if it cannot start.
+  Status start_load(const std::string& path);
   void start_simplify();
   void poll_job();
   void swap_in(std::unique_ptr<Scene> scene, bool is_load);
@@ -542,7 +547,7 @@ int Viewer::run() {
     return kExitBadInput;
   }
   if (!options_.mesh_path.empty()) {
-    start_load(options_.mesh_path);
+    (void)start_load(options_.mesh_path);  // nothing runs yet: it starts
     pending_job_line_ = options_.has_script ? -1 : 0;
   }
   while (!quit_ && !window_->should_close()) frame();
@@ -583,7 +588,7 @@ void Viewer::frame() {
   } else {
     window_->poll_events();
   }
-  for (const std::string& path : dropped_) start_load(path);
+  for (const std::string& path : dropped_) (void)start_load(path);  // the panel says why not
   dropped_.clear();
   poll_job();
   poll_solve();
@@ -665,12 +670,30 @@ void Viewer::frame() {
               (!scene_ || scene_->lod->step() == static_cast<size_t>(panel_.target_step));
 }
 
-void Viewer::start_load(const std::string& path) {
+// Why opening `path` would fail before reading a byte, or "".
+std::string open_problem(const std::string& path) {
+  if (!is_history_path(path)) {
+    if (Status s = check_mesh_path(path); !s)
+      return s.message() + "; the viewer also opens .tlh collapse histories";
+  }
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return path + ": cannot read: it is a directory";
+  if (access(path.c_str(), R_OK) != 0) return path + ": cannot open: " + std::strerror(errno);
+  return "";
+}
+
+Status Viewer::start_load(const std::string& path) {
   if (job_ && job_->is_load) {
     status_.load_error = "still loading " + job_->path;
-    return;
+    return Status::error(status_.load_error);
   }
   if (job_) {  // a simplification of the old mesh is no longer wanted: say so
+    // Unless the path cannot be opened at all (missing, a directory, unreadable, not a
+    // mesh's or a history's extension): then the run goes on.
+    if (std::string problem = open_problem(path); !problem.empty()) {
+      status_.load_error = problem + "; the running simplification goes on";
+      return Status::error(status_.load_error);
+    }
     job_->cancel = true;
     job_->thread.join();
     job_.reset();
@@ -794,6 +817,7 @@ void Viewer::start_load(const std::string& path) {
     }
     job->done = true;
   });
+  return Status();
 }
 
 void Viewer::start_simplify() {
@@ -1024,7 +1048,7 @@ void Viewer::add_recent(const std::string& path) {
 void Viewer::execute(const ui::Command& command) {
   switch (command.kind) {
     case ui::CommandKind::kOpen:
-      start_load(command.path);
+      (void)start_load(command.path);  // the panel says why not
       break;
     case ui::CommandKind::kSimplify:
       start_simplify();
@@ -1622,6 +1646,7 @@ void Viewer::fill_status() {
   if (s.has_result) {
     s.rejections = scene.result->rejections;
     s.splits = scene.result->splits;
+    s.subdivided = !scene.params_known || scene.params.subdivide;
     s.violations = scene.result->violations;
     s.result_thresholds = scene.params_known ? describe_thresholds(scene.params) : "";
     s.result_thresholds_changed =
@@ -1711,8 +1736,8 @@ Status Viewer::run_action(const ScriptAction& a) {
   switch (a.kind) {
     case Kind::kOpen:
       last_job_error_.clear();
+      if (Status s = start_load(a.path); !s) return s;
       wait_for_job_ = true;
-      start_load(a.path);
       pending_job_line_ = a.flag ? 0 : a.line;
       break;
     case Kind::kThresholds:

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -115,7 +116,11 @@ void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Com
     ImGui::TextWrapped("Error: %s", status.load_error.c_str());
     ImGui::PopStyleColor();
   }
-  if (!status.message.empty()) ImGui::TextWrapped("%s", status.message.c_str());
+  // The last message in a box two lines high, there even when empty, so that a message
+  // of another length does not move what is under it (a longer one scrolls).
+  ImGui::BeginChild("##message", ImVec2(0, 2 * ImGui::GetTextLineHeightWithSpacing()));
+  ImGui::TextWrapped("%s", status.message.c_str());
+  ImGui::EndChild();
 }
 
 void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Command>* commands) {
@@ -401,15 +406,20 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
           status.inside_group_triangles);
   }
 
+  // Simplify stays where it is, greyed while a run goes, and Cancel comes beside it: a
+  // second click on Simplify does nothing (not cancel, nor tick what slid under it).
+  ImGui::BeginDisabled(status.running);
+  if (ImGui::Button("Simplify") && !status.mesh_name.empty())
+    commands->push_back({CommandKind::kSimplify});
+  ImGui::EndDisabled();
   if (!status.running) {
-    if (ImGui::Button("Simplify") && !status.mesh_name.empty())
-      commands->push_back({CommandKind::kSimplify});
     if (!status.simplify_error.empty()) {  // here, where the thresholds can be changed
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
       ImGui::TextWrapped("Error: %s", status.simplify_error.c_str());
       ImGui::PopStyleColor();
     }
   } else {
+    ImGui::SameLine();
     if (ImGui::Button("Cancel")) commands->push_back({CommandKind::kCancel});
     ImGui::SameLine();
     ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0),
@@ -431,9 +441,14 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
         status.step_count);
   }
   if (status.has_result) {
-    ImGui::TextWrapped("Last run: %.2f s (subdivide, classify, simplify), %zu splits%s",
-                       status.simplify_seconds, status.splits,
-                       status.result_cancelled ? " (cancelled)" : "");
+    if (status.subdivided) {
+      ImGui::TextWrapped("Last run: %.2f s (subdivide, classify, simplify), %zu splits%s",
+                         status.simplify_seconds, status.splits,
+                         status.result_cancelled ? " (cancelled)" : "");
+    } else {
+      ImGui::TextWrapped("Last run: %.2f s (classify, simplify), no subdivision%s",
+                         status.simplify_seconds, status.result_cancelled ? " (cancelled)" : "");
+    }
     if (!status.past_valence.empty())
       ImGui::TextWrapped("Past the valence: %s.", status.past_valence.c_str());
     // The guarantee, and where it could not reach: what the final mesh still breaks.
@@ -646,12 +661,13 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
                           status.materials.size() - kListedMaterials);
   ImGui::Checkbox("Ground the outer boundary", &settings->ground_boundary);
 
-  if (!a.solving) {
-    if (ImGui::Button("Solve displayed level") && !status.mesh_name.empty())
-      commands->push_back({CommandKind::kSolve});
-  } else {
-    if (ImGui::Button("Cancel##solve")) commands->push_back({CommandKind::kCancelSolve});
+  ImGui::BeginDisabled(a.solving);  // as Simplify: in place, greyed while it solves
+  if (ImGui::Button("Solve displayed level") && !status.mesh_name.empty())
+    commands->push_back({CommandKind::kSolve});
+  ImGui::EndDisabled();
+  if (a.solving) {
     ImGui::SameLine();
+    if (ImGui::Button("Cancel##solve")) commands->push_back({CommandKind::kCancelSolve});
     char overlay[128];
     std::snprintf(overlay, sizeof(overlay), "%s: %s %.0f%% (it %d)", a.solving_what.c_str(),
                   a.phase.c_str(), 100 * a.fraction, a.iteration);
@@ -1134,6 +1150,38 @@ ViewRect scene_rect(float display_width, float display_height, const PanelState&
   return r;
 }
 
+// The panel's first row, always there and always one row high, so that nothing under it
+// moves when a run, a solve or a load starts or ends (the second click of a double click
+// would land on whatever slid under the pointer): Cancel, and the progress of what runs
+// (the simplification first; a solve's is also in the Analysis section).
+void activity_row(const ViewerStatus& status, std::vector<Command>* commands) {
+  const ViewerStatus::Analysis& a = status.analysis;
+  ImGui::BeginDisabled(!status.running && !a.solving);
+  if (ImGui::Button("Cancel##top"))
+    commands->push_back({status.running ? CommandKind::kCancel : CommandKind::kCancelSolve});
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  double fraction = 0;
+  char text[160];
+  if (status.running) {
+    fraction = status.phase_fraction;
+    std::snprintf(text, sizeof(text), "%s", top_progress_text(status).c_str());
+  } else if (a.solving) {
+    fraction = a.fraction;
+    std::snprintf(text, sizeof(text), "solving the %s: %s %.0f%%", a.solving_what.c_str(),
+                  a.phase.c_str(), 100 * a.fraction);
+  } else if (status.loading) {
+    std::snprintf(text, sizeof(text), "loading %s: %s, %.1f s",
+                  std::filesystem::path(status.loading_path).filename().c_str(),
+                  status.phase.c_str(), status.elapsed_seconds);
+  } else {
+    std::snprintf(text, sizeof(text), "nothing running");
+  }
+  ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1, 0), text);
+  if (status.loading && ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", status.loading_path.c_str());
+}
+
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
                         ThresholdSettings* thresholds, AnalysisSettings* analysis,
                         PanelState* panel, std::vector<Command>* commands) {
@@ -1152,25 +1200,7 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   }
   ImGui::Text("%zu visible tets, %zu triangles", status.visible_tets, status.drawn_triangles);
   ImGui::Checkbox("Statistics window", &panel->show_stats);
-  if (status.running) {  // always in sight, whatever the panel's scroll position
-    if (ImGui::Button("Cancel##top")) commands->push_back({CommandKind::kCancel});
-    ImGui::SameLine();
-    ImGui::ProgressBar(static_cast<float>(status.phase_fraction), ImVec2(-1, 0),
-                       top_progress_text(status).c_str());
-    other_run_bar(status);
-  }
-  if (status.analysis.solving) {  // also always in sight
-    const ViewerStatus::Analysis& a = status.analysis;
-    if (ImGui::Button("Cancel##solvetop")) commands->push_back({CommandKind::kCancelSolve});
-    ImGui::SameLine();
-    char overlay[128];
-    std::snprintf(overlay, sizeof(overlay), "solving the %s: %s %.0f%%", a.solving_what.c_str(),
-                  a.phase.c_str(), 100 * a.fraction);
-    ImGui::ProgressBar(static_cast<float>(a.fraction), ImVec2(-1, 0), overlay);
-  }
-  if (status.loading)
-    ImGui::TextWrapped("Loading %s: %s, %.1f s", status.loading_path.c_str(), status.phase.c_str(),
-                       status.elapsed_seconds);
+  activity_row(status, commands);
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
   if (ImGui::CollapsingHeader("File")) file_section(status, panel, commands);
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);

@@ -218,6 +218,7 @@ struct ViewerStatus {
   bool result_cancelled = false;
   RejectionCounts rejections;
   size_t splits = 0;
+  bool subdivided = true;  // the last run subdivided first
   double simplify_seconds = 0;
   ThresholdViolations violations;  // of the last run's final mesh
   // The thresholds the last run was made with, in words ("size 23, stretch 0.15, valence

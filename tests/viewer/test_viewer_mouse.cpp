@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <thread>
@@ -104,8 +106,8 @@ TEST(ViewerMouse, SizeSliderFollowsAModelInMetres) {
   std::this_thread::sleep_for(200ms);
   Display* display = XOpenDisplay(nullptr);
   ASSERT_NE(display, nullptr);
-  // The size slider's row (y 612) from its grab at the default (x 200) 15 pixels right.
-  drag(display, 200, 612, 215, 612);
+  // The size slider's row (y 648) from its grab at the default (x 200) 15 pixels right.
+  drag(display, 200, 648, 215, 648);
   XCloseDisplay(display);
   ASSERT_EQ(viewer.finish(std::chrono::seconds(120)), 0);
   TetMesh base;
@@ -141,6 +143,54 @@ TEST(ViewerMouse, FoldingThePanelWidensTheView) {
   EXPECT_EQ(a.width, 800 - 392);
   EXPECT_EQ(b.width, 800);
   EXPECT_EQ(b.height, a.height - 32);  // below the folded panel's title bar
+}
+
+// A double click on Simplify starts one run and changes nothing else: the second click
+// used to land on "Subdivide first", which the run's progress row at the panel's top had
+// pushed under the pointer, and the next run was made without subdividing.
+TEST(ViewerMouse, ADoubleClickOnSimplifyTicksNothing) {
+  namespace fs = std::filesystem;
+  const fs::path mesh_dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "vdc";
+  fs::create_directories(mesh_dir);
+  fs::copy_file(std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh", mesh_dir / "m.mesh",
+                fs::copy_options::overwrite_existing);
+  test::BackgroundViewer viewer;
+  // A short path keeps the panel's lines from wrapping: Simplify stays at its place.
+  ASSERT_TRUE(viewer.start("viewer_double_click", "../vdc/m.mesh",
+                           "screenshot a.png ui=1\nwait seconds=3\nwait done\n"
+                           "simplify\nsave run.tlh\nquit\n",
+                           "1280x800"));
+  ASSERT_TRUE(viewer.wait_for("a.png"));
+  std::this_thread::sleep_for(200ms);
+  Display* display = XOpenDisplay(nullptr);
+  ASSERT_NE(display, nullptr);
+  XTestFakeMotionEvent(display, -1, 45, 771, CurrentTime);  // on Simplify
+  XFlush(display);
+  std::this_thread::sleep_for(100ms);
+  for (int click = 0; click < 2; ++click) {
+    XTestFakeButtonEvent(display, 1, True, CurrentTime);
+    XFlush(display);
+    std::this_thread::sleep_for(40ms);
+    XTestFakeButtonEvent(display, 1, False, CurrentTime);
+    XFlush(display);
+    std::this_thread::sleep_for(120ms);
+  }
+  XCloseDisplay(display);
+  ASSERT_EQ(viewer.finish(std::chrono::seconds(120)), 0);
+  // Two runs: the clicks' and the script's.
+  std::ifstream log(viewer.dir() / "log.txt");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  size_t runs = 0;
+  for (size_t at = text.find("simplified:"); at != std::string::npos;
+       at = text.find("simplified:", at + 1))
+    ++runs;
+  EXPECT_EQ(runs, 2u) << text;
+  TetMesh base;
+  CollapseHistory history;
+  std::optional<SimplifyParams> params;
+  ASSERT_TRUE(read_history((viewer.dir() / "run.tlh").string(), &base, &history, &params).ok());
+  ASSERT_TRUE(params.has_value());
+  EXPECT_TRUE(params->subdivide);
 }
 
 // A key pressed and released as by a hand (held 80 ms: shorter taps can fall between

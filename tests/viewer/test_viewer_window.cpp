@@ -338,6 +338,22 @@ TEST(ViewerWindow, OpeningAFileSaysTheRunningSimplificationWasCancelled) {
       << run.output;
 }
 
+// A path that cannot be opened does not cost the running simplification: the error
+// says the run goes on (it was cancelled, and the message said another file was opened).
+TEST(ViewerWindow, OpeningAMissingFileLeavesTheRunningSimplification) {
+  const fs::path dir = fresh_output_dir("viewer_open_missing");
+  std::ofstream(dir / "run.script") << "thresholds size=12\nsimplify wait=0\nopen missing.mesh\n"
+                                       "quit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script run.script");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("run.script:3: missing.mesh: cannot open: No such file or directory; "
+                            "the running simplification goes on"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(run.output.find("cancelled"), std::string::npos) << run.output;
+}
+
 // A size that would subdivide the mesh past the limit: the panel shows the error
 // under the Simplify button, where the thresholds are (not in the File section), in
 // its own words (unit test: SimplifyErrorText); the run ends without a result.
