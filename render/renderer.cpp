@@ -374,7 +374,9 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
 
 void Renderer::draw_legend(const DrawSettings& settings, int width, int height) {
   std::vector<OverlayVertex> v;
-  const float scale = std::max(1.0f, float(std::min(width, height)) / 320.0f);
+  const float resolution = settings.resolution > 0 ? settings.resolution : 1.0f;
+  const float scale =
+      resolution * std::max(1.0f, float(std::min(width, height)) / resolution / 320.0f);
   const float margin = 6 * scale;
   const float line = 11 * scale;
   const float pad = 3 * scale;

@@ -32,6 +32,9 @@ struct DrawSettings {
   bool legend = true;
   Rgb background = {1, 1, 1};
   double highlight_below = 0;  // only for the legend label; the buffers hold the tets
+  // The picture's resolution against the size it is shown at (the viewer draws at 0.5
+  // while the view moves, then scales up): the legend keeps its size on screen.
+  float resolution = 1;
 };
 
 class Renderer {
