@@ -149,6 +149,13 @@ std::string beyond_levels_note(long long elements, size_t step, size_t step_coun
 // Prints the Table I rows (whole mesh, then each material) as an aligned table; with
 // `names` (ReadInfo::material_names) a last column names the materials that have one.
 void print_property_table(const MeshStats& stats, const std::vector<MaterialName>* names = nullptr);
+// "material 2 (arm) -14.6 %, ..." for each material whose volume changed from `before` to
+// `after` by more than kVolumeNotePercent of its own, "" if none: the tolerance lets
+// boundaries and interfaces move, which thins (or thickens) a part a few tolerances thick.
+inline constexpr double kVolumeNotePercent = 1;
+std::string volume_changes(const MeshStats& before, const MeshStats& after,
+                           const std::vector<MaterialName>* names);
+
 // The input file's name of material m ("" if none); `names` may be null.
 std::string material_name_of(const std::vector<MaterialName>* names, int32_t m);
 

@@ -196,7 +196,8 @@ int cmd_simplify(const Args& args) {
   const bool improve = options.improve;
 
   std::printf("input %s\n", in.c_str());
-  print_property_table(stats_of(input), &info.material_names);
+  const MeshStats input_stats = stats_of(input);
+  print_property_table(input_stats, &info.material_names);
   // The size: the uniform one, the local sizing, or the smaller of the two (sizing.h).
   std::printf("\nthresholds: %s\n", describe_thresholds(params).c_str());
   // What the input breaks already: the final mesh's line below says how much of that
@@ -238,7 +239,16 @@ int cmd_simplify(const Args& args) {
   if (improve) improved = improve_timed(&output, params, patches, &seconds_improve);
   std::printf("\noutput %s (step %zu of %zu%s)\n", out.c_str(), step, result.history.step_count(),
               beyond.c_str());
-  print_property_table(stats_of(output), &info.material_names);
+  const MeshStats output_stats = stats_of(output);
+  print_property_table(output_stats, &info.material_names);
+  if (const std::string changes = volume_changes(input_stats, output_stats, &info.material_names);
+      !changes.empty()) {
+    std::fprintf(stderr,
+                 "tetlod simplify: note: volumes changed by more than %g %%: %s; the tolerance "
+                 "(%g) lets boundaries and interfaces move that far, which thins or thickens a "
+                 "part a few times as thick: a smaller --tolerance keeps it\n",
+                 kVolumeNotePercent, changes.c_str(), params.tolerance);
+  }
   const std::string kept_unsplit =
       result.splits_skipped_inside == 0
           ? std::string()

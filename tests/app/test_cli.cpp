@@ -74,6 +74,25 @@ TEST(Cli, UsageAndExitCodes) {
 
 // generate: options that would be ignored or read loosely are usage errors, checked
 // before TetGen runs.
+// A tolerance that thins a part is said, with each material's change: the motor at
+// tolerance 3 changes its shaft (material 3) by -15.9 %; at the default (0.18) none by 1 %.
+TEST(Cli, SimplifySaysWhichMaterialsChangedVolume) {
+  const std::string dir = test::cli_output_dir("volume_note");
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const test::CommandResult coarse =
+      test::run_tetlod("simplify '" + motor + "' -o " + dir + "/t3.mesh --size 30 --tolerance 3");
+  ASSERT_EQ(coarse.code, 0) << coarse.output;
+  EXPECT_NE(coarse.output.find("note: volumes changed by more than 1 %: material 2 +9.6 %, "
+                               "material 3 -15.9 %"),
+            std::string::npos)
+      << coarse.output;
+  EXPECT_NE(coarse.output.find("a smaller --tolerance keeps it"), std::string::npos);
+  const test::CommandResult fine =
+      test::run_tetlod("simplify '" + motor + "' -o " + dir + "/t.mesh --size 30");
+  ASSERT_EQ(fine.code, 0) << fine.output;
+  EXPECT_EQ(fine.output.find("volumes changed"), std::string::npos) << fine.output;
+}
+
 TEST(Cli, GenerateRefusesWhatItWouldIgnore) {
   const std::string out = out_dir() + "/generated.mesh";
   fs::remove(out);
