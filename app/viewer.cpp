@@ -321,6 +321,11 @@ class Viewer {
   int run();
 
   void on_drop(const char* path) { dropped_.push_back(path); }
+  // Keys pressed (or repeating) since the last frame, in order: a tap shorter than a
+  // frame is seen (ImGui 1.86 reads the keys' state once a frame, and missed such taps).
+  void on_key(int key, int action) {
+    if (action == GLFW_PRESS || action == GLFW_REPEAT) pressed_keys_.push_back(key);
+  }
 
  private:
   bool init();
@@ -336,6 +341,7 @@ class Viewer {
   void execute(const ui::Command& command);
   void handle_camera_input();
   void apply_view_changes();
+  void start_surface_rebuild(const render::SurfaceFilter& filter);
   void follow_scrubber();
   void update_stats();
   // Analysis.
@@ -385,6 +391,7 @@ class Viewer {
   ui::ViewerStatus status_;
   std::vector<ui::Command> commands_;
   std::vector<std::string> dropped_;
+  std::vector<int> pressed_keys_;  // see on_key()
 
   std::unique_ptr<Scene> scene_;
   size_t scene_generation_ = 0;
@@ -423,10 +430,16 @@ class Viewer {
   bool thresholds_from_history_ = false;  // the panel shows the opened history's thresholds
   int save_line_ = 0;                     // the script line that asked, if any
 
-  // A surface being rebuilt for a new filter (see apply_view_changes()).
+  // A surface being rebuilt off the UI thread, for a new filter (see apply_view_changes())
+  // or for a far move of the level (see follow_scrubber()).
   std::future<std::unique_ptr<render::LodSurface>> surface_future_;
   size_t surface_step_ = 0, surface_generation_ = 0;
   render::SurfaceFilter surface_filter_;
+  // While the level's rebuild after a far move runs: the step the surface on screen
+  // shows (the LOD is already at the new one).
+  std::optional<size_t> jump_from_;
+  // Tets the incremental updates touched per step, a running mean (follow_scrubber()).
+  double tets_per_step_ = 30;
 
   // Drawing.
   bool needs_redraw_ = true;
@@ -474,6 +487,12 @@ void drop_callback(GLFWwindow* window, int count, const char** paths) {
   if (viewer && count > 0) viewer->on_drop(paths[0]);
 }
 
+// Set before ImGui's backend installs its own, which then calls it after its own work.
+void key_callback(GLFWwindow* window, int key, int, int action, int) {
+  auto* viewer = static_cast<Viewer*>(glfwGetWindowUserPointer(window));
+  if (viewer) viewer->on_key(key, action);
+}
+
 bool Viewer::init() {
   std::string error;
   window_ = render::WindowContext::create(options_.width, options_.height, "TetLOD", true, &error);
@@ -491,6 +510,7 @@ bool Viewer::init() {
   glfwSwapInterval(options_.has_script ? 0 : 1);
   glfwSetWindowUserPointer(glfw_window, this);
   glfwSetDropCallback(glfw_window, drop_callback);
+  glfwSetKeyCallback(glfw_window, key_callback);
   renderer_ = std::make_unique<render::Renderer>(window_->gl());
   if (!renderer_->init(&error)) {
     std::fprintf(stderr, "tetlod view: %s\n", error.c_str());
@@ -959,6 +979,7 @@ void Viewer::hide_by_name() {
 void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
   scene_ = std::move(scene);
   ++scene_generation_;
+  jump_from_.reset();
   has_stats_ = false;
   surface_has_field_ = false;
   if (solve_job_) solve_job_->cancel = true;  // its level is gone; poll_solve() says so
@@ -1112,6 +1133,8 @@ void Viewer::execute(const ui::Command& command) {
 
 void Viewer::handle_camera_input() {
   const ImGuiIO& io = ImGui::GetIO();
+  std::vector<int> keys;
+  keys.swap(pressed_keys_);
   if (!scene_) return;
   int width = 0, height = 0;
   window_->framebuffer_size(&width, &height);
@@ -1127,20 +1150,21 @@ void Viewer::handle_camera_input() {
     }
     if (io.MouseWheel != 0) camera_.zoom(io.MouseWheel);
   }
-  if (!io.WantCaptureKeyboard) {
-    if (ImGui::IsKeyPressed(GLFW_KEY_F)) execute({ui::CommandKind::kFit});
-    for (int k = 0; k < 4; ++k)
-      if (ImGui::IsKeyPressed(GLFW_KEY_0 + k)) execute({ui::CommandKind::kAxisView, "", k});
-    // The level of detail: held keys repeat, as on the strip's arrow buttons.
-    const long long last = static_cast<long long>(scene_->lod->step_count());
-    const long long page = std::max(1LL, last / 100);
-    long long& step = panel_.target_step;
-    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) step -= 1;
-    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) step += 1;
-    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_UP)) step -= page;
-    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_DOWN)) step += page;
-    if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) step = 0;
-    if (ImGui::IsKeyPressed(GLFW_KEY_END)) step = last;
+  if (io.WantCaptureKeyboard) return;
+  // The level of detail: held keys repeat, as on the strip's arrow buttons.
+  const long long last = static_cast<long long>(scene_->lod->step_count());
+  const long long page = std::max(1LL, last / 100);
+  long long& step = panel_.target_step;
+  for (const int key : keys) {
+    if (key == GLFW_KEY_F) execute({ui::CommandKind::kFit});
+    if (key >= GLFW_KEY_0 && key <= GLFW_KEY_3)
+      execute({ui::CommandKind::kAxisView, "", key - GLFW_KEY_0});
+    if (key == GLFW_KEY_LEFT) step -= 1;
+    if (key == GLFW_KEY_RIGHT) step += 1;
+    if (key == GLFW_KEY_PAGE_UP) step -= page;
+    if (key == GLFW_KEY_PAGE_DOWN) step += page;
+    if (key == GLFW_KEY_HOME) step = 0;
+    if (key == GLFW_KEY_END) step = last;
     step = std::clamp(step, 0LL, last);
   }
 }
@@ -1154,8 +1178,12 @@ void Viewer::apply_view_changes() {
   if (surface_future_.valid()) {
     if (surface_future_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
     std::unique_ptr<render::LodSurface> surface = surface_future_.get();
+    // A far move's surface is taken even if the filter has changed since (the surface on
+    // screen is of another step): then a rebuild for the new filter follows.
+    const bool jump = jump_from_.has_value();
+    jump_from_.reset();
     if (surface_generation_ == scene_generation_ &&
-        same_filter(surface_filter_, make_filter(view_))) {
+        (jump || same_filter(surface_filter_, make_filter(view_)))) {
       Lod& lod = *scene_->lod;
       const size_t now = lod.step();
       if (now != surface_step_) {
@@ -1169,11 +1197,15 @@ void Viewer::apply_view_changes() {
       surface_has_field_ = false;
       upload_all();
       interacting_ = true;
-      return;
+      if (!jump) return;
     }
   }
   const render::SurfaceFilter filter = make_filter(view_);
   if (same_filter(filter, scene_->filter)) return;
+  start_surface_rebuild(filter);
+}
+
+void Viewer::start_surface_rebuild(const render::SurfaceFilter& filter) {
   const Lod& lod = *scene_->lod;
   auto arrays = std::make_shared<TetMesh>();
   arrays->positions = lod.positions();
@@ -1197,7 +1229,24 @@ void Viewer::follow_scrubber() {
   Lod& lod = *scene_->lod;
   const size_t target = static_cast<size_t>(
       std::clamp<long long>(panel_.target_step, 0, static_cast<long long>(lod.step_count())));
-  if (lod.step() == target) return;
+  if (lod.step() == target || jump_from_) return;  // (the level jumped to is being drawn)
+  // A far move: the LOD goes there at once and the level's surface is built anew off the
+  // UI thread (LodSurface::reset(), O(its tets)), the old one staying on screen meanwhile,
+  // when the incremental updates would touch more tets than the level has (they cost
+  // about twice as much a tet: a 1M-tet motor's finest level took a minute to reach from
+  // the coarsest that way, and a second at most this one; docs/PERFORMANCE.md) and more
+  // than kFarTets, so that a short move is still drawn as it goes.
+  constexpr double kFarTets = 100000;
+  const size_t distance = target > lod.step() ? target - lod.step() : lod.step() - target;
+  const double to_touch = double(distance) * tets_per_step_;
+  if (to_touch > kFarTets && to_touch > double(lod.tet_count_at(target)) &&
+      !surface_future_.valid()) {
+    jump_from_ = lod.step();
+    lod.seek(target);
+    start_surface_rebuild(scene_->filter);
+    surface_has_field_ = false;
+    return;
+  }
   // Move towards the target in chunks until the frame's budget is spent, so a long
   // drag keeps the window responsive and the display catches up over a few frames.
   constexpr double kBudgetSeconds = 0.008;
@@ -1206,14 +1255,18 @@ void Viewer::follow_scrubber() {
   const render::LodState state = render::lod_state(lod);
   LodDelta delta;
   surface_has_field_ = false;  // LodSurface::update() drops the |E| values
+  size_t steps = 0, touched = 0;
   while (lod.step() != target) {
     const size_t step = lod.step();
     const size_t next = target > step ? std::min(target, step + kChunk)
                                       : (step - target > kChunk ? step - kChunk : target);
     lod.seek(next, &delta);
     scene_->surface.update(state, delta);
+    steps += next > step ? next - step : step - next;
+    touched += delta.appeared.size() + delta.vanished.size() + delta.changed.size();
     if (seconds_between(start, Clock::now()) > kBudgetSeconds) break;
   }
+  tets_per_step_ = 0.8 * tets_per_step_ + 0.2 * double(touched) / double(steps);
   renderer_->update_triangles(scene_->surface.triangles(), scene_->surface.take_triangle_dirty());
   renderer_->update_highlight(scene_->surface.highlight(), scene_->surface.take_highlight_dirty(),
                               scene_->surface.highlighted_tets());
@@ -1277,7 +1330,9 @@ void Viewer::draw_scene(int fb_width, int fb_height) {
       view.height != drawn_height_ || !same_draw(draw, drawn_settings_)) {
     const int w = std::max(1, static_cast<int>(std::lround(view.width * scale)));
     const int h = std::max(1, static_cast<int>(std::lround(view.height * scale)));
-    renderer_->draw(draw, camera, w, h);
+    render::DrawSettings scaled = draw;
+    scaled.resolution = static_cast<float>(scale);
+    renderer_->draw(scaled, camera, w, h);
     drawn_scale_ = scale;
     drawn_width_ = view.width;
     drawn_height_ = view.height;
@@ -1658,9 +1713,10 @@ void Viewer::fill_status() {
     s.result_cancelled = scene.result->cancelled;
   }
   const Lod& lod = *scene.lod;
-  s.step = lod.step();
+  s.step = jump_from_ ? *jump_from_ : lod.step();  // the step on screen
+  s.drawing = surface_future_.valid();
   s.step_count = lod.step_count();
-  s.elements = lod.alive_tet_count();
+  s.elements = jump_from_ ? lod.tet_count_at(*jump_from_) : lod.alive_tet_count();
   s.elements_at_target = lod.tet_count_at(static_cast<size_t>(
       std::clamp<long long>(panel_.target_step, 0, static_cast<long long>(lod.step_count()))));
   s.elements_at_end = lod.tet_count_at(lod.step_count());
@@ -1951,7 +2007,8 @@ void Viewer::bench_frame() {
     panel_.target_step = bench_.backward ? last - along : along;
     return;
   }
-  if (bench_.scrub && lod.step() != static_cast<size_t>(panel_.target_step)) return;
+  // (At the end only once the end's surface is drawn, after a far move too.)
+  if (bench_.scrub && (lod.step() != static_cast<size_t>(panel_.target_step) || jump_from_)) return;
   if (bench_.scrub && !bench_.backward) {
     bench_.backward = true;
     bench_.frame = 0;

@@ -551,9 +551,10 @@ void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Comman
   // What is on screen (behind the slider while the mesh catches up), shorter if the strip
   // is narrow, left out if it is narrower still.
   char shown[128], shown_short[64];
-  std::snprintf(shown, sizeof(shown), "shown: step %zu, %zu elements (%zu at the end)", status.step,
-                status.elements, status.elements_at_end);
-  std::snprintf(shown_short, sizeof(shown_short), "shown: step %zu", status.step);
+  const char* drawing = status.drawing ? " (drawing...)" : "";
+  std::snprintf(shown, sizeof(shown), "shown: step %zu, %zu elements (%zu at the end)%s",
+                status.step, status.elements, status.elements_at_end, drawing);
+  std::snprintf(shown_short, sizeof(shown_short), "shown: step %zu%s", status.step, drawing);
   ImGui::SameLine();
   const float room = ImGui::GetContentRegionAvail().x;
   if (ImGui::CalcTextSize(shown_short).x <= room) {

@@ -236,6 +236,7 @@ struct ViewerStatus {
   size_t elements_at_target = 0;  // at the scrubber's target
   size_t elements_at_end = 0;     // after the last collapse
   size_t visible_tets = 0, drawn_triangles = 0;
+  bool drawing = false;  // the surface is being built anew (a far move, a new cut or filter)
 
   // Statistics of a level (possibly an older one while a new one is computed).
   bool has_stats = false;

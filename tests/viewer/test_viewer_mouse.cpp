@@ -255,6 +255,33 @@ TEST(ViewerMouse, KeysMoveTheLevelOfDetail) {
   EXPECT_LT(saved.level.tet_count(), lod.tet_count_at(2 * page));
 }
 
+// Taps shorter than a frame count too (ImGui 1.86 reads the keys once a frame, and lost
+// them): Home, then the right arrow tapped three times, 1 ms each, save step 3's level.
+TEST(ViewerMouse, ShortKeyTapsAreNotLost) {
+  test::BackgroundViewer viewer;
+  start_simplified_spheres(&viewer, "viewer_short_taps");
+  if (HasFatalFailure()) return;
+  Display* display = XOpenDisplay(nullptr);
+  ASSERT_NE(display, nullptr);
+  hover_view(display);
+  press(display, XK_Home);
+  const KeyCode right = XKeysymToKeycode(display, XK_Right);
+  for (int tap = 0; tap < 3; ++tap) {
+    XTestFakeKeyEvent(display, right, True, CurrentTime);
+    XFlush(display);
+    std::this_thread::sleep_for(1ms);
+    XTestFakeKeyEvent(display, right, False, CurrentTime);
+    XFlush(display);
+    std::this_thread::sleep_for(150ms);
+  }
+  XCloseDisplay(display);
+  SavedLevel saved;
+  read_saved(&viewer, &saved);
+  if (HasFatalFailure()) return;
+  const Lod lod(saved.base, &saved.history);
+  EXPECT_EQ(saved.level.tet_count(), lod.tet_count_at(3));
+}
+
 // The strip's box of elements jumps on Enter, as on Jump: a click in it, ctrl+A, 17000
 // and Enter save the level nearest 17000 elements (not the coarsest, 14222, shown then).
 TEST(ViewerMouse, EnterInTheElementsBoxJumps) {

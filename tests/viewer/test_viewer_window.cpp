@@ -324,6 +324,35 @@ TEST(ViewerWindow, FitKeepsTheViewDirection) {
       0u);
 }
 
+// A far move of the level (the whole history, finest and back) builds the level's surface
+// anew off the UI thread instead of walking the steps: the finest level looks as that
+// level saved and opened again, and the way back gives the picture it left; a short move
+// (made step by step) there and back too.
+TEST(ViewerWindow, FarMovesOfTheLevelDrawItAsItIs) {
+  const fs::path dir = fresh_output_dir("viewer_far_moves");
+  std::ofstream(dir / "run.script") << "simplify\nscreenshot end.png width=320 height=240\n"
+                                       "scrub step=0\nscreenshot finest.png width=320 height=240\n"
+                                       "save finest.mesh\nscrub step=40\nscrub step=0\n"
+                                       "screenshot short.png width=320 height=240\n"
+                                       "scrub end\nscreenshot back.png width=320 height=240\n"
+                                       "quit\n";
+  std::ofstream(dir / "open.script") << "screenshot ref.png width=320 height=240\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const ViewerRun open = run_viewer(dir, "finest.mesh --size 640x480 --script open.script");
+  ASSERT_EQ(open.exit_code, 0) << open.output;
+  const render::Image end = load_png(dir / "end.png"), finest = load_png(dir / "finest.png");
+  EXPECT_GT(render::compare_images(end, finest, 0, nullptr).differing_pixels, 320u * 240u / 50u)
+      << "the level did not move";
+  EXPECT_EQ(render::compare_images(finest, load_png(dir / "ref.png"), 0, nullptr).differing_pixels,
+            0u);
+  EXPECT_EQ(render::compare_images(end, load_png(dir / "back.png"), 0, nullptr).differing_pixels,
+            0u);
+  EXPECT_EQ(
+      render::compare_images(finest, load_png(dir / "short.png"), 0, nullptr).differing_pixels, 0u);
+}
+
 // Opening a file while a simplification runs cancels it, and says so (it was
 // silently discarded): in the panel, with the file loaded, and on stderr.
 TEST(ViewerWindow, OpeningAFileSaysTheRunningSimplificationWasCancelled) {
