@@ -133,6 +133,32 @@ std::string level_label(long long n, size_t step, const Lod& lod) {
   return label + ")";
 }
 
+// The levels nearest `levels` elements, largest count first, each shown once: a count
+// whose level is the last step (or the previous count's level) is named in that level's
+// heading instead of the same pictures twice; `last_also` gets those of the last step.
+struct ChosenLevel {
+  size_t step = 0;
+  std::string label;
+};
+std::vector<ChosenLevel> choose_levels(std::vector<long long> levels, const Lod& lod,
+                                       std::string* last_also) {
+  std::sort(levels.begin(), levels.end(), std::greater<>());
+  std::vector<ChosenLevel> chosen;
+  for (const long long n : levels) {
+    const size_t step = lod.step_for_elements(static_cast<size_t>(n));
+    const std::string label = level_label(n, step, lod);  // (and its note, if any)
+    const std::string also = "; also " + label;
+    if (step == lod.step_count()) {
+      *last_also += also;
+    } else if (!chosen.empty() && chosen.back().step == step) {
+      chosen.back().label += also;
+    } else {
+      chosen.push_back({step, label});
+    }
+  }
+  return chosen;
+}
+
 std::optional<std::vector<long long>> parse_levels(const std::string& text) {
   std::vector<long long> levels;
   size_t start = 0;
@@ -242,15 +268,13 @@ int cmd_report(const Args& args) {
       thresholds = describe_thresholds(*history.params) + " (saved in the history)" +
                    (options.simplify_options.improve ? "; levels improved (--improve)" : "");
     meshes.push_back({"step 0 (the subdivided input)", std::move(input)});
-    std::sort(levels.begin(), levels.end(), std::greater<>());
-    std::vector<size_t> steps;
-    for (const long long n : levels) steps.push_back(history.lod->step_for_elements(size_t(n)));
-    steps.push_back(last);
-    for (size_t k = 0; k < steps.size(); ++k) {
+    std::string last_also;
+    std::vector<ChosenLevel> chosen = choose_levels(levels, *history.lod, &last_also);
+    chosen.push_back({last, "last step (" + std::to_string(last) + ")" + last_also});
+    for (const ChosenLevel& c : chosen) {
       Level level;
-      level.label = k + 1 < steps.size() ? level_label(levels[k], steps[k], *history.lod)
-                                         : "last step (" + std::to_string(last) + ")";
-      if (!history_level(&history, "report", steps[k], &level.mesh)) return kExitBadInput;
+      level.label = c.label;
+      if (!history_level(&history, "report", c.step, &level.mesh)) return kExitBadInput;
       if (options.simplify_options.improve) {
         improve_mesh(&level.mesh, *history.params, 4, nullptr, &history.patches);
         level.label += ", improved";
@@ -285,14 +309,14 @@ int cmd_report(const Args& args) {
         describe_thresholds(so.params) + (so.improve ? "; levels improved (--improve)" : "");
     meshes.push_back({"input", input});
     Lod lod(result.base, &result.history);
-    std::sort(levels.begin(), levels.end(), std::greater<>());
-    for (const long long n : levels) {
-      const size_t step = lod.step_for_elements(static_cast<size_t>(n));
-      lod.seek(step);
-      meshes.push_back({level_label(n, step, lod), lod.extract()});
+    std::string last_also;
+    for (const ChosenLevel& c : choose_levels(levels, lod, &last_also)) {
+      lod.seek(c.step);
+      meshes.push_back({c.label, lod.extract()});
     }
-    meshes.push_back({"simplified (step " + std::to_string(result.history.step_count()) + ")",
-                      std::move(result.output)});
+    meshes.push_back(
+        {"simplified (step " + std::to_string(result.history.step_count()) + ")" + last_also,
+         std::move(result.output)});
     if (so.improve) {
       for (size_t k = 1; k < meshes.size(); ++k) {
         improve_mesh(&meshes[k].mesh, so.params, 4, nullptr, &patches);

@@ -410,6 +410,25 @@ TEST(CliReport, WritesASelfContainedPageWithEveryLevel) {
   EXPECT_EQ(html.rfind("</html>"), html.size() - 8);
 }
 
+// A level that is the last step (or another level) is not shown twice: its count is named
+// in that level's heading.
+TEST(CliReport, ALevelThatIsTheLastIsShownOnce) {
+  const std::string dir = out_dir() + "/report_same_level";
+  fs::remove_all(dir);
+  const CommandResult r = run("report " + asset("box2.mesh") +
+                              " --simplify --size 10 --no-subdivide --levels 100,1,2 --width 32 "
+                              "--height 32 -o " +
+                              dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir + "/report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // input, the level ~100, the final mesh (also ~2 and ~1): a picture and a histogram each.
+  EXPECT_EQ(count_of(html, "<img src=\"data:image/png;base64,iVBORw0KGgo"), 6u);
+  EXPECT_NE(html.find("; also level ~2 (step "), std::string::npos) << html;
+  EXPECT_NE(html.find("; also level ~1 (step "), std::string::npos) << html;
+  EXPECT_FALSE(fs::exists(dir + "/level3.png"));
+}
+
 // A shorter report into the directory of a longer one removes the longer one's
 // extra pictures (they would read as levels of this report) and nothing else.
 TEST(CliReport, RemovesThePicturesOfALongerEarlierReport) {
