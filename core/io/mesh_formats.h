@@ -69,7 +69,9 @@ void write_vtk_legacy(const TetMesh& mesh, const SurfaceGroups* surfaces,
                       const std::vector<MaterialName>* names, bool binary, std::string* out);
 void write_vtu(const TetMesh& mesh, const SurfaceGroups* surfaces,
                const std::vector<MaterialName>* names, bool binary, std::string* out);
-void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out);
+// `names`: WriteOptions::material_names, or null (in comments, as the groups' names).
+void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces,
+                   const std::vector<MaterialName>* names, std::string* out);
 void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
                   const std::vector<MaterialName>* names, std::string* out);
 // With extra point and cell arrays (sizes and names checked by the caller).

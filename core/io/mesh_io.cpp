@@ -279,7 +279,7 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
       io::write_vtu(mesh, surfaces, options.material_names, options.vtk_binary, &text);
       break;
     case FileKind::kNastran:
-      io::write_nastran(mesh, surfaces, &text);
+      io::write_nastran(mesh, surfaces, options.material_names, &text);
       break;
     case FileKind::kAbaqus:
       io::write_abaqus(mesh, surfaces, options.material_names, &text);

@@ -22,6 +22,11 @@ namespace {
 
 // The comment that keeps material 0, which cannot be a Nastran PID, through a file.
 constexpr std::string_view kMaterialZeroComment = "$ TetLOD material 0 = PID ";
+// The comments that keep the names of materials and surface groups (Nastran has no
+// place for a name): "$ material: the CTETRA with PID 3 are copper".
+constexpr std::string_view kMaterialNameComment = "$ material: the CTETRA with PID ";
+constexpr std::string_view kGroupNameComment = "$ surface group: the CTRIA3 with PID ";
+constexpr std::string_view kNameSeparator = " are ";
 
 bool equals_upper(std::string_view s, std::string_view upper) {
   if (s.size() != upper.size()) return false;
@@ -127,6 +132,22 @@ class NastranParser {
   bool next_line(std::string_view* line) { return next_text_line(text_, &pos_, &line_, line); }
 
   bool read_comment(std::string_view comment) {
+    for (const bool material : {true, false}) {
+      const std::string_view start = material ? kMaterialNameComment : kGroupNameComment;
+      if (comment.substr(0, start.size()) != start) continue;
+      // "$ ... PID 3 are copper": a comment that does not read so is only a comment.
+      const std::string_view rest = comment.substr(start.size());
+      const size_t separator = rest.find(kNameSeparator);
+      int64_t pid = 0;
+      if (separator == std::string_view::npos ||
+          !parse_integer(trim_blanks(rest.substr(0, separator)), &pid) || pid < 1 ||
+          pid > std::numeric_limits<int32_t>::max())
+        return true;
+      const std::string_view name = trim_blanks(rest.substr(separator + kNameSeparator.size()));
+      if (!name.empty() && !(!material && name == "unnamed"))
+        (material ? material_names_ : group_names_)[pid] = std::string(name);
+      return true;
+    }
     if (comment.substr(0, kMaterialZeroComment.size()) != kMaterialZeroComment) return true;
     const std::string_view value = trim_blanks(comment.substr(kMaterialZeroComment.size()));
     int64_t pid = 0;
@@ -405,6 +426,19 @@ class NastranParser {
         surface.add_triangle(int32_t(t.property), corners[0], corners[1], corners[2]);
     }
     surface.finish(out_);
+    // The names the comments gave (of materials present; material 0 by its PID).
+    for (InputSurfaceGroup& group : out_->surface_groups) {
+      if (auto it = group_names_.find(group.tag); it != group_names_.end()) group.name = it->second;
+    }
+    if (!material_names_.empty()) {
+      std::vector<int32_t> present = out_->mesh.materials;
+      std::sort(present.begin(), present.end());
+      present.erase(std::unique(present.begin(), present.end()), present.end());
+      for (const int32_t m : present) {
+        auto it = material_names_.find(m == 0 ? zero_pid_ : m);
+        if (it != material_names_.end()) out_->material_names.push_back({m, it->second});
+      }
+    }
     return true;
   }
 
@@ -442,7 +476,8 @@ class NastranParser {
   std::vector<std::pair<int64_t, uint32_t>> sorted_;  // (id, vertex), else
   std::vector<PendingTet> tets_;
   int64_t zero_pid_ = -1;
-  std::map<std::string, size_t> skipped_solids_;  // CHEXA, CPENTA, CPYRAM entries
+  std::map<int64_t, std::string> material_names_, group_names_;  // by PID, from comments
+  std::map<std::string, size_t> skipped_solids_;                 // CHEXA, CPENTA, CPYRAM entries
 };
 
 // `value` in at most 16 characters as a Nastran real (with a decimal point): exact
@@ -482,7 +517,8 @@ Status parse_nastran(std::string_view text, const std::string& name, ParsedMesh*
   return parser.parse();
 }
 
-void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces, std::string* out) {
+void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces,
+                   const std::vector<MaterialName>* names, std::string* out) {
   // Material m > 0 is PID m; material 0 (no PID can be 0) the smallest unused PID,
   // named in a comment that TetLOD reads back.
   std::vector<int32_t> materials = mesh.materials;
@@ -521,16 +557,30 @@ void write_nastran(const TetMesh& mesh, const SurfaceGroups* surfaces, std::stri
     append_number(out, zero_pid);
     out->push_back('\n');
   }
+  // A name on one line of a comment: control characters become '_'.
+  const auto append_name = [out](const std::string& name) {
+    for (const char c : name) out->push_back(static_cast<unsigned char>(c) < 0x20 ? '_' : c);
+    out->push_back('\n');
+  };
+  // The materials' names in comments, read back by TetLOD.
+  if (names) {
+    for (const MaterialName& n : *names) {
+      if (!std::binary_search(materials.begin(), materials.end(), n.material)) continue;
+      out->append(kMaterialNameComment);
+      append_number(out, n.material == 0 ? zero_pid : int64_t{n.material});
+      out->append(kNameSeparator);
+      append_name(n.name);
+    }
+  }
   // The surface groups, as Gmsh's Nastran export writes physical surfaces: a CTRIA3
   // per triangle, after the CTETRAs, with the group's tag as its PID (which no
   // material's PID reaches: first_surface_tag()). The names go in comments.
   if (surfaces) {
     for (const SurfaceGroup& group : surfaces->groups) {
-      out->append("$ surface group: the CTRIA3 with PID ");
+      out->append(kGroupNameComment);
       append_number(out, group.tag);
-      out->append(" are ");
-      out->append(group.name.empty() ? "unnamed" : group.name);
-      out->push_back('\n');
+      out->append(kNameSeparator);
+      append_name(group.name.empty() ? "unnamed" : group.name);
     }
   }
   // The bulk data section's opening line: a file of bulk data alone does not need it,

@@ -133,9 +133,50 @@ TEST(IoNastran, SurfaceGroupsReadBackInSmallAndLargeField) {
     ASSERT_EQ(info.surface_groups.size(), groups.groups.size());
     for (size_t g = 0; g < groups.groups.size(); ++g) {
       EXPECT_EQ(info.surface_groups[g].tag, groups.groups[g].tag);
+      EXPECT_EQ(info.surface_groups[g].name, groups.groups[g].name);
       EXPECT_EQ(info.surface_groups[g].triangles.size(), groups.groups[g].triangles.size());
     }
   }
+}
+
+// The names of materials (material 0 too, under its PID) and groups come back from the
+// comments they are written in; a name's control characters become '_'; other comments,
+// and ours damaged, are only comments.
+TEST(IoNastran, NamesReadBackFromTheirComments) {
+  const std::string dir = test::output_dir("nastran_names");
+  const TetMesh grid = test::make_grid_mesh(
+      3, 1, 1, [](int i, int, int) { return i; }, 0.5);
+  const std::vector<MaterialName> names = {{0, "air gap"}, {2, "Wicklung \xc3\xbc, prim\xc3\xa4r"}};
+  WriteOptions options;
+  options.surface_groups = true;
+  options.material_names = &names;
+  const std::string path = dir + "/named.bdf";
+  ASSERT_TRUE(write_mesh(path, grid, options).ok());
+  TetMesh back;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+  test::expect_same_mesh(grid, back);
+  ASSERT_EQ(info.material_names.size(), 2u);
+  EXPECT_EQ(info.material_names[0].material, 0);
+  EXPECT_EQ(info.material_names[0].name, "air gap");
+  EXPECT_EQ(info.material_names[1].material, 2);
+  EXPECT_EQ(info.material_names[1].name, names[1].name);
+  ASSERT_FALSE(info.surface_groups.empty());
+  for (const InputSurfaceGroup& group : info.surface_groups)
+    EXPECT_EQ(group.name.rfind("interface_", 0) == 0 || group.name.rfind("boundary_", 0) == 0, true)
+        << group.name;
+
+  std::string text = test::read_text(path);
+  const std::string two = "$ material: the CTETRA with PID 2 are ";
+  ASSERT_NE(text.find(two), std::string::npos);
+  text.insert(text.find(two), "$ material: the CTETRA with PID x are junk\n$ material: the\n");
+  const std::vector<MaterialName> odd = {{1, "two\nlines"}};
+  options.material_names = &odd;
+  ASSERT_TRUE(write_mesh(dir + "/odd.bdf", grid, options).ok());
+  EXPECT_NE(test::read_text(dir + "/odd.bdf").find("PID 1 are two_lines\n"), std::string::npos);
+  ASSERT_TRUE(read_mesh_from_memory(text, MeshFormat::kNastran, "n.bdf", &back, &info).ok());
+  ASSERT_EQ(info.material_names.size(), 2u);
+  EXPECT_EQ(info.material_names[1].name, names[1].name);
 }
 
 TEST(IoNastran, RandomDamageNeverCrashes) {
