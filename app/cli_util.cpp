@@ -135,6 +135,13 @@ std::vector<std::string> reader_notes(const ReadInfo& info, bool surfaces_writte
   }
   if (info.surface_groups.size() > shown)
     groups += " and " + std::to_string(info.surface_groups.size() - shown) + " more";
+  // Those in no group (a partitioned Gmsh file's partition boundaries, say) are not kept
+  // at all.
+  uint64_t grouped = 0;
+  for (const InputSurfaceGroup& group : info.surface_groups) grouped += group.triangles.size();
+  if (!groups.empty() && info.surface_elements_not_kept > grouped)
+    groups += " (" + std::to_string(info.surface_elements_not_kept - grouped) +
+              " of them in no group, not kept at all)";
   notes.push_back(
       std::to_string(info.surface_elements_not_kept) +
       (info.surface_elements_not_kept == 1 ? " surface element is not kept as an element"

@@ -461,13 +461,15 @@ TEST(Cli, SimplifyKeepsTheInputsSurfaceGroups) {
   EXPECT_EQ(r.output.find("note: surface group"), std::string::npos) << r.output;
 }
 
-// A Gmsh file's surface elements are read as its surface groups only: a note says so,
-// except where the command writes the groups again (--surfaces).
+// A Gmsh file's surface elements are read as its surface groups only: a note says so
+// (and how many are in no group: the partitions' boundaries), except where the command
+// writes the groups again (--surfaces).
 TEST(Cli, SurfaceElementsNoteOnlyWhereTheGroupsAreNotWritten) {
   const std::string coax = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_part3.msh";
   const std::string note =
       "coax_part3.msh: note: 552 surface elements are not kept as elements, only as the "
-      "surface groups 'ends', 'jacket': TetLOD keeps the tetrahedra";
+      "surface groups 'ends', 'jacket' (126 of them in no group, not kept at all): TetLOD keeps "
+      "the tetrahedra";
   const std::string out = out_dir() + "/coax_note.msh";
   for (const std::string& command : {"stats " + coax, "convert " + coax + " " + out,
                                      "simplify " + coax + " -o " + out + " --size 2"}) {
