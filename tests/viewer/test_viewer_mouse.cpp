@@ -86,6 +86,17 @@ TEST(ViewerMouse, DragStartedOverThePanelLeavesTheCamera) {
 // size 0.023) a short drag of its grab to the right gives a size a little above the
 // default, rounded to 4 digits, which Simplify then uses (saved with the history). With
 // the fixed range 0.1 to 100 it jumped past 0.1, above half the model's diagonal.
+// The thresholds of the history a viewer saved as run.tlh, once it has quit with 0.
+void read_saved_params(test::BackgroundViewer* viewer, SimplifyParams* params) {
+  ASSERT_EQ(viewer->finish(std::chrono::seconds(120)), 0);
+  TetMesh base;
+  CollapseHistory history;
+  std::optional<SimplifyParams> saved;
+  ASSERT_TRUE(read_history((viewer->dir() / "run.tlh").string(), &base, &history, &saved).ok());
+  ASSERT_TRUE(saved.has_value());
+  *params = *saved;
+}
+
 TEST(ViewerMouse, SizeSliderFollowsAModelInMetres) {
   namespace fs = std::filesystem;
   const fs::path mesh_dir = fs::path(TETLOD_TEST_OUTPUT_DIR) / "vms";
@@ -109,13 +120,10 @@ TEST(ViewerMouse, SizeSliderFollowsAModelInMetres) {
   // The size slider's row (y 648) from its grab at the default (x 200) 15 pixels right.
   drag(display, 200, 648, 215, 648);
   XCloseDisplay(display);
-  ASSERT_EQ(viewer.finish(std::chrono::seconds(120)), 0);
-  TetMesh base;
-  CollapseHistory history;
-  std::optional<SimplifyParams> params;
-  ASSERT_TRUE(read_history((viewer.dir() / "run.tlh").string(), &base, &history, &params).ok());
-  ASSERT_TRUE(params.has_value());
-  const double size = params->sizing.uniform;
+  SimplifyParams params;
+  read_saved_params(&viewer, &params);
+  if (HasFatalFailure()) return;
+  const double size = params.sizing.uniform;
   EXPECT_GT(size, 0.023 * 1.05) << "the drag did not move the size";
   EXPECT_LT(size, 0.023 * 2) << "the size jumped";
   char rounded[32];
@@ -176,7 +184,10 @@ TEST(ViewerMouse, ADoubleClickOnSimplifyTicksNothing) {
     std::this_thread::sleep_for(120ms);
   }
   XCloseDisplay(display);
-  ASSERT_EQ(viewer.finish(std::chrono::seconds(120)), 0);
+  SimplifyParams params;
+  read_saved_params(&viewer, &params);
+  if (HasFatalFailure()) return;
+  EXPECT_TRUE(params.subdivide);
   // Two runs: the clicks' and the script's.
   std::ifstream log(viewer.dir() / "log.txt");
   const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
@@ -185,12 +196,6 @@ TEST(ViewerMouse, ADoubleClickOnSimplifyTicksNothing) {
        at = text.find("simplified:", at + 1))
     ++runs;
   EXPECT_EQ(runs, 2u) << text;
-  TetMesh base;
-  CollapseHistory history;
-  std::optional<SimplifyParams> params;
-  ASSERT_TRUE(read_history((viewer.dir() / "run.tlh").string(), &base, &history, &params).ok());
-  ASSERT_TRUE(params.has_value());
-  EXPECT_TRUE(params->subdivide);
 }
 
 // A key pressed and released as by a hand (held 80 ms: shorter taps can fall between
