@@ -1151,6 +1151,8 @@ ViewRect scene_rect(float display_width, float display_height, const PanelState&
   return r;
 }
 
+namespace {
+
 // The panel's first row, always there and always one row high, so that nothing under it
 // moves when a run, a solve or a load starts or ends (the second click of a double click
 // would land on whatever slid under the pointer): Cancel, and the progress of what runs
@@ -1182,6 +1184,8 @@ void activity_row(const ViewerStatus& status, std::vector<Command>* commands) {
   if (status.loading && ImGui::IsItemHovered())
     ImGui::SetTooltip("%s", status.loading_path.c_str());
 }
+
+}  // namespace
 
 void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
                         ThresholdSettings* thresholds, AnalysisSettings* analysis,
