@@ -944,10 +944,9 @@ void Viewer::poll_job() {
     run_cancelled_note_.clear();
     if (!hide_note_.empty()) status_.message += "; " + hide_note_;
     hide_note_.clear();
-    for (const std::string& note : job->notes) {
-      status_.message += "; note: " + note;
+    status_.load_notes = job->notes;
+    for (const std::string& note : job->notes)
       std::fprintf(stderr, "tetlod view: %s: note: %s\n", job->path.c_str(), note.c_str());
-    }
   } else {
     // The Thresholds panel shows the run's own time (subdivide, classify, simplify);
     // the rest is building the levels' display.

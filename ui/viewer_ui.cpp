@@ -117,10 +117,36 @@ void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Com
     ImGui::PopStyleColor();
   }
   // The last message in a box two lines high, there even when empty, so that a message
-  // of another length does not move what is under it (a longer one scrolls).
-  ImGui::BeginChild("##message", ImVec2(0, 2 * ImGui::GetTextLineHeightWithSpacing()));
+  // of another length does not move what is under it (a longer one scrolls, and shows
+  // whole under the pointer).
+  const float box_height = 2 * ImGui::GetTextLineHeightWithSpacing();
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  ImGui::BeginChild("##message", ImVec2(0, box_height));
+  ImGui::PopStyleVar();
   ImGui::TextWrapped("%s", status.message.c_str());
+  const bool longer = ImGui::GetCursorPosY() > box_height + 1;
   ImGui::EndChild();
+  if (longer && ImGui::IsItemHovered()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40);
+    ImGui::TextUnformatted(status.message.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+  }
+  // The reader's notes on the loaded file, folded (they change only with the file).
+  if (!status.load_notes.empty()) {
+    char title[64];
+    std::snprintf(title, sizeof(title), "%zu note%s on reading the file###notes",
+                  status.load_notes.size(), status.load_notes.size() == 1 ? "" : "s");
+    if (ImGui::TreeNode(title)) {
+      for (const std::string& note : status.load_notes) {
+        ImGui::Bullet();
+        ImGui::SameLine();
+        ImGui::TextWrapped("%s", note.c_str());
+      }
+      ImGui::TreePop();
+    }
+  }
 }
 
 void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Command>* commands) {

@@ -196,6 +196,9 @@ struct ViewerStatus {
   // another mesh.
   std::string simplify_error;
   std::string message;  // last success message (saved, screenshot, ...)
+  // What the reader noted of the loaded file (repairs, what it does not keep, names),
+  // until another is loaded.
+  std::vector<std::string> load_notes;
   bool loading = false;
   std::string loading_path;
   // The thresholds opening the mesh set (the viewer's defaults for it).
