@@ -1791,7 +1791,9 @@ Status Viewer::run_action(const ScriptAction& a) {
   switch (a.kind) {
     case Kind::kOpen:
       last_job_error_.clear();
-      if (Status s = start_load(a.path); !s) return s;
+      // With may-fail a path that cannot be opened only shows in the panel (and a running
+      // simplification goes on), as for a user.
+      if (Status s = start_load(a.path); !s) return a.flag ? Status() : s;
       wait_for_job_ = true;
       pending_job_line_ = a.flag ? 0 : a.line;
       break;

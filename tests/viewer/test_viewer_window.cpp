@@ -381,6 +381,15 @@ TEST(ViewerWindow, OpeningAMissingFileLeavesTheRunningSimplification) {
             std::string::npos)
       << run.output;
   EXPECT_EQ(run.output.find("cancelled"), std::string::npos) << run.output;
+  // With may-fail it only shows in the panel, and the script goes on.
+  std::ofstream(dir / "may.script") << "thresholds size=12\nsimplify wait=0\n"
+                                       "open missing.mesh may-fail\nwait done\n"
+                                       "screenshot ui.png ui=1\nquit\n";
+  const ViewerRun may =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script may.script");
+  EXPECT_EQ(may.exit_code, 0) << may.output;
+  EXPECT_TRUE(fs::exists(dir / "ui.png"));
+  EXPECT_EQ(may.output.find("cancelled"), std::string::npos) << may.output;
 }
 
 // A size that would subdivide the mesh past the limit: the panel shows the error
