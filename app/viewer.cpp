@@ -438,8 +438,15 @@ class Viewer {
   // While the level's rebuild after a far move runs: the step the surface on screen
   // shows (the LOD is already at the new one).
   std::optional<size_t> jump_from_;
-  // Tets the incremental updates touched per step, a running mean (follow_scrubber()).
+  // Measured for follow_scrubber()'s choice between walking and rebuilding (running
+  // means; the starting values err towards rebuilding): tets an incremental update
+  // touches per step, seconds a touched tet costs it, seconds a rebuild costs per tet of
+  // the level (on screen: from its start to its surface's upload).
   double tets_per_step_ = 30;
+  double seconds_per_touched_tet_ = 1e-6;
+  double seconds_per_level_tet_ = 1e-6;
+  Clock::time_point rebuild_start_;
+  size_t rebuild_tets_ = 0;
 
   // Drawing.
   bool needs_redraw_ = true;
@@ -1196,6 +1203,11 @@ void Viewer::apply_view_changes() {
       surface_has_field_ = false;
       upload_all();
       interacting_ = true;
+      if (rebuild_tets_ > 0) {
+        seconds_per_level_tet_ =
+            0.5 * seconds_per_level_tet_ +
+            0.5 * seconds_between(rebuild_start_, Clock::now()) / double(rebuild_tets_);
+      }
       if (!jump) return;
     }
   }
@@ -1206,6 +1218,8 @@ void Viewer::apply_view_changes() {
 
 void Viewer::start_surface_rebuild(const render::SurfaceFilter& filter) {
   const Lod& lod = *scene_->lod;
+  rebuild_start_ = Clock::now();
+  rebuild_tets_ = lod.alive_tet_count();
   auto arrays = std::make_shared<TetMesh>();
   arrays->positions = lod.positions();
   arrays->tets = lod.tets();
@@ -1229,26 +1243,29 @@ void Viewer::follow_scrubber() {
   const size_t target = static_cast<size_t>(
       std::clamp<long long>(panel_.target_step, 0, static_cast<long long>(lod.step_count())));
   if (lod.step() == target || jump_from_) return;  // (the level jumped to is being drawn)
-  // A far move: the LOD goes there at once and the level's surface is built anew off the
-  // UI thread (LodSurface::reset(), O(its tets)), the old one staying on screen meanwhile,
-  // when the incremental updates would touch more tets than the level has (they cost
-  // about twice as much a tet: a 1M-tet motor's finest level took a minute to reach from
-  // the coarsest that way, and a second at most this one; docs/PERFORMANCE.md) and more
-  // than kFarTets, so that a short move is still drawn as it goes.
-  constexpr double kFarTets = 100000;
+  // Moves are walked in chunks of steps until the frame's budget is spent, so that a drag
+  // keeps the window responsive and the display catches up over a few frames. A far move
+  // instead puts the LOD there at once and builds the level's surface anew off the UI
+  // thread (LodSurface::reset(), O(its tets)), the old one staying on screen meanwhile:
+  // when walking would take longer on screen than that rebuild, and longer than
+  // kFarSeconds, so that a short move is still drawn as it goes. Both from this run's
+  // measurements (a 1M-tet motor's finest level took a minute to reach from the coarsest
+  // by walking, at a few budgets of 8 ms in frames of 150 ms; rebuilt, a second or two:
+  // docs/PERFORMANCE.md).
+  constexpr double kBudgetSeconds = 0.008;
+  constexpr double kFarSeconds = 0.25;
   const size_t distance = target > lod.step() ? target - lod.step() : lod.step() - target;
-  const double to_touch = double(distance) * tets_per_step_;
-  if (to_touch > kFarTets && to_touch > double(lod.tet_count_at(target)) &&
-      !surface_future_.valid()) {
+  const double frame_seconds = std::max(kBudgetSeconds, frame_ms_ / 1e3);
+  const double walk =
+      double(distance) * tets_per_step_ * seconds_per_touched_tet_ * frame_seconds / kBudgetSeconds;
+  const double rebuild = double(lod.tet_count_at(target)) * seconds_per_level_tet_;
+  if (walk > std::max(rebuild, kFarSeconds) && !surface_future_.valid()) {
     jump_from_ = lod.step();
     lod.seek(target);
     start_surface_rebuild(scene_->filter);
     surface_has_field_ = false;
     return;
   }
-  // Move towards the target in chunks until the frame's budget is spent, so a long
-  // drag keeps the window responsive and the display catches up over a few frames.
-  constexpr double kBudgetSeconds = 0.008;
   constexpr size_t kChunk = 48;
   const Clock::time_point start = Clock::now();
   const render::LodState state = render::lod_state(lod);
@@ -1266,6 +1283,10 @@ void Viewer::follow_scrubber() {
     if (seconds_between(start, Clock::now()) > kBudgetSeconds) break;
   }
   tets_per_step_ = 0.8 * tets_per_step_ + 0.2 * double(touched) / double(steps);
+  if (touched > 0) {
+    seconds_per_touched_tet_ = 0.8 * seconds_per_touched_tet_ +
+                               0.2 * seconds_between(start, Clock::now()) / double(touched);
+  }
   renderer_->update_triangles(scene_->surface.triangles(), scene_->surface.take_triangle_dirty());
   renderer_->update_highlight(scene_->surface.highlight(), scene_->surface.take_highlight_dirty(),
                               scene_->surface.highlighted_tets());
