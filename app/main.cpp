@@ -38,8 +38,9 @@ constexpr const char* kUsage =
 
 // Ctrl-C, `timeout`, a closed terminal: remove the temporaries of the files being
 // written, then end as the signal would have ended the process.
+// (During the renames of a commit, it is raised again once they are all made.)
 extern "C" void remove_temporaries_and_reraise(int signal_number) {
-  tetlod::remove_output_temporaries();
+  if (!tetlod::remove_output_temporaries(signal_number)) return;
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
 }

@@ -7,10 +7,11 @@ cd "$(dirname "$0")/.."
 # calculix-ccx: that CalculiX runs an analysis on the .inp files TetLOD writes;
 # getdp: that GetDP solves on the surface groups of the .msh files TetLOD writes;
 # python3-vtk9 (with python3-numpy): that VTK, which ParaView is built on, reads the
-# .vtk and .vtu files TetLOD writes, in text and in binary.
+# .vtk and .vtu files TetLOD writes, in text and in binary;
+# strace: a signal injected between the renames of a command's files waits for the last.
 # (setup.sh also installs xvfb + xauth: ctest runs the GLFW window test under
 # xvfb-run; the golden-image tests render offscreen with OSMesa and need no display.)
-TETLOD_EXTRA_PACKAGES="gmsh calculix-ccx getdp python3-vtk9 python3-numpy" bash scripts/setup.sh
+TETLOD_EXTRA_PACKAGES="gmsh calculix-ccx getdp python3-vtk9 python3-numpy strace" bash scripts/setup.sh
 
 jobs=$(nproc)
 ctest --test-dir build --output-on-failure -j"$jobs"

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cerrno>
 #include <climits>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 
@@ -76,6 +77,13 @@ struct LiveSlot {
   char path[PATH_MAX];
 };
 LiveSlot live_temporaries[kSlots];
+
+// A commit's renames, once begun, are all made before a signal ends the process (a signal
+// between two of them left a new .node beside an old .ele): while one runs,
+// remove_output_temporaries() only notes the signal, and commit() raises it again after
+// its last rename. Lock-free atomics: read and written from a signal handler.
+std::atomic<int> commits_running{0};
+std::atomic<int> deferred_signal{0};
 
 // Publishes `temporary` (before the file is made); its slot, or -1.
 int add_live(const std::string& temporary) {
@@ -172,10 +180,15 @@ Status check_output_directory(const std::string& path, bool make_directories) {
   return Status();
 }
 
-void remove_output_temporaries() {
+bool remove_output_temporaries(int signal_number) {
+  if (signal_number != 0 && commits_running.load() > 0) {
+    deferred_signal.store(signal_number);
+    return false;
+  }
   for (LiveSlot& slot : live_temporaries) {
     if (slot.state.load() == kLive) unlink(slot.path);
   }
+  return true;
 }
 
 Status OutputFiles::stage(const std::string& path, std::string_view contents) {
@@ -229,6 +242,16 @@ Status OutputFiles::commit() {
       return status;
     }
   }
+  // A signal that comes meanwhile is raised again at the end (see commits_running).
+  ++commits_running;
+  struct Finish {
+    ~Finish() {
+      if (--commits_running == 0) {
+        if (const int signal_number = deferred_signal.exchange(0); signal_number != 0)
+          std::raise(signal_number);
+      }
+    }
+  } finish;
   std::string replaced;
   for (size_t i = 0; i < staged_.size(); ++i) {
     if (std::rename(staged_[i].temporary.c_str(), staged_[i].target.c_str()) != 0) {

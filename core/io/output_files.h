@@ -64,9 +64,12 @@ class OutputFiles {
 Status check_output_directory(const std::string& path, bool make_directories = false);
 
 // Removes the temporaries of every OutputFiles in the process that has not
-// committed them. Async-signal-safe (only unlink()): for a handler of SIGINT or
-// SIGTERM, so that a run stopped by Ctrl-C or `timeout` leaves no temporary behind.
-void remove_output_temporaries();
+// committed them. Async-signal-safe (only unlink() and atomics): for a handler of SIGINT
+// or SIGTERM, so that a run stopped by Ctrl-C or `timeout` leaves no temporary behind.
+// Given the handler's `signal_number` while a commit() renames its files, it removes
+// nothing and returns false: the handler is then to return, and commit() raises that
+// signal again once all its files are in place (so a command's files change together).
+bool remove_output_temporaries(int signal_number = 0);
 
 // stage() and commit() of one file.
 Status write_file_atomically(const std::string& path, std::string_view contents);

@@ -22,6 +22,8 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/metrics.h"
+#include "core/surface.h"
+#include "core/test_io_helpers.h"
 #include "core/test_meshes.h"
 
 namespace tetlod {
@@ -1852,6 +1854,36 @@ TEST(Cli, AnOverlapCheckCutShortIsNoted) {
                                  "between them stopped early"),
             std::string::npos)
       << r.output;
+}
+
+// A signal between the renames that put a command's files in place ends the process
+// only once they are all in place: strace delivers SIGINT at the second rename of a
+// .node/.ele/.face triple, which held the new .node beside the old .ele and .face.
+TEST(Cli, ASignalBetweenTheRenamesWaitsForTheLast) {
+  if (!test::on_path("strace") ||
+      std::system("strace -o /dev/null -e trace=none true >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "no strace, or it may not trace here (ptrace)";
+  const std::string dir = out_dir() + "/signal_renames";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string box2 = std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh";
+  const std::string spheres = std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh";
+  ASSERT_EQ(run("convert " + box2 + " " + dir + "/out.node --surfaces").code, 0);
+  const CommandResult r =
+      run("convert " + spheres + " " + dir + "/out.node --surfaces",
+          "strace -f -o /dev/null -e trace=rename -e inject=rename:signal=SIGINT:when=2");
+  EXPECT_NE(r.code, 0) << r.output;  // ended by the signal, after the renames
+  TetMesh expected, written;
+  ReadInfo expected_info, written_info;
+  ASSERT_TRUE(read_mesh(spheres, &expected, &expected_info).ok());
+  const Status s = read_mesh(dir + "/out.node", &written, &written_info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(written.tet_count(), expected.tet_count());
+  SurfaceGroups groups;
+  ASSERT_TRUE(group_surface(expected, &groups).ok());
+  EXPECT_EQ(written_info.surface_groups.size(), groups.groups.size());
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
 }
 
 // Ctrl-C, `timeout` or a closed terminal while an output is being written: the
