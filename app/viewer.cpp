@@ -108,6 +108,7 @@ struct Scene {
   // Simplify's result larger than the input) and 0.001 x its bounding-box diagonal
   // (the default of `tetlod simplify`).
   double default_size = 0, default_tolerance = 0;
+  bool default_size_raised = false;  // above 3 x the median: a graded mesh (suggested_size)
 };
 
 // The bounds of the input's tets of the shown materials (`hidden` sorted), for the
@@ -205,7 +206,7 @@ std::unique_ptr<Scene> make_scene(const std::string& path, std::shared_ptr<const
   scene->result = std::move(result);
   mesh_bounds(*scene->input, &scene->lo, &scene->hi);
   const double diagonal = length(scene->hi - scene->lo);
-  scene->default_size = suggested_size(*scene->input);
+  scene->default_size = suggested_size(*scene->input, &scene->default_size_raised);
   if (!(scene->default_size > 0)) scene->default_size = diagonal / 25;  // no tets, or flat ones
   scene->default_tolerance = 1e-3 * diagonal;
   scene->materials = scene->input->materials;
@@ -1705,6 +1706,7 @@ void Viewer::fill_status() {
   s.input_tets = scene.input->tet_count();
   s.input_vertices = scene.input->vertex_count();
   s.default_size = scene.default_size;
+  s.default_size_raised = scene.default_size_raised;
   s.default_tolerance = scene.default_tolerance;
   s.materials = scene.materials;
   s.inside_group_triangles = scene.input_patches ? scene.input_patches->inside_entries().size() : 0;

@@ -56,7 +56,8 @@ void SizingField::apply_regions(size_t n, const double* x, const double* y, cons
   if (map) map->apply(n, x, y, z, size);
 }
 
-double suggested_size(const TetMesh& mesh) {
+double suggested_size(const TetMesh& mesh, bool* raised) {
+  if (raised) *raised = false;
   if (mesh.tets.empty()) return 0;
   // The median of the squared longest edges; the square root of that one only (the
   // same value as tet_shape's size, which is the root of the same maximum).
@@ -69,11 +70,34 @@ double suggested_size(const TetMesh& mesh) {
   }
   const auto median = longest2.begin() + static_cast<std::ptrdiff_t>(longest2.size() / 2);
   std::nth_element(longest2.begin(), median, longest2.end());
-  const double size = 3 * std::sqrt(*median);
+  double size = 3 * std::sqrt(*median);
   if (!(size > 0) || !std::isfinite(size)) return size;
-  // Two significant digits: 23.43 -> 23, 2.34 -> 2.3.
-  const double unit = std::pow(10.0, std::floor(std::log10(size)) - 1);
-  return std::round(size / unit) * unit;
+  // Subdivision's growth at `s`, estimated: a tet whose longest edge is L > s/2 becomes
+  // about (2L/s)^3 tets (an overestimate: the thresholds refuse many splits).
+  const auto growth = [&longest2](double s) {
+    double tets = 0;
+    for (const double l2 : longest2) {
+      const double pieces = 2 * std::sqrt(l2) / s;
+      tets += std::max(1.0, pieces * pieces * pieces);
+    }
+    return tets / double(longest2.size());
+  };
+  // Two significant digits: 23.43 -> 23, 2.34 -> 2.3 (up, `up`: 2.34 -> 2.4).
+  const auto two_digits = [](double s, bool up) {
+    const double unit = std::pow(10.0, std::floor(std::log10(s)) - 1);
+    return (up ? std::ceil(s / unit - 1e-9) : std::round(s / unit)) * unit;
+  };
+  if (growth(size) <= kSuggestedGrowth) return two_digits(size, false);
+  if (raised) *raised = true;
+  // A graded mesh (fine parts, coarse air): the median is the fine parts', at which the
+  // air's tets would be subdivided many times over. The smallest size at which the
+  // estimate is kSuggestedGrowth instead (at twice the longest edge it is 1).
+  double hi = 2 * std::sqrt(*std::max_element(longest2.begin(), longest2.end()));
+  for (int i = 0; i < 40 && hi - size > 1e-4 * hi; ++i) {
+    const double mid = 0.5 * (size + hi);
+    (growth(mid) <= kSuggestedGrowth ? hi : size) = mid;
+  }
+  return two_digits(hi, true);
 }
 
 double SizingField::smallest_size() const {

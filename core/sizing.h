@@ -77,8 +77,14 @@ struct SizingField {
 // times the median s_t, half the size is above about 90% of the edges of the bundled
 // meshes and a first simplification coarsens each of them (motor 26512 -> 11649 tets at
 // size 23, spheres 16088 -> 14222 at 2.3, box2 136 -> 12 at 2.3, at the tolerance
-// 0.001 x the bounding-box diagonal).
-double suggested_size(const TetMesh& mesh);
+// 0.001 x the bounding-box diagonal). On a graded mesh, whose median is its fine parts'
+// (a Gmsh antenna in an air sphere: 97,735 tets, median 0.76, air tets up to 29 long),
+// subdivision at that size would multiply the air's tets (2.2 M tets at 2.3): there the
+// size is raised, rounded up, until subdivision's estimated growth (each tet of longest
+// edge L > s/2 making (2L/s)^3) is at most kSuggestedGrowth times the input (18 there).
+// `raised` (may be null) says whether it was.
+inline constexpr double kSuggestedGrowth = 2;
+double suggested_size(const TetMesh& mesh, bool* raised = nullptr);
 
 // Parses "M=S,M=S,..." (material id, size) into field->material_sizes. Sizes must be
 // finite and > 0; ids >= 0 and not repeated. Errors name the offending item.

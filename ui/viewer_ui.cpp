@@ -324,15 +324,18 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
         status.default_tolerance);
   } else if (status.default_size > 0) {
     text_disabled_wrapped(
-        "On open: size %.4g = 3 x median tet size, tolerance %.4g = 0.001 x "
-        "diagonal (hover)",
-        status.default_size, status.default_tolerance);
+        "On open: size %.4g %s, tolerance %.4g = 0.001 x diagonal (hover)", status.default_size,
+        status.default_size_raised ? "(3 x median tet size, raised for a graded mesh)"
+                                   : "= 3 x median tet size",
+        status.default_tolerance);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
           "Opening a mesh resets every threshold and the sizing: size = 3 x the median tet\n"
           "size (longest edge), so that subdivision, which splits every edge longer than\n"
-          "half the size, leaves most edges whole; tolerance = 0.001 x the bounding-box\n"
-          "diagonal (as tetlod simplify); stretch %.3g, valence %d, uniform sizing.",
+          "half the size, leaves most edges whole; on a graded mesh (fine parts, coarse\n"
+          "air) more, until subdivision would at most double the tets; tolerance = 0.001 x\n"
+          "the bounding-box diagonal (as tetlod simplify); stretch %.3g, valence %d,\n"
+          "uniform sizing.",
           ThresholdSettings{}.stretch, ThresholdSettings{}.valence);
   }
   const double model_diagonal = diagonal(status);

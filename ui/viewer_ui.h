@@ -203,6 +203,7 @@ struct ViewerStatus {
   std::string loading_path;
   // The thresholds opening the mesh set (the viewer's defaults for it).
   double default_size = 0, default_tolerance = 0;
+  bool default_size_raised = false;  // above 3 x the median tet size (a graded mesh)
 
   // Simplification: running state and the last result.
   bool running = false;

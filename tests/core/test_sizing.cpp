@@ -154,6 +154,31 @@ TEST(Sizing, SuggestedSizeIsThreeTimesTheMedianTetSize) {
               52, 1e-9);
 }
 
+// A graded mesh: its median is the fine part's, at which the coarse part would be
+// subdivided thousands of times over; the size is raised until subdivision's estimated
+// growth is at most kSuggestedGrowth. Here 6,000 Kuhn tets of unit cubes (longest edge
+// sqrt 3) and 3,000 of cubes of side 20 beside them: 2/3 + 1/3 (2 * 20 sqrt 3 / s)^3 <= 2
+// from s = 43.6, rounded up to 44 (three times the median would be 5.2).
+TEST(Sizing, SuggestedSizeOfAGradedMeshKeepsSubdivisionSmall) {
+  TetMesh mesh = test::make_grid_mesh(10, 10, 10, [](int, int, int) { return 1; });
+  const TetMesh coarse = test::make_grid_mesh(
+      5, 10, 10, [](int, int, int) { return 2; }, 20);
+  const uint32_t offset = static_cast<uint32_t>(mesh.positions.size());
+  for (const Vec3& p : coarse.positions) mesh.positions.push_back(p + Vec3{1000, 0, 0});
+  for (size_t t = 0; t < coarse.tets.size(); ++t) {
+    Tet tet = coarse.tets[t];
+    for (uint32_t& v : tet) v += offset;
+    mesh.tets.push_back(tet);
+    mesh.materials.push_back(coarse.materials[t]);
+  }
+  ASSERT_EQ(mesh.tet_count(), 9000u);
+  bool raised = false;
+  EXPECT_DOUBLE_EQ(suggested_size(mesh, &raised), 44);
+  EXPECT_TRUE(raised);
+  EXPECT_DOUBLE_EQ(suggested_size(coarse, &raised), 100);  // 3 * 20 sqrt 3 = 103.9
+  EXPECT_FALSE(raised);
+}
+
 // A first simplification at the suggested size and the CLI's default tolerance (0.001 x
 // the diagonal) coarsens every bundled mesh: subdivision does not outgrow the collapses.
 TEST(Sizing, SuggestedSizeCoarsensTheBundledMeshes) {
