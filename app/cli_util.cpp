@@ -453,15 +453,16 @@ void print_property_table(const MeshStats& stats, const std::vector<MaterialName
     row("material " + std::to_string(m.material), m.row, material_name_of(names, m.material));
 }
 
-std::string volume_changes(const MeshStats& before, const MeshStats& after,
+std::string volume_changes(const std::vector<MaterialVolume>& before,
+                           const std::vector<MaterialVolume>& after,
                            const std::vector<MaterialName>* names) {
   std::string text;
   size_t j = 0;
-  for (const MaterialRow& m : before.per_material) {
-    while (j < after.per_material.size() && after.per_material[j].material < m.material) ++j;
-    if (j == after.per_material.size() || after.per_material[j].material != m.material) continue;
-    if (!(m.row.volume > 0)) continue;
-    const double percent = 100 * (after.per_material[j].row.volume - m.row.volume) / m.row.volume;
+  for (const MaterialVolume& m : before) {
+    while (j < after.size() && after[j].material < m.material) ++j;
+    if (j == after.size() || after[j].material != m.material) continue;
+    if (!(m.volume > 0)) continue;
+    const double percent = 100 * (after[j].volume - m.volume) / m.volume;
     if (!(std::fabs(percent) > kVolumeNotePercent)) continue;
     const std::string name = material_name_of(names, m.material);
     char change[32];

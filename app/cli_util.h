@@ -153,7 +153,8 @@ void print_property_table(const MeshStats& stats, const std::vector<MaterialName
 // `after` by more than kVolumeNotePercent of its own, "" if none: the tolerance lets
 // boundaries and interfaces move, which thins (or thickens) a part a few tolerances thick.
 inline constexpr double kVolumeNotePercent = 1;
-std::string volume_changes(const MeshStats& before, const MeshStats& after,
+std::string volume_changes(const std::vector<MaterialVolume>& before,
+                           const std::vector<MaterialVolume>& after,
                            const std::vector<MaterialName>* names);
 
 // The input file's name of material m ("" if none); `names` may be null.

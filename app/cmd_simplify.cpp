@@ -196,8 +196,7 @@ int cmd_simplify(const Args& args) {
   const bool improve = options.improve;
 
   std::printf("input %s\n", in.c_str());
-  const MeshStats input_stats = stats_of(input);
-  print_property_table(input_stats, &info.material_names);
+  print_property_table(stats_of(input), &info.material_names);
   // The size: the uniform one, the local sizing, or the smaller of the two (sizing.h).
   std::printf("\nthresholds: %s\n", describe_thresholds(params).c_str());
   // What the input breaks already: the final mesh's line below says how much of that
@@ -239,9 +238,9 @@ int cmd_simplify(const Args& args) {
   if (improve) improved = improve_timed(&output, params, patches, &seconds_improve);
   std::printf("\noutput %s (step %zu of %zu%s)\n", out.c_str(), step, result.history.step_count(),
               beyond.c_str());
-  const MeshStats output_stats = stats_of(output);
-  print_property_table(output_stats, &info.material_names);
-  if (const std::string changes = volume_changes(input_stats, output_stats, &info.material_names);
+  print_property_table(stats_of(output), &info.material_names);
+  if (const std::string changes =
+          volume_changes(material_volumes(input), material_volumes(output), &info.material_names);
       !changes.empty()) {
     std::fprintf(stderr,
                  "tetlod simplify: note: volumes changed by more than %g %%: %s; the tolerance "

@@ -82,6 +82,7 @@ struct Scene {
   std::shared_ptr<const TetMesh> input;
   std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
   std::string above_size_reason;                 // of the result ("" if nothing is above)
+  std::string volume_changes;                    // of the result (cli_util.h; "" if none)
   ThresholdCounts input_breaks;                  // what the input broke of the result's thresholds
   SimplifyParams params;                         // of the result's run, if params_known
   bool params_known = false;                     // run here, or saved in the history file read
@@ -904,8 +905,11 @@ void Viewer::start_simplify() {
       const std::string reason =
           result->violations.above_size > 0 ? above_size_reason(params, *result) : "";
       const ThresholdCounts input_breaks = threshold_breaks(*input, params);
+      const std::string changes = volume_changes(
+          material_volumes(*input), material_volumes(result->output), material_names.get());
       auto scene = make_scene(job->path, input, std::move(result), view);
       scene->above_size_reason = reason;
+      scene->volume_changes = changes;
       scene->input_breaks = input_breaks;
       scene->params = params;
       scene->params_known = true;
@@ -962,6 +966,10 @@ void Viewer::poll_job() {
                   run_seconds(*scene_->result));
     status_.message = text;
     if (options_.has_script) std::printf("tetlod view: %s\n", text);  // for benchmarks
+    if (!scene_->volume_changes.empty()) {  // as tetlod simplify says it (and the panel)
+      std::fprintf(stderr, "tetlod view: note: volumes changed by more than %g %%: %s\n",
+                   kVolumeNotePercent, scene_->volume_changes.c_str());
+    }
   }
 }
 
@@ -1730,6 +1738,7 @@ void Viewer::fill_status() {
         scene.params_known && !ui::same_thresholds(thresholds_, scene.params);
     s.input_breaks = scene.input_breaks;
     s.above_size_reason = scene.above_size_reason;
+    s.volume_changes = scene.volume_changes;
     s.past_valence = past_valence_summary(*scene.result);
     s.simplify_seconds = run_seconds(*scene.result);
     s.result_cancelled = scene.result->cancelled;

@@ -222,4 +222,19 @@ MeshStats compute_mesh_stats(const TetMesh& mesh, const VertexTets& vertex_tets)
   return stats;
 }
 
+std::vector<MaterialVolume> material_volumes(const TetMesh& mesh) {
+  std::vector<MaterialVolume> volumes;
+  std::vector<int32_t> ids = mesh.materials;
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  for (const int32_t m : ids) volumes.push_back({m, 0});
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto it =
+        std::lower_bound(volumes.begin(), volumes.end(), mesh.materials[t],
+                         [](const MaterialVolume& v, int32_t m) { return v.material < m; });
+    it->volume += tet_shape(mesh, mesh.tets[t]).volume;
+  }
+  return volumes;
+}
+
 }  // namespace tetlod

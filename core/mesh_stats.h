@@ -39,4 +39,11 @@ int stretch_bin(double stretch);
 
 MeshStats compute_mesh_stats(const TetMesh& mesh, const VertexTets& vertex_tets);
 
+// Each material's volume (the sum of its tets' signed volumes), by material id.
+struct MaterialVolume {
+  int32_t material = 0;
+  double volume = 0;
+};
+std::vector<MaterialVolume> material_volumes(const TetMesh& mesh);
+
 }  // namespace tetlod

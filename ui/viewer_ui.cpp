@@ -480,6 +480,16 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     }
     if (!status.past_valence.empty())
       ImGui::TextWrapped("Past the valence: %s.", status.past_valence.c_str());
+    // What the tolerance did to the materials' volumes, where it is much (a thin conductor
+    // thinned): in orange, as tetlod simplify's note.
+    if (!status.volume_changes.empty()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+      ImGui::TextWrapped(
+          "Volumes changed by more than 1 %%: %s (the tolerance lets surfaces move that far; "
+          "a smaller one keeps them).",
+          status.volume_changes.c_str());
+      ImGui::PopStyleColor();
+    }
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
     if (status.result_thresholds_changed) {  // of other thresholds than the sliders': greyed

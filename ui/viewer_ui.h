@@ -233,6 +233,7 @@ struct ViewerStatus {
   ThresholdCounts input_breaks;   // what its input broke of the same thresholds
   std::string above_size_reason;  // why it has tets above the size ("" if none)
   std::string past_valence;       // what subdivision past the valence did ("" if nothing)
+  std::string volume_changes;     // materials whose volume the run changed by over 1 % ("")
 
   // The displayed level.
   size_t step = 0, step_count = 0;

@@ -324,6 +324,22 @@ TEST(ViewerWindow, FitKeepsTheViewDirection) {
       0u);
 }
 
+// A tolerance that thins a part is said, as tetlod simplify says it (the motor at
+// tolerance 3: its shaft, material 3, -15.9 %), and not at the panel's default.
+TEST(ViewerWindow, VolumeChangesAreSaid) {
+  const fs::path dir = fresh_output_dir("viewer_volume_note");
+  std::ofstream(dir / "run.script") << "thresholds size=30 tolerance=3\nsimplify\n"
+                                       "thresholds size=30 tolerance=0.18\nsimplify\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string note = "tetlod view: note: volumes changed by more than 1 %: ";
+  const size_t at = run.output.find(note);
+  ASSERT_NE(at, std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("material 3 -15.9 %"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(note, at + 1), std::string::npos) << run.output;
+}
+
 // A far move of the level (the whole history, finest and back) builds the level's surface
 // anew off the UI thread instead of walking the steps: the finest level looks as that
 // level saved and opened again, and the way back gives the picture it left; a short move
