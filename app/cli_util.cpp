@@ -401,6 +401,15 @@ bool find_material(const std::string& name, const std::vector<MaterialName>& nam
                    std::string* why) {
   const MaterialName* found = nullptr;
   int folded = 0;
+  // A name that two materials share (two Nastran comments, two Gmsh groups) names
+  // neither: the id says which.
+  std::string shared;
+  for (const MaterialName& m : names)
+    if (m.name == name) shared += (shared.empty() ? "" : " and ") + std::to_string(m.material);
+  if (shared.find(" and ") != std::string::npos) {
+    *why = "the mesh names materials " + shared + " '" + name + "': give the number";
+    return false;
+  }
   for (const MaterialName& m : names) {
     if (m.name == name) {
       *id = m.material;

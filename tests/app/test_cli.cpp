@@ -76,6 +76,26 @@ TEST(Cli, UsageAndExitCodes) {
 
 // generate: options that would be ignored or read loosely are usage errors, checked
 // before TetGen runs.
+// A name two materials share names neither (Nastran comments can give it twice): an
+// option that takes it is a usage error naming both; each id still works.
+TEST(Cli, ANameTwoMaterialsShareIsAnError) {
+  const std::string dir = test::cli_output_dir("shared_name");
+  const TetMesh grid = test::make_grid_mesh(
+      3, 1, 1, [](int i, int, int) { return i + 1; }, 0.5);
+  const std::vector<MaterialName> names = {{1, "copper"}, {2, "copper"}, {3, "air"}};
+  WriteOptions options;
+  options.material_names = &names;
+  const std::string path = dir + "/shared.bdf";
+  ASSERT_TRUE(write_mesh(path, grid, options).ok());
+  CommandResult r = run("simplify " + path + " -o " + dir + "/s.mesh --material-size copper=1");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("the mesh names materials 1 and 2 'copper': give the number"),
+            std::string::npos)
+      << r.output;
+  r = run("simplify " + path + " -o " + dir + "/s.mesh --material-size 2=1,air=1");
+  EXPECT_EQ(r.code, 0) << r.output;
+}
+
 // A tolerance that thins a part is said, with each material's change: the motor at
 // tolerance 3 changes its shaft (material 3) by -15.9 %; at the default (0.18) none by 1 %.
 TEST(Cli, SimplifySaysWhichMaterialsChangedVolume) {
