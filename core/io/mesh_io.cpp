@@ -77,6 +77,14 @@ Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string&
     info->notes = std::move(parsed->notes);
     info->surface_groups = std::move(parsed->surface_groups);
     info->material_names = std::move(parsed->material_names);
+    // A file's names reach terminals, JSON and other files: control characters (an
+    // escape sequence, a line break) become '_'.
+    const auto clean = [](std::string* name) {
+      for (char& c : *name)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '_';
+    };
+    for (MaterialName& n : info->material_names) clean(&n.name);
+    for (InputSurfaceGroup& g : info->surface_groups) clean(&g.name);
     info->surface_elements_not_kept = parsed->surface_elements_not_kept;
     info->face_neighbors = std::move(neighbors);
   }

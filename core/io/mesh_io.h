@@ -132,7 +132,7 @@ struct ReadInfo {
   std::vector<InputSurfaceGroup> surface_groups;
   // The names the file gives the materials of its tets, by material id (none for a
   // name that only says the number, such as Gmsh's "material_<n>"; formats without
-  // names give none).
+  // names give none). Here and in surface_groups a name's control characters are '_'.
   std::vector<MaterialName> material_names;
   // The surface elements the file holds (Gmsh, VTK and Nastran triangles and
   // quadrangles, Medit Triangles and Quadrilaterals, TetGen faces with a marker >= 1,
