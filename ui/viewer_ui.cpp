@@ -379,13 +379,19 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     // A material without a size of its own has no per-material limit, as with
     // `--material-size` (only the sizes listed); tick it to give it one.
     text_disabled_wrapped("size (SZ) per material; unticked: no size limit");
+    // Each row named as in the material list ("3 shield"), in a wider column where the
+    // materials have names (a long one cut, whole under the pointer).
+    const std::vector<int32_t> listed = listed_materials(status);
+    const bool named = std::any_of(listed.begin(), listed.end(),
+                                   [&](int32_t m) { return material_name(status, m) != nullptr; });
+    const float column = named ? 170 : 90;
     // The cap over every material, as --size given with --material-size.
     ImGui::Checkbox("all", &t->material_cap);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
           "A size cap for every material besides its own size\n"
           "(tetlod simplify --size S --material-size ...)");
-    ImGui::SameLine(90);
+    ImGui::SameLine(column);
     if (t->material_cap) {
       ImGui::SetNextItemWidth(-1);
       length_slider("##cap", &t->size, size_slider_range(model_diagonal, t->size), "cap ");
@@ -393,14 +399,13 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
       ImGui::TextDisabled("no size cap");
     }
     auto& sizes = t->material_sizes;
-    for (const int32_t m : listed_materials(status)) {
+    for (const int32_t m : listed) {
       auto it =
           std::find_if(sizes.begin(), sizes.end(), [m](const auto& p) { return p.first == m; });
       ImGui::PushID(m);
-      char label[32];
-      std::snprintf(label, sizeof(label), "mat %d", m);
+      const std::string label = material_label(status, m, "mat ", 12);
       bool limited = it != sizes.end();
-      const bool changed = ImGui::Checkbox(label, &limited);
+      const bool changed = ImGui::Checkbox(label.c_str(), &limited);
       if (const std::string* name = material_name(status, m); name && ImGui::IsItemHovered())
         ImGui::SetTooltip("material %d: %s", m, name->c_str());
       if (changed) {
@@ -412,7 +417,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
         }
         it = std::find_if(sizes.begin(), sizes.end(), [m](const auto& p) { return p.first == m; });
       }
-      ImGui::SameLine(90);
+      ImGui::SameLine(column);
       if (it != sizes.end()) {
         ImGui::SetNextItemWidth(-1);
         length_slider("##size", &it->second, size_slider_range(model_diagonal, it->second));
