@@ -400,11 +400,17 @@ class Viewer {
   std::unique_ptr<Job> job_;
   std::string last_job_error_;
 
-  // Statistics of the displayed level (computed in a task on a compacted copy).
-  std::future<MeshStats> stats_future_;
+  // Statistics of the displayed level (computed in a task on a compacted copy), and
+  // what it breaks of the run's thresholds, in words ("" if nothing or none known).
+  struct LevelStats {
+    MeshStats stats;
+    std::string breaks;
+  };
+  std::future<LevelStats> stats_future_;
   size_t stats_future_step_ = 0, stats_future_generation_ = 0;
   bool has_stats_ = false;
   MeshStats stats_;
+  std::string stats_breaks_;
   size_t stats_step_ = 0, stats_generation_ = 0;
   Clock::time_point last_lod_move_ = Clock::now();
 
@@ -425,7 +431,8 @@ class Viewer {
 
   struct Saved {
     Status status;
-    std::string note;  // what --improve did, for the message
+    std::string note;    // what --improve did, for the message
+    std::string breaks;  // what the level breaks of the run's thresholds ("" if nothing)
   };
   std::future<Saved> save_future_;
   std::string save_path_;
@@ -628,6 +635,11 @@ void Viewer::frame() {
     const Status& s = saved.status;
     if (s) {
       status_.message = "saved " + save_path_ + saved.note;
+      if (!saved.breaks.empty()) {
+        status_.message += "; it breaks the run's thresholds: " + saved.breaks;
+        std::fprintf(stderr, "tetlod view: note: %s, saved, breaks the run's thresholds: %s\n",
+                     save_path_.c_str(), saved.breaks.c_str());
+      }
     } else if (save_line_ > 0) {
       fail_script(save_line_, s.message());
     } else {
@@ -1308,9 +1320,10 @@ void Viewer::follow_scrubber() {
 void Viewer::update_stats() {
   if (stats_future_.valid() &&
       stats_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
-    MeshStats stats = stats_future_.get();
+    LevelStats level = stats_future_.get();
     if (stats_future_generation_ == scene_generation_) {
-      stats_ = std::move(stats);
+      stats_ = std::move(level.stats);
+      stats_breaks_ = std::move(level.breaks);
       stats_step_ = stats_future_step_;
       stats_generation_ = stats_future_generation_;
       has_stats_ = true;
@@ -1323,8 +1336,18 @@ void Viewer::update_stats() {
   if (seconds_between(last_lod_move_, Clock::now()) < 0.15 && !options_.has_script) return;
   stats_future_step_ = lod.step();
   stats_future_generation_ = scene_generation_;
-  stats_future_ = std::async(std::launch::async, [mesh = lod.extract()] {
-    return compute_mesh_stats(mesh, build_vertex_tets(mesh));
+  // A level before the last may break what the final mesh does not (tets not yet
+  // collapsed), as `tetlod lod` says: said with the statistics.
+  std::optional<SimplifyParams> params;
+  if (scene_->params_known && lod.step() < lod.step_count()) params = scene_->params;
+  stats_future_ = std::async(std::launch::async, [mesh = lod.extract(), params] {
+    LevelStats level;
+    level.stats = compute_mesh_stats(mesh, build_vertex_tets(mesh));
+    if (params) {
+      const ThresholdCounts b = threshold_breaks(mesh, *params);
+      if (b.below_stretch + b.above_size + b.above_valence > 0) level.breaks = describe_breaks(b);
+    }
+    return level;
   });
 }
 
@@ -1432,7 +1455,10 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces, 
   options.gmsh_binary = options.vtk_binary = binary;
   if (Status s = check_mesh_path(path, options); !s) return s;
   save_path_ = path;
-  save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options,
+  // What the level saved breaks of the run's thresholds (a level before the last may:
+  // tets not yet collapsed), said as `tetlod lod` says it.
+  const bool known = scene_->params_known || improve;
+  save_future_ = std::async(std::launch::async, [path, improve, params, level_name, options, known,
                                                  patches = scene_->patches,
                                                  material_names = scene_->material_names,
                                                  mesh = scene_->lod->extract()]() mutable {
@@ -1451,6 +1477,10 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces, 
                     r.mean_stretch_before, r.mean_stretch_after, r.min_stretch_before,
                     r.min_stretch_after);
       saved.note = note;
+    }
+    if (known) {
+      const ThresholdCounts b = threshold_breaks(mesh, params);
+      if (b.below_stretch + b.above_size + b.above_valence > 0) saved.breaks = describe_breaks(b);
     }
     options.material_names = material_names.get();
     if (!options.surface_groups) {
@@ -1757,6 +1787,7 @@ void Viewer::fill_status() {
   if (s.has_stats) {
     s.stats_step = stats_step_;
     s.stats = stats_;
+    s.stats_breaks = stats_breaks_;
   }
 }
 

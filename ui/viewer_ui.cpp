@@ -804,6 +804,13 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   ImGui::BeginGroup();
   ImGui::Text("Table I at step %zu%s", status.stats_step,
               status.stats_step == status.step ? "" : " (updating...)");
+  // A level before the last may break the run's thresholds (tets not yet collapsed):
+  // what Save would write, as `tetlod lod` says it.
+  if (!status.stats_breaks.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+    ImGui::TextWrapped("this level: %s", status.stats_breaks.c_str());
+    ImGui::PopStyleColor();
+  }
   const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                 ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY |
                                 ImGuiTableFlags_SizingFixedFit;

@@ -247,6 +247,7 @@ struct ViewerStatus {
   bool has_stats = false;
   size_t stats_step = 0;
   MeshStats stats;
+  std::string stats_breaks;  // what that level breaks of the run's thresholds ("" if nothing)
 
   // The Analysis panel.
   struct Analysis {

@@ -340,6 +340,41 @@ TEST(ViewerWindow, VolumeChangesAreSaid) {
   EXPECT_EQ(run.output.find(note, at + 1), std::string::npos) << run.output;
 }
 
+// A level before the last may break the run's thresholds (tets not yet collapsed; the
+// last only by input tets no collapse could remove): saving it says what, as
+// `tetlod lod` does.
+TEST(ViewerWindow, SavingALevelSaysWhatItBreaks) {
+  const fs::path dir = fresh_output_dir("viewer_level_breaks");
+  std::ofstream(dir / "run.script") << "thresholds size=12 tolerance=0.05\nsimplify\n"
+                                       "save last.mesh\nscrub step=0\nsave first.mesh\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  SimplifyParams params;
+  params.sizing.uniform = 12;
+  params.tolerance = 0.05;
+  size_t first_breaks = 0;
+  for (const std::string name : {"first.mesh", "last.mesh"}) {
+    SCOPED_TRACE(name);
+    TetMesh level;
+    ASSERT_TRUE(read_mesh((dir / name).string(), &level).ok());
+    const ThresholdCounts b = threshold_breaks(level, params);
+    const size_t breaks = b.below_stretch + b.above_size + b.above_valence;
+    if (name == "first.mesh") first_breaks = breaks;
+    const std::string said = name + ", saved, breaks the run's thresholds: ";
+    if (breaks == 0) {
+      EXPECT_EQ(run.output.find(said), std::string::npos) << run.output;
+      continue;
+    }
+    EXPECT_NE(run.output.find(said + std::to_string(b.below_stretch) + " tets below the stretch, " +
+                              std::to_string(b.above_size) + " above the size, " +
+                              std::to_string(b.above_valence) + " nodes above the valence"),
+              std::string::npos)
+        << run.output;
+  }
+  EXPECT_GT(first_breaks, 0u);
+}
+
 // A far move of the level (the whole history, finest and back) builds the level's surface
 // anew off the UI thread instead of walking the steps: the finest level looks as that
 // level saved and opened again, and the way back gives the picture it left; a short move
