@@ -22,6 +22,12 @@ bool wants_help(const Args& args) {
 }
 
 bool normalize_args(const std::string& command, Args* args) {
+  // The options that take no value, in every command: "--json=1" would leave "1" as an
+  // input file's name.
+  static const char* const kFlags[] = {
+      "--by-id",      "--check",      "--help",         "--improve",       "--json",
+      "--msh-binary", "--no-legend",  "--no-subdivide", "--one-thread",    "--simplify",
+      "--surfaces",   "--vtk-binary", "--wireframe",    "--within-valence"};
   Args split;
   split.reserve(args->size());
   for (const std::string& a : *args) {
@@ -31,6 +37,13 @@ bool normalize_args(const std::string& command, Args* args) {
          std::all_of(a.begin() + 2, a.begin() + static_cast<long>(equals),
                      [](char c) { return (c >= 'a' && c <= 'z') || c == '-'; })) ||
         a.compare(0, 3, "-o=") == 0;
+    if (named && std::any_of(std::begin(kFlags), std::end(kFlags), [&](const char* f) {
+          return a.compare(0, equals, f) == 0 && std::strlen(f) == equals;
+        })) {
+      std::fprintf(stderr, "tetlod %s: %s takes no value (got '%s')\n", command.c_str(),
+                   a.substr(0, equals).c_str(), a.c_str());
+      return false;
+    }
     if (named) {
       split.push_back(a.substr(0, equals));
       split.push_back(a.substr(equals + 1));

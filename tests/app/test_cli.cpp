@@ -684,8 +684,8 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
 
 // How options are written: "--size=2" as "--size 2"; an option given twice is refused
 // (a second --size replaced the first silently), but for those that add up; a second
-// input names both and where the output goes (-o forgotten); a valence that is not a
-// whole number says so.
+// input names both and where the output goes (-o forgotten); a flag given a value is
+// refused; a valence that is not a whole number says so.
 TEST(Cli, OptionsAreGivenOnceWithOrWithoutEquals) {
   const std::string path = write_grid("opt.mesh");
   const std::string out = out_dir() + "/opt_out.mesh";
@@ -701,6 +701,12 @@ TEST(Cli, OptionsAreGivenOnceWithOrWithoutEquals) {
   EXPECT_NE(r.output.find("-o given twice"), std::string::npos) << r.output;
   r = run("simplify " + path + " -o " + out + " --size=1 --size=2");
   EXPECT_NE(r.output.find("--size given twice"), std::string::npos) << r.output;
+  // A flag with a value (its "1" was taken as a second input file).
+  r = run("stats " + path + " --json=1");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("tetlod stats: --json takes no value (got '--json=1')"),
+            std::string::npos)
+      << r.output;
   EXPECT_FALSE(fs::exists(out));
   // Rules add up.
   r = run("simplify " + path + " -o " + out +
