@@ -74,13 +74,15 @@ double suggested_size(const TetMesh& mesh, bool* raised) {
   if (!(size > 0) || !std::isfinite(size)) return size;
   // Subdivision's growth at `s`, estimated: a tet whose longest edge is L > s/2 becomes
   // about (2L/s)^3 tets (an overestimate: the thresholds refuse many splits).
-  const auto growth = [&longest2](double s) {
+  std::vector<double> longest = std::move(longest2);
+  for (double& l : longest) l = std::sqrt(l);
+  const auto growth = [&longest](double s) {
     double tets = 0;
-    for (const double l2 : longest2) {
-      const double pieces = 2 * std::sqrt(l2) / s;
+    for (const double l : longest) {
+      const double pieces = 2 * l / s;
       tets += std::max(1.0, pieces * pieces * pieces);
     }
-    return tets / double(longest2.size());
+    return tets / double(longest.size());
   };
   // Two significant digits: 23.43 -> 23, 2.34 -> 2.3 (up, `up`: 2.34 -> 2.4).
   const auto two_digits = [](double s, bool up) {
@@ -92,7 +94,7 @@ double suggested_size(const TetMesh& mesh, bool* raised) {
   // A graded mesh (fine parts, coarse air): the median is the fine parts', at which the
   // air's tets would be subdivided many times over. The smallest size at which the
   // estimate is kSuggestedGrowth instead (at twice the longest edge it is 1).
-  double hi = 2 * std::sqrt(*std::max_element(longest2.begin(), longest2.end()));
+  double hi = 2 * *std::max_element(longest.begin(), longest.end());
   for (int i = 0; i < 40 && hi - size > 1e-4 * hi; ++i) {
     const double mid = 0.5 * (size + hi);
     (growth(mid) <= kSuggestedGrowth ? hi : size) = mid;
