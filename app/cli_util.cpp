@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/lod.h"
+#include "core/utf8.h"
 #include "core/validate.h"
 
 namespace tetlod::app {
@@ -497,17 +498,20 @@ std::string volume_changes(const std::vector<MaterialVolume>& before,
 
 std::string json_escape(const std::string& text) {
   std::string out;
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
+  for (size_t at = 0; at < text.size();) {
+    const size_t start = at;
+    const long code = next_code_point(text, &at);
+    if (code < 0) {  // not UTF-8 (a Latin-1 name): U+FFFD, as JSON must be UTF-8
+      out += "\xef\xbf\xbd";
+    } else if (code == '"' || code == '\\') {
       out += '\\';
-      out += c;
-    } else if (u < 0x20) {
+      out += static_cast<char>(code);
+    } else if (code < 0x20) {
       char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\u%04x", u);
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(code));
       out += buffer;
     } else {
-      out += c;
+      out.append(text, start, at - start);
     }
   }
   return out;

@@ -119,12 +119,13 @@ void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Com
   // The last message in a box two lines high, there even when empty, so that a message
   // of another length does not move what is under it (a longer one scrolls, and shows
   // whole under the pointer).
-  const float box_height = 2 * ImGui::GetTextLineHeightWithSpacing();
+  // (The lines of one wrapped text are a line height apart, without item spacing.)
+  const float box_height = 2 * ImGui::GetTextLineHeight();
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
   ImGui::BeginChild("##message", ImVec2(0, box_height));
   ImGui::PopStyleVar();
   ImGui::TextWrapped("%s", status.message.c_str());
-  const bool longer = ImGui::GetCursorPosY() > box_height + 1;
+  const bool longer = ImGui::GetItemRectSize().y > box_height + 0.5f;
   ImGui::EndChild();
   if (longer && ImGui::IsItemHovered()) {
     ImGui::BeginTooltip();

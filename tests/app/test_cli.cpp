@@ -156,6 +156,19 @@ TEST(Cli, StatsPrintsTableOneAndJson) {
   EXPECT_NE(json.output.find("\"nodes\": 45"), std::string::npos);
   EXPECT_NE(json.output.find("\"1|2\": 8"), std::string::npos);
   EXPECT_NE(json.output.find("\"surface_groups\": []"), std::string::npos) << json.output;
+  // A name that is not UTF-8 (Latin-1 "caf\xe9", from a Nastran comment): U+FFFD in the
+  // JSON, which must be UTF-8 (the byte went out as it was).
+  const TetMesh grid = test::make_grid_mesh(
+      2, 1, 1, [](int i, int, int) { return i + 1; }, 0.5);
+  const std::vector<MaterialName> names = {{1, "caf\xe9"}};
+  WriteOptions options;
+  options.material_names = &names;
+  const std::string latin = out_dir() + "/latin1.bdf";
+  ASSERT_TRUE(write_mesh(latin, grid, options).ok());
+  const CommandResult named = run("stats --json " + latin);
+  ASSERT_EQ(named.code, 0) << named.output;
+  EXPECT_NE(named.output.find("\"caf\xef\xbf\xbd\""), std::string::npos) << named.output;
+  EXPECT_EQ(named.output.find("caf\xe9"), std::string::npos) << named.output;
 }
 
 // Standard output that cannot be written (a full disk, a closed descriptor) is an
