@@ -232,7 +232,7 @@ std::vector<MaterialVolume> material_volumes(const TetMesh& mesh) {
     const auto it =
         std::lower_bound(volumes.begin(), volumes.end(), mesh.materials[t],
                          [](const MaterialVolume& v, int32_t m) { return v.material < m; });
-    it->volume += tet_shape(mesh, mesh.tets[t]).volume;
+    it->volume += signed_volume6(mesh, mesh.tets[t]) / 6;
   }
   return volumes;
 }

@@ -200,11 +200,12 @@ TEST(ViewerMouse, ADoubleClickOnSimplifyTicksNothing) {
 
 // A key pressed and released as by a hand (held 80 ms: shorter taps can fall between
 // two frames of a loaded machine).
-void press(Display* display, KeySym key) {
+// (`hold`: how long, for taps shorter than that.)
+void press(Display* display, KeySym key, std::chrono::milliseconds hold = 80ms) {
   const KeyCode code = XKeysymToKeycode(display, key);
   XTestFakeKeyEvent(display, code, True, CurrentTime);
   XFlush(display);
-  std::this_thread::sleep_for(80ms);
+  std::this_thread::sleep_for(hold);
   XTestFakeKeyEvent(display, code, False, CurrentTime);
   XFlush(display);
   std::this_thread::sleep_for(150ms);
@@ -270,15 +271,7 @@ TEST(ViewerMouse, ShortKeyTapsAreNotLost) {
   ASSERT_NE(display, nullptr);
   hover_view(display);
   press(display, XK_Home);
-  const KeyCode right = XKeysymToKeycode(display, XK_Right);
-  for (int tap = 0; tap < 3; ++tap) {
-    XTestFakeKeyEvent(display, right, True, CurrentTime);
-    XFlush(display);
-    std::this_thread::sleep_for(1ms);
-    XTestFakeKeyEvent(display, right, False, CurrentTime);
-    XFlush(display);
-    std::this_thread::sleep_for(150ms);
-  }
+  for (int tap = 0; tap < 3; ++tap) press(display, XK_Right, 1ms);
   XCloseDisplay(display);
   SavedLevel saved;
   read_saved(&viewer, &saved);
