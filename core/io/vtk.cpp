@@ -757,8 +757,7 @@ class VtkLegacyParser {
     surface.finish(out_);
     add_vtk_cell_notes(counts_by_type, out_);
     if (has_materials_) finish_vtk_materials(material_rank_, out_);
-    if (!has_materials_ && !cell_arrays_.empty())
-      out_->notes.push_back(no_material_note(cell_arrays_));
+    if (!has_materials_) out_->notes.push_back(no_material_note(cell_arrays_));
     apply_vtk_names(name_tags_, name_dims_, names_, out_);
     return true;
   }
@@ -939,6 +938,10 @@ std::string no_material_note(const std::vector<std::string>& arrays) {
   if (arrays.size() > kListed) names += " and " + std::to_string(arrays.size() - kListed) + " more";
   for (std::string_view k : kVtkMaterialNames)
     known += (known.empty() ? "'" : ", '") + std::string(k) + "'";
+  if (arrays.empty())
+    return "the file has no cell arrays, so every tet is material 0 (the material is read "
+           "from " +
+           known + ")";
   return "no cell array is read as the material, so every tet is material 0 (the file's "
          "cell arrays: " +
          names + "; the material is read from " + known +

@@ -868,8 +868,7 @@ class VtuParser {
     surface.finish(out_);
     add_vtk_cell_notes(counts_by_type, out_);
     if (has_materials_) finish_vtk_materials(material_rank_, out_);
-    if (!has_materials_ && !cell_arrays_.empty())
-      out_->notes.push_back(no_material_note(cell_arrays_));
+    if (!has_materials_) out_->notes.push_back(no_material_note(cell_arrays_));
     // The strings of a String array: each one's bytes and a 0.
     std::vector<std::string> names;
     for (size_t from = 0; from < name_bytes_.size();) {

@@ -193,7 +193,7 @@ TEST(IoOtherTools, TheBestMaterialArrayIsTaken) {
        "arrays: 'gmsh:physical'; the material is read from 'material', 'gmsh:physical'"},
       {array("Int32", "region", 2) + array("Float64", "quality", 1), 0,
        "(the file's cell arrays: 'region', 'quality';"},
-      {"", 0, nullptr},
+      {"", 0, "the file has no cell arrays, so every tet is material 0 (the material is read"},
   };
   // Many arrays: the note names the first ten and counts the rest.
   {
@@ -230,7 +230,8 @@ TEST(IoOtherTools, LegacyVtkSaysWhenNoArrayIsTheMaterial) {
                 "LOOKUP_TABLE colours 1\n0 0 1 1\nFIELD f 1\nquality 1 1 double\n0.5\n",
        0, "(the file's cell arrays: 'zone', 'quality';"},
       {"CELL_DATA 1\nFIELD f 1\ntetgen:ref 1 1 int\n6\n", 6, nullptr},
-      {points, 0, nullptr},
+      {points, 0, "the file has no cell arrays, so every tet is material 0"},
+      {"", 0, "the file has no cell arrays, so every tet is material 0"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.data);
