@@ -110,6 +110,12 @@ class NastranParser {
                             " 10-node CTETRAs were read as 4-node ones (by their corners; "
                             "their mid-side GRIDs are dropped)");
     }
+    if (renamed_ > 0) {
+      out_->notes.push_back((renamed_ == 1
+                                 ? std::string("a comment gives a PID a second name")
+                                 : std::to_string(renamed_) + " comments give PIDs second names") +
+                            ", the last is taken (" + first_renamed_ + ")");
+    }
     if (!skipped_solids_.empty()) {
       out_->notes.push_back("skipped the solid elements " + count_list(skipped_solids_) +
                             ": TetLOD reads CTETRA only, so a region meshed with other elements "
@@ -144,8 +150,16 @@ class NastranParser {
           pid > std::numeric_limits<int32_t>::max())
         return true;
       const std::string_view name = trim_blanks(rest.substr(separator + kNameSeparator.size()));
-      if (!name.empty() && !(!material && name == "unnamed"))
-        (material ? material_names_ : group_names_)[pid] = std::string(name);
+      if (!name.empty() && !(!material && name == "unnamed")) {
+        std::string& kept = (material ? material_names_ : group_names_)[pid];
+        if (!kept.empty() && kept != name && renamed_++ == 0) {
+          first_renamed_ = "line " + std::to_string(line_) + " names " +
+                           (material ? "material" : "surface group") + " PID " +
+                           std::to_string(pid) + " '" + std::string(name) + "', named '" + kept +
+                           "' before";
+        }
+        kept = std::string(name);
+      }
       return true;
     }
     if (comment.substr(0, kMaterialZeroComment.size()) != kMaterialZeroComment) return true;
@@ -477,7 +491,9 @@ class NastranParser {
   std::vector<PendingTet> tets_;
   int64_t zero_pid_ = -1;
   std::map<int64_t, std::string> material_names_, group_names_;  // by PID, from comments
-  std::map<std::string, size_t> skipped_solids_;                 // CHEXA, CPENTA, CPYRAM entries
+  size_t renamed_ = 0;                            // comments naming a PID named otherwise before
+  std::string first_renamed_;                     // the first of them, for the note
+  std::map<std::string, size_t> skipped_solids_;  // CHEXA, CPENTA, CPYRAM entries
 };
 
 // `value` in at most 16 characters as a Nastran real (with a decimal point): exact

@@ -3,6 +3,7 @@
 // what TetLOD writes reads back with every material; random damage never crashes.
 // (test_io_gmsh_interop.cpp checks that Gmsh reads ours and we read Gmsh's.)
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <cmath>
 #include <random>
@@ -177,6 +178,17 @@ TEST(IoNastran, NamesReadBackFromTheirComments) {
   ASSERT_TRUE(read_mesh_from_memory(text, MeshFormat::kNastran, "n.bdf", &back, &info).ok());
   ASSERT_EQ(info.material_names.size(), 2u);
   EXPECT_EQ(info.material_names[1].name, names[1].name);
+
+  // A second name for a PID: the last is taken, and a note says so with the line.
+  const size_t line = std::count(text.begin(), text.begin() + text.find(two), '\n') + 2;
+  text.insert(text.find('\n', text.find(two)) + 1, two + "other\n");
+  ASSERT_TRUE(read_mesh_from_memory(text, MeshFormat::kNastran, "n.bdf", &back, &info).ok());
+  ASSERT_EQ(info.material_names.size(), 2u);
+  EXPECT_EQ(info.material_names[1].name, "other");
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_EQ(info.notes[0], "a comment gives a PID a second name, the last is taken (line " +
+                               std::to_string(line) + " names material PID 2 'other', named '" +
+                               names[1].name + "' before)");
 }
 
 TEST(IoNastran, RandomDamageNeverCrashes) {
