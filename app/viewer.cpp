@@ -1943,7 +1943,7 @@ Status Viewer::run_action(const ScriptAction& a) {
           return Status::error(why);
       }
       if (!std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
-        return Status::error("material " + std::to_string(a.count) + " is not in the mesh");
+        return Status::error("material " + std::to_string(m) + " is not in the mesh");
       auto& hidden = view_.hidden_materials;
       hidden.erase(std::remove(hidden.begin(), hidden.end(), m), hidden.end());
       if (a.kind == Kind::kHide)
@@ -1960,13 +1960,26 @@ Status Viewer::run_action(const ScriptAction& a) {
       view_.field_percentile = static_cast<float>(a.value);
       break;
     case Kind::kAnalysis: {
-      std::vector<int32_t> named = a.problem.ground_materials;
-      for (const auto& [m, v] : a.problem.conductors) named.push_back(m);
-      for (const auto& [m, eps] : a.problem.permittivities) named.push_back(m);
+      ElectrostaticsProblem problem = a.problem;
+      static const std::vector<MaterialName> kNoNames;
+      for (const ScriptAction::NamedMaterial& n : a.named) {
+        int32_t m = 0;
+        std::string why;
+        if (!find_material(n.name, scene_->material_names ? *scene_->material_names : kNoNames, &m,
+                           &why))
+          return Status::error(n.key + ": " + why);
+        if (n.key == "ground")
+          problem.ground_materials.push_back(m);
+        else
+          (n.key == "eps" ? problem.permittivities : problem.conductors).push_back({m, n.value});
+      }
+      std::vector<int32_t> named = problem.ground_materials;
+      for (const auto& [m, v] : problem.conductors) named.push_back(m);
+      for (const auto& [m, eps] : problem.permittivities) named.push_back(m);
       for (const int32_t m : named)
         if (!std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
           return Status::error("material " + std::to_string(m) + " is not in the mesh");
-      analysis_ = ui::analysis_settings_from(a.problem, scene_->materials);
+      analysis_ = ui::analysis_settings_from(problem, scene_->materials);
       break;
     }
     case Kind::kSolve: {

@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -75,6 +76,11 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
     std::string key, value;
     if (!LineParser::key_value(p.words[i], &key, &value))
       return p.error("expected key=value, got '" + p.words[i] + "'");
+    for (size_t j = 1; j < i; ++j) {
+      std::string earlier, unused;
+      if (LineParser::key_value(p.words[j], &earlier, &unused) && earlier == key)
+        return p.error("'" + key + "' is given twice");
+    }
     double number = 0;
     if (key == "size" || key == "stretch" || key == "tolerance") {
       if (Status s = p.number(key, value, &number); !s) return s;
@@ -139,34 +145,48 @@ std::optional<int32_t> material_id(const std::string& text) {
   return static_cast<int32_t>(*n);
 }
 
-// "M:X,M:X": material ids and finite numbers.
+// "M:X,M:X": materials (ids, or names resolved when the line runs) and finite numbers.
 Status parse_material_values(const LineParser& p, const std::string& key, const std::string& text,
-                             std::vector<std::pair<int32_t, double>>* out) {
+                             std::vector<std::pair<int32_t, double>>* out,
+                             std::vector<ScriptAction::NamedMaterial>* named) {
   for (const std::string& item : split_list(text)) {
-    const size_t colon = item.find(':');
-    const auto material =
-        colon == std::string::npos ? std::nullopt : material_id(item.substr(0, colon));
-    const auto value =
-        colon == std::string::npos ? std::nullopt : parse_double(item.substr(colon + 1));
-    if (!material || !value)
+    const size_t colon = item.rfind(':');  // a name may hold one, a number does not
+    const std::string material = colon == std::string::npos ? "" : item.substr(0, colon);
+    const auto id = material_id(material);
+    double value = 0;  // a plain double: GCC 12 warns of an optional's, wrongly
+    bool has_value = false;
+    if (colon != std::string::npos) {
+      if (const std::optional<double> v = parse_double(item.substr(colon + 1))) {
+        value = *v;
+        has_value = true;
+      }
+    }
+    if (!(id || is_material_name(material)) || !has_value)
       return p.error("'" + key + "': '" + item +
-                     "' is not MATERIAL:NUMBER (a material id >= 0 and a finite number)");
-    out->push_back({*material, *value});
+                     "' is not MATERIAL:NUMBER (a material id >= 0 or name, and a finite "
+                     "number)");
+    if (id)
+      out->push_back({*id, value});
+    else
+      named->push_back({key, material, value});
   }
   return Status();
 }
 
 Status parse_analysis(const LineParser& p, ScriptAction* a) {
-  if (p.words.size() < 2) return p.error("'analysis' needs conductor=M:V and ground=...");
+  if (p.words.size() < 2) return p.error("'analysis' needs conductor=M:V");
   bool has_ground = false;
   for (size_t i = 1; i < p.words.size(); ++i) {
     std::string key, value;
     if (!LineParser::key_value(p.words[i], &key, &value))
       return p.error("expected key=value, got '" + p.words[i] + "'");
     if (key == "conductor") {
-      if (Status s = parse_material_values(p, key, value, &a->problem.conductors); !s) return s;
+      if (Status s = parse_material_values(p, key, value, &a->problem.conductors, &a->named); !s)
+        return s;
     } else if (key == "eps") {
-      if (Status s = parse_material_values(p, key, value, &a->problem.permittivities); !s) return s;
+      if (Status s = parse_material_values(p, key, value, &a->problem.permittivities, &a->named);
+          !s)
+        return s;
     } else if (key == "ground") {
       has_ground = true;
       for (const std::string& item : split_list(value)) {
@@ -174,16 +194,26 @@ Status parse_analysis(const LineParser& p, ScriptAction* a) {
           a->problem.ground_boundary = true;
         } else if (const auto m = material_id(item)) {
           a->problem.ground_materials.push_back(*m);
+        } else if (is_material_name(item)) {
+          a->named.push_back({key, item, 0});
         } else {
-          return p.error("'ground': '" + item + "' is neither 'boundary' nor a material id");
+          return p.error("'ground': '" + item +
+                         "' is neither 'boundary' nor a material id or name");
         }
       }
     } else {
       return p.error("unknown analysis key '" + key + "' (conductor, ground, eps)");
     }
   }
-  if (a->problem.conductors.empty()) return p.error("'analysis' needs conductor=M:V");
-  if (!has_ground) return p.error("'analysis' needs ground=boundary|M[,...]");
+  std::vector<double> potentials;
+  for (const auto& [m, v] : a->problem.conductors) potentials.push_back(v);
+  for (const ScriptAction::NamedMaterial& n : a->named)
+    if (n.key == "conductor") potentials.push_back(n.value);
+  if (potentials.empty()) return p.error("'analysis' needs conductor=M:V");
+  const bool two_potentials = std::any_of(potentials.begin(), potentials.end(),
+                                          [&](double v) { return v != potentials[0]; });
+  if (!has_ground && !two_potentials)
+    return p.error("'analysis' needs ground=boundary|M[,...] (or conductors at two potentials)");
   return Status();
 }
 
@@ -245,13 +275,15 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     }
   } else if (command == "hide" || command == "show") {
     a->kind = command == "hide" ? Kind::kHide : Kind::kShow;
-    if (Status s = p.arg_count(1, 1); !s) return s;
-    if (!is_material_name(w[1]) && w[1].find(',') != std::string::npos) {  // as --hide's list
+    if (w.size() < 2) return p.arg_count(1, 1);
+    if (is_material_name(w[1])) {  // a name, the rest of the line: hide rotor iron
+      for (size_t i = 1; i < w.size(); ++i) a->word += (i > 1 ? " " : "") + w[i];
+    } else if (w[1].find(',') != std::string::npos) {  // as --hide's list
       return p.error("'" + command + "' takes one material a line, got '" + w[1] + "'");
-    } else if (is_material_name(w[1])) {
-      a->word = w[1];
-    } else if (Status s = p.integer("material", w[1], &a->count); !s) {
+    } else if (Status s = p.arg_count(1, 1); !s) {
       return s;
+    } else {
+      return p.integer("material", w[1], &a->count);
     }
   } else if (command == "color") {
     a->kind = Kind::kColor;

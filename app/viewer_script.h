@@ -20,7 +20,8 @@
 //   scrub step=K | elements=N | end  move the LOD to a step / nearest level (waits)
 //   cut x|y|z=VALUE [flip] | cut off
 //   hide M | show M                  material visibility, by id or by the mesh's name for
-//                                    it (looked up when the line runs)
+//                                    it (looked up when the line runs; the rest of the
+//                                    line: hide rotor iron)
 //   color stretch|material|field|size  range MIN MAX        colormap viridis|turbo
 //                                    (field: |E| of the last solve while it matches the
 //                                    displayed level; stretch otherwise. size: each tet's
@@ -48,12 +49,14 @@
 //                                    frames each way; prints frame times
 //   bench-frames [frames=N] [out=CSV] times the next N frames as they are (e.g. while
 //                                    a 'simplify wait=0' runs)
-//   analysis conductor=M:V[,M:V...] ground=boundary|M[,...] [eps=M:E[,M:E...]]
+//   analysis conductor=M:V[,M:V...] [ground=boundary|M[,...]] [eps=M:E[,M:E...]]
 //                                    set up the Analysis panel (replaces the previous
-//                                    set-up; unlisted materials: dielectric, eps 1). The
-//                                    syntax is checked here, the material ids when it
-//                                    runs; a bad set-up (a conductor touching the ground,
-//                                    eps <= 0, ...) fails at 'solve'
+//                                    set-up; unlisted materials: dielectric, eps 1);
+//                                    ground= is needed unless the conductors hold two
+//                                    potentials; M is a material's id or its name (one
+//                                    without ',' or blanks). The syntax is checked here,
+//                                    the materials when it runs; a bad set-up (a conductor
+//                                    touching the ground, eps <= 0, ...) fails at 'solve'
 //   solve [may-fail] [wait=0]        solve the displayed level (and the finest level,
 //                                    once, for the difference) and wait (wait=0: go on
 //                                    meanwhile); the solver's error fails the script at
@@ -128,8 +131,15 @@ struct ScriptAction {
   std::optional<bool> keep_inside;
   std::optional<std::string> material_sizes, region;
   std::optional<bool> size_map;  // sizing=map (true) or sizing=uniform (false)
-  // analysis
+  // analysis: the materials given by id in `problem`, those given by name in `named`
+  // (resolved when the line runs)
   ElectrostaticsProblem problem;
+  struct NamedMaterial {
+    std::string key;  // conductor, eps or ground
+    std::string name;
+    double value = 0;  // the potential or the permittivity
+  };
+  std::vector<NamedMaterial> named;
 };
 
 // Reads and checks the whole script before anything runs. Errors read

@@ -41,6 +41,12 @@ TEST(ViewerScript, HideAndShowTakeIdsOrNames) {
   EXPECT_EQ(a[1].word, "");
   EXPECT_EQ(a[1].count, 3);
   EXPECT_EQ(a[2].word, "Dielectric_Outer");
+  // A name is the rest of the line (Gmsh names hold blanks); a number is one word.
+  const auto spaced = parse_ok("hide rotor iron\nshow  air   gap \n");
+  ASSERT_EQ(spaced.size(), 2u);
+  EXPECT_EQ(spaced[0].word, "rotor iron");
+  EXPECT_EQ(spaced[1].word, "air gap");
+  EXPECT_EQ(parse_error("hide 2 3\n"), "t.script:1: 'hide' takes 1 argument(s), got 2");
 }
 
 TEST(ViewerScript, ParsesEveryCommand) {
@@ -224,18 +230,41 @@ TEST(ViewerScript, AnalysisSolveAndReport) {
 
   EXPECT_EQ(parse_error("quit\nanalysis ground=4\n"), "t.script:2: 'analysis' needs conductor=M:V");
   EXPECT_EQ(parse_error("analysis conductor=1:1\n"),
-            "t.script:1: 'analysis' needs ground=boundary|M[,...]");
+            "t.script:1: 'analysis' needs ground=boundary|M[,...] (or conductors at two "
+            "potentials)");
+  EXPECT_EQ(parse_error("analysis conductor=1:1,2:1\n"),
+            "t.script:1: 'analysis' needs ground=boundary|M[,...] (or conductors at two "
+            "potentials)");
   EXPECT_EQ(parse_error("analysis conductor=1=1 ground=4\n"),
-            "t.script:1: 'conductor': '1=1' is not MATERIAL:NUMBER (a material id >= 0 and a "
-            "finite number)");
-  EXPECT_EQ(parse_error("analysis conductor=1:1 ground=outside\n"),
-            "t.script:1: 'ground': 'outside' is neither 'boundary' nor a material id");
+            "t.script:1: 'conductor': '1=1' is not MATERIAL:NUMBER (a material id >= 0 or name, "
+            "and a finite number)");
   EXPECT_EQ(parse_error("analysis conductor=1:1 ground=4 eps=2:nan\n"),
-            "t.script:1: 'eps': '2:nan' is not MATERIAL:NUMBER (a material id >= 0 and a finite "
-            "number)");
-  EXPECT_EQ(parse_error("analysis conductor=-1:1 ground=4\n"),
-            "t.script:1: 'conductor': '-1:1' is not MATERIAL:NUMBER (a material id >= 0 and a "
+            "t.script:1: 'eps': '2:nan' is not MATERIAL:NUMBER (a material id >= 0 or name, and a "
             "finite number)");
+  EXPECT_EQ(parse_error("analysis conductor=-1:1 ground=4\n"),
+            "t.script:1: 'conductor': '-1:1' is not MATERIAL:NUMBER (a material id >= 0 or name, "
+            "and a finite number)");
+  EXPECT_EQ(parse_error("analysis conductor=1:1 ground=-4\n"),
+            "t.script:1: 'ground': '-4' is neither 'boundary' nor a material id or name");
+  // Materials by name (resolved when the line runs), as the CLI takes them; no ground
+  // where the conductors hold two potentials, as `tetlod solve`.
+  const auto named = parse_ok(
+      "analysis conductor=inner:1,2:0 eps=dielectric:2.5\n"
+      "analysis conductor=1:1 ground=shield,boundary\n");
+  ASSERT_EQ(named.size(), 2u);
+  ASSERT_EQ(named[0].problem.conductors.size(), 1u);
+  EXPECT_EQ(named[0].problem.conductors[0], (std::pair<int32_t, double>{2, 0.0}));
+  ASSERT_EQ(named[0].named.size(), 2u);
+  EXPECT_EQ(named[0].named[0].key, "conductor");
+  EXPECT_EQ(named[0].named[0].name, "inner");
+  EXPECT_EQ(named[0].named[0].value, 1.0);
+  EXPECT_EQ(named[0].named[1].key, "eps");
+  EXPECT_EQ(named[0].named[1].name, "dielectric");
+  EXPECT_EQ(named[0].named[1].value, 2.5);
+  ASSERT_EQ(named[1].named.size(), 1u);
+  EXPECT_EQ(named[1].named[0].key, "ground");
+  EXPECT_EQ(named[1].named[0].name, "shield");
+  EXPECT_TRUE(named[1].problem.ground_boundary);
   EXPECT_EQ(parse_error("analysis conductor=1:1 ground=4 mu=2:1\n"),
             "t.script:1: unknown analysis key 'mu' (conductor, ground, eps)");
   EXPECT_EQ(parse_error("solve now\n"),
@@ -274,6 +303,8 @@ TEST(ViewerScript, ErrorsNameTheFileAndLine) {
             "t.script:3: 'size' needs a number, got 'abc'");
   // A list as --hide takes: one a line here (it said 'material' needs a whole number).
   EXPECT_EQ(parse_error("hide 1,2\n"), "t.script:1: 'hide' takes one material a line, got '1,2'");
+  EXPECT_EQ(parse_error("thresholds size=1 stretch=0.2 size=2\n"),
+            "t.script:1: 'size' is given twice");
 }
 
 // An endless file is refused after 16 MiB; /dev/null is an empty script.
@@ -314,7 +345,6 @@ TEST(ViewerScript, RejectsBadValues) {
            "cut off now\n",
            "hide\n",
            "hide 1.5\n",
-           "show shield 2\n",
            "color blue\n",
            "colormap jet\n",
            "range 1 0\n",

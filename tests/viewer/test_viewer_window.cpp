@@ -1552,6 +1552,40 @@ TEST(ViewerWindow, AnalysisErrorsNameTheLineOrShowInThePanel) {
       << "no solver error in the panel";
   EXPECT_NEAR(read_report(dir / "ok.txt")["capacitance"], 46.9104, 5e-5);
 
+  // Materials by their names (here from a Nastran file's comments), a name with a
+  // blank in 'hide', and two conductor potentials in place of a ground: the same C.
+  const std::string bdf = (dir / "named.bdf").string();
+  const std::string convert = std::string(TETLOD_BINARY) + " convert '" + kSource +
+                              "/assets/spheres.mesh' -o '" + bdf + "'";
+  ASSERT_EQ(std::system(convert.c_str()), 0) << convert;
+  std::ostringstream read;
+  read << std::ifstream(bdf, std::ios::binary).rdbuf();
+  std::string text = read.str();
+  const size_t end = text.rfind("ENDDATA");
+  ASSERT_NE(end, std::string::npos);
+  text.insert(end,
+              "$ material: the CTETRA with PID 1 are inner\n"
+              "$ material: the CTETRA with PID 3 are dielectric b\n"
+              "$ material: the CTETRA with PID 4 are outer\n");
+  std::ofstream(bdf, std::ios::binary) << text;
+  std::ofstream(dir / "named.script") << "analysis conductor=inner:1,outer:0 eps=2:2,dielectric:5\n"
+                                         "solve may-fail\n"
+                                         "quit\n";
+  const ViewerRun unknown = run_viewer(dir, "named.bdf --script named.script");
+  EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
+  EXPECT_NE(unknown.output.find("named.script:1: eps: the mesh has no material named 'dielectric'"),
+            std::string::npos)
+      << unknown.output;
+  std::ofstream(dir / "named.script") << "analysis conductor=inner:1,outer:0 eps=2:2,3:5\n"
+                                         "solve\n"
+                                         "report-analysis named.txt\n"
+                                         "hide dielectric b\n"
+                                         "show dielectric  b\n"
+                                         "quit\n";
+  const ViewerRun named = run_viewer(dir, "named.bdf --script named.script");
+  ASSERT_EQ(named.exit_code, 0) << named.output;
+  EXPECT_NEAR(read_report(dir / "named.txt")["capacitance"], 46.9104, 5e-5);
+
   // Quitting (as closing the window) right after a solve started: the worker is
   // cancelled and joined, the viewer exits cleanly. (The bundled mesh solves in a few
   // frames, so this does not prove the solve was still running; cancelling and
