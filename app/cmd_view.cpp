@@ -28,7 +28,8 @@ constexpr const char* kViewUsage =
     "                         thresholds, simplify, cancel, wait, scrub, cut, hide, show,\n"
     "                         color, colormap, range, field-range, wireframe, highlight,\n"
     "                         view, orbit, pan, zoom, mouse, screenshot, save, analysis,\n"
-    "                         solve, report-analysis, bench-scrub, bench-frames, quit\n"
+    "                         solve, report-analysis, report-tet, bench-scrub,\n"
+    "                         bench-frames, quit\n"
     "                         (their arguments: app/viewer_script.h in the sources); a\n"
     "                         bad line is an error naming SCRIPT:LINE\n"
     "  --size WxH             window size (default 1280x800)\n"
@@ -42,7 +43,9 @@ constexpr const char* kViewUsage =
     "                         (a background mesh over the same domain)\n"
     "Mouse: left drag orbits, right/middle or shift-left drag pans, the wheel zooms;\n"
     "keys F (fit), 0 (iso), 1/2/3 (x/y/z views); the level of detail: left/right one\n"
-    "step, page up/down a hundredth of the history, home/end the finest/coarsest level.\n";
+    "step, page up/down a hundredth of the history, home/end the finest/coarsest level.\n"
+    "The pointer at rest over the mesh names the tet under it: its material, stretch,\n"
+    "longest edge (with the last run's thresholds there), volume and |E| of a solve.\n";
 
 std::string default_model() {
   // The bundled motor, found next to the source tree the binary was built from, or

@@ -52,6 +52,7 @@
 #include "core/io/output_files.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
+#include "core/metrics.h"
 #include "core/simplify.h"
 #include "core/sizing.h"
 #include "core/validate.h"
@@ -360,6 +361,22 @@ class Viewer {
   };
   ViewPixels view_pixels(int fb_width, int fb_height) const;
   void draw_scene(int fb_width, int fb_height);
+  // The tet under the pointer: the shown tet drawn at display pixel (x, y), or
+  // kInvalidIndex (outside the view, over nothing). O(drawn faces).
+  uint32_t tet_at(float x, float y) const;
+  // What the tooltip and 'report-tet' say of a tet of the displayed level.
+  struct TetInfo {
+    int32_t material = 0;
+    double stretch = 0, size = 0, volume = 0;
+    double min_stretch = 0;  // the run's thresholds (0 and +inf: no run known)
+    double max_size = std::numeric_limits<double>::infinity();
+    bool has_field = false;  // |E| of the last solve, which is of this level
+    double field = 0;
+  };
+  TetInfo tet_info(uint32_t tet) const;
+  // The tooltip of the tet under the pointer once it rests over the view.
+  void update_hover();
+  Status report_tet(const std::string& path) const;
   Status screenshot(const std::string& path, int width, int height);
   Status save_level(const std::string& path, bool improve, bool surfaces, bool binary);
   void fill_status();
@@ -464,6 +481,17 @@ class Viewer {
   int drawn_width_ = 0, drawn_height_ = 0;
   render::DrawSettings drawn_settings_;
   render::Camera drawn_camera_;
+  uint64_t drawn_pictures_ = 0;  // redraws of the scene: a new picture each
+  // The pointer resting over the view, and the tet under it once picked.
+  struct Hover {
+    float x = -1, y = -1;  // display pixels
+    Clock::time_point since;
+    bool picked = false;
+    uint64_t picture = 0;  // drawn_pictures_ when picked
+    uint32_t tet = kInvalidIndex;
+  };
+  Hover hover_;
+  bool hover_waiting_ = false;  // resting, not picked yet: not idle
   std::string ui_capture_path_;
   int ui_capture_countdown_ = -1;
   int ui_capture_line_ = 0;
@@ -613,7 +641,7 @@ void Viewer::frame() {
   // quarter second passes, so an idle viewer leaves the cores to others.
   const bool idle = !job_ && !solve_job_ && !interacting_ && !needs_redraw_ &&
                     !options_.has_script && !stats_future_.valid() && !save_future_.valid() &&
-                    !surface_future_.valid() && ui_capture_countdown_ < 0 &&
+                    !surface_future_.valid() && ui_capture_countdown_ < 0 && !hover_waiting_ &&
                     (!scene_ || scene_->lod->step() == static_cast<size_t>(panel_.target_step));
   busy_frames_ = idle ? busy_frames_ - 1 : 3;
   const bool slept = last_slept_;
@@ -668,6 +696,7 @@ void Viewer::frame() {
   const Clock::time_point draw_start = Clock::now();
   if (width > 0 && height > 0) draw_scene(width, height);
   current_.draw_ms = 1e3 * seconds_between(draw_start, Clock::now());
+  update_hover();
   const Clock::time_point ui_start = Clock::now();
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -1391,8 +1420,118 @@ void Viewer::draw_scene(int fb_width, int fb_height) {
     drawn_settings_ = draw;
     drawn_camera_ = camera;
     needs_redraw_ = false;
+    ++drawn_pictures_;
   }
   renderer_->present_into(view.x, view.y, view.width, view.height);
+}
+
+uint32_t Viewer::tet_at(float x, float y) const {
+  if (!scene_) return kInvalidIndex;
+  const ImGuiIO& io = ImGui::GetIO();
+  const ui::ViewRect rect = ui::scene_rect(io.DisplaySize.x, io.DisplaySize.y, panel_);
+  const float px = x - rect.x, py = y - rect.y;
+  if (!(px >= 0 && py >= 0 && px < rect.width && py < rect.height)) return kInvalidIndex;
+  return scene_->surface
+      .pick(render::pixel_ray(camera_.camera(), px, py, static_cast<int>(rect.width),
+                              static_cast<int>(rect.height)))
+      .tet;
+}
+
+Viewer::TetInfo Viewer::tet_info(uint32_t tet) const {
+  const Lod& lod = *scene_->lod;
+  const Tet& t = lod.tets()[tet];
+  const std::vector<Vec3>& p = lod.positions();
+  const TetShape shape = tet_shape(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
+  TetInfo info;
+  info.material = lod.materials()[tet];
+  info.stretch = shape.stretch;
+  info.size = shape.size;
+  info.volume = shape.volume;
+  if (scene_->params_known) {
+    info.min_stretch = scene_->params.min_stretch;
+    info.max_size = scene_->params.sizing.size_at(0.25 * (p[t[0]] + p[t[1]] + p[t[2]] + p[t[3]]),
+                                                  info.material);
+  }
+  if (field_shown() && tet < analysis_result_->tet_values.size()) {
+    info.has_field = true;
+    info.field = analysis_result_->tet_values[tet];
+  }
+  return info;
+}
+
+void Viewer::update_hover() {
+  // A pointer at rest over the view for a moment, no button down: the tet under it is
+  // picked once (again when the picture changes) and named in a tooltip.
+  constexpr double kRestSeconds = 0.3;
+  hover_waiting_ = false;
+  const ImGuiIO& io = ImGui::GetIO();
+  const bool button = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];
+  if (!scene_ || io.WantCaptureMouse || button || !ImGui::IsMousePosValid()) {
+    hover_ = Hover();
+    return;
+  }
+  const Clock::time_point now = Clock::now();
+  if (io.MousePos.x != hover_.x || io.MousePos.y != hover_.y) {
+    hover_ = Hover();
+    hover_.x = io.MousePos.x;
+    hover_.y = io.MousePos.y;
+    hover_.since = now;
+  }
+  if (!hover_.picked || hover_.picture != drawn_pictures_) {
+    if (seconds_between(hover_.since, now) < kRestSeconds) {
+      hover_waiting_ = true;
+      return;
+    }
+    hover_.tet = tet_at(hover_.x, hover_.y);
+    hover_.picked = true;
+    hover_.picture = drawn_pictures_;
+  }
+  if (hover_.tet == kInvalidIndex) return;
+  const TetInfo info = tet_info(hover_.tet);
+  const ImVec4 warn(0.85f, 0.35f, 0.0f, 1.0f);
+  const std::string* name = find_material_name(scene_->material_names.get(), info.material);
+  ImGui::BeginTooltip();
+  ImGui::Text("material %d%s%s", info.material, name ? " " : "", name ? name->c_str() : "");
+  const bool flat = info.stretch < info.min_stretch;
+  if (scene_->params_known) {
+    ImGui::TextColored(flat ? warn : ImGui::GetStyleColorVec4(ImGuiCol_Text),
+                       "stretch %.4g (threshold %.4g)", info.stretch, info.min_stretch);
+  } else {
+    ImGui::Text("stretch %.4g", info.stretch);
+  }
+  if (std::isfinite(info.max_size)) {
+    ImGui::TextColored(info.size > info.max_size ? warn : ImGui::GetStyleColorVec4(ImGuiCol_Text),
+                       "longest edge %.4g (size %.4g here)", info.size, info.max_size);
+  } else {
+    ImGui::Text("longest edge %.4g", info.size);
+  }
+  ImGui::Text("volume %.4g", info.volume);
+  if (info.has_field) ImGui::Text("|E| %.4g", info.field);
+  ImGui::EndTooltip();
+}
+
+Status Viewer::report_tet(const std::string& path) const {
+  if (!script_mouse_) return Status::error("no pointer to report the tet under: 'mouse X Y' first");
+  const uint32_t tet = tet_at(script_mouse_x_, script_mouse_y_);
+  if (tet == kInvalidIndex) return write_file_atomically(path, "tet none\n");
+  const TetInfo info = tet_info(tet);
+  std::string text;
+  char line[256];
+  const auto put = [&](const char* key, const char* format, auto value) {
+    std::snprintf(line, sizeof(line), format, value);
+    text += std::string(key) + ' ' + line + '\n';
+  };
+  put("tet", "%u", tet);
+  put("material", "%d", info.material);
+  put("stretch", "%.17g", info.stretch);
+  put("size", "%.17g", info.size);
+  put("volume", "%.17g", info.volume);
+  if (scene_->params_known) {
+    put("min_stretch", "%.17g", info.min_stretch);
+    put("max_size", "%.17g", info.max_size);
+  }
+  if (info.has_field) put("field", "%.17g", info.field);
+  return write_file_atomically(path, text);
 }
 
 Status Viewer::screenshot(const std::string& path, int width, int height) {
@@ -1990,6 +2129,8 @@ Status Viewer::run_action(const ScriptAction& a) {
     }
     case Kind::kReportAnalysis:
       return report_analysis(a.path);
+    case Kind::kReportTet:
+      return report_tet(a.path);
     case Kind::kColormap:
       view_.color_map = a.word == "turbo" ? render::ColorMap::kTurbo : render::ColorMap::kViridis;
       break;

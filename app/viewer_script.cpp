@@ -437,8 +437,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
         return p.error("'solve' takes may-fail and wait=0|1, got '" + w[i] + "'");
       }
     }
-  } else if (command == "report-analysis") {
-    a->kind = Kind::kReportAnalysis;
+  } else if (command == "report-analysis" || command == "report-tet") {
+    a->kind = command == "report-tet" ? Kind::kReportTet : Kind::kReportAnalysis;
     if (Status s = p.arg_count(1, 1); !s) return s;
     a->path = w[1];
   } else if (command == "quit") {

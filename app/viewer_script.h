@@ -63,6 +63,10 @@
 //                                    this line (with may-fail it only shows in the
 //                                    Analysis panel, as for a user)
 //   report-analysis PATH             write the last solve's figures as 'key value' lines
+//   report-tet PATH                  write what the tooltip says of the tet under the
+//                                    pointer ('mouse X Y' first) as 'key value' lines
+//                                    (tet, material, stretch, size, volume; the run's
+//                                    min_stretch and max_size there; field), or 'tet none'
 //   quit
 //
 // Relative paths are relative to the working directory.
@@ -110,11 +114,12 @@ struct ScriptAction {
     kAnalysis,
     kSolve,
     kReportAnalysis,
+    kReportTet,
     kQuit,
   };
   Kind kind = Kind::kQuit;
   int line = 0;
-  std::string path;       // open, screenshot, save, bench-scrub out, report-analysis
+  std::string path;       // open, screenshot, save, bench-scrub out, report-analysis, -tet
   std::string word;       // color, colormap, view; hide, show: a material's name
   long long count = 0;    // step, elements, material, frames, solve: wait (1) or not (0)
   double value = 0;       // cut offset, highlight, range min, field-range percentile

@@ -95,6 +95,18 @@ Mat4 projection_matrix(const Camera& camera, double aspect, double scale) {
   return m;
 }
 
+Ray pixel_ray(const Camera& camera, double px, double py, int width, int height) {
+  const double aspect = double(width) / double(height);
+  const double f = 1.0 / std::tan(0.5 * camera.fov_y_degrees * kPi / 180);
+  const double fx = aspect >= 1 ? f / aspect : f;  // as projection_matrix()
+  const double fy = aspect >= 1 ? f : f * aspect;
+  const double x = 2 * px / width - 1, y = 1 - 2 * py / height;  // normalised device
+  const Vec3 forward = normalized(camera.target - camera.eye);
+  const Vec3 side = normalized(cross(forward, camera.up));  // as view_matrix()
+  const Vec3 up = normalized(cross(side, forward));
+  return {camera.eye, normalized(forward + side * (x / fx) + up * (y / fy))};
+}
+
 Mat4 multiply(const Mat4& a, const Mat4& b) {
   Mat4 m{};
   for (int c = 0; c < 4; ++c)

@@ -30,6 +30,15 @@ Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view);
 // and far from the box [lo, hi]. Precondition: eye != target.
 Camera look_at_camera(const Vec3& eye, const Vec3& target, const Vec3& lo, const Vec3& hi);
 
+// The ray through pixel (px, py) of a width x height image drawn with `camera` (pixels
+// from the top left; a pixel's centre is at +0.5): from the eye, `direction` of unit
+// length. The inverse of projection_matrix() * view_matrix().
+struct Ray {
+  Vec3 origin;
+  Vec3 direction;
+};
+Ray pixel_ray(const Camera& camera, double px, double py, int width, int height);
+
 // Column-major 4x4 matrices for OpenGL.
 using Mat4 = std::array<float, 16>;
 // The view transform, its result multiplied by `scale`. The renderer passes 1 over

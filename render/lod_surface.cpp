@@ -55,9 +55,9 @@ void LodSurface::FaceTable::clear(size_t expected_faces, size_t vertex_count) {
   scale_ = (uint64_t(capacity) << 32) / std::max<uint64_t>(vertex_count, 1);
 }
 
-LodSurface::FaceEntry* LodSurface::FaceTable::find(const FaceKey& key) {
+const LodSurface::FaceEntry* LodSurface::FaceTable::find(const FaceKey& key) const {
   for (size_t i = home(key);; i = (i + 1) & mask_) {
-    Bucket& b = buckets_[i];
+    const Bucket& b = buckets_[i];
     if (b.key == key) return &b.entry;
     if (b.key.v[0] == kInvalidIndex) return nullptr;
   }
@@ -326,6 +326,37 @@ void LodSurface::update(const LodState& state, const LodDelta& delta) {
   for (const uint32_t t : delta.appeared)
     if (tet_visible(state, t)) add_tet(state, t);
   state_ = nullptr;
+}
+
+LodSurface::Pick LodSurface::pick(const Ray& ray) const {
+  // Every drawn face, Moller-Trumbore in double (faces seen from either side: a cut
+  // shows inner ones); the nearest hit in front of the eye.
+  Pick best;
+  const Vec3 o = ray.origin, d = ray.direction;
+  for (size_t slot = 0; slot < slot_keys_.size(); ++slot) {
+    const SurfaceVertex* v = &triangles_[slot * 3];
+    const Vec3 a{v[0].position[0], v[0].position[1], v[0].position[2]};
+    const Vec3 e1 = Vec3{v[1].position[0], v[1].position[1], v[1].position[2]} - a;
+    const Vec3 e2 = Vec3{v[2].position[0], v[2].position[1], v[2].position[2]} - a;
+    const Vec3 p = cross(d, e2);
+    const double det = dot(e1, p);
+    if (det == 0) continue;
+    const double inv = 1 / det;
+    const Vec3 s = o - a;
+    const double u = dot(s, p) * inv;
+    if (u < 0 || u > 1) continue;
+    const Vec3 q = cross(s, e1);
+    const double w = dot(d, q) * inv;
+    if (w < 0 || u + w > 1) continue;
+    const double t = dot(e2, q) * inv;
+    if (t > 0 && t < best.distance) {
+      const FaceEntry& entry = *faces_.find(slot_keys_[slot]);
+      const uint32_t owner = entry.owners[0] != kInvalidIndex ? entry.owners[0] : entry.owners[1];
+      best.tet = owner / 4;
+      best.distance = t;
+    }
+  }
+  return best;
 }
 
 }  // namespace tetlod::render

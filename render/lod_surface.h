@@ -13,9 +13,11 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/lod.h"
+#include "render/camera.h"
 #include "render/surface_builder.h"
 
 namespace tetlod::render {
@@ -60,6 +62,15 @@ class LodSurface {
   void set_color_by_size(bool by_size);
   bool color_by_size() const { return by_size_; }
 
+  // The shown tet whose drawn face the ray meets first (the tet under the pointer:
+  // camera.h pixel_ray()), and how far along the ray; tet kInvalidIndex if the ray
+  // meets none. O(drawn faces).
+  struct Pick {
+    uint32_t tet = kInvalidIndex;
+    double distance = std::numeric_limits<double>::infinity();
+  };
+  Pick pick(const Ray& ray) const;
+
   // The vertex ranges written since the last call, sorted and merged (the arrays may
   // also have shrunk; ranges are clamped to the current size). reset() marks all.
   std::vector<DirtyRange> take_triangle_dirty();
@@ -83,7 +94,10 @@ class LodSurface {
     // faces of nearby vertices (the simplifier numbers them in Morton order) share
     // cache lines.
     void clear(size_t expected_faces, size_t vertex_count);
-    FaceEntry* find(const FaceKey& key);
+    const FaceEntry* find(const FaceKey& key) const;
+    FaceEntry* find(const FaceKey& key) {
+      return const_cast<FaceEntry*>(static_cast<const FaceTable*>(this)->find(key));
+    }
     FaceEntry* insert(const FaceKey& key);  // finds, or adds an empty entry
     void erase(const FaceKey& key);
 

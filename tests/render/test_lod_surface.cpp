@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <tuple>
@@ -228,6 +229,109 @@ TEST(LodSurface, ColoursBySizeThroughSeeksAndResets) {
   expect_same_as_full_build(lod, surface, filter, "sizes after a reset", true);
   surface.set_color_by_size(false);
   expect_same_as_full_build(lod, surface, filter, "stretch again");
+}
+
+// The ray through a pixel meets the point drawn at that pixel: pixel_ray() inverts
+// projection_matrix() * view_matrix().
+TEST(LodSurface, PixelRayInvertsTheProjection) {
+  const Camera camera = frame_camera({0, 0, 0}, {2, 1, 1}, ViewDirection::kIso);
+  for (const auto& [width, height] : {std::pair{640, 480}, std::pair{300, 500}}) {
+    const Mat4 m = multiply(projection_matrix(camera, double(width) / height), view_matrix(camera));
+    for (const Vec3& p : {Vec3{0.3, 0.2, 0.9}, Vec3{1.7, 0.8, 0.1}, Vec3{1, 0.5, 0.5}}) {
+      const double clip[4] = {m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12],
+                              m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13], 0,
+                              m[3] * p.x + m[7] * p.y + m[11] * p.z + m[15]};
+      const double px = (clip[0] / clip[3] + 1) / 2 * width;
+      const double py = (1 - clip[1] / clip[3]) / 2 * height;
+      const Ray ray = pixel_ray(camera, px, py, width, height);
+      EXPECT_NEAR(length(ray.direction), 1, 1e-12);
+      const Vec3 to = p - ray.origin;
+      const Vec3 off = to - ray.direction * dot(to, ray.direction);  // p's distance from it
+      EXPECT_LT(length(off), 1e-5 * length(to)) << width << "x" << height;
+    }
+  }
+}
+
+// The nearest hit of a ray with a face of one tet, or infinity.
+double ray_tet(const Ray& ray, const Vec3 (&p)[4]) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int corner = 0; corner < 4; ++corner) {
+    const Vec3& a = p[kTetFace[corner][0]];
+    const Vec3 e1 = p[kTetFace[corner][1]] - a, e2 = p[kTetFace[corner][2]] - a;
+    const Vec3 n = cross(e1, e2);
+    const double den = dot(n, ray.direction);
+    if (den == 0) continue;
+    const double t = dot(n, a - ray.origin) / den;
+    const Vec3 x = ray.origin + ray.direction * t - a;
+    // Barycentric coordinates of x in the face.
+    const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+    const double b1 = dot(x, e1), b2 = dot(x, e2), det = d11 * d22 - d12 * d12;
+    const double u = (d22 * b1 - d12 * b2) / det, w = (d11 * b2 - d12 * b1) / det;
+    if (t > 0 && u >= 0 && w >= 0 && u + w <= 1) best = std::min(best, t);
+  }
+  return best;
+}
+
+// The tet under a pixel: pick() is the visible tet a brute-force ray cast through
+// every tet meets first, under a hidden material and a cut, at several levels.
+TEST(LodSurface, PickFindsTheFirstVisibleTetOnTheRay) {
+  const SimplifyResult& r = simplified_box2();
+  Lod lod(r.base, &r.history);
+  const LodState state = lod_state(lod);
+  SurfaceFilter filter;
+  filter.hidden_materials = {2};
+  filter.cut = true;
+  filter.cut_plane = {{0, 0.6, 0.8}, 0.6};
+  std::mt19937 random(11);
+  int hits = 0, misses = 0;
+  LodDelta delta;
+  for (const size_t target : {size_t{0}, lod.step_count() / 2, lod.step_count()}) {
+    lod.seek(target, &delta);
+    for (const bool filtered : {false, true}) {
+      LodSurface surface;
+      surface.reset(state, filtered ? filter : SurfaceFilter{});
+      const Camera camera = frame_camera({0, 0, 0}, {2, 1, 1}, ViewDirection::kIso);
+      for (int i = 0; i < 300; ++i) {
+        const Ray ray = pixel_ray(camera, random() % 400 + 0.5, random() % 300 + 0.5, 400, 300);
+        double best = std::numeric_limits<double>::infinity(), second = best;
+        uint32_t best_tet = kInvalidIndex;
+        for (uint32_t t = 0; t < lod.tets().size(); ++t) {
+          if (!lod.alive()[t]) continue;
+          const Tet& c = lod.tets()[t];
+          const Vec3 p[4] = {lod.positions()[c[0]], lod.positions()[c[1]], lod.positions()[c[2]],
+                             lod.positions()[c[3]]};
+          if (filtered) {
+            const Vec3 centroid = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+            if (lod.materials()[t] == 2 ||
+                dot(filter.cut_plane.normal, centroid) > filter.cut_plane.offset)
+              continue;
+          }
+          const double hit = ray_tet(ray, p);
+          if (hit < best) {
+            second = best;
+            best = hit;
+            best_tet = t;
+          } else {
+            second = std::min(second, hit);
+          }
+        }
+        const LodSurface::Pick pick = surface.pick(ray);
+        if (best_tet == kInvalidIndex) {
+          EXPECT_EQ(pick.tet, kInvalidIndex);
+          ++misses;
+          continue;
+        }
+        ++hits;
+        EXPECT_NEAR(pick.distance, best, 1e-5 * best);
+        // Through a shared edge or corner two tets are first: either will do.
+        if (second - best > 1e-4 * best) {
+          EXPECT_EQ(pick.tet, best_tet) << "step " << target;
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, 300);
+  EXPECT_GT(misses, 100);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
+#include "core/metrics.h"
 #include "core/simplify.h"
 #include "render/image.h"
 
@@ -1595,6 +1596,68 @@ TEST(ViewerWindow, AnalysisErrorsNameTheLineOrShowInThePanel) {
                                         "quit\n";
   const ViewerRun quit = run_viewer(dir, spheres + "quit.script");
   EXPECT_EQ(quit.exit_code, 0) << quit.output;
+}
+
+// The tet under the pointer: looking down on the spheres, the pointer at the view's
+// centre is over the outer shell (4); with 4 hidden over the next shell (3); with a cut
+// at z = 0 as well over the inner sphere's cut face (1); over the panel, over nothing.
+// What 'report-tet' says is a tet of the displayed level (its stretch, size and
+// volume those of a tet of the level saved), with the run's thresholds; the tooltip
+// shows after the pointer rests.
+TEST(ViewerWindow, ThePointerNamesTheTetUnderIt) {
+  const fs::path dir = fresh_output_dir("viewer_tet_under_pointer");
+  std::ofstream(dir / "tet.script") << "thresholds size=2 stretch=0.2 tolerance=0.05\n"
+                                       "simplify\n"
+                                       "save level.mesh\n"
+                                       "view z\n"
+                                       "mouse 836 250\n"
+                                       "report-tet outer.txt\n"
+                                       "screenshot before.png ui=1\n"
+                                       "wait seconds=0.6\n"
+                                       "screenshot tip.png ui=1\n"
+                                       "hide 4\n"
+                                       "report-tet shell.txt\n"
+                                       "cut z=0\n"
+                                       "report-tet inner.txt\n"
+                                       "mouse 100 300\n"
+                                       "report-tet panel.txt\n"
+                                       "quit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/spheres.mesh' --size 1280x800 --script tet.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  TetMesh level;
+  ASSERT_TRUE(read_mesh((dir / "level.mesh").string(), &level).ok());
+  for (const auto& [file, material] :
+       {std::pair{"outer.txt", 4}, std::pair{"shell.txt", 3}, std::pair{"inner.txt", 1}}) {
+    std::map<std::string, double> tet = read_report(dir / file);
+    EXPECT_EQ(tet["material"], material) << file;
+    EXPECT_EQ(tet["min_stretch"], 0.2) << file;
+    EXPECT_EQ(tet["max_size"], 2) << file;
+    bool found = false;
+    for (size_t t = 0; t < level.tet_count() && !found; ++t) {
+      const TetShape shape = tet_shape(level, level.tets[t]);
+      found = level.materials[t] == material && std::abs(shape.stretch - tet["stretch"]) < 1e-9 &&
+              std::abs(shape.size - tet["size"]) < 1e-9 &&
+              std::abs(shape.volume - tet["volume"]) < 1e-9;
+    }
+    EXPECT_TRUE(found) << file << ": no such tet in the level";
+  }
+  std::ifstream panel(dir / "panel.txt");
+  std::string none;
+  std::getline(panel, none);
+  EXPECT_EQ(none, "tet none");
+  const render::ImageDifference d =
+      render::compare_images(load_png(dir / "before.png"), load_png(dir / "tip.png"), 24, nullptr);
+  EXPECT_GT(d.differing_pixels, 3000u) << "no tooltip";
+
+  std::ofstream(dir / "none.script") << "report-tet x.txt\nquit\n";
+  const ViewerRun none_run =
+      run_viewer(dir, "'" + kSource + "/assets/spheres.mesh' --size 1280x800 --script none.script");
+  EXPECT_EQ(none_run.exit_code, 1);
+  EXPECT_NE(none_run.output.find("none.script:1: no pointer to report the tet under: 'mouse X Y' "
+                                 "first"),
+            std::string::npos)
+      << none_run.output;
 }
 
 }  // namespace
