@@ -175,6 +175,7 @@ render::DrawSettings make_draw_settings(const ui::ViewSettings& view, double fie
     if (field_max > 0) {
       draw.range_min = 0;
       draw.range_max = field_max;
+      draw.field_percentile = view.field_percentile;
     } else {
       draw.color_mode = render::ColorMode::kStretch;
     }
@@ -188,7 +189,7 @@ render::DrawSettings make_draw_settings(const ui::ViewSettings& view, double fie
 bool same_draw(const render::DrawSettings& a, const render::DrawSettings& b) {
   return a.color_mode == b.color_mode && a.color_map == b.color_map && a.range_min == b.range_min &&
          a.range_max == b.range_max && a.wireframe == b.wireframe && a.legend == b.legend &&
-         a.highlight_below == b.highlight_below;
+         a.highlight_below == b.highlight_below && a.field_percentile == b.field_percentile;
 }
 
 bool same_camera(const render::Camera& a, const render::Camera& b) {

@@ -401,9 +401,22 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     const std::string hi = format_value(settings.range_max);
     add_text(&v, x0, y1 + 3 * scale, lo, ink, scale);
     add_text(&v, x0 + bar_w - text_pixels(hi, scale), y1 + 3 * scale, hi, ink, scale);
-    const std::string title = settings.color_mode == ColorMode::kField  ? "|E|"
-                              : settings.color_mode == ColorMode::kSize ? "size"
-                                                                        : "stretch";
+    std::string title = settings.color_mode == ColorMode::kField  ? "|E|"
+                        : settings.color_mode == ColorMode::kSize ? "size"
+                                                                  : "stretch";
+    if (settings.color_mode == ColorMode::kField && settings.field_percentile < 100) {
+      // The longest note that fits between the two numbers.
+      const float room =
+          bar_w - 2 * (std::max(text_pixels(lo, scale), text_pixels(hi, scale)) + 8 * scale);
+      for (const char* format : {"|E| (to its %gth percentile)", "|E| (%gth pctl.)"}) {
+        char text[64];
+        std::snprintf(text, sizeof text, format, settings.field_percentile);
+        if (text_pixels(text, scale) <= room) {
+          title = text;
+          break;
+        }
+      }
+    }
     add_text(&v, x0 + 0.5f * (bar_w - text_pixels(title, scale)), y1 + 3 * scale, title, ink,
              scale);
   }

@@ -28,6 +28,9 @@ struct DrawSettings {
   ColorMap color_map = ColorMap::kViridis;
   double range_min = 0;  // scalar (stretch or |E|) at the low end of the colour map
   double range_max = 1;  // and at the high end
+  // Field mode: range_max is this percentile of |E| (100: its maximum); the legend
+  // says so below 100, as higher values take the top colour.
+  double field_percentile = 100;
   bool wireframe = false;
   bool legend = true;
   Rgb background = {1, 1, 1};

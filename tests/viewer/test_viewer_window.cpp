@@ -1399,6 +1399,8 @@ TEST(ViewerWindow, AnalysisOnTheSphericalCapacitor) {
          "color field\n"
          "screenshot field.png width=480 height=360\n"
          "view z\n"
+         "screenshot field_top_p99.png width=400 height=400\n"
+         "field-range max\n"
          "screenshot field_top.png width=400 height=400\n"
          "field-range 90\n"
          "screenshot field_p90.png width=400 height=400\n"
@@ -1470,11 +1472,16 @@ TEST(ViewerWindow, AnalysisOnTheSphericalCapacitor) {
             480u * 360u / 10u);
 
   // A legend up to the 90th percentile brightens the picture (more tets high on the
-  // map): more pixels change than the legend's numbers alone.
+  // map): more pixels change than the legend's numbers alone. So does the default, the
+  // 99th percentile, against the maximum, if less.
   const render::Image top_p90 = load_png(dir / "field_p90.png");
   EXPECT_GT(render::compare_images(load_png(dir / "field_top.png"), top_p90, 24, nullptr)
                 .differing_pixels,
             400u * 400u / 50u);
+  EXPECT_GT(render::compare_images(load_png(dir / "field_top.png"),
+                                   load_png(dir / "field_top_p99.png"), 24, nullptr)
+                .differing_pixels,
+            400u * 400u / 200u);
 
   // Seen from the top of the cut, the bright (high |E|) pixels surround the centre:
   // the strongest field is around the inner sphere, not out at the box.
