@@ -697,7 +697,7 @@ void Viewer::frame() {
   const Clock::time_point draw_start = Clock::now();
   if (width > 0 && height > 0) draw_scene(width, height);
   current_.draw_ms = 1e3 * seconds_between(draw_start, Clock::now());
-  update_hover();
+  if (width > 0 && height > 0) update_hover();
   const Clock::time_point ui_start = Clock::now();
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -1467,7 +1467,10 @@ void Viewer::update_hover() {
   hover_waiting_ = false;
   const ImGuiIO& io = ImGui::GetIO();
   const bool button = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];
-  if (!scene_ || io.WantCaptureMouse || button || !ImGui::IsMousePosValid()) {
+  // While a task rebuilds the surface (a far move of the level), the surface drawn is
+  // of another state than the LOD's.
+  if (!scene_ || io.WantCaptureMouse || button || !ImGui::IsMousePosValid() ||
+      surface_future_.valid()) {
     hover_ = Hover();
     return;
   }
@@ -1487,7 +1490,10 @@ void Viewer::update_hover() {
     hover_.picked = true;
     hover_.picture = drawn_pictures_;
   }
-  if (hover_.tet == kInvalidIndex) return;
+  // The pick is of the picture drawn last (a new level or mesh is drawn before this
+  // frame's pick); a tet of another state is not shown.
+  const Lod& lod = *scene_->lod;
+  if (hover_.tet >= lod.tets().size() || !lod.alive()[hover_.tet]) return;
   const TetInfo info = tet_info(hover_.tet);
   const ImVec4 warn(0.85f, 0.35f, 0.0f, 1.0f);
   const std::string* name = find_material_name(scene_->material_names.get(), info.material);
