@@ -10,6 +10,7 @@
 #include <memory>
 #include <utility>
 
+#include "core/io/text_lines.h"
 #include "core/lod.h"
 #include "core/utf8.h"
 #include "core/validate.h"
@@ -384,9 +385,19 @@ std::string material_name_of(const std::vector<MaterialName>* names, int32_t m) 
 }
 
 bool is_material_name(const std::string& text) {
-  if (text.empty()) return false;
-  const char c = text[0];
-  return !(std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.');
+  return !text.empty() && !parse_integer(text).has_value();
+}
+
+std::vector<std::string> split_items(const std::string& text) {
+  std::vector<std::string> items;
+  size_t start = 0;
+  while (true) {
+    const size_t end = text.find(',', start);
+    items.emplace_back(io::trim_blanks(std::string_view(text).substr(
+        start, end == std::string::npos ? std::string::npos : end - start)));
+    if (end == std::string::npos) return items;
+    start = end + 1;
+  }
 }
 
 // "1,copper,3": ids into `ids`, names (items that do not start like a number) into
@@ -395,10 +406,7 @@ bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
                      std::vector<std::string>* names) {
   ids->clear();
   names->clear();
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
+  for (const std::string& item : split_items(text)) {
     if (is_material_name(item)) {
       names->push_back(item);
     } else {
@@ -406,7 +414,6 @@ bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
       if (!n || *n < 0 || *n > 0x7fffffff) return false;
       ids->push_back(static_cast<int32_t>(*n));
     }
-    start = comma + 1;
   }
   return true;
 }

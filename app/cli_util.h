@@ -171,8 +171,12 @@ bool material_by_name(const std::string& name, const std::vector<MaterialName>& 
 bool find_material(const std::string& name, const std::vector<MaterialName>& names, int32_t* id,
                    std::string* why);
 // Whether `text`, where an option takes a material, is a name for material_by_name():
-// not empty and not starting like a number (a digit, a sign or '.'), which is an id.
+// not empty and not a whole number (an id, or a negative number refused as one).
+// "2 pole magnet" is a name, and so is "1.5" (which no mesh names: refused by name).
 bool is_material_name(const std::string& text);
+// The items of a ','-separated list, each without leading and trailing blanks (as
+// typed: "phase A=12, phase B=12").
+std::vector<std::string> split_items(const std::string& text);
 // "1,copper,3", where an option takes materials: ids into `ids`, names into `names`
 // (both cleared first). False for an empty item or a number that is not an id.
 bool parse_materials(const std::string& text, std::vector<int32_t>* ids,

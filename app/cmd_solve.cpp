@@ -52,17 +52,6 @@ bool next_value(const Args& args, size_t* i, std::string* value) {
   return true;
 }
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  while (true) {
-    const size_t end = text.find(separator, start);
-    parts.push_back(text.substr(start, end - start));
-    if (end == std::string::npos) return parts;
-    start = end + 1;
-  }
-}
-
 std::optional<int32_t> parse_material(const std::string& text) {
   const auto n = parse_integer(text);
   if (!n || *n < 0 || *n > 0x7fffffff) return std::nullopt;
@@ -83,8 +72,8 @@ bool material_text_ok(const std::string& text) {
 // naming the flag and the item.
 bool parse_pairs(const std::string& flag, const std::string& text,
                  std::vector<std::pair<MaterialText, double>>* pairs) {
-  for (const std::string& item : split(text, ',')) {
-    const size_t equals = item.find('=');
+  for (const std::string& item : split_items(text)) {
+    const size_t equals = item.rfind('=');  // a name may hold one, a number does not
     const std::string material = equals == std::string::npos ? "" : item.substr(0, equals);
     const auto value =
         equals == std::string::npos ? std::nullopt : parse_double(item.substr(equals + 1));
@@ -101,7 +90,7 @@ bool parse_pairs(const std::string& flag, const std::string& text,
 }
 
 bool parse_ground(const std::string& text, bool* boundary, std::vector<MaterialText>* materials) {
-  for (const std::string& item : split(text, ',')) {
+  for (const std::string& item : split_items(text)) {
     if (item == "boundary") {
       *boundary = true;
     } else if (material_text_ok(item)) {

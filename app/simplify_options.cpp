@@ -172,12 +172,8 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
       // Items that name their material wait for the names (finish_simplify_options()).
       std::string ids;
       const size_t named_before = options->named_material_sizes.size();
-      size_t start = 0;
-      while (start <= v.size()) {
-        size_t end = v.find(',', start);
-        if (end == std::string::npos) end = v.size();
-        const std::string item = v.substr(start, end - start);
-        const size_t equals = item.find('=');
+      for (const std::string& item : split_items(v)) {
+        const size_t equals = item.rfind('=');  // a name may hold one, a size does not
         const bool named = equals != std::string::npos && is_material_name(item.substr(0, equals));
         if (named) {
           const auto size = parse_double(item.substr(equals + 1));
@@ -190,7 +186,6 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
         } else {
           ids += (ids.empty() ? "" : ",") + item;
         }
-        start = end + 1;
       }
       // Only named items: done (an empty specification is parse_material_sizes()'s error).
       if (ids.empty() && options->named_material_sizes.size() > named_before) {

@@ -279,7 +279,7 @@ struct SolveJob {
   ElectrostaticsSolution solution;  // potential and field cleared: only the figures
   size_t tets = 0;
   std::vector<float> tet_values;    // |E| per tet id of the Lod (0 for retired tets)
-  std::vector<float> sorted_field;  // |E| of the solved tets, ascending
+  std::vector<float> sorted_field;  // |E| of the solved tets outside electrodes, ascending
   bool solve_finest = false;
   Status finest_status;
   bool has_finest = false;
@@ -1538,6 +1538,9 @@ Status Viewer::report_tet(const std::string& path) const {
     put("max_size", "%.17g", info.max_size);
   }
   if (info.has_field) put("field", "%.17g", info.field);
+  // Last: a name may hold blanks (the rest of the line).
+  if (const std::string* name = find_material_name(scene_->material_names.get(), info.material))
+    text += "name " + *name + '\n';
   return write_file_atomically(path, text);
 }
 
@@ -1695,7 +1698,15 @@ Status Viewer::start_solve(int line) {
       j->tet_values.assign(alive->size(), 0.0f);
       for (size_t t = 0, k = 0; t < alive->size(); ++t)
         if ((*alive)[t]) j->tet_values[t] = static_cast<float>(field[k++]);
-      j->sorted_field.assign(field.begin(), field.end());
+      // The colour map's percentiles are of the field where it lives: the tets of
+      // conductors and grounds (|E| 0; 42 % of the bundled spheres' tets) are left out.
+      std::vector<int32_t> electrodes = j->problem.ground_materials;
+      for (const auto& [m, v] : j->problem.conductors) electrodes.push_back(m);
+      std::sort(electrodes.begin(), electrodes.end());
+      j->sorted_field.clear();
+      for (size_t k = 0; k < field.size(); ++k)
+        if (!std::binary_search(electrodes.begin(), electrodes.end(), mesh->materials[k]))
+          j->sorted_field.push_back(static_cast<float>(field[k]));
       std::sort(j->sorted_field.begin(), j->sorted_field.end());
       j->solution.potential = {};
       j->solution.field_magnitude = {};
@@ -2023,19 +2034,25 @@ Status Viewer::run_action(const ScriptAction& a) {
         thresholds_.region_spec = *a.region;
       }
       if (a.material_sizes) {
-        SizingField field;
-        if (Status s = parse_material_sizes(*a.material_sizes, &field); !s) return s;
+        static const std::vector<MaterialName> kNoNames;
+        std::vector<std::pair<int32_t, double>> sizes;
+        if (Status s = resolve_material_sizes(
+                *a.material_sizes,
+                scene_ && scene_->material_names ? scene_->material_names.get() : &kNoNames,
+                &sizes);
+            !s)
+          return s;
         // As --material-size: a material the mesh lacks is a typo, not a size to ignore.
-        for (const auto& [m, size] : field.material_sizes) {
+        for (const auto& [m, size] : sizes) {
           if (scene_ && !std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
             return Status::error("material-sizes: the mesh has no material " + std::to_string(m));
         }
-        thresholds_.sizing_mode = ui::SizingMode::kPerMaterial;
+        // With region= on the same line both apply, as --size-field with --material-size.
+        thresholds_.sizing_mode =
+            a.region ? ui::SizingMode::kRegionAndMaterial : ui::SizingMode::kPerMaterial;
         // As in the CLI: size= on the same line caps every material as well.
         thresholds_.material_cap = a.size.has_value();
-        thresholds_.material_sizes.clear();
-        for (const auto& [m, size] : field.material_sizes)
-          thresholds_.material_sizes.push_back({m, size});
+        thresholds_.material_sizes = std::move(sizes);
       }
       break;
     case Kind::kSimplify:
@@ -2119,6 +2136,9 @@ Status Viewer::run_action(const ScriptAction& a) {
         else
           (n.key == "eps" ? problem.permittivities : problem.conductors).push_back({m, n.value});
       }
+      // The panel holds one role and one permittivity a material: a repeat is an error
+      // here, as in `tetlod solve`, not the last one silently.
+      if (Status s = check_repeated_materials(problem); !s) return s;
       std::vector<int32_t> named = problem.ground_materials;
       for (const auto& [m, v] : problem.conductors) named.push_back(m);
       for (const auto& [m, eps] : problem.permittivities) named.push_back(m);

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -108,8 +109,8 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
       if (Status s = p.on_off(key, value, &on); !s) return s;
       a->keep_inside = on;
     } else if (key == "material-sizes") {
-      SizingField field;
-      if (Status s = parse_material_sizes(value, &field); !s) return p.error(s.message());
+      std::vector<std::pair<int32_t, double>> ids;
+      if (Status s = resolve_material_sizes(value, nullptr, &ids); !s) return p.error(s.message());
       a->material_sizes = value;
     } else if (key == "region") {
       SizingField field;
@@ -128,17 +129,6 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
   return Status();
 }
 
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  while (true) {
-    const size_t end = text.find(',', start);
-    parts.push_back(text.substr(start, end - start));
-    if (end == std::string::npos) return parts;
-    start = end + 1;
-  }
-}
-
 std::optional<int32_t> material_id(const std::string& text) {
   const std::optional<long long> n = parse_integer(text);
   if (!n || *n < 0 || *n > 0x7fffffff) return std::nullopt;
@@ -149,7 +139,7 @@ std::optional<int32_t> material_id(const std::string& text) {
 Status parse_material_values(const LineParser& p, const std::string& key, const std::string& text,
                              std::vector<std::pair<int32_t, double>>* out,
                              std::vector<ScriptAction::NamedMaterial>* named) {
-  for (const std::string& item : split_list(text)) {
+  for (const std::string& item : split_items(text)) {
     const size_t colon = item.rfind(':');  // a name may hold one, a number does not
     const std::string material = colon == std::string::npos ? "" : item.substr(0, colon);
     const auto id = material_id(material);
@@ -189,7 +179,7 @@ Status parse_analysis(const LineParser& p, ScriptAction* a) {
         return s;
     } else if (key == "ground") {
       has_ground = true;
-      for (const std::string& item : split_list(value)) {
+      for (const std::string& item : split_items(value)) {
         if (item == "boundary") {
           a->problem.ground_boundary = true;
         } else if (const auto m = material_id(item)) {
@@ -276,14 +266,18 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
   } else if (command == "hide" || command == "show") {
     a->kind = command == "hide" ? Kind::kHide : Kind::kShow;
     if (w.size() < 2) return p.arg_count(1, 1);
-    if (is_material_name(w[1])) {  // a name, the rest of the line: hide rotor iron
-      for (size_t i = 1; i < w.size(); ++i) a->word += (i > 1 ? " " : "") + w[i];
-    } else if (w[1].find(',') != std::string::npos) {  // as --hide's list
-      return p.error("'" + command + "' takes one material a line, got '" + w[1] + "'");
-    } else if (Status s = p.arg_count(1, 1); !s) {
+    std::string rest;  // a name is the rest of the line: hide rotor iron, hide 2 pole magnet
+    for (size_t i = 1; i < w.size(); ++i) rest += (i > 1 ? " " : "") + w[i];
+    const std::vector<std::string> items = split_items(rest);
+    if (items.size() > 1 && std::none_of(items.begin(), items.end(), is_material_name))
+      return p.error("'" + command + "' takes one material a line, got '" + rest +
+                     "'");  // --hide's list
+    if (is_material_name(rest)) {
+      a->word = rest;
+    } else if (Status s = p.integer("material", rest, &a->count); !s) {
       return s;
-    } else {
-      return p.integer("material", w[1], &a->count);
+    } else if (a->count < 0 || a->count > 0x7fffffff) {
+      return p.error("'" + rest + "' is not a material id (>= 0)");
     }
   } else if (command == "color") {
     a->kind = Kind::kColor;
@@ -450,7 +444,61 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
   return Status();
 }
 
+// The words of a line, blank-separated; double quotes keep blanks in a word ("rotor
+// iron") and are dropped; '#' outside quotes starts a comment. False for a quote left
+// open.
+bool split_words(const std::string& line, std::vector<std::string>* words) {
+  words->clear();
+  std::string word;
+  bool in_word = false, quoted = false;
+  for (const char c : line) {
+    if (c == '"') {
+      quoted = !quoted;
+      in_word = true;
+    } else if (!quoted && c == '#') {
+      break;
+    } else if (!quoted && (c == ' ' || c == '\t' || c == '\r')) {
+      if (in_word) words->push_back(std::move(word));
+      word.clear();
+      in_word = false;
+    } else {
+      word += c;
+      in_word = true;
+    }
+  }
+  if (in_word) words->push_back(std::move(word));
+  return !quoted;
+}
+
 }  // namespace
+
+Status resolve_material_sizes(const std::string& spec, const std::vector<MaterialName>* names,
+                              std::vector<std::pair<int32_t, double>>* out) {
+  out->clear();
+  for (const std::string& item : split_items(spec)) {
+    const size_t equals = item.rfind('=');  // a name may hold one, a size does not
+    const std::string material = equals == std::string::npos ? "" : item.substr(0, equals);
+    const std::optional<int32_t> id = material_id(material);
+    double size = 0;
+    if (equals != std::string::npos) size = parse_double(item.substr(equals + 1)).value_or(0);
+    if (!(id || is_material_name(material)) || !(size > 0) || !std::isfinite(size))
+      return Status::error("material-sizes: '" + item +
+                           "' is not MATERIAL=SIZE (a material id >= 0 or name, and a size > 0)");
+    int32_t m = id.value_or(0);
+    if (!id && names) {
+      std::string why;
+      if (!find_material(material, *names, &m, &why))
+        return Status::error("material-sizes: " + why);
+    }
+    if (!id && !names) continue;
+    for (const auto& [given, unused] : *out)
+      if (given == m)
+        return Status::error("material-sizes: material " + std::to_string(m) + " is given twice");
+    out->push_back({m, size});
+  }
+  std::sort(out->begin(), out->end());
+  return Status();
+}
 
 Status parse_script_text(const std::string& text, const std::string& name,
                          std::vector<ScriptAction>* actions) {
@@ -461,11 +509,7 @@ Status parse_script_text(const std::string& text, const std::string& name,
   p.name = name;
   while (std::getline(lines, line)) {
     ++p.line;
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    std::istringstream words(line);
-    p.words.clear();
-    for (std::string word; words >> word;) p.words.push_back(word);
+    if (!split_words(line, &p.words)) return p.error("a '\"' is left open");
     if (p.words.empty()) continue;
     ScriptAction a;
     a.line = p.line;

@@ -3,15 +3,20 @@
 // previous one has finished (a simplification, a scrub, a statistics update).
 //
 //   # comment                        blank lines and comments are skipped
+//   "a b"                            double quotes keep blanks in a word (names:
+//                                    material-sizes="phase A=12", hide "rotor iron")
 //   open PATH [may-fail]             load a mesh, or a collapse history (.tlh) with its
 //                                    levels (waits); with may-fail a bad file is not a
 //                                    script error: it shows in the UI as for a user
 //   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1 keep-inside=0|1
 //              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h;
-//              a material material-sizes leaves out has no size limit, as in the CLI;
+//              M is a material's id or name, looked up when the line runs; a
+//              material material-sizes leaves out has no size limit, as in the CLI;
 //              size= on the same line as material-sizes= also caps every material, as
-//              --size with --material-size; sizing=map the size map given with the
-//              mesh, with size= its cap; sizing=uniform back to one size)
+//              --size with --material-size; region= and material-sizes= on one line
+//              combine, as --size-field with --material-size (the panel's "region and
+//              per material"); sizing=map the size map given with the mesh, with size=
+//              its cap; sizing=uniform back to one size)
 //   simplify [wait=0]                run the simplifier with the thresholds (waits,
 //                                    unless wait=0: then the next actions run meanwhile)
 //   cancel                           cancel a running simplification and/or solve (waits
@@ -65,8 +70,10 @@
 //   report-analysis PATH             write the last solve's figures as 'key value' lines
 //   report-tet PATH                  write what the tooltip says of the tet under the
 //                                    pointer ('mouse X Y' first) as 'key value' lines
-//                                    (tet, material, stretch, size, volume; the run's
-//                                    min_stretch and max_size there; field), or 'tet none'
+//                                    (tet: its id in the level of detail, not in a saved
+//                                    file; material, name, stretch, size, volume; the
+//                                    run's min_stretch and max_size there; field), or
+//                                    'tet none'
 //   quit
 //
 // Relative paths are relative to the working directory.
@@ -146,6 +153,12 @@ struct ScriptAction {
   };
   std::vector<NamedMaterial> named;
 };
+
+// "M=S,M=S" of material-sizes=: each M an id or (with `names`) a name the mesh has;
+// sizes > 0. Without `names`, any name is taken and `out` gets only the ids (the
+// script's check before it runs). Errors name the item.
+Status resolve_material_sizes(const std::string& spec, const std::vector<MaterialName>* names,
+                              std::vector<std::pair<int32_t, double>>* out);
 
 // Reads and checks the whole script before anything runs. Errors read
 // "SCRIPT:LINE: what is wrong".

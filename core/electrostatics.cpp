@@ -65,10 +65,33 @@ std::vector<int32_t> mesh_materials(const TetMesh& mesh) {
 constexpr double kMinPotential = 1e-30, kMaxPotential = 1e30;
 constexpr double kMinPermittivity = 1e-30, kMaxPermittivity = 1e30;
 
+}  // namespace
+
+Status check_repeated_materials(const ElectrostaticsProblem& problem) {
+  std::vector<int32_t> electrodes = problem.ground_materials;
+  for (const auto& [m, potential] : problem.conductors) electrodes.push_back(m);
+  std::sort(electrodes.begin(), electrodes.end());
+  const auto repeated = std::adjacent_find(electrodes.begin(), electrodes.end());
+  if (repeated != electrodes.end()) {
+    return Status::error("material " + std::to_string(*repeated) +
+                         " is given more than once as a conductor or ground");
+  }
+  std::vector<int32_t> dielectrics;
+  for (const auto& [m, eps] : problem.permittivities) dielectrics.push_back(m);
+  std::sort(dielectrics.begin(), dielectrics.end());
+  const auto twice = std::adjacent_find(dielectrics.begin(), dielectrics.end());
+  if (twice != dielectrics.end()) {
+    return Status::error("permittivity of material " + std::to_string(*twice) +
+                         " is given more than once");
+  }
+  return Status();
+}
+
+namespace {
+
 Status check_problem(const ElectrostaticsProblem& problem, const std::vector<int32_t>& ids) {
   auto exists = [&](int32_t m) { return std::binary_search(ids.begin(), ids.end(), m); };
   // Every material named once across conductors and grounds, once among permittivities.
-  std::vector<int32_t> electrodes;
   if (problem.conductors.empty()) {
     return Status::error("no conductor: at least one material must be held at a potential");
   }
@@ -87,21 +110,13 @@ Status check_problem(const ElectrostaticsProblem& problem, const std::vector<int
                            " is too small: give 0, or a magnitude of at least 1e-30 (the "
                            "capacitance does not depend on the scale of the potentials)");
     }
-    electrodes.push_back(m);
   }
   for (const int32_t m : problem.ground_materials) {
     if (!exists(m)) {
       return Status::error("ground material " + std::to_string(m) + " does not exist in the mesh");
     }
-    electrodes.push_back(m);
   }
-  std::sort(electrodes.begin(), electrodes.end());
-  const auto repeated = std::adjacent_find(electrodes.begin(), electrodes.end());
-  if (repeated != electrodes.end()) {
-    return Status::error("material " + std::to_string(*repeated) +
-                         " is given more than once as a conductor or ground");
-  }
-  std::vector<int32_t> dielectrics;
+  if (Status s = check_repeated_materials(problem); !s) return s;
   for (const auto& [m, eps] : problem.permittivities) {
     if (!exists(m)) {
       return Status::error("permittivity for material " + std::to_string(m) +
@@ -115,13 +130,6 @@ Status check_problem(const ElectrostaticsProblem& problem, const std::vector<int
       return Status::error("permittivity of material " + std::to_string(m) + " is " +
                            format_double(eps) + ", not a number in [1e-30, 1e30]");
     }
-    dielectrics.push_back(m);
-  }
-  std::sort(dielectrics.begin(), dielectrics.end());
-  const auto twice = std::adjacent_find(dielectrics.begin(), dielectrics.end());
-  if (twice != dielectrics.end()) {
-    return Status::error("permittivity of material " + std::to_string(*twice) +
-                         " is given more than once");
   }
   if (!(problem.default_permittivity >= kMinPermittivity &&
         problem.default_permittivity <= kMaxPermittivity)) {

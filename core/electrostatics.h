@@ -107,6 +107,12 @@ struct SolveProgress {
 };
 using SolveProgressCallback = std::function<void(const SolveProgress&)>;
 
+// A material given twice: as a conductor or ground twice (or both), or two
+// permittivities; the error names it. One of check_electrostatics_problem()'s checks,
+// for a caller that merges the lists (the viewer's Analysis panel holds one role a
+// material).
+Status check_repeated_materials(const ElectrostaticsProblem& problem);
+
 // The problem's own checks (solve_electrostatics() makes them too): every material it
 // names is one of `mesh`'s, none twice, permittivities (> 0) and potentials finite
 // and within 1e30 in magnitude; the error names the value. A caller that took them

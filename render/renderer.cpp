@@ -407,8 +407,8 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     if (settings.color_mode == ColorMode::kField && settings.field_percentile < 100) {
       // The longest note that fits between the two numbers.
       const float room =
-          bar_w - 2 * (std::max(text_pixels(lo, scale), text_pixels(hi, scale)) + 8 * scale);
-      for (const char* format : {"|E| (to its %gth percentile)", "|E| (%gth pctl.)"}) {
+          bar_w - 2 * (std::max(text_pixels(lo, scale), text_pixels(hi, scale)) + 3 * scale);
+      for (const char* format : {"|E| (to its %gth percentile)", "|E| (%gth pctl.)", "|E| p%g"}) {
         char text[64];
         std::snprintf(text, sizeof text, format, settings.field_percentile);
         if (text_pixels(text, scale) <= room) {

@@ -345,7 +345,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("%.4g to %.4g, from the model's diagonal (%.4g)", tolerance_range.min,
                       tolerance_range.max, model_diagonal);
-  if (t->sizing_mode != SizingMode::kPerMaterial) {
+  if (!uses_material_sizes(t->sizing_mode)) {  // else the cap is the table's "all" row
     const SliderRange size_range = size_slider_range(model_diagonal, t->size);
     length_slider(t->sizing_mode == SizingMode::kUniform ? "size (SZ)" : "size cap (SZ)", &t->size,
                   size_range);
@@ -361,25 +361,29 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   int mode = static_cast<int>(t->sizing_mode);
   // The size map is offered only where one was given (it belongs to the mesh opened).
   ImGui::Combo("Sizing", &mode,
-               t->size_map ? "uniform\0region\0per material\0size map\0"
-                           : "uniform\0region\0per material\0");
+               t->size_map ? "uniform\0region\0per material\0region and per material\0size map\0"
+                           : "uniform\0region\0per material\0region and per material\0");
   t->sizing_mode = static_cast<SizingMode>(mode);
   if (t->sizing_mode == SizingMode::kMap && t->size_map) {
     text_disabled_wrapped(
         "sizes %.4g to %.4g at the input's vertices, linear in its tets (%s); the cap above "
         "limits them too",
         t->size_map->smallest(), t->size_map->largest(), t->size_map_name.c_str());
-  } else if (t->sizing_mode == SizingMode::kRegion) {
+  }
+  if (uses_region(t->sizing_mode)) {
     char buffer[512];
     copy_path(t->region_spec, buffer, sizeof(buffer));
     if (ImGui::InputText("rules", buffer, sizeof(buffer))) t->region_spec = buffer;
     text_disabled_wrapped(
         "radial:cx,cy,cz,s0,g; axis:cx,cy,cz,dx,dy,dz,s0,g; box:x0,y0,z0,x1,y1,z1,s "
         "(';' between rules)");
-  } else if (t->sizing_mode == SizingMode::kPerMaterial) {
+  }
+  if (uses_material_sizes(t->sizing_mode)) {
     // A material without a size of its own has no per-material limit, as with
     // `--material-size` (only the sizes listed); tick it to give it one.
-    text_disabled_wrapped("size (SZ) per material; unticked: no size limit");
+    text_disabled_wrapped(t->sizing_mode == SizingMode::kRegionAndMaterial
+                              ? "size (SZ) per material; unticked: only the rules above"
+                              : "size (SZ) per material; unticked: no size limit");
     // Each row named as in the material list ("3 shield"), in a wider column where the
     // materials have names (a long one cut, whole under the pointer).
     const std::vector<int32_t> listed = listed_materials(status);
@@ -979,7 +983,7 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
   check_alone([&p](SimplifyParams* q) { q->max_valence = p.max_valence; });
   // Uniform: the size everywhere; region, size map: the cap besides the rules or the
   // map; per material: the materials' sizes, and the cap if it is ticked.
-  if (settings.sizing_mode != SizingMode::kPerMaterial || settings.material_cap) {
+  if (!uses_material_sizes(settings.sizing_mode) || settings.material_cap) {
     if (settings.size > 0)
       p.sizing.uniform = settings.size;
     else
@@ -990,10 +994,12 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
       p.sizing.map = settings.size_map;
     else
       errors.push_back("no size map (give one with the mesh: tetlod view FILE --size-map S.sol)");
-  } else if (settings.sizing_mode == SizingMode::kRegion) {
+  }
+  if (uses_region(settings.sizing_mode)) {
     if (const Status s = parse_size_field(settings.region_spec, &p.sizing); !s)
       errors.push_back(s.message());
-  } else if (settings.sizing_mode == SizingMode::kPerMaterial) {
+  }
+  if (uses_material_sizes(settings.sizing_mode)) {
     for (const auto& [material, size] : settings.material_sizes) {
       if (size > 0)
         p.sizing.material_sizes.push_back({material, size});
@@ -1030,8 +1036,7 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
   const bool region = !sizing.radial.empty() || !sizing.boxes.empty();
   const bool uniform = std::isfinite(sizing.uniform);
   if ((sizing.map && (region || !sizing.material_sizes.empty())) ||
-      (region && (!sizing.material_sizes.empty() || !uniform)) ||
-      (!uniform && sizing.material_sizes.empty() && !sizing.map) ||
+      (!uniform && sizing.material_sizes.empty() && !sizing.map && !region) ||
       params.crease_angle_degrees != SimplifyParams{}.crease_angle_degrees)
     return false;
   ThresholdSettings t;
@@ -1046,8 +1051,13 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
     t.size_map = sizing.map;
     t.size_map_name = "saved in the history";
     if (!uniform) t.size = sizing.map->largest();
-  } else if (region) {
-    t.sizing_mode = SizingMode::kRegion;
+  }
+  if (region) {
+    // Region rules with a size cap are the region mode; with per-material sizes, or
+    // without a cap (`--size-field` alone), region and per material.
+    t.sizing_mode = uniform && sizing.material_sizes.empty() ? SizingMode::kRegion
+                                                             : SizingMode::kRegionAndMaterial;
+    t.material_cap = uniform;
     char rule[512];
     for (const SizingField::Radial& r : sizing.radial) {
       const Vec3 &c = r.center, &a = r.axis;
@@ -1068,9 +1078,9 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
   } else if (!sizing.material_sizes.empty()) {
     t.sizing_mode = SizingMode::kPerMaterial;
     t.material_cap = uniform;
-    for (const auto& [material, size] : sizing.material_sizes)
-      t.material_sizes.push_back({material, size});
   }
+  for (const auto& [material, size] : sizing.material_sizes)
+    t.material_sizes.push_back({material, size});
   *settings = std::move(t);
   return true;
 }

@@ -45,7 +45,22 @@ struct ViewSettings {
   float highlight_below = 0.2f;  // tets with stretch below this are highlighted
 };
 
-enum class SizingMode { kUniform = 0, kRegion = 1, kPerMaterial = 2, kMap = 3 };
+// The panel's Sizing choices, in its order (kMap offered only with a size map).
+// kRegionAndMaterial: region rules and per-material sizes together, as `tetlod
+// simplify --size-field ... --material-size ...` (the smallest applies).
+enum class SizingMode {
+  kUniform = 0,
+  kRegion = 1,
+  kPerMaterial = 2,
+  kRegionAndMaterial = 3,
+  kMap = 4
+};
+inline bool uses_region(SizingMode m) {
+  return m == SizingMode::kRegion || m == SizingMode::kRegionAndMaterial;
+}
+inline bool uses_material_sizes(SizingMode m) {
+  return m == SizingMode::kPerMaterial || m == SizingMode::kRegionAndMaterial;
+}
 
 // The four thresholds of the paper (tau_TL, tau_SZ, tau_ST, tau_VL) and the sizing,
 // as doubles, so that a value typed here or set by a script gives the run `tetlod
@@ -56,10 +71,11 @@ struct ThresholdSettings {
   double stretch = 0.15;    // tau_ST
   int valence = 25;         // tau_VL
   SizingMode sizing_mode = SizingMode::kUniform;
-  std::string region_spec;  // kRegion: the syntax of core/sizing.h parse_size_field()
-  std::vector<std::pair<int32_t, double>> material_sizes;  // kPerMaterial
-  // kPerMaterial: `size` also caps every material (as --size with --material-size);
-  // off, a material without a size of its own has no size limit.
+  std::string region_spec;  // uses_region(): the syntax of core/sizing.h parse_size_field()
+  std::vector<std::pair<int32_t, double>> material_sizes;  // uses_material_sizes()
+  // uses_material_sizes(): `size` also caps every material (as --size with
+  // --material-size); off, a material without a size of its own (or of a region rule)
+  // has no size limit. (kRegion and kMap always cap with `size`.)
   bool material_cap = false;
   // kMap: sizes at the input's vertices (`tetlod view FILE --size-map S.sol`, or saved in
   // the history opened), with `size` as a cap; the mode is offered only with one.

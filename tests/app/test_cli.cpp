@@ -1799,6 +1799,16 @@ TEST(Cli, MaterialsByName) {
   ASSERT_EQ(
       run("simplify " + coax + " -o " + b + " --size 2 --material-size shield=0.5,1=0.4").code, 0);
   EXPECT_EQ(read_file(a), read_file(b));
+  // Blanks around the items, as typed after a comma, are not part of the names.
+  ASSERT_EQ(
+      run("simplify " + coax + " -o " + b + " --size 2 --material-size 'shield=0.5, 1=0.4'").code,
+      0);
+  EXPECT_EQ(read_file(a), read_file(b));
+  const CommandResult spaced = run("solve " + coax +
+                                   " --conductor ' inner_conductor=1' --ground ' SHIELD' "
+                                   "--eps 'dielectric_inner=3 '");
+  EXPECT_EQ(line_with(spaced.output, "capacitance"), line_with(by_id.output, "capacitance"))
+      << spaced.output;
 
   // Unknown names list the names there are; a name and an id of one material clash.
   CommandResult r = run("solve " + coax + " --conductor copper=1 --ground 4");

@@ -1,7 +1,8 @@
 // The threshold panel's settings and core parameters: from_simplify_params() (a
 // history's saved thresholds shown in the panel) gives back, through
 // to_simplify_params(), the parameters it was given, in every sizing mode the panel
-// has; and it declines what the panel cannot hold.
+// has (region rules and per-material sizes together too); and it declines what the
+// panel cannot hold.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "core/simplify.h"
+#include "core/size_map.h"
 #include "ui/viewer_ui.h"
 
 namespace tetlod {
@@ -66,15 +68,32 @@ TEST(ThresholdSettings, HistoryThresholdsRoundTripThroughThePanel) {
   region.sizing.boxes = parsed.sizing.boxes;
   expect_same(region, round_trip(region));
 
-  // What the panel cannot hold: left to the caller (the panel keeps its defaults).
+  // Region rules with per-material sizes (--size-field with --material-size), with
+  // and without a cap, and region rules without a cap: "region and per material".
   ui::ThresholdSettings settings;
-  settings.size = 99;
   SimplifyParams both = region;
   both.sizing.material_sizes = {{1, 4}};
-  EXPECT_FALSE(ui::from_simplify_params(both, &settings));
+  expect_same(both, round_trip(both));
+  ASSERT_TRUE(ui::from_simplify_params(both, &settings));
+  EXPECT_EQ(settings.sizing_mode, ui::SizingMode::kRegionAndMaterial);
+  EXPECT_TRUE(settings.material_cap);
+  both.sizing.uniform = std::numeric_limits<double>::infinity();
+  expect_same(both, round_trip(both));
   SimplifyParams uncapped = region;
   uncapped.sizing.uniform = std::numeric_limits<double>::infinity();
-  EXPECT_FALSE(ui::from_simplify_params(uncapped, &settings));
+  expect_same(uncapped, round_trip(uncapped));
+  ASSERT_TRUE(ui::from_simplify_params(uncapped, &settings));
+  EXPECT_EQ(settings.sizing_mode, ui::SizingMode::kRegionAndMaterial);
+  EXPECT_FALSE(settings.material_cap);
+  ASSERT_TRUE(ui::from_simplify_params(region, &settings));
+  EXPECT_EQ(settings.sizing_mode, ui::SizingMode::kRegion);
+
+  // What the panel cannot hold: left to the caller (the panel keeps its defaults).
+  settings = ui::ThresholdSettings();
+  settings.size = 99;
+  SimplifyParams map_and_region = region;
+  map_and_region.sizing.map = std::make_shared<SizeMap>();
+  EXPECT_FALSE(ui::from_simplify_params(map_and_region, &settings));
   SimplifyParams crease = uniform;
   crease.crease_angle_degrees = 30;
   EXPECT_FALSE(ui::from_simplify_params(crease, &settings));

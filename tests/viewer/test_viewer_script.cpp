@@ -46,7 +46,11 @@ TEST(ViewerScript, HideAndShowTakeIdsOrNames) {
   ASSERT_EQ(spaced.size(), 2u);
   EXPECT_EQ(spaced[0].word, "rotor iron");
   EXPECT_EQ(spaced[1].word, "air gap");
-  EXPECT_EQ(parse_error("hide 2 3\n"), "t.script:1: 'hide' takes 1 argument(s), got 2");
+  // Anything but a whole number is a name: one that starts with a digit too.
+  const auto digit = parse_ok("hide 2 pole magnet\nshow 1.5\n");
+  EXPECT_EQ(digit[0].word, "2 pole magnet");
+  EXPECT_EQ(digit[1].word, "1.5");
+  EXPECT_EQ(parse_error("hide -2\n"), "t.script:1: '-2' is not a material id (>= 0)");
 }
 
 TEST(ViewerScript, ParsesEveryCommand) {
@@ -191,6 +195,34 @@ TEST(ViewerScript, MaterialSizesAndRegions) {
   ASSERT_EQ(a.size(), 1u);
   EXPECT_EQ(*a[0].material_sizes, "1=40,2=10");
   EXPECT_EQ(*a[0].region, "radial:0,0,0,1,0.5");
+
+  // Names (looked up when the line runs), in quotes where they hold blanks; items
+  // may have blanks around them, as typed after a comma.
+  const auto named = parse_ok(
+      "thresholds \"material-sizes=phase A=12, 3=4,core=1 FR4=2\" size=20\n"
+      "hide \"rotor iron\"\n"
+      "analysis \"conductor=phase A:1\" ground=boundary # a \"comment\"\n");
+  ASSERT_EQ(named.size(), 3u);
+  EXPECT_EQ(*named[0].material_sizes, "phase A=12, 3=4,core=1 FR4=2");
+  EXPECT_EQ(named[1].word, "rotor iron");
+  ASSERT_EQ(named[2].named.size(), 1u);
+  EXPECT_EQ(named[2].named[0].name, "phase A");
+  EXPECT_EQ(parse_error("hide \"rotor iron\n"), "t.script:1: a '\"' is left open");
+  EXPECT_EQ(parse_error("thresholds material-sizes=copper=0\n"),
+            "t.script:1: material-sizes: 'copper=0' is not MATERIAL=SIZE (a material id >= 0 "
+            "or name, and a size > 0)");
+
+  // Resolved against the mesh's names: the last '=' ends a name; a name the mesh
+  // lacks, or a material given twice, is an error naming it.
+  const std::vector<MaterialName> names = {{1, "phase A"}, {2, "core=1 FR4"}};
+  std::vector<std::pair<int32_t, double>> sizes;
+  ASSERT_TRUE(resolve_material_sizes("phase A=12, 3=4,core=1 FR4=2", &names, &sizes).ok());
+  EXPECT_EQ(sizes, (std::vector<std::pair<int32_t, double>>{{1, 12}, {2, 2}, {3, 4}}));
+  EXPECT_EQ(resolve_material_sizes("phase B=1", &names, &sizes).message(),
+            "material-sizes: the mesh has no material named 'phase B' (its names: 1 phase A, 2 "
+            "core=1 FR4)");
+  EXPECT_EQ(resolve_material_sizes("1=2,phase A=3", &names, &sizes).message(),
+            "material-sizes: material 1 is given twice");
 }
 
 TEST(ViewerScript, AnalysisSolveAndReport) {
@@ -344,7 +376,6 @@ TEST(ViewerScript, RejectsBadValues) {
            "cut z=0 flop\n",
            "cut off now\n",
            "hide\n",
-           "hide 1.5\n",
            "color blue\n",
            "colormap jet\n",
            "range 1 0\n",

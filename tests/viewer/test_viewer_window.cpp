@@ -479,19 +479,29 @@ TEST(ViewerWindow, SimplifyErrorShowsUnderTheSimplifyButton) {
 TEST(ViewerWindow, PerMaterialSizesMatchTheCli) {
   const std::string sizes = "1=40,2=3,4=20,5=20,6=30,7=30";
   const std::string motor = kSource + "/assets/motor.mesh";
-  size_t uncapped_tets = 0;
-  for (const bool capped : {false, true}) {
-    SCOPED_TRACE(capped ? "with a size cap" : "without a size cap");
-    const fs::path dir = fresh_output_dir(capped ? "viewer_material_cap" : "viewer_material_sizes");
-    std::ofstream(dir / "sizes.script")
-        << "thresholds material-sizes=" << sizes << (capped ? " size=12" : "")
-        << " stretch=0.15 valence=25 tolerance=0.1\n"
-           "simplify\nsave viewer.mesh\nquit\n";
+  // The viewer's words on the thresholds line, the CLI's options; the last, region
+  // rules with them (the panel's "region and per material", --size-field with
+  // --material-size).
+  const struct {
+    const char* name;
+    std::string viewer, cli;
+  } variants[] = {
+      {"viewer_material_sizes", "", ""},
+      {"viewer_material_cap", " size=12", " --size 12"},
+      {"viewer_material_region", " size=12 region=box:-60,-60,-30,0,60,30,8",
+       " --size 12 --size-field box:-60,-60,-30,0,60,30,8"},
+  };
+  std::vector<size_t> tets;
+  for (const auto& variant : variants) {
+    SCOPED_TRACE(variant.name);
+    const fs::path dir = fresh_output_dir(variant.name);
+    std::ofstream(dir / "sizes.script") << "thresholds material-sizes=" << sizes << variant.viewer
+                                        << " stretch=0.15 valence=25 tolerance=0.1\n"
+                                           "simplify\nsave viewer.mesh\nquit\n";
     const ViewerRun run = run_viewer(dir, "'" + motor + "' --size 640x480 --script sizes.script");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " simplify '" +
-                                motor + "' -o cli.mesh --material-size " + sizes +
-                                (capped ? " --size 12" : "") +
+                                motor + "' -o cli.mesh --material-size " + sizes + variant.cli +
                                 " --stretch 0.15 --valence 25 --tolerance 0.1 >cli_log.txt 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
     TetMesh viewer, cli;
@@ -501,12 +511,11 @@ TEST(ViewerWindow, PerMaterialSizesMatchTheCli) {
     EXPECT_EQ(viewer.tets, cli.tets);
     EXPECT_EQ(viewer.materials, cli.materials);
     EXPECT_EQ(viewer.positions.size(), cli.positions.size());
-    if (!capped) {
-      uncapped_tets = viewer.tet_count();
-    } else {
-      EXPECT_NE(viewer.tet_count(), uncapped_tets) << "the cap must change the mesh";
-    }
+    tets.push_back(viewer.tet_count());
   }
+  // Each variant changes the mesh: the cap, then the region rules.
+  EXPECT_NE(tets[1], tets[0]);
+  EXPECT_NE(tets[2], tets[1]);
 }
 
 // The panel holds the thresholds as doubles: a typed size and the default tolerance
@@ -1538,6 +1547,18 @@ TEST(ViewerWindow, AnalysisErrorsNameTheLineOrShowInThePanel) {
   const ViewerRun touch = run_viewer(dir, spheres + "touch.script");
   EXPECT_EQ(touch.exit_code, 1) << touch.output;
   EXPECT_NE(touch.output.find("touch.script:2: solve: "), std::string::npos) << touch.output;
+
+  // A material given twice is an error, as in `tetlod solve` (the panel would keep the
+  // last silently).
+  for (const char* twice : {"conductor=1:1,1:0", "conductor=1:1 ground=4,1",
+                            "conductor=1:1 "
+                            "ground=4 eps=2:2,2:3"}) {
+    std::ofstream(dir / "twice.script") << "analysis " << twice << "\nquit\n";
+    const ViewerRun run = run_viewer(dir, spheres + "twice.script");
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("twice.script:1: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("is given more than once"), std::string::npos) << run.output;
+  }
 
   std::ofstream(dir / "absent.script") << "analysis conductor=1:1 ground=9\nquit\n";
   const ViewerRun absent = run_viewer(dir, spheres + "absent.script");
