@@ -17,7 +17,9 @@
 // from them, numbers volume and surface regions alike; a name given again adds to the
 // first). Tet faces, as the Abaqus and CalculiX manuals
 // number them: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1 (C3D10: the
-// same corners). A surface <X>_FACES is named X when the file has a node set X and
+// same corners). A "** TetLOD surface <X>_FACES <tag> <name>" comment (written by
+// TetLOD) gives the group of *SURFACE <X>_FACES its tag and name back; else a
+// surface <X>_FACES is named X when the file has a node set X and
 // no surface X: TetLOD writes each group as *NSET X and *SURFACE X_FACES, so that a
 // file written from one read back keeps the names. Faces of elements that are not
 // tetrahedra are dropped with a note; node surfaces (TYPE=NODE), COMBINE and CROP
@@ -31,6 +33,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <set>
@@ -102,6 +105,9 @@ struct Keyword {
 // The comment line TetLOD writes for each named material: "** TetLOD material
 // <set> <id> <name>", its name as given, which the set's label may not spell.
 constexpr const char* kMaterialNameComment = "** TetLOD material ";
+// And for each surface group: "** TetLOD surface <surface> <tag> <name>", its tag and
+// its name as given (Abaqus labels hold no blanks, and have no tags).
+constexpr const char* kSurfaceNameComment = "** TetLOD surface ";
 
 class AbaqusParser {
  public:
@@ -115,7 +121,7 @@ class AbaqusParser {
     while (next_line(&line)) {
       const std::string_view content = trim_blanks(line);
       if (content.substr(0, 2) == "**") {
-        read_material_name_comment(content);
+        read_name_comment(content);
         continue;
       }
       if (content.empty()) continue;
@@ -703,8 +709,7 @@ class AbaqusParser {
       }
       if (faces.empty()) continue;
       InputSurfaceGroup group;
-      group.tag = next_surface_tag();
-      group.name = valid_utf8(group_name(surface.name));
+      name_surface_group(surface.name, &group);
       group.triangles.reserve(faces.size());
       const TetMesh& mesh = out_->mesh;
       for (uint64_t face : faces) {
@@ -738,11 +743,15 @@ class AbaqusParser {
   }
 
   // "** TetLOD material SET ID NAME" (kMaterialNameComment): the name the material of
-  // the element set SET had before it was made an Abaqus label (spaces and all).
-  void read_material_name_comment(std::string_view comment) {
-    constexpr std::string_view kPrefix = kMaterialNameComment;
-    if (comment.substr(0, kPrefix.size()) != kPrefix) return;
-    std::string_view rest = comment.substr(kPrefix.size());
+  // the element set SET had before it was made an Abaqus label (spaces and all); and
+  // "** TetLOD surface SURFACE TAG NAME" (kSurfaceNameComment): the tag and name of the
+  // surface group written as *SURFACE SURFACE.
+  void read_name_comment(std::string_view comment) {
+    const bool material = comment.substr(0, std::strlen(kMaterialNameComment)) ==
+                          std::string_view(kMaterialNameComment);
+    const std::string_view prefix = material ? kMaterialNameComment : kSurfaceNameComment;
+    if (comment.substr(0, prefix.size()) != prefix) return;
+    std::string_view rest = comment.substr(prefix.size());
     const size_t space = rest.find(' ');
     if (space == std::string_view::npos) return;
     const std::string set(rest.substr(0, space));
@@ -751,11 +760,12 @@ class AbaqusParser {
     const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), id);
     if (error != std::errc() || end == rest.data() + rest.size() || *end != ' ') return;
     const std::string_view name = rest.substr(size_t(end - rest.data()) + 1);
-    if (!name.empty() && commented_names_.size() < 100000)
-      commented_names_[upper(set)] = {id, std::string(name)};
+    auto& names = material ? commented_names_ : commented_surfaces_;
+    if (!name.empty() && names.size() < 100000) names[upper(set)] = {id, std::string(name)};
   }
 
-  // The tag of the next surface group: after the largest material number (and 0).
+  // The tag of the next surface group: after the largest material number (and 0), one
+  // no group has yet.
   int32_t next_surface_tag() {
     if (surface_tag_base_ < 0) {
       int64_t largest = 0;
@@ -763,7 +773,32 @@ class AbaqusParser {
       // (Numbers this high: from 1.)
       surface_tag_base_ = largest < std::numeric_limits<int32_t>::max() / 2 ? largest : 0;
     }
-    return int32_t(surface_tag_base_ + 1 + int64_t(out_->surface_groups.size()));
+    int64_t tag = surface_tag_base_ + 1 + int64_t(out_->surface_groups.size());
+    while (tag_taken(tag)) ++tag;
+    return int32_t(tag);
+  }
+  bool tag_taken(int64_t tag) const {
+    return std::any_of(out_->surface_groups.begin(), out_->surface_groups.end(),
+                       [tag](const InputSurfaceGroup& g) { return g.tag == tag; });
+  }
+
+  // The tag and name of the group of *SURFACE `surface`: those a TetLOD comment gave it
+  // (a tag no group has, and no material: it named a group of this mesh), else the
+  // next tag and group_name().
+  void name_surface_group(const std::string& surface, InputSurfaceGroup* group) {
+    const auto it = commented_surfaces_.find(upper(surface));
+    if (it != commented_surfaces_.end()) {
+      const int64_t tag = it->second.first;
+      const bool material = std::find(out_->mesh.materials.begin(), out_->mesh.materials.end(),
+                                      tag) != out_->mesh.materials.end();
+      if (tag > 0 && tag <= std::numeric_limits<int32_t>::max() && !material && !tag_taken(tag)) {
+        group->tag = int32_t(tag);
+        group->name = valid_utf8(it->second.second);
+        return;
+      }
+    }
+    group->tag = next_surface_tag();
+    group->name = valid_utf8(group_name(surface));
   }
 
   // The sets of triangle elements (as Gmsh writes a physical surface: CPS3 elements in
@@ -909,6 +944,8 @@ class AbaqusParser {
   size_t current_surface_ = 0;
   // From kMaterialNameComment lines: set name (upper case) -> its material and name.
   std::map<std::string, std::pair<int64_t, std::string>> commented_names_;
+  // From kSurfaceNameComment lines: surface name (upper case) -> its group's tag and name.
+  std::map<std::string, std::pair<int64_t, std::string>> commented_surfaces_;
   int64_t surface_tag_base_ = -1;             // next_surface_tag(): the largest material number
   std::vector<std::string> unread_surfaces_;  // "NAME (reason)", for the note
 };
@@ -978,6 +1015,11 @@ void write_abaqus_surfaces(const SurfaceGroups& surfaces, std::string* out) {
     for (int k = 2; used.count(upper(name)); ++k)
       name = name.substr(0, 48) + "_" + std::to_string(k);
     used.insert(upper(name));
+    std::string one_line = group.name;
+    for (char& c : one_line)
+      if (c == '\n' || c == '\r') c = ' ';
+    out->append(std::string(kSurfaceNameComment) + name + "_FACES " + std::to_string(group.tag) +
+                " " + (one_line.empty() ? name : one_line) + "\n");
     nodes.clear();
     for (uint32_t i : group.triangles) {
       for (uint32_t v : surfaces.surface[i].v) nodes.push_back(v);

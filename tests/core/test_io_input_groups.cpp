@@ -366,7 +366,8 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
   EXPECT_EQ(test::read_text(dir + "/again.inp"), test::read_text(dir + "/groups.inp"));
 
   // Names keep their hyphens, as Abaqus/CAE writes them ("Surf-Load"); other
-  // characters a label cannot hold become '_'.
+  // characters a label cannot hold become '_' in the label, and TetLOD's comment line
+  // gives the group its name (blanks and all) and its tag back.
   groups.groups[0].name = "Surf-Load";
   groups.groups[1].name = "port 1";
   ASSERT_TRUE(write_mesh(dir + "/hyphen.inp", back, options).ok());
@@ -377,6 +378,27 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
   ASSERT_TRUE(read_mesh(dir + "/hyphen.inp", &back, &info).ok());
   ASSERT_GE(info.surface_groups.size(), 2u);
   EXPECT_EQ(info.surface_groups[0].name, "Surf-Load");
+  EXPECT_EQ(info.surface_groups[1].name, "port 1");
+  groups.groups[0].tag = 22;  // tags a .msh gave, not the reader's next ones
+  groups.groups[1].tag = 24;
+  ASSERT_TRUE(write_mesh(dir + "/tags.inp", back, options).ok());
+  EXPECT_NE(test::read_text(dir + "/tags.inp").find("** TetLOD surface port_1_FACES 24 port 1\n"),
+            std::string::npos);
+  ASSERT_TRUE(read_mesh(dir + "/tags.inp", &back, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), groups.groups.size());
+  for (size_t i = 0; i < groups.groups.size(); ++i) {
+    EXPECT_EQ(info.surface_groups[i].tag, groups.groups[i].tag) << i;
+    EXPECT_EQ(info.surface_groups[i].name, groups.groups[i].name) << i;
+  }
+  // A comment's tag that a material has, or an earlier group, is not taken.
+  std::string clash = test::read_text(dir + "/tags.inp");
+  const size_t at = clash.find(" 24 port 1\n");
+  ASSERT_NE(at, std::string::npos);
+  clash.replace(at, 3, " 22");
+  ASSERT_TRUE(read_mesh_from_memory(clash, MeshFormat::kAbaqus, "c.inp", &back, &info).ok());
+  ASSERT_GE(info.surface_groups.size(), 2u);
+  EXPECT_EQ(info.surface_groups[0].tag, 22);
+  EXPECT_NE(info.surface_groups[1].tag, 22);
   EXPECT_EQ(info.surface_groups[1].name, "port_1");
 }
 
