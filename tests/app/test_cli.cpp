@@ -1711,7 +1711,9 @@ TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
       {"--conductor 1=abc --ground boundary", 2, "--conductor '1=abc'"},
       {"--conductor 1 --ground boundary", 2, "'1' is not MATERIAL=NUMBER"},
       {"--conductor -3=1 --ground boundary", 2, "'-3=1'"},
-      {"--conductor 1=1 --ground 1.5", 2, "--ground '1.5'"},
+      // Not a whole number: a name ("2 pole magnet" is one), which the mesh lacks.
+      {"--conductor 1=1 --ground 1.5", 2, "--ground: the mesh has no material named '1.5'"},
+      {"--conductor 1=1 --ground -2", 2, "--ground '-2'"},
       // A name is looked up in the mesh, which names no material.
       {"--conductor 1=1 --ground somewhere", 2,
        "--ground: the mesh has no material named 'somewhere' (its materials have no names"},
