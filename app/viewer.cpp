@@ -1432,6 +1432,7 @@ uint32_t Viewer::tet_at(float x, float y) const {
   const ui::ViewRect rect = ui::scene_rect(io.DisplaySize.x, io.DisplaySize.y, panel_);
   const float px = x - rect.x, py = y - rect.y;
   if (!(px >= 0 && py >= 0 && px < rect.width && py < rect.height)) return kInvalidIndex;
+  if (renderer_->over_legend(px / rect.width, py / rect.height)) return kInvalidIndex;
   return scene_->surface
       .pick(render::pixel_ray(camera_.camera(), px, py, static_cast<int>(rect.width),
                               static_cast<int>(rect.height)))

@@ -358,6 +358,7 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
   }
   gl_.BindVertexArray(0);
 
+  legend_boxes_.clear();
   if (settings.legend) draw_legend(settings, width, height);
 
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
@@ -385,6 +386,8 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
   // Each part of the legend sits on a white panel with a grey border, so that it reads
   // where it overlaps the model.
   const auto add_panel = [&](float x0, float y0, float x1, float y1) {
+    legend_boxes_.push_back({(x0 - pad - 1) / float(width), (y0 - pad - 1) / float(height),
+                             (x1 + pad + 1) / float(width), (y1 + pad + 1) / float(height)});
     add_rect(&v, x0 - pad - 1, y0 - pad - 1, x1 + pad + 1, y1 + pad + 1, {0.7f, 0.7f, 0.72f});
     add_rect(&v, x0 - pad, y0 - pad, x1 + pad, y1 + pad, {1, 1, 1});
   };
@@ -467,6 +470,12 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
   gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(v.size()));
   gl_.BindVertexArray(0);
   gl_.Enable(GL_DEPTH_TEST);
+}
+
+bool Renderer::over_legend(double fx, double fy) const {
+  return std::any_of(legend_boxes_.begin(), legend_boxes_.end(), [&](const LegendBox& b) {
+    return fx >= b.x0 && fx <= b.x1 && fy >= b.y0 && fy <= b.y1;
+  });
 }
 
 Image Renderer::read_pixels() {

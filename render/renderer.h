@@ -85,8 +85,16 @@ class Renderer {
   void present_into(int x, int y, int width, int height);
 
   size_t triangle_count() const { return triangle_vertices_ / 3; }
+  // Whether the point (fx, fy) of the last drawn frame, as fractions of its width and
+  // height from its top left, lies on the legend (the colour bar or the key): the
+  // viewer names no tet under it.
+  bool over_legend(double fx, double fy) const;
 
  private:
+  struct LegendBox {
+    float x0, y0, x1, y1;  // fractions of the frame, from its top left
+  };
+  std::vector<LegendBox> legend_boxes_;  // of the last frame drawn
   bool ensure_targets(int width, int height);
   void release_targets();
   void draw_legend(const DrawSettings& settings, int width, int height);

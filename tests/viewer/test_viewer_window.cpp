@@ -1678,6 +1678,19 @@ TEST(ViewerWindow, ThePointerNamesTheTetUnderIt) {
       render::compare_images(load_png(dir / "before.png"), load_png(dir / "tip.png"), 24, nullptr);
   EXPECT_GT(d.differing_pixels, 3000u) << "no tooltip";
 
+  // Over the colour bar, zoomed in so that the mesh fills the view behind it: no tet;
+  // just above it, one.
+  std::ofstream(dir / "legend.script") << "view z\nzoom 8\nmouse 836 462\nreport-tet legend.txt\n"
+                                          "mouse 836 380\nreport-tet above.txt\nquit\n";
+  const ViewerRun legend = run_viewer(
+      dir, "'" + kSource + "/assets/spheres.mesh' --size 1280x800 --script legend.script");
+  ASSERT_EQ(legend.exit_code, 0) << legend.output;
+  std::ifstream legend_report(dir / "legend.txt");
+  std::string legend_line;
+  std::getline(legend_report, legend_line);
+  EXPECT_EQ(legend_line, "tet none");
+  EXPECT_EQ(read_report(dir / "above.txt")["material"], 4);
+
   std::ofstream(dir / "none.script") << "report-tet x.txt\nquit\n";
   const ViewerRun none_run =
       run_viewer(dir, "'" + kSource + "/assets/spheres.mesh' --size 1280x800 --script none.script");
