@@ -352,6 +352,8 @@ class Viewer {
   Status start_solve(int line);
   void poll_solve();
   bool field_shown() const;  // the last solve is of the displayed level
+  // The input file's names of its materials (none without a mesh or names).
+  const std::vector<MaterialName>& material_names() const;
   double field_range_max() const;
   // The drawn faces' sizes, while the faces are coloured by size.
   std::pair<double, double> size_range() const;
@@ -1018,8 +1020,7 @@ void Viewer::poll_job() {
 // --hide by name: looked up in the first mesh opened, whose names they are. A name it
 // lacks is said on stderr (with the names it has) and in the status line.
 void Viewer::hide_by_name() {
-  static const std::vector<MaterialName> kNoNames;
-  const auto& names = scene_->material_names ? *scene_->material_names : kNoNames;
+  const std::vector<MaterialName>& names = material_names();
   for (const std::string& name : hidden_names_) {
     int32_t m = 0;
     if (material_by_name(name, names, "view", "--hide", &m)) {
@@ -1767,6 +1768,11 @@ void Viewer::poll_solve() {
   needs_redraw_ = true;
 }
 
+const std::vector<MaterialName>& Viewer::material_names() const {
+  static const std::vector<MaterialName> kNoNames;
+  return scene_ && scene_->material_names ? *scene_->material_names : kNoNames;
+}
+
 bool Viewer::field_shown() const {
   return scene_ && analysis_result_ && analysis_result_->generation == scene_generation_ &&
          analysis_result_->step == scene_->lod->step();
@@ -2035,13 +2041,8 @@ Status Viewer::run_action(const ScriptAction& a) {
         thresholds_.region_spec = *a.region;
       }
       if (a.material_sizes) {
-        static const std::vector<MaterialName> kNoNames;
         std::vector<std::pair<int32_t, double>> sizes;
-        if (Status s = resolve_material_sizes(
-                *a.material_sizes,
-                scene_ && scene_->material_names ? scene_->material_names.get() : &kNoNames,
-                &sizes);
-            !s)
+        if (Status s = resolve_material_sizes(*a.material_sizes, &material_names(), &sizes); !s)
           return s;
         // As --material-size: a material the mesh lacks is a typo, not a size to ignore.
         for (const auto& [m, size] : sizes) {
@@ -2100,11 +2101,8 @@ Status Viewer::run_action(const ScriptAction& a) {
     case Kind::kShow: {
       int32_t m = static_cast<int32_t>(a.count);
       if (!a.word.empty()) {
-        static const std::vector<MaterialName> kNoNames;
         std::string why;
-        if (!find_material(a.word, scene_->material_names ? *scene_->material_names : kNoNames, &m,
-                           &why))
-          return Status::error(why);
+        if (!find_material(a.word, material_names(), &m, &why)) return Status::error(why);
       }
       if (!std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
         return Status::error("material " + std::to_string(m) + " is not in the mesh");
@@ -2125,12 +2123,10 @@ Status Viewer::run_action(const ScriptAction& a) {
       break;
     case Kind::kAnalysis: {
       ElectrostaticsProblem problem = a.problem;
-      static const std::vector<MaterialName> kNoNames;
       for (const ScriptAction::NamedMaterial& n : a.named) {
         int32_t m = 0;
         std::string why;
-        if (!find_material(n.name, scene_->material_names ? *scene_->material_names : kNoNames, &m,
-                           &why))
+        if (!find_material(n.name, material_names(), &m, &why))
           return Status::error(n.key + ": " + why);
         if (n.key == "ground")
           problem.ground_materials.push_back(m);
