@@ -400,6 +400,17 @@ std::vector<std::string> split_items(const std::string& text) {
   }
 }
 
+bool split_material_value(const std::string& item, char separator, std::string* material,
+                          double* value) {
+  const size_t at = item.rfind(separator);
+  *material = at == std::string::npos ? "" : item.substr(0, at);
+  if (at == std::string::npos) return false;
+  const std::optional<double> v = parse_double(item.substr(at + 1));
+  if (!v) return false;
+  *value = *v;
+  return true;
+}
+
 // "1,copper,3": ids into `ids`, names (items that do not start like a number) into
 // `names`. False for an empty item or a number that is not an id.
 bool parse_materials(const std::string& text, std::vector<int32_t>* ids,

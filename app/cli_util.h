@@ -177,6 +177,12 @@ bool is_material_name(const std::string& text);
 // The items of a ','-separated list, each without leading and trailing blanks (as
 // typed: "phase A=12, phase B=12").
 std::vector<std::string> split_items(const std::string& text);
+// An item "M=X" of such a list (`separator` '=', or ':' in viewer scripts): the text
+// before the last separator (a name may hold one, a number does not) into `material`,
+// and the number after it into `value`. False if there is no separator or the value
+// is no finite number (`material` is set all the same).
+bool split_material_value(const std::string& item, char separator, std::string* material,
+                          double* value);
 // "1,copper,3", where an option takes materials: ids into `ids`, names into `names`
 // (both cleared first). False for an empty item or a number that is not an id.
 bool parse_materials(const std::string& text, std::vector<int32_t>* ids,

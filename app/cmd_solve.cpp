@@ -73,18 +73,16 @@ bool material_text_ok(const std::string& text) {
 bool parse_pairs(const std::string& flag, const std::string& text,
                  std::vector<std::pair<MaterialText, double>>* pairs) {
   for (const std::string& item : split_items(text)) {
-    const size_t equals = item.rfind('=');  // a name may hold one, a number does not
-    const std::string material = equals == std::string::npos ? "" : item.substr(0, equals);
-    const auto value =
-        equals == std::string::npos ? std::nullopt : parse_double(item.substr(equals + 1));
-    if (!material_text_ok(material) || !value) {
+    std::string material;
+    double value = 0;
+    if (!split_material_value(item, '=', &material, &value) || !material_text_ok(material)) {
       std::fprintf(stderr,
                    "tetlod solve: %s '%s': '%s' is not MATERIAL=NUMBER (a material id >= 0 or "
                    "name, and a finite number)\n",
                    flag.c_str(), text.c_str(), item.c_str());
       return false;
     }
-    pairs->push_back({material, *value});
+    pairs->push_back({material, value});
   }
   return true;
 }

@@ -173,16 +173,16 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
       std::string ids;
       const size_t named_before = options->named_material_sizes.size();
       for (const std::string& item : split_items(v)) {
-        const size_t equals = item.rfind('=');  // a name may hold one, a size does not
-        const bool named = equals != std::string::npos && is_material_name(item.substr(0, equals));
-        if (named) {
-          const auto size = parse_double(item.substr(equals + 1));
-          if (!size || !(*size > 0) || !std::isfinite(*size)) {
+        std::string material;
+        double size = 0;
+        const bool has_size = split_material_value(item, '=', &material, &size);
+        if (is_material_name(material)) {
+          if (!has_size || !(size > 0)) {
             std::fprintf(stderr, "tetlod %s: --material-size %s: '%s' is not a size > 0\n", command,
-                         item.c_str(), item.substr(equals + 1).c_str());
+                         item.c_str(), item.substr(material.size() + 1).c_str());
             return OptionResult::kError;
           }
-          options->named_material_sizes.push_back({item.substr(0, equals), *size});
+          options->named_material_sizes.push_back({material, size});
         } else {
           ids += (ids.empty() ? "" : ",") + item;
         }

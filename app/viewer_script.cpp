@@ -140,17 +140,10 @@ Status parse_material_values(const LineParser& p, const std::string& key, const 
                              std::vector<std::pair<int32_t, double>>* out,
                              std::vector<ScriptAction::NamedMaterial>* named) {
   for (const std::string& item : split_items(text)) {
-    const size_t colon = item.rfind(':');  // a name may hold one, a number does not
-    const std::string material = colon == std::string::npos ? "" : item.substr(0, colon);
-    const auto id = material_id(material);
-    double value = 0;  // a plain double: GCC 12 warns of an optional's, wrongly
-    bool has_value = false;
-    if (colon != std::string::npos) {
-      if (const std::optional<double> v = parse_double(item.substr(colon + 1))) {
-        value = *v;
-        has_value = true;
-      }
-    }
+    std::string material;
+    double value = 0;
+    const bool has_value = split_material_value(item, ':', &material, &value);
+    const std::optional<int32_t> id = material_id(material);
     if (!(id || is_material_name(material)) || !has_value)
       return p.error("'" + key + "': '" + item +
                      "' is not MATERIAL:NUMBER (a material id >= 0 or name, and a finite "
@@ -476,12 +469,11 @@ Status resolve_material_sizes(const std::string& spec, const std::vector<Materia
                               std::vector<std::pair<int32_t, double>>* out) {
   out->clear();
   for (const std::string& item : split_items(spec)) {
-    const size_t equals = item.rfind('=');  // a name may hold one, a size does not
-    const std::string material = equals == std::string::npos ? "" : item.substr(0, equals);
-    const std::optional<int32_t> id = material_id(material);
+    std::string material;
     double size = 0;
-    if (equals != std::string::npos) size = parse_double(item.substr(equals + 1)).value_or(0);
-    if (!(id || is_material_name(material)) || !(size > 0) || !std::isfinite(size))
+    const bool has_size = split_material_value(item, '=', &material, &size);
+    const std::optional<int32_t> id = material_id(material);
+    if (!(id || is_material_name(material)) || !has_size || !(size > 0))
       return Status::error("material-sizes: '" + item +
                            "' is not MATERIAL=SIZE (a material id >= 0 or name, and a size > 0)");
     int32_t m = id.value_or(0);
