@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "core/adjacency.h"
@@ -68,22 +69,21 @@ constexpr double kMinPermittivity = 1e-30, kMaxPermittivity = 1e30;
 }  // namespace
 
 Status check_repeated_materials(const ElectrostaticsProblem& problem) {
-  std::vector<int32_t> electrodes = problem.ground_materials;
+  // The first id listed twice in `ids`, if any.
+  const auto repeat = [](std::vector<int32_t> ids) -> std::optional<int32_t> {
+    std::sort(ids.begin(), ids.end());
+    const auto at = std::adjacent_find(ids.begin(), ids.end());
+    return at == ids.end() ? std::nullopt : std::optional<int32_t>(*at);
+  };
+  std::vector<int32_t> electrodes = problem.ground_materials, dielectrics;
   for (const auto& [m, potential] : problem.conductors) electrodes.push_back(m);
-  std::sort(electrodes.begin(), electrodes.end());
-  const auto repeated = std::adjacent_find(electrodes.begin(), electrodes.end());
-  if (repeated != electrodes.end()) {
-    return Status::error("material " + std::to_string(*repeated) +
-                         " is given more than once as a conductor or ground");
-  }
-  std::vector<int32_t> dielectrics;
   for (const auto& [m, eps] : problem.permittivities) dielectrics.push_back(m);
-  std::sort(dielectrics.begin(), dielectrics.end());
-  const auto twice = std::adjacent_find(dielectrics.begin(), dielectrics.end());
-  if (twice != dielectrics.end()) {
-    return Status::error("permittivity of material " + std::to_string(*twice) +
+  if (const auto m = repeat(std::move(electrodes)))
+    return Status::error("material " + std::to_string(*m) +
+                         " is given more than once as a conductor or ground");
+  if (const auto m = repeat(std::move(dielectrics)))
+    return Status::error("permittivity of material " + std::to_string(*m) +
                          " is given more than once");
-  }
   return Status();
 }
 
