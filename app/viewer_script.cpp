@@ -114,7 +114,12 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
       a->material_sizes = value;
     } else if (key == "region") {
       SizingField field;
-      if (Status s = parse_size_field(value, &field); !s) return p.error(s.message());
+      if (Status s = parse_size_field(value, &field); !s) {
+        // Its messages name the CLI's option.
+        std::string message = s.message();
+        if (message.rfind("--size-field", 0) == 0) message.replace(0, 12, "region");
+        return p.error(message);
+      }
       a->region = value;
     } else if (key == "sizing") {
       if (value != "map" && value != "uniform")
@@ -501,6 +506,10 @@ Status parse_script_text(const std::string& text, const std::string& name,
   p.name = name;
   while (std::getline(lines, line)) {
     ++p.line;
+    // A byte-order mark before the first line, as some editors write it.
+    if (p.line == 1 && line.compare(0, 3, "\xef\xbb\xbf") == 0) line.erase(0, 3);
+    // A NUL would cut a path where it is opened, not where it is read.
+    if (line.find('\0') != std::string::npos) return p.error("a NUL byte");
     if (!split_words(line, &p.words)) return p.error("a '\"' is left open");
     if (p.words.empty()) continue;
     ScriptAction a;

@@ -2,7 +2,8 @@
 // actions done in the real window, one after the other, each waiting until the
 // previous one has finished (a simplification, a scrub, a statistics update).
 //
-//   # comment                        blank lines and comments are skipped
+//   # comment                        blank lines and comments are skipped (a NUL byte
+//                                    is an error; a byte-order mark at the start is skipped)
 //   "a b"                            double quotes keep blanks in a word (names:
 //                                    material-sizes="phase A=12", hide "rotor iron")
 //   open PATH [may-fail]             load a mesh, or a collapse history (.tlh) with its
@@ -59,9 +60,11 @@
 //                                    set-up; unlisted materials: dielectric, eps 1);
 //                                    ground= is needed unless the conductors hold two
 //                                    potentials; M is a material's id or its name (one
-//                                    without ',' or blanks). The syntax is checked here,
-//                                    the materials when it runs; a bad set-up (a conductor
-//                                    touching the ground, eps <= 0, ...) fails at 'solve'
+//                                    without ','; in quotes if it has blanks:
+//                                    "conductor=phase A:1"); a material given twice is an
+//                                    error. The syntax is checked here, the materials
+//                                    when it runs; a bad set-up (a conductor touching
+//                                    the ground, eps <= 0, ...) fails at 'solve'
 //   solve [may-fail] [wait=0]        solve the displayed level (and the finest level,
 //                                    once, for the difference) and wait (wait=0: go on
 //                                    meanwhile); the solver's error fails the script at

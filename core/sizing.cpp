@@ -177,8 +177,10 @@ Status parse_material_sizes(const std::string& spec, SizingField* field) {
 }
 
 Status parse_size_field(const std::string& spec, SizingField* field) {
-  if (spec.empty()) return Status::error("--size-field: empty specification");
+  if (spec.find_first_not_of(" ;") == std::string::npos)
+    return Status::error("--size-field: empty specification");
   for (const std::string& rule : split(spec, ';')) {
+    if (rule.empty()) continue;  // "box:...;" as typed, or ";;"
     const size_t colon = rule.find(':');
     const std::string kind = rule.substr(0, colon);
     const std::vector<std::string> values = colon == std::string::npos

@@ -77,14 +77,29 @@ Status finish_read(io::ParsedMesh* parsed, MeshFormat format, const std::string&
     info->notes = std::move(parsed->notes);
     info->surface_groups = std::move(parsed->surface_groups);
     info->material_names = std::move(parsed->material_names);
-    // A file's names reach terminals, JSON and other files: control characters (an
-    // escape sequence, a line break) become '_'.
-    const auto clean = [](std::string* name) {
+    // A file's names reach terminals, JSON and other files: bytes that are no UTF-8
+    // become '?' (valid_utf8()), control characters (an escape sequence, a line break)
+    // '_', and a name is cut to kMaxNameBytes, at a character's start (what Gmsh
+    // reads of a physical name).
+    size_t cut = 0;
+    const auto clean = [&cut](std::string* name) {
+      *name = io::valid_utf8(*name);
       for (char& c : *name)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '_';
+      if (name->size() > kMaxNameBytes) {
+        size_t end = kMaxNameBytes;
+        while (end > 0 && (static_cast<unsigned char>((*name)[end]) & 0xc0) == 0x80) --end;
+        name->resize(end);
+        ++cut;
+      }
     };
     for (MaterialName& n : info->material_names) clean(&n.name);
     for (InputSurfaceGroup& g : info->surface_groups) clean(&g.name);
+    if (cut > 0) {
+      info->notes.push_back(std::to_string(cut) + (cut == 1 ? " name was" : " names were") +
+                            " cut to " + std::to_string(kMaxNameBytes) +
+                            " bytes (what Gmsh reads of a physical name)");
+    }
     info->surface_elements_not_kept = parsed->surface_elements_not_kept;
     info->face_neighbors = std::move(neighbors);
   }

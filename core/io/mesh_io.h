@@ -118,6 +118,11 @@ enum class MeshFormat {
 
 const char* format_name(MeshFormat format);
 
+// The longest material or surface group name read (longer ones are cut, with a note):
+// Gmsh reads a $PhysicalNames line into 256 bytes, so "DIM TAG \"NAME\"" with a
+// ten-digit tag leaves 240 for the name (Gmsh 4.8.4 loads 252 with tag 1, not 253).
+inline constexpr size_t kMaxNameBytes = 240;
+
 struct ReadInfo {
   MeshFormat format = MeshFormat::kMedit;
   ValidationReport validation;

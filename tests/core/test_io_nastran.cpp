@@ -179,6 +179,25 @@ TEST(IoNastran, NamesReadBackFromTheirComments) {
   ASSERT_EQ(info.material_names.size(), 2u);
   EXPECT_EQ(info.material_names[1].name, names[1].name);
 
+  // Names as a file may spell them: a byte that is no UTF-8 becomes '?', and a name
+  // longer than kMaxNameBytes is cut, at a character's start (not inside the é that
+  // straddles byte 240), with a note.
+  const auto read_named = [&](const std::string& name, ReadInfo* named_info) {
+    std::string named_text = text;
+    named_text.insert(named_text.find('\n', named_text.find(two)) + 1, two + name + "\n");
+    ASSERT_TRUE(
+        read_mesh_from_memory(named_text, MeshFormat::kNastran, "n.bdf", &back, named_info).ok());
+    ASSERT_EQ(named_info->material_names.size(), 2u);
+  };
+  ReadInfo spelled;
+  read_named(std::string("bad\xff") + "byte", &spelled);
+  EXPECT_EQ(spelled.material_names[1].name, "bad?byte");
+  read_named(std::string(239, 'L') + "\xc3\xa9tail", &spelled);
+  EXPECT_EQ(spelled.material_names[1].name, std::string(239, 'L'));
+  EXPECT_NE(std::find(spelled.notes.begin(), spelled.notes.end(),
+                      "1 name was cut to 240 bytes (what Gmsh reads of a physical name)"),
+            spelled.notes.end());
+
   // A second name for a PID: the last is taken, and a note says so with the line.
   const size_t line = std::count(text.begin(), text.begin() + text.find(two), '\n') + 2;
   text.insert(text.find('\n', text.find(two)) + 1, two + "other\n");

@@ -30,6 +30,12 @@ TEST(Sizing, CombinesRulesByTheirMinimum) {
   SizingField axis;
   ASSERT_TRUE(parse_size_field("axis:0,0,0,0,0,2,1,1", &axis));
   EXPECT_DOUBLE_EQ(axis.size_at({3, 4, 50}, 0), 6.0);  // distance 5 from the z axis
+  // A ';' after the last rule, as typed in the viewer's rules box, is no rule; nothing
+  // but ';' is no specification.
+  SizingField trailing;
+  ASSERT_TRUE(parse_size_field("box:0,0,0,1,1,1,2;", &trailing));
+  EXPECT_EQ(trailing.boxes.size(), 1u);
+  EXPECT_EQ(parse_size_field(";;", &trailing).message(), "--size-field: empty specification");
 }
 
 // An axis direction of any magnitude is that direction: no overflow to a zero axis

@@ -337,6 +337,13 @@ TEST(ViewerScript, ErrorsNameTheFileAndLine) {
   EXPECT_EQ(parse_error("hide 1,2\n"), "t.script:1: 'hide' takes one material a line, got '1,2'");
   EXPECT_EQ(parse_error("thresholds size=1 stretch=0.2 size=2\n"),
             "t.script:1: 'size' is given twice");
+  // A NUL would cut a path where it is opened ("a.mesh\0.vtk" saved .vtk text as a.mesh).
+  EXPECT_EQ(parse_error(std::string("quit\nsave a.mesh\0.vtk\n", 22)), "t.script:2: a NUL byte");
+  EXPECT_EQ(parse_error("thresholds region=sphere:1\n"),
+            "t.script:1: region: unknown rule 'sphere:1' (expected radial:..., axis:... or "
+            "box:...)");
+  // A byte-order mark before the first command is no part of it.
+  EXPECT_EQ(parse_ok("\xef\xbb\xbfquit\n").size(), 1u);
 }
 
 // An endless file is refused after 16 MiB; /dev/null is an empty script.
