@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace tetlod::io {
 namespace {
@@ -160,8 +161,9 @@ bool TextScanner::read_count(uint64_t* count, const char* what, uint64_t min_byt
   if (!read_int(&value, what)) return false;
   if (value < 0) return fail(std::string(what) + " " + std::to_string(value) + " is negative");
   // The last item may lack its trailing separator, hence the + 1.
-  const uint64_t capacity =
-      (uint64_t(remaining_bytes()) + 1) / std::max<uint64_t>(1, min_bytes_per_item);
+  const uint64_t capacity = min_bytes_per_item == 0
+                                ? std::numeric_limits<uint64_t>::max()
+                                : (uint64_t(remaining_bytes()) + 1) / min_bytes_per_item;
   if (uint64_t(value) > capacity) {
     return fail(std::string(what) + " " + std::to_string(value) +
                 " is larger than the rest of the file can hold (wrong count or truncated file?)");

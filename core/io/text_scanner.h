@@ -50,7 +50,9 @@ class TextScanner {
   // ids that some writers store as floating point.
   bool read_integral(int64_t* value, const char* what, int64_t min_value, int64_t max_value);
   // A count of items that each take at least `min_bytes_per_item` bytes of the
-  // remaining text, so that no caller reserves more than the text could hold.
+  // remaining text, so that no caller reserves more than the text could hold; 0: a
+  // count the caller bounds otherwise (a VTK data section's must equal the cells',
+  // and may end the file with no array after it).
   bool read_count(uint64_t* count, const char* what, uint64_t min_bytes_per_item);
   // Skips `count` tokens that must look like numbers (keeps a wrong count from
   // silently swallowing the next section).
