@@ -45,7 +45,7 @@ constexpr const char* kViewUsage =
     "keys F (fit), 0 (iso), 1/2/3 (x/y/z views); the level of detail: left/right one\n"
     "step, page up/down a hundredth of the history, home/end the finest/coarsest level.\n"
     "The pointer at rest over the mesh names the tet under it: its material, stretch,\n"
-    "longest edge (with the last run's thresholds there), volume and |E| of a solve.\n";
+    "longest edge, its nodes' valence (with the last run's thresholds), volume and |E|.\n";
 
 std::string default_model() {
   // The bundled motor, found next to the source tree the binary was built from, or

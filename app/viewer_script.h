@@ -74,8 +74,9 @@
 //   report-tet PATH                  write what the tooltip says of the tet under the
 //                                    pointer ('mouse X Y' first) as 'key value' lines
 //                                    (tet: its id in the level of detail, not in a saved
-//                                    file; material, name, stretch, size, volume; the
-//                                    run's min_stretch and max_size there; field), or
+//                                    file; material, stretch, size, volume, valence (the
+//                                    most neighbours of its nodes); the run's min_stretch,
+//                                    max_size there and max_valence; field; name), or
 //                                    'tet none'
 //   quit
 //

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -1661,14 +1662,28 @@ TEST(ViewerWindow, ThePointerNamesTheTetUnderIt) {
     EXPECT_EQ(tet["material"], material) << file;
     EXPECT_EQ(tet["min_stretch"], 0.2) << file;
     EXPECT_EQ(tet["max_size"], 2) << file;
-    bool found = false;
-    for (size_t t = 0; t < level.tet_count() && !found; ++t) {
+    EXPECT_EQ(tet["max_valence"], 25) << file;
+    size_t found = level.tet_count();
+    for (size_t t = 0; t < level.tet_count() && found == level.tet_count(); ++t) {
       const TetShape shape = tet_shape(level, level.tets[t]);
-      found = level.materials[t] == material && std::abs(shape.stretch - tet["stretch"]) < 1e-9 &&
-              std::abs(shape.size - tet["size"]) < 1e-9 &&
-              std::abs(shape.volume - tet["volume"]) < 1e-9;
+      if (level.materials[t] == material && std::abs(shape.stretch - tet["stretch"]) < 1e-9 &&
+          std::abs(shape.size - tet["size"]) < 1e-9 &&
+          std::abs(shape.volume - tet["volume"]) < 1e-9)
+        found = t;
     }
-    EXPECT_TRUE(found) << file << ": no such tet in the level";
+    ASSERT_LT(found, level.tet_count()) << file << ": no such tet in the level";
+    // The valence: the most edge neighbours of its nodes in the saved level.
+    const VertexTets vertex_tets = build_vertex_tets(level);
+    size_t valence = 0;
+    for (const uint32_t v : level.tets[found]) {
+      std::set<uint32_t> neighbours;
+      for (const uint32_t* t = vertex_tets.begin(v); t != vertex_tets.end(v); ++t)
+        for (const uint32_t w : level.tets[*t])
+          if (w != v) neighbours.insert(w);
+      valence = std::max(valence, neighbours.size());
+    }
+    EXPECT_EQ(tet["valence"], valence) << file;
+    EXPECT_GT(valence, 3u);
   }
   std::ifstream panel(dir / "panel.txt");
   std::string none;
