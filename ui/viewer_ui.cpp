@@ -1176,12 +1176,13 @@ std::string final_mesh_text(const ViewerStatus& status) {
 
 namespace {
 
-// `message` with the command line's flags the simplifier's messages name replaced by
-// `words[0]` (for --no-subdivide) and `words[1]` (for "(set --size)").
-std::string reword_flags(const std::string& message, const char* const (&words)[2]) {
-  static const char* const kFlags[] = {"--no-subdivide", "(set --size)"};
+// `message` with the command line's flags the simplifier's and the sizing's messages
+// name replaced by `words[0]` (for --no-subdivide), `words[1]` (for "(set --size)")
+// and `words[2]` (for --size-field, the region rules).
+std::string reword_flags(const std::string& message, const char* const (&words)[3]) {
+  static const char* const kFlags[] = {"--no-subdivide", "(set --size)", "--size-field"};
   std::string text = message;
-  for (int k = 0; k < 2; ++k) {
+  for (int k = 0; k < 3; ++k) {
     const size_t at = text.find(kFlags[k]);
     if (at != std::string::npos) text.replace(at, std::strlen(kFlags[k]), words[k]);
   }
@@ -1191,11 +1192,12 @@ std::string reword_flags(const std::string& message, const char* const (&words)[
 }  // namespace
 
 std::string simplify_error_text(const std::string& message) {
-  return reword_flags(message, {"untick \"Subdivide first\" above", "(set the size)"});
+  return reword_flags(message,
+                      {"untick \"Subdivide first\" above", "(set the size)", "the region rules"});
 }
 
 std::string script_error_text(const std::string& message) {
-  return reword_flags(message, {"'thresholds subdivide=0'", "(set 'thresholds size=S')"});
+  return reword_flags(message, {"'thresholds subdivide=0'", "(set 'thresholds size=S')", "region"});
 }
 
 std::string other_run_progress_text(const ViewerStatus& status) {

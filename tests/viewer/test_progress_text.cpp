@@ -207,6 +207,11 @@ TEST(SimplifyErrorText, NamesThePanelsControlsNotTheFlags) {
             "'thresholds subdivide=0'");
   EXPECT_EQ(ui::script_error_text("no size limit given (set --size)"),
             "no size limit given (set 'thresholds size=S')");
+  // The region rules' errors (parse_size_field() names --size-field).
+  EXPECT_EQ(ui::simplify_error_text("thresholds: --size-field: unknown rule 'ball:1'"),
+            "thresholds: the region rules: unknown rule 'ball:1'");
+  EXPECT_EQ(ui::script_error_text("thresholds: --size-field box:0,0,0,1,1,1,-2: size"),
+            "thresholds: region box:0,0,0,1,1,1,-2: size");
 }
 
 }  // namespace
