@@ -724,7 +724,7 @@ class AbaqusParser {
         if (dot(cross(t[1] - t[0], t[2] - t[0]), apex - t[0]) > 0) std::swap(t[1], t[2]);
         group.triangles.push_back(t);
       }
-      out_->surface_groups.push_back(std::move(group));
+      add_group(std::move(group));
     }
     add_triangle_groups();
     if (dropped > 0) {
@@ -774,12 +774,12 @@ class AbaqusParser {
       surface_tag_base_ = largest < std::numeric_limits<int32_t>::max() / 2 ? largest : 0;
     }
     int64_t tag = surface_tag_base_ + 1 + int64_t(out_->surface_groups.size());
-    while (tag_taken(tag)) ++tag;
+    while (group_tags_.count(tag)) ++tag;
     return int32_t(tag);
   }
-  bool tag_taken(int64_t tag) const {
-    return std::any_of(out_->surface_groups.begin(), out_->surface_groups.end(),
-                       [tag](const InputSurfaceGroup& g) { return g.tag == tag; });
+  void add_group(InputSurfaceGroup group) {
+    group_tags_.insert(group.tag);
+    out_->surface_groups.push_back(std::move(group));
   }
 
   // The tag and name of the group of *SURFACE `surface`: those a TetLOD comment gave it
@@ -789,9 +789,10 @@ class AbaqusParser {
     const auto it = commented_surfaces_.find(upper(surface));
     if (it != commented_surfaces_.end()) {
       const int64_t tag = it->second.first;
-      const bool material = std::find(out_->mesh.materials.begin(), out_->mesh.materials.end(),
-                                      tag) != out_->mesh.materials.end();
-      if (tag > 0 && tag <= std::numeric_limits<int32_t>::max() && !material && !tag_taken(tag)) {
+      if (material_ids_.empty())  // once: a file may hold a comment for every surface
+        material_ids_.insert(out_->mesh.materials.begin(), out_->mesh.materials.end());
+      if (tag > 0 && tag <= std::numeric_limits<int32_t>::max() && !material_ids_.count(tag) &&
+          !group_tags_.count(tag)) {
         group->tag = int32_t(tag);
         group->name = valid_utf8(it->second.second);
         return;
@@ -840,7 +841,7 @@ class AbaqusParser {
         }
         group.triangles.push_back(corners);
       }
-      if (!group.triangles.empty()) out_->surface_groups.push_back(std::move(group));
+      if (!group.triangles.empty()) add_group(std::move(group));
     }
     if (unknown_nodes > 0)
       out_->notes.push_back(std::to_string(unknown_nodes) +
@@ -947,6 +948,8 @@ class AbaqusParser {
   // From kSurfaceNameComment lines: surface name (upper case) -> its group's tag and name.
   std::map<std::string, std::pair<int64_t, std::string>> commented_surfaces_;
   int64_t surface_tag_base_ = -1;             // next_surface_tag(): the largest material number
+  std::unordered_set<int64_t> group_tags_;    // of the surface groups added (add_group())
+  std::unordered_set<int64_t> material_ids_;  // the mesh's, for the comments' tags
   std::vector<std::string> unread_surfaces_;  // "NAME (reason)", for the note
 };
 
