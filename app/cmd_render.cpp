@@ -87,8 +87,9 @@ int cmd_render(const Args& args) {
   }
   if (!output_directory_ok(out)) return kExitBadInput;
   const bool history = is_history_path(in);
-  if (history && !history_flags_ok(in, "render", options,
-                                   "--elements N to choose its level (default: the last)"))
+  if (history &&
+      !history_flags_ok(in, "render", options,
+                        "--elements N to choose its level (default: the last), and --improve"))
     return kExitUsage;
   if (!history && options.simplify && !options.simplify_options.size_given) {
     if (options.simplify_beyond_elements) {

@@ -219,8 +219,9 @@ int cmd_report(const Args& args) {
   }
   if (!output_directory_ok(dir, true)) return kExitBadInput;
   const bool from_history = is_history_path(in);
-  if (from_history && !history_flags_ok(in, "report", options,
-                                        "--levels N,... (and --elements N) to choose its levels"))
+  if (from_history &&
+      !history_flags_ok(in, "report", options,
+                        "--levels N,... (and --elements N) to choose its levels, and --improve"))
     return kExitUsage;
   if (!from_history && options.simplify && !options.simplify_options.size_given) {
     std::fputs(

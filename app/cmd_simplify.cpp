@@ -22,11 +22,11 @@ namespace tetlod::app {
 namespace {
 
 constexpr const char* kSimplifyUsageHead =
-    "usage: tetlod simplify IN -o OUT --size S [--stretch D] [--valence V] [--tolerance T]\n"
+    "usage: tetlod simplify IN -o OUT SIZING [--stretch D] [--valence V] [--tolerance T]\n"
     "                       [--no-subdivide] [--within-valence] [--past-valence-factor F]\n"
     "                       [--one-thread]\n"
-    "                       [--material-size M=S,...]\n"
-    "                       [--size-field SPEC] [--size-map FILE.sol [--size-map-mesh MESH]]\n"
+    "       SIZING: one or more of --size S, --material-size M=S,..., --size-field SPEC,\n"
+    "               --size-map FILE.sol [--size-map-mesh MESH]\n"
     "                       [--elements N] [--history FILE]\n"
     "                       [--crease-angle DEG] [--improve]\n"
     "                       [--msh-version V] [--msh-binary] [--vtk-binary] [--surfaces]\n"

@@ -26,6 +26,7 @@ constexpr const char* kUsage =
     "                                   .vtu .bdf/.nas .inp (--surfaces: with boundary groups)\n"
     "  generate MODEL -o FILE           make a bundled model (motor, spheres, box2) with TetGen\n"
     "  simplify IN -o OUT --size S ...  subdivide and simplify under the four thresholds\n"
+    "                                   (--size, or a local sizing in its place)\n"
     "  lod HISTORY --elements N -o OUT  write a level of a saved collapse history\n"
     "  solve MESH --conductor M=V ...   electrostatic finite-element solve: capacitance, field\n"
     "  render FILE -o SHOT.png ...      draw a mesh offscreen to a PNG (stretch, cut, ...)\n"

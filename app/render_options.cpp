@@ -231,8 +231,11 @@ bool open_offscreen_renderer(const char* command, OffscreenRenderer* out) {
 bool history_flags_ok(const std::string& in, const char* command, const RenderOptions& options,
                       const char* choose) {
   if (!options.simplify_beyond_elements) return true;
-  std::fprintf(stderr, "tetlod %s: %s is a collapse history, already simplified: give only %s\n",
-               command, in.c_str(), choose);
+  std::fprintf(stderr,
+               "tetlod %s: %s is a collapse history, already simplified: give only %s (its "
+               "saved thresholds; for others, write the level with 'tetlod lod %s --improve "
+               "...' first)\n",
+               command, in.c_str(), choose, in.c_str());
   return false;
 }
 

@@ -14,7 +14,9 @@
 namespace tetlod::app {
 
 const char* const kSimplifyFlagsHelp =
-    "  --size S          tau_SZ: no tet's longest edge above S (model units)\n"
+    "  --size S          tau_SZ: no tet's longest edge above S (model units); may be\n"
+    "                    left out with a local sizing below: a tet no rule reaches\n"
+    "                    then has no size limit\n"
     "  --stretch D       tau_ST: no tet's stretch below D, 0 < D < 1 (default 0.15)\n"
     "  --valence V       tau_VL: no node with more than V edge neighbours, V >= 4 (default 25)\n"
     "  --tolerance T     tau_TL: boundaries and interfaces kept within T (a length; the\n"
