@@ -16,10 +16,23 @@ Vec3 unit(const Vec3& v) {
 
 }  // namespace
 
-void OrbitCamera::fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view) {
+void OrbitCamera::fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view, double aspect,
+                      double bottom_band) {
+  take_framing(lo, hi, render::frame_camera(lo, hi, view, aspect, bottom_band));
+}
+
+void OrbitCamera::refit(const Vec3& lo, const Vec3& hi, double aspect, double bottom_band) {
+  const double yaw = yaw_, pitch = pitch_;
+  const Vec3 direction{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
+                       std::sin(pitch)};
+  take_framing(lo, hi, render::frame_camera(lo, hi, direction, {0, 0, 1}, aspect, bottom_band));
+  yaw_ = yaw;  // as it was, exactly
+  pitch_ = pitch;
+}
+
+void OrbitCamera::take_framing(const Vec3& lo, const Vec3& hi, const render::Camera& framed) {
   lo_ = lo;
   hi_ = hi;
-  const render::Camera framed = render::frame_camera(lo, hi, view);
   target_ = framed.target;
   fov_y_degrees_ = framed.fov_y_degrees;
   const Vec3 d = framed.eye - framed.target;
@@ -27,14 +40,6 @@ void OrbitCamera::fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view
   pitch_ = std::clamp(std::asin(std::clamp(d.z / distance_, -1.0, 1.0)), -kMaxPitch, kMaxPitch);
   // Looking down z the framed camera has y up: keep the eye slightly on -y.
   yaw_ = (std::abs(d.x) + std::abs(d.y) > 1e-9 * distance_) ? std::atan2(d.y, d.x) : -kPi / 2;
-}
-
-void OrbitCamera::refit(const Vec3& lo, const Vec3& hi) {
-  // frame_camera()'s distance fits the box's bounding sphere, from any direction.
-  const double yaw = yaw_, pitch = pitch_;
-  fit(lo, hi, render::ViewDirection::kIso);
-  yaw_ = yaw;
-  pitch_ = pitch;
 }
 
 void OrbitCamera::orbit(double dx, double dy) {

@@ -10,12 +10,15 @@ namespace tetlod::app {
 
 class OrbitCamera {
  public:
-  // Frames the box [lo, hi] from `view` (and remembers the box for near/far).
-  void fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view);
+  // Frames the box [lo, hi] from `view` (and remembers the box for near/far), in a
+  // view `aspect` = width / height wide, above a band of that fraction of its height
+  // at the bottom (render::frame_camera(): the colour bar's).
+  void fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view, double aspect = 1,
+           double bottom_band = 0);
   // Frames the box [lo, hi] as fit() does (target at its centre, at the distance that
-  // shows it whole), looking from the current direction (the Fit button: only the
-  // views set a direction).
-  void refit(const Vec3& lo, const Vec3& hi);
+  // shows it whole, or above the band), looking from the current direction (the Fit
+  // button: only the views set a direction).
+  void refit(const Vec3& lo, const Vec3& hi, double aspect = 1, double bottom_band = 0);
   // Mouse drags in pixels; `viewport_height` in pixels scales the pan.
   void orbit(double dx, double dy);
   void pan(double dx, double dy, int viewport_height);
@@ -25,6 +28,8 @@ class OrbitCamera {
   render::Camera camera() const;
 
  private:
+  void take_framing(const Vec3& lo, const Vec3& hi, const render::Camera& framed);
+
   Vec3 lo_{-1, -1, -1}, hi_{1, 1, 1};
   Vec3 target_{0, 0, 0};
   double distance_ = 5;

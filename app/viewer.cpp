@@ -363,6 +363,9 @@ class Viewer {
     int x = 0, y = 0, width = 1, height = 1;  // origin bottom left
   };
   ViewPixels view_pixels(int fb_width, int fb_height) const;
+  // The view's aspect (width / height) and the fraction of its height the colour bar
+  // covers at the bottom: the camera frames the model above it.
+  std::pair<double, double> framing() const;
   void draw_scene(int fb_width, int fb_height);
   // The tet under the pointer: the shown tet drawn at display pixel (x, y), or
   // kInvalidIndex (outside the view, over nothing). O(drawn faces).
@@ -1090,7 +1093,8 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     }
     Vec3 lo, hi;
     shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-    camera_.fit(lo, hi, render::ViewDirection::kIso);
+    const auto [aspect, band] = framing();
+    camera_.fit(lo, hi, render::ViewDirection::kIso, aspect, band);
     add_recent(scene_->path);
     std::snprintf(panel_.open_path, sizeof(panel_.open_path), "%s", scene_->path.c_str());
   }
@@ -1148,7 +1152,8 @@ void Viewer::execute(const ui::Command& command) {
       if (scene_) {
         Vec3 lo, hi;
         shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-        camera_.refit(lo, hi);
+        const auto [aspect, band] = framing();
+        camera_.refit(lo, hi, aspect, band);
       }
       break;
     case ui::CommandKind::kAxisView:
@@ -1158,7 +1163,8 @@ void Viewer::execute(const ui::Command& command) {
                                                render::ViewDirection::kZ};
         Vec3 lo, hi;
         shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-        camera_.fit(lo, hi, views[std::clamp<long long>(command.value, 0, 3)]);
+        const auto [aspect, band] = framing();
+        camera_.fit(lo, hi, views[std::clamp<long long>(command.value, 0, 3)], aspect, band);
       }
       break;
     case ui::CommandKind::kSave: {
@@ -1384,6 +1390,15 @@ void Viewer::update_stats() {
     }
     return level;
   });
+}
+
+std::pair<double, double> Viewer::framing() const {
+  int fb_width = 0, fb_height = 0;
+  window_->framebuffer_size(&fb_width, &fb_height);
+  const ViewPixels view = view_pixels(std::max(1, fb_width), std::max(1, fb_height));
+  const render::DrawSettings draw = make_draw_settings(view_, field_range_max(), size_range());
+  return {double(view.width) / view.height,
+          render::legend_bottom_band(draw, view.width, view.height)};
 }
 
 Viewer::ViewPixels Viewer::view_pixels(int fb_width, int fb_height) const {
@@ -2196,6 +2211,9 @@ Status Viewer::run_action(const ScriptAction& a) {
       break;
     case Kind::kWireframe:
       view_.wireframe = a.flag;
+      break;
+    case Kind::kLegend:
+      view_.legend = a.flag;
       break;
     case Kind::kHighlight:
       view_.highlight = true;

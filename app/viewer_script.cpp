@@ -299,6 +299,10 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     a->kind = Kind::kWireframe;
     if (Status s = p.arg_count(1, 1); !s) return s;
     return p.on_off("wireframe", w[1], &a->flag);
+  } else if (command == "legend") {
+    a->kind = Kind::kLegend;
+    if (Status s = p.arg_count(1, 1); !s) return s;
+    return p.on_off("legend", w[1], &a->flag);
   } else if (command == "highlight") {
     if (Status s = p.arg_count(1, 1); !s) return s;
     if (w[1] == "off") {

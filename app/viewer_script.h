@@ -35,6 +35,8 @@
 //   field-range max | P              |E| colour map over [0, max] or [0, percentile P of
 //                                    the solved tets' |E|], 0 < P <= 100
 //   wireframe on|off                 highlight D | highlight off
+//   legend on|off                    the colour bar or material key (as the panel's
+//                                    Legend; framing keeps the model above the bar)
 //   view iso|x|y|z|fit
 //   orbit DX DY | pan DX DY          camera moves as by a mouse drag of DX, DY pixels
 //   zoom CLICKS                      as by the mouse wheel (positive: closer)
@@ -109,6 +111,7 @@ struct ScriptAction {
     kRange,
     kColormap,
     kWireframe,
+    kLegend,
     kHighlight,
     kHighlightOff,
     kView,
@@ -130,13 +133,13 @@ struct ScriptAction {
   };
   Kind kind = Kind::kQuit;
   int line = 0;
-  std::string path;       // open, screenshot, save, bench-scrub out, report-analysis, -tet
-  std::string word;       // color, colormap, view; hide, show: a material's name
-  long long count = 0;    // step, elements, material, frames, solve: wait (1) or not (0)
-  double value = 0;       // cut offset, highlight, range min, field-range percentile
-  double value2 = 0;      // range max
-  int axis = 0;           // cut: 0 x, 1 y, 2 z
-  bool flag = false;      // cut flip, wireframe on, screenshot ui, save improve, wait done
+  std::string path;     // open, screenshot, save, bench-scrub out, report-analysis, -tet
+  std::string word;     // color, colormap, view; hide, show: a material's name
+  long long count = 0;  // step, elements, material, frames, solve: wait (1) or not (0)
+  double value = 0;     // cut offset, highlight, range min, field-range percentile
+  double value2 = 0;    // range max
+  int axis = 0;         // cut: 0 x, 1 y, 2 z
+  bool flag = false;    // cut flip, wireframe on, legend on, screenshot ui, save improve, wait done
   bool surfaces = false;  // save surfaces
   bool binary = false;    // save binary
   int width = 0, height = 0;

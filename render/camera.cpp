@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace tetlod::render {
 namespace {
@@ -26,31 +27,68 @@ void set_clip_distances(Camera* camera, const Vec3& lo, const Vec3& hi) {
 
 }  // namespace
 
-Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view) {
+Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view, double aspect,
+                    double bottom_band) {
+  Vec3 direction{1, 0.75, 0.9};
+  Vec3 up{0, 0, 1};
+  if (view == ViewDirection::kX) direction = {1, 0, 0};
+  if (view == ViewDirection::kY) direction = {0, 1, 0};
+  if (view == ViewDirection::kZ) {
+    direction = {0, 0, 1};
+    up = {0, 1, 0};
+  }
+  return frame_camera(lo, hi, direction, up, aspect, bottom_band);
+}
+
+Camera frame_camera(const Vec3& lo, const Vec3& hi, const Vec3& direction, const Vec3& up,
+                    double aspect, double bottom_band) {
   Camera camera;
   const Vec3 center = 0.5 * (lo + hi);
   const double radius = std::max(0.5 * length(hi - lo), kMinRadius);
-  Vec3 direction{1, 1, 1};
-  camera.up = {0, 0, 1};
-  switch (view) {
-    case ViewDirection::kIso:
-      direction = {1, 0.75, 0.9};
-      break;
-    case ViewDirection::kX:
-      direction = {1, 0, 0};
-      break;
-    case ViewDirection::kY:
-      direction = {0, 1, 0};
-      break;
-    case ViewDirection::kZ:
-      direction = {0, 0, 1};
-      camera.up = {0, 1, 0};
-      break;
-  }
+  camera.up = up;
   const double half_fov = 0.5 * camera.fov_y_degrees * kPi / 180;
-  const double distance = 1.02 * radius / std::sin(half_fov);
-  camera.target = center;
-  camera.eye = center + normalized(direction) * distance;
+  double distance = 1.02 * radius / std::sin(half_fov);
+  const Vec3 back = normalized(direction);  // from the target to the eye
+  const Vec3 side = normalized(cross(-1 * back, camera.up));
+  const Vec3 screen_up = cross(side, -1 * back);
+  double shift = 0;  // the eye and the target moved down by this much
+  const double band = std::clamp(bottom_band, 0.0, 0.5);
+  if (band > 0) {
+    // The box's corners from a camera `d` from the centre and `h` below it: the lowest
+    // and highest in normalised device y (the image's height is [-1, 1]; the vertical
+    // half field is the smaller side's, as in projection_matrix()).
+    const double tan_half_y = std::tan(half_fov) / (aspect > 0 && aspect < 1 ? aspect : 1);
+    const auto extent = [&](double d, double h) {
+      const Vec3 eye = center + back * d - screen_up * h;
+      double y_lo = 1e300, y_hi = -1e300;
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 v = Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z} - eye;
+        const double y = dot(v, screen_up) / (-dot(v, back) * tan_half_y);
+        y_lo = std::min(y_lo, y);
+        y_hi = std::max(y_hi, y);
+      }
+      return std::pair{y_lo, y_hi};
+    };
+    // The picture above the band is [floor, 1]. Where the box's corners reach below
+    // it, further away until they fit its height (with 2 % to spare), then up until
+    // the lowest stands on it: a few rounds, as perspective makes neither exact.
+    const double floor = -1 + 2 * band;
+    if (extent(distance, 0).first < floor) {
+      for (int round = 0; round < 8; ++round) {
+        const auto [y_lo, y_hi] = extent(distance, 0);
+        const double room = 0.98 * (1 - floor);
+        if (y_hi - y_lo <= room) break;
+        distance *= (y_hi - y_lo) / room;
+      }
+      for (int round = 0; round < 8; ++round) {
+        const double y_lo = extent(distance, shift).first;
+        if (y_lo >= floor && y_lo <= floor + 0.01) break;
+        shift += (floor + 0.005 - y_lo) * distance * tan_half_y;
+      }
+    }
+  }
+  camera.target = center - screen_up * shift;
+  camera.eye = center + back * distance - screen_up * shift;
   set_clip_distances(&camera, lo, hi);
   return camera;
 }

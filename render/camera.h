@@ -23,8 +23,17 @@ enum class ViewDirection { kIso, kX, kY, kZ };
 // x: from +x; y: from +y; z: from +z with y up), far enough that the box's bounding
 // sphere fills the smaller image side. The three axis views look from the + side, the
 // side an unflipped cut (surface_builder.h CutPlane with a + axis normal) removes, so
-// each shows the face the cut exposes.
-Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view);
+// each shows the face the cut exposes. With `bottom_band` > 0 (a fraction of the
+// height of an image `aspect` = width / height wide), where the box's corners would
+// reach into that band at the bottom, the camera moves away until they fit the height
+// above it, then down until they stand on it: the band is where the colour bar goes
+// (legend_bottom_band()).
+Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view, double aspect = 1,
+                    double bottom_band = 0);
+// The same from any `direction` (from the target to the eye, not along `up`), with
+// `up` the world's up.
+Camera frame_camera(const Vec3& lo, const Vec3& hi, const Vec3& direction, const Vec3& up,
+                    double aspect = 1, double bottom_band = 0);
 
 // A camera at `eye` looking at `target` (z up, or y up when looking along z); near
 // and far from the box [lo, hi]. Precondition: eye != target.

@@ -373,14 +373,34 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
   return true;
 }
 
+namespace {
+
+// The legend's pixels per font pixel: it grows with pictures above 320 pixels.
+float legend_scale(const DrawSettings& settings, int width, int height) {
+  const float resolution = settings.resolution > 0 ? settings.resolution : 1.0f;
+  return resolution * std::max(1.0f, float(std::min(width, height)) / resolution / 320.0f);
+}
+
+// The legend's measures, in font pixels.
+constexpr float kLegendMargin = 6, kLegendLine = 11, kLegendPad = 3, kLegendBar = 8;
+
+}  // namespace
+
+double legend_bottom_band(const DrawSettings& settings, int width, int height) {
+  if (!settings.legend || settings.color_mode == ColorMode::kMaterial || height <= 0) return 0;
+  // The bar's panel reaches margin + line + bar + pad + 2 up from the bottom; one more
+  // margin keeps the model clear of it.
+  const float scale = legend_scale(settings, width, height);
+  const float pixels = (2 * kLegendMargin + kLegendLine + kLegendBar + kLegendPad) * scale + 2;
+  return std::min(0.5, double(pixels) / double(height));
+}
+
 void Renderer::draw_legend(const DrawSettings& settings, int width, int height) {
   std::vector<OverlayVertex> v;
-  const float resolution = settings.resolution > 0 ? settings.resolution : 1.0f;
-  const float scale =
-      resolution * std::max(1.0f, float(std::min(width, height)) / resolution / 320.0f);
-  const float margin = 6 * scale;
-  const float line = 11 * scale;
-  const float pad = 3 * scale;
+  const float scale = legend_scale(settings, width, height);
+  const float margin = kLegendMargin * scale;
+  const float line = kLegendLine * scale;
+  const float pad = kLegendPad * scale;
   const float text_height = 8 * scale;  // stb_easy_font's glyphs, descenders included
   const Rgb ink = {0.12f, 0.12f, 0.14f};
   // Each part of the legend sits on a white panel with a grey border, so that it reads
@@ -393,7 +413,7 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
   };
   if (settings.color_mode != ColorMode::kMaterial) {
     // A horizontal colour bar at the bottom with the range at its ends.
-    const float bar_w = 0.5f * float(width), bar_h = 8 * scale;
+    const float bar_w = 0.5f * float(width), bar_h = kLegendBar * scale;
     const float x0 = 0.25f * float(width);
     const float y1 = float(height) - margin - line;
     const float y0 = y1 - bar_h;

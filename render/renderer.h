@@ -40,6 +40,11 @@ struct DrawSettings {
   float resolution = 1;
 };
 
+// The fraction of a `width` x `height` picture's height that the legend's colour bar
+// (with its panel) covers at the bottom; 0 where none is drawn (no legend, or material
+// colours). frame_camera() keeps the model above it.
+double legend_bottom_band(const DrawSettings& settings, int width, int height);
+
 class Renderer {
  public:
   // `gl` must belong to the context current on this thread and outlive the renderer.

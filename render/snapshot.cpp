@@ -38,7 +38,7 @@ PreparedMesh prepare_mesh(TetMesh mesh) {
 }
 
 Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
-                       const ViewSpec& view) {
+                       const ViewSpec& view, double aspect, double bottom_band) {
   Vec3 lo = buffers.bounds_min, hi = buffers.bounds_max;
   if (!buffers.has_bounds) {
     lo = hi = mesh.mesh.positions.empty() ? Vec3{} : mesh.mesh.positions[0];
@@ -48,7 +48,7 @@ Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
     }
   }
   if (view.custom) return look_at_camera(view.eye, view.target, lo, hi);
-  return frame_camera(lo, hi, view.direction);
+  return frame_camera(lo, hi, view.direction, aspect, bottom_band);
 }
 
 Status check_drawable(const TetMesh& mesh) {
@@ -85,7 +85,9 @@ Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
   if (by_size && settings.size_range_from_faces && !buffers.triangles.empty())
     std::tie(draw.range_min, draw.range_max) = scalar_range(buffers.triangles);
   if (settings.filter.highlight) draw.highlight_below = settings.filter.highlight_below;
-  const Camera camera = snapshot_camera(mesh, buffers, settings.view);
+  const Camera camera =
+      snapshot_camera(mesh, buffers, settings.view, double(settings.width) / settings.height,
+                      legend_bottom_band(draw, settings.width, settings.height));
   if (!renderer->draw(draw, camera, settings.width, settings.height)) return {};
   return renderer->read_pixels();
 }

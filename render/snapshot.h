@@ -44,9 +44,11 @@ struct SnapshotSettings {
 };
 
 // The camera `settings.view` gives for `buffers` (framed on the shown materials'
-// bounds, or the whole mesh's if nothing is shown).
+// bounds, or the whole mesh's if nothing is shown) in a picture `aspect` = width /
+// height wide, above a band of that fraction of its height at the bottom (the colour
+// bar's, legend_bottom_band()).
 Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
-                       const ViewSpec& view);
+                       const ViewSpec& view, double aspect = 1, double bottom_band = 0);
 
 // Whether the GPU's float positions can hold `mesh`: every coordinate within
 // +-1e30, and a bounding box at least 1e-30 across and at least 1e-5 of the largest

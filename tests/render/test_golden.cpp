@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "core/io/mesh_io.h"
 #include "render/gl_context.h"
@@ -332,6 +334,46 @@ TEST(GoldenSensitivity, RenderingIsDeterministic) {
   const Image b = render_case("spheres.mesh", spheres_cut());
   const ImageDifference d = compare_images(a, b, 0, nullptr);
   EXPECT_EQ(d.differing_pixels, 0u);
+}
+
+// The rows the colour bar covers at the bottom, drawn without the bar from the camera
+// the snapshot takes (framed above it): background only, so the bar hides nothing.
+// Framed as before (no band), box2's nearest corner reaches into them.
+size_t model_pixels_in_bar_rows(const char* asset, int width, int height, bool band) {
+  Renderer* renderer = Offscreen::get().renderer();
+  if (!renderer) {
+    ADD_FAILURE() << Offscreen::get().error();
+    return 0;
+  }
+  const PreparedMesh& mesh = Offscreen::get().mesh(asset);
+  SurfaceBuffers buffers;
+  build_surface(mesh.surface_input(), SurfaceFilter{}, &buffers);
+  renderer->upload(buffers);
+  DrawSettings draw;  // stretch colours: a colour bar
+  const double bottom = legend_bottom_band(draw, width, height);
+  EXPECT_GT(bottom, 0.05);
+  const Camera camera =
+      snapshot_camera(mesh, buffers, ViewSpec{}, double(width) / height, band ? bottom : 0);
+  draw.legend = false;
+  EXPECT_TRUE(renderer->draw(draw, camera, width, height)) << renderer->last_error();
+  const Image image = renderer->read_pixels();
+  size_t model = 0;
+  const int first_row = height - static_cast<int>(std::floor(bottom * height));
+  for (int y = first_row; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      model += image.pixel(x, y)[0] != 255 || image.pixel(x, y)[1] != 255;
+  return model;
+}
+
+TEST(Legend, TheModelStandsAboveTheColourBar) {
+  for (const char* asset : {"box2.mesh", "motor.mesh", "spheres.mesh"}) {
+    for (const auto& [width, height] :
+         {std::pair{800, 800}, std::pair{640, 400}, std::pair{300, 500}, std::pair{256, 256}}) {
+      EXPECT_EQ(model_pixels_in_bar_rows(asset, width, height, true), 0u)
+          << asset << " " << width << "x" << height;
+    }
+  }
+  EXPECT_GT(model_pixels_in_bar_rows("box2.mesh", 800, 800, false), 100u);
 }
 
 }  // namespace

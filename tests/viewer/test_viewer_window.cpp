@@ -308,22 +308,48 @@ TEST(ViewerWindow, OpeningAMeshShowsEveryMaterial) {
 
 // Fit (view fit, the F key) frames the model again from the direction the user orbited
 // to, not from the iso view: after a zoom and a pan it gives the picture of the orbit
-// alone.
+// alone, framed from the iso view (without a legend: the framing keeps clear of the
+// colour bar by moving the centre, so the iso view's is not centred from another
+// direction), and not the iso view's.
 TEST(ViewerWindow, FitKeepsTheViewDirection) {
   const fs::path dir = fresh_output_dir("viewer_fit_direction");
   std::ofstream(dir / "orbit.script")
-      << "orbit 120 -40\nscreenshot orbit.png width=320 height=240\nquit\n";
-  std::ofstream(dir / "fit.script") << "orbit 120 -40\nzoom 3\npan 30 20\nview fit\n"
+      << "legend off\nview iso\nscreenshot iso.png width=320 height=240\norbit 120 -40\n"
+         "screenshot orbit.png width=320 height=240\nquit\n";
+  std::ofstream(dir / "fit.script") << "legend off\norbit 120 -40\nzoom 3\npan 30 20\nview fit\n"
                                        "screenshot fit.png width=320 height=240\nquit\n";
   const std::string box2 = "'" + kSource + "/assets/box2.mesh' --size 640x480 ";
   const ViewerRun orbit = run_viewer(dir, box2 + "--script orbit.script");
   const ViewerRun fit = run_viewer(dir, box2 + "--script fit.script");
   ASSERT_EQ(orbit.exit_code, 0) << orbit.output;
   ASSERT_EQ(fit.exit_code, 0) << fit.output;
+  const render::Image fitted = load_png(dir / "fit.png");
   EXPECT_EQ(
-      render::compare_images(load_png(dir / "orbit.png"), load_png(dir / "fit.png"), 0, nullptr)
-          .differing_pixels,
-      0u);
+      render::compare_images(load_png(dir / "orbit.png"), fitted, 0, nullptr).differing_pixels, 0u);
+  EXPECT_GT(render::compare_images(load_png(dir / "iso.png"), fitted, 8, nullptr).differing_pixels,
+            1000u);
+}
+
+// With the legend, the framing keeps the model above the colour bar: the rows the bar
+// covers show only the background with the legend turned off afterwards (framed so
+// before, box2's nearest corner reached into them).
+TEST(ViewerWindow, FramingKeepsTheModelAboveTheColourBar) {
+  const fs::path dir = fresh_output_dir("viewer_framing_bar");
+  std::ofstream(dir / "bar.script")
+      << "view iso\nlegend off\nscreenshot iso.png\nview x\nlegend off\n"
+         "screenshot x.png\nquit\n";
+  const ViewerRun run =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 640x480 --script bar.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (const char* name : {"iso.png", "x.png"}) {
+    const render::Image image = load_png(dir / name);
+    ASSERT_GT(image.height, 100);
+    // The bar's panel with one margin above it (render::legend_bottom_band()): 36
+    // pixels at this size; the bottom 30 rows are well inside it.
+    const double bottom = non_background(image, 0, image.height - 30, image.width, image.height);
+    EXPECT_EQ(bottom, 0) << name;
+    EXPECT_GT(non_background(image, 0, 0, image.width, image.height - 30), 0.05) << name;
+  }
 }
 
 // A tolerance that thins a part is said, as tetlod simplify says it (the motor at
@@ -981,15 +1007,15 @@ TEST(ViewerWindow, ColoursBySizeAsRenderDoes) {
   const fs::path dir = fresh_output_dir("viewer_color_size");
   std::ofstream(dir / "size.script")
       << "thresholds size=25 tolerance=0.05\nsimplify\nscrub elements=8000\ncolor size\n"
-         "view z\nscreenshot size.png width=320 height=320\nsave level.mesh\n"
+         "legend off\nview z\nscreenshot size.png width=320 height=320\nsave level.mesh\n"
          "color stretch\nscreenshot stretch.png width=320 height=320\nquit\n";
   const ViewerRun run = run_viewer(
       dir, "'" + kSource + "/assets/motor.mesh' --hide 1 --size 640x480 --script size.script");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const test::CommandResult rendered =
-      test::run_tetlod("render '" + (dir / "level.mesh").string() +
-                       "' --hide 1 --view z --color size --width 320 --height 320 -o '" +
-                       (dir / "render.png").string() + "'");
+  const test::CommandResult rendered = test::run_tetlod(
+      "render '" + (dir / "level.mesh").string() +
+      "' --hide 1 --view z --color size --no-legend --width 320 --height 320 -o '" +
+      (dir / "render.png").string() + "'");
   ASSERT_EQ(rendered.code, 0) << rendered.output;
   const render::Image by_size = load_png(dir / "size.png");
   const render::Image by_render = load_png(dir / "render.png");
