@@ -514,6 +514,27 @@ std::string volume_changes(const std::vector<MaterialVolume>& before,
   return text;
 }
 
+std::string thin_materials(const std::vector<MaterialSurface>& surfaces, double tolerance,
+                           const std::vector<MaterialName>* names) {
+  std::string text;
+  size_t listed = 0, more = 0;
+  for (const MaterialSurface& m : surfaces) {
+    const double thickness = m.thickness();
+    if (!(thickness > 0 && thickness < kThinLayerTolerances * tolerance)) continue;
+    if (listed == 5) {
+      ++more;
+      continue;
+    }
+    const std::string name = material_name_of(names, m.material);
+    char about[48];
+    std::snprintf(about, sizeof about, " about %.3g thick", thickness);
+    text += (listed++ ? ", material " : "material ") + std::to_string(m.material) +
+            (name.empty() ? "" : " (" + name + ")") + about;
+  }
+  if (more > 0) text += " and " + std::to_string(more) + " more";
+  return text;
+}
+
 std::string json_escape(const std::string& text) {
   std::string out;
   for (size_t at = 0; at < text.size();) {

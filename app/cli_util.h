@@ -157,6 +157,15 @@ std::string volume_changes(const std::vector<MaterialVolume>& before,
                            const std::vector<MaterialVolume>& after,
                            const std::vector<MaterialName>* names);
 
+// The materials thinner than kThinLayerTolerances times `tolerance` (twice their volume
+// over their surface's area, material_surfaces()), as "material 9 (barrier) about 0.3
+// thick, ..." ("" if none; at most five named, then how many more): boundaries and
+// interfaces may move by up to the tolerance, a large part of such a layer, and its
+// volume may hardly change (both sides move), so the volume note does not tell.
+inline constexpr double kThinLayerTolerances = 4;
+std::string thin_materials(const std::vector<MaterialSurface>& surfaces, double tolerance,
+                           const std::vector<MaterialName>* names);
+
 // The input file's name of material m ("" if none); `names` may be null.
 std::string material_name_of(const std::vector<MaterialName>* names, int32_t m);
 

@@ -206,6 +206,19 @@ int cmd_simplify(const Args& args) {
       "input, breaking them: %zu tets below the stretch, %zu above the size, %zu nodes "
       "above the valence\n",
       input_breaks.below_stretch, input_breaks.above_size, input_breaks.above_valence);
+  // Said before the run, which may be long: a layer a few tolerances thick can come out
+  // much thinner or thicker with hardly a change of volume.
+  if (const std::string thin =
+          thin_materials(material_surfaces(input), params.tolerance, &info.material_names);
+      !thin.empty()) {
+    std::fprintf(stderr,
+                 "tetlod simplify: note: thin for the tolerance (%g): %s (twice the volume over "
+                 "the surface's area); boundaries and interfaces may move by up to the "
+                 "tolerance, a large part of such a layer: a --tolerance of a tenth of its "
+                 "thickness keeps each side within a tenth of it ('tetlod compare IN OUT' says "
+                 "how far they moved)\n",
+                 params.tolerance, thin.c_str());
+  }
 
   SimplifyResult result;
   TerminalProgress progress("tetlod simplify");

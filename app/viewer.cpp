@@ -84,6 +84,7 @@ struct Scene {
   std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
   std::string above_size_reason;                 // of the result ("" if nothing is above)
   std::string volume_changes;                    // of the result (cli_util.h; "" if none)
+  std::string thin_materials;                    // thin for its tolerance (cli_util.h; "")
   ThresholdCounts input_breaks;                  // what the input broke of the result's thresholds
   SimplifyParams params;                         // of the result's run, if params_known
   bool params_known = false;                     // run here, or saved in the history file read
@@ -958,9 +959,12 @@ void Viewer::start_simplify() {
       const ThresholdCounts input_breaks = threshold_breaks(*input, params);
       const std::string changes = volume_changes(
           material_volumes(*input), material_volumes(result->output), material_names.get());
+      const std::string thin =
+          thin_materials(material_surfaces(*input), params.tolerance, material_names.get());
       auto scene = make_scene(job->path, input, std::move(result), view);
       scene->above_size_reason = reason;
       scene->volume_changes = changes;
+      scene->thin_materials = thin;
       scene->input_breaks = input_breaks;
       scene->params = params;
       scene->params_known = true;
@@ -1020,6 +1024,10 @@ void Viewer::poll_job() {
     if (!scene_->volume_changes.empty()) {  // as tetlod simplify says it (and the panel)
       std::fprintf(stderr, "tetlod view: note: volumes changed by more than %g %%: %s\n",
                    kVolumeNotePercent, scene_->volume_changes.c_str());
+    }
+    if (!scene_->thin_materials.empty()) {
+      std::fprintf(stderr, "tetlod view: note: thin for the tolerance (%g): %s\n",
+                   scene_->params.tolerance, scene_->thin_materials.c_str());
     }
   }
 }
@@ -1980,6 +1988,7 @@ void Viewer::fill_status() {
     s.input_breaks = scene.input_breaks;
     s.above_size_reason = scene.above_size_reason;
     s.volume_changes = scene.volume_changes;
+    s.thin_materials = scene.thin_materials;
     s.past_valence = past_valence_summary(*scene.result);
     s.simplify_seconds = run_seconds(*scene.result);
     s.result_cancelled = scene.result->cancelled;

@@ -237,4 +237,29 @@ std::vector<MaterialVolume> material_volumes(const TetMesh& mesh) {
   return volumes;
 }
 
+std::vector<MaterialSurface> material_surfaces(const TetMesh& mesh) {
+  std::vector<MaterialSurface> surfaces;
+  for (const MaterialVolume& m : material_volumes(mesh))
+    surfaces.push_back({m.material, m.volume, 0});
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(mesh, &neighbors);
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    const int32_t m = mesh.materials[t];
+    MaterialSurface* surface = nullptr;
+    for (int f = 0; f < 4; ++f) {
+      const uint32_t other = neighbors[4 * t + size_t(f)];
+      if (other != kInvalidIndex && mesh.materials[other] == m) continue;
+      if (!surface)
+        surface = &*std::lower_bound(
+            surfaces.begin(), surfaces.end(), m,
+            [](const MaterialSurface& s, int32_t material) { return s.material < material; });
+      const Tet& tet = mesh.tets[t];
+      const Vec3& a = mesh.positions[tet[kTetFace[f][0]]];
+      surface->area += 0.5 * length(cross(mesh.positions[tet[kTetFace[f][1]]] - a,
+                                          mesh.positions[tet[kTetFace[f][2]]] - a));
+    }
+  }
+  return surfaces;
+}
+
 }  // namespace tetlod

@@ -46,4 +46,17 @@ struct MaterialVolume {
 };
 std::vector<MaterialVolume> material_volumes(const TetMesh& mesh);
 
+// Each material's volume and the area of its surface (its tets' faces on the boundary
+// or on an interface with another material), by material id. Twice the one over the
+// other is how thick the material is where it is a layer: a slab t thick gives t
+// (its edges aside), a wire of radius r gives r, a ball 2r/3. Precondition: the mesh
+// passed validate_mesh().
+struct MaterialSurface {
+  int32_t material = 0;
+  double volume = 0;
+  double area = 0;
+  double thickness() const { return area > 0 ? 2 * volume / area : 0; }
+};
+std::vector<MaterialSurface> material_surfaces(const TetMesh& mesh);
+
 }  // namespace tetlod

@@ -500,6 +500,15 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
           status.volume_changes.c_str());
       ImGui::PopStyleColor();
     }
+    // Layers a few tolerances thick, whose volume may hardly change as both sides move.
+    if (!status.thin_materials.empty()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+      ImGui::TextWrapped(
+          "Thin for the tolerance: %s (twice the volume over the surface's area); its "
+          "surfaces may move by up to the tolerance: a tenth of the thickness keeps them.",
+          status.thin_materials.c_str());
+      ImGui::PopStyleColor();
+    }
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
     if (status.result_thresholds_changed) {  // of other thresholds than the sliders': greyed

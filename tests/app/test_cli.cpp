@@ -98,6 +98,7 @@ TEST(Cli, ANameTwoMaterialsShareIsAnError) {
 
 // A tolerance that thins a part is said, with each material's change: the motor at
 // tolerance 3 changes its shaft (material 3) by -15.9 %; at the default (0.18) none by 1 %.
+// And before the run, which parts are thin for the tolerance.
 TEST(Cli, SimplifySaysWhichMaterialsChangedVolume) {
   const std::string dir = test::cli_output_dir("volume_note");
   const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
@@ -109,10 +110,18 @@ TEST(Cli, SimplifySaysWhichMaterialsChangedVolume) {
             std::string::npos)
       << coarse.output;
   EXPECT_NE(coarse.output.find("a smaller --tolerance keeps it"), std::string::npos);
+  // Before the run: the parts a few tolerances thick (the shaft, 2 x volume / area
+  // 5.13, is one; the air, 12.8, is not).
+  EXPECT_NE(coarse.output.find("note: thin for the tolerance (3): material 2 about 1.62 thick, "
+                               "material 3 about 5.13 thick"),
+            std::string::npos)
+      << coarse.output;
+  EXPECT_EQ(coarse.output.find("material 1 about"), std::string::npos) << coarse.output;
   const test::CommandResult fine =
       test::run_tetlod("simplify '" + motor + "' -o " + dir + "/t.mesh --size 30");
   ASSERT_EQ(fine.code, 0) << fine.output;
   EXPECT_EQ(fine.output.find("volumes changed"), std::string::npos) << fine.output;
+  EXPECT_EQ(fine.output.find("thin for the tolerance"), std::string::npos) << fine.output;
 }
 
 TEST(Cli, GenerateRefusesWhatItWouldIgnore) {

@@ -99,5 +99,31 @@ TEST(MeshStats, ManyAndLargeMaterialIdsMatchBruteForce) {
   test::expect_stats_match_reference(mesh, stats);
 }
 
+// A 6 x 6 x 1 slab of material 2 between two 6 x 6 x 2 blocks of material 1 (a thin
+// layer), and a 6 x 6 x 5 block of material 3 beside them: each material's volume and
+// the area of its faces on the boundary or an interface, exactly; the layer's
+// thickness, twice the one over the other, is near its own (1; its rim adds 24 to the
+// 72 of its two faces), the blocks' larger.
+TEST(MeshStats, MaterialSurfacesGiveALayersThickness) {
+  const TetMesh mesh = test::make_grid_mesh(6, 12, 5, [](int, int j, int k) -> int32_t {
+    if (j >= 6) return 3;
+    return k == 2 ? 2 : 1;
+  });
+  const std::vector<MaterialSurface> surfaces = material_surfaces(mesh);
+  ASSERT_EQ(surfaces.size(), 3u);
+  EXPECT_EQ(surfaces[0].material, 1);
+  EXPECT_NEAR(surfaces[0].volume, 144, 1e-9);
+  // Two 6 x 6 x 2 blocks: each 2 * 36 + 4 * 12 = 120.
+  EXPECT_NEAR(surfaces[0].area, 240, 1e-9);
+  EXPECT_NEAR(surfaces[1].volume, 36, 1e-9);
+  EXPECT_NEAR(surfaces[1].area, 96, 1e-9);
+  EXPECT_NEAR(surfaces[1].thickness(), 0.75, 1e-12);
+  // 6 x 6 x 5: 2 * 36 + 4 * 30.
+  EXPECT_NEAR(surfaces[2].volume, 180, 1e-9);
+  EXPECT_NEAR(surfaces[2].area, 192, 1e-9);
+  EXPECT_NEAR(surfaces[0].thickness(), 1.2, 1e-12);  // each block 2 thick
+  EXPECT_NEAR(surfaces[2].thickness(), 1.875, 1e-12);
+}
+
 }  // namespace
 }  // namespace tetlod

@@ -353,7 +353,8 @@ TEST(ViewerWindow, FramingKeepsTheModelAboveTheColourBar) {
 }
 
 // A tolerance that thins a part is said, as tetlod simplify says it (the motor at
-// tolerance 3: its shaft, material 3, -15.9 %), and not at the panel's default.
+// tolerance 3: its shaft, material 3, -15.9 %), and not at the panel's default; so are
+// the parts thin for the tolerance.
 TEST(ViewerWindow, VolumeChangesAreSaid) {
   const fs::path dir = fresh_output_dir("viewer_volume_note");
   std::ofstream(dir / "run.script") << "thresholds size=30 tolerance=3\nsimplify\n"
@@ -366,6 +367,14 @@ TEST(ViewerWindow, VolumeChangesAreSaid) {
   ASSERT_NE(at, std::string::npos) << run.output;
   EXPECT_NE(run.output.find("material 3 -15.9 %"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find(note, at + 1), std::string::npos) << run.output;
+  // And the parts thin for that tolerance, as tetlod simplify names them; none at 0.18.
+  const std::string thin =
+      "tetlod view: note: thin for the tolerance (3): material 2 about "
+      "1.62 thick, material 3 about 5.13 thick";
+  const size_t thin_at = run.output.find(thin);
+  EXPECT_NE(thin_at, std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("thin for the tolerance", thin_at + thin.size()), std::string::npos)
+      << run.output;
 }
 
 // A level before the last may break the run's thresholds (tets not yet collapsed; the
