@@ -280,6 +280,11 @@ int cmd_simplify(const Args& args) {
               describe_rejections(result.rejections).c_str());
   const std::string past = past_valence_summary(result);
   if (!past.empty()) std::printf("past the valence: %s\n", past.c_str());
+  if (result.past_valence.tried && !result.past_valence.stopped)
+    std::printf(
+        "  (--within-valence makes the first run only, which left %zu tets above the size, "
+        "and not the other)\n",
+        result.past_valence.above_size_within);
   if (result.past_valence.stopped_by_factor)
     std::printf("  (--past-valence-factor raises that bound: it was %u)\n",
                 options.params.past_valence_tets_factor);

@@ -42,7 +42,9 @@
 //   zoom CLICKS                      as by the mouse wheel (positive: closer)
 //   mouse X Y                        hold the mouse pointer at window pixel (X, Y), from
 //                                    the top left, for the rest of the script (to show a
-//                                    tooltip in a 'screenshot ui=1'); the real pointer is
+//                                    tooltip in a 'screenshot ui=1'; the tet's tooltip
+//                                    shows once the pointer has rested 0.3 s: 'wait
+//                                    seconds=0.5' first, not frames); the real pointer is
 //                                    not read meanwhile
 //   screenshot PATH [ui=0|1] [width=W height=H]   PNG of the view (ui=1: the window)
 //   save PATH [improve] [surfaces] [binary]   the displayed level, format from the
