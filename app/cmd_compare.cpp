@@ -21,12 +21,15 @@ constexpr const char* kCompareUsage =
     "two-sided estimate of the Hausdorff distance between the two meshes' triangles of\n"
     "that pair (from the corners, edge midpoints and centroids of one side's triangles\n"
     "to the nearest triangle of the pair on the other side); and the surfaces or\n"
-    "materials only one of them has. Where both files name their materials (Gmsh\n"
+    "materials only one of them has; and where a material's number of connected pieces\n"
+    "or a surface's Euler characteristic changed. Where both files name their materials (Gmsh\n"
     "physical groups, Abaqus sets, ...), a material of AFTER is matched to the one of\n"
     "BEFORE with its name, whatever its id; otherwise (and for materials without a\n"
     "name both files have) by id.\n"
     "  --tolerance T   the distance a surface may move (with --check)\n"
-    "  --check         exit with status 3 if a material or surface is lost or new, or\n"
+    "  --check         exit with status 3 if a material or surface is lost or new, a\n"
+    "                  material is in another number of pieces or a surface has another\n"
+    "                  Euler characteristic (V - E + F: pinched, punctured, merged), or\n"
     "                  (with --tolerance) a surface moved further than T\n"
     "  --by-id         match materials by id even where both files name them\n"
     "  --json          machine-readable output on stdout (volumes and distances to\n"
@@ -127,6 +130,15 @@ int cmd_compare(const Args& args) {
       change[i] = std::abs(fraction) <= rounding_fraction ? 0 : fraction;
     }
   }
+  // Topology: the materials and surfaces whose pieces or Euler characteristic changed.
+  const auto piece_of = [&c](int32_t m) -> const MaterialPieces* {
+    for (const MaterialPieces& p : c.pieces)
+      if (p.material == m) return &p;
+    return nullptr;
+  };
+  size_t topology_changes = 0;
+  for (const MaterialPieces& p : c.pieces) topology_changes += p.before != p.after;
+  for (const PairEuler& e : c.euler) topology_changes += e.before != e.after;
   std::vector<double> moved;
   double worst = 0;
   std::string worst_pair = "-";
@@ -154,20 +166,27 @@ int cmd_compare(const Args& args) {
     for (size_t i = 0; i < c.volumes.size(); ++i) {
       const MaterialVolumes& v = c.volumes[i];
       const std::string name = material_name_of(names, v.material);
+      const MaterialPieces* pieces = piece_of(v.material);
+      const std::string pieces_json =
+          pieces ? ", \"pieces_before\": " + std::to_string(pieces->before) +
+                       ", \"pieces_after\": " + std::to_string(pieces->after)
+                 : std::string();
       std::printf(
           "%s\n    {\"material\": %d, %s\"volume_before\": %.17g, "
-          "\"volume_after\": %.17g, \"change\": %s}",
+          "\"volume_after\": %.17g, \"change\": %s%s}",
           i ? "," : "", v.material,
           name.empty() ? "" : ("\"name\": \"" + json_escape(name) + "\", ").c_str(), v.before,
           v.after,
           v.before == 0  ? "\"new\""
           : v.after == 0 ? "\"lost\""
-                         : number(change[i]).c_str());
+                         : number(change[i]).c_str(),
+          pieces_json.c_str());
     }
     std::printf("\n  ],\n  \"surfaces\": [");
     for (size_t i = 0; i < c.pairs.size(); ++i)
-      std::printf("%s\n    {%s, \"moved\": %.17g}", i ? "," : "",
-                  pair_json(c.pairs[i].pair).c_str(), moved[i]);
+      std::printf("%s\n    {%s, \"moved\": %.17g, \"euler_before\": %ld, \"euler_after\": %ld}",
+                  i ? "," : "", pair_json(c.pairs[i].pair).c_str(), moved[i], c.euler[i].before,
+                  c.euler[i].after);
     std::printf("\n  ],\n  \"surfaces_lost\": [");
     for (size_t i = 0; i < c.lost.size(); ++i)
       std::printf("%s{%s}", i ? ", " : "", pair_json(c.lost[i]).c_str());
@@ -175,8 +194,9 @@ int cmd_compare(const Args& args) {
     for (size_t i = 0; i < c.added.size(); ++i)
       std::printf("%s{%s}", i ? ", " : "", pair_json(c.added[i]).c_str());
     std::printf(
-        "],\n  \"largest\": %.17g,\n  \"materials_lost\": %zu,\n  \"materials_new\": %zu\n}\n",
-        worst, materials_lost, materials_new);
+        "],\n  \"largest\": %.17g,\n  \"materials_lost\": %zu,\n  \"materials_new\": %zu,\n"
+        "  \"topology_changes\": %zu\n}\n",
+        worst, materials_lost, materials_new, topology_changes);
   } else {
     std::printf("%s (%zu tets) -> %s (%zu tets)\nmaterials matched %s\n\n", paths[0].c_str(),
                 before.tet_count(), paths[1].c_str(), after.tet_count(), matched.c_str());
@@ -203,14 +223,34 @@ int cmd_compare(const Args& args) {
       std::printf("%-40s %12s\n", pair_text(p, names).c_str(), "lost");
     for (const MaterialPair& p : c.added)
       std::printf("%-40s %12s\n", pair_text(p, names).c_str(), "new");
-    std::printf("\nlargest: %.6g (%s); surfaces lost %zu, new %zu; materials lost %zu, new %zu\n",
-                worst, worst_pair.c_str(), c.lost.size(), c.added.size(), materials_lost,
-                materials_new);
+    std::printf("\n");
+    for (const MaterialPieces& p : c.pieces)
+      if (p.before != p.after) {
+        const std::string name = material_name_of(names, p.material);
+        std::printf("topology: material %d%s in %ld %s before, %ld after\n", p.material,
+                    name.empty() ? "" : (" " + name).c_str(), p.before,
+                    p.before == 1 ? "piece" : "pieces", p.after);
+      }
+    for (const PairEuler& e : c.euler)
+      if (e.before != e.after)
+        std::printf("topology: surface %s has Euler characteristic %ld before, %ld after\n",
+                    pair_text(e.pair, names).c_str(), e.before, e.after);
+    if (topology_changes == 0)
+      std::printf(
+          "topology: every material in as many pieces, every surface with its Euler "
+          "characteristic\n");
+    std::printf(
+        "largest: %.6g (%s); surfaces lost %zu, new %zu; materials lost %zu, new %zu; "
+        "topology changes %zu\n",
+        worst, worst_pair.c_str(), c.lost.size(), c.added.size(), materials_lost, materials_new,
+        topology_changes);
   }
   if (!check) return kExitOk;
   std::string why;
   if (c.lost.size() + c.added.size() + materials_lost + materials_new > 0)
     why = "a material or surface is lost or new";
+  else if (topology_changes > 0)
+    why = "a material's number of pieces or a surface's Euler characteristic changed";
   else if (tolerance >= 0 && worst > tolerance)
     why = "a surface moved further than the tolerance";
   if (why.empty()) return kExitOk;

@@ -27,15 +27,55 @@ std::map<int32_t, double> volume_per_material(const TetMesh& mesh, const Vec3& s
   return volume;
 }
 
-std::map<MaterialPair, std::vector<Triangle3>> pair_triangles(const TetMesh& mesh,
-                                                              const Vec3& shift) {
+struct PairSurfaces {
+  std::map<MaterialPair, std::vector<Triangle3>> triangles;  // positions less the shift
+  std::map<MaterialPair, long> euler;                        // V - E + F of each
+  std::map<int32_t, long> pieces;                            // of each material
+};
+
+PairSurfaces pair_surfaces(const TetMesh& mesh, const Vec3& shift) {
   std::vector<uint32_t> neighbors;
   build_face_neighbors(mesh, &neighbors);
-  std::map<MaterialPair, std::vector<Triangle3>> out;
+  PairSurfaces out;
+  std::map<MaterialPair, std::vector<std::pair<uint32_t, uint32_t>>> edges;
+  std::map<MaterialPair, std::vector<uint32_t>> vertices;
   for (const SurfaceTriangle& s : extract_surface(mesh, neighbors)) {
+    const MaterialPair pair{s.inner, s.outer};
     Triangle3 t;
-    for (int k = 0; k < 3; ++k) t[k] = mesh.positions[s.v[k]] - shift;
-    out[{s.inner, s.outer}].push_back(t);
+    for (int k = 0; k < 3; ++k) {
+      t[k] = mesh.positions[s.v[k]] - shift;
+      const uint32_t a = s.v[k], b = s.v[(k + 1) % 3];
+      edges[pair].push_back({std::min(a, b), std::max(a, b)});
+      vertices[pair].push_back(a);
+    }
+    out.triangles[pair].push_back(t);
+  }
+  const auto distinct = [](auto* items) {
+    std::sort(items->begin(), items->end());
+    return static_cast<long>(std::unique(items->begin(), items->end()) - items->begin());
+  };
+  for (auto& [pair, list] : out.triangles)
+    out.euler[pair] =
+        distinct(&vertices[pair]) - distinct(&edges[pair]) + static_cast<long>(list.size());
+  // Pieces: tets joined through faces of the same material.
+  std::vector<uint8_t> seen(mesh.tet_count(), 0);
+  std::vector<uint32_t> stack;
+  for (uint32_t seed = 0; seed < mesh.tet_count(); ++seed) {
+    if (seen[seed]) continue;
+    ++out.pieces[mesh.materials[seed]];
+    seen[seed] = 1;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const uint32_t t = stack.back();
+      stack.pop_back();
+      for (int f = 0; f < 4; ++f) {
+        const uint32_t o = neighbors[4 * size_t(t) + size_t(f)];
+        if (o != kInvalidIndex && !seen[o] && mesh.materials[o] == mesh.materials[t]) {
+          seen[o] = 1;
+          stack.push_back(o);
+        }
+      }
+    }
   }
   return out;
 }
@@ -75,20 +115,25 @@ MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after) {
   }
   for (const auto& [m, v] : volumes) c.volumes.push_back(v);
 
-  const auto s0 = pair_triangles(before, shift);
-  const auto s1 = pair_triangles(after, shift);
-  for (const auto& [pair, triangles] : s0) {
-    const auto other = s1.find(pair);
-    if (other == s1.end()) {
+  const PairSurfaces s0 = pair_surfaces(before, shift);
+  const PairSurfaces s1 = pair_surfaces(after, shift);
+  for (const auto& [pair, triangles] : s0.triangles) {
+    const auto other = s1.triangles.find(pair);
+    if (other == s1.triangles.end()) {
       c.lost.push_back(pair);
       continue;
     }
     const TriangleGrid grid0(triangles), grid1(other->second);
     c.pairs.push_back(
         {pair, std::max(one_sided(triangles, grid1), one_sided(other->second, grid0))});
+    c.euler.push_back({pair, s0.euler.at(pair), s1.euler.at(pair)});
   }
-  for (const auto& entry : s1)
-    if (!s0.count(entry.first)) c.added.push_back(entry.first);
+  for (const auto& entry : s1.triangles)
+    if (!s0.triangles.count(entry.first)) c.added.push_back(entry.first);
+  for (const auto& [m, n] : s0.pieces) {
+    const auto other = s1.pieces.find(m);
+    if (other != s1.pieces.end()) c.pieces.push_back({m, n, other->second});
+  }
   return c;
 }
 

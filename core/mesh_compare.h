@@ -28,11 +28,26 @@ struct PairDeviation {
   double distance = 0;
 };
 
+// The topology a remesher must keep (the paper's constraints): how many connected
+// pieces a material has (its tets joined through shared faces), and the Euler
+// characteristic V - E + F of each pair's surface (a sphere's 2, a torus's 0; it
+// changes where a surface is pinched, punctured or merged).
+struct MaterialPieces {
+  int32_t material = 0;
+  long before = 0, after = 0;
+};
+struct PairEuler {
+  MaterialPair pair;
+  long before = 0, after = 0;
+};
+
 struct MeshComparison {
   std::vector<MaterialVolumes> volumes;  // every material of either mesh, by id
   std::vector<PairDeviation> pairs;      // pairs both meshes have, by pair
   std::vector<MaterialPair> lost;        // pairs only `before` has
   std::vector<MaterialPair> added;       // pairs only `after` has
+  std::vector<MaterialPieces> pieces;    // every material both meshes have, by id
+  std::vector<PairEuler> euler;          // pairs both meshes have, by pair
 };
 
 MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "app/cli_runner.h"
+#include "core/adjacency.h"
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/metrics.h"
@@ -1472,6 +1473,41 @@ TEST(Cli, CompareSaysHowFarEachSurfaceMoved) {
                 .code,
             3);
 
+  EXPECT_NE(kept.output.find("topology: every material in as many pieces, every surface with "
+                             "its Euler characteristic"),
+            std::string::npos)
+      << kept.output;
+
+  // A tet of one material away from the other (no face on the interface) given to the
+  // other: a piece more, a topology change --check fails on, whatever the tolerance.
+  TetMesh split;
+  ASSERT_TRUE(read_mesh(box2, &split));
+  const CommandResult not_split = run("compare " + box2 + " " + box2 + " --check");
+  EXPECT_EQ(not_split.code, 0) << not_split.output;
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(split, &neighbors);
+  size_t island = split.tet_count();
+  for (size_t t = 0; t < split.tet_count() && island == split.tet_count(); ++t) {
+    bool inside = true;
+    for (int f = 0; f < 4; ++f) {
+      const uint32_t o = neighbors[4 * t + size_t(f)];
+      inside &= o == kInvalidIndex || split.materials[o] == split.materials[t];
+    }
+    if (inside) island = t;
+  }
+  ASSERT_LT(island, split.tet_count());
+  split.materials[island] = split.materials[island] == 1 ? 2 : 1;
+  const std::string split_path = out_dir() + "/box2_split.mesh";
+  ASSERT_TRUE(write_mesh(split_path, split));
+  const CommandResult changed = run("compare " + box2 + " " + split_path + " --check --json");
+  EXPECT_EQ(changed.code, 3) << changed.output;
+  EXPECT_NE(changed.output.find("a material's number of pieces or a surface's Euler "
+                                "characteristic changed"),
+            std::string::npos)
+      << changed.output;
+  EXPECT_NE(changed.output.find("\"euler_before\": "), std::string::npos) << changed.output;
+  EXPECT_EQ(changed.output.find("\"topology_changes\": 0"), std::string::npos) << changed.output;
+
   const CommandResult other = run("compare " + motor + " " + box2 + " --check");
   EXPECT_EQ(other.code, 3) << other.output;
   EXPECT_NE(other.output.find("lost"), std::string::npos) << other.output;
@@ -1514,7 +1550,8 @@ TEST(Cli, CompareMatchesNamedMaterialsByName) {
   EXPECT_NE(json.output.find("\"materials_matched\": \"by name: AFTER's 10 is 2, 20 is 1\""),
             std::string::npos)
       << json.output;
-  EXPECT_NE(json.output.find("{\"inner\": 2, \"outer\": \"outside\", \"moved\": 0}"),
+  EXPECT_NE(json.output.find("{\"inner\": 2, \"outer\": \"outside\", \"moved\": 0, "
+                             "\"euler_before\": 2, \"euler_after\": 2}"),
             std::string::npos)
       << json.output;
   const std::string json_path = out_dir() + "/compare.json";

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
+#include <utility>
 
 #include "core/io/mesh_io.h"
 #include "core/mesh_compare.h"
@@ -76,6 +78,38 @@ TEST(MeshCompare, ARelabelledMaterialIsLostAndNew) {
   EXPECT_TRUE(added);
   EXPECT_FALSE(c.lost.empty());
   EXPECT_EQ(c.lost.size(), c.added.size());
+}
+
+// Topology: a 3 x 3 x 1 grid of material 1 with material 2 in the cube at a corner,
+// against one with material 2 also in the opposite corner's cube. Material 2 is in 1
+// piece, then 2; its interface with material 1 (three squares round the corner: a disk,
+// V - E + F = 1) becomes two disks (2); its boundary likewise (1, then 2); material 1
+// stays in one piece; on a mesh against itself nothing changes.
+TEST(MeshCompare, PiecesAndEulerCharacteristics) {
+  const auto grid = [](bool two) {
+    return test::make_grid_mesh(3, 3, 1, [two](int i, int j, int) -> int32_t {
+      return (i == 0 && j == 0) || (two && i == 2 && j == 2) ? 2 : 1;
+    });
+  };
+  const TetMesh one = grid(false), two = grid(true);
+  const MeshComparison same = compare_meshes(one, one);
+  ASSERT_EQ(same.pieces.size(), 2u);
+  for (const MaterialPieces& p : same.pieces) EXPECT_EQ(p.before, p.after);
+  for (const PairEuler& e : same.euler) EXPECT_EQ(e.before, e.after);
+  const MeshComparison c = compare_meshes(one, two);
+  ASSERT_EQ(c.pieces.size(), 2u);
+  EXPECT_EQ(c.pieces[0].material, 1);
+  EXPECT_EQ(c.pieces[0].before, 1);
+  EXPECT_EQ(c.pieces[0].after, 1);
+  EXPECT_EQ(c.pieces[1].material, 2);
+  EXPECT_EQ(c.pieces[1].before, 1);
+  EXPECT_EQ(c.pieces[1].after, 2);
+  std::map<MaterialPair, std::pair<long, long>> euler;
+  for (const PairEuler& e : c.euler) euler[e.pair] = {e.before, e.after};
+  EXPECT_EQ(euler[MaterialPair(1, 2)], std::make_pair(1L, 2L));
+  EXPECT_EQ(euler[MaterialPair(2, kOutsideMaterial)], std::make_pair(1L, 2L));
+  // Material 1's boundary: a sphere (2) with the corner's disk cut out (1), then two (0).
+  EXPECT_EQ(euler[MaterialPair(1, kOutsideMaterial)], std::make_pair(1L, 0L));
 }
 
 // Materials numbered differently by another tool, with the same names: matched by
