@@ -89,7 +89,20 @@ double suggested_size(const TetMesh& mesh, bool* raised) {
     const double unit = std::pow(10.0, std::floor(std::log10(s)) - 1);
     return (up ? std::ceil(s / unit - 1e-9) : std::round(s / unit)) * unit;
   };
-  if (growth(size) <= kSuggestedGrowth) return two_digits(size, false);
+  // On a graded mesh, at least the size that all but kSuggestedAbove of its tets meet:
+  // subdivision leaves tets above the size where it cannot split their long edges within
+  // the valence, and they make a second run, past the valence (a 1.37 M-tet Gmsh
+  // transformer, 3.2 % of its tets above 3 x its median: 49,583 left above that size
+  // after 50 s; at its 99th percentile, 17 after 41 s).
+  const auto quantile = longest.begin() + static_cast<std::ptrdiff_t>(double(longest.size() - 1) *
+                                                                      (1 - kSuggestedAbove));
+  std::nth_element(longest.begin(), quantile, longest.end());
+  const double most = *quantile;
+  if (growth(size) <= kSuggestedGrowth) {
+    if (two_digits(size, false) >= most) return two_digits(size, false);
+    if (raised) *raised = true;
+    return two_digits(most, true);
+  }
   if (raised) *raised = true;
   // A graded mesh (fine parts, coarse air): the median is the fine parts', at which the
   // air's tets would be subdivided many times over. The smallest size at which the
@@ -99,7 +112,7 @@ double suggested_size(const TetMesh& mesh, bool* raised) {
     const double mid = 0.5 * (size + hi);
     (growth(mid) <= kSuggestedGrowth ? hi : size) = mid;
   }
-  return two_digits(hi, true);
+  return two_digits(std::max(hi, most), true);
 }
 
 double SizingField::smallest_size() const {

@@ -81,9 +81,12 @@ struct SizingField {
 // (a Gmsh antenna in an air sphere: 97,735 tets, median 0.76, air tets up to 29 long),
 // subdivision at that size would multiply the air's tets (2.2 M tets at 2.3): there the
 // size is raised, rounded up, until subdivision's estimated growth (each tet of longest
-// edge L > s/2 making (2L/s)^3) is at most kSuggestedGrowth times the input (18 there).
+// edge L > s/2 making (2L/s)^3) is at most kSuggestedGrowth times the input (18 there),
+// and so that at most kSuggestedAbove of the tets are above it (their long edges, where
+// subdivision cannot split them within the valence, stay above the size).
 // `raised` (may be null) says whether it was.
 inline constexpr double kSuggestedGrowth = 2;
+inline constexpr double kSuggestedAbove = 0.01;
 double suggested_size(const TetMesh& mesh, bool* raised = nullptr);
 
 // Parses "M=S,M=S,..." (material id, size) into field->material_sizes. Sizes must be

@@ -165,23 +165,57 @@ TEST(Sizing, SuggestedSizeIsThreeTimesTheMedianTetSize) {
 // growth is at most kSuggestedGrowth. Here 6,000 Kuhn tets of unit cubes (longest edge
 // sqrt 3) and 3,000 of cubes of side 20 beside them: 2/3 + 1/3 (2 * 20 sqrt 3 / s)^3 <= 2
 // from s = 43.6, rounded up to 44 (three times the median would be 5.2).
-TEST(Sizing, SuggestedSizeOfAGradedMeshKeepsSubdivisionSmall) {
-  TetMesh mesh = test::make_grid_mesh(10, 10, 10, [](int, int, int) { return 1; });
-  const TetMesh coarse = test::make_grid_mesh(
-      5, 10, 10, [](int, int, int) { return 2; }, 20);
-  const uint32_t offset = static_cast<uint32_t>(mesh.positions.size());
-  for (const Vec3& p : coarse.positions) mesh.positions.push_back(p + Vec3{1000, 0, 0});
+// `fine` with `coarse` beside it (far off along x), as one mesh.
+TetMesh side_by_side(TetMesh fine, const TetMesh& coarse) {
+  const uint32_t offset = static_cast<uint32_t>(fine.positions.size());
+  for (const Vec3& p : coarse.positions) fine.positions.push_back(p + Vec3{1000, 0, 0});
   for (size_t t = 0; t < coarse.tets.size(); ++t) {
     Tet tet = coarse.tets[t];
     for (uint32_t& v : tet) v += offset;
-    mesh.tets.push_back(tet);
-    mesh.materials.push_back(coarse.materials[t]);
+    fine.tets.push_back(tet);
+    fine.materials.push_back(coarse.materials[t]);
   }
+  return fine;
+}
+
+TEST(Sizing, SuggestedSizeOfAGradedMeshKeepsSubdivisionSmall) {
+  const TetMesh coarse = test::make_grid_mesh(
+      5, 10, 10, [](int, int, int) { return 2; }, 20);
+  const TetMesh mesh =
+      side_by_side(test::make_grid_mesh(10, 10, 10, [](int, int, int) { return 1; }), coarse);
   ASSERT_EQ(mesh.tet_count(), 9000u);
   bool raised = false;
   EXPECT_DOUBLE_EQ(suggested_size(mesh, &raised), 44);
   EXPECT_TRUE(raised);
   EXPECT_DOUBLE_EQ(suggested_size(coarse, &raised), 100);  // 3 * 20 sqrt 3 = 103.9
+  EXPECT_FALSE(raised);
+}
+
+// A few coarse tets, 3 % of the mesh: subdivision's estimated growth at three times the
+// median (5.2) is 0.97 + 0.03 (2 x 4 sqrt 3 / 5.2)^3 = 1.54, but they would all stay
+// above that size where their splits are refused: the size is raised to what all but
+// 1 % of the tets meet, the coarse ones' longest edge 4 sqrt 3 = 6.93, rounded up to 7.
+TEST(Sizing, SuggestedSizeLeavesFewTetsAboveIt) {
+  const TetMesh mesh =
+      side_by_side(test::make_grid_mesh(10, 10, 10, [](int, int, int) { return 1; }),
+                   test::make_grid_mesh(
+                       31, 1, 1, [](int, int, int) { return 2; }, 4));
+  ASSERT_EQ(mesh.tet_count(), 6186u);
+  bool raised = false;
+  EXPECT_DOUBLE_EQ(suggested_size(mesh, &raised), 7);
+  EXPECT_TRUE(raised);
+  // With half as many coarse tets (1.5 %): the same; with 0.5 %, three times the median.
+  EXPECT_DOUBLE_EQ(
+      suggested_size(side_by_side(test::make_grid_mesh(10, 10, 10, [](int, int, int) { return 1; }),
+                                  test::make_grid_mesh(
+                                      15, 1, 1, [](int, int, int) { return 2; }, 4))),
+      7);
+  EXPECT_DOUBLE_EQ(
+      suggested_size(side_by_side(test::make_grid_mesh(10, 10, 10, [](int, int, int) { return 1; }),
+                                  test::make_grid_mesh(
+                                      5, 1, 1, [](int, int, int) { return 2; }, 4)),
+                     &raised),
+      5.2);
   EXPECT_FALSE(raised);
 }
 
