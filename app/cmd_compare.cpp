@@ -22,7 +22,9 @@ constexpr const char* kCompareUsage =
     "that pair (from the corners, edge midpoints and centroids of one side's triangles\n"
     "to the nearest triangle of the pair on the other side); and the surfaces or\n"
     "materials only one of them has; and where a material's number of connected pieces\n"
-    "or a surface's Euler characteristic changed. Where both files name their materials (Gmsh\n"
+    "(tets joined through shared faces: two touching only at an edge or a corner are two\n"
+    "pieces) or a surface's Euler characteristic changed. Where both files name their\n"
+    "materials (Gmsh\n"
     "physical groups, Abaqus sets, ...), a material of AFTER is matched to the one of\n"
     "BEFORE with its name, whatever its id; otherwise (and for materials without a\n"
     "name both files have) by id.\n"
@@ -137,7 +139,9 @@ int cmd_compare(const Args& args) {
     return nullptr;
   };
   size_t topology_changes = 0;
-  for (const MaterialPieces& p : c.pieces) topology_changes += p.before != p.after;
+  // (A material lost or new is counted as such.)
+  for (const MaterialPieces& p : c.pieces)
+    topology_changes += p.before > 0 && p.after > 0 && p.before != p.after;
   for (const PairEuler& e : c.euler) topology_changes += e.before != e.after;
   std::vector<double> moved;
   double worst = 0;
@@ -225,7 +229,7 @@ int cmd_compare(const Args& args) {
       std::printf("%-40s %12s\n", pair_text(p, names).c_str(), "new");
     std::printf("\n");
     for (const MaterialPieces& p : c.pieces)
-      if (p.before != p.after) {
+      if (p.before > 0 && p.after > 0 && p.before != p.after) {
         const std::string name = material_name_of(names, p.material);
         std::printf("topology: material %d%s in %ld %s before, %ld after\n", p.material,
                     name.empty() ? "" : (" " + name).c_str(), p.before,

@@ -168,6 +168,18 @@ int cmd_render(const Args& args) {
         "--hide) or cut away (--cut, --cut-plane)\n",
         stderr);
   }
+  // A legend that does not fit the picture is left out (render::Renderer::legend_space).
+  const render::DrawSettings& draw = options.snapshot.draw;
+  const render::LegendSpace legend =
+      offscreen.renderer->legend_space(draw, image.width, image.height);
+  const bool by_material = draw.color_mode == render::ColorMode::kMaterial;
+  if (draw.legend && offscreen.renderer->triangle_count() > 0 &&
+      (by_material ? legend.key_width == 0 : legend.bottom == 0)) {
+    std::fprintf(stderr,
+                 "tetlod render: note: the %s does not fit a %dx%d picture and is left out "
+                 "(a larger --width and --height show it)\n",
+                 by_material ? "material key" : "colour bar", image.width, image.height);
+  }
   return kExitOk;
 }
 

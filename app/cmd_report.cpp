@@ -1,5 +1,6 @@
 // tetlod report IN -o DIR [view flags] [--simplify flags] [--levels N,...]
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -16,6 +17,7 @@
 #include "core/io/output_files.h"
 #include "core/lod.h"
 #include "core/mesh_stats.h"
+#include "core/metrics.h"
 #include "render/histogram_chart.h"
 
 namespace tetlod::app {
@@ -328,6 +330,34 @@ int cmd_report(const Args& args) {
     meshes.push_back({"input", std::move(input)});
   }
 
+  // Coloured by size, one colour range for every level (each its own made a coarser
+  // level look finer): the sizes of the shown materials' tets over all of them, unless
+  // --range gives one.
+  if (options.snapshot.draw.color_mode == render::ColorMode::kSize &&
+      options.snapshot.size_range_from_faces) {
+    const std::vector<int32_t>& hidden = options.snapshot.filter.hidden_materials;
+    double lo = INFINITY, hi = -INFINITY;
+    for (const Level& level : meshes)
+      for (size_t t = 0; t < level.mesh.tet_count(); ++t) {
+        if (std::find(hidden.begin(), hidden.end(), level.mesh.materials[t]) != hidden.end())
+          continue;
+        const double size = tet_shape(level.mesh, level.mesh.tets[t]).size;
+        lo = std::min(lo, size);
+        hi = std::max(hi, size);
+      }
+    if (lo <= hi) {
+      options.snapshot.draw.range_min = lo;
+      options.snapshot.draw.range_max = hi > lo ? hi : lo + 1;
+      options.snapshot.size_range_from_faces = false;
+    }
+  }
+
+  const auto format_range = [](double lo, double hi) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.4g to %.4g", lo, hi);
+    return std::string(text);
+  };
+
   // Every file is made in memory first, then all are written together (or none).
   std::vector<std::pair<std::string, std::vector<uint8_t>>> pictures;  // name, PNG
   std::string summary, figures;
@@ -383,6 +413,16 @@ int cmd_report(const Args& args) {
                                   "simplifying again") +
                           (thresholds.empty() ? " (saved without its thresholds)" : "")
                     : std::string()) +
+      // The pictures leave hidden materials out; the tables and histograms count them.
+      (options.snapshot.filter.hidden_materials.empty()
+           ? std::string()
+           : "<br>The pictures leave the hidden materials out; the tables and the stretch "
+             "histograms count every tet, theirs too") +
+      (options.snapshot.draw.color_mode == render::ColorMode::kSize
+           ? "<br>Colour: each tet's size (longest edge), on one scale for every level, " +
+                 html_escape(
+                     format_range(options.snapshot.draw.range_min, options.snapshot.draw.range_max))
+           : std::string()) +
       "</p>\n<h2>Properties (Table I)</h2>\n<table>\n" + kTableHead + summary + "</table>\n" +
       figures + "</body></html>\n";
   std::error_code ec;

@@ -417,7 +417,9 @@ int cmd_lod(const Args& args) {
   if (!mesh_output_path_ok(out, "lod", write_options)) return kExitUsage;
   if (!output_directory_ok(out)) return kExitBadInput;
   if (thresholds_given && !improve) {
-    std::fprintf(stderr, "tetlod lod: thresholds are only used with --improve\n\n%s", kLodUsage);
+    std::fprintf(stderr,
+                 "tetlod lod: thresholds (and --crease-angle) are only used with --improve\n\n%s",
+                 kLodUsage);
     return kExitUsage;
   }
   HistoryLevel level;

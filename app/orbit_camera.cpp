@@ -17,15 +17,16 @@ Vec3 unit(const Vec3& v) {
 }  // namespace
 
 void OrbitCamera::fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view, double aspect,
-                      double bottom_band) {
-  take_framing(lo, hi, render::frame_camera(lo, hi, view, aspect, bottom_band));
+                      const render::LegendSpace& legend) {
+  take_framing(lo, hi, render::frame_camera(lo, hi, view, aspect, legend));
 }
 
-void OrbitCamera::refit(const Vec3& lo, const Vec3& hi, double aspect, double bottom_band) {
+void OrbitCamera::refit(const Vec3& lo, const Vec3& hi, double aspect,
+                        const render::LegendSpace& legend) {
   const double yaw = yaw_, pitch = pitch_;
   const Vec3 direction{std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
                        std::sin(pitch)};
-  take_framing(lo, hi, render::frame_camera(lo, hi, direction, {0, 0, 1}, aspect, bottom_band));
+  take_framing(lo, hi, render::frame_camera(lo, hi, direction, {0, 0, 1}, aspect, legend));
   yaw_ = yaw;  // as it was, exactly
   pitch_ = pitch;
 }

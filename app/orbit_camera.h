@@ -11,14 +11,14 @@ namespace tetlod::app {
 class OrbitCamera {
  public:
   // Frames the box [lo, hi] from `view` (and remembers the box for near/far), in a
-  // view `aspect` = width / height wide, above a band of that fraction of its height
-  // at the bottom (render::frame_camera(): the colour bar's).
+  // view `aspect` = width / height wide, clear of its `legend` (render::frame_camera()).
   void fit(const Vec3& lo, const Vec3& hi, render::ViewDirection view, double aspect = 1,
-           double bottom_band = 0);
+           const render::LegendSpace& legend = {});
   // Frames the box [lo, hi] as fit() does (target at its centre, at the distance that
-  // shows it whole, or above the band), looking from the current direction (the Fit
+  // shows it whole, clear of the legend), looking from the current direction (the Fit
   // button: only the views set a direction).
-  void refit(const Vec3& lo, const Vec3& hi, double aspect = 1, double bottom_band = 0);
+  void refit(const Vec3& lo, const Vec3& hi, double aspect = 1,
+             const render::LegendSpace& legend = {});
   // Mouse drags in pixels; `viewport_height` in pixels scales the pan.
   void orbit(double dx, double dy);
   void pan(double dx, double dy, int viewport_height);

@@ -364,9 +364,9 @@ class Viewer {
     int x = 0, y = 0, width = 1, height = 1;  // origin bottom left
   };
   ViewPixels view_pixels(int fb_width, int fb_height) const;
-  // The view's aspect (width / height) and the fraction of its height the colour bar
-  // covers at the bottom: the camera frames the model above it.
-  std::pair<double, double> framing() const;
+  // The view's aspect (width / height) and where its legend goes: the camera frames the
+  // model clear of it.
+  std::pair<double, render::LegendSpace> framing() const;
   void draw_scene(int fb_width, int fb_height);
   // The tet under the pointer: the shown tet drawn at display pixel (x, y), or
   // kInvalidIndex (outside the view, over nothing). O(drawn faces).
@@ -1101,8 +1101,8 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     }
     Vec3 lo, hi;
     shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-    const auto [aspect, band] = framing();
-    camera_.fit(lo, hi, render::ViewDirection::kIso, aspect, band);
+    const auto [aspect, legend] = framing();
+    camera_.fit(lo, hi, render::ViewDirection::kIso, aspect, legend);
     add_recent(scene_->path);
     std::snprintf(panel_.open_path, sizeof(panel_.open_path), "%s", scene_->path.c_str());
   }
@@ -1160,8 +1160,8 @@ void Viewer::execute(const ui::Command& command) {
       if (scene_) {
         Vec3 lo, hi;
         shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-        const auto [aspect, band] = framing();
-        camera_.refit(lo, hi, aspect, band);
+        const auto [aspect, legend] = framing();
+        camera_.refit(lo, hi, aspect, legend);
       }
       break;
     case ui::CommandKind::kAxisView:
@@ -1171,8 +1171,8 @@ void Viewer::execute(const ui::Command& command) {
                                                render::ViewDirection::kZ};
         Vec3 lo, hi;
         shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-        const auto [aspect, band] = framing();
-        camera_.fit(lo, hi, views[std::clamp<long long>(command.value, 0, 3)], aspect, band);
+        const auto [aspect, legend] = framing();
+        camera_.fit(lo, hi, views[std::clamp<long long>(command.value, 0, 3)], aspect, legend);
       }
       break;
     case ui::CommandKind::kSave: {
@@ -1400,13 +1400,21 @@ void Viewer::update_stats() {
   });
 }
 
-std::pair<double, double> Viewer::framing() const {
+std::pair<double, render::LegendSpace> Viewer::framing() const {
   int fb_width = 0, fb_height = 0;
   window_->framebuffer_size(&fb_width, &fb_height);
   const ViewPixels view = view_pixels(std::max(1, fb_width), std::max(1, fb_height));
-  const render::DrawSettings draw = make_draw_settings(view_, field_range_max(), size_range());
-  return {double(view.width) / view.height,
-          render::legend_bottom_band(draw, view.width, view.height)};
+  // As if the legend were on, and the colour bar kept clear of in material colours too:
+  // the view may be framed while neither shows, then one turned on.
+  render::DrawSettings draw = make_draw_settings(view_, field_range_max(), size_range());
+  draw.legend = true;
+  render::LegendSpace legend = renderer_->legend_space(draw, view.width, view.height);
+  if (draw.color_mode == render::ColorMode::kMaterial) {
+    render::DrawSettings by_stretch = draw;
+    by_stretch.color_mode = render::ColorMode::kStretch;
+    legend.bottom = renderer_->legend_space(by_stretch, view.width, view.height).bottom;
+  }
+  return {double(view.width) / view.height, legend};
 }
 
 Viewer::ViewPixels Viewer::view_pixels(int fb_width, int fb_height) const {

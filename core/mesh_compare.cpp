@@ -130,10 +130,10 @@ MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after) {
   }
   for (const auto& entry : s1.triangles)
     if (!s0.triangles.count(entry.first)) c.added.push_back(entry.first);
-  for (const auto& [m, n] : s0.pieces) {
-    const auto other = s1.pieces.find(m);
-    if (other != s1.pieces.end()) c.pieces.push_back({m, n, other->second});
-  }
+  std::map<int32_t, MaterialPieces> pieces;
+  for (const auto& [m, n] : s0.pieces) pieces[m] = {m, n, 0};
+  for (const auto& [m, n] : s1.pieces) pieces[m] = {m, pieces[m].before, n};
+  for (const auto& [m, p] : pieces) c.pieces.push_back(p);
   return c;
 }
 

@@ -46,7 +46,7 @@ struct MeshComparison {
   std::vector<PairDeviation> pairs;      // pairs both meshes have, by pair
   std::vector<MaterialPair> lost;        // pairs only `before` has
   std::vector<MaterialPair> added;       // pairs only `after` has
-  std::vector<MaterialPieces> pieces;    // every material both meshes have, by id
+  std::vector<MaterialPieces> pieces;    // every material of either mesh (0: none), by id
   std::vector<PairEuler> euler;          // pairs both meshes have, by pair
 };
 

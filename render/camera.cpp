@@ -28,7 +28,7 @@ void set_clip_distances(Camera* camera, const Vec3& lo, const Vec3& hi) {
 }  // namespace
 
 Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view, double aspect,
-                    double bottom_band) {
+                    const LegendSpace& legend, bool tight) {
   Vec3 direction{1, 0.75, 0.9};
   Vec3 up{0, 0, 1};
   if (view == ViewDirection::kX) direction = {1, 0, 0};
@@ -37,58 +37,155 @@ Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view, double a
     direction = {0, 0, 1};
     up = {0, 1, 0};
   }
-  return frame_camera(lo, hi, direction, up, aspect, bottom_band);
+  return frame_camera(lo, hi, direction, up, aspect, legend, tight);
 }
 
+namespace {
+
+// A rectangle of the picture in normalised device coordinates ([-1, 1] each way).
+struct NdcRect {
+  double x0 = -1, x1 = 1, y0 = -1, y1 = 1;
+  bool contains(const NdcRect& r) const {
+    return r.x0 >= x0 - 1e-9 && r.x1 <= x1 + 1e-9 && r.y0 >= y0 - 1e-9 && r.y1 <= y1 + 1e-9;
+  }
+  bool overlaps(const NdcRect& r) const { return r.x0 < x1 && r.x1 > x0 && r.y0 < y1 && r.y1 > y0; }
+};
+
+// The camera's placement: `distance` from the box's centre along `back`, moved by
+// `dx` along the screen's right and `dy` along its up (the picture moves the other way).
+struct Placement {
+  double distance = 0, dx = 0, dy = 0;
+};
+
+class Framer {
+ public:
+  Framer(const Vec3& lo, const Vec3& hi, const Vec3& back, const Vec3& side, const Vec3& screen_up,
+         double tan_half_x, double tan_half_y)
+      : lo_(lo),
+        hi_(hi),
+        back_(back),
+        side_(side),
+        up_(screen_up),
+        tx_(tan_half_x),
+        ty_(tan_half_y) {}
+
+  // Where the box's corners are in the picture from `p`.
+  NdcRect extent(const Placement& p) const {
+    const Vec3 eye = 0.5 * (lo_ + hi_) + back_ * p.distance + side_ * p.dx + up_ * p.dy;
+    NdcRect r{1e300, -1e300, 1e300, -1e300};
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 v =
+          Vec3{k & 1 ? hi_.x : lo_.x, k & 2 ? hi_.y : lo_.y, k & 4 ? hi_.z : lo_.z} - eye;
+      const double depth = -dot(v, back_);
+      const double x = dot(v, side_) / (depth * tx_), y = dot(v, up_) / (depth * ty_);
+      r = {std::min(r.x0, x), std::max(r.x1, x), std::min(r.y0, y), std::max(r.y1, y)};
+    }
+    return r;
+  }
+
+  // From `p`, the corners brought into `target`: further away until they fit it (with
+  // 2 % to spare), then moved the least way in: a few rounds, as perspective makes
+  // neither exact. False if they do not fit after them.
+  bool fit(const NdcRect& target, Placement* p) const {
+    for (int round = 0; round < 8; ++round) {
+      const NdcRect r = extent(*p);
+      const double grow = std::max({(r.x1 - r.x0) / (0.98 * (target.x1 - target.x0)),
+                                    (r.y1 - r.y0) / (0.98 * (target.y1 - target.y0)), 1.0});
+      if (grow <= 1) break;
+      p->distance *= grow;
+    }
+    for (int round = 0; round < 8; ++round) {
+      const NdcRect r = extent(*p);
+      if (target.contains(r)) return true;
+      // A point at the centre's depth moves in the picture by (shift / (d tan)).
+      const double mx = r.x0 < target.x0   ? target.x0 + 0.005 - r.x0
+                        : r.x1 > target.x1 ? target.x1 - 0.005 - r.x1
+                                           : 0;
+      const double my = r.y0 < target.y0   ? target.y0 + 0.005 - r.y0
+                        : r.y1 > target.y1 ? target.y1 - 0.005 - r.y1
+                                           : 0;
+      p->dx -= mx * p->distance * tx_;
+      p->dy -= my * p->distance * ty_;
+    }
+    return target.contains(extent(*p));
+  }
+
+  // From `p`, the corners made to fill `target` (98 % of its width or height), centred
+  // in it: nearer or further away, then moved.
+  void fill(const NdcRect& target, Placement* p) const {
+    for (int round = 0; round < 8; ++round) {
+      const NdcRect r = extent(*p);
+      const double scale = std::max((r.x1 - r.x0) / (0.98 * (target.x1 - target.x0)),
+                                    (r.y1 - r.y0) / (0.98 * (target.y1 - target.y0)));
+      if (!(scale > 0) || std::abs(scale - 1) < 0.005) break;
+      p->distance *= scale;
+    }
+    for (int round = 0; round < 8; ++round) {
+      const NdcRect r = extent(*p);
+      const double mx = 0.5 * (target.x0 + target.x1 - r.x0 - r.x1);
+      const double my = 0.5 * (target.y0 + target.y1 - r.y0 - r.y1);
+      if (std::abs(mx) + std::abs(my) < 1e-3) break;
+      p->dx -= mx * p->distance * tx_;
+      p->dy -= my * p->distance * ty_;
+    }
+  }
+
+ private:
+  Vec3 lo_, hi_, back_, side_, up_;
+  double tx_, ty_;
+};
+
+}  // namespace
+
 Camera frame_camera(const Vec3& lo, const Vec3& hi, const Vec3& direction, const Vec3& up,
-                    double aspect, double bottom_band) {
+                    double aspect, const LegendSpace& legend, bool tight) {
   Camera camera;
   const Vec3 center = 0.5 * (lo + hi);
   const double radius = std::max(0.5 * length(hi - lo), kMinRadius);
   camera.up = up;
   const double half_fov = 0.5 * camera.fov_y_degrees * kPi / 180;
-  double distance = 1.02 * radius / std::sin(half_fov);
   const Vec3 back = normalized(direction);  // from the target to the eye
   const Vec3 side = normalized(cross(-1 * back, camera.up));
   const Vec3 screen_up = cross(side, -1 * back);
-  double shift = 0;  // the eye and the target moved down by this much
-  const double band = std::clamp(bottom_band, 0.0, 0.5);
-  if (band > 0) {
-    // The box's corners from a camera `d` from the centre and `h` below it: the lowest
-    // and highest in normalised device y (the image's height is [-1, 1]; the vertical
-    // half field is the smaller side's, as in projection_matrix()).
-    const double tan_half_y = std::tan(half_fov) / (aspect > 0 && aspect < 1 ? aspect : 1);
-    const auto extent = [&](double d, double h) {
-      const Vec3 eye = center + back * d - screen_up * h;
-      double y_lo = 1e300, y_hi = -1e300;
-      for (int k = 0; k < 8; ++k) {
-        const Vec3 v = Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z} - eye;
-        const double y = dot(v, screen_up) / (-dot(v, back) * tan_half_y);
-        y_lo = std::min(y_lo, y);
-        y_hi = std::max(y_hi, y);
+  Placement at{1.02 * radius / std::sin(half_fov), 0, 0};
+  const double bottom = std::clamp(legend.bottom, 0.0, 0.5);
+  const double key_w = std::clamp(legend.key_width, 0.0, 1.0);
+  const double key_h = std::clamp(legend.key_height, 0.0, 1.0);
+  if (tight || bottom > 0 || (key_w > 0 && key_h > 0)) {
+    // The half fields of projection_matrix(), which fits the smaller side.
+    const double tan_half = std::tan(half_fov);
+    const Framer framer(lo, hi, back, side, screen_up, tan_half * std::max(aspect, 1.0),
+                        tan_half / (aspect > 0 && aspect < 1 ? aspect : 1));
+    // Above the colour bar (filling it, if tight).
+    const NdcRect above{-1, 1, -1 + 2 * bottom, 1};
+    if (tight)
+      framer.fill(above, &at);
+    else if (!above.contains(framer.extent(at)))
+      framer.fit(above, &at);
+    // Clear of the key: below it or right of it, whichever shows the model larger.
+    const NdcRect key{-1, -1 + 2 * key_w, 1 - 2 * key_h, 1};
+    if (key_w > 0 && key_h > 0 && key.overlaps(framer.extent(at))) {
+      Placement below = at, right = at;
+      const NdcRect below_key{-1, 1, above.y0, 1 - 2 * key_h};
+      const NdcRect right_of_key{-1 + 2 * key_w, 1, above.y0, 1};
+      bool below_fits = below_key.y1 - below_key.y0 > 0.2;
+      bool right_fits = right_of_key.x1 - right_of_key.x0 > 0.2;
+      if (tight) {
+        if (below_fits) framer.fill(below_key, &below);
+        if (right_fits) framer.fill(right_of_key, &right);
+      } else {
+        below_fits = below_fits && framer.fit(below_key, &below);
+        right_fits = right_fits && framer.fit(right_of_key, &right);
       }
-      return std::pair{y_lo, y_hi};
-    };
-    // The picture above the band is [floor, 1]. Where the box's corners reach below
-    // it, further away until they fit its height (with 2 % to spare), then up until
-    // the lowest stands on it: a few rounds, as perspective makes neither exact.
-    const double floor = -1 + 2 * band;
-    if (extent(distance, 0).first < floor) {
-      for (int round = 0; round < 8; ++round) {
-        const auto [y_lo, y_hi] = extent(distance, 0);
-        const double room = 0.98 * (1 - floor);
-        if (y_hi - y_lo <= room) break;
-        distance *= (y_hi - y_lo) / room;
-      }
-      for (int round = 0; round < 8; ++round) {
-        const double y_lo = extent(distance, shift).first;
-        if (y_lo >= floor && y_lo <= floor + 0.01) break;
-        shift += (floor + 0.005 - y_lo) * distance * tan_half_y;
-      }
+      if (below_fits && (!right_fits || below.distance <= right.distance))
+        at = below;
+      else if (right_fits)
+        at = right;
     }
   }
-  camera.target = center - screen_up * shift;
-  camera.eye = center + back * distance - screen_up * shift;
+  const Vec3 shift = side * at.dx + screen_up * at.dy;
+  camera.target = center + shift;
+  camera.eye = center + back * at.distance + shift;
   set_clip_distances(&camera, lo, hi);
   return camera;
 }

@@ -19,21 +19,31 @@ struct Camera {
 
 enum class ViewDirection { kIso, kX, kY, kZ };
 
+// Where a picture's legend goes, as fractions of its width and height
+// (Renderer::legend_space()): a band at the bottom (the colour bar), a box at the top
+// left (the material key).
+struct LegendSpace {
+  double bottom = 0;
+  double key_width = 0, key_height = 0;
+};
+
 // A camera looking at the box [lo, hi] from `view` (iso: from +x,+y,+z with z up;
 // x: from +x; y: from +y; z: from +z with y up), far enough that the box's bounding
 // sphere fills the smaller image side. The three axis views look from the + side, the
 // side an unflipped cut (surface_builder.h CutPlane with a + axis normal) removes, so
-// each shows the face the cut exposes. With `bottom_band` > 0 (a fraction of the
-// height of an image `aspect` = width / height wide), where the box's corners would
-// reach into that band at the bottom, the camera moves away until they fit the height
-// above it, then down until they stand on it: the band is where the colour bar goes
-// (legend_bottom_band()).
+// each shows the face the cut exposes. With a `legend` in a picture `aspect` = width /
+// height wide, where the box's corners would reach into its bottom band, the camera
+// moves away until they fit the height above it, then down until they stand on it;
+// where they would reach into its key, it does the same to keep them below the key or
+// right of it, whichever shows the model larger. `tight`: the corners fill the picture
+// (or the part of it clear of the legend) from this direction, not the bounding sphere
+// from any (a picture of its own, not a view to orbit: a flat board fills it).
 Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view, double aspect = 1,
-                    double bottom_band = 0);
+                    const LegendSpace& legend = {}, bool tight = false);
 // The same from any `direction` (from the target to the eye, not along `up`), with
 // `up` the world's up.
 Camera frame_camera(const Vec3& lo, const Vec3& hi, const Vec3& direction, const Vec3& up,
-                    double aspect = 1, double bottom_band = 0);
+                    double aspect = 1, const LegendSpace& legend = {}, bool tight = false);
 
 // A camera at `eye` looking at `target` (z up, or y up when looking along z); near
 // and far from the box [lo, hi]. Precondition: eye != target.

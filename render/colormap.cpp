@@ -35,10 +35,28 @@ Rgb colormap_rgb(ColorMap map, double t) {
 
 Rgb material_rgb(int32_t material) {
   static constexpr Rgb kPalette[kPaletteSize] = {
-      {0.306f, 0.475f, 0.655f}, {0.949f, 0.557f, 0.169f}, {0.882f, 0.341f, 0.349f},
-      {0.463f, 0.718f, 0.698f}, {0.349f, 0.631f, 0.310f}, {0.929f, 0.788f, 0.282f},
-      {0.690f, 0.478f, 0.631f}, {1.000f, 0.616f, 0.655f}, {0.612f, 0.459f, 0.373f},
-      {0.729f, 0.690f, 0.675f}};
+      {0.306f, 0.475f, 0.655f},
+      {0.949f, 0.557f, 0.169f},
+      {0.882f, 0.341f, 0.349f},
+      {0.463f, 0.718f, 0.698f},
+      {0.349f, 0.631f, 0.310f},
+      {0.929f, 0.788f, 0.282f},
+      {0.690f, 0.478f, 0.631f},
+      {1.000f, 0.616f, 0.655f},
+      {0.612f, 0.459f, 0.373f},
+      {0.729f, 0.690f, 0.675f},
+      // Ten more, apart from the first ten and from the highlight's magenta (a PCB has
+      // fourteen materials: with ten, its 11th and 1st were one orange).
+      {0.102f, 0.396f, 0.439f},
+      {0.553f, 0.553f, 0.141f},
+      {0.192f, 0.212f, 0.525f},
+      {0.647f, 0.110f, 0.247f},
+      {0.659f, 0.871f, 0.365f},
+      {0.447f, 0.247f, 0.651f},
+      {0.553f, 0.808f, 0.961f},
+      {0.749f, 0.396f, 0.133f},
+      {0.392f, 0.392f, 0.416f},
+      {0.741f, 0.918f, 0.780f}};
   const int32_t index = material < 0 ? 0 : material % kPaletteSize;
   return kPalette[index];
 }

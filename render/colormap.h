@@ -15,8 +15,8 @@ using Rgb = std::array<float, 3>;
 // polynomial fits (M. Zucker's viridis fit; A. Mikhailov, Google, 2019, for Turbo).
 Rgb colormap_rgb(ColorMap map, double t);
 
-// Colour of a material id (ids >= 0; a 10-colour qualitative palette, cycled).
-inline constexpr int kPaletteSize = 10;
+// Colour of a material id (ids >= 0; a 20-colour qualitative palette, cycled).
+inline constexpr int kPaletteSize = 20;
 Rgb material_rgb(int32_t material);
 
 // The colour of highlighted (low-stretch) tets; in neither colour map.

@@ -386,13 +386,82 @@ constexpr float kLegendMargin = 6, kLegendLine = 11, kLegendPad = 3, kLegendBar 
 
 }  // namespace
 
-double legend_bottom_band(const DrawSettings& settings, int width, int height) {
-  if (!settings.legend || settings.color_mode == ColorMode::kMaterial || height <= 0) return 0;
-  // The bar's panel reaches margin + line + bar + pad + 2 up from the bottom; one more
-  // margin keeps the model clear of it.
+bool Renderer::bar_fits(const DrawSettings& settings, int width, int height) const {
+  if (!settings.legend || settings.color_mode == ColorMode::kMaterial || height <= 0) return false;
+  // Its two numbers side by side under a bar half the picture wide, in at most a
+  // third of its height (a 64-pixel picture's numbers ran into each other).
   const float scale = legend_scale(settings, width, height);
-  const float pixels = (2 * kLegendMargin + kLegendLine + kLegendBar + kLegendPad) * scale + 2;
-  return std::min(0.5, double(pixels) / double(height));
+  const float numbers = text_pixels(format_value(settings.range_min), scale) +
+                        text_pixels(format_value(settings.range_max), scale) + 6 * scale;
+  return numbers <= 0.5f * float(width) &&
+         (2 * kLegendMargin + kLegendLine + kLegendBar + kLegendPad) * scale + 2 <=
+             float(height) / 3;
+}
+
+Renderer::KeyLayout Renderer::key_layout(const DrawSettings& settings, int width,
+                                         int height) const {
+  KeyLayout key;
+  if (!settings.legend) return key;
+  const float scale = legend_scale(settings, width, height);
+  const float margin = kLegendMargin * scale, line = kLegendLine * scale;
+  const bool highlight = highlight_vertices_ > 0 || settings.highlight_below > 0;
+  const size_t materials =
+      settings.color_mode == ColorMode::kMaterial ? visible_materials_.size() : 0;
+  // As many lines as fit in 60 % of the height (a mesh can have thousands of materials);
+  // the last says how many more there are.
+  const float room = 0.6f * float(height) - 2 * margin - 8 * scale;
+  const size_t fit = room < 0 ? 0 : std::min<size_t>(40, size_t(room / line) + 1);
+  const size_t wanted = materials + (highlight ? 1 : 0);
+  if (fit == 0 || (wanted > fit && fit < 2 + (highlight ? 1 : 0))) return key;
+  const size_t shown = wanted <= fit ? materials : fit - 1 - (highlight ? 1 : 0);
+  // Names cut to fit 60 % of the width (at most 40 characters; at least 8, else no key).
+  const float text_room = 0.6f * float(width) - 11 * scale - margin;
+  for (size_t chars = 40; chars >= 8; chars -= 4) {
+    key.lines.clear();
+    float text_w = 0;
+    const auto add = [&](const Rgb& color, std::string text) {
+      text_w = std::max(text_w, text_pixels(text, scale));
+      key.lines.push_back({color, std::move(text)});
+    };
+    for (size_t i = 0; i < shown; ++i) {
+      const int32_t m = visible_materials_[i];
+      const std::string* name = find_material_name(&material_names_, m);
+      add(material_rgb(m),
+          name ? std::to_string(m) + " " + ascii_label(*name, chars)  // the font's glyphs
+               : "material " + std::to_string(m));
+    }
+    if (shown < materials)
+      add(Rgb{1, 1, 1}, "and " + std::to_string(materials - shown) + " more materials");
+    if (highlight)
+      add(kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
+                             std::to_string(highlighted_tets_) + " tets");
+    if (text_w <= text_room) {
+      key.text_width = text_w;
+      return key;
+    }
+  }
+  key.lines.clear();
+  return key;
+}
+
+LegendSpace Renderer::legend_space(const DrawSettings& settings, int width, int height) const {
+  LegendSpace space;
+  if (width <= 0 || height <= 0) return space;
+  const float scale = legend_scale(settings, width, height);
+  const float margin = kLegendMargin * scale;
+  // Each with one more margin, which keeps the model clear of it.
+  if (bar_fits(settings, width, height))
+    space.bottom =
+        ((2 * kLegendMargin + kLegendLine + kLegendBar + kLegendPad) * scale + 2) / float(height);
+  const KeyLayout key = key_layout(settings, width, height);
+  if (!key.lines.empty()) {
+    space.key_width =
+        (2 * margin + 11 * scale + key.text_width + kLegendPad * scale + 1) / float(width);
+    space.key_height = (2 * margin + float(key.lines.size() - 1) * kLegendLine * scale + 8 * scale +
+                        kLegendPad * scale + 1) /
+                       float(height);
+  }
+  return space;
 }
 
 void Renderer::draw_legend(const DrawSettings& settings, int width, int height) {
@@ -411,7 +480,7 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     add_rect(&v, x0 - pad - 1, y0 - pad - 1, x1 + pad + 1, y1 + pad + 1, {0.7f, 0.7f, 0.72f});
     add_rect(&v, x0 - pad, y0 - pad, x1 + pad, y1 + pad, {1, 1, 1});
   };
-  if (settings.color_mode != ColorMode::kMaterial) {
+  if (bar_fits(settings, width, height)) {
     // A horizontal colour bar at the bottom with the range at its ends.
     const float bar_w = 0.5f * float(width), bar_h = kLegendBar * scale;
     const float x0 = 0.25f * float(width);
@@ -424,54 +493,35 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     const std::string hi = format_value(settings.range_max);
     add_text(&v, x0, y1 + 3 * scale, lo, ink, scale);
     add_text(&v, x0 + bar_w - text_pixels(hi, scale), y1 + 3 * scale, hi, ink, scale);
-    std::string title = settings.color_mode == ColorMode::kField  ? "|E|"
-                        : settings.color_mode == ColorMode::kSize ? "size"
-                                                                  : "stretch";
+    // The longest title that fits between the two numbers, if any.
+    const float room =
+        bar_w - 2 * (std::max(text_pixels(lo, scale), text_pixels(hi, scale)) + 3 * scale);
+    std::vector<std::string> titles;
     if (settings.color_mode == ColorMode::kField && settings.field_percentile < 100) {
-      // The longest note that fits between the two numbers.
-      const float room =
-          bar_w - 2 * (std::max(text_pixels(lo, scale), text_pixels(hi, scale)) + 3 * scale);
       for (const char* format : {"|E| (to its %gth percentile)", "|E| (%gth pctl.)", "|E| p%g"}) {
         char text[64];
         std::snprintf(text, sizeof text, format, settings.field_percentile);
-        if (text_pixels(text, scale) <= room) {
-          title = text;
-          break;
-        }
+        titles.push_back(text);
       }
+    } else {
+      titles.push_back(settings.color_mode == ColorMode::kField  ? "|E|"
+                       : settings.color_mode == ColorMode::kSize ? "size"
+                                                                 : "stretch");
     }
-    add_text(&v, x0 + 0.5f * (bar_w - text_pixels(title, scale)), y1 + 3 * scale, title, ink,
-             scale);
+    for (const std::string& title : titles) {
+      if (text_pixels(title, scale) > room) continue;
+      add_text(&v, x0 + 0.5f * (bar_w - text_pixels(title, scale)), y1 + 3 * scale, title, ink,
+               scale);
+      break;
+    }
   }
   // The key at the top left: a swatch and a name per line.
-  std::vector<std::pair<Rgb, std::string>> key;
-  if (settings.color_mode == ColorMode::kMaterial) {
-    // At most kKeyMaterials lines of materials: a mesh can have thousands.
-    constexpr size_t kKeyMaterials = 12;
-    const size_t shown =
-        visible_materials_.size() <= kKeyMaterials ? visible_materials_.size() : kKeyMaterials - 1;
-    for (size_t i = 0; i < shown; ++i) {
-      const int32_t m = visible_materials_[i];
-      std::string text = "material " + std::to_string(m);
-      if (const std::string* name = find_material_name(&material_names_, m)) {
-        text = std::to_string(m) + " " + ascii_label(*name, 32);  // the font's glyphs
-      }
-      key.push_back({material_rgb(m), text});
-    }
-    if (shown < visible_materials_.size())
-      key.push_back({Rgb{1, 1, 1}, "and " + std::to_string(visible_materials_.size() - shown) +
-                                       " more materials"});
-  }
-  if (highlight_vertices_ > 0 || settings.highlight_below > 0)
-    key.push_back({kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
-                                      std::to_string(highlighted_tets_) + " tets"});
-  if (!key.empty()) {
-    float text_w = 0;
-    for (const auto& [color, text] : key) text_w = std::max(text_w, text_pixels(text, scale));
-    add_panel(margin, margin, margin + 11 * scale + text_w,
-              margin + float(key.size() - 1) * line + 8 * scale);
+  const KeyLayout key = key_layout(settings, width, height);
+  if (!key.lines.empty()) {
+    add_panel(margin, margin, margin + 11 * scale + key.text_width,
+              margin + float(key.lines.size() - 1) * line + 8 * scale);
     float y = margin;
-    for (const auto& [color, text] : key) {
+    for (const auto& [color, text] : key.lines) {
       add_rect(&v, margin, y, margin + 8 * scale, y + 8 * scale, color);
       add_text(&v, margin + 11 * scale, y + 1 * scale, text, ink, scale);
       y += line;

@@ -40,11 +40,6 @@ struct DrawSettings {
   float resolution = 1;
 };
 
-// The fraction of a `width` x `height` picture's height that the legend's colour bar
-// (with its panel) covers at the bottom; 0 where none is drawn (no legend, or material
-// colours). frame_camera() keeps the model above it.
-double legend_bottom_band(const DrawSettings& settings, int width, int height);
-
 class Renderer {
  public:
   // `gl` must belong to the context current on this thread and outlive the renderer.
@@ -95,7 +90,20 @@ class Renderer {
   // viewer names no tet under it.
   bool over_legend(double fx, double fy) const;
 
+  // Where the legend draw() would draw at width x height goes, as fractions of the
+  // picture (with the materials and highlight last set): frame_camera() keeps the model
+  // clear of it. Parts that do not fit a small picture are left out (the colour bar
+  // where its numbers would overlap; the key where 8 characters of its names would not
+  // fit in 60 % of the width), here and in the picture.
+  LegendSpace legend_space(const DrawSettings& settings, int width, int height) const;
+
  private:
+  struct KeyLayout {
+    std::vector<std::pair<Rgb, std::string>> lines;  // none: no key
+    float text_width = 0;                            // in pixels
+  };
+  KeyLayout key_layout(const DrawSettings& settings, int width, int height) const;
+  bool bar_fits(const DrawSettings& settings, int width, int height) const;
   struct LegendBox {
     float x0, y0, x1, y1;  // fractions of the frame, from its top left
   };

@@ -38,8 +38,10 @@ PreparedMesh prepare_mesh(TetMesh mesh) {
 }
 
 Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
-                       const ViewSpec& view, double aspect, double bottom_band) {
-  Vec3 lo = buffers.bounds_min, hi = buffers.bounds_max;
+                       const ViewSpec& view, double aspect, const LegendSpace& legend) {
+  // What is drawn (a cut's leftovers); else the shown materials'; else the whole mesh.
+  Vec3 lo = buffers.has_drawn_bounds ? buffers.drawn_bounds_min : buffers.bounds_min;
+  Vec3 hi = buffers.has_drawn_bounds ? buffers.drawn_bounds_max : buffers.bounds_max;
   if (!buffers.has_bounds) {
     lo = hi = mesh.mesh.positions.empty() ? Vec3{} : mesh.mesh.positions[0];
     for (const Vec3& p : mesh.mesh.positions) {
@@ -48,7 +50,7 @@ Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
     }
   }
   if (view.custom) return look_at_camera(view.eye, view.target, lo, hi);
-  return frame_camera(lo, hi, view.direction, aspect, bottom_band);
+  return frame_camera(lo, hi, view.direction, aspect, legend, /*tight=*/true);
 }
 
 Status check_drawable(const TetMesh& mesh) {
@@ -87,7 +89,7 @@ Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
   if (settings.filter.highlight) draw.highlight_below = settings.filter.highlight_below;
   const Camera camera =
       snapshot_camera(mesh, buffers, settings.view, double(settings.width) / settings.height,
-                      legend_bottom_band(draw, settings.width, settings.height));
+                      renderer->legend_space(draw, settings.width, settings.height));
   if (!renderer->draw(draw, camera, settings.width, settings.height)) return {};
   return renderer->read_pixels();
 }

@@ -43,12 +43,11 @@ struct SnapshotSettings {
   bool size_range_from_faces = true;
 };
 
-// The camera `settings.view` gives for `buffers` (framed on the shown materials'
-// bounds, or the whole mesh's if nothing is shown) in a picture `aspect` = width /
-// height wide, above a band of that fraction of its height at the bottom (the colour
-// bar's, legend_bottom_band()).
+// The camera `settings.view` gives for `buffers` (framed on the drawn tets' bounds,
+// what a cut leaves, or the whole mesh's if nothing is shown) in a picture `aspect` = width /
+// height wide, clear of its `legend` (Renderer::legend_space()).
 Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
-                       const ViewSpec& view, double aspect = 1, double bottom_band = 0);
+                       const ViewSpec& view, double aspect = 1, const LegendSpace& legend = {});
 
 // Whether the GPU's float positions can hold `mesh`: every coordinate within
 // +-1e30, and a bounding box at least 1e-30 across and at least 1e-5 of the largest

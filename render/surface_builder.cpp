@@ -50,6 +50,7 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
   out->visible_tets = 0;
   out->highlighted_tets = 0;
   out->has_bounds = false;
+  out->has_drawn_bounds = false;
   out->visible_materials.clear();
   out->visible.assign(input.tet_count, 0);
 
@@ -61,6 +62,7 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
   // The cut compares 4 * dot(n, centroid) with 4 * offset: no division per tet.
   const double offset4 = 4 * filter.cut_plane.offset;
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  Vec3 drawn_lo = lo, drawn_hi = hi;  // of the tets the cut keeps
   uint8_t* visible = out->visible.data();
   for (size_t i = 0; i < input.tet_count; ++i) {
     if (input.alive && !input.alive[i]) continue;
@@ -79,6 +81,12 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
     if (!filter.cut || dot(n, a + b + c + d) <= offset4) {
       flags |= kVisible;
       ++out->visible_tets;
+      for (const Vec3* p : {&a, &b, &c, &d}) {
+        drawn_lo = {std::min(drawn_lo.x, p->x), std::min(drawn_lo.y, p->y),
+                    std::min(drawn_lo.z, p->z)};
+        drawn_hi = {std::max(drawn_hi.x, p->x), std::max(drawn_hi.y, p->y),
+                    std::max(drawn_hi.z, p->z)};
+      }
       if (filter.highlight && input.stretch[i] < filter.highlight_below) {
         flags |= kHighlighted;
         ++out->highlighted_tets;
@@ -92,6 +100,11 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
     out->has_bounds = true;
     out->bounds_min = lo;
     out->bounds_max = hi;
+  }
+  out->has_drawn_bounds = drawn_lo.x <= drawn_hi.x;
+  if (out->has_drawn_bounds) {
+    out->drawn_bounds_min = drawn_lo;
+    out->drawn_bounds_max = drawn_hi;
   }
   std::sort(seen.begin(), seen.end());
   seen.erase(std::unique(seen.begin(), seen.end()), seen.end());

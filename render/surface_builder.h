@@ -92,6 +92,9 @@ struct SurfaceBuffers {
   // that moving the cut does not move the view). Empty if no tet is shown.
   bool has_bounds = false;
   Vec3 bounds_min, bounds_max;
+  // Bounds of the tets drawn, the cut's leftovers (a picture of its own frames these).
+  bool has_drawn_bounds = false;
+  Vec3 drawn_bounds_min, drawn_bounds_max;
   // Materials of the visible tets, ascending (for the legend).
   std::vector<int32_t> visible_materials;
   // Scratch kept between builds so rebuilding does not allocate.

@@ -11,7 +11,7 @@ noperspective in vec3 v_barycentric;
 uniform int u_color_mode;  // 0: stretch through the colour map, 1: material, 2: u_solid_color
 uniform sampler2D u_colormap;  // 256 x 1
 uniform vec2 u_range;          // stretch at the two ends of the colour map
-uniform vec3 u_palette[10];
+uniform vec3 u_palette[20];  // render::kPaletteSize
 uniform vec3 u_solid_color;
 uniform float u_alpha;
 uniform int u_wireframe;
@@ -28,7 +28,7 @@ void main() {
     float t = clamp((v_stretch - u_range.x) / (u_range.y - u_range.x), 0.0, 1.0);
     base = texture(u_colormap, vec2(t * (255.0 / 256.0) + 0.5 / 256.0, 0.5)).rgb;
   } else if (u_color_mode == 1) {
-    base = u_palette[v_material % 10u];
+    base = u_palette[v_material % 20u];
   } else {
     base = u_solid_color;
   }

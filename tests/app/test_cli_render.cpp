@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -339,6 +340,26 @@ TEST(CliRender, AnEmptyPictureSaysWhy) {
   EXPECT_EQ(drawn.output.find("note: the picture is empty"), std::string::npos) << drawn.output;
 }
 
+// A picture too small for its legend is drawn without it, and says so.
+TEST(CliRender, ALegendThatDoesNotFitIsLeftOutWithANote) {
+  const std::string out = out_dir() + "/tiny.png";
+  const CommandResult tiny =
+      run("render " + asset("motor.mesh") + " --width 48 --height 48 -o " + out);
+  EXPECT_EQ(tiny.code, 0) << tiny.output;
+  EXPECT_NE(tiny.output.find("note: the colour bar does not fit a 48x48 picture"),
+            std::string::npos)
+      << tiny.output;
+  const CommandResult key =
+      run("render " + asset("motor.mesh") + " --color material --width 60 --height 60 -o " + out);
+  EXPECT_NE(key.output.find("note: the material key does not fit a 60x60 picture"),
+            std::string::npos)
+      << key.output;
+  for (const char* flags : {"", "--color material", "--no-legend --width 48 --height 48"}) {
+    const CommandResult fits = run("render " + asset("motor.mesh") + " " + flags + " -o " + out);
+    EXPECT_EQ(fits.output.find("does not fit"), std::string::npos) << flags << fits.output;
+  }
+}
+
 TEST(CliRender, FailuresNameTheProblemAndWriteNothing) {
   const std::string out = out_dir() + "/failed.png";
   fs::remove(out);
@@ -633,6 +654,29 @@ TEST(CliReport, EmptyPicturesAreNoted) {
   const CommandResult shown =
       run("report " + asset("box2.mesh") + " -o " + out_dir() + "/report_shown");
   EXPECT_EQ(shown.output.find("pictures are empty"), std::string::npos) << shown.output;
+}
+
+// Coloured by size, every level of a report is on one colour scale (each its own made
+// the coarser level look finer), which the page gives; hidden materials are said to
+// count in the tables.
+TEST(CliReport, SizeColoursShareOneScale) {
+  const std::string dir = out_dir() + "/report_size";
+  const CommandResult r = run("report " + asset("motor.mesh") + " -o " + dir +
+                              " --hide 1 --color size --simplify --size 20 --levels 12000");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir + "/report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string scale = "on one scale for every level, ";
+  const size_t at = html.find(scale);
+  ASSERT_NE(at, std::string::npos);
+  double lo = 0, hi = 0;
+  ASSERT_EQ(std::sscanf(html.c_str() + at + scale.size(), "%lf to %lf", &lo, &hi), 2);
+  // The input's shortest shown tet and the coarsest level's longest (at most the size).
+  EXPECT_GT(lo, 0);
+  EXPECT_LT(lo, 7);
+  EXPECT_GT(hi, 15);
+  EXPECT_LE(hi, 20 + 1e-9);
+  EXPECT_NE(html.find("the tables and the stretch histograms count every tet"), std::string::npos);
 }
 
 TEST(CliReport, ErrorsAreClear) {

@@ -78,6 +78,15 @@ TEST(MeshCompare, ARelabelledMaterialIsLostAndNew) {
   EXPECT_TRUE(added);
   EXPECT_FALSE(c.lost.empty());
   EXPECT_EQ(c.lost.size(), c.added.size());
+  // Its pieces: 0 on the side without it.
+  for (const MaterialPieces& p : c.pieces) {
+    if (p.material == from) {
+      EXPECT_TRUE(p.before > 0 && p.after == 0);
+    }
+    if (p.material == from + 100) {
+      EXPECT_TRUE(p.before == 0 && p.after > 0);
+    }
+  }
 }
 
 // Topology: a 3 x 3 x 1 grid of material 1 with material 2 in the cube at a corner,

@@ -336,10 +336,13 @@ TEST(GoldenSensitivity, RenderingIsDeterministic) {
   EXPECT_EQ(d.differing_pixels, 0u);
 }
 
-// The rows the colour bar covers at the bottom, drawn without the bar from the camera
-// the snapshot takes (framed above it): background only, so the bar hides nothing.
-// Framed as before (no band), box2's nearest corner reaches into them.
-size_t model_pixels_in_bar_rows(const char* asset, int width, int height, bool band) {
+// The rows the colour bar covers at the bottom and the box of the material key at the
+// top left, drawn without the legend from the camera the snapshot takes (framed clear
+// of it): background only, so the legend hides nothing. Framed as before (no legend
+// space), box2's nearest corner reaches into the bar's rows, and the motor (a box) into
+// the key.
+size_t model_pixels_under_legend(const char* asset, int width, int height, ColorMode mode,
+                                 bool keep_clear) {
   Renderer* renderer = Offscreen::get().renderer();
   if (!renderer) {
     ADD_FAILURE() << Offscreen::get().error();
@@ -349,31 +352,63 @@ size_t model_pixels_in_bar_rows(const char* asset, int width, int height, bool b
   SurfaceBuffers buffers;
   build_surface(mesh.surface_input(), SurfaceFilter{}, &buffers);
   renderer->upload(buffers);
-  DrawSettings draw;  // stretch colours: a colour bar
-  const double bottom = legend_bottom_band(draw, width, height);
-  EXPECT_GT(bottom, 0.05);
-  const Camera camera =
-      snapshot_camera(mesh, buffers, ViewSpec{}, double(width) / height, band ? bottom : 0);
+  DrawSettings draw;
+  draw.color_mode = mode;
+  const LegendSpace legend = renderer->legend_space(draw, width, height);
+  if (mode == ColorMode::kMaterial) {
+    EXPECT_GT(legend.key_width, 0.05);
+    EXPECT_GT(legend.key_height, 0.05);
+  } else {
+    EXPECT_GT(legend.bottom, 0.05);
+  }
+  const Camera camera = snapshot_camera(mesh, buffers, ViewSpec{}, double(width) / height,
+                                        keep_clear ? legend : LegendSpace{});
   draw.legend = false;
   EXPECT_TRUE(renderer->draw(draw, camera, width, height)) << renderer->last_error();
   const Image image = renderer->read_pixels();
-  size_t model = 0;
-  const int first_row = height - static_cast<int>(std::floor(bottom * height));
-  for (int y = first_row; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x)
-      model += image.pixel(x, y)[0] != 255 || image.pixel(x, y)[1] != 255;
-  return model;
+  const auto model = [&image](int x0, int y0, int x1, int y1) {
+    size_t count = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        count += image.pixel(x, y)[0] != 255 || image.pixel(x, y)[1] != 255;
+    return count;
+  };
+  const int bar_rows = static_cast<int>(std::floor(legend.bottom * height));
+  const int key_w = static_cast<int>(std::floor(legend.key_width * width));
+  const int key_h = static_cast<int>(std::floor(legend.key_height * height));
+  return model(0, height - bar_rows, width, height) + model(0, 0, key_w, key_h);
 }
 
-TEST(Legend, TheModelStandsAboveTheColourBar) {
+TEST(Legend, TheModelStandsClearOfTheLegend) {
   for (const char* asset : {"box2.mesh", "motor.mesh", "spheres.mesh"}) {
-    for (const auto& [width, height] :
-         {std::pair{800, 800}, std::pair{640, 400}, std::pair{300, 500}, std::pair{256, 256}}) {
-      EXPECT_EQ(model_pixels_in_bar_rows(asset, width, height, true), 0u)
-          << asset << " " << width << "x" << height;
+    for (const ColorMode mode : {ColorMode::kStretch, ColorMode::kMaterial}) {
+      for (const auto& [width, height] :
+           {std::pair{800, 800}, std::pair{640, 400}, std::pair{300, 500}, std::pair{256, 256}}) {
+        EXPECT_EQ(model_pixels_under_legend(asset, width, height, mode, true), 0u)
+            << asset << " " << width << "x" << height << " mode " << int(mode);
+      }
     }
   }
-  EXPECT_GT(model_pixels_in_bar_rows("box2.mesh", 800, 800, false), 100u);
+  EXPECT_GT(model_pixels_under_legend("box2.mesh", 800, 800, ColorMode::kStretch, false), 100u);
+  EXPECT_GT(model_pixels_under_legend("motor.mesh", 800, 800, ColorMode::kMaterial, false), 100u);
+}
+
+// A picture too small for the legend leaves it out (its numbers would overprint):
+// nothing of it is drawn or kept clear of.
+TEST(Legend, APictureTooSmallForTheLegendHasNone) {
+  Renderer* renderer = Offscreen::get().renderer();
+  ASSERT_TRUE(renderer) << Offscreen::get().error();
+  SurfaceBuffers buffers;
+  build_surface(Offscreen::get().mesh("motor.mesh").surface_input(), SurfaceFilter{}, &buffers);
+  renderer->upload(buffers);
+  DrawSettings draw;
+  EXPECT_EQ(renderer->legend_space(draw, 48, 48).bottom, 0);
+  EXPECT_GT(renderer->legend_space(draw, 320, 320).bottom, 0);
+  draw.color_mode = ColorMode::kMaterial;
+  EXPECT_EQ(renderer->legend_space(draw, 60, 60).key_width, 0);
+  EXPECT_GT(renderer->legend_space(draw, 320, 320).key_width, 0);
+  draw.legend = false;
+  EXPECT_EQ(renderer->legend_space(draw, 320, 320).key_width, 0);
 }
 
 }  // namespace
