@@ -307,15 +307,13 @@ TEST(ViewerWindow, OpeningAMeshShowsEveryMaterial) {
 }
 
 // Fit (view fit, the F key) frames the model again from the direction the user orbited
-// to, not from the iso view: after a zoom and a pan it gives the picture of the orbit
-// alone, framed from the iso view (without a legend: the framing keeps clear of the
-// colour bar by moving the centre, so the iso view's is not centred from another
-// direction), and not the iso view's.
+// to, not from the iso view: after a zoom and a pan it gives the picture of a fit after
+// the orbit alone, and not the iso view's.
 TEST(ViewerWindow, FitKeepsTheViewDirection) {
   const fs::path dir = fresh_output_dir("viewer_fit_direction");
   std::ofstream(dir / "orbit.script")
       << "legend off\nview iso\nscreenshot iso.png width=320 height=240\norbit 120 -40\n"
-         "screenshot orbit.png width=320 height=240\nquit\n";
+         "view fit\nscreenshot orbit.png width=320 height=240\nquit\n";
   std::ofstream(dir / "fit.script") << "legend off\norbit 120 -40\nzoom 3\npan 30 20\nview fit\n"
                                        "screenshot fit.png width=320 height=240\nquit\n";
   const std::string box2 = "'" + kSource + "/assets/box2.mesh' --size 640x480 ";
@@ -1009,9 +1007,32 @@ TEST(ViewerWindow, FitFramesTheShownMaterials) {
   EXPECT_GT(z, 1.3 * before) << before << " -> " << z;
 }
 
+// The colours of a picture's model (pixels not the white background), as a histogram of
+// 4 x 4 x 4 bins, each bin its share.
+std::vector<double> colour_shares(const render::Image& image) {
+  std::vector<double> bins(64, 0);
+  double total = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const uint8_t* p = image.pixel(x, y);
+      if (is_white(p)) continue;
+      bins[size_t((p[0] >> 6) * 16 + (p[1] >> 6) * 4 + (p[2] >> 6))] += 1;
+      total += 1;
+    }
+  for (double& b : bins) b = total > 0 ? b / total : 0;
+  return bins;
+}
+
+double shares_apart(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0;
+  for (size_t i = 0; i < a.size(); ++i) d += std::abs(a[i] - b[i]);
+  return d;  // 0 the same, 2 nothing in common
+}
+
 // "color size" colours each face by its tet's longest edge over the drawn tets' range,
-// as `tetlod render --color size` does: a scrubbed level's screenshot is render's
-// picture of that level, saved; by stretch it is another picture.
+// as `tetlod render --color size` does: a scrubbed level's screenshot has the colours
+// of render's picture of that level, saved (render frames its own picture tighter, so
+// not pixel for pixel); by stretch it has others.
 TEST(ViewerWindow, ColoursBySizeAsRenderDoes) {
   const fs::path dir = fresh_output_dir("viewer_color_size");
   std::ofstream(dir / "size.script")
@@ -1026,16 +1047,13 @@ TEST(ViewerWindow, ColoursBySizeAsRenderDoes) {
       "' --hide 1 --view z --color size --no-legend --width 320 --height 320 -o '" +
       (dir / "render.png").string() + "'");
   ASSERT_EQ(rendered.code, 0) << rendered.output;
-  const render::Image by_size = load_png(dir / "size.png");
-  const render::Image by_render = load_png(dir / "render.png");
-  const render::Image by_stretch = load_png(dir / "stretch.png");
-  // (Not to the pixel: the viewer's pictures and render's differ along edges, by
-  // stretch too: on the bundled motor's input, 0.7 % of the pixels off by more than 40
-  // by stretch, 1.6 % by size; by stretch against by size, over 20 %.)
-  EXPECT_LE(render::compare_images(by_render, by_size, 40, nullptr).differing_pixels,
-            320u * 320u / 30u);
-  EXPECT_GT(render::compare_images(by_size, by_stretch, 40, nullptr).differing_pixels,
-            320u * 320u / 10u);
+  const std::vector<double> by_size = colour_shares(load_png(dir / "size.png"));
+  const std::vector<double> by_render = colour_shares(load_png(dir / "render.png"));
+  const std::vector<double> by_stretch = colour_shares(load_png(dir / "stretch.png"));
+  // (The headlight shades a face by its angle to the eye, which the framing moves: 0.27
+  // apart by size, 0.68 by stretch, when this was written.)
+  EXPECT_LT(shares_apart(by_size, by_render), 0.4);
+  EXPECT_GT(shares_apart(by_size, by_stretch), 0.55);
 }
 
 // The README's example script runs as the README says it does, on the bundled spheres,
