@@ -1506,6 +1506,8 @@ TEST(Cli, CompareSaysHowFarEachSurfaceMoved) {
             std::string::npos)
       << changed.output;
   EXPECT_NE(changed.output.find("\"euler_before\": "), std::string::npos) << changed.output;
+  EXPECT_NE(changed.output.find("\"pieces_before\": 1, \"pieces_after\": 2"), std::string::npos)
+      << changed.output;
   EXPECT_EQ(changed.output.find("\"topology_changes\": 0"), std::string::npos) << changed.output;
 
   const CommandResult other = run("compare " + motor + " " + box2 + " --check");
