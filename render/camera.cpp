@@ -67,7 +67,8 @@ class Framer {
         side_(side),
         up_(screen_up),
         tx_(tan_half_x),
-        ty_(tan_half_y) {}
+        ty_(tan_half_y),
+        min_distance_(1.25 * 0.5 * length(hi - lo)) {}
 
   // Where the box's corners are in the picture from `p`.
   NdcRect extent(const Placement& p) const {
@@ -84,8 +85,7 @@ class Framer {
   }
 
   // From `p`, the corners brought into `target`: further away until they fit it (with
-  // 2 % to spare), then moved the least way in: a few rounds, as perspective makes
-  // neither exact. False if they do not fit after them.
+  // 2 % to spare), then moved the least way in. False if they do not fit after that.
   bool fit(const NdcRect& target, Placement* p) const {
     for (int round = 0; round < 8; ++round) {
       const NdcRect r = extent(*p);
@@ -94,45 +94,58 @@ class Framer {
       if (grow <= 1) break;
       p->distance *= grow;
     }
-    for (int round = 0; round < 8; ++round) {
+    for (const bool y : {false, true}) {
       const NdcRect r = extent(*p);
-      if (target.contains(r)) return true;
-      // A point at the centre's depth moves in the picture by (shift / (d tan)).
-      const double mx = r.x0 < target.x0   ? target.x0 + 0.005 - r.x0
-                        : r.x1 > target.x1 ? target.x1 - 0.005 - r.x1
-                                           : 0;
-      const double my = r.y0 < target.y0   ? target.y0 + 0.005 - r.y0
-                        : r.y1 > target.y1 ? target.y1 - 0.005 - r.y1
-                                           : 0;
-      p->dx -= mx * p->distance * tx_;
-      p->dy -= my * p->distance * ty_;
+      const double low = y ? r.y0 : r.x0, high = y ? r.y1 : r.x1;
+      const double floor = y ? target.y0 : target.x0, ceiling = y ? target.y1 : target.x1;
+      if (low < floor) move(p, y, -1, floor + 0.005);
+      if (high > ceiling) move(p, y, 1, ceiling - 0.005);
     }
     return target.contains(extent(*p));
   }
 
   // From `p`, the corners made to fill `target` (98 % of its width or height), centred
-  // in it: nearer or further away, then moved.
+  // in it: nearer or further away, then moved; twice, as each changes the other a little.
   void fill(const NdcRect& target, Placement* p) const {
-    for (int round = 0; round < 8; ++round) {
-      const NdcRect r = extent(*p);
-      const double scale = std::max((r.x1 - r.x0) / (0.98 * (target.x1 - target.x0)),
-                                    (r.y1 - r.y0) / (0.98 * (target.y1 - target.y0)));
-      if (!(scale > 0) || std::abs(scale - 1) < 0.005) break;
-      p->distance *= scale;
-    }
-    for (int round = 0; round < 8; ++round) {
-      const NdcRect r = extent(*p);
-      const double mx = 0.5 * (target.x0 + target.x1 - r.x0 - r.x1);
-      const double my = 0.5 * (target.y0 + target.y1 - r.y0 - r.y1);
-      if (std::abs(mx) + std::abs(my) < 1e-3) break;
-      p->dx -= mx * p->distance * tx_;
-      p->dy -= my * p->distance * ty_;
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int round = 0; round < 8; ++round) {
+        const NdcRect r = extent(*p);
+        const double scale = std::max((r.x1 - r.x0) / (0.98 * (target.x1 - target.x0)),
+                                      (r.y1 - r.y0) / (0.98 * (target.y1 - target.y0)));
+        if (!(scale > 0) || std::abs(scale - 1) < 0.005) break;
+        // Never so near that a corner is beside or behind the eye (a needle seen end on
+        // would draw the camera onto its tip).
+        p->distance = std::max(p->distance * scale, min_distance_);
+      }
+      move(p, false, 0, 0.5 * (target.x0 + target.x1));
+      move(p, true, 0, 0.5 * (target.y0 + target.y1));
     }
   }
 
  private:
+  // Moves the camera along the screen's right (or up, `y`) until the corners' lowest
+  // (`edge` -1), highest (1) or middle (0) normalised x (or y) is `goal`. Each corner's
+  // falls steadily as the camera moves that way, at a rate its depth sets (a deep box's
+  // near and far corners move at very different rates, so no one step size would do):
+  // found by bisection, within moves that take every corner across the picture twice.
+  void move(Placement* p, bool y, int edge, double goal) const {
+    const double reach = 4 * p->distance * (y ? ty_ : tx_);
+    double lo = (y ? p->dy : p->dx) - reach, hi = (y ? p->dy : p->dx) + reach;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      Placement q = *p;
+      (y ? q.dy : q.dx) = mid;
+      const NdcRect r = extent(q);
+      const double a = y ? r.y0 : r.x0, b = y ? r.y1 : r.x1;
+      const double at = edge < 0 ? a : edge > 0 ? b : 0.5 * (a + b);
+      (at > goal ? lo : hi) = mid;
+    }
+    (y ? p->dy : p->dx) = 0.5 * (lo + hi);
+  }
+
   Vec3 lo_, hi_, back_, side_, up_;
   double tx_, ty_;
+  double min_distance_;  // every corner at least a quarter of the half diagonal ahead
 };
 
 }  // namespace

@@ -414,29 +414,33 @@ Renderer::KeyLayout Renderer::key_layout(const DrawSettings& settings, int width
   const size_t wanted = materials + (highlight ? 1 : 0);
   if (fit == 0 || (wanted > fit && fit < 2 + (highlight ? 1 : 0))) return key;
   const size_t shown = wanted <= fit ? materials : fit - 1 - (highlight ? 1 : 0);
-  // Names cut to fit 60 % of the width (at most 40 characters; at least 8, else no key).
-  const float text_room = 0.6f * float(width) - 11 * scale - margin;
+  // The fixed lines ("and N more materials", the highlight's count) in 90 % of the
+  // width, else no key; the names cut to fit half the width (at most 40 characters; at
+  // least 8, else no key).
+  std::vector<std::pair<Rgb, std::string>> fixed;
+  if (shown < materials)
+    fixed.push_back({Rgb{1, 1, 1}, "and " + std::to_string(materials - shown) + " more materials"});
+  if (highlight)
+    fixed.push_back({kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
+                                        std::to_string(highlighted_tets_) + " tets"});
+  float fixed_w = 0;
+  for (const auto& [color, text] : fixed) fixed_w = std::max(fixed_w, text_pixels(text, scale));
+  if (fixed_w > 0.9f * float(width) - 11 * scale - 2 * margin) return key;
+  const float text_room = 0.5f * float(width) - 11 * scale - margin;
   for (size_t chars = 40; chars >= 8; chars -= 4) {
     key.lines.clear();
-    float text_w = 0;
-    const auto add = [&](const Rgb& color, std::string text) {
-      text_w = std::max(text_w, text_pixels(text, scale));
-      key.lines.push_back({color, std::move(text)});
-    };
+    float names_w = 0;
     for (size_t i = 0; i < shown; ++i) {
       const int32_t m = visible_materials_[i];
       const std::string* name = find_material_name(&material_names_, m);
-      add(material_rgb(m),
-          name ? std::to_string(m) + " " + ascii_label(*name, chars)  // the font's glyphs
-               : "material " + std::to_string(m));
+      std::string text = name ? std::to_string(m) + " " + ascii_label(*name, chars)  // the font's
+                              : "material " + std::to_string(m);                     // glyphs
+      names_w = std::max(names_w, text_pixels(text, scale));
+      key.lines.push_back({material_rgb(m), std::move(text)});
     }
-    if (shown < materials)
-      add(Rgb{1, 1, 1}, "and " + std::to_string(materials - shown) + " more materials");
-    if (highlight)
-      add(kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
-                             std::to_string(highlighted_tets_) + " tets");
-    if (text_w <= text_room) {
-      key.text_width = text_w;
+    if (names_w <= text_room) {
+      key.lines.insert(key.lines.end(), fixed.begin(), fixed.end());
+      key.text_width = std::max(names_w, fixed_w);
       return key;
     }
   }

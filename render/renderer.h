@@ -94,7 +94,7 @@ class Renderer {
   // picture (with the materials and highlight last set): frame_camera() keeps the model
   // clear of it. Parts that do not fit a small picture are left out (the colour bar
   // where its numbers would overlap; the key where 8 characters of its names would not
-  // fit in 60 % of the width), here and in the picture.
+  // fit in half the width), here and in the picture.
   LegendSpace legend_space(const DrawSettings& settings, int width, int height) const;
 
  private:
