@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
 
   // One frame of the last case at 800 x 800 (llvmpipe, software), for reference.
   std::vector<double> draw_times;
-  const Camera camera = snapshot_camera(prepared, buffers, {});
+  const Camera camera = snapshot_framing(prepared, buffers, {}, 800, 800).camera;
   DrawSettings draw;
   for (int r = 0; r < repeat; ++r) {
     const auto t = Clock::now();

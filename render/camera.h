@@ -15,9 +15,17 @@ struct Camera {
   // Near and far clip distances; set by frame_camera() from the model's size.
   double near_distance = 0.01;
   double far_distance = 100;
+  // The picture moved by this much, in normalised device units (a lens shift: what is
+  // at (sx, sy) is drawn at the centre), without turning the view.
+  double shift_x = 0, shift_y = 0;
 };
 
 enum class ViewDirection { kIso, kX, kY, kZ };
+
+// A rectangle of a picture in pixels, from its top left.
+struct PixelRect {
+  int x = 0, y = 0, width = 0, height = 0;
+};
 
 // Where a picture's legend goes, as fractions of its width and height
 // (Renderer::legend_space()): a band at the bottom (the colour bar), a box at the top
@@ -35,15 +43,26 @@ struct LegendSpace {
 // height wide, where the box's corners would reach into its bottom band, the camera
 // moves away until they fit the height above it, then down until they stand on it;
 // where they would reach into its key, it does the same to keep them below the key or
-// right of it, whichever shows the model larger. `tight`: the corners fill the picture
-// (or the part of it clear of the legend) from this direction, not the bounding sphere
-// from any (a picture of its own, not a view to orbit: a flat board fills it).
+// right of it, whichever shows the model larger (a view to orbit, as the viewer's).
 Camera frame_camera(const Vec3& lo, const Vec3& hi, ViewDirection view, double aspect = 1,
-                    const LegendSpace& legend = {}, bool tight = false);
+                    const LegendSpace& legend = {});
 // The same from any `direction` (from the target to the eye, not along `up`), with
 // `up` the world's up.
 Camera frame_camera(const Vec3& lo, const Vec3& hi, const Vec3& direction, const Vec3& up,
-                    double aspect = 1, const LegendSpace& legend = {}, bool tight = false);
+                    double aspect = 1, const LegendSpace& legend = {});
+
+// A picture of its own (render, report): the camera looks at the box's centre from
+// `view`, as near as lets the box's corners fill the part of a width x height picture
+// clear of the `legend` (above the colour bar; below the key or right of it, whichever
+// shows the model larger, where the key would cover it), its picture shifted so that the
+// corners are centred there (Camera::shift_x, a lens shift: moving the camera would turn
+// the view), and the scene is drawn in `scene`, that part. A flat board fills it.
+struct PictureFraming {
+  Camera camera;
+  PixelRect scene;
+};
+PictureFraming frame_picture(const Vec3& lo, const Vec3& hi, ViewDirection view, int width,
+                             int height, const LegendSpace& legend = {});
 
 // A camera at `eye` looking at `target` (z up, or y up when looking along z); near
 // and far from the box [lo, hi]. Precondition: eye != target.

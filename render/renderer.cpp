@@ -289,7 +289,8 @@ bool Renderer::ensure_targets(int width, int height) {
   return true;
 }
 
-bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int width, int height) {
+bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int width, int height,
+                    const PixelRect* scene) {
   if (!ensure_targets(width, height)) return false;
   gl_.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
   gl_.Viewport(0, 0, width, height);
@@ -305,8 +306,12 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
   const double distance = length(camera.target - camera.eye);
   const double scale = distance > 0 && std::isfinite(1 / distance) ? 1 / distance : 1;
   const Mat4 view = view_matrix(camera, scale);
-  const Mat4 view_projection =
-      multiply(projection_matrix(camera, double(width) / double(height), scale), view);
+  const PixelRect rect = scene ? *scene : PixelRect{0, 0, width, height};
+  gl_.Viewport(rect.x, height - rect.y - rect.height, std::max(rect.width, 1),
+               std::max(rect.height, 1));
+  const Mat4 view_projection = multiply(
+      projection_matrix(camera, double(std::max(rect.width, 1)) / std::max(rect.height, 1), scale),
+      view);
   const GLuint p = surface_program_;
   gl_.UseProgram(p);
   gl_.UniformMatrix4fv(gl_.GetUniformLocation(p, "u_view"), 1, GL_FALSE, view.data());
@@ -358,6 +363,7 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
   }
   gl_.BindVertexArray(0);
 
+  gl_.Viewport(0, 0, width, height);
   legend_boxes_.clear();
   if (settings.legend) draw_legend(settings, width, height);
 

@@ -72,8 +72,11 @@ class Renderer {
   void set_material_names(std::vector<MaterialName> names) { material_names_ = std::move(names); }
 
   // Draws the uploaded surface (and highlight, and legend) at width x height. False
-  // (see last_error()) if the framebuffer cannot be made or GL reports an error.
-  bool draw(const DrawSettings& settings, const Camera& camera, int width, int height);
+  // (see last_error()) if the framebuffer cannot be made or GL reports an error. The
+  // surface is drawn in `scene` if given (pixels from the top left; it may reach past
+  // the picture, which clips it), with its aspect; the legend in the whole picture.
+  bool draw(const DrawSettings& settings, const Camera& camera, int width, int height,
+            const PixelRect* scene = nullptr);
   const std::string& last_error() const { return last_error_; }
   // The last drawn frame, top row first.
   Image read_pixels();

@@ -37,8 +37,9 @@ PreparedMesh prepare_mesh(TetMesh mesh) {
   return prepared;
 }
 
-Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
-                       const ViewSpec& view, double aspect, const LegendSpace& legend) {
+PictureFraming snapshot_framing(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
+                                const ViewSpec& view, int width, int height,
+                                const LegendSpace& legend) {
   // What is drawn (a cut's leftovers); else the shown materials'; else the whole mesh.
   Vec3 lo = buffers.has_drawn_bounds ? buffers.drawn_bounds_min : buffers.bounds_min;
   Vec3 hi = buffers.has_drawn_bounds ? buffers.drawn_bounds_max : buffers.bounds_max;
@@ -49,8 +50,8 @@ Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
       hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
   }
-  if (view.custom) return look_at_camera(view.eye, view.target, lo, hi);
-  return frame_camera(lo, hi, view.direction, aspect, legend, /*tight=*/true);
+  if (view.custom) return {look_at_camera(view.eye, view.target, lo, hi), {0, 0, width, height}};
+  return frame_picture(lo, hi, view.direction, width, height, legend);
 }
 
 Status check_drawable(const TetMesh& mesh) {
@@ -87,10 +88,11 @@ Image render_snapshot(Renderer* renderer, const PreparedMesh& mesh,
   if (by_size && settings.size_range_from_faces && !buffers.triangles.empty())
     std::tie(draw.range_min, draw.range_max) = scalar_range(buffers.triangles);
   if (settings.filter.highlight) draw.highlight_below = settings.filter.highlight_below;
-  const Camera camera =
-      snapshot_camera(mesh, buffers, settings.view, double(settings.width) / settings.height,
-                      renderer->legend_space(draw, settings.width, settings.height));
-  if (!renderer->draw(draw, camera, settings.width, settings.height)) return {};
+  const PictureFraming framing =
+      snapshot_framing(mesh, buffers, settings.view, settings.width, settings.height,
+                       renderer->legend_space(draw, settings.width, settings.height));
+  if (!renderer->draw(draw, framing.camera, settings.width, settings.height, &framing.scene))
+    return {};
   return renderer->read_pixels();
 }
 

@@ -43,11 +43,13 @@ struct SnapshotSettings {
   bool size_range_from_faces = true;
 };
 
-// The camera `settings.view` gives for `buffers` (framed on the drawn tets' bounds,
-// what a cut leaves, or the whole mesh's if nothing is shown) in a picture `aspect` = width /
-// height wide, clear of its `legend` (Renderer::legend_space()).
-Camera snapshot_camera(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
-                       const ViewSpec& view, double aspect = 1, const LegendSpace& legend = {});
+// The camera `view` gives for `buffers` in a width x height picture, and the part of it
+// the scene is drawn in (render::frame_picture(), clear of the `legend`; the whole
+// picture for a custom camera): framed on the drawn tets' bounds (what a cut leaves),
+// else the shown materials', else the whole mesh's.
+PictureFraming snapshot_framing(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
+                                const ViewSpec& view, int width, int height,
+                                const LegendSpace& legend = {});
 
 // Whether the GPU's float positions can hold `mesh`: every coordinate within
 // +-1e30, and a bounding box at least 1e-30 across and at least 1e-5 of the largest

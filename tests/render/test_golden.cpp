@@ -361,10 +361,11 @@ size_t model_pixels_under_legend(const char* asset, int width, int height, Color
   } else {
     EXPECT_GT(legend.bottom, 0.05);
   }
-  const Camera camera = snapshot_camera(mesh, buffers, ViewSpec{}, double(width) / height,
-                                        keep_clear ? legend : LegendSpace{});
+  const PictureFraming framing = snapshot_framing(mesh, buffers, ViewSpec{}, width, height,
+                                                  keep_clear ? legend : LegendSpace{});
   draw.legend = false;
-  EXPECT_TRUE(renderer->draw(draw, camera, width, height)) << renderer->last_error();
+  EXPECT_TRUE(renderer->draw(draw, framing.camera, width, height, &framing.scene))
+      << renderer->last_error();
   const Image image = renderer->read_pixels();
   const auto model = [&image](int x0, int y0, int x1, int y1) {
     size_t count = 0;

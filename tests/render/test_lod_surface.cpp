@@ -234,8 +234,13 @@ TEST(LodSurface, ColoursBySizeThroughSeeksAndResets) {
 // The ray through a pixel meets the point drawn at that pixel: pixel_ray() inverts
 // projection_matrix() * view_matrix().
 TEST(LodSurface, PixelRayInvertsTheProjection) {
-  const Camera camera = frame_camera({0, 0, 0}, {2, 1, 1}, ViewDirection::kIso);
-  for (const auto& [width, height] : {std::pair{640, 480}, std::pair{300, 500}}) {
+  Camera camera = frame_camera({0, 0, 0}, {2, 1, 1}, ViewDirection::kIso);
+  // Also with a lens shift (render::frame_picture()'s).
+  for (const auto& [width, height, shift_x, shift_y] :
+       {std::tuple{640, 480, 0.0, 0.0}, std::tuple{300, 500, 0.0, 0.0},
+        std::tuple{640, 480, 0.3, -0.2}}) {
+    camera.shift_x = shift_x;
+    camera.shift_y = shift_y;
     const Mat4 m = multiply(projection_matrix(camera, double(width) / height), view_matrix(camera));
     for (const Vec3& p : {Vec3{0.3, 0.2, 0.9}, Vec3{1.7, 0.8, 0.1}, Vec3{1, 0.5, 0.5}}) {
       const double clip[4] = {m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12],
