@@ -67,6 +67,17 @@ void text_disabled_wrapped(const char* format, ...) {
   ImGui::PopStyleColor();
 }
 
+// Wrapped text in orange: what a user should act on (a thinned part, a threshold broken).
+void text_warning_wrapped(const char* format, ...) IM_FMTARGS(1);
+void text_warning_wrapped(const char* format, ...) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+  va_list args;
+  va_start(args, format);
+  ImGui::TextWrappedV(format, args);
+  va_end(args);
+  ImGui::PopStyleColor();
+}
+
 // Under the progress bar of the first run, a bar for the run past the valence made at
 // the same time on a second thread (nothing when none is).
 void other_run_bar(const ViewerStatus& status) {
@@ -493,21 +504,17 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     // What the tolerance did to the materials' volumes, where it is much (a thin conductor
     // thinned): in orange, as tetlod simplify's note.
     if (!status.volume_changes.empty()) {
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-      ImGui::TextWrapped(
+      text_warning_wrapped(
           "Volumes changed by more than 1 %%: %s (the tolerance lets surfaces move that far; "
           "a smaller one keeps them).",
           status.volume_changes.c_str());
-      ImGui::PopStyleColor();
     }
     // Layers a few tolerances thick, whose volume may hardly change as both sides move.
     if (!status.thin_materials.empty()) {
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-      ImGui::TextWrapped(
+      text_warning_wrapped(
           "Thin for the tolerance: %s (twice the volume over the surface's area); its "
           "surfaces may move by up to the tolerance: a tenth of the thickness keeps them.",
           status.thin_materials.c_str());
-      ImGui::PopStyleColor();
     }
     // The guarantee, and where it could not reach: what the final mesh still breaks.
     const ThresholdViolations& v = status.violations;
@@ -518,9 +525,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     } else if (v.below_stretch + v.above_size + v.above_valence == 0) {
       ImGui::TextWrapped("%s", final_mesh_text(status).c_str());
     } else {
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-      ImGui::TextWrapped("%s", final_mesh_text(status).c_str());
-      ImGui::PopStyleColor();
+      text_warning_wrapped("%s", final_mesh_text(status).c_str());
       if (!status.above_size_reason.empty())
         ImGui::TextWrapped("Above the size: %s", status.above_size_reason.c_str());
     }
@@ -821,9 +826,7 @@ void stats_window(const ViewerStatus& status, PanelState* panel) {
   // A level before the last may break the run's thresholds (tets not yet collapsed):
   // what Save would write, as `tetlod lod` says it.
   if (!status.stats_breaks.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-    ImGui::TextWrapped("this level: %s", status.stats_breaks.c_str());
-    ImGui::PopStyleColor();
+    text_warning_wrapped("this level: %s", status.stats_breaks.c_str());
   }
   const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                 ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY |
