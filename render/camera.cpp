@@ -126,7 +126,7 @@ class Framer {
 
  private:
   // Moves the camera along the screen's right (or up, `y`) until the corners' lowest
-  // (`edge` -1), highest (1) or middle (0) normalised x (or y) is `goal`. Each corner's
+  // (`edge` -1) or highest (1) normalised x (or y) is `goal`. Each corner's
   // falls steadily as the camera moves that way, at a rate its depth sets (a deep box's
   // near and far corners move at very different rates, so no one step size would do):
   // found by bisection, within moves that take every corner across the picture twice.
@@ -139,7 +139,7 @@ class Framer {
       (y ? q.dy : q.dx) = mid;
       const NdcRect r = extent(q);
       const double a = y ? r.y0 : r.x0, b = y ? r.y1 : r.x1;
-      const double at = edge < 0 ? a : edge > 0 ? b : 0.5 * (a + b);
+      const double at = edge < 0 ? a : b;
       (at > goal ? lo : hi) = mid;
     }
     (y ? p->dy : p->dx) = 0.5 * (lo + hi);
