@@ -390,6 +390,12 @@ float legend_scale(const DrawSettings& settings, int width, int height) {
 // The legend's measures, in font pixels.
 constexpr float kLegendMargin = 6, kLegendLine = 11, kLegendPad = 3, kLegendBar = 8;
 
+// The height the colour bar's panel takes at the bottom, with one more margin above it
+// (which keeps the model clear of it), in pixels.
+float bar_band_pixels(float scale) {
+  return (2 * kLegendMargin + kLegendLine + kLegendBar + kLegendPad) * scale + 2;
+}
+
 }  // namespace
 
 bool Renderer::bar_fits(const DrawSettings& settings, int width, int height) const {
@@ -399,9 +405,7 @@ bool Renderer::bar_fits(const DrawSettings& settings, int width, int height) con
   const float scale = legend_scale(settings, width, height);
   const float numbers = text_pixels(format_value(settings.range_min), scale) +
                         text_pixels(format_value(settings.range_max), scale) + 6 * scale;
-  return numbers <= 0.5f * float(width) &&
-         (2 * kLegendMargin + kLegendLine + kLegendBar + kLegendPad) * scale + 2 <=
-             float(height) / 3;
+  return numbers <= 0.5f * float(width) && bar_band_pixels(scale) <= float(height) / 3;
 }
 
 Renderer::KeyLayout Renderer::key_layout(const DrawSettings& settings, int width,
@@ -460,9 +464,7 @@ LegendSpace Renderer::legend_space(const DrawSettings& settings, int width, int 
   const float scale = legend_scale(settings, width, height);
   const float margin = kLegendMargin * scale;
   // Each with one more margin, which keeps the model clear of it.
-  if (bar_fits(settings, width, height))
-    space.bottom =
-        ((2 * kLegendMargin + kLegendLine + kLegendBar + kLegendPad) * scale + 2) / float(height);
+  if (bar_fits(settings, width, height)) space.bottom = bar_band_pixels(scale) / float(height);
   const KeyLayout key = key_layout(settings, width, height);
   if (!key.lines.empty()) {
     space.key_width =
