@@ -64,28 +64,34 @@ struct Placement {
   double distance = 0, dx = 0, dy = 0;
 };
 
+// Frames the box [lo, hi]'s corners, or `points` (within the box) if there are any.
 class Framer {
  public:
   Framer(const Vec3& lo, const Vec3& hi, const Vec3& back, const Vec3& side, const Vec3& screen_up,
-         double tan_half_x, double tan_half_y)
-      : lo_(lo),
-        hi_(hi),
-        back_(back),
-        side_(side),
-        up_(screen_up),
-        tx_(tan_half_x),
-        ty_(tan_half_y),
-        min_distance_(1.25 * 0.5 * length(hi - lo)) {}
+         double tan_half_x, double tan_half_y, const std::vector<Vec3>& points = {})
+      : tx_(tan_half_x), ty_(tan_half_y), min_distance_(1.25 * 0.5 * length(hi - lo)) {
+    // In the camera's frame (right, up, towards the eye), from the box's centre: a
+    // placement's extent is then three subtractions and two divisions a point.
+    const Vec3 center = 0.5 * (lo + hi);
+    const auto add = [&](const Vec3& p) {
+      const Vec3 v = p - center;
+      frame_.push_back({dot(v, side), dot(v, screen_up), dot(v, back)});
+    };
+    if (points.empty()) {
+      for (int k = 0; k < 8; ++k)
+        add(Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z});
+    } else {
+      frame_.reserve(points.size());
+      for (const Vec3& p : points) add(p);
+    }
+  }
 
-  // Where the box's corners are in the picture from `p`.
+  // Where the corners (or points) are in the picture from `p`.
   NdcRect extent(const Placement& p) const {
-    const Vec3 eye = 0.5 * (lo_ + hi_) + back_ * p.distance + side_ * p.dx + up_ * p.dy;
     NdcRect r{1e300, -1e300, 1e300, -1e300};
-    for (int k = 0; k < 8; ++k) {
-      const Vec3 v =
-          Vec3{k & 1 ? hi_.x : lo_.x, k & 2 ? hi_.y : lo_.y, k & 4 ? hi_.z : lo_.z} - eye;
-      const double depth = -dot(v, back_);
-      const double x = dot(v, side_) / (depth * tx_), y = dot(v, up_) / (depth * ty_);
+    for (const Vec3& f : frame_) {
+      const double depth = p.distance - f.z;
+      const double x = (f.x - p.dx) / (depth * tx_), y = (f.y - p.dy) / (depth * ty_);
       r = {std::min(r.x0, x), std::max(r.x1, x), std::min(r.y0, y), std::max(r.y1, y)};
     }
     return r;
@@ -145,7 +151,7 @@ class Framer {
     (y ? p->dy : p->dx) = 0.5 * (lo + hi);
   }
 
-  Vec3 lo_, hi_, back_, side_, up_;
+  std::vector<Vec3> frame_;  // the corners or points: right, up and back of the centre
   double tx_, ty_;
   double min_distance_;  // every corner at least a quarter of the half diagonal ahead
 };
@@ -197,7 +203,8 @@ Camera frame_camera(const Vec3& lo, const Vec3& hi, const Vec3& direction, const
 }
 
 PictureFraming frame_picture(const Vec3& lo, const Vec3& hi, ViewDirection view, int width,
-                             int height, const LegendSpace& legend) {
+                             int height, const LegendSpace& legend,
+                             const std::vector<Vec3>& points) {
   Vec3 direction, up;
   view_axes(view, &direction, &up);
   Camera camera;
@@ -220,7 +227,7 @@ PictureFraming frame_picture(const Vec3& lo, const Vec3& hi, ViewDirection view,
   const auto fit_in = [&](const PixelRect& r) {
     const double aspect = double(r.width) / r.height;
     const Framer framer(lo, hi, back, side, screen_up, tan_half * std::max(aspect, 1.0),
-                        tan_half / std::min(aspect, 1.0));
+                        tan_half / std::min(aspect, 1.0), points);
     Fit f;
     f.at = {1.02 * radius / std::sin(std::atan(tan_half)), 0, 0};
     framer.scale_to({-1, 1, -1, 1}, &f.at);

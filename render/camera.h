@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "core/vec3.h"
 
@@ -57,12 +58,15 @@ Camera frame_camera(const Vec3& lo, const Vec3& hi, const Vec3& direction, const
 // shows the model larger, where the key would cover it), its picture shifted so that the
 // corners are centred there (Camera::shift_x, a lens shift: moving the camera would turn
 // the view), and the scene is drawn in `scene`, that part. A flat board fills it.
+// Given the `points` drawn (within the box), it frames them instead of the box's
+// corners: a round model fills the picture, not its box.
 struct PictureFraming {
   Camera camera;
   PixelRect scene;
 };
 PictureFraming frame_picture(const Vec3& lo, const Vec3& hi, ViewDirection view, int width,
-                             int height, const LegendSpace& legend = {});
+                             int height, const LegendSpace& legend = {},
+                             const std::vector<Vec3>& points = {});
 
 // A camera at `eye` looking at `target` (z up, or y up when looking along z); near
 // and far from the box [lo, hi]. Precondition: eye != target.

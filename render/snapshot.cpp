@@ -51,7 +51,14 @@ PictureFraming snapshot_framing(const PreparedMesh& mesh, const SurfaceBuffers& 
     }
   }
   if (view.custom) return {look_at_camera(view.eye, view.target, lo, hi), {0, 0, width, height}};
-  return frame_picture(lo, hi, view.direction, width, height, legend);
+  // The drawn faces' corners, so that a round model fills the picture, not its box.
+  std::vector<Vec3> points;
+  if (buffers.has_drawn_bounds) {
+    points.reserve(buffers.triangles.size());
+    for (const SurfaceVertex& v : buffers.triangles)
+      points.push_back({v.position[0], v.position[1], v.position[2]});
+  }
+  return frame_picture(lo, hi, view.direction, width, height, legend, points);
 }
 
 Status check_drawable(const TetMesh& mesh) {

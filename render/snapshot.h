@@ -45,8 +45,8 @@ struct SnapshotSettings {
 
 // The camera `view` gives for `buffers` in a width x height picture, and the part of it
 // the scene is drawn in (render::frame_picture(), clear of the `legend`; the whole
-// picture for a custom camera): framed on the drawn tets' bounds (what a cut leaves),
-// else the shown materials', else the whole mesh's.
+// picture for a custom camera): framed on the drawn faces (what a cut leaves), else
+// the shown materials' bounds, else the whole mesh's.
 PictureFraming snapshot_framing(const PreparedMesh& mesh, const SurfaceBuffers& buffers,
                                 const ViewSpec& view, int width, int height,
                                 const LegendSpace& legend = {});

@@ -394,6 +394,44 @@ TEST(Legend, TheModelStandsClearOfTheLegend) {
   EXPECT_GT(model_pixels_under_legend("motor.mesh", 800, 800, ColorMode::kMaterial, false), 100u);
 }
 
+// A picture of its own frames what is drawn, not its box: the motor without its air (a
+// cylinder, whose box's corners stand well clear of it in the iso view) spans 94 % of the
+// picture's width or height, with a margin on every side (framed by the box's corners,
+// it spanned 68-73 %).
+TEST(Framing, ARoundModelFillsItsPicture) {
+  Renderer* renderer = Offscreen::get().renderer();
+  ASSERT_TRUE(renderer) << Offscreen::get().error();
+  const PreparedMesh& mesh = Offscreen::get().mesh("motor.mesh");
+  for (const auto& [width, height] : {std::pair{400, 400}, std::pair{480, 300}}) {
+    SurfaceFilter filter;
+    filter.hidden_materials = {1};
+    SurfaceBuffers buffers;
+    build_surface(mesh.surface_input(), filter, &buffers);
+    renderer->upload(buffers);
+    DrawSettings draw;
+    draw.legend = false;
+    const PictureFraming framing = snapshot_framing(mesh, buffers, ViewSpec{}, width, height);
+    ASSERT_TRUE(renderer->draw(draw, framing.camera, width, height, &framing.scene))
+        << renderer->last_error();
+    const Image image = renderer->read_pixels();
+    int x0 = width, x1 = -1, y0 = height, y1 = -1;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        if (image.pixel(x, y)[0] != 255 || image.pixel(x, y)[1] != 255) {
+          x0 = std::min(x0, x), x1 = std::max(x1, x);
+          y0 = std::min(y0, y), y1 = std::max(y1, y);
+        }
+    ASSERT_GE(x1, 0) << width << "x" << height << ": nothing drawn";
+    const double span = std::max(double(x1 - x0 + 1) / width, double(y1 - y0 + 1) / height);
+    EXPECT_GT(span, 0.92) << width << "x" << height;
+    EXPECT_LT(span, 0.96) << width << "x" << height;
+    EXPECT_GT(x0, 0);
+    EXPECT_GT(y0, 0);
+    EXPECT_LT(x1, width - 1);
+    EXPECT_LT(y1, height - 1);
+  }
+}
+
 // A picture too small for the legend leaves it out (its numbers would overprint):
 // nothing of it is drawn or kept clear of.
 TEST(Legend, APictureTooSmallForTheLegendHasNone) {
