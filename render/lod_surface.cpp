@@ -7,6 +7,15 @@
 #include "core/metrics.h"
 
 namespace tetlod::render {
+namespace {
+
+// The face table's part a bulk insertion (LodSurface::reset()) fills at a time: about
+// what a core's second-level cache holds.
+constexpr size_t kPartBytes = size_t(1) << 20;
+// Faces a bulk insertion sorts at a time (20 bytes each, twice).
+constexpr size_t kBatchFaces = size_t(1) << 19;
+
+}  // namespace
 
 std::vector<DirtyRange> LodSurface::take_ranges(std::vector<uint32_t>* slots, size_t slot_vertices,
                                                 size_t vertex_count) {
@@ -44,6 +53,14 @@ size_t LodSurface::FaceTable::home(const FaceKey& k) const {
   const uint64_t spread = (uint64_t(k.v[1]) * 0x9e3779b1u ^ uint64_t(k.v[2]) * 0x85ebca6bu) >> 7;
   const uint64_t sum = uint64_t(k.v[0]) + k.v[1] + k.v[2];
   return static_cast<size_t>(((sum * scale_) >> 32) + (spread & 15)) & mask_;
+}
+
+size_t LodSurface::FaceTable::parts(size_t part_bytes) {
+  // Buckets (a power of two) per part: halved until a part fits part_bytes.
+  part_shift_ = 0;
+  while ((size_t(1) << part_shift_) < buckets_.size()) ++part_shift_;
+  while (part_shift_ > 4 && (size_t(1) << part_shift_) * sizeof(Bucket) > part_bytes) --part_shift_;
+  return buckets_.size() >> part_shift_;
 }
 
 void LodSurface::FaceTable::clear(size_t expected_faces, size_t vertex_count) {
@@ -284,8 +301,11 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
   highlight_tets_.clear();
   triangle_dirty_.clear();  // every slot written below is marked again
   highlight_dirty_.clear();
-  // Two passes, so that interior faces are never drawn and then removed: count
-  // the owners of every face, then give the faces with one owner their slots.
+  // Interior faces are never drawn and then removed: every face is counted first, and
+  // the faces one visible tet has get their slots after. The faces go into the table in
+  // batches, each sorted by the part of the table its homes fall in and put in part by
+  // part, so that a part's buckets (kPartBytes) stay in cache while it fills (in tet
+  // order, nearly every insertion missed the cache: 2.3 us a tet on a 1.1M-tet motor).
   const std::vector<Vec3>& p = *state.positions;
   for (uint32_t t = 0; t < n; ++t) {
     if (!tet_visible(state, t)) continue;
@@ -296,17 +316,50 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
     size_[t] = static_cast<float>(shape.size);
     in_[t] = 1;
     ++visible_count_;
-    for (int corner = 0; corner < 4; ++corner) {
-      FaceEntry& entry = *faces_.insert(face_key(t, corner));
-      (entry.owners[0] == kInvalidIndex ? entry.owners[0] : entry.owners[1]) = 4 * t + corner;
+  }
+  struct Staged {
+    FaceKey key;
+    uint32_t owner;  // 4 * tet + corner
+    uint32_t part;
+  };
+  const size_t parts = faces_.parts(kPartBytes);
+  std::vector<Staged> batch, sorted;
+  batch.reserve(std::min(kBatchFaces, 4 * visible_count_));
+  std::vector<uint32_t> part_begin(parts + 1);
+  std::vector<uint8_t> drawn(4 * size_t(n), 0);  // per owner: its face has one visible tet
+  for (uint32_t t = 0; t < n;) {
+    batch.clear();
+    for (; t < n && batch.size() + 4 <= kBatchFaces; ++t) {
+      if (!in_[t]) continue;
+      for (uint32_t corner = 0; corner < 4; ++corner) {
+        const FaceKey key = face_key(t, int(corner));
+        batch.push_back({key, 4 * t + corner, uint32_t(faces_.part(key))});
+      }
+    }
+    std::fill(part_begin.begin(), part_begin.end(), 0);
+    for (const Staged& f : batch) ++part_begin[f.part + 1];
+    for (size_t k = 0; k < parts; ++k) part_begin[k + 1] += part_begin[k];
+    sorted.resize(batch.size());
+    for (const Staged& f : batch) sorted[part_begin[f.part]++] = f;
+    for (const Staged& f : sorted) {
+      FaceEntry& entry = *faces_.insert(f.key);
+      if (entry.owners[0] == kInvalidIndex) {
+        entry.owners[0] = f.owner;
+        drawn[f.owner] = 1;
+      } else {
+        entry.owners[1] = f.owner;
+        drawn[entry.owners[0]] = 0;
+      }
     }
   }
+  batch = {};
+  sorted = {};
   for (uint32_t t = 0; t < n; ++t) {
     if (!in_[t]) continue;
     for (int corner = 0; corner < 4; ++corner) {
+      if (!drawn[4 * size_t(t) + size_t(corner)]) continue;
       const FaceKey key = face_key(t, corner);
-      FaceEntry& entry = *faces_.find(key);
-      if (entry.owners[1] == kInvalidIndex) refresh_face(key, &entry);
+      refresh_face(key, faces_.find(key));
     }
     if (filter_.highlight && stretch_[t] < filter_.highlight_below) add_highlight(t);
   }

@@ -100,6 +100,11 @@ class LodSurface {
     }
     FaceEntry* insert(const FaceKey& key);  // finds, or adds an empty entry
     void erase(const FaceKey& key);
+    // Splits the buckets into parts of at most `part_bytes` (at least 16 buckets
+    // each), in order; their number. part() is then the part a key's home is in (until
+    // the table grows).
+    size_t parts(size_t part_bytes);
+    size_t part(const FaceKey& key) const { return home(key) >> part_shift_; }
 
    private:
     struct Bucket {
@@ -112,6 +117,7 @@ class LodSurface {
     size_t mask_ = 0;
     size_t size_ = 0;
     uint64_t scale_ = 0;  // 2^32 * buckets / vertex_count
+    int part_shift_ = 0;  // log2 of the buckets of a part
   };
 
   bool tet_visible(const LodState& state, uint32_t tet) const;
