@@ -2,6 +2,7 @@
 // neighbours of each tet. Both are rebuilt from the flat arrays whenever needed.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -20,6 +21,14 @@ struct VertexTets {
 };
 
 VertexTets build_vertex_tets(const TetMesh& mesh);
+
+// Whether the tets round an edge (a, b), whose ends' stars hold star_a and star_b tets,
+// are better found in b's star than in a's: only where a's is far larger (a node every
+// tet of a fan has; walking its star for each of its edges takes time quadratic in its
+// valence). Stars of tens of tets, as meshes have, always give a's (and its order).
+inline bool ring_from_other_end(size_t star_a, size_t star_b) {
+  return star_a > 512 && star_a > 4 * star_b;
+}
 
 // What went wrong while matching tet faces, if anything.
 struct FaceProblem {

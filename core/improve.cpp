@@ -282,8 +282,9 @@ class Improver {
       return false;
     uint32_t ring[kMaxRing];
     int n = 0;
-    for (uint32_t t : star_[a])
-      if (tet_has(mesh_.tets[t], b)) {
+    const bool from_b = ring_from_other_end(star_[a].size(), star_[b].size());
+    for (uint32_t t : star_[from_b ? b : a])
+      if (tet_has(mesh_.tets[t], from_b ? a : b)) {
         if (n == kMaxRing) return false;
         ring[n++] = t;
       }
@@ -422,9 +423,16 @@ class Improver {
     const Tet tet = mesh_.tets[t];
     const uint32_t p = tet[f];
     const uint32_t u[3] = {tet[kTetFace[f][0]], tet[kTetFace[f][1]], tet[kTetFace[f][2]]};
+    // The tet on the face's other side (at most one), from the smallest of its corners'
+    // stars (a node every tet of a fan has: walking its star for each of its faces took
+    // time quadratic in its valence).
+    int c0 = 0;
+    for (int k = 1; k < 3; ++k)
+      if (star_[u[k]].size() < star_[u[c0]].size()) c0 = k;
+    const uint32_t c1 = u[(c0 + 1) % 3], c2 = u[(c0 + 2) % 3];
     uint32_t other = kInvalidIndex;
-    for (uint32_t s : star_[u[0]])
-      if (s != t && tet_has(mesh_.tets[s], u[1]) && tet_has(mesh_.tets[s], u[2])) other = s;
+    for (uint32_t s : star_[u[c0]])
+      if (s != t && tet_has(mesh_.tets[s], c1) && tet_has(mesh_.tets[s], c2)) other = s;
     // Each pair is tried once, from its smaller tet (new tets come last).
     if (other == kInvalidIndex || other < t) return false;
     const int32_t material = mesh_.materials[t];
@@ -437,8 +445,9 @@ class Improver {
     uint32_t q = kInvalidIndex;
     for (uint32_t w : mesh_.tets[other])
       if (w != u[0] && w != u[1] && w != u[2]) q = w;
-    for (uint32_t s : star_[p])
-      if (tet_has(mesh_.tets[s], q)) return false;  // already an edge
+    const bool from_q = star_[q].size() < star_[p].size();
+    for (uint32_t s : star_[from_q ? q : p])
+      if (tet_has(mesh_.tets[s], from_q ? p : q)) return false;  // already an edge
     // pq crosses the triangle u inside iff the three tets around it turn the same way.
     const auto& pos = mesh_.positions;
     double side[3];

@@ -1408,8 +1408,9 @@ class Engine {
         continue;
       }
       ring.clear();
-      for (uint32_t t : star_[e.a])
-        if (tet_has(tet_[t].v, e.b)) ring.push_back(t);
+      const bool from_b = ring_from_other_end(star_[e.a].size(), star_[e.b].size());
+      for (uint32_t t : star_[from_b ? e.b : e.a])
+        if (tet_has(tet_[t].v, from_b ? e.a : e.b)) ring.push_back(t);
       if (ring.empty()) continue;  // already split
 
       const Vec3 m = (pos_[e.a] + pos_[e.b]) * 0.5;
@@ -2105,6 +2106,14 @@ class Engine {
     bool surface_edge = false;
     if (a_on && b_on && ka == FeatureKind::kCorner && kb == FeatureKind::kCorner)
       return Reject::kTopology;
+    // The new node keeps every neighbour of either end but the other end and the
+    // common ones, which are at most all but one of the other end's: its valence is at
+    // least the larger end's less one. With an interior end nothing is checked before
+    // the valence, so this rejects what the walk below would, as it would count it,
+    // without walking a star of thousands of tets (a node every tet of a fan has).
+    if ((!a_on || !b_on) &&
+        std::max(state_[a].valence, state_[b].valence) > params_.max_valence + 1)
+      return Reject::kValence;
     gather_first_end(a, b);
     if (a_on && b_on) {
       // The paper's rule: an interior edge joining two surface nodes is never collapsed.

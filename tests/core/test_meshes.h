@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <random>
 #include <set>
 #include <utility>
@@ -81,6 +82,43 @@ inline TetMesh make_needle_star(int needles, uint32_t seed) {
     star.materials.push_back(1);
   }
   return star;
+}
+
+// A fan: vertex 0 at the origin, joined to every triangle of a sphere of radius 1 (an
+// octahedron's faces each cut into k x k triangles, pushed out to the sphere): 8 k^2
+// tets, all of material 1, all sharing vertex 0, whose valence is 4 k^2 + 2.
+inline TetMesh make_fan(int k) {
+  TetMesh fan;
+  fan.positions.push_back({0, 0, 0});
+  std::map<std::array<long, 3>, uint32_t> ids;  // by the point's rounded coordinates
+  const auto vertex = [&](const Vec3& p) {
+    const Vec3 q = p * (1 / length(p));
+    const std::array<long, 3> key{std::lround(q.x * 1e9), std::lround(q.y * 1e9),
+                                  std::lround(q.z * 1e9)};
+    const auto [it, added] = ids.emplace(key, static_cast<uint32_t>(fan.positions.size()));
+    if (added) fan.positions.push_back(q);
+    return it->second;
+  };
+  for (int octant = 0; octant < 8; ++octant) {
+    const Vec3 x{octant & 1 ? -1.0 : 1.0, 0, 0}, y{0, octant & 2 ? -1.0 : 1.0, 0},
+        z{0, 0, octant & 4 ? -1.0 : 1.0};
+    // Point (i, j) of the face: i steps from x towards y, j from x towards z.
+    const auto at = [&](int i, int j) {
+      return vertex(x + (y - x) * (double(i) / k) + (z - x) * (double(j) / k));
+    };
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; i + j < k; ++j) {
+        std::vector<std::array<uint32_t, 3>> triangles{{at(i, j), at(i + 1, j), at(i, j + 1)}};
+        if (i + j + 1 < k) triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+        for (const auto& tri : triangles) {
+          Tet t{0, tri[0], tri[1], tri[2]};
+          if (signed_volume6(fan, t) < 0) std::swap(t[2], t[3]);
+          fan.tets.push_back(t);
+          fan.materials.push_back(1);
+        }
+      }
+  }
+  return fan;
 }
 
 // The number of edge neighbours of each vertex.

@@ -234,6 +234,37 @@ TEST(Simplify, CountsEvaluationsByWhereTheyHappen) {
   EXPECT_GT(r.evaluations.sweep, 0u);
 }
 
+// A node every tet has (a fan of 1152 tets round vertex 0, of valence 578): its edges
+// are rejected for the valence without a walk of its star, and counted so, and its long
+// edges are split from their other end's star (each walk of the big star for one edge
+// made both time quadratic in its valence: 82k tets took 15 s). The result is a valid
+// mesh that keeps the guarantee.
+TEST(Simplify, AFanRoundANodeOfThousandsOfTets) {
+  const TetMesh fan = test::make_fan(12);
+  ASSERT_EQ(fan.tet_count(), 1152u);
+  SimplifyParams p;
+  p.sizing.uniform = 0.9;  // the spokes (1 long) are split, the sphere's edges are short
+  p.min_stretch = 0.01;
+  p.max_valence = 25;
+  p.tolerance = 0.01;
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(fan, p, &r));
+  EXPECT_GT(r.splits, 0u);
+  EXPECT_EQ(r.violations.created, 0u);
+  for (TetMesh m : {r.base, r.output}) {
+    ValidationReport report;
+    EXPECT_TRUE(validate_mesh(&m, "fan", {}, &report).ok());
+  }
+  // Every edge of vertex 0 (interior, far past the valence) was rejected for it, at the
+  // start at least.
+  // (The base is renumbered: the centre is found by its position.)
+  const auto centre = std::find(r.base.positions.begin(), r.base.positions.end(), Vec3{0, 0, 0});
+  ASSERT_NE(centre, r.base.positions.end());
+  const uint32_t centre_edges = test::valences(r.base)[size_t(centre - r.base.positions.begin())];
+  EXPECT_EQ(centre_edges, 578u);  // a split spoke's midpoint takes its outer end's place
+  EXPECT_GE(r.rejections.valence, centre_edges);
+}
+
 // Subdivision counts the long edges it leaves unsplit by what stopped it, and the
 // final mesh's tets above the size are explained by them.
 TEST(Simplify, CountsUnsplitEdgesByReasonAndExplainsTetsAboveTheSize) {
