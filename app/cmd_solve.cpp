@@ -17,6 +17,9 @@
 namespace tetlod::app {
 namespace {
 
+// Above this many nodes, --solver direct gets a note on its time.
+constexpr size_t kDirectNoteNodes = 20000;
+
 constexpr const char* kSolveUsage =
     "usage: tetlod solve MESH --conductor M=V[,M=V...] [--ground boundary|M[,...]]\n"
     "                    [--eps M=E[,M=E...]] [-o FIELD.vtu [--vtk-binary]]\n"
@@ -37,7 +40,8 @@ constexpr const char* kSolveUsage =
     "  Abaqus set): --conductor inner_conductor=1 --ground shield\n"
     "  -o FIELD.vtu         write the potential (point data) and |E| (cell data) for ParaView\n"
     "  --vtk-binary         write it with raw appended binary data (default: ASCII)\n"
-    "  --solver S           auto (direct up to 2000 unknowns, else cg), direct, cg\n"
+    "  --solver S           auto (direct up to 2000 unknowns, else cg), direct (its\n"
+    "                       time grows about as the square of the unknowns), cg\n"
     "  --preconditioner P   for cg: jacobi (default) or ic (incomplete Cholesky)\n"
     "  --tolerance T        cg stops at relative residual T (default 1e-10)\n"
     "Example, the bundled two-layer spherical capacitor:\n"
@@ -245,6 +249,16 @@ int cmd_solve(const Args& args) {
   if (const Status s = check_electrostatics_problem(problem, mesh); !s) {
     std::fprintf(stderr, "tetlod solve: %s\n", s.message().c_str());
     return kExitUsage;
+  }
+  // A sparse LDL^T of a 3D mesh's matrix grows about as the square of its unknowns in
+  // time (docs/PERFORMANCE.md): asked for on a large mesh, say so before it starts.
+  if (options.method == SolverMethod::kDirect && mesh.vertex_count() > kDirectNoteNodes) {
+    std::fprintf(stderr,
+                 "tetlod solve: note: --solver direct on %zu nodes: its time grows about as "
+                 "the square of the unknowns (about a minute at 57,000 unknowns on our "
+                 "machines, unfinished after nine at 280,000); cg (auto's choice above 2000) takes "
+                 "seconds\n",
+                 mesh.vertex_count());
   }
   const auto start = std::chrono::steady_clock::now();
   ElectrostaticsSolution solution;

@@ -1752,6 +1752,36 @@ TEST(Cli, SolveSpheresPrintsCapacitanceAndWritesTheField) {
   EXPECT_NE(cg.output.find("iterations"), std::string::npos) << cg.output;
 }
 
+// --solver direct on a mesh of more than 20000 nodes says, before it starts, that its
+// time grows as the square of the unknowns (a user forced it on 280,000 and waited ten
+// minutes); below that, and with auto, nothing. (The conductors here touch the ground,
+// an error found before any factoring: the note is about the choice, made first.)
+TEST(Cli, DirectSolverOnALargeMeshIsNoted) {
+  const auto write = [](int cells, const std::string& name) {
+    const TetMesh mesh = test::make_grid_mesh(
+        cells, cells, cells, [cells](int i, int, int) { return i < cells / 2 ? 1 : 2; }, 0.5);
+    const std::string path = out_dir() + "/" + name;
+    EXPECT_TRUE(write_mesh(path, mesh).ok());
+    return path;
+  };
+  const std::string large = write(27, "direct_large.mesh");  // 28^3 = 21952 nodes
+  const std::string small = write(26, "direct_small.mesh");  // 27^3 = 19683
+  const std::string note =
+      "note: --solver direct on 21952 nodes: its time grows about as the "
+      "square of the unknowns";
+  const CommandResult forced =
+      run("solve " + large + " --conductor 1=1 --ground 2 --solver direct");
+  EXPECT_NE(forced.output.find(note), std::string::npos) << forced.output;
+  EXPECT_NE(forced.output.find("touches material 2"), std::string::npos) << forced.output;
+  for (const std::string& command :
+       {"solve " + large + " --conductor 1=1 --ground 2",
+        "solve " + small + " --conductor 1=1 --ground 2 --solver direct"}) {
+    const CommandResult quiet = run(command);
+    EXPECT_EQ(quiet.output.find("--solver direct on"), std::string::npos) << quiet.output;
+    EXPECT_NE(quiet.output.find("touches material 2"), std::string::npos) << quiet.output;
+  }
+}
+
 TEST(Cli, SolveBadValuesNameTheFlagAndValue) {
   const std::string path = write_grid("solve.mesh");  // materials 1 (x < 1) and 2
   const std::string field = out_dir() + "/solve_bad.vtu";
