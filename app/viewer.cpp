@@ -521,9 +521,10 @@ class Viewer {
   bool script_mouse_ = false;  // a script's 'mouse X Y' holds the pointer at this place
   float script_mouse_x_ = 0, script_mouse_y_ = 0;
   Clock::time_point wait_until_;
-  int pending_job_line_ = 0;    // the open/simplify line whose job must succeed
-  bool wait_for_job_ = true;    // the script waits for a running job to finish
-  bool wait_for_solve_ = true;  // and for a running solve
+  int pending_job_line_ = 0;           // the open/simplify line whose job must succeed
+  bool wait_for_job_ = true;           // the script waits for a running job to finish
+  bool wait_for_solve_ = true;         // and for a running solve
+  bool started_without_wait_ = false;  // a simplify or solve line had wait=0
   bool quit_ = false;
   int exit_code_ = kExitOk;
   struct Bench {
@@ -2128,10 +2129,19 @@ Status Viewer::run_action(const ScriptAction& a) {
       if (!last_job_error_.empty()) return Status::error(ui::script_error_text(last_job_error_));
       wait_for_job_ = a.flag;
       pending_job_line_ = a.flag ? a.line : 0;
+      started_without_wait_ |= !a.flag;
       break;
     case Kind::kCancel:
-      if ((!job_ || job_->is_load) && !solve_job_)
-        return Status::error("no simplification or solve is running");
+      if ((!job_ || job_->is_load) && !solve_job_) {
+        // A run started with wait=0 may have ended before this line (it depends on the
+        // machine's speed): then there is nothing to cancel, and the script goes on.
+        if (!started_without_wait_) return Status::error("no simplification or solve is running");
+        std::fprintf(stderr,
+                     "tetlod view: %s:%d: note: nothing to cancel: what ran with wait=0 had "
+                     "ended (its result stays)\n",
+                     options_.script_name.c_str(), a.line);
+        break;
+      }
       if (job_ && !job_->is_load) {
         job_->cancel = true;
         wait_for_job_ = true;
@@ -2211,6 +2221,7 @@ Status Viewer::run_action(const ScriptAction& a) {
     }
     case Kind::kSolve: {
       wait_for_solve_ = a.count != 0;
+      started_without_wait_ |= a.count == 0;
       const Status s = start_solve(a.flag ? 0 : a.line);
       if (a.flag && !s) analysis_error_ = s.message();
       return a.flag ? Status() : s;

@@ -22,7 +22,8 @@
 //                                    unless wait=0: then the next actions run meanwhile)
 //   cancel                           cancel a running simplification and/or solve (waits
 //                                    until the workers have stopped; the previous result
-//                                    stays)
+//                                    stays); with none running, an error, unless one was
+//                                    started with wait=0 (it has ended: a note)
 //   scrub step=K | elements=N | end  move the LOD to a step / nearest level (waits)
 //   cut x|y|z=VALUE [flip] | cut off
 //   hide M | show M                  material visibility, by id or by the mesh's name for

@@ -453,6 +453,29 @@ TEST(ViewerWindow, OpeningAFileSaysTheRunningSimplificationWasCancelled) {
       << run.output;
 }
 
+// Cancel after a run started with wait=0 has ended (on a fast machine, before the line
+// is reached) is a note and the script goes on; with nothing ever started, an error.
+TEST(ViewerWindow, CancelAfterARunEndedIsANote) {
+  const fs::path dir = fresh_output_dir("viewer_cancel_ended");
+  std::ofstream(dir / "ended.script") << "thresholds size=12\nsimplify wait=0\nwait done\n"
+                                         "cancel\nsave run.tlh\nquit\n";
+  const ViewerRun ended =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 480x320 --script ended.script");
+  EXPECT_EQ(ended.exit_code, 0) << ended.output;
+  EXPECT_NE(ended.output.find("ended.script:4: note: nothing to cancel: what ran with wait=0 had "
+                              "ended (its result stays)"),
+            std::string::npos)
+      << ended.output;
+  EXPECT_TRUE(fs::exists(dir / "run.tlh"));
+  std::ofstream(dir / "none.script") << "cancel\nquit\n";
+  const ViewerRun none =
+      run_viewer(dir, "'" + kSource + "/assets/box2.mesh' --size 480x320 --script none.script");
+  EXPECT_EQ(none.exit_code, 1) << none.output;
+  EXPECT_NE(none.output.find("none.script:1: no simplification or solve is running"),
+            std::string::npos)
+      << none.output;
+}
+
 // A path that cannot be opened does not cost the running simplification: the error
 // says the run goes on (it was cancelled, and the message said another file was opened).
 TEST(ViewerWindow, OpeningAMissingFileLeavesTheRunningSimplification) {
