@@ -322,21 +322,27 @@ void LodSurface::reset(const LodState& state, const SurfaceFilter& filter) {
     uint32_t owner;  // 4 * tet + corner
     uint32_t part;
   };
-  const size_t parts = faces_.parts(kPartBytes);
   std::vector<Staged> batch, sorted;
   batch.reserve(std::min(kBatchFaces, 4 * visible_count_));
-  std::vector<uint32_t> part_begin(parts + 1);
+  std::vector<uint32_t> part_begin;
   std::vector<uint8_t> drawn(4 * size_t(n), 0);  // per owner: its face has one visible tet
   for (uint32_t t = 0; t < n;) {
+    // A batch never grows the table (it holds no more faces than the table has room
+    // for): in part order, the first parts would fill past the 70 % at which it grows,
+    // where a mesh of few shared faces (4 a tet, the table sized for 2.25) overflows
+    // them into long probe runs. So the parts, found again after a growth, hold.
+    if (faces_.room() < 4) faces_.grow();
+    const size_t limit = std::min(kBatchFaces, faces_.room());
+    const size_t parts = faces_.parts(kPartBytes);
+    part_begin.assign(parts + 1, 0);
     batch.clear();
-    for (; t < n && batch.size() + 4 <= kBatchFaces; ++t) {
+    for (; t < n && batch.size() + 4 <= limit; ++t) {
       if (!in_[t]) continue;
       for (uint32_t corner = 0; corner < 4; ++corner) {
         const FaceKey key = face_key(t, int(corner));
         batch.push_back({key, 4 * t + corner, uint32_t(faces_.part(key))});
       }
     }
-    std::fill(part_begin.begin(), part_begin.end(), 0);
     for (const Staged& f : batch) ++part_begin[f.part + 1];
     for (size_t k = 0; k < parts; ++k) part_begin[k + 1] += part_begin[k];
     sorted.resize(batch.size());

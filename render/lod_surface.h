@@ -105,6 +105,12 @@ class LodSurface {
     // the table grows).
     size_t parts(size_t part_bytes);
     size_t part(const FaceKey& key) const { return home(key) >> part_shift_; }
+    // How many more entries it takes before it grows (at 70 % full); grow() makes room.
+    size_t room() const {
+      const size_t most = buckets_.size() * 7 / 10;
+      return most > size_ ? most - size_ : 0;
+    }
+    void grow();
 
    private:
     struct Bucket {
@@ -112,7 +118,6 @@ class LodSurface {
       FaceEntry entry;
     };
     size_t home(const FaceKey& k) const;
-    void grow();
     std::vector<Bucket> buckets_;
     size_t mask_ = 0;
     size_t size_ = 0;

@@ -12,6 +12,7 @@
 #include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/simplify.h"
+#include "core/test_meshes.h"
 #include "render/lod_surface.h"
 #include "render/snapshot.h"
 
@@ -114,6 +115,34 @@ TEST(LodSurface, MatchesWithAHiddenMaterialCutAndHighlight) {
   filter.highlight = true;
   filter.highlight_below = 0.35;
   walk_history(filter);
+}
+
+// reset() puts the faces into its table in batches of 2^19 (a grid of 162,000 tets
+// takes two), and a mesh of no shared faces (needles touching at one point: 4 faces a
+// tet, the table sized for about 2.25) grows the table between batches (filled in part
+// order past the point where it grows, its first parts overflowed into long probe runs:
+// 7 s here): both draw what a full build draws.
+TEST(LodSurface, ResetsInBatchesAndGrowsItsTableBetweenThem) {
+  const CollapseHistory none;
+  const TetMesh grid = test::make_grid_mesh(
+      30, 30, 30, [](int i, int j, int) { return i < 15   ? 1
+                                                 : j < 10 ? 2
+                                                          : 3; }, 0.1);
+  ASSERT_GT(4 * grid.tet_count(), size_t(1) << 19);
+  for (const TetMesh& mesh : {grid, test::make_needle_star(140000, 5)}) {
+    const Lod lod(mesh, &none);
+    const LodState state = lod_state(lod);
+    LodSurface surface;
+    SurfaceFilter filter;
+    surface.reset(state, filter);
+    expect_same_as_full_build(lod, surface, filter, std::to_string(mesh.tet_count()) + " tets");
+    filter.hidden_materials = {2};
+    filter.highlight = true;
+    filter.highlight_below = 0.5;
+    surface.reset(state, filter);
+    expect_same_as_full_build(lod, surface, filter,
+                              std::to_string(mesh.tet_count()) + " tets, filtered");
+  }
 }
 
 size_t vertex_count(const std::vector<DirtyRange>& ranges) {
