@@ -2138,7 +2138,7 @@ Status Viewer::run_action(const ScriptAction& a) {
         if (!started_without_wait_) return Status::error("no simplification or solve is running");
         std::fprintf(stderr,
                      "tetlod view: %s:%d: note: nothing to cancel: what ran with wait=0 had "
-                     "ended (its result stays)\n",
+                     "ended\n",
                      options_.script_name.c_str(), a.line);
         break;
       }
