@@ -2391,6 +2391,9 @@ void Viewer::bench_frame() {
 }  // namespace
 
 int run_viewer(const ViewerOptions& options) {
+  // A line at a time, so that what it prints as it goes (the GL renderer, each run's
+  // time) can be read while it runs, also through a pipe or a file.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   Viewer viewer(options);
   return viewer.run();
 }

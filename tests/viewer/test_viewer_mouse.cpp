@@ -303,6 +303,22 @@ TEST(ViewerMouse, EnterInTheElementsBoxJumps) {
   EXPECT_NE(saved.level.tet_count(), lod.tet_count_at(saved.history.step_count()));
 }
 
+// What the viewer prints as it goes (each run's time) can be read while it runs, from
+// the file its output goes to (it came out at the end, the output being buffered).
+TEST(ViewerMouse, ItsOutputCanBeReadWhileItRuns) {
+  test::BackgroundViewer viewer;
+  ASSERT_TRUE(
+      viewer.start("viewer_output_as_it_goes", std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh",
+                   "simplify\nscreenshot a.png width=64 height=64\nwait seconds=4\nquit\n"));
+  ASSERT_TRUE(viewer.wait_for("a.png", std::chrono::seconds(60)));
+  std::this_thread::sleep_for(200ms);
+  std::ifstream log(viewer.dir() / "log.txt");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("tetlod view: simplified: "), std::string::npos) << text;
+  EXPECT_FALSE(std::filesystem::exists(viewer.dir() / "rc.txt")) << "it had already ended";
+  EXPECT_EQ(viewer.finish(std::chrono::seconds(60)), 0);
+}
+
 // The box of elements follows the level the keys go to: after Home and page down three
 // times, Enter in it jumps to that level's count, so the level stays there (without
 // following, the box held the count of the level shown when the run ended).
