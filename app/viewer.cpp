@@ -1505,7 +1505,7 @@ Viewer::TetInfo Viewer::tet_info(uint32_t tet) const {
   if (scene_->params_known) {
     info.max_valence = scene_->params.max_valence;
     info.min_stretch = scene_->params.min_stretch;
-    info.max_size = scene_->params.sizing.size_at(0.25 * (p[t[0]] + p[t[1]] + p[t[2]] + p[t[3]]),
+    info.max_size = scene_->params.sizing.size_at(tet_centroid(p[t[0]], p[t[1]], p[t[2]], p[t[3]]),
                                                   info.material);
   }
   if (field_shown() && tet < analysis_result_->tet_values.size()) {

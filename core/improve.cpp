@@ -179,7 +179,7 @@ class Improver {
 
   double size_limit(const Tet& t, int32_t material) const {
     const auto& p = mesh_.positions;
-    return params_.sizing.size_at((p[t[0]] + p[t[1]] + p[t[2]] + p[t[3]]) * 0.25, material);
+    return params_.sizing.size_at(tet_centroid(p[t[0]], p[t[1]], p[t[2]], p[t[3]]), material);
   }
 
   // True if tet t (positively oriented) meets tau_ST and its tau_SZ; its stretch in *d.
@@ -600,7 +600,7 @@ ThresholdCounts threshold_breaks(const TetMesh& mesh, const SimplifyParams& para
   for (size_t t = 0; t < mesh.tet_count(); ++t) {
     const Tet& q = mesh.tets[t];
     const TetShape shape = tet_shape(mesh, q);
-    const Vec3 centroid = (p[q[0]] + p[q[1]] + p[q[2]] + p[q[3]]) * 0.25;
+    const Vec3 centroid = tet_centroid(p[q[0]], p[q[1]], p[q[2]], p[q[3]]);
     counts.below_stretch += shape.stretch < params.min_stretch;
     counts.above_size += shape.size > params.sizing.size_at(centroid, mesh.materials[t]);
   }

@@ -23,6 +23,13 @@ struct TetShape {
 
 TetShape tet_shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
+// The centroid of a tet's corners, the same to the bit in whatever order they come
+// (each coordinate summed smallest first): a size limit read there (sizing.h) is then
+// the same wherever the tet is checked, whichever of its corners moved. (A size map's
+// value outside its mesh jumps where the tet nearest changes: summed in another order,
+// a candidate checked within its limit came out above it in the final count.)
+Vec3 tet_centroid(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
 // The square of the longest edge: tet_shape()'s size is its square root.
 inline double tet_longest_edge2(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return std::max({squared_length(b - a), squared_length(c - a), squared_length(d - a),

@@ -521,7 +521,7 @@ class Engine {
 
   double size_limit(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
                     int32_t material) const {
-    return params_.sizing.size_at((a + b + c + d) * 0.25, material);
+    return params_.sizing.size_at(tet_centroid(a, b, c, d), material);
   }
   double size_limit(uint32_t t) const {
     const Tet& q = tet_[t].v;
@@ -1979,6 +1979,12 @@ class Engine {
     }
   }
 
+  // The centroid of lane l's tet of block b with its moving corner at k.
+  static Vec3 lane_centroid(const TetBlock& b, int l, const Vec3& k) {
+    return tet_centroid({b.f0x[l], b.f0y[l], b.f0z[l]}, {b.f1x[l], b.f1y[l], b.f1z[l]},
+                        {b.f2x[l], b.f2y[l], b.f2z[l]}, k);
+  }
+
   // Fills block k of the moving tets (see gather_first_end()).
   void build_block(size_t k) {
     TetBlock& b = moving_[k];
@@ -2029,13 +2035,13 @@ class Engine {
     // d_t^2 = 6 (6V)^2 / (s^2 A^2) <= 6 (6V)^2 / (s^2 sum a^2); a tet whose bound is
     // below tau_ST^2 (with a margin far above the rounding) fails the exact test too.
     const double floor2 = params_.min_stretch * params_.min_stretch * (1 - 1e-9);
-    // size_limit(f0, f1, f2, k, material), a block at a time: the same operations.
+    // size_limit() of each lane's tet with k in place, a block at a time: the same
+    // centroid (tet_centroid(), the same in any order of the corners).
     auto region_limits = [&](TetBlock& b) {
       double cx[kLanes], cy[kLanes], cz[kLanes];  // the centroids with k in place
       for (int l = 0; l < kLanes; ++l) {
-        cx[l] = (b.f0x[l] + b.f1x[l] + b.f2x[l] + k.x) * 0.25;
-        cy[l] = (b.f0y[l] + b.f1y[l] + b.f2y[l] + k.y) * 0.25;
-        cz[l] = (b.f0z[l] + b.f1z[l] + b.f2z[l] + k.z) * 0.25;
+        const Vec3 c = lane_centroid(b, l, k);
+        cx[l] = c.x, cy[l] = c.y, cz[l] = c.z;
         b.limit[l] = b.material_limit[l];
       }
       params_.sizing.apply_regions(kLanes, cx, cy, cz, b.limit);
@@ -2063,9 +2069,8 @@ class Engine {
       for (int l = 0; l < kLanes; ++l) {
         b.limit[l] = b.material_limit[l];
         if (b.skip[l] != 0) continue;
-        cx[n] = (b.f0x[l] + b.f1x[l] + b.f2x[l] + k.x) * 0.25;
-        cy[n] = (b.f0y[l] + b.f1y[l] + b.f2y[l] + k.y) * 0.25;
-        cz[n] = (b.f0z[l] + b.f1z[l] + b.f2z[l] + k.z) * 0.25;
+        const Vec3 c = lane_centroid(b, l, k);
+        cx[n] = c.x, cy[n] = c.y, cz[n] = c.z;
         limit[n] = b.material_limit[l];
         lane[n++] = l;
       }
