@@ -1,30 +1,9 @@
 #include "core/metrics.h"
 
-#include <utility>
-
 #include <algorithm>
 #include <cmath>
 
 namespace tetlod {
-
-namespace {
-
-// a + b + c + d, smallest first (five compare-exchanges): the same for any order.
-double ordered_sum(double a, double b, double c, double d) {
-  if (b < a) std::swap(a, b);
-  if (d < c) std::swap(c, d);
-  if (c < a) std::swap(a, c);
-  if (d < b) std::swap(b, d);
-  if (c < b) std::swap(b, c);
-  return ((a + b) + c) + d;
-}
-
-}  // namespace
-
-Vec3 tet_centroid(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  return {ordered_sum(a.x, b.x, c.x, d.x) * 0.25, ordered_sum(a.y, b.y, c.y, d.y) * 0.25,
-          ordered_sum(a.z, b.z, c.z, d.z) * 0.25};
-}
 
 TetShape tet_shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 ab = b - a, ac = c - a, ad = d - a, bc = c - b, bd = d - b;

@@ -28,7 +28,20 @@ TetShape tet_shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 // the same wherever the tet is checked, whichever of its corners moved. (A size map's
 // value outside its mesh jumps where the tet nearest changes: summed in another order,
 // a candidate checked within its limit came out above it in the final count.)
-Vec3 tet_centroid(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+// (Inline and without branches, min and max: the simplifier reads it for each lane of
+// each candidate under region rules, where a call with compare-and-swap branches,
+// mispredicted half the time, made the whole run 70 % slower.)
+inline double ordered_sum(double a, double b, double c, double d) {
+  const double ab0 = std::min(a, b), ab1 = std::max(a, b);
+  const double cd0 = std::min(c, d), cd1 = std::max(c, d);
+  const double lowest = std::min(ab0, cd0), second = std::max(ab0, cd0);
+  const double third = std::min(ab1, cd1), highest = std::max(ab1, cd1);
+  return ((lowest + std::min(second, third)) + std::max(second, third)) + highest;
+}
+inline Vec3 tet_centroid(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return {ordered_sum(a.x, b.x, c.x, d.x) * 0.25, ordered_sum(a.y, b.y, c.y, d.y) * 0.25,
+          ordered_sum(a.z, b.z, c.z, d.z) * 0.25};
+}
 
 // The square of the longest edge: tet_shape()'s size is its square root.
 inline double tet_longest_edge2(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
