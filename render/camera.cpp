@@ -64,27 +64,37 @@ struct Placement {
   double distance = 0, dx = 0, dy = 0;
 };
 
-// Frames the box [lo, hi]'s corners, or `points` (within the box) if there are any.
+// The box [lo, hi]'s corners, or `points` (within the box) if there are any, in the
+// camera's frame (right, up, towards the eye) from the box's centre: a placement's
+// extent is then three subtractions and two divisions a point.
+std::vector<Vec3> camera_frame(const Vec3& lo, const Vec3& hi, const Vec3& back, const Vec3& side,
+                               const Vec3& screen_up, const std::vector<Vec3>& points = {}) {
+  std::vector<Vec3> frame;
+  const Vec3 center = 0.5 * (lo + hi);
+  const auto add = [&](const Vec3& p) {
+    const Vec3 v = p - center;
+    frame.push_back({dot(v, side), dot(v, screen_up), dot(v, back)});
+  };
+  if (points.empty()) {
+    for (int k = 0; k < 8; ++k)
+      add(Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z});
+  } else {
+    frame.reserve(points.size());
+    for (const Vec3& p : points) add(p);
+  }
+  return frame;
+}
+
+// Frames the points of `frame` (camera_frame() of the box [lo, hi]; it must outlive the
+// Framer).
 class Framer {
  public:
-  Framer(const Vec3& lo, const Vec3& hi, const Vec3& back, const Vec3& side, const Vec3& screen_up,
-         double tan_half_x, double tan_half_y, const std::vector<Vec3>& points = {})
-      : tx_(tan_half_x), ty_(tan_half_y), min_distance_(1.25 * 0.5 * length(hi - lo)) {
-    // In the camera's frame (right, up, towards the eye), from the box's centre: a
-    // placement's extent is then three subtractions and two divisions a point.
-    const Vec3 center = 0.5 * (lo + hi);
-    const auto add = [&](const Vec3& p) {
-      const Vec3 v = p - center;
-      frame_.push_back({dot(v, side), dot(v, screen_up), dot(v, back)});
-    };
-    if (points.empty()) {
-      for (int k = 0; k < 8; ++k)
-        add(Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z});
-    } else {
-      frame_.reserve(points.size());
-      for (const Vec3& p : points) add(p);
-    }
-  }
+  Framer(const std::vector<Vec3>& frame, const Vec3& lo, const Vec3& hi, double tan_half_x,
+         double tan_half_y)
+      : frame_(frame),
+        tx_(tan_half_x),
+        ty_(tan_half_y),
+        min_distance_(1.25 * 0.5 * length(hi - lo)) {}
 
   // Where the corners (or points) are in the picture from `p`.
   NdcRect extent(const Placement& p) const {
@@ -151,7 +161,7 @@ class Framer {
     (y ? p->dy : p->dx) = 0.5 * (lo + hi);
   }
 
-  std::vector<Vec3> frame_;  // the corners or points: right, up and back of the centre
+  const std::vector<Vec3>& frame_;  // the corners or points: right, up, back of the centre
   double tx_, ty_;
   double min_distance_;  // every corner at least a quarter of the half diagonal ahead
 };
@@ -175,7 +185,8 @@ Camera frame_camera(const Vec3& lo, const Vec3& hi, const Vec3& direction, const
   if (bottom > 0 || (key_w > 0 && key_h > 0)) {
     // The half fields of projection_matrix(), which fits the smaller side.
     const double tan_half = std::tan(half_fov);
-    const Framer framer(lo, hi, back, side, screen_up, tan_half * std::max(aspect, 1.0),
+    const std::vector<Vec3> corners = camera_frame(lo, hi, back, side, screen_up);
+    const Framer framer(corners, lo, hi, tan_half * std::max(aspect, 1.0),
                         tan_half / (aspect > 0 && aspect < 1 ? aspect : 1));
     // Above the colour bar.
     const NdcRect above{-1, 1, -1 + 2 * bottom, 1};
@@ -224,10 +235,11 @@ PictureFraming frame_picture(const Vec3& lo, const Vec3& hi, ViewDirection view,
     PixelRect viewport;
     double x0, y0, x1, y1;  // the corners' box in the picture, pixels from the top left
   };
+  const std::vector<Vec3> frame = camera_frame(lo, hi, back, side, screen_up, points);
   const auto fit_in = [&](const PixelRect& r) {
     const double aspect = double(r.width) / r.height;
-    const Framer framer(lo, hi, back, side, screen_up, tan_half * std::max(aspect, 1.0),
-                        tan_half / std::min(aspect, 1.0), points);
+    const Framer framer(frame, lo, hi, tan_half * std::max(aspect, 1.0),
+                        tan_half / std::min(aspect, 1.0));
     Fit f;
     f.at = {1.02 * radius / std::sin(std::atan(tan_half)), 0, 0};
     framer.scale_to({-1, 1, -1, 1}, &f.at);
