@@ -202,10 +202,7 @@ int cmd_simplify(const Args& args) {
   // What the input breaks already: the final mesh's line below says how much of that
   // is left (a collapse never makes a tet or node that breaks them).
   const ThresholdCounts input_breaks = threshold_breaks(input, params);
-  std::printf(
-      "input, breaking them: %zu tets below the stretch, %zu above the size, %zu nodes "
-      "above the valence\n",
-      input_breaks.below_stretch, input_breaks.above_size, input_breaks.above_valence);
+  std::printf("input, breaking them: %s\n", describe_breaks(input_breaks).c_str());
   // Said before the run, which may be long: a layer a few tolerances thick can come out
   // much thinner or thicker with hardly a change of volume.
   if (const std::string thin =

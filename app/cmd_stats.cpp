@@ -233,10 +233,7 @@ int cmd_stats(const Args& args) {
   if (counting) {
     std::printf("\nthresholds: %s\n",
                 describe_thresholds(params, /*with_tolerance=*/false).c_str());
-    std::printf(
-        "breaking them: %zu tets below the stretch, %zu above the size, %zu nodes above "
-        "the valence\n",
-        breaks.below_stretch, breaks.above_size, breaks.above_valence);
+    std::printf("breaking them: %s\n", describe_breaks(breaks).c_str());
   }
   std::printf("(%.3f s)\n", seconds);
   if (exit_code == kExitBreaks)

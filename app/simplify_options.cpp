@@ -350,17 +350,20 @@ std::string describe_rejections(const RejectionCounts& r) {
 }
 
 std::string describe_violations(const ThresholdViolations& v) {
-  return std::to_string(v.below_stretch) + " tets below the stretch, " +
-         std::to_string(v.above_size) + " above the size, " + std::to_string(v.above_valence) +
-         " nodes above the valence (" + std::to_string(v.created) +
-         " of them new: the others are input tets or nodes, or pieces of input tets, that "
-         "already broke it)";
+  ThresholdCounts b;
+  b.below_stretch = v.below_stretch;
+  b.above_size = v.above_size;
+  b.above_valence = v.above_valence;
+  return describe_breaks(b) + " (of these tets and nodes, " + std::to_string(v.created) +
+         " new: the others are input tets or nodes, or pieces of input tets, that already broke "
+         "it)";
 }
 
 std::string describe_breaks(const ThresholdCounts& b) {
-  return std::to_string(b.below_stretch) + " tets below the stretch, " +
-         std::to_string(b.above_size) + " above the size, " + std::to_string(b.above_valence) +
-         " nodes above the valence";
+  return std::to_string(b.below_stretch) + (b.below_stretch == 1 ? " tet" : " tets") +
+         " below the stretch, " + std::to_string(b.above_size) + " above the size, " +
+         std::to_string(b.above_valence) + (b.above_valence == 1 ? " node" : " nodes") +
+         " above the valence";
 }
 
 std::string describe_size(const SizingField& sizing) {

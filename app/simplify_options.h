@@ -95,10 +95,11 @@ std::string describe_thresholds(const SimplifyParams& params, bool with_toleranc
 // "tolerance 3, stretch 12, size 0, valence 5, topology 2": a run's rejected
 // evaluations by reason, as simplify and report print them.
 std::string describe_rejections(const RejectionCounts& r);
-// "2 tets below the stretch, 0 above the size, 1 nodes above the valence (0 of them
-// new: ...)": what a run's final mesh still breaks.
+// "2 tets below the stretch, 0 above the size, 1 node above the valence (of these tets
+// and nodes, 0 new: ...)": what a run's final mesh still breaks.
 std::string describe_violations(const ThresholdViolations& v);
-// "N tets below the stretch, N above the size, N nodes above the valence".
+// "N tets below the stretch, N above the size, N nodes above the valence" ("1 tet",
+// "1 node").
 std::string describe_breaks(const ThresholdCounts& b);
 
 }  // namespace tetlod::app

@@ -14,7 +14,7 @@ sizes=("$@")
 [ ${#sizes[@]} -gt 0 ] || sizes=(8 10 12 14 16 18 20)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-above() { grep -oE 'breaking a threshold: [0-9]+ tets below the stretch, [0-9]+ above' <<<"$1" |
+above() { grep -oE 'breaking a threshold: [0-9]+ tets? below the stretch, [0-9]+ above' <<<"$1" |
   grep -oE '[0-9]+ above' | cut -d' ' -f1; }
 tets() { grep -E '^whole mesh' <<<"$1" | tail -1 | awk '{print $5}'; }
 wall() { # wall LOG_FILE: the seconds /usr/bin/time wrote

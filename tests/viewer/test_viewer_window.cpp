@@ -401,9 +401,11 @@ TEST(ViewerWindow, SavingALevelSaysWhatItBreaks) {
       EXPECT_EQ(run.output.find(said), std::string::npos) << run.output;
       continue;
     }
-    EXPECT_NE(run.output.find(said + std::to_string(b.below_stretch) + " tets below the stretch, " +
+    EXPECT_NE(run.output.find(said + std::to_string(b.below_stretch) +
+                              (b.below_stretch == 1 ? " tet" : " tets") + " below the stretch, " +
                               std::to_string(b.above_size) + " above the size, " +
-                              std::to_string(b.above_valence) + " nodes above the valence"),
+                              std::to_string(b.above_valence) +
+                              (b.above_valence == 1 ? " node" : " nodes") + " above the valence"),
               std::string::npos)
         << run.output;
   }
