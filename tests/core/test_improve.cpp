@@ -284,6 +284,41 @@ TEST(Improve, ShedValenceLowersNodesWithinTheGuarantee) {
   EXPECT_GT(made, 0u);
 }
 
+// shed_valence() on a node with hundreds of tets round it (the centre of a layered
+// fan), whose edges' rings are found from their other ends' small stars
+// (ring_from_other_end): it removes most of them, takes no node past the valence,
+// and the mesh stays valid, with the same boundary and volume.
+TEST(Improve, ShedValenceOfANodeOfHundredsOfTets) {
+  TetMesh mesh = test::make_layered_fan(10);
+  const std::vector<uint32_t> before = test::valences(mesh);
+  std::vector<size_t> star(mesh.vertex_count(), 0);
+  for (const Tet& t : mesh.tets)
+    for (uint32_t v : t) ++star[v];
+  ASSERT_EQ(star[0], 800u);
+  for (uint32_t v = 1; v < mesh.vertex_count(); ++v)
+    ASSERT_TRUE(ring_from_other_end(star[0], star[v])) << v << ": " << star[v];
+  SimplifyParams p;
+  p.sizing.uniform = 10;
+  p.min_stretch = 0.01;
+  p.max_valence = 30;
+  ASSERT_GT(before[0], 300u);
+  const auto surfaces = surface_set(mesh);
+  const double volume = volume_per_material(mesh).at(1);
+  TetMesh shed = mesh;
+  const size_t removals = shed_valence(&shed, p, {0});
+  // Each removal takes one neighbour from the centre (its diagonals join the ring's
+  // vertices, already its neighbours); it stops when the ring's vertices are full.
+  const std::vector<uint32_t> after = test::valences(shed);
+  EXPECT_GT(removals, 300u);
+  EXPECT_EQ(after[0], before[0] - removals);
+  for (uint32_t v = 1; v < after.size(); ++v) EXPECT_LE(after[v], p.max_valence) << v;
+  ValidationReport report;
+  EXPECT_TRUE(validate_mesh(&shed, "layered fan", {}, &report).ok());
+  EXPECT_EQ(surface_set(shed), surfaces);
+  EXPECT_NEAR(volume_per_material(shed).at(1), volume, 1e-12 * volume);
+  for (const Tet& t : shed.tets) EXPECT_GE(tet_shape(shed, t).stretch, p.min_stretch);
+}
+
 TEST(Improve, FlipsTwoTetsIntoThreeAroundANewEdge) {
   TetMesh mesh = make_bipyramid(0.3, false);
   const ImproveResult r = improve_mesh(&mesh, loose());

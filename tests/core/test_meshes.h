@@ -1,6 +1,7 @@
 // Hand-built meshes for exact tests.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -119,6 +120,31 @@ inline TetMesh make_fan(int k) {
       }
   }
   return fan;
+}
+
+// make_fan(k) wrapped in a second layer: each sphere vertex v gets an outer twin at 2v,
+// and the prism between a sphere triangle and its twin is split into three tets by the
+// vertex ids (the diagonal of each side joins the larger-id inner corner to the
+// smaller-id outer one, so neighbouring prisms agree). The centre's edges (8k^2 tets
+// in its star, against about 20 at a sphere vertex) are then interior, with closed
+// rings: edge removals can take them.
+inline TetMesh make_layered_fan(int k) {
+  TetMesh ball = make_fan(k);
+  const uint32_t inner = static_cast<uint32_t>(ball.positions.size());  // 0 and the sphere
+  for (uint32_t v = 1; v < inner; ++v) ball.positions.push_back(ball.positions[v] * 2.0);
+  const auto outer = [&](uint32_t v) { return v + inner - 1; };
+  const size_t cones = ball.tets.size();
+  for (size_t t = 0; t < cones; ++t) {
+    std::array<uint32_t, 3> c{ball.tets[t][1], ball.tets[t][2], ball.tets[t][3]};
+    std::sort(c.begin(), c.end());
+    for (Tet tet : {Tet{c[0], c[1], c[2], outer(c[0])}, Tet{c[1], c[2], outer(c[0]), outer(c[1])},
+                    Tet{c[2], outer(c[0]), outer(c[1]), outer(c[2])}}) {
+      if (signed_volume6(ball, tet) < 0) std::swap(tet[2], tet[3]);
+      ball.tets.push_back(tet);
+      ball.materials.push_back(1);
+    }
+  }
+  return ball;
 }
 
 // The number of edge neighbours of each vertex.
