@@ -18,7 +18,8 @@
 // first). Tet faces, as the Abaqus and CalculiX manuals
 // number them: S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1 (C3D10: the
 // same corners). A "** TetLOD surface <X>_FACES <tag> <name>" comment (written by
-// TetLOD) gives the group of *SURFACE <X>_FACES its tag and name back; else a
+// TetLOD) gives the group of *SURFACE <X>_FACES its tag (even a material's number)
+// and name back (an earlier group's tag is replaced, with a note); else a
 // surface <X>_FACES is named X when the file has a node set X and
 // no surface X: TetLOD writes each group as *NSET X and *SURFACE X_FACES, so that a
 // file written from one read back keeps the names. Faces of elements that are not
@@ -732,6 +733,15 @@ class AbaqusParser {
                             " are on elements that are not tetrahedra (or not defined): not "
                             "kept in the surface groups");
     }
+    if (retagged_count_ > 0) {
+      std::string list;
+      for (const std::string& s : retagged_) list += (list.empty() ? "" : ", ") + s;
+      out_->notes.push_back(
+          std::to_string(retagged_count_) +
+          " *SURFACEs numbered anew: the tag their TetLOD comment gives is an earlier "
+          "group's, or no tag: " +
+          list + (retagged_count_ > retagged_.size() ? ", ..." : ""));
+    }
     if (!unread_surfaces_.empty()) {
       std::string list;
       for (const std::string& s : unread_surfaces_) list += (list.empty() ? "" : ", ") + s;
@@ -761,11 +771,14 @@ class AbaqusParser {
     if (error != std::errc() || end == rest.data() + rest.size() || *end != ' ') return;
     const std::string_view name = rest.substr(size_t(end - rest.data()) + 1);
     auto& names = material ? commented_names_ : commented_surfaces_;
-    if (!name.empty() && names.size() < 100000) names[upper(set)] = {id, std::string(name)};
+    if (name.empty() || names.size() >= 100000) return;
+    names[upper(set)] = {id, std::string(name)};
+    if (!material) commented_tags_.insert(id);
   }
 
   // The tag of the next surface group: after the largest material number (and 0), one
-  // no group has yet.
+  // no group has yet and no TetLOD comment gives (so that a group without one does not
+  // take a later group's own).
   int32_t next_surface_tag() {
     if (surface_tag_base_ < 0) {
       int64_t largest = 0;
@@ -774,7 +787,7 @@ class AbaqusParser {
       surface_tag_base_ = largest < std::numeric_limits<int32_t>::max() / 2 ? largest : 0;
     }
     int64_t tag = surface_tag_base_ + 1 + int64_t(out_->surface_groups.size());
-    while (group_tags_.count(tag)) ++tag;
+    while (group_tags_.count(tag) || commented_tags_.count(tag)) ++tag;
     return int32_t(tag);
   }
   void add_group(InputSurfaceGroup group) {
@@ -782,24 +795,28 @@ class AbaqusParser {
     out_->surface_groups.push_back(std::move(group));
   }
 
-  // The tag and name of the group of *SURFACE `surface`: those a TetLOD comment gave it
-  // (a tag no group has, and no material: it named a group of this mesh), else the
-  // next tag and group_name().
+  // The tag and name of the group of *SURFACE `surface`: those a TetLOD comment gives
+  // (the tag as the file it was written from had it, even a material's number, as a
+  // Gmsh file's physical surface may have; if an earlier group has it, or it is no
+  // tag, the next tag, with a note), else the next tag and group_name().
   void name_surface_group(const std::string& surface, InputSurfaceGroup* group) {
     const auto it = commented_surfaces_.find(upper(surface));
-    if (it != commented_surfaces_.end()) {
-      const int64_t tag = it->second.first;
-      if (material_ids_.empty())  // once: a file may hold a comment for every surface
-        material_ids_.insert(out_->mesh.materials.begin(), out_->mesh.materials.end());
-      if (tag > 0 && tag <= std::numeric_limits<int32_t>::max() && !material_ids_.count(tag) &&
-          !group_tags_.count(tag)) {
-        group->tag = int32_t(tag);
-        group->name = valid_utf8(it->second.second);
-        return;
-      }
+    if (it == commented_surfaces_.end()) {
+      group->tag = next_surface_tag();
+      group->name = valid_utf8(group_name(surface));
+      return;
+    }
+    const int64_t tag = it->second.first;
+    group->name = valid_utf8(it->second.second);
+    if (tag > 0 && tag <= std::numeric_limits<int32_t>::max() && !group_tags_.count(tag)) {
+      group->tag = int32_t(tag);
+      return;
     }
     group->tag = next_surface_tag();
-    group->name = valid_utf8(group_name(surface));
+    if (retagged_.size() < 5)
+      retagged_.push_back(surface + " (" + std::to_string(tag) + " -> " +
+                          std::to_string(group->tag) + ")");
+    ++retagged_count_;
   }
 
   // The sets of triangle elements (as Gmsh writes a physical surface: CPS3 elements in
@@ -947,10 +964,12 @@ class AbaqusParser {
   std::map<std::string, std::pair<int64_t, std::string>> commented_names_;
   // From kSurfaceNameComment lines: surface name (upper case) -> its group's tag and name.
   std::map<std::string, std::pair<int64_t, std::string>> commented_surfaces_;
-  int64_t surface_tag_base_ = -1;             // next_surface_tag(): the largest material number
-  std::unordered_set<int64_t> group_tags_;    // of the surface groups added (add_group())
-  std::unordered_set<int64_t> material_ids_;  // the mesh's, for the comments' tags
-  std::vector<std::string> unread_surfaces_;  // "NAME (reason)", for the note
+  int64_t surface_tag_base_ = -1;               // next_surface_tag(): the largest material number
+  std::unordered_set<int64_t> group_tags_;      // of the surface groups added (add_group())
+  std::unordered_set<int64_t> commented_tags_;  // the tags kSurfaceNameComment lines give
+  std::vector<std::string> retagged_;           // "NAME (comment's tag -> tag)", the first few
+  size_t retagged_count_ = 0;                   // surfaces whose comment's tag could not be kept
+  std::vector<std::string> unread_surfaces_;    // "NAME (reason)", for the note
 };
 
 // Per surface group, a *NSET of its nodes (for *BOUNDARY) and a *SURFACE of element

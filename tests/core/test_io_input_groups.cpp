@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -390,16 +391,39 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
     EXPECT_EQ(info.surface_groups[i].tag, groups.groups[i].tag) << i;
     EXPECT_EQ(info.surface_groups[i].name, groups.groups[i].name) << i;
   }
-  // A comment's tag that a material has, or an earlier group, is not taken.
-  std::string clash = test::read_text(dir + "/tags.inp");
-  const size_t at = clash.find(" 24 port 1\n");
+  // A comment's tag that a material has is kept (a Gmsh file's physical surface may
+  // have one), and the groups after it keep theirs.
+  const std::string tagged = test::read_text(dir + "/tags.inp");
+  const size_t at = tagged.find(" 22 Surf-Load\n");
   ASSERT_NE(at, std::string::npos);
-  clash.replace(at, 3, " 22");
+  ASSERT_FALSE(back.materials.empty());
+  const int32_t material = back.materials[0];
+  std::string shared = tagged;
+  shared.replace(at, 3, " " + std::to_string(material));
+  ASSERT_TRUE(read_mesh_from_memory(shared, MeshFormat::kAbaqus, "m.inp", &back, &info).ok());
+  ASSERT_EQ(info.surface_groups.size(), groups.groups.size());
+  EXPECT_EQ(info.surface_groups[0].tag, material);
+  for (size_t i = 1; i < groups.groups.size(); ++i) {
+    EXPECT_EQ(info.surface_groups[i].tag, groups.groups[i].tag) << i;
+    EXPECT_EQ(info.surface_groups[i].name, groups.groups[i].name) << i;
+  }
+  // An earlier group's tag is not taken: the group keeps its name and gets a tag no
+  // other group has nor any comment gives, with a note.
+  std::string clash = tagged;
+  clash.replace(tagged.find(" 24 port 1\n"), 3, " 22");
   ASSERT_TRUE(read_mesh_from_memory(clash, MeshFormat::kAbaqus, "c.inp", &back, &info).ok());
-  ASSERT_GE(info.surface_groups.size(), 2u);
+  ASSERT_EQ(info.surface_groups.size(), groups.groups.size());
   EXPECT_EQ(info.surface_groups[0].tag, 22);
-  EXPECT_NE(info.surface_groups[1].tag, 22);
-  EXPECT_EQ(info.surface_groups[1].name, "port_1");
+  EXPECT_EQ(info.surface_groups[1].name, "port 1");
+  std::set<int32_t> tags;
+  for (const InputSurfaceGroup& g : info.surface_groups) EXPECT_TRUE(tags.insert(g.tag).second);
+  for (size_t i = 2; i < groups.groups.size(); ++i)
+    EXPECT_EQ(info.surface_groups[i].tag, groups.groups[i].tag) << i;
+  bool noted = false;
+  for (const std::string& note : info.notes)
+    noted |= note.find("numbered anew") != std::string::npos &&
+             note.find("port_1_FACES (22 -> ") != std::string::npos;
+  EXPECT_TRUE(noted);
 }
 
 // CalculiX loads the faces the reader gives: four disjoint copies of one scalene
