@@ -388,16 +388,47 @@ bool is_material_name(const std::string& text) {
   return !text.empty() && !parse_integer(text).has_value();
 }
 
+namespace {
+
+// The pieces of `text` between its commas, untrimmed; "\\," is a comma inside a piece.
+std::vector<std::string> comma_pieces(const std::string& text) {
+  std::vector<std::string> pieces(1);
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\\' && i + 1 < text.size() && text[i + 1] == ',') {
+      pieces.back() += ',';
+      ++i;
+    } else if (text[i] == ',') {
+      pieces.emplace_back();
+    } else {
+      pieces.back() += text[i];
+    }
+  }
+  return pieces;
+}
+
+std::string trimmed(const std::string& text) {
+  return std::string(io::trim_blanks(text));
+}
+
+}  // namespace
+
 std::vector<std::string> split_items(const std::string& text) {
   std::vector<std::string> items;
-  size_t start = 0;
-  while (true) {
-    const size_t end = text.find(',', start);
-    items.emplace_back(io::trim_blanks(std::string_view(text).substr(
-        start, end == std::string::npos ? std::string::npos : end - start)));
-    if (end == std::string::npos) return items;
-    start = end + 1;
+  for (const std::string& piece : comma_pieces(text)) items.push_back(trimmed(piece));
+  return items;
+}
+
+std::vector<std::string> split_value_items(const std::string& text, char separator) {
+  std::vector<std::string> items;
+  std::string item;
+  bool open = false;  // `item` holds pieces without the separator, not yet an item
+  for (const std::string& piece : comma_pieces(text)) {
+    item = open ? item + "," + piece : piece;
+    open = piece.find(separator) == std::string::npos;
+    if (!open) items.push_back(trimmed(item));
   }
+  if (open) items.push_back(trimmed(item));
+  return items;
 }
 
 bool split_material_value(const std::string& item, char separator, std::string* material,

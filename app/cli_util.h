@@ -184,8 +184,14 @@ bool find_material(const std::string& name, const std::vector<MaterialName>& nam
 // "2 pole magnet" is a name, and so is "1.5" (which no mesh names: refused by name).
 bool is_material_name(const std::string& text);
 // The items of a ','-separated list, each without leading and trailing blanks (as
-// typed: "phase A=12, phase B=12").
+// typed: "phase A=12, phase B=12"); "\\," is a comma inside an item (a name may have
+// one: "Cu (OFHC)\\, 20 C").
 std::vector<std::string> split_items(const std::string& text);
+// The items "M=X" of such a list (`separator` '=', or ':' in viewer scripts), where a
+// piece between commas without the separator is joined to the next, so that a name
+// with a comma needs no escape: "Cu (OFHC), 20 C=0.3,air=5" is two items. A last
+// piece without one is an item of its own, for the caller's error.
+std::vector<std::string> split_value_items(const std::string& text, char separator);
 // An item "M=X" of such a list (`separator` '=', or ':' in viewer scripts): the text
 // before the last separator (a name may hold one, a number does not) into `material`,
 // and the number after it into `value`. False if there is no separator or the value

@@ -76,7 +76,7 @@ bool material_text_ok(const std::string& text) {
 // naming the flag and the item.
 bool parse_pairs(const std::string& flag, const std::string& text,
                  std::vector<std::pair<MaterialText, double>>* pairs) {
-  for (const std::string& item : split_items(text)) {
+  for (const std::string& item : split_value_items(text, '=')) {
     std::string material;
     double value = 0;
     if (!split_material_value(item, '=', &material, &value) || !material_text_ok(material)) {

@@ -174,7 +174,7 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
       // Items that name their material wait for the names (finish_simplify_options()).
       std::string ids;
       const size_t named_before = options->named_material_sizes.size();
-      for (const std::string& item : split_items(v)) {
+      for (const std::string& item : split_value_items(v, '=')) {
         std::string material;
         double size = 0;
         const bool has_size = split_material_value(item, '=', &material, &size);

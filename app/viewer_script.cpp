@@ -144,7 +144,7 @@ std::optional<int32_t> material_id(const std::string& text) {
 Status parse_material_values(const LineParser& p, const std::string& key, const std::string& text,
                              std::vector<std::pair<int32_t, double>>* out,
                              std::vector<ScriptAction::NamedMaterial>* named) {
-  for (const std::string& item : split_items(text)) {
+  for (const std::string& item : split_value_items(text, ':')) {
     std::string material;
     double value = 0;
     const bool has_value = split_material_value(item, ':', &material, &value);
@@ -477,7 +477,7 @@ bool split_words(const std::string& line, std::vector<std::string>* words) {
 Status resolve_material_sizes(const std::string& spec, const std::vector<MaterialName>* names,
                               std::vector<std::pair<int32_t, double>>* out) {
   out->clear();
-  for (const std::string& item : split_items(spec)) {
+  for (const std::string& item : split_value_items(spec, '=')) {
     std::string material;
     double size = 0;
     const bool has_size = split_material_value(item, '=', &material, &size);

@@ -1949,6 +1949,48 @@ TEST(Cli, MaterialsByName) {
       << r.output;
 }
 
+// A material name may hold commas (and '='): in a MATERIAL=VALUE list a piece without
+// '=' joins the next, so the name needs no escape; in a list of names, "\\," is a comma.
+TEST(Cli, MaterialNamesWithCommas) {
+  std::string text = read_file(std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_part3.msh");
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"inner_conductor\"", "\"inner, Cu=OFHC\""},
+        {"\"shield\"", "\"shield, braided (Cu)\""}}) {
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const std::string coax = out_dir() + "/commas.msh";
+  std::ofstream(coax) << text;
+  const std::string capacitance = "capacitance";
+  const auto line_with = [](const std::string& out, const std::string& what) {
+    const size_t at = out.find(what);
+    return at == std::string::npos ? std::string() : out.substr(at, out.find('\n', at) - at);
+  };
+  const CommandResult by_id = run("solve " + coax + " --conductor 1=1 --ground 4 --eps 2=3");
+  const CommandResult by_name = run("solve " + coax +
+                                    " --conductor 'inner, Cu=OFHC=1' --ground 'shield\\, "
+                                    "braided (Cu)' --eps 2=3");
+  ASSERT_EQ(by_id.code, 0) << by_id.output;
+  ASSERT_EQ(by_name.code, 0) << by_name.output;
+  EXPECT_NE(line_with(by_id.output, capacitance), "");
+  EXPECT_EQ(line_with(by_name.output, capacitance), line_with(by_id.output, capacitance));
+
+  const std::string a = out_dir() + "/commas_id.mesh", b = out_dir() + "/commas_name.mesh";
+  ASSERT_EQ(run("simplify " + coax + " -o " + a + " --size 2 --material-size 4=0.5,1=0.4").code, 0);
+  const CommandResult named = run("simplify " + coax + " -o " + b +
+                                  " --size 2 --material-size 'shield, braided (Cu)=0.5, inner, "
+                                  "Cu=OFHC=0.4'");
+  ASSERT_EQ(named.code, 0) << named.output;
+  EXPECT_EQ(read_file(a), read_file(b));
+  // A last item without '=' is still an error that names it.
+  const CommandResult bad = run("simplify " + coax + " -o " + b +
+                                " --size 2 --material-size 'shield, braided (Cu)=0.5,1'");
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("'1' is not of the form MATERIAL=SIZE"), std::string::npos)
+      << bad.output;
+}
+
 // What the reader repaired, in words that agree with the count.
 TEST(Cli, RepairNotesCountInWords) {
   const std::string path = out_dir() + "/repaired.mesh";
