@@ -334,12 +334,19 @@ void print_staged_mesh_notes(const StagedMesh& staged) {
 bool open_history(const std::string& path, const char* command, OpenedHistory* opened) {
   TetMesh base;
   opened->path = path;
+  int format = 0;
   const Status s = read_history(path, &base, &opened->history, &opened->params, &opened->names,
-                                &opened->patches);
+                                &opened->patches, &format);
   if (!s) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
     return false;
   }
+  if (format < 3)
+    std::fprintf(stderr,
+                 "tetlod %s: note: %s is a history of format %d (written before 2026-11-29), "
+                 "without a checksum: a change to it that every other check passes cannot be "
+                 "found\n",
+                 command, path.c_str(), format);
   opened->lod = std::make_unique<Lod>(std::move(base), &opened->history);
   return true;
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -413,6 +414,14 @@ int cmd_lod(const Args& args) {
   }
   if (!mesh_output_path_ok(out, "lod", write_options)) return kExitUsage;
   if (!output_directory_ok(out)) return kExitBadInput;
+  // (A history may have any name: "-o" over it would replace the history by one level.)
+  std::error_code same_error;
+  if (std::filesystem::equivalent(history_path, out, same_error)) {
+    std::fprintf(stderr,
+                 "tetlod lod: -o %s is the history being read: the level would replace it\n",
+                 out.c_str());
+    return kExitUsage;
+  }
   if (thresholds_given && !improve) {
     std::fprintf(stderr,
                  "tetlod lod: thresholds (and --crease-angle) are only used with --improve\n\n%s",

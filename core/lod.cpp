@@ -633,9 +633,11 @@ Status write_history(const std::string& path, const TetMesh& base, const Collaps
   return files.commit();
 }
 
-Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
-                    std::optional<SimplifyParams>* params, std::vector<MaterialName>* names,
-                    SurfacePatches* patches) {
+namespace {
+
+Status read_history_file(const std::string& path, TetMesh* base, CollapseHistory* history,
+                         std::optional<SimplifyParams>* params, std::vector<MaterialName>* names,
+                         SurfacePatches* patches, int* format) {
   // A regular file, checked before opening: opening a named pipe would wait for a
   // writer without end.
   struct stat info;
@@ -665,14 +667,28 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
                            std::string(1, magic[7]) + "); this one reads formats 1 to 3");
     return Status::error(path + ": not a TetLOD history file");
   }
+  *format = version;
   const bool has_end = version >= 2;
   const char* const end_magic = version == 3 ? kEndMagic : kEndMagicV1;
   uint64_t saved_checksum = 0, checksum_at = 0;  // version 3: the checksum, and where it is
-  if (!read_array(f, bytes, &base->positions) || !read_array(f, bytes, &base->tets) ||
-      !read_array(f, bytes, &base->materials) || !read_array(f, bytes, &history->steps) ||
-      !read_array(f, bytes, &history->removed_tets) || !read_array(f, bytes, &history->rewired) ||
-      !read_array(f, bytes, &history->moved)) {
-    return Status::error(path + ": truncated or corrupt history file");
+  const char* short_array = nullptr;             // the first array the file cannot hold, and where
+  long short_at = 0;
+  const auto array = [&](auto* v, const char* what) {
+    if (short_array) return;
+    short_at = std::ftell(f);
+    if (!read_array(f, bytes, v)) short_array = what;
+  };
+  array(&base->positions, "vertex positions");
+  array(&base->tets, "tets");
+  array(&base->materials, "tet materials");
+  array(&history->steps, "steps");
+  array(&history->removed_tets, "removed tets");
+  array(&history->rewired, "rewired corners");
+  array(&history->moved, "moved tets");
+  if (short_array) {
+    return Status::error(path + ": truncated or corrupt history file: its " + short_array +
+                         " (from byte " + std::to_string(short_at) + ") do not fit in its " +
+                         std::to_string(bytes) + " bytes");
   }
   // The thresholds, the material names and the surface groups, if saved (after the
   // arrays, in this order, each at most once).
@@ -742,36 +758,52 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   if (base->materials.size() != tet_count) return bad("material count");
   for (const Vec3& p : base->positions)
     if (!is_finite(p)) return bad("non-finite position");
-  for (const Tet& t : base->tets)
-    for (uint32_t v : t)
-      if (v >= vertex_count) return bad("tet vertex out of range");
+  const std::string vertices_there = "; the base has " + std::to_string(vertex_count) + ")";
+  const std::string tets_there = "; the base has " + std::to_string(tet_count) + ")";
+  for (size_t t = 0; t < tet_count; ++t)
+    for (uint32_t v : base->tets[t])
+      if (v >= vertex_count)
+        return bad("tet " + std::to_string(t) + ": vertex out of range (" + std::to_string(v) +
+                   vertices_there);
   uint32_t removed_at = 0, rewired_at = 0, moved_at = 0;
   for (size_t s = 0; s < history->steps.size(); ++s) {
     const CollapseHistory::Step& st = history->steps[s];
     if (st.kept >= vertex_count || st.removed >= vertex_count || st.kept == st.removed)
-      return bad("step " + std::to_string(s) + " vertex out of range");
-    if (!is_finite(st.old_position) || !is_finite(st.new_position)) return bad("non-finite step");
+      return bad("step " + std::to_string(s) + ": vertex out of range (kept " +
+                 std::to_string(st.kept) + ", removed " + std::to_string(st.removed) +
+                 vertices_there);
+    if (!is_finite(st.old_position) || !is_finite(st.new_position))
+      return bad("step " + std::to_string(s) + ": a position is not finite");
     if (st.removed_begin != removed_at || st.rewired_begin != rewired_at ||
         st.moved_begin != moved_at)
-      return bad("step " + std::to_string(s) + " ranges");
+      return bad("step " + std::to_string(s) +
+                 ": its lists of removed, rewired and moved tets do not start where the "
+                 "previous step's end");
     removed_at = history->removed_end(s);
     rewired_at = history->rewired_end(s);
     moved_at = history->moved_end(s);
     if (removed_at < st.removed_begin || removed_at > history->removed_tets.size() ||
         rewired_at < st.rewired_begin || rewired_at > history->rewired.size() ||
         moved_at < st.moved_begin || moved_at > history->moved.size())
-      return bad("step " + std::to_string(s) + " ranges");
+      return bad("step " + std::to_string(s) +
+                 ": its lists of removed, rewired or moved tets run past the file's");
   }
   if (!history->steps.empty() &&
       (removed_at != history->removed_tets.size() || rewired_at != history->rewired.size() ||
        moved_at != history->moved.size()))
     return bad("trailing entries");
-  for (uint32_t t : history->removed_tets)
-    if (t >= tet_count) return bad("removed tet out of range");
-  for (uint32_t c : history->rewired)
-    if ((c >> 2) >= tet_count) return bad("rewired tet out of range");
-  for (uint32_t t : history->moved)
-    if (t >= tet_count) return bad("moved tet out of range");
+  const auto out_of_range = [&](const char* list, size_t k, uint32_t t) {
+    return bad(std::string(list) + " " + std::to_string(k) + ": tet out of range (" +
+               std::to_string(t) + tets_there);
+  };
+  for (size_t k = 0; k < history->removed_tets.size(); ++k)
+    if (history->removed_tets[k] >= tet_count)
+      return out_of_range("removed tet", k, history->removed_tets[k]);
+  for (size_t k = 0; k < history->rewired.size(); ++k)
+    if ((history->rewired[k] >> 2) >= tet_count)
+      return out_of_range("rewired corner", k, history->rewired[k] >> 2);
+  for (size_t k = 0; k < history->moved.size(); ++k)
+    if (history->moved[k] >= tet_count) return out_of_range("moved tet", k, history->moved[k]);
   // The base: what the simplifier writes is a validated mesh, so every tet is
   // positive and every material >= 0.
   for (size_t t = 0; t < tet_count; ++t) {
@@ -882,6 +914,47 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
   if (names) *names = std::move(saved_names);
   if (patches) *patches = std::move(saved_patches);
   return Status();
+}
+
+// What the end of a history file of `format` >= 2 says about a file the reader refused:
+// that it does not end with its end block (cut short, or bytes added), or (format 3)
+// that its checksum does not match (changed after it was written); "" if neither.
+std::string end_of_refused_file(const std::string& path, int format) {
+  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+  std::FILE* f = file.get();
+  if (!f || std::fseek(f, 0, SEEK_END) != 0) return "";
+  const long size = std::ftell(f);
+  char magic[8] = {};
+  uint64_t value = 0;
+  const bool ended = size >= 8 + 16 && std::fseek(f, size - 16, SEEK_SET) == 0 &&
+                     std::fread(magic, 1, 8, f) == 8 && std::fread(&value, 8, 1, f) == 1 &&
+                     std::memcmp(magic, format == 3 ? kEndMagic : kEndMagicV1, 8) == 0 &&
+                     (format == 3 || value == static_cast<uint64_t>(size));
+  if (!ended)
+    return "; it does not end with its end block: it was cut short, or bytes were added after it";
+  uint64_t sum = 0;
+  if (format == 3 && checksum_of_file(f, static_cast<uint64_t>(size - 8), &sum) && sum != value)
+    return "; and its checksum does not match: the file was changed or damaged after it was "
+           "written";
+  return "";
+}
+
+}  // namespace
+
+Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
+                    std::optional<SimplifyParams>* params, std::vector<MaterialName>* names,
+                    SurfacePatches* patches, int* format) {
+  int version = 0;
+  Status s = read_history_file(path, base, history, params, names, patches, &version);
+  if (format) *format = version;
+  // A damaged file is refused by the first check it fails; say also why it may be
+  // damaged, as its end block can tell (unless the message already says so).
+  if (!s && version >= 2 && s.message().find("end block") == std::string::npos &&
+      s.message().find("checksum") == std::string::npos &&
+      (s.message().find(": corrupt history: ") != std::string::npos ||
+       s.message().find(": truncated") != std::string::npos))
+    s = Status::error(s.message() + end_of_refused_file(path, version));
+  return s;
 }
 
 uint64_t history_checksum(std::string_view bytes) {

@@ -144,10 +144,14 @@ Status stage_history(OutputFiles* files, const std::string& path, const TetMesh&
 // given, receives the saved material names (empty if none); a name list out of
 // order, of a material the base does not have, or with an empty or over-long name
 // makes the file corrupt. `patches`, if given, receives the saved surface groups (none:
-// !any()); a damaged block of them makes the file corrupt.
+// !any()); a damaged block of them makes the file corrupt. An error for a file of
+// format 2 or 3 also says whether it ends with its end block and (3) whether its
+// checksum matches. `format`, if given, receives the file's format (1 to 3; 0 if it is
+// none): formats 1 and 2 have no checksum.
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
                     std::optional<SimplifyParams>* params = nullptr,
-                    std::vector<MaterialName>* names = nullptr, SurfacePatches* patches = nullptr);
+                    std::vector<MaterialName>* names = nullptr, SurfacePatches* patches = nullptr,
+                    int* format = nullptr);
 // The checksum a history file's end block holds: of `bytes`, the file up to it (for
 // tests and fuzzers that forge histories: a file changed by hand must be sealed again).
 // A 64-bit hash, one to one on each 8-byte word, so a change of one word is always

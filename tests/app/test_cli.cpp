@@ -1225,9 +1225,21 @@ TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
   EXPECT_EQ(b.code, 2) << b.output;
   EXPECT_NE(b.output.find("improve_legacy.tlh was saved without its thresholds"), std::string::npos)
       << b.output;
-  ASSERT_EQ(run("lod " + legacy + " --elements 20000 -o " + saved + " --improve --size 12").code,
-            0);
+  const CommandResult c =
+      run("lod " + legacy + " --elements 20000 -o " + saved + " --improve --size 12");
+  ASSERT_EQ(c.code, 0) << c.output;
   EXPECT_EQ(file_bytes(saved), file_bytes(direct));
+  EXPECT_NE(c.output.find("is a history of format 1 (written before 2026-11-29), without a "
+                          "checksum"),
+            std::string::npos)
+      << c.output;
+  // A history may have any name: a level written over it would replace it.
+  const std::string named = out_dir() + "/history_named.mesh";
+  fs::copy_file(history, named, fs::copy_options::overwrite_existing);
+  const CommandResult over = run("lod " + named + " --step 2 -o " + named);
+  EXPECT_EQ(over.code, 2) << over.output;
+  EXPECT_NE(over.output.find("is the history being read"), std::string::npos) << over.output;
+  EXPECT_EQ(file_bytes(named), file_bytes(history));
 }
 
 // Subdivision may take nodes past the valence threshold; the output says how many, and

@@ -497,7 +497,28 @@ TEST(HistoryFile, TruncatedAndDamagedFilesNeverReplayBadly) {
     write_bytes(cut_path, whole.substr(0, n));
     TetMesh base;
     CollapseHistory history;
-    EXPECT_FALSE(read_history(cut_path, &base, &history).ok()) << "cut at " << n;
+    const Status s = read_history(cut_path, &base, &history);
+    EXPECT_FALSE(s.ok()) << "cut at " << n;
+    // Past the magic, the error says the file was cut (it lacks its end block).
+    if (n >= 8) {
+      EXPECT_NE(s.message().find("end block"), std::string::npos) << s.message();
+    }
+  }
+  // A changed byte that a check before the checksum finds: the error says what, and
+  // that the checksum does not match. The first tet's first vertex, past the base's.
+  {
+    std::string bytes = whole;
+    const size_t first_tet = 8 + 8 + r.base.positions.size() * sizeof(Vec3) + 8;
+    bytes[first_tet + 3] ^= 0x40;
+    const std::string error = read_error(cut_path, bytes);
+    EXPECT_NE(error.find("corrupt history: tet 0: vertex out of range ("), std::string::npos)
+        << error;
+    EXPECT_NE(error.find("; and its checksum does not match"), std::string::npos) << error;
+    // A file cut inside an array says which, and where it starts.
+    const std::string cut = read_error(cut_path, whole.substr(0, first_tet + 20));
+    EXPECT_NE(cut.find("its tets (from byte " + std::to_string(first_tet - 8) + ") do not fit in"),
+              std::string::npos)
+        << cut;
   }
   // With every optional block, each cut between or inside them is refused too, even
   // by a caller that asks for none of them.
