@@ -495,10 +495,14 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePa
       group.tag = input.tag;
       group.name = input.name;
       if (group.name.empty()) {
-        // Unnamed (a Medit reference): a whole pair's keeps the pair's name.
+        // Unnamed (a Medit reference): a whole pair's keeps the pair's name, whichever
+        // way its triangles face (a reversed one has its materials swapped above).
         bool whole_pair = by_pair.at(key).size() == in_group[g].size();
-        for (uint32_t i : in_group[g])
-          whole_pair = whole_pair && pair_key(result.surface[i]) == key;
+        for (uint32_t i : in_group[g]) {
+          PairKey k = pair_key(result.surface[i]);
+          if (std::get<2>(k) != std::get<2>(key)) std::swap(std::get<1>(k), std::get<2>(k));
+          whole_pair = whole_pair && k == key;
+        }
         group.name = whole_pair ? pair_name(std::get<1>(key), std::get<2>(key))
                                 : "surface_" + std::to_string(input.tag);
       }

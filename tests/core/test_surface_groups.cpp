@@ -853,6 +853,29 @@ TEST(SurfaceGroups, MeditTriangleReferencesAreGroups) {
   EXPECT_EQ(names_and_tags(groups),
             (std::vector<std::string>{"surface_3=3:" + std::to_string(n1 - 2), "surface_9=9:2",
                                       expected[1], expected[2]}));
+  // The interface's triangles facing the other way (out of the other material): still
+  // the whole pair's, under its name.
+  std::istringstream in(test::read_text(dir + "/box2.mesh"));
+  std::ostringstream flipped;
+  const std::string interface_ref = " " + std::to_string(plain.groups[2].tag);
+  bool triangles = false;
+  size_t reversed = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line == "Triangles") triangles = true;
+    if (line == "End") triangles = false;
+    std::istringstream words(line);
+    long a = 0, b = 0, c = 0, ref = 0;
+    if (triangles && (words >> a >> b >> c >> ref) && " " + std::to_string(ref) == interface_ref) {
+      line = std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(b) + interface_ref;
+      ++reversed;
+    }
+    flipped << line << "\n";
+  }
+  EXPECT_EQ(reversed, plain.groups[2].triangles.size());
+  ASSERT_TRUE(
+      read_mesh_from_memory(flipped.str(), MeshFormat::kMedit, "f.mesh", &back, &info).ok());
+  ASSERT_TRUE(group_surface(back, &groups, SurfacePatches(back, info.surface_groups)).ok());
+  EXPECT_EQ(names_and_tags(groups), expected);
 }
 
 // Overlapping groups (tests/data/gmsh/overlap.geo: "all outer" and one face of it,
