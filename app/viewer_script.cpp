@@ -10,6 +10,7 @@
 
 #include "app/cli_util.h"
 #include "core/io/file_access.h"
+#include "core/simplify.h"
 #include "core/sizing.h"
 
 namespace tetlod::app {
@@ -89,7 +90,10 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
         if (!(number > 0)) return p.error("size must be > 0");
         a->size = number;
       } else if (key == "stretch") {
-        if (!(number > 0 && number < 1)) return p.error("stretch must be in (0, 1)");
+        if (!(number >= kMinStretch && number < 1))
+          return p.error(
+              "stretch must be in [0.00012, 1) (below, tets too flat to read back "
+              "would pass)");
         a->stretch = number;
       } else {
         if (!(number >= 0)) return p.error("tolerance must be >= 0");

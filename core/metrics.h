@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +23,14 @@ struct TetShape {
 };
 
 TetShape tet_shape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+// validate_mesh() (every reader) refuses a tet as flat, its shape lost in rounding,
+// when six times its volume is at most this much of its longest edge cubed.
+constexpr double kFlatVolume6 = 1e-12;
+// Whether a tet the simplifier makes reads back: its volume twice clear of that.
+inline bool reads_back(const TetShape& s) {
+  return 6 * std::abs(s.volume) > 2 * kFlatVolume6 * s.size * s.size * s.size;
+}
 
 // The centroid of a tet's corners, the same to the bit in whatever order they come
 // (each coordinate summed smallest first): a size limit read there (sizing.h) is then

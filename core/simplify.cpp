@@ -61,6 +61,11 @@ Status check_params(const SimplifyParams& p) {
     return Status::error("stretch " + number(p.min_stretch) +
                          " must lie strictly between 0 and 1 (1 is a regular tet)");
   }
+  if (p.min_stretch < kMinStretch) {
+    return Status::error("stretch " + number(p.min_stretch) + " must be at least " +
+                         number(kMinStretch) +
+                         " (below it, tets too flat to read back, lost in rounding, would pass)");
+  }
   if (p.max_valence < 4) {
     return Status::error("valence " + std::to_string(p.max_valence) +
                          " must be at least 4 (a tet's corner already has 3 neighbours)");
@@ -1152,7 +1157,8 @@ class Engine {
                      p2 = plan_position(level, c[2]), p3 = plan_position(level, c[3]);
           const TetShape shape = tet_shape(p0, p1, p2, p3);
           // (The margin takes the rounding of a corner piece's stretch, its parent's.)
-          if (shape.stretch < floor * (1 - 1e-9) ||
+          // (Pieces of a tet below kMinStretch: also clear of being read as flat.)
+          if (shape.stretch < floor * (1 - 1e-9) || (floor < kMinStretch && !reads_back(shape)) ||
               (!(r.allowance & kMayBeBig) && shape.size > size_limit(p0, p1, p2, p3, r.material)))
             ok = false;
         }
@@ -1424,7 +1430,7 @@ class Engine {
           for (int c = 0; c < 4; ++c) p[c] = tet_[t].v[c] == replaced ? m : pos_[tet_[t].v[c]];
           const TetShape child = tet_shape(p[0], p[1], p[2], p[3]);
           piece_stretch.push_back(child.stretch);
-          if (child.stretch < floor) ok = false;
+          if (child.stretch < floor || (floor < kMinStretch && !reads_back(child))) ok = false;
           // A piece may only be above its own size limit if its parent already was
           // above its own (with a size field the limits of parent and piece differ).
           if (!(tet_[t].allowance & kMayBeBig) &&

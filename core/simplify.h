@@ -64,7 +64,17 @@ struct SimplifyParams {
 // mesh an analysis runs on; as good as none).
 constexpr uint32_t kMaxValence = 100000;
 
-// Checks thresholds for absurd values (NaN, negative, stretch >= 1 or <= 0,
+// The smallest stretch threshold taken. A tet of stretch d holds a ball of radius
+// d·s/(2√6) (s its longest edge), so its volume is at least the regular tet's round
+// that ball, d³·s³/(6√2): from this d on, every tet within the threshold has six times
+// its volume above kFlatVolume6·s³ (metrics.h), more than validate_mesh() (every
+// reader) takes as not flat, so a mesh TetLOD writes always reads back. (Below it, tets
+// thin enough to be lost in rounding would pass; an analysis wants stretches of 0.1
+// and more anyway. Subdivision's pieces of input tets already below it are checked
+// against kFlatVolume6 itself.)
+constexpr double kMinStretch = 1.2e-4;
+
+// Checks thresholds for absurd values (NaN, negative, stretch >= 1 or < kMinStretch,
 // valence < 4 or > kMaxValence, no size limit at all) and names the offending one.
 Status check_params(const SimplifyParams& params);
 

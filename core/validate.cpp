@@ -1,6 +1,7 @@
 #include "core/validate.h"
 
 #include "core/adjacency.h"
+#include "core/metrics.h"
 #include "core/overlap.h"
 
 #include <algorithm>
@@ -120,7 +121,7 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
                            "rescale the mesh");
     }
     const double scale = longest2 * std::sqrt(longest2);
-    if (!(std::abs(volume6) > 1e-12 * scale)) {
+    if (!(std::abs(volume6) > kFlatVolume6 * scale)) {
       // Zero, or so small next to its longest edge (cubed) that its shape is lost in
       // rounding: a tet 1e6 long and 1e-6 thin has a volume, but no shape.
       if (volume6 == 0)

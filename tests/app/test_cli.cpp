@@ -694,12 +694,16 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
   const std::string out = out_dir() + "/thr_out.mesh";
   for (const char* flags :
        {"--size -1", "--size nan", "--size 1 --stretch 1", "--size 1 --stretch 0",
-        "--size 1 --valence 3", "--size 1 --tolerance -2", "--stretch 0.2",
-        "--size 1 --material-size 1=0", "--size 1 --size-field box:0,0,0,1,1", "--material-size ''",
-        "--material-size ,"}) {
+        "--size 1 --stretch 1e-06", "--size 1 --valence 3", "--size 1 --tolerance -2",
+        "--stretch 0.2", "--size 1 --material-size 1=0", "--size 1 --size-field box:0,0,0,1,1",
+        "--material-size ''", "--material-size ,"}) {
     const CommandResult r = run("simplify " + path + " -o " + out + " " + flags);
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
   }
+  // Below the least stretch, tets too flat to read back would pass.
+  EXPECT_NE(run("simplify " + path + " -o " + out + " --size 1 --stretch 1e-06")
+                .output.find("--stretch '1e-06' is not a stretch from 0.00012 to below 1"),
+            std::string::npos);
   // (An empty --material-size named nothing: "no size limit given", exit 1.)
   EXPECT_NE(run("simplify " + path + " -o " + out + " --material-size ''")
                 .output.find("--material-size: empty specification"),

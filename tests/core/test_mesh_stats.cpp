@@ -12,6 +12,7 @@
 #include "core/adjacency.h"
 #include "core/mesh_stats.h"
 #include "core/metrics.h"
+#include "core/simplify.h"
 #include "core/test_meshes.h"
 #include "core/validate.h"
 #include "mesh_stats_reference.h"
@@ -48,6 +49,36 @@ TEST(Metrics, TheCentroidIsTheSameInAnyOrderOfTheCorners) {
     EXPECT_NEAR(first.x, (p[0].x + p[1].x + p[2].x + p[3].x) * 0.25, 1e-12);
   }
   EXPECT_GT(differed, 0u);  // what it is for
+}
+
+// Every tet of stretch at least kMinStretch reads back (validate_mesh() takes it as
+// not flat: six times its volume above 1e-12 of its longest edge cubed), and the bound
+// kMinStretch rests on holds: 6V >= d^3 s^3 / sqrt(2). Needles, slivers, caps and
+// wedges, squashed in one or two directions down to that stretch.
+TEST(Metrics, EveryTetAboveTheLeastStretchReadsBack) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_real_distribution<double> exponent(-9, 0);
+  size_t near_the_floor = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    const double fx = std::pow(10.0, exponent(random)),
+                 fy = trial % 2 ? 1 : std::pow(10.0, exponent(random));
+    TetMesh mesh;
+    for (int k = 0; k < 4; ++k)
+      mesh.positions.push_back({unit(random) * fx, unit(random) * fy, unit(random)});
+    mesh.tets.push_back({0, 1, 2, 3});
+    mesh.materials.push_back(1);
+    const TetShape shape = tet_shape(mesh, mesh.tets[0]);
+    const double d = std::abs(shape.stretch);
+    if (!(d >= kMinStretch)) continue;
+    near_the_floor += d < 10 * kMinStretch;
+    const double volume6 = 6 * std::abs(shape.volume);
+    const double s3 = shape.size * shape.size * shape.size;
+    ASSERT_GE(volume6, d * d * d * s3 / std::sqrt(2.0) * (1 - 1e-9)) << trial;
+    ValidationReport report;
+    ASSERT_TRUE(validate_mesh(&mesh, "t", {}, &report).ok()) << trial << ": stretch " << d;
+  }
+  EXPECT_GT(near_the_floor, 100u);
 }
 
 TEST(Metrics, FlatAndInvertedTets) {
