@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -339,10 +340,25 @@ int finish_simplify_options(const TetMesh& input, const std::vector<MaterialName
       return kExitUsage;
     }
   }
-  if (options->tolerance_given || input.positions.empty()) return kExitOk;
+  if (input.positions.empty()) return kExitOk;
   Vec3 lo, hi;
   mesh_bounds(input, &lo, &hi);
-  options->params.tolerance = 1e-3 * length(hi - lo);
+  if (!options->tolerance_given) {
+    options->params.tolerance = 1e-3 * length(hi - lo);
+    return kExitOk;
+  }
+  // A tolerance finer than the coordinates' rounding where the mesh is (far from the
+  // origin next to its size) cannot hold: a midpoint or a collapsed node's position
+  // is rounded by about that much.
+  const double far = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),
+                               std::abs(hi.y), std::abs(hi.z)});
+  const double rounding = 4 * std::numeric_limits<double>::epsilon() * far;
+  if (rounding > options->params.tolerance && rounding > 1e-12 * length(hi - lo))
+    std::fprintf(stderr,
+                 "tetlod %s: note: --tolerance %g is finer than the rounding of the mesh's "
+                 "coordinates (about %.2g, %g from the origin): surfaces may move that much "
+                 "(translate the mesh nearer the origin to keep it)\n",
+                 command, options->params.tolerance, rounding, far);
   return kExitOk;
 }
 

@@ -2007,6 +2007,28 @@ TEST(Cli, MaterialNamesWithCommas) {
       << bad.output;
 }
 
+// A tolerance finer than the rounding of coordinates far from the origin cannot hold:
+// a note says so (an outside tester's mesh 2e6 from the origin moved 1.3e-10 at
+// --tolerance 1e-12); near the origin, none.
+TEST(Cli, ATolerancePastTheCoordinatesRoundingIsNoted) {
+  TetMesh mesh;
+  ASSERT_TRUE(read_mesh(std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh", &mesh).ok());
+  const std::string near = out_dir() + "/near.mesh", far = out_dir() + "/far.mesh";
+  ASSERT_TRUE(write_mesh(near, mesh).ok());
+  for (Vec3& p : mesh.positions) p = p + Vec3{1e6, -2e6, 3e5};
+  ASSERT_TRUE(write_mesh(far, mesh).ok());
+  const std::string flags = " -o " + out_dir() + "/tol_out.mesh --size 0.5 --tolerance 1e-12";
+  const CommandResult f = run("simplify " + far + flags);
+  ASSERT_EQ(f.code, 0) << f.output;
+  EXPECT_NE(f.output.find("note: --tolerance 1e-12 is finer than the rounding of the mesh's "
+                          "coordinates (about 1.8e-09, 2e+06 from the origin)"),
+            std::string::npos)
+      << f.output;
+  const CommandResult n = run("simplify " + near + flags);
+  ASSERT_EQ(n.code, 0) << n.output;
+  EXPECT_EQ(n.output.find("finer than the rounding"), std::string::npos) << n.output;
+}
+
 // What the reader repaired, in words that agree with the count.
 TEST(Cli, RepairNotesCountInWords) {
   const std::string path = out_dir() + "/repaired.mesh";
