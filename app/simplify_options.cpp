@@ -159,7 +159,7 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   } else if (a == "--crease-angle") {
     if (!value()) return OptionResult::kError;
     const auto d = parse_double(v);
-    if (!d || *d <= 0 || *d >= 180) return bad_value("an angle between 0 and 180 degrees");
+    if (!d || *d <= 0 || *d >= 180) return bad_value("an angle strictly between 0 and 180 degrees");
     params.crease_angle_degrees = *d;
   } else if (a == "--no-subdivide") {
     params.subdivide = false;
