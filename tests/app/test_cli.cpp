@@ -1916,14 +1916,17 @@ TEST(Cli, OutputsAreGivenOnce) {
   EXPECT_FALSE(fs::exists(b));
 }
 
+// The line of `text` from the first `what` on ("" if none).
+std::string line_with(const std::string& text, const std::string& what) {
+  const size_t at = text.find(what);
+  return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+}
+
 // Where an option takes a material, the input's name for it does as well as its
 // id: the same capacitance, the same simplified mesh, the same picture.
+
 TEST(Cli, MaterialsByName) {
   const std::string coax = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_part3.msh";
-  const auto line_with = [](const std::string& text, const std::string& what) {
-    const size_t at = text.find(what);
-    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
-  };
   const CommandResult by_id = run("solve " + coax + " --conductor 1=1 --ground 4 --eps 2=3");
   const CommandResult by_name = run("solve " + coax +
                                     " --conductor inner_conductor=1 --ground SHIELD "
@@ -1979,10 +1982,6 @@ TEST(Cli, MaterialNamesWithCommas) {
   const std::string coax = out_dir() + "/commas.msh";
   std::ofstream(coax) << text;
   const std::string capacitance = "capacitance";
-  const auto line_with = [](const std::string& out, const std::string& what) {
-    const size_t at = out.find(what);
-    return at == std::string::npos ? std::string() : out.substr(at, out.find('\n', at) - at);
-  };
   const CommandResult by_id = run("solve " + coax + " --conductor 1=1 --ground 4 --eps 2=3");
   const CommandResult by_name = run("solve " + coax +
                                     " --conductor 'inner, Cu=OFHC=1' --ground 'shield\\, "
