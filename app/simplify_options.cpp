@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <set>
 #include <string>
@@ -138,10 +139,13 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   } else if (a == "--stretch") {
     if (!value()) return OptionResult::kError;
     const auto d = parse_double(v);
-    if (!d || *d < kMinStretch || *d >= 1)
-      return bad_value(
-          "a stretch from 0.00012 to below 1 (below 0.00012, tets too flat to "
-          "read back, lost in rounding, would pass)");
+    // (stats only counts the tets below it: any stretch will do.)
+    if (std::strcmp(command, "stats") == 0 ? !d || *d <= 0 || *d >= 1
+                                           : !d || *d < kMinStretch || *d >= 1)
+      return bad_value(std::strcmp(command, "stats") == 0
+                           ? "a stretch strictly between 0 and 1"
+                           : "a stretch from 0.00012 to below 1 (below 0.00012, tets too flat "
+                             "to read back, lost in rounding, would pass)");
     params.min_stretch = *d;
   } else if (a == "--valence") {
     if (!value()) return OptionResult::kError;

@@ -70,8 +70,8 @@ constexpr uint32_t kMaxValence = 100000;
 // its volume above kFlatVolume6·s³ (metrics.h), more than validate_mesh() (every
 // reader) takes as not flat, so a mesh TetLOD writes always reads back. (Below it, tets
 // thin enough to be lost in rounding would pass; an analysis wants stretches of 0.1
-// and more anyway. Subdivision's pieces of input tets already below it are checked
-// against kFlatVolume6 itself.)
+// and more anyway. Subdivision's pieces of input tets already below it must read back
+// too: reads_back(), metrics.h.)
 constexpr double kMinStretch = 1.2e-4;
 
 // Checks thresholds for absurd values (NaN, negative, stretch >= 1 or < kMinStretch,
