@@ -499,14 +499,17 @@ bool find_material(const std::string& name, const std::vector<MaterialName>& nam
     return true;
   }
   std::string list;
-  for (const MaterialName& m : names)
+  bool comma = false;  // a name with a comma: in a list of names it is written "\,"
+  for (const MaterialName& m : names) {
     list += (list.empty() ? "" : ", ") + std::to_string(m.material) + " " + m.name;
+    comma = comma || m.name.find(',') != std::string::npos;
+  }
   *why =
       "the mesh has no material named '" + name + "' (" +
       (list.empty()
            ? std::string("its materials have no names: give their numbers")
            : (folded > 1 ? "several names differ from it only in case: " : "its names: ") + list) +
-      ")";
+      ")" + (comma ? "; in a list of names, a comma in a name is written \\," : "");
   return false;
 }
 

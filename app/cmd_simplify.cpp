@@ -414,13 +414,17 @@ int cmd_lod(const Args& args) {
   }
   if (!mesh_output_path_ok(out, "lod", write_options)) return kExitUsage;
   if (!output_directory_ok(out)) return kExitBadInput;
-  // (A history may have any name: "-o" over it would replace the history by one level.)
-  std::error_code same_error;
-  if (std::filesystem::equivalent(history_path, out, same_error)) {
-    std::fprintf(stderr,
-                 "tetlod lod: -o %s is the history being read: the level would replace it\n",
-                 out.c_str());
-    return kExitUsage;
+  // (A history may have any name: "-o" over it, or a file of a .node/.ele output's
+  // set, would replace the history by one level.)
+  for (const std::string& written : mesh_output_files(out)) {
+    std::error_code same_error;
+    if (std::filesystem::equivalent(history_path, written, same_error)) {
+      std::fprintf(stderr,
+                   "tetlod lod: -o %s would write %s, the history being read: the level would "
+                   "replace it\n",
+                   out.c_str(), written.c_str());
+      return kExitUsage;
+    }
   }
   if (thresholds_given && !improve) {
     std::fprintf(stderr,

@@ -736,11 +736,11 @@ class AbaqusParser {
     if (retagged_count_ > 0) {
       std::string list;
       for (const std::string& s : retagged_) list += (list.empty() ? "" : ", ") + s;
-      out_->notes.push_back(
-          std::to_string(retagged_count_) +
-          " *SURFACEs numbered anew: the tag their TetLOD comment gives is an earlier "
-          "group's, or no tag: " +
-          list + (retagged_count_ > retagged_.size() ? ", ..." : ""));
+      out_->notes.push_back(std::to_string(retagged_count_) +
+                            (retagged_count_ == 1 ? " *SURFACE numbered anew: the tag its"
+                                                  : " *SURFACEs numbered anew: the tag their") +
+                            " TetLOD comment gives is an earlier group's, or no tag: " + list +
+                            (retagged_count_ > retagged_.size() ? ", ..." : ""));
     }
     if (!unread_surfaces_.empty()) {
       std::string list;

@@ -314,6 +314,13 @@ Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& me
   return files->stage(path, text);
 }
 
+std::vector<std::string> mesh_output_files(const std::string& path) {
+  FileKind kind;
+  if (!file_kind(path, &kind).ok() || kind != FileKind::kTetGen) return {path};
+  const std::string base = tetgen_base(path);
+  return {base + ".node", base + ".ele", base + ".face"};
+}
+
 Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options) {
   OutputFiles files;
   if (Status status = stage_mesh(&files, path, mesh, options); !status) return status;

@@ -213,6 +213,9 @@ Status check_mesh_path(const std::string& path, const WriteOptions& options = {}
 // surface groups). An invalid mesh or an
 // unwritable path gives an error naming the path, and leaves no file behind.
 Status write_mesh(const std::string& path, const TetMesh& mesh, const WriteOptions& options = {});
+// Every file write_mesh(path, ...) may write: `path`, or for .node/.ele the pair and
+// the .face file beside them (for a command to check that none is one of its inputs).
+std::vector<std::string> mesh_output_files(const std::string& path);
 // The same, staged in `files` to be committed with the other outputs of a command
 // (output_files.h): nothing is written until files->commit().
 Status stage_mesh(OutputFiles* files, const std::string& path, const TetMesh& mesh,

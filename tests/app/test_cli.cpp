@@ -1244,8 +1244,17 @@ TEST(Cli, LodImproveWritesWhatSimplifyImproveWrites) {
   fs::copy_file(history, named, fs::copy_options::overwrite_existing);
   const CommandResult over = run("lod " + named + " --step 2 -o " + named);
   EXPECT_EQ(over.code, 2) << over.output;
-  EXPECT_NE(over.output.find("is the history being read"), std::string::npos) << over.output;
+  EXPECT_NE(over.output.find("the history being read"), std::string::npos) << over.output;
   EXPECT_EQ(file_bytes(named), file_bytes(history));
+  // Nor over a file of a .node/.ele output's set.
+  const std::string node = out_dir() + "/history_named.node";
+  fs::copy_file(history, node, fs::copy_options::overwrite_existing);
+  const CommandResult pair =
+      run("lod " + node + " --step 2 -o " + out_dir() + "/history_named.ele");
+  EXPECT_EQ(pair.code, 2) << pair.output;
+  EXPECT_NE(pair.output.find("would write " + node + ", the history being read"), std::string::npos)
+      << pair.output;
+  EXPECT_EQ(file_bytes(node), file_bytes(history));
 }
 
 // Subdivision may take nodes past the valence threshold; the output says how many, and
@@ -2000,6 +2009,13 @@ TEST(Cli, MaterialNamesWithCommas) {
                                   "Cu=OFHC=0.4'");
   ASSERT_EQ(named.code, 0) << named.output;
   EXPECT_EQ(read_file(a), read_file(b));
+  // Without the escape, a list of names splits the name: the error says how to write it.
+  const CommandResult split =
+      run("solve " + coax + " --conductor 1=1 --ground 'shield, braided (Cu)' --eps 2=3");
+  EXPECT_EQ(split.code, 2) << split.output;
+  EXPECT_NE(split.output.find("in a list of names, a comma in a name is written \\,"),
+            std::string::npos)
+      << split.output;
   // A last item without '=' is still an error that names it.
   const CommandResult bad = run("simplify " + coax + " -o " + b +
                                 " --size 2 --material-size 'shield, braided (Cu)=0.5,1'");
