@@ -91,9 +91,9 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
         a->size = number;
       } else if (key == "stretch") {
         if (!(number >= kMinStretch && number < 1))
-          return p.error(
-              "stretch must be in [0.00012, 1) (below, tets too flat to read back "
-              "would pass)");
+          return p.error("stretch=" + value +
+                         " must be in [0.00012, 1) (below, tets too flat to read back would "
+                         "pass)");
         a->stretch = number;
       } else {
         if (!(number >= 0)) return p.error("tolerance must be >= 0");

@@ -357,6 +357,11 @@ TEST(ViewerScript, AnEndlessFileIsNotAScript) {
 }
 
 TEST(ViewerScript, RejectsBadValues) {
+  // Below the least stretch, tets too flat to read back would pass (core/simplify.h).
+  EXPECT_EQ(parse_error("thresholds stretch=0.0001\n"),
+            "t.script:1: stretch=0.0001 must be in [0.00012, 1) (below, tets too flat to read "
+            "back would pass)");
+  parse_ok("thresholds stretch=0.00012\n");
   for (const char* bad : {
            "thresholds\n",
            "thresholds size=0\n",
