@@ -140,9 +140,9 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
     if (!value()) return OptionResult::kError;
     const auto d = parse_double(v);
     // (stats only counts the tets below it: any stretch will do.)
-    if (std::strcmp(command, "stats") == 0 ? !d || *d <= 0 || *d >= 1
-                                           : !d || *d < kMinStretch || *d >= 1)
-      return bad_value(std::strcmp(command, "stats") == 0
+    const bool counting_only = std::strcmp(command, "stats") == 0;
+    if (!d || *d <= 0 || *d >= 1 || (!counting_only && *d < kMinStretch))
+      return bad_value(counting_only
                            ? "a stretch strictly between 0 and 1"
                            : "a stretch from 0.00012 to below 1 (below 0.00012, tets too flat "
                              "to read back, lost in rounding, would pass)");

@@ -1933,19 +1933,25 @@ std::string line_with(const std::string& text, const std::string& what) {
   return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
 }
 
+// The capacitance line of `tetlod solve MESH FLAGS` (which must succeed).
+std::string capacitance_of(const std::string& mesh, const std::string& flags) {
+  const CommandResult r = run("solve " + mesh + " " + flags);
+  EXPECT_EQ(r.code, 0) << r.output;
+  return line_with(r.output, "capacitance");
+}
+
+// The coax's conductors, ground and dielectric by id (tests/data/gmsh/coax_part3.msh).
+constexpr const char* kCoaxById = "--conductor 1=1 --ground 4 --eps 2=3";
+
 // Where an option takes a material, the input's name for it does as well as its
 // id: the same capacitance, the same simplified mesh, the same picture.
-
 TEST(Cli, MaterialsByName) {
   const std::string coax = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/coax_part3.msh";
-  const CommandResult by_id = run("solve " + coax + " --conductor 1=1 --ground 4 --eps 2=3");
-  const CommandResult by_name = run("solve " + coax +
-                                    " --conductor inner_conductor=1 --ground SHIELD "
-                                    "--eps dielectric_inner=3");
-  ASSERT_EQ(by_id.code, 0) << by_id.output;
-  ASSERT_EQ(by_name.code, 0) << by_name.output;
-  EXPECT_NE(line_with(by_id.output, "capacitance"), "");
-  EXPECT_EQ(line_with(by_name.output, "capacitance"), line_with(by_id.output, "capacitance"));
+  const std::string by_id = capacitance_of(coax, kCoaxById);
+  EXPECT_NE(by_id, "");
+  EXPECT_EQ(capacitance_of(
+                coax, "--conductor inner_conductor=1 --ground SHIELD --eps dielectric_inner=3"),
+            by_id);
 
   const std::string a = out_dir() + "/by_id.mesh", b = out_dir() + "/by_name.mesh";
   ASSERT_EQ(run("simplify " + coax + " -o " + a + " --size 2 --material-size 4=0.5,1=0.4").code, 0);
@@ -1957,11 +1963,10 @@ TEST(Cli, MaterialsByName) {
       run("simplify " + coax + " -o " + b + " --size 2 --material-size 'shield=0.5, 1=0.4'").code,
       0);
   EXPECT_EQ(read_file(a), read_file(b));
-  const CommandResult spaced = run("solve " + coax +
-                                   " --conductor ' inner_conductor=1' --ground ' SHIELD' "
-                                   "--eps 'dielectric_inner=3 '");
-  EXPECT_EQ(line_with(spaced.output, "capacitance"), line_with(by_id.output, "capacitance"))
-      << spaced.output;
+  EXPECT_EQ(capacitance_of(coax,
+                           "--conductor ' inner_conductor=1' --ground ' SHIELD' "
+                           "--eps 'dielectric_inner=3 '"),
+            by_id);
 
   // Unknown names list the names there are; a name and an id of one material clash.
   CommandResult r = run("solve " + coax + " --conductor copper=1 --ground 4");
@@ -1992,15 +1997,12 @@ TEST(Cli, MaterialNamesWithCommas) {
   }
   const std::string coax = out_dir() + "/commas.msh";
   std::ofstream(coax) << text;
-  const std::string capacitance = "capacitance";
-  const CommandResult by_id = run("solve " + coax + " --conductor 1=1 --ground 4 --eps 2=3");
-  const CommandResult by_name = run("solve " + coax +
-                                    " --conductor 'inner, Cu=OFHC=1' --ground 'shield\\, "
-                                    "braided (Cu)' --eps 2=3");
-  ASSERT_EQ(by_id.code, 0) << by_id.output;
-  ASSERT_EQ(by_name.code, 0) << by_name.output;
-  EXPECT_NE(line_with(by_id.output, capacitance), "");
-  EXPECT_EQ(line_with(by_name.output, capacitance), line_with(by_id.output, capacitance));
+  const std::string by_id = capacitance_of(coax, kCoaxById);
+  EXPECT_NE(by_id, "");
+  EXPECT_EQ(capacitance_of(coax,
+                           "--conductor 'inner, Cu=OFHC=1' --ground 'shield\\, braided (Cu)' "
+                           "--eps 2=3"),
+            by_id);
 
   const std::string a = out_dir() + "/commas_id.mesh", b = out_dir() + "/commas_name.mesh";
   ASSERT_EQ(run("simplify " + coax + " -o " + a + " --size 2 --material-size 4=0.5,1=0.4").code, 0);
