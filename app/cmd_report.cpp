@@ -294,7 +294,7 @@ int cmd_report(const Args& args) {
     progress.clear();
     if (!s) {
       std::fprintf(stderr, "tetlod report: %s\n", s.message().c_str());
-      return kExitBadInput;
+      return exit_code_of_failed_run(s.bad_value());
     }
     // What the run did and what the final mesh still breaks, as `tetlod simplify`
     // prints it.

@@ -225,7 +225,7 @@ int cmd_simplify(const Args& args) {
   progress.clear();
   if (!status) {
     std::fprintf(stderr, "tetlod simplify: %s\n", status.message().c_str());
-    return kExitBadInput;
+    return exit_code_of_failed_run(status.bad_value());
   }
 
   TetMesh output = std::move(result.output);

@@ -8,9 +8,15 @@
 namespace tetlod::app {
 
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitBadInput = 1;  // a file or value that cannot be used
-inline constexpr int kExitUsage = 2;     // a malformed command line
+inline constexpr int kExitBadInput = 1;  // a file that cannot be used; out of memory
+inline constexpr int kExitUsage = 2;     // a malformed command line or a bad option value
 inline constexpr int kExitBreaks = 3;    // stats, compare --check: the check failed
+
+// The exit code of a failed simplify(): a value refused (a threshold; a size that
+// would subdivide the mesh past the limit) is a usage error, anything else bad input.
+inline int exit_code_of_failed_run(bool bad_value) {
+  return bad_value ? kExitUsage : kExitBadInput;
+}
 
 using Args = std::vector<std::string>;
 

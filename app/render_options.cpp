@@ -263,7 +263,7 @@ int simplified_mesh(const TetMesh& input, const std::vector<MaterialName>& names
   progress.clear();
   if (!status) {
     std::fprintf(stderr, "tetlod %s: %s\n", command, status.message().c_str());
-    return kExitBadInput;
+    return exit_code_of_failed_run(status.bad_value());
   }
   if (so.elements > 0) {
     Lod lod(result.base, &result.history);

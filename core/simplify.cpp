@@ -55,37 +55,37 @@ std::string number(double x) {
 
 Status check_params(const SimplifyParams& p) {
   if (!(std::isfinite(p.tolerance) && p.tolerance >= 0)) {
-    return Status::error("tolerance " + number(p.tolerance) + " must be a finite length >= 0");
+    return Status::bad_value("tolerance " + number(p.tolerance) + " must be a finite length >= 0");
   }
   if (!(std::isfinite(p.min_stretch) && p.min_stretch > 0 && p.min_stretch < 1)) {
-    return Status::error("stretch " + number(p.min_stretch) +
-                         " must lie strictly between 0 and 1 (1 is a regular tet)");
+    return Status::bad_value("stretch " + number(p.min_stretch) +
+                             " must lie strictly between 0 and 1 (1 is a regular tet)");
   }
   if (p.min_stretch < kMinStretch) {
-    return Status::error("stretch " + number(p.min_stretch) + " must be at least " +
-                         number(kMinStretch) +
-                         " (below it, tets too flat to read back, lost in rounding, would pass)");
+    return Status::bad_value(
+        "stretch " + number(p.min_stretch) + " must be at least " + number(kMinStretch) +
+        " (below it, tets too flat to read back, lost in rounding, would pass)");
   }
   if (p.max_valence < 4) {
-    return Status::error("valence " + std::to_string(p.max_valence) +
-                         " must be at least 4 (a tet's corner already has 3 neighbours)");
+    return Status::bad_value("valence " + std::to_string(p.max_valence) +
+                             " must be at least 4 (a tet's corner already has 3 neighbours)");
   }
   if (p.max_valence > kMaxValence) {
-    return Status::error("valence " + std::to_string(p.max_valence) + " must be at most " +
-                         std::to_string(kMaxValence) + " (a larger one limits nothing)");
+    return Status::bad_value("valence " + std::to_string(p.max_valence) + " must be at most " +
+                             std::to_string(kMaxValence) + " (a larger one limits nothing)");
   }
-  if (p.sizing.unlimited()) return Status::error("no size limit given (set --size)");
+  if (p.sizing.unlimited()) return Status::bad_value("no size limit given (set --size)");
   const double smallest = p.sizing.smallest_size();
   if (!(smallest > 0) || std::isnan(p.sizing.uniform) || p.sizing.uniform <= 0) {
-    return Status::error("size must be > 0");
+    return Status::bad_value("size must be > 0");
   }
   if (!(std::isfinite(p.crease_angle_degrees) && p.crease_angle_degrees > 0 &&
         p.crease_angle_degrees < 180)) {
-    return Status::error("crease angle must lie between 0 and 180 degrees");
+    return Status::bad_value("crease angle must lie between 0 and 180 degrees");
   }
   if (p.past_valence_tets_factor < 1) {
-    return Status::error("past_valence_tets_factor " + std::to_string(p.past_valence_tets_factor) +
-                         " must be >= 1");
+    return Status::bad_value("past_valence_tets_factor " +
+                             std::to_string(p.past_valence_tets_factor) + " must be >= 1");
   }
   return Status();
 }
@@ -1339,9 +1339,9 @@ class Engine {
                            (f == 1 ? std::string("as many as") : std::to_string(f) + " times") +
                            " the first run's");
     }
-    return Status::error("size " + number(params_.sizing.smallest_size()) +
-                         ": subdivision exceeded " + std::to_string(kMaxTets) +
-                         " tets; choose a larger size or --no-subdivide");
+    return Status::bad_value("size " + number(params_.sizing.smallest_size()) +
+                             ": subdivision exceeded " + std::to_string(kMaxTets) +
+                             " tets; choose a larger size or --no-subdivide");
   }
 
   Status subdivide(SimplifyResult* result) {
@@ -1355,9 +1355,10 @@ class Engine {
       const std::string count = predicted < 1e15
                                     ? "about " + std::to_string(static_cast<long long>(predicted))
                                     : "more than 10^15";
-      return Status::error("size " + number(params_.sizing.smallest_size()) +
-                           " would subdivide the mesh into " + count + " tets (limit " +
-                           std::to_string(kMaxTets) + "); choose a larger size or --no-subdivide");
+      return Status::bad_value("size " + number(params_.sizing.smallest_size()) +
+                               " would subdivide the mesh into " + count + " tets (limit " +
+                               std::to_string(kMaxTets) +
+                               "); choose a larger size or --no-subdivide");
     }
     std::vector<uint32_t> valence_now = input_valence_;
     if (past_valence_) {

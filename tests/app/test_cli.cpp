@@ -696,17 +696,21 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
        {"--size -1", "--size nan", "--size 1 --stretch 1", "--size 1 --stretch 0",
         "--size 1 --stretch 1e-06", "--size 1 --valence 3", "--size 1 --tolerance -2",
         "--stretch 0.2", "--size 1 --material-size 1=0", "--size 1 --size-field box:0,0,0,1,1",
-        "--material-size ''", "--material-size ,"}) {
+        "--material-size ''", "--material-size ,", "--size 1e-05"}) {
     const CommandResult r = run("simplify " + path + " -o " + out + " " + flags);
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
   }
+  // A size that would subdivide the mesh past the tet limit is a value refused too.
+  EXPECT_NE(run("simplify " + path + " -o " + out + " --size 1e-05")
+                .output.find("size 1e-05 would subdivide the mesh into more than 10^15 tets"),
+            std::string::npos);
   // stats only counts the tets below a stretch: any in (0, 1) will do there.
   EXPECT_EQ(run("stats " + path + " --size 1 --stretch 1e-05").code, 0);
   // Below the least stretch, tets too flat to read back would pass.
   EXPECT_NE(run("simplify " + path + " -o " + out + " --size 1 --stretch 1e-06")
                 .output.find("--stretch '1e-06' is not a stretch from 0.00012 to below 1"),
             std::string::npos);
-  // (An empty --material-size named nothing: "no size limit given", exit 1.)
+  // An empty --material-size is refused as such (it once gave "no size limit given").
   EXPECT_NE(run("simplify " + path + " -o " + out + " --material-size ''")
                 .output.find("--material-size: empty specification"),
             std::string::npos);
