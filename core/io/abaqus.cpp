@@ -157,6 +157,7 @@ class AbaqusParser {
       if (!data(record, first_line)) return error_;
     }
     if (!resolve() || !resolve_surfaces()) return error_;
+    ignored_comments_note();
     if (quadratic_tets_ > 0) {
       out_->notes.push_back(std::to_string(quadratic_tets_) +
                             " 10-node tetrahedra (C3D10 and variants) were read as 4-node ones "
@@ -569,11 +570,10 @@ class AbaqusParser {
       if (used[k] && keys_[k] != "MATERIAL_" + std::to_string(id[k]) &&
           id[k] <= std::numeric_limits<int32_t>::max()) {
         const auto given = commented_names_.find(keys_[k]);
+        const bool commented = given != commented_names_.end() && given->second.id == id[k];
+        if (commented) given->second.used = true;
         out_->material_names.push_back(
-            {int32_t(id[k]),
-             valid_utf8(given != commented_names_.end() && given->second.first == id[k]
-                            ? given->second.second
-                            : spellings_[k])});
+            {int32_t(id[k]), valid_utf8(commented ? given->second.name : spellings_[k])});
       }
     }
     sort_by_material(&out_->material_names);
@@ -756,6 +756,7 @@ class AbaqusParser {
   // the element set SET had before it was made an Abaqus label (spaces and all); and
   // "** TetLOD surface SURFACE TAG NAME" (kSurfaceNameComment): the tag and name of the
   // surface group written as *SURFACE SURFACE.
+  // One that cannot be read is ignored, with a note (ignored_comments_note()).
   void read_name_comment(std::string_view comment) {
     const bool material = comment.substr(0, std::strlen(kMaterialNameComment)) ==
                           std::string_view(kMaterialNameComment);
@@ -763,17 +764,45 @@ class AbaqusParser {
     if (comment.substr(0, prefix.size()) != prefix) return;
     std::string_view rest = comment.substr(prefix.size());
     const size_t space = rest.find(' ');
-    if (space == std::string_view::npos) return;
+    if (space == std::string_view::npos) return ignore_comment(line_);
     const std::string set(rest.substr(0, space));
     rest.remove_prefix(space + 1);
     int64_t id = 0;
     const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), id);
-    if (error != std::errc() || end == rest.data() + rest.size() || *end != ' ') return;
+    if (error != std::errc() || end == rest.data() + rest.size() || *end != ' ')
+      return ignore_comment(line_);
     const std::string_view name = rest.substr(size_t(end - rest.data()) + 1);
     auto& names = material ? commented_names_ : commented_surfaces_;
-    if (name.empty() || names.size() >= 100000) return;
-    names[upper(set)] = {id, std::string(name)};
+    if (name.empty() || names.size() >= 100000) return ignore_comment(line_);
+    names[upper(set)] = {id, std::string(name), line_, false};
     if (!material) commented_tags_.insert(id);
+  }
+  void ignore_comment(size_t line) {
+    if (ignored_comment_lines_.size() < 5) ignored_comment_lines_.push_back(line);
+    ++ignored_comment_count_;
+  }
+  // A note of the TetLOD comments that gave nothing: unreadable, or naming no set of
+  // tets with that material number, or no *SURFACE of the file (so that a changed file
+  // whose groups lost their tags and names does not go unnoticed).
+  void ignored_comments_note() {
+    for (const auto* names : {&commented_names_, &commented_surfaces_})
+      for (const auto& [set, comment] : *names) {
+        const bool surface = names == &commented_surfaces_;
+        if (comment.used || (surface && surface_index_.count(set))) continue;
+        ignore_comment(comment.line);
+      }
+    if (ignored_comment_count_ == 0) return;
+    std::sort(ignored_comment_lines_.begin(), ignored_comment_lines_.end());
+    std::string lines;
+    for (size_t line : ignored_comment_lines_)
+      lines += (lines.empty() ? "" : ", ") + std::to_string(line);
+    if (ignored_comment_count_ > ignored_comment_lines_.size()) lines += ", ...";
+    out_->notes.push_back(
+        std::to_string(ignored_comment_count_) +
+        (ignored_comment_count_ == 1 ? " TetLOD comment" : " TetLOD comments") + " ignored (line" +
+        (ignored_comment_count_ == 1 ? " " : "s ") + lines +
+        "): unreadable, or naming no *SURFACE of the file or no element set of tets with the "
+        "material number given; the names and tags they give are not used");
   }
 
   // The tag of the next surface group: after the largest material number (and 0), one
@@ -806,8 +835,8 @@ class AbaqusParser {
       group->name = valid_utf8(group_name(surface));
       return;
     }
-    const int64_t tag = it->second.first;
-    group->name = valid_utf8(it->second.second);
+    const int64_t tag = it->second.id;
+    group->name = valid_utf8(it->second.name);
     if (tag > 0 && tag <= std::numeric_limits<int32_t>::max() && !group_tags_.count(tag)) {
       group->tag = int32_t(tag);
       return;
@@ -961,9 +990,17 @@ class AbaqusParser {
   std::unordered_map<std::string, size_t> surface_index_;  // by upper-case name
   size_t current_surface_ = 0;
   // From kMaterialNameComment lines: set name (upper case) -> its material and name.
-  std::map<std::string, std::pair<int64_t, std::string>> commented_names_;
+  struct NameComment {
+    int64_t id = 0;  // material number or surface tag
+    std::string name;
+    size_t line = 0;
+    bool used = false;  // materials: the set is one of tets with that number
+  };
+  std::map<std::string, NameComment> commented_names_;
   // From kSurfaceNameComment lines: surface name (upper case) -> its group's tag and name.
-  std::map<std::string, std::pair<int64_t, std::string>> commented_surfaces_;
+  std::map<std::string, NameComment> commented_surfaces_;
+  std::vector<size_t> ignored_comment_lines_;  // the first few, for the note
+  size_t ignored_comment_count_ = 0;
   int64_t surface_tag_base_ = -1;               // next_surface_tag(): the largest material number
   std::unordered_set<int64_t> group_tags_;      // of the surface groups added (add_group())
   std::unordered_set<int64_t> commented_tags_;  // the tags kSurfaceNameComment lines give

@@ -424,6 +424,35 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
     noted |= note.find("numbered anew") != std::string::npos &&
              note.find("port_1_FACES (22 -> ") != std::string::npos;
   EXPECT_TRUE(noted);
+  // A comment that cannot be read, or that names no *SURFACE, gives nothing: the
+  // note says which lines (none when every comment was used).
+  const auto ignored_note = [](const std::vector<std::string>& notes) {
+    for (const std::string& note : notes)
+      if (note.find("TetLOD comment") != std::string::npos) return note;
+    return std::string();
+  };
+  ASSERT_TRUE(read_mesh_from_memory(tagged, MeshFormat::kAbaqus, "t.inp", &back, &info).ok());
+  EXPECT_EQ(ignored_note(info.notes), "");
+  std::string edited = tagged;
+  const size_t bad_tag = edited.find(" 24 port 1\n");
+  edited.replace(bad_tag, 3, " 2x");
+  const size_t renamed = edited.find("surface Surf-Load_FACES");
+  ASSERT_NE(renamed, std::string::npos);
+  edited.replace(renamed, 17, "surface Gone_FACES");
+  const auto line_of = [&](size_t where) {
+    return std::count(edited.begin(), edited.begin() + where, '\n') + 1;
+  };
+  ASSERT_TRUE(read_mesh_from_memory(edited, MeshFormat::kAbaqus, "e.inp", &back, &info).ok());
+  const std::vector<long> lines = {line_of(renamed), line_of(bad_tag)};
+  EXPECT_NE(
+      ignored_note(info.notes)
+          .find("2 TetLOD comments ignored (lines " + std::to_string(std::min(lines[0], lines[1])) +
+                ", " + std::to_string(std::max(lines[0], lines[1])) + "):"),
+      std::string::npos)
+      << ignored_note(info.notes);
+  ASSERT_EQ(info.surface_groups.size(), groups.groups.size());
+  EXPECT_NE(info.surface_groups[0].tag, 22);         // the reader's next tag
+  EXPECT_EQ(info.surface_groups[1].name, "port_1");  // the label's, not the comment's
 }
 
 // CalculiX loads the faces the reader gives: four disjoint copies of one scalene
