@@ -341,12 +341,8 @@ bool open_history(const std::string& path, const char* command, OpenedHistory* o
     std::fprintf(stderr, "tetlod %s: %s\n", command, s.message().c_str());
     return false;
   }
-  if (format < 3)
-    std::fprintf(stderr,
-                 "tetlod %s: note: %s is a history of format %d (written before 2026-11-29), "
-                 "without a checksum: a change to it that every other check passes cannot be "
-                 "found\n",
-                 command, path.c_str(), format);
+  if (const std::string note = unchecked_history_note(format); !note.empty())
+    std::fprintf(stderr, "tetlod %s: note: %s is %s\n", command, path.c_str(), note.c_str());
   opened->lod = std::make_unique<Lod>(std::move(base), &opened->history);
   return true;
 }

@@ -811,8 +811,9 @@ Status Viewer::start_load(const std::string& path) {
       history = std::make_shared<SimplifyResult>();
       std::vector<MaterialName> saved_names;
       SurfacePatches saved_patches;
+      int format = 0;
       s = read_history(job->path, &history->base, &history->history, &saved_params, &saved_names,
-                       &saved_patches);
+                       &saved_patches, &format);
       if (s && (saved_patches.any() || !saved_patches.inside_entries().empty()))
         patches = std::make_shared<const SurfacePatches>(std::move(saved_patches));
       if (s && !saved_names.empty())
@@ -825,6 +826,8 @@ Status Viewer::start_load(const std::string& path) {
         std::lock_guard<std::mutex> lock(job->mutex);
         job->notes.push_back(saved_params ? "made with " + describe_thresholds(*saved_params)
                                           : "saved without its thresholds");
+        if (const std::string note = unchecked_history_note(format); !note.empty())
+          job->notes.push_back(note);
       }
     } else {
       auto read = std::make_shared<TetMesh>();

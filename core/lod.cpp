@@ -941,6 +941,13 @@ std::string end_of_refused_file(const std::string& path, int format) {
 
 }  // namespace
 
+std::string unchecked_history_note(int format) {
+  if (format >= 3) return "";
+  return "a history of format " + std::to_string(format) +
+         " (written before 2026-11-29), without a checksum: a change to it that every other "
+         "check passes cannot be found";
+}
+
 Status read_history(const std::string& path, TetMesh* base, CollapseHistory* history,
                     std::optional<SimplifyParams>* params, std::vector<MaterialName>* names,
                     SurfacePatches* patches, int* format) {

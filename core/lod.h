@@ -157,5 +157,8 @@ Status read_history(const std::string& path, TetMesh* base, CollapseHistory* his
 // A 64-bit hash, one to one on each 8-byte word, so a change of one word is always
 // found; not a defence against a forger, only against damage.
 uint64_t history_checksum(std::string_view bytes);
+// What to tell the user of a history read with `format` < 3 (no checksum), "a history
+// of format 1 ..."; empty for format 3.
+std::string unchecked_history_note(int format);
 
 }  // namespace tetlod

@@ -790,6 +790,20 @@ TEST(ViewerWindow, SavesAndOpensCollapseHistories) {
   };
   EXPECT_EQ(bytes("again.tlh"), bytes("run.tlh"));
   EXPECT_EQ(bytes("end.mesh"), bytes("coarse.mesh"));
+  // One of format 1 (the file up to the thresholds, as before 2026-11-24) opens with
+  // the note that it has no checksum, as the command line gives it.
+  std::string legacy = bytes("run.tlh");
+  ASSERT_EQ(legacy.substr(0, 8), "TETLODH3");
+  legacy[7] = '1';
+  std::ofstream(dir / "legacy.tlh", std::ios::binary) << legacy.substr(0, legacy.find("TLPARAM1"));
+  std::ofstream(dir / "quit.script") << "quit\n";
+  const ViewerRun old = run_viewer(dir, "legacy.tlh --size 320x240 --script quit.script");
+  ASSERT_EQ(old.exit_code, 0) << old.output;
+  EXPECT_NE(old.output.find("legacy.tlh: note: a history of format 1 (written before "
+                            "2026-11-29), without a checksum"),
+            std::string::npos)
+      << old.output;
+  EXPECT_EQ(ok.output.find("without a checksum"), std::string::npos) << ok.output;
   EXPECT_GT(red_panel_pixels(load_png(dir / "after_ui.png")),
             red_panel_pixels(load_png(dir / "before_ui.png")) + 50)
       << "no error text in the panel for bad.tlh";
