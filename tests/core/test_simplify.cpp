@@ -315,6 +315,39 @@ TEST(Simplify, CountsUnsplitEdgesByReasonAndExplainsTetsAboveTheSize) {
   EXPECT_NE(above_size_reason(p, r).find("subdivision was off"), std::string::npos);
 }
 
+// An input tet so flat (below the least stretch threshold) that it is only just read
+// as not flat: six times its volume 1.05e-12 of its longest edge cubed, where readers
+// refuse 1e-12. Subdivision cuts no piece of it that is not twice clear of that
+// (bisecting its longest edge gives two of 1.5e-12, within the stretch: refused), so
+// that what it writes reads back whatever the rounding.
+TEST(Simplify, SubdivisionCutsNoPieceOfAnAlmostFlatTetThatMightReadAsFlat) {
+  TetMesh mesh;
+  const double height = 1.05e-12 * std::pow(std::sqrt(2.0), 3);  // longest edge sqrt(2)
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, height}};
+  mesh.tets = {{0, 1, 2, 3}};
+  mesh.materials = {1};
+  const TetShape input = tet_shape(mesh, mesh.tets[0]);
+  ASSERT_LT(input.stretch, kMinStretch);
+  ASSERT_FALSE(reads_back(input));
+  ValidationReport report;
+  TetMesh copy = mesh;
+  ASSERT_TRUE(validate_mesh(&copy, "flat", {}, &report).ok());
+  SimplifyParams p = loose_params(0.3);  // every edge longer than half of it
+  p.subdivide = true;
+  p.min_stretch = 0.15;
+  SimplifyResult r;
+  ASSERT_TRUE(simplify(mesh, p, &r));
+  EXPECT_GT(r.splits_skipped, 0u);
+  for (size_t t = 0; t < r.output.tet_count(); ++t) {
+    const TetShape shape = tet_shape(r.output, r.output.tets[t]);
+    if (reads_back(shape)) continue;
+    for (uint32_t v : r.output.tets[t])  // only the input tet itself may be this flat
+      EXPECT_TRUE(std::find(mesh.positions.begin(), mesh.positions.end(), r.output.positions[v]) !=
+                  mesh.positions.end())
+          << "tet " << t << ": 6V / s^3 = " << 6 * shape.volume / std::pow(shape.size, 3);
+  }
+}
+
 TEST(Lod, ApplyThenUndoIsBitIdentical) {
   const TetMesh mesh = two_material_box(3);
   SimplifyResult r;
