@@ -349,11 +349,22 @@ bool write_params(std::FILE* f, const SimplifyParams& p) {
 struct ParamsReader {
   std::FILE* f;
   bool ok = true;
+  uint64_t long_count = 0;  // a count the file cannot hold (get_count()), else 0
+  long at = -1;             // where the reading failed: the file's end, or that count's byte
   template <class T>
   T get() {
     T value{};
-    ok = ok && std::fread(&value, sizeof value, 1, f) == 1;
+    if (ok && std::fread(&value, sizeof value, 1, f) != 1) {
+      ok = false;
+      at = std::ftell(f);
+    }
     return value;
+  }
+  void get_bytes(char* bytes, size_t count) {
+    if (ok && count > 0 && std::fread(bytes, 1, count, f) != count) {
+      ok = false;
+      at = std::ftell(f);
+    }
   }
   Vec3 get_vec3() {
     Vec3 p;
@@ -365,8 +376,19 @@ struct ParamsReader {
   // A list count that the rest of the file (`remaining` bytes) can hold.
   uint64_t get_count(uint64_t remaining, uint64_t entry_bytes) {
     const uint64_t n = get<uint64_t>();
-    if (n > remaining / entry_bytes) ok = false;
+    if (ok && n > remaining / entry_bytes) {
+      ok = false;
+      long_count = n;
+      at = std::ftell(f) - 8;
+    }
     return ok ? n : 0;
+  }
+  // The error once !ok, of the block `what` ("material names").
+  std::string failure(const std::string& what) const {
+    if (long_count > 0)
+      return what + ": a count of " + std::to_string(long_count) + " (at byte " +
+             std::to_string(at) + "), more than the file can hold";
+    return "truncated " + what + " (the file ends at byte " + std::to_string(at) + ")";
   }
 };
 
@@ -399,12 +421,12 @@ std::string read_names(std::FILE* f, uint64_t bytes, std::vector<MaterialName>* 
     if (!r.ok) break;
     if (length == 0 || length > kMaxSavedNameBytes) return "material name " + std::to_string(i);
     n.name.resize(length);
-    if (std::fread(n.name.data(), 1, length, f) != length) r.ok = false;
+    r.get_bytes(n.name.data(), length);
     if (r.ok && !names->empty() && n.material <= names->back().material)
       return "material names out of order";
     names->push_back(std::move(n));
   }
-  if (!r.ok) return "truncated material names, or a list longer than the file";
+  if (!r.ok) return r.failure("material names");
   return "";
 }
 
@@ -451,7 +473,7 @@ std::string read_patches(std::FILE* f, uint64_t bytes, SurfacePatches* patches) 
     if (!r.ok) break;
     if (length > kMaxSavedNameBytes) return "surface group " + std::to_string(i) + "'s name";
     g.name.resize(length);
-    if (length > 0 && std::fread(g.name.data(), 1, length, f) != length) r.ok = false;
+    r.get_bytes(g.name.data(), length);
     g.triangles = r.get<uint64_t>();
     g.missing = r.get<uint64_t>();
     if (g.triangles > bytes || g.missing > bytes || g.tag < 1)
@@ -475,7 +497,7 @@ std::string read_patches(std::FILE* f, uint64_t bytes, SurfacePatches* patches) 
       return "surface group triangle " + std::to_string(i);
     entries.push_back(e);
   }
-  if (!r.ok) return "truncated surface groups, or a list longer than the file";
+  if (!r.ok) return r.failure("surface groups");
   *patches = SurfacePatches(std::move(groups), std::move(entries));
   return "";
 }
@@ -514,7 +536,7 @@ std::string read_params(std::FILE* f, uint64_t bytes, SimplifyParams* p) {
     box.size = r.get<double>();
     s.boxes.push_back(box);
   }
-  if (!r.ok) return "truncated thresholds, or a list longer than the file";
+  if (!r.ok) return r.failure("thresholds");
   // What the command line's parsers accept (sizing.h), then check_params().
   if (subdivide > 1) return "thresholds: subdivide flag " + std::to_string(subdivide);
   if (std::isnan(s.uniform)) return "thresholds: size is not a number";
@@ -579,7 +601,7 @@ std::string read_size_map(std::FILE* f, uint64_t bytes, bool v1, TetMesh* mesh,
     mesh->materials.assign(mesh->tets.size(), 0);
     values->resize(vertices);
     for (uint64_t i = 0; i < vertices && r.ok; ++i) (*values)[i] = r.get<double>();
-    if (!r.ok) return "truncated size map, or a list longer than the file";
+    if (!r.ok) return r.failure("size map");
     for (const Vec3& p : mesh->positions)
       if (!is_finite(p)) return "size map: a vertex that is not finite";
     for (const Tet& t : mesh->tets)
@@ -590,7 +612,7 @@ std::string read_size_map(std::FILE* f, uint64_t bytes, bool v1, TetMesh* mesh,
   const uint64_t count = r.get_count(bytes, 8);
   values->resize(count);
   for (uint64_t i = 0; i < count && r.ok; ++i) (*values)[i] = r.get<double>();
-  if (!r.ok) return "truncated size map, or a list longer than the file";
+  if (!r.ok) return r.failure("size map");
   return "";
 }
 

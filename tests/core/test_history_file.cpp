@@ -234,7 +234,10 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
   std::string huge = whole;
   const uint64_t count = uint64_t(1) << 60;
   std::memcpy(&huge[at + 48], &count, sizeof count);
-  EXPECT_NE(error_with(huge).find("truncated thresholds"), std::string::npos);
+  EXPECT_NE(error_with(huge).find("thresholds: a count of 1152921504606846976 (at byte " +
+                                  std::to_string(at + 48) + "), more than the file can hold"),
+            std::string::npos)
+      << error_with(huge);
 }
 
 // The material names are saved last, with or without the thresholds: only those of
@@ -339,7 +342,10 @@ TEST(HistoryFile, MaterialNamesRoundTripAndAreChecked) {
   std::string huge = whole;
   const uint64_t count = uint64_t(1) << 60;
   std::memcpy(&huge[at + 8], &count, sizeof count);
-  EXPECT_NE(error_with(huge).find("truncated material names"), std::string::npos);
+  EXPECT_NE(error_with(huge).find("material names: a count of 1152921504606846976 (at byte " +
+                                  std::to_string(at + 8) + "), more than the file can hold"),
+            std::string::npos)
+      << error_with(huge);
 }
 
 // The input's surface groups are saved last: read back, they group a level as before;
@@ -423,6 +429,12 @@ TEST(HistoryFile, SurfaceGroupsRoundTripAndAreChecked) {
             std::string::npos);
   for (size_t n = at; n < whole.size(); n += n + 17 < whole.size() ? 29 : 1)
     EXPECT_NE(error_with(whole.substr(0, n)), "accepted") << n;
+  // A cut inside a triangle's corners says where the file ends.
+  const std::string cut = error_with(whole.substr(0, first_entry + 44));
+  EXPECT_NE(cut.find("truncated surface groups (the file ends at byte " +
+                     std::to_string(first_entry + 44) + ")"),
+            std::string::npos)
+      << cut;
   EXPECT_EQ(error_with(whole), "accepted");
 }
 
