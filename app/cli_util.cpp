@@ -73,6 +73,18 @@ bool normalize_args(const std::string& command, Args* args) {
     }
     seen.push_back(name);
   }
+  // Render's (and report's) alternatives, as their usage shows them: one would be
+  // dropped without a word (--view with --camera drew the camera's picture).
+  static const char* const kEitherOr[][2] = {
+      {"--view", "--camera"}, {"--cut", "--cut-plane"}, {"--materials", "--hide"}};
+  for (const auto& pair : kEitherOr) {
+    if (std::find(seen.begin(), seen.end(), pair[0]) != seen.end() &&
+        std::find(seen.begin(), seen.end(), pair[1]) != seen.end()) {
+      std::fprintf(stderr, "tetlod %s: give %s or %s, not both\n", command.c_str(), pair[0],
+                   pair[1]);
+      return false;
+    }
+  }
   *args = std::move(split);
   return true;
 }

@@ -22,8 +22,9 @@ bool wants_help(const Args& args);
 // The command line as every command reads it: "--name=value" becomes "--name" "value";
 // an option given twice is refused (one that adds up: --material-size, --size-field,
 // --conductor, --eps, --ground, and view's --hide), as "-o" twice always was: a second
-// --size silently replaced the first. On a refusal prints "tetlod <command>: ..." and
-// returns false (a usage error).
+// --size silently replaced the first; so are render's alternatives given together
+// (--view and --camera, --cut and --cut-plane, --materials and --hide). On a refusal prints "tetlod
+// <command>: ..." and returns false (a usage error).
 bool normalize_args(const std::string& command, Args* args);
 
 // Prints "tetlod <command>: two inputs given, 'first' and 'second' (...)", which says

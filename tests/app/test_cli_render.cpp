@@ -166,15 +166,35 @@ TEST(CliRender, BadValuesAreUsageErrors) {
   const std::string in = asset("box2.mesh");
   const std::string out = out_dir() + "/never.png";
   fs::remove(out);
-  for (const char* flags :
-       {"--width 0", "--width 5000", "--width abc", "--color hue", "--colormap jet", "--cut w=1",
-        "--cut x", "--cut-plane 0,0,0,1", "--cut-plane 1,2", "--view top", "--camera 1,2,3,1,2,3",
-        "--highlight-below 2", "--range 1,0", "--materials 1,-2", "--bogus", "--simplify",
-        "--color material --range 0,1", "--size -1"}) {
+  for (const char* flags : {"--width 0",
+                            "--width 5000",
+                            "--width abc",
+                            "--color hue",
+                            "--colormap jet",
+                            "--cut w=1",
+                            "--cut x",
+                            "--cut-plane 0,0,0,1",
+                            "--cut-plane 1,2",
+                            "--view top",
+                            "--camera 1,2,3,1,2,3",
+                            "--highlight-below 2",
+                            "--range 1,0",
+                            "--materials 1,-2",
+                            "--bogus",
+                            "--simplify",
+                            "--color material --range 0,1",
+                            "--size -1",
+                            "--view x --camera 5,5,5,1,0.5,0.5",
+                            "--cut x=0.5 --cut-plane 1,0,0,0.5",
+                            "--materials 1 --hide 2"}) {
     const CommandResult r = run("render " + in + " -o " + out + " " + flags);
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
     EXPECT_NE(r.output.find("tetlod"), std::string::npos) << flags;
   }
+  // Alternatives given together: one would be dropped without a word.
+  EXPECT_NE(run("render " + in + " -o " + out + " --camera 5,5,5,1,0.5,0.5 --view=x")
+                .output.find("tetlod render: give --view or --camera, not both"),
+            std::string::npos);
   const CommandResult elements = run("render " + in + " -o " + out + " --elements 5");
   EXPECT_EQ(elements.code, 2) << elements.output;
   EXPECT_NE(elements.output.find("--elements picks a level of a simplification"), std::string::npos)
