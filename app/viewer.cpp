@@ -425,6 +425,10 @@ class Viewer {
   std::unique_ptr<Scene> scene_;
   size_t scene_generation_ = 0;
   std::unique_ptr<Job> job_;
+  // A simplification that goes on while another file loads (start_load()): cancelled
+  // once that file is read, back in job_ if it cannot be.
+  std::unique_ptr<Job> parked_run_;
+  bool parked_wait_ = false;  // wait_for_job_ of the parked run (a script's simplify wait=0)
   std::string last_job_error_;
 
   // Statistics of the displayed level (computed in a task on a compacted copy), and
@@ -597,10 +601,11 @@ bool Viewer::init() {
 }
 
 void Viewer::shutdown() {
-  if (job_) {
-    job_->cancel = true;
-    if (job_->thread.joinable()) job_->thread.join();
-    job_.reset();
+  for (std::unique_ptr<Job>* job : {&job_, &parked_run_}) {
+    if (!*job) continue;
+    (*job)->cancel = true;
+    if ((*job)->thread.joinable()) (*job)->thread.join();
+    job->reset();
   }
   if (solve_job_) {
     solve_job_->cancel = true;
@@ -769,19 +774,17 @@ Status Viewer::start_load(const std::string& path) {
     status_.load_error = "still loading " + job_->path;
     return Status::error(status_.load_error);
   }
-  if (job_) {  // a simplification of the old mesh is no longer wanted: say so
-    // Unless the path cannot be opened at all (missing, a directory, unreadable, not a
-    // mesh's or a history's extension): then the run goes on.
+  if (job_) {
+    // A simplification of the old mesh is no longer wanted once the new one is read
+    // (poll_job() cancels it then, and says so); until then, and if the file cannot be
+    // read, it goes on. A path that cannot be opened at all (missing, a directory,
+    // unreadable, not a mesh's or a history's extension) is said at once.
     if (std::string problem = open_problem(path); !problem.empty()) {
       status_.load_error = problem + "; the running simplification goes on";
       return Status::error(status_.load_error);
     }
-    job_->cancel = true;
-    job_->thread.join();
-    job_.reset();
-    run_cancelled_note_ = "the running simplification was cancelled: another file was opened";
-    status_.message = run_cancelled_note_;
-    std::fprintf(stderr, "tetlod view: %s\n", run_cancelled_note_.c_str());
+    parked_run_ = std::move(job_);
+    parked_wait_ = wait_for_job_;
   }
   job_ = std::make_unique<Job>();
   job_->is_load = true;
@@ -993,10 +996,21 @@ void Viewer::poll_job() {
   }
   if (!job->error.empty()) {
     status_.load_error = job->error;  // the current mesh stays as it was
-    status_.message = run_cancelled_note_;
-    run_cancelled_note_.clear();
-    last_job_error_ = job->error;
+    if (parked_run_) {
+      status_.load_error += "; the running simplification goes on";
+      job_ = std::move(parked_run_);
+      wait_for_job_ = parked_wait_;  // a script's open line fails now, not after the run
+    }
+    status_.message.clear();
+    last_job_error_ = status_.load_error;
     return;
+  }
+  if (parked_run_) {  // the new mesh is read: the old mesh's run is no longer wanted
+    parked_run_->cancel = true;
+    parked_run_->thread.join();
+    parked_run_.reset();
+    run_cancelled_note_ = "the running simplification was cancelled: another file was opened";
+    std::fprintf(stderr, "tetlod view: %s\n", run_cancelled_note_.c_str());
   }
   if (job->cancelled) {
     status_.message = "simplification cancelled; the previous result stays";

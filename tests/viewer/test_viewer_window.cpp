@@ -478,8 +478,9 @@ TEST(ViewerWindow, CancelAfterARunEndedIsANote) {
       << none.output;
 }
 
-// A path that cannot be opened does not cost the running simplification: the error
-// says the run goes on (it was cancelled, and the message said another file was opened).
+// A path that cannot be opened, or a file that cannot be read, does not cost the running
+// simplification: the error says the run goes on (it was cancelled, and the message
+// said another file was opened), and the run ends with its result.
 TEST(ViewerWindow, OpeningAMissingFileLeavesTheRunningSimplification) {
   const fs::path dir = fresh_output_dir("viewer_open_missing");
   std::ofstream(dir / "run.script") << "thresholds size=12\nsimplify wait=0\nopen missing.mesh\n"
@@ -501,6 +502,26 @@ TEST(ViewerWindow, OpeningAMissingFileLeavesTheRunningSimplification) {
   EXPECT_EQ(may.exit_code, 0) << may.output;
   EXPECT_TRUE(fs::exists(dir / "ui.png"));
   EXPECT_EQ(may.output.find("cancelled"), std::string::npos) << may.output;
+  // A file that is there but does not read: found only once it is read, while the
+  // run goes on; the script's line fails then, not after the run.
+  std::ofstream(dir / "bad.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n99\n";
+  std::ofstream(dir / "bad.script") << "thresholds size=12\nsimplify wait=0\nopen bad.mesh\nquit\n";
+  const ViewerRun bad =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script bad.script");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("bad.script:3: "), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("; the running simplification goes on"), std::string::npos)
+      << bad.output;
+  EXPECT_EQ(bad.output.find("cancelled"), std::string::npos) << bad.output;
+  fs::remove(dir / "run.tlh");
+  std::ofstream(dir / "bad_may.script")
+      << "thresholds size=12\nsimplify wait=0\n"
+         "open bad.mesh may-fail\nwait done\nsave run.tlh\nquit\n";
+  const ViewerRun bad_may =
+      run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 640x480 --script bad_may.script");
+  EXPECT_EQ(bad_may.exit_code, 0) << bad_may.output;
+  EXPECT_TRUE(fs::exists(dir / "run.tlh")) << bad_may.output;  // the run's history
+  EXPECT_EQ(bad_may.output.find("cancelled"), std::string::npos) << bad_may.output;
 }
 
 // A size that would subdivide the mesh past the limit: the panel shows the error
