@@ -601,10 +601,10 @@ void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Comman
         std::min<size_t>(status.elements_at_target, std::numeric_limits<int>::max()));
     panel->jump_synced = status.elements_at_target;
   }
-  bool jump = ImGui::InputInt("##elements", &panel->jump_elements, 0, 0,
-                              ImGuiInputTextFlags_EnterReturnsTrue);
-  // (InputInt returns true on Enter only if the number changed: Enter jumps anyway.)
-  jump |= ImGui::IsItemDeactivated() && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter));
+  // The number is taken as it is typed (with EnterReturnsTrue it was only on Enter, so
+  // a click on Jump jumped to the number before), and Enter, which ends the typing, jumps.
+  ImGui::InputInt("##elements", &panel->jump_elements, 0, 0);
+  bool jump = ImGui::IsItemDeactivated() && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter));
   panel->jump_editing = ImGui::IsItemActive();
   ImGui::SameLine();
   jump |= ImGui::Button("Jump");

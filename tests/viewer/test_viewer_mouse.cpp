@@ -303,6 +303,30 @@ TEST(ViewerMouse, EnterInTheElementsBoxJumps) {
   EXPECT_NE(saved.level.tet_count(), lod.tet_count_at(saved.history.step_count()));
 }
 
+// Jump takes the number typed in the box, not the one before (it was applied on Enter
+// only): 17000 typed, then a click on Jump, saves the level nearest 17000 elements.
+TEST(ViewerMouse, JumpTakesTheNumberTyped) {
+  test::BackgroundViewer viewer;
+  start_simplified_spheres(&viewer, "viewer_jump_button");
+  if (HasFatalFailure()) return;
+  Display* display = XOpenDisplay(nullptr);
+  ASSERT_NE(display, nullptr);
+  drag(display, 630, 534, 630, 534);
+  const KeyCode control = XKeysymToKeycode(display, XK_Control_L);
+  XTestFakeKeyEvent(display, control, True, CurrentTime);
+  press(display, XK_a);
+  XTestFakeKeyEvent(display, control, False, CurrentTime);
+  for (const KeySym key : {XK_1, XK_7, XK_0, XK_0, XK_0}) press(display, key);
+  drag(display, 709, 534, 709, 534);  // Jump, right of the box
+  XCloseDisplay(display);
+  SavedLevel saved;
+  read_saved(&viewer, &saved);
+  if (HasFatalFailure()) return;
+  const Lod lod(saved.base, &saved.history);
+  EXPECT_EQ(saved.level.tet_count(), lod.tet_count_at(lod.step_for_elements(17000)));
+  EXPECT_NE(saved.level.tet_count(), lod.tet_count_at(saved.history.step_count()));
+}
+
 // What the viewer prints as it goes (each run's time) can be read while it runs, from
 // the file its output goes to (it came out at the end, the output being buffered).
 TEST(ViewerMouse, ItsOutputCanBeReadWhileItRuns) {
