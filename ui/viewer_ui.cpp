@@ -553,8 +553,7 @@ void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Comman
   const bool wide = ImGui::GetContentRegionAvail().x >= 520;  // room for the label
   if (status.step_count == 0) {
     ImGui::PushTextWrapPos(0);  // over both rows if need be
-    ImGui::TextDisabled("%sSimplify to get a collapse history (%zu elements).",
-                        wide ? "Level of detail: " : "", status.elements);
+    ImGui::TextDisabled("%s%s", wide ? "Level of detail: " : "", no_history_text(status).c_str());
     ImGui::PopTextWrapPos();
     ImGui::End();
     return;
@@ -1202,6 +1201,13 @@ std::string reword_flags(const std::string& message, const char* const (&words)[
 }
 
 }  // namespace
+
+std::string no_history_text(const ViewerStatus& status) {
+  const std::string elements = "(" + std::to_string(status.elements) + " elements).";
+  if (status.has_result || status.from_history)
+    return "no collapse: the thresholds allowed none " + elements;
+  return "Simplify to get a collapse history " + elements;
+}
 
 std::string simplify_error_text(const std::string& message) {
   return reword_flags(message,

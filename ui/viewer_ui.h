@@ -327,6 +327,11 @@ std::string other_run_progress_text(const ViewerStatus& status);
 // says so ("..., not the panel's, changed since: ...").
 std::string final_mesh_text(const ViewerStatus& status);
 
+// The level-of-detail strip's text while there are no levels: "Simplify to get a
+// collapse history (N elements).", or, after a run or a history without a collapse
+// (a Simplify would give none either), that the thresholds allowed none.
+std::string no_history_text(const ViewerStatus& status);
+
 // A simplifier's error as the panel shows it: where it names a command-line flag, the
 // panel's own control instead ("... or --no-subdivide" becomes "... or untick
 // \"Subdivide first\" above").

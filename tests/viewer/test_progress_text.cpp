@@ -133,6 +133,19 @@ TEST(FinalMeshText, SaysWhatTheFinalMeshAndTheInputBreak) {
   EXPECT_NE(ui::final_mesh_text(s).find("some new ones: please report it"), std::string::npos);
 }
 
+// The strip without levels asks for a run only if there was none (after a run that
+// allowed no collapse it asked for the Simplify just done).
+TEST(FinalMeshText, NoHistoryText) {
+  ui::ViewerStatus s;
+  s.elements = 136;
+  EXPECT_EQ(ui::no_history_text(s), "Simplify to get a collapse history (136 elements).");
+  s.has_result = true;
+  EXPECT_EQ(ui::no_history_text(s), "no collapse: the thresholds allowed none (136 elements).");
+  s.has_result = false;
+  s.from_history = true;
+  EXPECT_EQ(ui::no_history_text(s), "no collapse: the thresholds allowed none (136 elements).");
+}
+
 // The verdict names the thresholds it was computed with, and once the panel's differ
 // from them it says it is not of the panel's (it stayed under the sliders after they
 // were changed, as if it applied to the new values).
