@@ -1018,6 +1018,9 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
         errors.push_back("size of material " + std::to_string(material) + " must be > 0");
     }
     std::sort(p.sizing.material_sizes.begin(), p.sizing.material_sizes.end());
+    // (check_params() would ask for the size, which this mode's panel does not show.)
+    if (p.sizing.unlimited())
+      errors.push_back("no size limit given: tick a material to give it a size, or \"all\"");
   }
   if (errors.empty()) {  // what only the whole set can break (no size limit at all, ...)
     if (const Status s = check_params(p); !s) errors.push_back(s.message());

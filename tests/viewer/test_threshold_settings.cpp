@@ -120,6 +120,11 @@ TEST(ThresholdSettings, EveryBadThresholdIsNamedAtOnce) {
   EXPECT_NE(error.find("size of material 2 must be > 0"), std::string::npos) << error;
   EXPECT_EQ(error.find("size must be > 0"), std::string::npos) << error;  // no cap: unused
   EXPECT_NE(error.find("valence 1"), std::string::npos) << error;
+  // Per material with nothing ticked: what to tick, not the size this mode does not show.
+  settings = {};
+  settings.sizing_mode = ui::SizingMode::kPerMaterial;
+  EXPECT_FALSE(ui::to_simplify_params(settings, &params, &error));
+  EXPECT_EQ(error, "no size limit given: tick a material to give it a size, or \"all\"");
   settings = {};
   EXPECT_TRUE(ui::to_simplify_params(settings, &params, &error)) << error;
   EXPECT_EQ(params.min_stretch, settings.stretch);
