@@ -215,6 +215,7 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
   } else if (view->color_mode != render::ColorMode::kMaterial) {
     ImGui::DragFloatRange2("Range", &view->range_min, &view->range_max, 0.005f, 0.0f, 1.0f, "%.3f",
                            "%.3f", ImGuiSliderFlags_AlwaysClamp);
+    keep_range_apart(&view->range_min, &view->range_max);
   }
   ImGui::Checkbox("Wireframe", &view->wireframe);
   ImGui::SameLine();
@@ -1204,6 +1205,15 @@ std::string reword_flags(const std::string& message, const char* const (&words)[
 }
 
 }  // namespace
+
+void keep_range_apart(float* low, float* high) {
+  constexpr float kGap = 0.01f;
+  if (*high - *low >= kGap) return;
+  if (*low + kGap <= 1.0f)
+    *high = *low + kGap;
+  else
+    *low = *high - kGap;
+}
 
 std::string no_history_text(const ViewerStatus& status) {
   const std::string elements = "(" + std::to_string(status.elements) + " elements).";

@@ -327,6 +327,11 @@ std::string other_run_progress_text(const ViewerStatus& status);
 // says so ("..., not the panel's, changed since: ...").
 std::string final_mesh_text(const ViewerStatus& status);
 
+// The stretch colour range's ends, each in [0, 1], kept at least 0.01 apart (the legend's
+// two decimals; a script's 'range' and render's --range refuse equal ends): the panel's
+// range allowed MIN = MAX, a legend "0.20 stretch 0.20".
+void keep_range_apart(float* low, float* high);
+
 // The level-of-detail strip's text while there are no levels: "Simplify to get a
 // collapse history (N elements).", or, after a run or a history without a collapse
 // (a Simplify would give none either), that the thresholds allowed none.

@@ -133,6 +133,22 @@ TEST(FinalMeshText, SaysWhatTheFinalMeshAndTheInputBreak) {
   EXPECT_NE(ui::final_mesh_text(s).find("some new ones: please report it"), std::string::npos);
 }
 
+// The panel's stretch range keeps its ends apart (it allowed MIN = MAX).
+TEST(FinalMeshText, RangeEndsKeptApart) {
+  float low = 0.2f, high = 0.2f;
+  ui::keep_range_apart(&low, &high);
+  EXPECT_FLOAT_EQ(low, 0.2f);
+  EXPECT_FLOAT_EQ(high, 0.21f);
+  low = 1.0f, high = 1.0f;
+  ui::keep_range_apart(&low, &high);
+  EXPECT_FLOAT_EQ(low, 0.99f);
+  EXPECT_FLOAT_EQ(high, 1.0f);
+  low = 0.1f, high = 0.5f;
+  ui::keep_range_apart(&low, &high);
+  EXPECT_FLOAT_EQ(low, 0.1f);
+  EXPECT_FLOAT_EQ(high, 0.5f);
+}
+
 // The strip without levels asks for a run only if there was none (after a run that
 // allowed no collapse it asked for the Simplify just done).
 TEST(FinalMeshText, NoHistoryText) {
