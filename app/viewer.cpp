@@ -1209,6 +1209,15 @@ void Viewer::execute(const ui::Command& command) {
       if (solve_job_) solve_job_->cancel = true;
       break;
     case ui::CommandKind::kScreenshot:
+      // As a script's screenshot line is checked: the panel wrote any name as a PNG,
+      // and clamped a size of 100000 to 8192 without a word.
+      if (std::string problem =
+              screenshot_problem(command.path, command.with_ui ? 0 : command.width,
+                                 command.with_ui ? 0 : command.height);
+          !problem.empty()) {
+        status_.load_error = problem;
+        break;
+      }
       if (command.with_ui) {
         ui_capture_path_ = command.path;
         ui_capture_countdown_ = 1;  // the next frame, whose UI no longer shows the click

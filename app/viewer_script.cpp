@@ -341,8 +341,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     a->kind = Kind::kScreenshot;
     if (Status s = p.arg_count(1, 4); !s) return s;
     a->path = w[1];
-    if (!has_extension(a->path, ".png"))
-      return p.error("a screenshot is written as PNG: give a .png name, got '" + a->path + "'");
+    if (std::string problem = screenshot_problem(a->path, 0, 0); !problem.empty())
+      return p.error(problem);
     for (size_t i = 2; i < w.size(); ++i) {
       std::string key, value;
       long long v = 0;
@@ -503,6 +503,16 @@ Status resolve_material_sizes(const std::string& spec, const std::vector<Materia
   }
   std::sort(out->begin(), out->end());
   return Status();
+}
+
+std::string screenshot_problem(const std::string& path, int width, int height) {
+  if (!has_extension(path, ".png"))
+    return "a screenshot is written as PNG: give a .png name, got '" + path + "'";
+  const auto in_range = [](int v) { return v >= 16 && v <= 8192; };
+  if (!(width == 0 && height == 0) && !(in_range(width) && in_range(height)))
+    return "a screenshot's size is 16 to 8192 pixels a side, or 0 x 0 for the view's, not " +
+           std::to_string(width) + " x " + std::to_string(height);
+  return "";
 }
 
 Status parse_script_text(const std::string& text, const std::string& name,

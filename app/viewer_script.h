@@ -170,6 +170,11 @@ struct ScriptAction {
 Status resolve_material_sizes(const std::string& spec, const std::vector<MaterialName>* names,
                               std::vector<std::pair<int32_t, double>>* out);
 
+// What is wrong with a screenshot's file and size as a script line or the panel gives
+// them, or "": a .png name; width and height both 0 (the 3D view's size) or both in
+// [16, 8192].
+std::string screenshot_problem(const std::string& path, int width, int height);
+
 // Reads and checks the whole script before anything runs. Errors read
 // "SCRIPT:LINE: what is wrong".
 Status parse_script(const std::string& path, std::vector<ScriptAction>* actions);

@@ -662,8 +662,8 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::SameLine();
   if (ImGui::Button("Screenshot")) {
     Command c{CommandKind::kScreenshot, panel->screenshot_path};
-    c.width = std::clamp(panel->screenshot_size[0], 0, 8192);
-    c.height = std::clamp(panel->screenshot_size[1], 0, 8192);
+    c.width = panel->screenshot_size[0];  // checked with the path (viewer.cpp)
+    c.height = panel->screenshot_size[1];
     c.with_ui = panel->screenshot_ui;
     commands->push_back(c);
   }

@@ -188,6 +188,15 @@ TEST(ViewerScript, WaitsAreBoundedAndScreenshotsArePngs) {
   EXPECT_EQ(parse_error("screenshot out/a.jpg\n"),
             "t.script:1: a screenshot is written as PNG: give a .png name, got 'out/a.jpg'");
   EXPECT_EQ(parse_ok("screenshot A.PNG\n").size(), 1u);
+  // The panel's Screenshot is checked alike (it clamped 100000 to 8192, wrote 'noext').
+  EXPECT_EQ(screenshot_problem("a.png", 0, 0), "");
+  EXPECT_EQ(screenshot_problem("a.png", 16, 8192), "");
+  EXPECT_EQ(screenshot_problem("out/noext", 0, 0),
+            "a screenshot is written as PNG: give a .png name, got 'out/noext'");
+  EXPECT_EQ(screenshot_problem("a.png", 100000, 5),
+            "a screenshot's size is 16 to 8192 pixels a side, or 0 x 0 for the view's, not "
+            "100000 x 5");
+  EXPECT_NE(screenshot_problem("a.png", 0, 500), "");
 }
 
 TEST(ViewerScript, MaterialSizesAndRegions) {
