@@ -770,6 +770,7 @@ std::string open_problem(const std::string& path) {
 }
 
 Status Viewer::start_load(const std::string& path) {
+  panel_.output_used = false;  // what the panel says next is of this file, not of a save
   if (job_ && job_->is_load) {
     status_.load_error = "still loading " + job_->path;
     return Status::error(status_.load_error);

@@ -627,15 +627,17 @@ void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Comman
   ImGui::End();
 }
 
-void output_section(PanelState* panel, std::vector<Command>* commands) {
+void output_section(const ViewerStatus& status, PanelState* panel, std::vector<Command>* commands) {
   ImGui::SetNextItemWidth(-110);
   ImGui::InputText("##save", panel->save_path, sizeof(panel->save_path));
   ImGui::SameLine();
-  if (ImGui::Button("Save level"))
+  if (ImGui::Button("Save level")) {
+    panel->output_used = true;
     commands->push_back({CommandKind::kSave, panel->save_path,
                          (panel->save_improved ? kSaveImproved : 0) |
                              (panel->save_surfaces ? kSaveSurfaces : 0) |
                              (panel->save_binary ? kSaveBinary : 0)});
+  }
   text_disabled_wrapped(".mesh .meshb .msh .node .vtk .vtu .bdf .nas .inp; .tlh: the history");
   ImGui::Checkbox("improve shapes first", &panel->save_improved);
   if (ImGui::IsItemHovered())
@@ -661,6 +663,7 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   ImGui::InputText("##shot", panel->screenshot_path, sizeof(panel->screenshot_path));
   ImGui::SameLine();
   if (ImGui::Button("Screenshot")) {
+    panel->output_used = true;
     Command c{CommandKind::kScreenshot, panel->screenshot_path};
     c.width = panel->screenshot_size[0];  // checked with the path (viewer.cpp)
     c.height = panel->screenshot_size[1];
@@ -671,6 +674,15 @@ void output_section(PanelState* panel, std::vector<Command>* commands) {
   if (!panel->screenshot_ui) {
     ImGui::SetNextItemWidth(160);
     ImGui::InputInt2("size (0: view)", panel->screenshot_size);
+  }
+  // How the last Save or Screenshot went, here too: the File section, which says it, is
+  // often scrolled out of sight when this one is used.
+  if (panel->output_used && !status.load_error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+    ImGui::TextWrapped("Error: %s", status.load_error.c_str());
+    ImGui::PopStyleColor();
+  } else if (panel->output_used && !status.message.empty()) {
+    ImGui::TextWrapped("%s", status.message.c_str());
   }
 }
 
@@ -1309,7 +1321,7 @@ void draw_viewer_panels(const ViewerStatus& status, ViewSettings* view,
   if (ImGui::CollapsingHeader("Thresholds")) thresholds_section(status, thresholds, commands);
   ImGui::SetNextItemOpen(true, ImGuiCond_FirstUseEver);
   if (ImGui::CollapsingHeader("Analysis")) analysis_section(status, analysis, commands);
-  if (ImGui::CollapsingHeader("Output")) output_section(panel, commands);
+  if (ImGui::CollapsingHeader("Output")) output_section(status, panel, commands);
   ImGui::End();
   lod_strip(status, panel, commands);
   stats_window(status, panel);

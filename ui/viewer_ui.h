@@ -190,6 +190,7 @@ struct PanelState {
   bool save_binary = false;    // .msh, .vtk and .vtu in binary
   char screenshot_path[1024] = "screenshot.png";
   int screenshot_size[2] = {0, 0};  // width, height; 0: the 3D view's size
+  bool output_used = false;  // Save or Screenshot clicked last: the Output section says how it went
   bool screenshot_ui = false;
   bool show_stats = true;
   bool panel_collapsed = false;  // the side panel folded to its title bar: the 3D view widens
