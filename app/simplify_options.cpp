@@ -238,13 +238,14 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
 Status read_size_map(const std::string& path, const TetMesh& mesh, const ValidationReport* read,
                      std::shared_ptr<const SizeMap>* map, const std::string& mesh_name) {
   std::vector<double> sizes;
-  if (Status s = read_sol_sizes(path, &sizes); !s)
+  std::string count_at;
+  if (Status s = read_sol_sizes(path, &sizes, &count_at); !s)
     return Status::error("--size-map: " + s.message());
   // One size a vertex of the file, in its order; the reader drops vertices no tet
   // uses, and their sizes with them.
   const size_t in_file = mesh.vertex_count() + (read ? read->removed_unused_vertices : 0);
   if (sizes.size() != in_file) {
-    return Status::error("--size-map " + path + ": " + std::to_string(sizes.size()) +
+    return Status::error("--size-map " + count_at + ": " + std::to_string(sizes.size()) +
                          " sizes, but " + mesh_name + " has " + std::to_string(in_file) +
                          " vertices (a size map gives one size to each of its vertices, in "
                          "their order)");

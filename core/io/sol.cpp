@@ -34,8 +34,8 @@ std::string not_positive(uint64_t i, double size) {
 // A binary .solb (libMeshb's layout, core/io/gmf_binary.h), as MMG and FreeFEM write
 // it: SolAtVertices's body is the vertex count (an integer), the number of fields and
 // their types (4-byte integers each), then the values (reals).
-Status parse_solb_sizes(std::string_view data, const std::string& name,
-                        std::vector<double>* sizes) {
+Status parse_solb_sizes(std::string_view data, const std::string& name, std::vector<double>* sizes,
+                        std::string* count_at) {
   io::GmfBinary gmf(data, name, "solution", ".solb", ".sol");
   std::vector<double> read;
   bool seen = false;
@@ -52,6 +52,7 @@ Status parse_solb_sizes(std::string_view data, const std::string& name,
         if (end - at < w + 4)
           return gmf.fail(at, "SolAtVertices: its header ends early (truncated file?)");
         const int64_t count = gmf.integer(at, w);
+        if (count_at) *count_at = name + ": byte " + std::to_string(at);
         const int64_t fields = gmf.integer(at + w, 4);
         if (fields < 1) return gmf.fail(at + w, not_sizes(fields, 0));
         if (end - at < w + 8)
@@ -97,12 +98,13 @@ Status parse_solb_sizes(std::string_view data, const std::string& name,
 
 }  // namespace
 
-Status parse_sol_sizes(std::string_view text, const std::string& name, std::vector<double>* sizes) {
+Status parse_sol_sizes(std::string_view text, const std::string& name, std::vector<double>* sizes,
+                       std::string* count_at) {
   using io::TextScanner;
   // A binary file starts with libMeshb's 4-byte 1, in either byte order.
   if (text.size() >= 4 && (text.substr(0, 4) == std::string_view("\1\0\0\0", 4) ||
                            text.substr(0, 4) == std::string_view("\0\0\0\1", 4)))
-    return parse_solb_sizes(text, name, sizes);
+    return parse_solb_sizes(text, name, sizes, count_at);
   TextScanner scanner(text, name, '#');
   std::string_view keyword;
   if (!scanner.next_token(&keyword) ||
@@ -131,6 +133,7 @@ Status parse_sol_sizes(std::string_view text, const std::string& name, std::vect
       int64_t type = 0;
       // An entry is a number and a line break: at least 2 bytes.
       if (!scanner.read_count(&count, "vertex count", 2)) break;
+      if (count_at) *count_at = name + ":" + std::to_string(scanner.line());
       if (!scanner.read_count(&fields, "number of fields", 2)) break;
       if (fields == 1 && !scanner.read_int(&type, "field type")) break;
       if (const std::string why = not_sizes(int64_t(fields), type); !why.empty()) {
@@ -164,10 +167,10 @@ Status parse_sol_sizes(std::string_view text, const std::string& name, std::vect
   return Status();
 }
 
-Status read_sol_sizes(const std::string& path, std::vector<double>* sizes) {
+Status read_sol_sizes(const std::string& path, std::vector<double>* sizes, std::string* count_at) {
   std::string text;
   if (Status s = io::read_file(path, &text); !s) return s;
-  return parse_sol_sizes(text, path, sizes);
+  return parse_sol_sizes(text, path, sizes, count_at);
 }
 
 }  // namespace tetlod

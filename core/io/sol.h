@@ -26,8 +26,13 @@
 
 namespace tetlod {
 
-Status read_sol_sizes(const std::string& path, std::vector<double>* sizes);
+// `count_at`, if given, receives where the vertex count is ("path:line", or "path:
+// byte N" in a .solb), for an error about it that only the caller can find (a count
+// other than the mesh's).
+Status read_sol_sizes(const std::string& path, std::vector<double>* sizes,
+                      std::string* count_at = nullptr);
 // The same on a file's text held in memory (tests, fuzzing); `name` for messages.
-Status parse_sol_sizes(std::string_view text, const std::string& name, std::vector<double>* sizes);
+Status parse_sol_sizes(std::string_view text, const std::string& name, std::vector<double>* sizes,
+                       std::string* count_at = nullptr);
 
 }  // namespace tetlod

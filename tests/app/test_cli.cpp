@@ -955,7 +955,7 @@ TEST(Cli, SimplifyKeepsToASizeMap) {
   std::vector<double> fewer(sizes.begin(), sizes.end() - 1);
   EXPECT_NE(error(write_sol("map_fewer.sol", fewer))
                 .find("--size-map " + out_dir() +
-                      "/map_fewer.sol: 111 sizes, but the input has "
+                      "/map_fewer.sol:4: 111 sizes, but the input has "
                       "112 vertices"),
             std::string::npos)
       << error(write_sol("map_fewer.sol", fewer));

@@ -188,11 +188,13 @@ TEST(SizeMap, BadSizesAreNamed) {
 
 TEST(SolFile, ReadsSizesAtVertices) {
   std::vector<double> sizes;
+  std::string count_at;  // for an error the caller finds: a count other than the mesh's
   const Status s = parse_sol_sizes(
       "MeshVersionFormatted 2\n# sizes\nDimension\n3\nSolAtVertices\n3\n1 1\n0.5\n1e-3\n2\nEnd\n",
-      "m.sol", &sizes);
+      "m.sol", &sizes, &count_at);
   ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_EQ(sizes, (std::vector<double>{0.5, 1e-3, 2}));
+  EXPECT_EQ(count_at, "m.sol:6");
   // MMG writes a version 1 file without End, and keywords in any case.
   ASSERT_TRUE(
       parse_sol_sizes("meshversionformatted 1 dimension 3 solatvertices 1 1 1 4\n", "m.sol", &sizes)
@@ -285,8 +287,14 @@ TEST(SolFile, ReadsBinaryFilesOfEveryVersionInBothByteOrders) {
   for (int version = 1; version <= 4; ++version)
     for (bool swap : {false, true}) {
       std::vector<double> read;
-      const Status s = parse_sol_sizes(solb(version, swap, sizes), "m.solb", &read);
+      std::string count_at;
+      const std::string bytes = solb(version, swap, sizes);
+      const Status s = parse_sol_sizes(bytes, "m.solb", &read, &count_at);
       ASSERT_TRUE(s.ok()) << version << swap << ": " << s.message();
+      ASSERT_EQ(count_at.rfind("m.solb: byte ", 0), 0u) << count_at;
+      const size_t at = std::stoul(count_at.substr(13));  // the count, 4 (its low byte)
+      ASSERT_LT(at + 8, bytes.size());
+      EXPECT_EQ(bytes[swap ? at + (version >= 4 ? 7 : 3) : at], 4) << version << swap;
       ASSERT_EQ(read.size(), sizes.size());
       for (size_t i = 0; i < sizes.size(); ++i)
         EXPECT_EQ(read[i], version == 1 ? double(float(sizes[i])) : sizes[i]) << version << swap;

@@ -740,7 +740,7 @@ TEST(ViewerWindow, SizeMapGivesTheClisMesh) {
   const ViewerRun wrong =
       run_viewer(dir, "'" + box + "' --size-map sizes.sol --size 320x240 --script quit.script");
   EXPECT_NE(wrong.exit_code, 0) << wrong.output;
-  EXPECT_NE(wrong.output.find("--size-map sizes.sol: 4958 sizes, but the input has"),
+  EXPECT_NE(wrong.output.find("--size-map sizes.sol:4: 4958 sizes, but the input has"),
             std::string::npos)
       << wrong.output;
 }
