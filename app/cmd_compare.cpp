@@ -99,11 +99,21 @@ int cmd_compare(const Args& args) {
     renumber_materials(match, &after, &info_after.material_names);
     if (!match.why_by_id.empty()) {
       matched += " (" + match.why_by_id + ")";
+    } else if (match.by_name == 0) {
+      matched += " (no name of AFTER's is one of BEFORE's)";
     } else {
       matched = "by name";
       for (size_t i = 0; i < match.renumbered.size(); ++i)
         matched += (i == 0 ? ": AFTER's " : ", ") + std::to_string(match.renumbered[i].first) +
                    " is " + std::to_string(match.renumbered[i].second);
+    }
+    // A name only AFTER has (renamed, or a new material): by id, said.
+    if (!match.names_only_after.empty()) {
+      matched += match.by_name == 0 ? "; " : "; by id, ";
+      matched += "names BEFORE does not have: ";
+      for (size_t i = 0; i < match.names_only_after.size(); ++i)
+        matched += (i == 0 ? "" : ", ") + std::to_string(match.names_only_after[i].material) +
+                   " '" + match.names_only_after[i].name + "'";
     }
   }
   // Labels: BEFORE's names, then AFTER's for materials BEFORE does not name.

@@ -173,7 +173,12 @@ MaterialMatch match_materials_by_name(const std::vector<MaterialName>& before_na
     const std::string* name = find_material_name(&after_names, m);
     if (!name) continue;
     const auto at = before_ids.find(*name);
-    if (at != before_ids.end()) to = at->second;
+    if (at != before_ids.end()) {
+      to = at->second;
+      ++match.by_name;
+    } else {
+      match.names_only_after.push_back({m, *name});
+    }
   }
   std::map<int32_t, int32_t> source;  // BEFORE's id -> the AFTER material that takes it
   for (const auto& [m, to] : target) {

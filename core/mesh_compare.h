@@ -61,6 +61,9 @@ MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after);
 struct MaterialMatch {
   std::vector<std::pair<int32_t, int32_t>> renumbered;  // (AFTER's id, BEFORE's id), ids differ
   std::string why_by_id;                                // empty if names were used
+  size_t by_name = 0;  // AFTER's materials (with tets) matched by their name
+  // AFTER's materials (with tets) whose name BEFORE does not have: matched by id.
+  std::vector<MaterialName> names_only_after;
 };
 MaterialMatch match_materials_by_name(const std::vector<MaterialName>& before_names,
                                       const TetMesh& after,
