@@ -759,12 +759,12 @@ void Viewer::frame() {
 
 // Why opening `path` would fail before reading a byte, or "".
 std::string open_problem(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return path + ": cannot read: it is a directory";
   if (!is_history_path(path)) {
     if (Status s = check_mesh_path(path); !s)
       return s.message() + "; the viewer also opens .tlh collapse histories";
   }
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) return path + ": cannot read: it is a directory";
   if (access(path.c_str(), R_OK) != 0) return path + ": cannot open: " + std::strerror(errno);
   return "";
 }
@@ -837,7 +837,8 @@ Status Viewer::start_load(const std::string& path) {
       auto read = std::make_shared<TetMesh>();
       ReadInfo info;
       s = read_mesh(job->path, read.get(), &info);
-      if (!s && !check_mesh_path(job->path))  // read_mesh's list of formats lacks histories
+      std::error_code ec;  // read_mesh's list of formats lacks histories:
+      if (!s && !check_mesh_path(job->path) && !std::filesystem::is_directory(job->path, ec))
         s = Status::error(s.message() + "; the viewer also opens .tlh collapse histories");
       if (s) {
         std::lock_guard<std::mutex> lock(job->mutex);

@@ -214,6 +214,10 @@ Status read_tetgen_from_memory(std::string_view node_data, std::string_view ele_
 }
 
 Status read_mesh(const std::string& path, TetMesh* mesh, ReadInfo* info) {
+  // (A directory first: without an extension it was "unknown mesh file extension ''".)
+  std::error_code not_a_directory;
+  if (std::filesystem::is_directory(path, not_a_directory))
+    return Status::error(path + ": cannot read: it is a directory");
   FileKind kind;
   Status status = file_kind(path, &kind);
   if (!status.ok()) return status;

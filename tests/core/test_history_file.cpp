@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/mesh_io.h"
 #include "core/lod.h"
 #include "core/simplify.h"
 #include "core/test_meshes.h"
@@ -132,6 +133,9 @@ TEST(HistoryFile, ADirectoryOrDeviceIsNamed) {
   const std::string dir = std::filesystem::temp_directory_path().string();
   Status s = read_history(dir, &base, &history);
   ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.message(), dir + ": cannot read: it is a directory");
+  // So does a mesh reader (without an extension it was "unknown mesh file extension ''").
+  s = read_mesh(dir, &base);
   EXPECT_EQ(s.message(), dir + ": cannot read: it is a directory");
   s = read_history("/dev/null", &base, &history);
   ASSERT_FALSE(s.ok());
