@@ -1281,9 +1281,24 @@ void activity_row(const ViewerStatus& status, std::vector<Command>* commands) {
     std::snprintf(text, sizeof(text), "solving the %s: %s %.0f%%", a.solving_what.c_str(),
                   a.phase.c_str(), 100 * a.fraction);
   } else if (status.loading) {
-    std::snprintf(text, sizeof(text), "loading %s: %s, %.1f s",
-                  std::filesystem::path(status.loading_path).filename().c_str(),
-                  status.phase.c_str(), status.elapsed_seconds);
+    // Shorter where the bar is too narrow for the line (it drew it from its left,
+    // "g huge.mesh: ...", as it centres text wider than it): the file's name cut in the
+    // middle, then left out (it is under the pointer), then "loading" too.
+    std::string name = std::filesystem::path(status.loading_path).filename().string();
+    const float room = ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemInnerSpacing.x;
+    const auto fits = [&] { return ImGui::CalcTextSize(text).x <= room; };
+    for (;;) {
+      std::snprintf(text, sizeof(text), "loading %s: %s, %.1f s", name.c_str(),
+                    status.phase.c_str(), status.elapsed_seconds);
+      if (fits() || name.size() <= 12) break;
+      const size_t keep = (name.size() - 4) / 2;  // each side of "..."
+      name = name.substr(0, keep) + "..." + name.substr(name.size() - keep);
+    }
+    if (!fits())
+      std::snprintf(text, sizeof(text), "loading: %s, %.1f s", status.phase.c_str(),
+                    status.elapsed_seconds);
+    if (!fits())
+      std::snprintf(text, sizeof(text), "%s, %.1f s", status.phase.c_str(), status.elapsed_seconds);
   } else {
     std::snprintf(text, sizeof(text), "nothing running");
   }
