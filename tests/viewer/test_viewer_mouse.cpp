@@ -280,12 +280,13 @@ TEST(ViewerMouse, ShortKeyTapsAreNotLost) {
   EXPECT_EQ(saved.level.tet_count(), lod.tet_count_at(3));
 }
 
-// The strip's box of elements jumps on Enter, as on Jump: a click in it, ctrl+A, 17000
-// and Enter save the level nearest 17000 elements (not the coarsest, 14222, shown then).
-TEST(ViewerMouse, EnterInTheElementsBoxJumps) {
+// A click in the strip's box of elements, ctrl+A, 17000, then Enter or a click on Jump:
+// the level saved is the one nearest 17000 elements (not the coarsest, 14222, shown
+// then).
+void type_17000_then_jump(const std::string& name, bool by_button) {
   test::BackgroundViewer viewer;
-  start_simplified_spheres(&viewer, "viewer_jump_enter");
-  if (HasFatalFailure()) return;
+  start_simplified_spheres(&viewer, name);
+  if (::testing::Test::HasFatalFailure()) return;
   Display* display = XOpenDisplay(nullptr);
   ASSERT_NE(display, nullptr);
   drag(display, 630, 534, 630, 534);  // a click in the box (left of Jump, on the strip)
@@ -293,38 +294,28 @@ TEST(ViewerMouse, EnterInTheElementsBoxJumps) {
   XTestFakeKeyEvent(display, control, True, CurrentTime);
   press(display, XK_a);
   XTestFakeKeyEvent(display, control, False, CurrentTime);
-  for (const KeySym key : {XK_1, XK_7, XK_0, XK_0, XK_0, XK_Return}) press(display, key);
+  for (const KeySym key : {XK_1, XK_7, XK_0, XK_0, XK_0}) press(display, key);
+  if (by_button)
+    drag(display, 709, 534, 709, 534);  // Jump, right of the box
+  else
+    press(display, XK_Return);
   XCloseDisplay(display);
   SavedLevel saved;
   read_saved(&viewer, &saved);
-  if (HasFatalFailure()) return;
+  if (::testing::Test::HasFatalFailure()) return;
   const Lod lod(saved.base, &saved.history);
   EXPECT_EQ(saved.level.tet_count(), lod.tet_count_at(lod.step_for_elements(17000)));
   EXPECT_NE(saved.level.tet_count(), lod.tet_count_at(saved.history.step_count()));
 }
 
+TEST(ViewerMouse, EnterInTheElementsBoxJumps) {
+  type_17000_then_jump("viewer_jump_enter", false);
+}
+
 // Jump takes the number typed in the box, not the one before (it was applied on Enter
-// only): 17000 typed, then a click on Jump, saves the level nearest 17000 elements.
+// only, so Jump went to the number shown before the typing).
 TEST(ViewerMouse, JumpTakesTheNumberTyped) {
-  test::BackgroundViewer viewer;
-  start_simplified_spheres(&viewer, "viewer_jump_button");
-  if (HasFatalFailure()) return;
-  Display* display = XOpenDisplay(nullptr);
-  ASSERT_NE(display, nullptr);
-  drag(display, 630, 534, 630, 534);
-  const KeyCode control = XKeysymToKeycode(display, XK_Control_L);
-  XTestFakeKeyEvent(display, control, True, CurrentTime);
-  press(display, XK_a);
-  XTestFakeKeyEvent(display, control, False, CurrentTime);
-  for (const KeySym key : {XK_1, XK_7, XK_0, XK_0, XK_0}) press(display, key);
-  drag(display, 709, 534, 709, 534);  // Jump, right of the box
-  XCloseDisplay(display);
-  SavedLevel saved;
-  read_saved(&viewer, &saved);
-  if (HasFatalFailure()) return;
-  const Lod lod(saved.base, &saved.history);
-  EXPECT_EQ(saved.level.tet_count(), lod.tet_count_at(lod.step_for_elements(17000)));
-  EXPECT_NE(saved.level.tet_count(), lod.tet_count_at(saved.history.step_count()));
+  type_17000_then_jump("viewer_jump_button", true);
 }
 
 // What the viewer prints as it goes (each run's time) can be read while it runs, from
