@@ -680,6 +680,7 @@ void Viewer::frame() {
     const Status& s = saved.status;
     if (s) {
       status_.message = "saved " + save_path_ + saved.note;
+      status_.load_error.clear();  // an earlier error is not of this
       if (!saved.breaks.empty()) {
         status_.message += "; it breaks the run's thresholds: " + saved.breaks;
         std::fprintf(stderr, "tetlod view: note: %s, saved, breaks the run's thresholds: %s\n",
@@ -735,6 +736,7 @@ void Viewer::frame() {
     const Status s = render::write_png(ui_capture_path_, image);
     if (s) {
       status_.message = "screenshot " + ui_capture_path_;
+      status_.load_error.clear();
     } else if (ui_capture_line_ > 0) {
       fail_script(ui_capture_line_, s.message());
     } else {
@@ -1228,6 +1230,7 @@ void Viewer::execute(const ui::Command& command) {
         const Status s = screenshot(command.path, command.width, command.height);
         if (s) {
           status_.message = "screenshot " + command.path;
+          status_.load_error.clear();
         } else {
           status_.load_error = s.message();
         }

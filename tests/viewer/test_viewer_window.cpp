@@ -772,7 +772,8 @@ TEST(ViewerWindow, SavesAndOpensCollapseHistories) {
          "save run.tlh\nsave coarse.mesh\n"
          "open run.tlh\nscrub step=700\nsave step700.mesh\nscrub end\nsave end.mesh\n"
          "save again.tlh\nscreenshot before_ui.png ui=1\nopen bad.tlh may-fail\n"
-         "screenshot after_ui.png ui=1\nquit\n";
+         "screenshot after_ui.png ui=1\nopen bad.tlh may-fail\nsave cleared.mesh\n"
+         "screenshot cleared_ui.png ui=1\nquit\n";
   const ViewerRun run =
       run_viewer(dir, "'" + kSource + "/assets/motor.mesh' --size 800x600 --script history.script");
   EXPECT_EQ(run.exit_code, 1) << run.output;  // the first line fails
@@ -828,6 +829,10 @@ TEST(ViewerWindow, SavesAndOpensCollapseHistories) {
   EXPECT_GT(red_panel_pixels(load_png(dir / "after_ui.png")),
             red_panel_pixels(load_png(dir / "before_ui.png")) + 50)
       << "no error text in the panel for bad.tlh";
+  // A save that succeeds takes the error away (it stayed above the "saved" line).
+  EXPECT_LE(red_panel_pixels(load_png(dir / "cleared_ui.png")),
+            red_panel_pixels(load_png(dir / "before_ui.png")) + 50)
+      << "the error of bad.tlh stayed after a save";
 }
 
 TEST(ViewerWindow, FailedSaveInAScriptNamesTheLine) {
