@@ -761,6 +761,10 @@ class AbaqusParser {
     const bool material = comment.substr(0, std::strlen(kMaterialNameComment)) ==
                           std::string_view(kMaterialNameComment);
     const std::string_view prefix = material ? kMaterialNameComment : kSurfaceNameComment;
+    // (The line is trimmed: a bare "** TetLOD material" lacks the prefix's blank.)
+    for (const std::string_view bare :
+         {std::string_view(kMaterialNameComment), std::string_view(kSurfaceNameComment)})
+      if (comment == bare.substr(0, bare.size() - 1)) return ignore_comment(line_);
     if (comment.substr(0, prefix.size()) != prefix) return;
     std::string_view rest = comment.substr(prefix.size());
     const size_t space = rest.find(' ');
@@ -774,7 +778,10 @@ class AbaqusParser {
     const std::string_view name = rest.substr(size_t(end - rest.data()) + 1);
     auto& names = material ? commented_names_ : commented_surfaces_;
     if (name.empty() || names.size() >= 100000) return ignore_comment(line_);
-    names[upper(set)] = {id, std::string(name), line_, false};
+    // A second comment for one set or surface: the later one is taken, the earlier noted.
+    auto [at, added] = names.try_emplace(upper(set));
+    if (!added) ignore_comment(at->second.line);
+    at->second = {id, std::string(name), line_, false};
     if (!material) commented_tags_.insert(id);
   }
   void ignore_comment(size_t line) {
@@ -802,7 +809,9 @@ class AbaqusParser {
         (ignored_comment_count_ == 1 ? " TetLOD comment" : " TetLOD comments") + " ignored (line" +
         (ignored_comment_count_ == 1 ? " " : "s ") + lines +
         "): unreadable, or naming no *SURFACE of the file or no element set of tets with the "
-        "material number given; the names and tags they give are not used");
+        "material number given, or followed by another for the same; " +
+        (ignored_comment_count_ == 1 ? "its name or tag is not used"
+                                     : "their names and tags are not used"));
   }
 
   // The tag of the next surface group: after the largest material number (and 0), one

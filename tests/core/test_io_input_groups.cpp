@@ -453,6 +453,20 @@ TEST(IoInputGroups, AbaqusWrittenGroupsReadBack) {
   ASSERT_EQ(info.surface_groups.size(), groups.groups.size());
   EXPECT_NE(info.surface_groups[0].tag, 22);         // the reader's next tag
   EXPECT_EQ(info.surface_groups[1].name, "port_1");  // the label's, not the comment's
+  // A bare comment line, and the first of two comments for one surface, are noted too.
+  std::string twice = tagged;
+  const size_t port = twice.find("** TetLOD surface port_1_FACES");
+  ASSERT_NE(port, std::string::npos);
+  twice.insert(port, "** TetLOD surface\n** TetLOD surface port_1_FACES 30 old name\n");
+  ASSERT_TRUE(read_mesh_from_memory(twice, MeshFormat::kAbaqus, "t.inp", &back, &info).ok());
+  const long first = std::count(twice.begin(), twice.begin() + port, '\n') + 1;
+  EXPECT_NE(ignored_note(info.notes)
+                .find("2 TetLOD comments ignored (lines " + std::to_string(first) + ", " +
+                      std::to_string(first + 1) + "):"),
+            std::string::npos)
+      << ignored_note(info.notes);
+  ASSERT_EQ(info.surface_groups.size(), groups.groups.size());
+  EXPECT_EQ(info.surface_groups[1].name, "port 1");  // the later comment's
 }
 
 // CalculiX loads the faces the reader gives: four disjoint copies of one scalene
