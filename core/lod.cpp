@@ -419,7 +419,10 @@ std::string read_names(std::FILE* f, uint64_t bytes, std::vector<MaterialName>* 
     n.material = r.get<int32_t>();
     const uint32_t length = r.get<uint32_t>();
     if (!r.ok) break;
-    if (length == 0 || length > kMaxSavedNameBytes) return "material name " + std::to_string(i);
+    if (length == 0 || length > kMaxSavedNameBytes)
+      return "material name " + std::to_string(i) + ": a length of " + std::to_string(length) +
+             " bytes (at byte " + std::to_string(std::ftell(f) - 4) + "), not 1 to " +
+             std::to_string(kMaxSavedNameBytes);
     n.name.resize(length);
     r.get_bytes(n.name.data(), length);
     if (r.ok && !names->empty() && n.material <= names->back().material)
@@ -468,16 +471,29 @@ std::string read_patches(std::FILE* f, uint64_t bytes, SurfacePatches* patches) 
   std::set<int32_t> tags;
   for (uint64_t i = 0; i < group_count && r.ok; ++i) {
     SurfacePatches::Group g;
+    const long start = std::ftell(f);  // for the errors: where each field is
+    const auto field = [&](const char* what, auto value, long at) {
+      return "surface group " + std::to_string(i) + ": " + what + " " + std::to_string(value) +
+             " (at byte " + std::to_string(start + at) + ")";
+    };
     g.tag = r.get<int32_t>();
     const uint32_t length = r.get<uint32_t>();
     if (!r.ok) break;
-    if (length > kMaxSavedNameBytes) return "surface group " + std::to_string(i) + "'s name";
+    if (length > kMaxSavedNameBytes)
+      return field("a name length of", length, 4) + ", more than " +
+             std::to_string(kMaxSavedNameBytes);
     g.name.resize(length);
     r.get_bytes(g.name.data(), length);
     g.triangles = r.get<uint64_t>();
     g.missing = r.get<uint64_t>();
-    if (g.triangles > bytes || g.missing > bytes || g.tag < 1)
-      return "surface group " + std::to_string(i);
+    if (!r.ok) break;
+    if (g.tag < 1) return field("tag", g.tag, 0) + ", not a tag >= 1";
+    if (g.triangles > bytes)
+      return field("a triangle count of", g.triangles, 8 + long(length)) +
+             ", more than the file can hold";
+    if (g.missing > bytes)
+      return field("a missing count of", g.missing, 16 + long(length)) +
+             ", more than the file can hold";
     if (!tags.insert(g.tag).second) return "surface groups with one tag, " + std::to_string(g.tag);
     groups.push_back(std::move(g));
   }

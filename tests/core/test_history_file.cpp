@@ -429,8 +429,11 @@ TEST(HistoryFile, SurfaceGroupsRoundTripAndAreChecked) {
             std::string::npos);
   EXPECT_NE(error_with(body(whole) + "TLNAMES1").find("a block out of order"), std::string::npos);
   const int32_t tag0 = 0;  // the group's tag, after the magic and the count
-  EXPECT_NE(error_with(with(at + 16, &tag0, 4)).find("corrupt history: surface group 0"),
-            std::string::npos);
+  EXPECT_NE(error_with(with(at + 16, &tag0, 4))
+                .find("corrupt history: surface group 0: tag 0 (at byte " +
+                      std::to_string(at + 16) + "), not a tag >= 1"),
+            std::string::npos)
+      << error_with(with(at + 16, &tag0, 4));
   for (size_t n = at; n < whole.size(); n += n + 17 < whole.size() ? 29 : 1)
     EXPECT_NE(error_with(whole.substr(0, n)), "accepted") << n;
   // A cut inside a triangle's corners says where the file ends.
