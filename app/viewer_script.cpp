@@ -352,7 +352,10 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
         if (Status s = p.on_off(key, value, &a->flag); !s) return s;
       } else if (key == "width" || key == "height") {
         if (Status s = p.integer(key, value, &v); !s) return s;
-        if (v < 16 || v > 8192) return p.error("'" + key + "' must be in [16, 8192]");
+        if (v < 16 || v > 8192)
+          return p.error("'" + key +
+                         "' must be in [16, 8192] (or leave out width and height for "
+                         "the view's size)");
         (key == "width" ? a->width : a->height) = static_cast<int>(v);
       } else {
         return p.error("unknown screenshot option '" + key + "' (ui, width, height)");

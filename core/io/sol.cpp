@@ -60,7 +60,9 @@ Status parse_solb_sizes(std::string_view data, const std::string& name, std::vec
         if (const std::string why = not_sizes(fields, gmf.integer(at + w + 4, 4)); !why.empty())
           return gmf.fail(at + w, why);
         const size_t first = at + w + 8;
-        if (count < 0 || uint64_t(count) > (end - first) / gmf.real_size()) {
+        if (count < 0)
+          return gmf.fail(at, "SolAtVertices: a vertex count of " + std::to_string(count));
+        if (uint64_t(count) > (end - first) / gmf.real_size()) {
           return gmf.fail(at, "SolAtVertices: " + std::to_string(count) + " sizes of " +
                                   std::to_string(gmf.real_size()) + " bytes do not fit in the " +
                                   std::to_string(end - first) +

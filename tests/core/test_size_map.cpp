@@ -377,6 +377,14 @@ TEST(SolFile, BinaryErrorsNameTheFileByteAndWhat) {
                   })),
                   "SolAtVertices: 5 sizes of 8 bytes do not fit in the 8 bytes"));
   EXPECT_TRUE(has(error(file([](test::GmfWriter& f) {
+                    f.keyword(62);
+                    f.integer(-1);
+                    f.i32(1);
+                    f.i32(1);
+                    f.real(1);
+                  })),
+                  "SolAtVertices: a vertex count of -1"));
+  EXPECT_TRUE(has(error(file([](test::GmfWriter& f) {
                     for (int k = 0; k < 2; ++k) {
                       f.keyword(62);
                       f.integer(1);
