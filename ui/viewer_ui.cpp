@@ -39,6 +39,7 @@ constexpr float kStatsHeight = 236;       // the statistics strip under the 3D v
 constexpr float kLodHeight = 58;          // the level-of-detail strip above it
 constexpr float kFoldedPanelHeight = 32;  // the side panel folded to its title bar, margins in
 constexpr float kMargin = 6;
+constexpr float kMinViewHeight = 120;  // the 3D view's least height, where the window allows
 
 // Where the 3D view (and the strips under it) start: right of the side panel, or at the
 // window's edge when the panel is folded to its title bar.
@@ -533,13 +534,24 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   }
 }
 
+// The statistics strip's height: its own, less in a window too short for it and the 3D
+// view's least height above the level-of-detail strip (a 1920x300 window showed no view,
+// a 2000x200 one the statistics over everything).
+// 0 where it is off, or would be too short to show a row (then it is not drawn).
+float stats_height(float display_height, bool shown) {
+  const float h =
+      std::min(display_height - kLodHeight - 3 * kMargin - kMinViewHeight, kStatsHeight);
+  return shown && h >= 60 ? h : 0.0f;
+}
+
 // The level-of-detail strip: a bar across the bottom of the 3D view (above the statistics),
 // always in sight, whose slider is as wide as the view, so that a history of thousands of
 // steps can be scrubbed a few steps a pixel.
 void lod_strip(const ViewerStatus& status, PanelState* panel, std::vector<Command>* commands) {
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
   const float left = std::max(scene_left(*panel), kMargin);
-  const float below = panel->show_stats ? kStatsHeight + kMargin : 0.0f;
+  const float stats = stats_height(viewport->WorkSize.y, panel->show_stats);
+  const float below = stats > 0 ? stats + kMargin : 0.0f;
   ImGui::SetNextWindowPos(
       ImVec2(viewport->WorkPos.x + left,
              viewport->WorkPos.y + viewport->WorkSize.y - below - kLodHeight - kMargin),
@@ -805,15 +817,15 @@ void row_cells(const PropertyRow& r) {
 }
 
 void stats_window(const ViewerStatus& status, PanelState* panel) {
-  if (!panel->show_stats) return;
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  const float height = stats_height(viewport->WorkSize.y, panel->show_stats);
+  if (height == 0) return;
   const float strip_left = std::max(scene_left(*panel), kMargin);
-  ImGui::SetNextWindowPos(
-      ImVec2(viewport->WorkPos.x + strip_left,
-             viewport->WorkPos.y + viewport->WorkSize.y - kStatsHeight - kMargin),
-      ImGuiCond_Always);
+  ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + strip_left,
+                                 viewport->WorkPos.y + viewport->WorkSize.y - height - kMargin),
+                          ImGuiCond_Always);
   ImGui::SetNextWindowSize(
-      ImVec2(std::max(200.0f, viewport->WorkSize.x - strip_left - kMargin), kStatsHeight),
+      ImVec2(std::max(200.0f, viewport->WorkSize.x - strip_left - kMargin), height),
       ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.9f);
   const ImGuiWindowFlags window_flags =
@@ -1253,8 +1265,9 @@ ViewRect scene_rect(float display_width, float display_height, const PanelState&
   r.x = scene_left(panel);
   r.y = panel.panel_collapsed ? kFoldedPanelHeight : 0;  // below the folded panel's bar
   r.width = std::max(1.0f, display_width - r.x);
-  r.height = std::max(1.0f, display_height - r.y - kLodHeight - 2 * kMargin -
-                                (panel.show_stats ? kStatsHeight + kMargin : 0.0f));
+  const float stats = stats_height(display_height, panel.show_stats);
+  r.height = std::max(
+      1.0f, display_height - r.y - kLodHeight - 2 * kMargin - (stats > 0 ? stats + kMargin : 0.0f));
   return r;
 }
 
