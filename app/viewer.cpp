@@ -839,9 +839,9 @@ Status Viewer::start_load(const std::string& path) {
       auto read = std::make_shared<TetMesh>();
       ReadInfo info;
       s = read_mesh(job->path, read.get(), &info);
-      std::error_code ec;  // read_mesh's list of formats lacks histories:
-      if (!s && !check_mesh_path(job->path) && !std::filesystem::is_directory(job->path, ec))
-        s = Status::error(s.message() + "; the viewer also opens .tlh collapse histories");
+      // Not a mesh's extension (or a directory): in open_problem()'s words, which say
+      // that the viewer also opens histories, which read_mesh()'s list of formats lacks.
+      if (!s && !check_mesh_path(job->path)) s = Status::error(open_problem(job->path));
       if (s) {
         std::lock_guard<std::mutex> lock(job->mutex);
         job->notes = reader_notes(info, false);

@@ -68,6 +68,13 @@ void text_disabled_wrapped(const char* format, ...) {
   ImGui::PopStyleColor();
 }
 
+// Wrapped text in red: an error ("Error: ..."), where the action that failed is.
+void text_error_wrapped(const char* label, const std::string& message) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
+  ImGui::TextWrapped("%s: %s", label, message.c_str());
+  ImGui::PopStyleColor();
+}
+
 // Wrapped text in orange: what a user should act on (a thinned part, a threshold broken).
 void text_warning_wrapped(const char* format, ...) IM_FMTARGS(1);
 void text_warning_wrapped(const char* format, ...) {
@@ -124,9 +131,7 @@ void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Com
   }
   ImGui::TextDisabled("(or drop a mesh file onto the window)");
   if (!status.load_error.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
-    ImGui::TextWrapped("Error: %s", status.load_error.c_str());
-    ImGui::PopStyleColor();
+    text_error_wrapped("Error", status.load_error);
   }
   // The last message in a box two lines high, there even when empty, so that a message
   // of another length does not move what is under it (a longer one scrolls, and shows
@@ -466,9 +471,7 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   ImGui::EndDisabled();
   if (!status.running) {
     if (!status.simplify_error.empty()) {  // here, where the thresholds can be changed
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
-      ImGui::TextWrapped("Error: %s", status.simplify_error.c_str());
-      ImGui::PopStyleColor();
+      text_error_wrapped("Error", status.simplify_error);
     }
   } else {
     ImGui::SameLine();
@@ -690,9 +693,7 @@ void output_section(const ViewerStatus& status, PanelState* panel, std::vector<C
   // How the last Save or Screenshot went, here too: the File section, which says it, is
   // often scrolled out of sight when this one is used.
   if (panel->output_used && !status.load_error.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
-    ImGui::TextWrapped("Error: %s", status.load_error.c_str());
-    ImGui::PopStyleColor();
+    text_error_wrapped("Error", status.load_error);
   } else if (panel->output_used && !status.message.empty()) {
     ImGui::TextWrapped("%s", status.message.c_str());
   }
@@ -763,9 +764,7 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
     ImGui::Text("%.1f s", a.elapsed_seconds);
   }
   if (!a.error.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
-    ImGui::TextWrapped("Solver: %s", a.error.c_str());
-    ImGui::PopStyleColor();
+    text_error_wrapped("Solver", a.error);
   }
   if (!a.has_solution) {
     if (!a.superseded.empty())
