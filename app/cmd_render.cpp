@@ -34,7 +34,8 @@ constexpr const char* kRenderUsageTail =
     "                    --size, --stretch, --valence, --tolerance, --material-size,\n"
     "                    --size-field, --size-map, --size-map-mesh, --no-subdivide,\n"
     "                    --within-valence, --past-valence-factor, --one-thread,\n"
-    "                    --crease-angle, --improve, and\n"
+    "                    --crease-angle, --improve (as there: --stretch 0.00012 <= D < 1,\n"
+    "                    --valence V >= 4), and\n"
     "  --elements N      the level of the collapse history nearest N elements\n";
 
 void print_usage(std::FILE* stream) {

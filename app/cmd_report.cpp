@@ -36,7 +36,8 @@ constexpr const char* kReportUsageHead =
     "  --elements N      one more level, nearest N elements (as simplify's --elements)\n"
     "  --simplify        simplify with the flags of 'tetlod simplify' (--size, --stretch,\n"
     "                    --valence, --tolerance, --material-size, --size-field,\n"
-    "                    --size-map, ...);\n"
+    "                    --size-map, ...; as there, --stretch 0.00012 <= D < 1 and\n"
+    "                    --valence V >= 4);\n"
     "                    with --improve, every level is drawn and measured after\n"
     "                    'tetlod simplify --improve' has improved its shapes\n"
     "View flags, as for 'tetlod render' (default picture 480 x 480):\n";

@@ -68,7 +68,8 @@ constexpr const char* kLodUsage =
     "                    --material-size the material sizes, --size-field the region\n"
     "                    rules; a size map saved with the history is kept). Histories\n"
     "                    saved before 2026-11-24 have none: give the ones it was made\n"
-    "                    with.\n";
+    "                    with. The thresholds are written as 'tetlod simplify' takes\n"
+    "                    them (--stretch 0.00012 <= D < 1, --valence V >= 4)\n";
 
 void print_lod_usage(std::FILE* stream) {
   std::fputs(kLodUsage, stream);

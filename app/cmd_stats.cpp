@@ -32,7 +32,9 @@ constexpr const char* kStatsUsage =
     "unless given, no size limit unless --size, --material-size, --size-field or\n"
     "--size-map, whose sizes are at FILE's vertices), it also counts the tets below the\n"
     "stretch or above their size and the nodes above the valence: a check of a mesh from\n"
-    "any tool against an analysis' requirements.\n"
+    "any tool against an analysis' requirements. --stretch takes any 0 < D < 1; in\n"
+    "--material-size, M is a material's id or name, and a comma inside a name is written\n"
+    "as it is ('Cu, 20C=2').\n"
     "  --check  exit with status 3 if anything breaks them (implies the default\n"
     "           thresholds if none is given)\n";
 
