@@ -783,7 +783,7 @@ Status Viewer::start_load(const std::string& path) {
     // read, it goes on. A path that cannot be opened at all (missing, a directory,
     // unreadable, not a mesh's or a history's extension) is said at once.
     if (std::string problem = open_problem(path); !problem.empty()) {
-      status_.load_error = problem + "; the running simplification goes on";
+      status_.load_error = problem + ui::still_running_text(true, solve_job_ != nullptr);
       return Status::error(status_.load_error);
     }
     parked_run_ = std::move(job_);
@@ -999,9 +999,10 @@ void Viewer::poll_job() {
     return;
   }
   if (!job->error.empty()) {
-    status_.load_error = job->error;  // the current mesh stays as it was
+    // The current mesh stays as it was, and so do a simplification and a solve of it.
+    status_.load_error =
+        job->error + ui::still_running_text(parked_run_ != nullptr, solve_job_ != nullptr);
     if (parked_run_) {
-      status_.load_error += "; the running simplification goes on";
       job_ = std::move(parked_run_);
       wait_for_job_ = parked_wait_;  // a script's open line fails now, not after the run
     }

@@ -1245,6 +1245,13 @@ std::string no_history_text(const ViewerStatus& status) {
   return "Simplify to get a collapse history " + elements;
 }
 
+std::string still_running_text(bool simplification, bool solve) {
+  if (simplification && solve) return "; the running simplification and solve go on";
+  if (simplification) return "; the running simplification goes on";
+  if (solve) return "; the running solve goes on";
+  return "";
+}
+
 std::string simplify_error_text(const std::string& message) {
   return reword_flags(message,
                       {"untick \"Subdivide first\" above", "(set the size)", "the region rules"});

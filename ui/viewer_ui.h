@@ -338,6 +338,10 @@ void keep_range_apart(float* low, float* high);
 // (a Simplify would give none either), that the thresholds allowed none.
 std::string no_history_text(const ViewerStatus& status);
 
+// What a failed open leaves running, said after its error ("...; the running solve goes
+// on"): "" when nothing runs.
+std::string still_running_text(bool simplification, bool solve);
+
 // A simplifier's error as the panel shows it: where it names a command-line flag, the
 // panel's own control instead ("... or --no-subdivide" becomes "... or untick
 // \"Subdivide first\" above").

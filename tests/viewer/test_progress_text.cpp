@@ -243,5 +243,13 @@ TEST(SimplifyErrorText, NamesThePanelsControlsNotTheFlags) {
             "thresholds: region box:0,0,0,1,1,1,-2: size");
 }
 
+// A failed open says what goes on running: a solve too (it said only a simplification).
+TEST(StillRunningText, NamesWhatGoesOn) {
+  EXPECT_EQ(ui::still_running_text(false, false), "");
+  EXPECT_EQ(ui::still_running_text(true, false), "; the running simplification goes on");
+  EXPECT_EQ(ui::still_running_text(false, true), "; the running solve goes on");
+  EXPECT_EQ(ui::still_running_text(true, true), "; the running simplification and solve go on");
+}
+
 }  // namespace
 }  // namespace tetlod
