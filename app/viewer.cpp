@@ -2128,6 +2128,7 @@ Status Viewer::run_action(const ScriptAction& a) {
       if (a.valence) thresholds_.valence = static_cast<int>(*a.valence);
       if (a.subdivide) thresholds_.subdivide = *a.subdivide;
       if (a.keep_inside) thresholds_.keep_inside_groups = *a.keep_inside;
+      if (a.crease_angle) thresholds_.crease_angle = *a.crease_angle;
       if (a.size_map) {
         if (*a.size_map && !thresholds_.size_map)
           return Status::error("sizing=map: no size map (give one with the mesh: --size-map)");

@@ -84,7 +84,7 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
         return p.error("'" + key + "' is given twice");
     }
     double number = 0;
-    if (key == "size" || key == "stretch" || key == "tolerance") {
+    if (key == "size" || key == "stretch" || key == "tolerance" || key == "crease-angle") {
       if (Status s = p.number(key, value, &number); !s) return s;
       if (key == "size") {
         if (!(number > 0)) return p.error("size must be > 0");
@@ -95,6 +95,10 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
                          " must be in [0.00012, 1) (below, tets too flat to read back would "
                          "pass)");
         a->stretch = number;
+      } else if (key == "crease-angle") {
+        if (!(number > 0 && number < 180))
+          return p.error("crease-angle=" + value + " must lie between 0 and 180 (degrees)");
+        a->crease_angle = number;
       } else {
         if (!(number >= 0)) return p.error("tolerance must be >= 0");
         a->tolerance = number;
@@ -132,7 +136,7 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
     } else {
       return p.error("unknown threshold '" + key +
                      "' (size, stretch, valence, tolerance, subdivide, keep-inside, "
-                     "material-sizes, region, sizing)");
+                     "crease-angle, material-sizes, region, sizing)");
     }
   }
   return Status();

@@ -10,7 +10,8 @@
 //                                    levels (waits); with may-fail a bad file is not a
 //                                    script error: it shows in the UI as for a user
 //   thresholds size=S stretch=D valence=V tolerance=T subdivide=0|1 keep-inside=0|1
-//              material-sizes=M=S,M=S region=RULES   (any subset; see core/sizing.h;
+//              crease-angle=DEG material-sizes=M=S,M=S region=RULES
+//              (any subset; see core/sizing.h;
 //              M is a material's id or name, looked up when the line runs; a
 //              material material-sizes leaves out has no size limit, as in the CLI;
 //              size= on the same line as material-sizes= also caps every material, as
@@ -147,7 +148,7 @@ struct ScriptAction {
   bool binary = false;    // save binary
   int width = 0, height = 0;
   // thresholds
-  std::optional<double> size, stretch, tolerance;
+  std::optional<double> size, stretch, tolerance, crease_angle;
   std::optional<long long> valence;
   std::optional<bool> subdivide;
   std::optional<bool> keep_inside;

@@ -302,6 +302,8 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
 // size_slider_range(), tolerance_slider_range().
 constexpr double kStretchRange[2] = {0.01, 0.9};
 constexpr int kValenceRange[2] = {4, 200};
+// The crease angle's (check_params(): between 0 and 180 degrees).
+constexpr double kCreaseRange[2] = {1, 179};
 
 // The input's bounding-box diagonal, which the size and tolerance sliders follow.
 double diagonal(const ViewerStatus& status) {
@@ -354,8 +356,9 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
           "half the size, leaves most edges whole; on a graded mesh (fine parts, coarse\n"
           "air) more, until subdivision would at most double the tets; tolerance = 0.001 x\n"
           "the bounding-box diagonal (as tetlod simplify); stretch %.3g, valence %d,\n"
-          "uniform sizing.",
-          ThresholdSettings{}.stretch, ThresholdSettings{}.valence);
+          "crease angle %g, uniform sizing.",
+          ThresholdSettings{}.stretch, ThresholdSettings{}.valence,
+          ThresholdSettings{}.crease_angle);
   }
   const double model_diagonal = diagonal(status);
   const SliderRange tolerance_range = tolerance_slider_range(model_diagonal, t->tolerance);
@@ -376,6 +379,13 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                       &kStretchRange[1], "%.3f", ImGuiSliderFlags_AlwaysClamp);
   ImGui::SliderInt("valence (VL)", &t->valence, kValenceRange[0], kValenceRange[1], "%d",
                    ImGuiSliderFlags_AlwaysClamp);
+  ImGui::SliderScalar("crease angle", ImGuiDataType_Double, &t->crease_angle, &kCreaseRange[0],
+                      &kCreaseRange[1], "%.1f deg", ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "A boundary or interface edge whose two faces' normals differ by more than this\n"
+        "is a feature curve, kept as one (tetlod simplify --crease-angle; default %g)",
+        SimplifyParams{}.crease_angle_degrees);
   int mode = static_cast<int>(t->sizing_mode);
   // The size map is offered only where one was given (it belongs to the mesh opened).
   ImGui::Combo("Sizing", &mode,
@@ -1003,6 +1013,7 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
   p.min_stretch = settings.stretch;
   p.max_valence = static_cast<uint32_t>(std::max(0, settings.valence));
   p.subdivide = settings.subdivide;
+  p.crease_angle_degrees = settings.crease_angle;
   // Every bad value is named at once (a user who typed two should not learn of the
   // second only after fixing the first): each threshold is checked by check_params()
   // alone, the others set to valid values, so that the rules and words are core's.
@@ -1016,6 +1027,7 @@ bool to_simplify_params(const ThresholdSettings& settings, SimplifyParams* param
   check_alone([&p](SimplifyParams* q) { q->tolerance = p.tolerance; });
   check_alone([&p](SimplifyParams* q) { q->min_stretch = p.min_stretch; });
   check_alone([&p](SimplifyParams* q) { q->max_valence = p.max_valence; });
+  check_alone([&p](SimplifyParams* q) { q->crease_angle_degrees = p.crease_angle_degrees; });
   // Uniform: the size everywhere; region, size map: the cap besides the rules or the
   // map; per material: the materials' sizes, and the cap if it is ticked.
   if (!uses_material_sizes(settings.sizing_mode) || settings.material_cap) {
@@ -1065,8 +1077,9 @@ bool same_thresholds(const ThresholdSettings& settings, const SimplifyParams& ru
   const SizingField &a = p.sizing, &b = run.sizing;
   return p.tolerance == run.tolerance && p.min_stretch == run.min_stretch &&
          p.max_valence == run.max_valence && p.subdivide == run.subdivide &&
-         a.uniform == b.uniform && a.material_sizes == b.material_sizes && a.map == b.map &&
-         a.radial == b.radial && a.boxes == b.boxes;
+         p.crease_angle_degrees == run.crease_angle_degrees && a.uniform == b.uniform &&
+         a.material_sizes == b.material_sizes && a.map == b.map && a.radial == b.radial &&
+         a.boxes == b.boxes;
 }
 
 bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings) {
@@ -1074,14 +1087,14 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
   const bool region = !sizing.radial.empty() || !sizing.boxes.empty();
   const bool uniform = std::isfinite(sizing.uniform);
   if ((sizing.map && (region || !sizing.material_sizes.empty())) ||
-      (!uniform && sizing.material_sizes.empty() && !sizing.map && !region) ||
-      params.crease_angle_degrees != SimplifyParams{}.crease_angle_degrees)
+      (!uniform && sizing.material_sizes.empty() && !sizing.map && !region))
     return false;
   ThresholdSettings t;
   t.tolerance = params.tolerance;
   t.stretch = params.min_stretch;
   t.valence = static_cast<int>(std::min<uint32_t>(params.max_valence, 1 << 30));
   t.subdivide = params.subdivide;
+  t.crease_angle = params.crease_angle_degrees;
   if (uniform) t.size = sizing.uniform;
   if (sizing.map) {
     // Without a uniform size, a cap the map never reaches: the same limits.

@@ -82,6 +82,9 @@ struct ThresholdSettings {
   std::shared_ptr<const SizeMap> size_map;
   std::string size_map_name;  // where it came from, for the panel
   bool subdivide = true;
+  // Dihedral angle (degrees) above which a boundary or interface edge is a feature
+  // curve, kept as one (--crease-angle; core/classify.h).
+  double crease_angle = SimplifyParams{}.crease_angle_degrees;
   // The input's surface groups inside a material (a sheet, a port inside the air):
   // kept as they are, faces of every level, so that Save can write them (as `tetlod
   // simplify --surfaces` keeps them); off, coarsened like the rest of the material,
@@ -115,8 +118,8 @@ std::string log_slider_format(const SliderRange& range, const std::string& prefi
 
 // The reverse, for the panel to show the thresholds a history was made with: the
 // settings that give `params` back. False, leaving `settings`
-// alone, where the panel cannot hold them: material sizes and region rules together,
-// region rules without a uniform size, a crease angle other than the default.
+// alone, where the panel cannot hold them: a size map with region rules or material
+// sizes.
 bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* settings);
 
 // Whether the panel's settings give the run `run` was made with (the same thresholds

@@ -94,10 +94,18 @@ TEST(ThresholdSettings, HistoryThresholdsRoundTripThroughThePanel) {
   SimplifyParams map_and_region = region;
   map_and_region.sizing.map = std::make_shared<SizeMap>();
   EXPECT_FALSE(ui::from_simplify_params(map_and_region, &settings));
+  EXPECT_EQ(settings.size, 99);
+
+  // A crease angle other than the default (it was declined, leaving the panel at its
+  // defaults for a history made with --crease-angle).
   SimplifyParams crease = uniform;
   crease.crease_angle_degrees = 30;
-  EXPECT_FALSE(ui::from_simplify_params(crease, &settings));
-  EXPECT_EQ(settings.size, 99);
+  EXPECT_EQ(round_trip(crease).crease_angle_degrees, 30);
+  ASSERT_TRUE(ui::from_simplify_params(crease, &settings));
+  EXPECT_EQ(settings.crease_angle, 30);
+  EXPECT_TRUE(ui::same_thresholds(settings, crease));
+  settings.crease_angle = 40;
+  EXPECT_FALSE(ui::same_thresholds(settings, crease));
 }
 
 // Several bad thresholds (as typed before the sliders clamped typed values, or given
@@ -108,11 +116,13 @@ TEST(ThresholdSettings, EveryBadThresholdIsNamedAtOnce) {
   settings.valence = 1;
   settings.tolerance = -1;
   settings.size = 0;
+  settings.crease_angle = 180;
   SimplifyParams params;
   std::string error;
   EXPECT_FALSE(ui::to_simplify_params(settings, &params, &error));
   for (const char* part : {"tolerance -1 must be", "stretch 5 must lie strictly between 0 and 1",
-                           "valence 1 must be at least 4", "size must be > 0"})
+                           "valence 1 must be at least 4", "size must be > 0",
+                           "crease angle must lie between 0 and 180 degrees"})
     EXPECT_NE(error.find(part), std::string::npos) << part << " in: " << error;
   settings.sizing_mode = ui::SizingMode::kPerMaterial;
   settings.material_sizes = {{1, 2}, {2, -3}};

@@ -58,7 +58,8 @@ TEST(ViewerScript, ParsesEveryCommand) {
       "# comment\n"
       "\n"
       "open m.mesh\n"
-      "thresholds size=12 stretch=0.15 valence=25 tolerance=0.05 subdivide=0 keep-inside=off\n"
+      "thresholds size=12 stretch=0.15 valence=25 tolerance=0.05 subdivide=0 keep-inside=off "
+      "crease-angle=30\n"
       "simplify  # trailing comment\n"
       "scrub elements=5000\n"
       "scrub step=100\n"
@@ -93,6 +94,7 @@ TEST(ViewerScript, ParsesEveryCommand) {
   EXPECT_EQ(*a[1].tolerance, 0.05);
   EXPECT_FALSE(*a[1].subdivide);
   EXPECT_FALSE(*a[1].keep_inside);
+  EXPECT_EQ(*a[1].crease_angle, 30);
   EXPECT_EQ(a[2].kind, Kind::kSimplify);
   EXPECT_EQ(a[3].kind, Kind::kScrubElements);
   EXPECT_EQ(a[3].count, 5000);
@@ -383,6 +385,8 @@ TEST(ViewerScript, RejectsBadValues) {
            "thresholds tolerance=nan\n",
            "thresholds subdivide=maybe\n",
            "thresholds keep-inside=2\n",
+           "thresholds crease-angle=0\n",
+           "thresholds crease-angle=180\n",
            "thresholds colour=1\n",
            "thresholds size\n",
            "thresholds material-sizes=1=0\n",

@@ -620,6 +620,42 @@ TEST(ViewerWindow, TypedThresholdsGiveTheClisMesh) {
   EXPECT_EQ(viewer.materials, cli.materials);
 }
 
+// A crease angle typed in the panel gives `tetlod simplify --crease-angle`'s mesh; a
+// history made with one opens with it in the panel, so that Simplify again (from the
+// history's finest level) gives what the CLI gives from that level with it (the panel
+// could not hold it, and fell back to every default, 40 degrees).
+TEST(ViewerWindow, CreaseAngleGivesTheClisMesh) {
+  const fs::path dir = fresh_output_dir("viewer_crease_angle");
+  const std::string spheres = kSource + "/assets/spheres.mesh";
+  const std::string cd = "cd '" + dir.string() + "' && " + TETLOD_BINARY;
+  for (const std::string& command :
+       {cd + " simplify '" + spheres + "' -o cli.mesh --size 3 --crease-angle 5 --history cli.tlh",
+        cd + " lod cli.tlh --step 0 -o finest.mesh",
+        cd + " simplify finest.mesh -o again5.mesh --size 3 --crease-angle 5",
+        cd + " simplify finest.mesh -o again40.mesh --size 3"})
+    ASSERT_EQ(std::system((command + " >>cli_log.txt 2>&1").c_str()), 0) << command;
+  std::ofstream(dir / "typed.script") << "thresholds size=3 crease-angle=5\nsimplify\n"
+                                         "save typed.mesh\nquit\n";
+  const ViewerRun typed = run_viewer(dir, "'" + spheres + "' --size 320x240 --script typed.script");
+  ASSERT_EQ(typed.exit_code, 0) << typed.output;
+  std::ofstream(dir / "again.script") << "simplify\nsave again.mesh\nquit\n";
+  const ViewerRun again = run_viewer(dir, "cli.tlh --size 320x240 --script again.script");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const auto read = [&dir](const char* name) {
+    TetMesh mesh;
+    EXPECT_TRUE(read_mesh((dir / name).string(), &mesh).ok()) << name;
+    return mesh;
+  };
+  const TetMesh cli = read("cli.mesh"), viewer_typed = read("typed.mesh");
+  const TetMesh again5 = read("again5.mesh"), again40 = read("again40.mesh");
+  const TetMesh viewer_again = read("again.mesh");
+  EXPECT_NE(again5.tets, again40.tets);  // the angle matters on this mesh
+  EXPECT_EQ(viewer_typed.tets, cli.tets);
+  EXPECT_EQ(viewer_typed.positions, cli.positions);
+  EXPECT_EQ(viewer_again.tets, again5.tets);
+  EXPECT_EQ(viewer_again.positions, again5.positions);
+}
+
 // `tetlod view FILE --size-map S.sol`: the panel's sizing starts as that map (capped
 // where it never reaches), and Simplify gives `tetlod simplify --size-map`'s mesh;
 // sizing=uniform leaves it; with --size-map-mesh, sizes at a background mesh's vertices
