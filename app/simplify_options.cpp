@@ -393,16 +393,36 @@ std::string describe_breaks(const ThresholdCounts& b) {
 }
 
 std::string describe_size(const SizingField& sizing) {
-  char map[96] = "";
-  if (sizing.map)
-    std::snprintf(map, sizeof map, " (a size map, %g to %g)", sizing.map->smallest(),
+  // The local rules, in brief: a history's reader has no other way to learn them.
+  std::vector<std::string> parts;
+  char text[96];
+  if (!sizing.material_sizes.empty()) {
+    constexpr size_t kListed = 6;
+    std::string listed = "material sizes";
+    for (size_t k = 0; k < sizing.material_sizes.size() && k < kListed; ++k) {
+      std::snprintf(text, sizeof text, "%s %d=%g", k ? "," : "", sizing.material_sizes[k].first,
+                    sizing.material_sizes[k].second);
+      listed += text;
+    }
+    if (sizing.material_sizes.size() > kListed)
+      listed += " and " + std::to_string(sizing.material_sizes.size() - kListed) + " more";
+    parts.push_back(listed);
+  }
+  if (const size_t rules = sizing.radial.size() + sizing.boxes.size(); rules > 0)
+    parts.push_back(std::to_string(rules) + (rules == 1 ? " region rule" : " region rules"));
+  if (sizing.map) {
+    std::snprintf(text, sizeof text, "a size map, %g to %g", sizing.map->smallest(),
                   sizing.map->largest());
+    parts.push_back(text);
+  }
+  std::string local;
+  for (const std::string& part : parts) local += (local.empty() ? " (" : "; ") + part;
+  if (!local.empty()) local += ")";
   if (!std::isfinite(sizing.uniform))
-    return (sizing.has_local_rules() ? "from the local sizing" : "no limit") + std::string(map);
-  char text[64];
+    return (sizing.has_local_rules() ? "from the local sizing" : "no limit") + local;
   std::snprintf(text, sizeof text, "%g", sizing.uniform);
   return text + std::string(sizing.has_local_rules() ? ", less where the local sizing asks" : "") +
-         map;
+         local;
 }
 
 std::string describe_thresholds(const SimplifyParams& params, bool with_tolerance) {

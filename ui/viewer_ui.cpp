@@ -338,27 +338,35 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
   ImGui::TextDisabled("ctrl-click a slider to type a value");
   if (status.thresholds_from_history) {
     text_disabled_wrapped("On open: the thresholds the history was made with");
-  } else if (t->size_map) {
-    text_disabled_wrapped(
-        "On open: the size map given with the mesh, capped at its largest size; tolerance "
-        "%.4g = 0.001 x diagonal",
-        status.default_tolerance);
-  } else if (status.default_size > 0) {
-    text_disabled_wrapped(
-        "On open: size %.4g %s, tolerance %.4g = 0.001 x diagonal (hover)", status.default_size,
-        status.default_size_raised ? "(3 x median tet size, raised for a graded mesh)"
-                                   : "= 3 x median tet size",
-        status.default_tolerance);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "Opening a mesh resets every threshold and the sizing: size = 3 x the median tet\n"
-          "size (longest edge), so that subdivision, which splits every edge longer than\n"
-          "half the size, leaves most edges whole; on a graded mesh (fine parts, coarse\n"
-          "air) more, until subdivision would at most double the tets; tolerance = 0.001 x\n"
-          "the bounding-box diagonal (as tetlod simplify); stretch %.3g, valence %d,\n"
-          "crease angle %g, uniform sizing.",
-          ThresholdSettings{}.stretch, ThresholdSettings{}.valence,
-          ThresholdSettings{}.crease_angle);
+  } else {
+    if (status.from_history && !status.history_thresholds.empty()) {
+      // from_simplify_params() declined them; the text under Simplify gives them.
+      text_disabled_wrapped(
+          "The history's thresholds (a size map with region rules or material sizes) do not "
+          "fit the panel: below are the mesh's defaults");
+    }
+    if (t->size_map) {
+      text_disabled_wrapped(
+          "On open: the size map given with the mesh, capped at its largest size; tolerance "
+          "%.4g = 0.001 x diagonal",
+          status.default_tolerance);
+    } else if (status.default_size > 0) {
+      text_disabled_wrapped(
+          "On open: size %.4g %s, tolerance %.4g = 0.001 x diagonal (hover)", status.default_size,
+          status.default_size_raised ? "(3 x median tet size, raised for a graded mesh)"
+                                     : "= 3 x median tet size",
+          status.default_tolerance);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Opening a mesh resets every threshold and the sizing: size = 3 x the median tet\n"
+            "size (longest edge), so that subdivision, which splits every edge longer than\n"
+            "half the size, leaves most edges whole; on a graded mesh (fine parts, coarse\n"
+            "air) more, until subdivision would at most double the tets; tolerance = 0.001 x\n"
+            "the bounding-box diagonal (as tetlod simplify); stretch %.3g, valence %d,\n"
+            "crease angle %g, uniform sizing.",
+            ThresholdSettings{}.stretch, ThresholdSettings{}.valence,
+            ThresholdSettings{}.crease_angle);
+    }
   }
   const double model_diagonal = diagonal(status);
   const SliderRange tolerance_range = tolerance_slider_range(model_diagonal, t->tolerance);

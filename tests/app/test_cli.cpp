@@ -832,6 +832,17 @@ TEST(Cli, SimplifyKeepsToASizeMap) {
                           "stretch 0.15"),
             std::string::npos)
       << r.output;
+  // With material sizes and region rules too, each is said (material sizes listed up to
+  // six): a history's reader has no other way to learn them.
+  const CommandResult all =
+      run("simplify " + in + " -o " + out_dir() + "/map_all.mesh --size-map " + sol +
+          " --material-size 1=0.5,2=0.75 --size-field 'box:0,0,0,1,1,1,0.4;radial:0,0,0,1,2'" +
+          " --tolerance 1e-9");
+  ASSERT_EQ(all.code, 0) << all.output;
+  EXPECT_NE(all.output.find("thresholds: size from the local sizing (material sizes 1=0.5, "
+                            "2=0.75; 2 region rules; a size map, 0.3 to 1.2), stretch 0.15"),
+            std::string::npos)
+      << all.output;
   EXPECT_NE(r.output.find("0 new: the others"), std::string::npos) << r.output;
   TetMesh output;
   ASSERT_TRUE(read_mesh(out, &output).ok());
@@ -1713,9 +1724,11 @@ TEST(Cli, SimplifyKernelsAgreeBitForBit) {
       if (forced) {
         EXPECT_NE(r.output.find("(baseline kernels)"), std::string::npos) << r.output;
       }
-      // The threshold line says whether a size field lowers the uniform size.
+      // The threshold line says whether a size field lowers the uniform size, and how
+      // many rules it has.
       const std::string size_line =
-          n == 0 ? "thresholds: size 12, stretch" : "thresholds: size 12, less where the local";
+          n == 0 ? "thresholds: size 12, stretch"
+                 : "thresholds: size 12, less where the local sizing asks (1 region rule), stretch";
       EXPECT_NE(r.output.find(size_line), std::string::npos) << r.output;
       if (n == 0) {
         EXPECT_NE(r.output.find(", so it is the result"), std::string::npos) << r.output;
