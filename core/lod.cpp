@@ -754,13 +754,21 @@ Status read_history_file(const std::string& path, TetMesh* base, CollapseHistory
                       : std::memcmp(block_magic, kGroupsMagic, 8) == 0 ? 4
                       : std::memcmp(block_magic, end_magic, 8) == 0    ? (has_end ? 5 : 0)
                                                                        : 0;
+    const long after_tag = std::ftell(f);
+    const std::string tag_at =
+        " at byte " +
+        std::to_string(after_tag < 0 ? 0 : after_tag - static_cast<long>(magic_bytes));
     std::string error;
-    if (block <= last_block || (block == 2 && last_block != 1)) {
-      error = last_block == 5                 ? "bytes after the end block"
-              : block == 2 && last_block == 0 ? "a size map without thresholds"
-              : last_block > 0 ? "a block out of order, or unknown bytes, after the thresholds, "
-                                 "names or surface groups"
-                               : "bytes after the last step";
+    if (magic_bytes != 8 && last_block != 5) {
+      error = "the file ends inside a block's 8-byte tag (" + std::to_string(magic_bytes) +
+              (magic_bytes == 1 ? " byte" : " bytes") + tag_at + ")";
+    } else if (block <= last_block || (block == 2 && last_block != 1)) {
+      error = (last_block == 5                 ? "bytes after the end block"
+               : block == 2 && last_block == 0 ? "a size map without thresholds"
+               : last_block > 0 ? "a block out of order, or unknown bytes, after the thresholds, "
+                                  "names or surface groups"
+                                : "bytes after the last step") +
+              tag_at;
     } else if (block == 5 && version == 3) {
       const long at = std::ftell(f);
       if (at < 0 || std::fread(&saved_checksum, sizeof saved_checksum, 1, f) != 1)

@@ -206,8 +206,11 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
             std::string::npos);
   EXPECT_NE(error_with(with_double(8, -1)).find("thresholds: tolerance -1"), std::string::npos);
   EXPECT_NE(error_with(whole + "x").find("bytes after the end block"), std::string::npos);
-  EXPECT_NE(error_with(body(whole) + "x").find("after the thresholds, names or surface groups"),
-            std::string::npos);
+  EXPECT_NE(error_with(body(whole) + "TLJUNK01")
+                .find("after the thresholds, names or surface groups at byte " +
+                      std::to_string(body(whole).size())),
+            std::string::npos)
+      << error_with(body(whole) + "TLJUNK01");
   // The first material size's id (after the 48 fixed bytes and the count): 1 -> 0.
   {
     std::string bytes = whole;
@@ -226,6 +229,12 @@ TEST(HistoryFile, ThresholdsRoundTripAndAreChecked) {
             std::string::npos);
   EXPECT_NE(error_with(body(read_bytes(plain)) + "TLPARAM2").find("bytes after the last step"),
             std::string::npos);
+  // Where a tag is cut, its byte is given (it was "unknown bytes", without one).
+  EXPECT_NE(error_with(whole.substr(0, at + 3))
+                .find("the file ends inside a block's 8-byte tag (3 bytes at byte " +
+                      std::to_string(at) + ")"),
+            std::string::npos)
+      << error_with(whole.substr(0, at + 3));
   // Cut anywhere from where the thresholds start: refused, inside them as damage,
   // at their end (or start) for want of the end block.
   for (size_t n = at; n < whole.size(); ++n) {
