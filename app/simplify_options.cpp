@@ -135,7 +135,7 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
   if (a == "--size") {
     if (!value()) return OptionResult::kError;
     const auto d = parse_double(v);
-    if (!d || *d <= 0) return bad_value("a size > 0");
+    if (!d || *d <= 0) return bad_value("a size, a finite number > 0");
     params.sizing.uniform = *d;
     options->size_given = true;
   } else if (a == "--stretch") {
@@ -190,8 +190,9 @@ OptionResult parse_simplify_option(const Args& args, size_t* i, const char* comm
         const bool has_size = split_material_value(item, '=', &material, &size);
         if (is_material_name(material)) {
           if (!has_size || !(size > 0)) {
-            std::fprintf(stderr, "tetlod %s: --material-size %s: '%s' is not a size > 0\n", command,
-                         item.c_str(), item.substr(material.size() + 1).c_str());
+            std::fprintf(stderr,
+                         "tetlod %s: --material-size %s: size '%s' must be a finite number > 0\n",
+                         command, item.c_str(), item.substr(material.size() + 1).c_str());
             return OptionResult::kError;
           }
           options->named_material_sizes.push_back({material, size});

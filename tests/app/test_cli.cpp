@@ -710,6 +710,14 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
   EXPECT_NE(run("simplify " + path + " -o " + out + " --size 1 --stretch 1e-06")
                 .output.find("--stretch '1e-06' is not a stretch from 0.00012 to below 1"),
             std::string::npos);
+  // A bad size is worded alike wherever it is given (--size said "is not a size > 0",
+  // and so did a named material's).
+  for (const char* flags : {"--size abc", "--material-size 1=abc", "--material-size copper=abc"}) {
+    const CommandResult bad = run("simplify " + path + " -o " + out + " " + flags);
+    EXPECT_EQ(bad.code, 2) << flags;
+    EXPECT_NE(bad.output.find("abc"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("a finite number > 0"), std::string::npos) << bad.output;
+  }
   // An empty --material-size is refused as such (it once gave "no size limit given").
   EXPECT_NE(run("simplify " + path + " -o " + out + " --material-size ''")
                 .output.find("--material-size: empty specification"),
