@@ -457,22 +457,23 @@ bool split_material_value(const std::string& item, char separator, std::string* 
   return true;
 }
 
-// "1,copper,3": ids into `ids`, names (items that do not start like a number) into
-// `names`. False for an empty item or a number that is not an id.
-bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
-                     std::vector<std::string>* names) {
+const char* const kEmptyItem = "an empty item (a comma at either end, or two in a row)";
+
+std::string parse_materials(const std::string& text, std::vector<int32_t>* ids,
+                            std::vector<std::string>* names) {
   ids->clear();
   names->clear();
   for (const std::string& item : split_items(text)) {
+    if (item.empty()) return kEmptyItem;
     if (is_material_name(item)) {
       names->push_back(item);
     } else {
       const auto n = parse_integer(item);
-      if (!n || *n < 0 || *n > 0x7fffffff) return false;
+      if (!n || *n < 0 || *n > 0x7fffffff) return "'" + item + "' is not a material id >= 0";
       ids->push_back(static_cast<int32_t>(*n));
     }
   }
-  return true;
+  return "";
 }
 
 bool find_material(const std::string& name, const std::vector<MaterialName>& names, int32_t* id,

@@ -199,10 +199,12 @@ std::vector<std::string> split_value_items(const std::string& text, char separat
 // is no finite number (`material` is set all the same).
 bool split_material_value(const std::string& item, char separator, std::string* material,
                           double* value);
+// What an empty item in a comma-separated list is called in messages.
+extern const char* const kEmptyItem;
 // "1,copper,3", where an option takes materials: ids into `ids`, names into `names`
-// (both cleared first). False for an empty item or a number that is not an id.
-bool parse_materials(const std::string& text, std::vector<int32_t>* ids,
-                     std::vector<std::string>* names);
+// (both cleared first). What is wrong, or "": an empty item, a number that is not an id.
+std::string parse_materials(const std::string& text, std::vector<int32_t>* ids,
+                            std::vector<std::string>* names);
 
 // Escapes a string for a JSON string literal (without the quotes).
 std::string json_escape(const std::string& text);

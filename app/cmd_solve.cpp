@@ -80,6 +80,10 @@ bool parse_pairs(const std::string& flag, const std::string& text,
   for (const std::string& item : split_value_items(text, '=')) {
     std::string material;
     double value = 0;
+    if (item.empty()) {
+      std::fprintf(stderr, "tetlod solve: %s '%s': %s\n", flag.c_str(), text.c_str(), kEmptyItem);
+      return false;
+    }
     if (!split_material_value(item, '=', &material, &value) || !material_text_ok(material)) {
       std::fprintf(stderr,
                    "tetlod solve: %s '%s': '%s' is not MATERIAL=NUMBER (a material id >= 0 or "
@@ -94,6 +98,10 @@ bool parse_pairs(const std::string& flag, const std::string& text,
 
 bool parse_ground(const std::string& text, bool* boundary, std::vector<MaterialText>* materials) {
   for (const std::string& item : split_items(text)) {
+    if (item.empty()) {
+      std::fprintf(stderr, "tetlod solve: --ground '%s': %s\n", text.c_str(), kEmptyItem);
+      return false;
+    }
     if (item == "boundary") {
       *boundary = true;
     } else if (material_text_ok(item)) {

@@ -109,9 +109,9 @@ int cmd_view(const Args& args) {
       if (!parse_option_value(args, &i, "--hide", &value)) return kExitUsage;
       std::vector<int32_t> ids;
       std::vector<std::string> names;
-      if (!parse_materials(value, &ids, &names)) {
-        std::fprintf(stderr, "tetlod view: --hide needs material ids or names, got '%s'\n",
-                     value.c_str());
+      if (const std::string why = parse_materials(value, &ids, &names); !why.empty()) {
+        std::fprintf(stderr, "tetlod view: --hide '%s': %s; it takes material ids or names\n",
+                     value.c_str(), why.c_str());
         return kExitUsage;
       }
       hidden.insert(hidden.end(), ids.begin(), ids.end());

@@ -105,9 +105,14 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
   } else if (a == "--materials" || a == "--hide") {
     if (!value()) return OptionResult::kError;
     const bool shown = a == "--materials";
-    if (!parse_materials(v, shown ? &options->shown_materials : &options->hidden_materials,
-                         shown ? &options->shown_names : &options->hidden_names))
-      return bad_value("a comma-separated list of material ids >= 0 or names");
+    if (const std::string why =
+            parse_materials(v, shown ? &options->shown_materials : &options->hidden_materials,
+                            shown ? &options->shown_names : &options->hidden_names);
+        !why.empty()) {
+      std::fprintf(stderr, "tetlod %s: %s '%s': %s; it takes material ids or names\n", command,
+                   a.c_str(), v.c_str(), why.c_str());
+      return OptionResult::kError;
+    }
   } else if (a == "--cut") {
     if (!value()) return OptionResult::kError;
     const size_t eq = v.find('=');

@@ -165,6 +165,9 @@ Status parse_material_sizes(const std::string& spec, SizingField* field) {
   if (spec.empty()) return Status::error("--material-size: empty specification");
   for (const std::string& item : split(spec, ',')) {
     const size_t eq = item.find('=');
+    if (item.empty())
+      return Status::error("--material-size '" + spec +
+                           "': an empty item (a comma at either end, or two in a row)");
     if (eq == std::string::npos) {
       return Status::error("--material-size: '" + item + "' is not of the form MATERIAL=SIZE");
     }

@@ -689,6 +689,30 @@ TEST(Cli, SurfaceGroupsAreWrittenByConvertSimplifyAndLod) {
   EXPECT_NE(read_file(bdf).find(" 88 CTRIA3;"), std::string::npos);
 }
 
+// An empty item in a list (a trailing comma, two in a row) is named as such, in every
+// option that takes a list (render said only "is not a comma-separated list", solve
+// "'' is neither 'boundary' nor ...").
+TEST(Cli, AnEmptyListItemIsNamed) {
+  const std::string spheres = std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh";
+  const std::string out = out_dir() + "/empty_item";
+  for (const std::string& command :
+       {"render " + spheres + " -o " + out + ".png --materials 1,2,",
+        "render " + spheres + " -o " + out + ".png --hide 1,,2",
+        "solve " + spheres + " --conductor 1=1 --ground 4,",
+        "solve " + spheres + " --conductor 1=1, --ground 4",
+        "simplify " + spheres + " -o " + out + ".mesh --size 3 --material-size 1=2,"}) {
+    const CommandResult r = run(command);
+    EXPECT_EQ(r.code, 2) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("an empty item (a comma at either end, or two in a row)"),
+              std::string::npos)
+        << command << "\n"
+        << r.output;
+  }
+  const CommandResult id = run("render " + spheres + " -o " + out + ".png --hide 1,-1");
+  EXPECT_NE(id.output.find("--hide '1,-1': '-1' is not a material id >= 0"), std::string::npos)
+      << id.output;
+}
+
 TEST(Cli, SimplifyRejectsAbsurdThresholds) {
   const std::string path = write_grid("thr.mesh");
   const std::string out = out_dir() + "/thr_out.mesh";
