@@ -29,7 +29,7 @@ constexpr const char* kSimplifyUsageHead =
     "       SIZING: one or more of --size S, --material-size M=S,..., --size-field SPEC,\n"
     "               --size-map FILE.sol [--size-map-mesh MESH]\n"
     "                       [--elements N] [--history FILE]\n"
-    "                       [--crease-angle DEG] [--improve]\n"
+    "                       [--crease-angle DEG] [--improve] [--check]\n"
     "                       [--msh-version V] [--msh-binary] [--vtk-binary] [--surfaces]\n"
     "\n"
     "Subdivides IN (every edge longer than half its target size), then collapses edges in\n"
@@ -40,7 +40,10 @@ constexpr const char* kSimplifyUsageTail =
     "  --improve         then improve the shapes of the level written, within the same\n"
     "                    thresholds: edge removals and flips inside one material, and\n"
     "                    vertex moves; boundaries and interfaces stay where they are\n"
-    "                    (beyond the paper; the history is not changed)\n";
+    "                    (beyond the paper; the history is not changed)\n"
+    "  --check           exit with status 3 if the mesh written breaks a threshold (input\n"
+    "                    tets it could not remove: the line 'breaking a threshold' says\n"
+    "                    how many); the files are written all the same\n";
 
 void print_simplify_usage(std::FILE* stream) {
   std::fputs(kSimplifyUsageHead, stream);
@@ -54,7 +57,7 @@ void print_simplify_usage(std::FILE* stream) {
 
 constexpr const char* kLodUsage =
     "usage: tetlod lod HISTORY (--elements N | --step K) -o OUT [--msh-version V] [--msh-binary]\n"
-    "                  [--vtk-binary] [--surfaces]\n"
+    "                  [--vtk-binary] [--surfaces] [--check]\n"
     "                  [--improve [--size S [--stretch D] [--valence V] [--material-size ...]\n"
     "                   [--size-field ...] [--crease-angle DEG]]]\n"
     "\n"
@@ -69,7 +72,10 @@ constexpr const char* kLodUsage =
     "                    rules; a size map saved with the history is kept). Histories\n"
     "                    saved before 2026-11-24 have none: give the ones it was made\n"
     "                    with. The thresholds are written as 'tetlod simplify' takes\n"
-    "                    them (--stretch 0.00012 <= D < 1, --valence V >= 4)\n";
+    "                    them (--stretch 0.00012 <= D < 1, --valence V >= 4)\n"
+    "  --check           exit with status 3 if the level written breaks a threshold saved\n"
+    "                    in the history (or, with --improve, those it improves within);\n"
+    "                    the file is written all the same\n";
 
 void print_lod_usage(std::FILE* stream) {
   std::fputs(kLodUsage, stream);
@@ -99,6 +105,14 @@ void print_improve(const ImproveResult& r, double seconds) {
       b1.above_size, b0.above_valence, b1.above_valence, seconds);
 }
 
+// --check: status 3, said on stderr, where the mesh written (`out`) breaks a threshold.
+int check_written(const char* command, const std::string& out, const ThresholdCounts& breaks) {
+  if (breaks.below_stretch + breaks.above_size + breaks.above_valence == 0) return kExitOk;
+  std::fprintf(stderr, "tetlod %s: --check: %s breaks a threshold: %s\n", command, out.c_str(),
+               describe_breaks(breaks).c_str());
+  return kExitBreaks;
+}
+
 MeshStats stats_of(const TetMesh& mesh) {
   return compute_mesh_stats(mesh, build_vertex_tets(mesh));
 }
@@ -113,6 +127,7 @@ int cmd_simplify(const Args& args) {
   std::string in, out, history_path;
   SimplifyOptions options;
   WriteOptions write_options;
+  bool check = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     OptionResult parsed = parse_simplify_option(args, &i, "simplify", &options);
@@ -124,6 +139,8 @@ int cmd_simplify(const Args& args) {
       if (!parse_option_value(args, &i, "-o", &out)) return kExitUsage;
     } else if (a == "--history") {
       if (!parse_option_value(args, &i, "--history", &history_path)) return kExitUsage;
+    } else if (a == "--check") {
+      check = true;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "tetlod simplify: unknown option '%s'\n\n", a.c_str());
       print_simplify_usage(stderr);
@@ -338,7 +355,12 @@ int cmd_simplify(const Args& args) {
   }
   print_staged_mesh_notes(staged);
   if (!history_path.empty()) std::printf("history: %s\n", history_path.c_str());
-  return kExitOk;
+  if (!check) return kExitOk;
+  return check_written("simplify", out,
+                       improve ? improved.breaks_after
+                       : before_last
+                           ? level_breaks
+                           : ThresholdCounts{v.below_stretch, v.above_size, v.above_valence});
 }
 
 int cmd_lod(const Args& args) {
@@ -349,7 +371,7 @@ int cmd_lod(const Args& args) {
   std::string history_path, out;
   WriteOptions write_options;
   long long elements = -1, step = -1;
-  bool improve = false, thresholds_given = false;
+  bool improve = false, thresholds_given = false, check = false;
   SimplifyOptions options;         // the thresholds for --improve
   std::vector<std::string> given;  // which of them, by flag
   for (size_t i = 0; i < args.size(); ++i) {
@@ -381,6 +403,8 @@ int cmd_lod(const Args& args) {
     if (written == OptionResult::kParsed) continue;
     if (a == "--improve") {
       improve = true;
+    } else if (a == "--check") {
+      check = true;
     } else if (a == "-o" || a == "--output") {
       if (!parse_option_value(args, &i, "-o", &out)) return kExitUsage;
     } else if (a == "--elements" || a == "--step") {
@@ -435,6 +459,14 @@ int cmd_lod(const Args& args) {
   }
   HistoryLevel level;
   if (!load_history_level(history_path, "lod", step, elements, &level)) return kExitBadInput;
+  if (check && !improve && !level.params) {
+    std::fprintf(stderr,
+                 "tetlod lod: --check: %s was saved without its thresholds (as every history "
+                 "before 2026-11-24 was): check the level with 'tetlod stats OUT --size S ... "
+                 "--check'\n",
+                 history_path.c_str());
+    return kExitUsage;
+  }
   // The thresholds to improve within: those saved in the history, each one given here
   // replacing its own (--size the uniform size, --material-size the material sizes,
   // --size-field the region rules); with none saved, those given, which need a size.
@@ -516,17 +548,20 @@ int cmd_lod(const Args& args) {
       improve && level.mesh.tet_count() != level_tets
           ? (", improved to " + std::to_string(level.mesh.tet_count()) + " elements").c_str()
           : "");
+  ThresholdCounts breaks;
   if (improve) {
     print_improve(improved, seconds_improve);
+    breaks = improved.breaks_after;
   } else if (level.params) {
     // A level before the last may break what the final mesh does not: tets not yet
     // collapsed, and after a run past the valence, before its first collapses, nodes
     // subdivision took past it (docs/RESULTS.md).
+    breaks = threshold_breaks(level.mesh, *level.params);
     std::printf("this level, breaking the thresholds saved in the history: %s\n",
-                describe_breaks(threshold_breaks(level.mesh, *level.params)).c_str());
+                describe_breaks(breaks).c_str());
   }
   print_staged_mesh_notes(staged);
-  return kExitOk;
+  return check ? check_written("lod", out, breaks) : kExitOk;
 }
 
 }  // namespace tetlod::app

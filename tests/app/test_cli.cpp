@@ -1732,6 +1732,37 @@ TEST(Cli, LodSaysWhatTheLevelBreaks) {
   EXPECT_GT(nodes_above(first.output), nodes_above(breaks));
 }
 
+// --check: simplify and lod exit with status 3 where the mesh written breaks a
+// threshold (the motor's input has tets below the default stretch 0.15), and write it
+// all the same; 0 where nothing is broken (stretch 0.05). lod checks the level written
+// against the history's thresholds (its first level breaks the valence).
+TEST(Cli, SimplifyAndLodCheckWhatTheyWrite) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const std::string out = out_dir() + "/check.mesh", history = out_dir() + "/check.tlh";
+  fs::remove(out);
+  CommandResult r = run("simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05 --check");
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_NE(r.output.find("tetlod simplify: --check: " + out + " breaks a threshold: "),
+            std::string::npos)
+      << r.output;
+  r = run("simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05 --stretch 0.05" +
+          " --history " + history + " --check");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("--check"), std::string::npos) << r.output;
+  EXPECT_EQ(run("lod " + history + " --step 1000000 -o " + out + " --check").code, 0);
+  r = run("lod " + history + " --step 0 -o " + out + " --check");
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_NE(r.output.find("tetlod lod: --check: " + out + " breaks a threshold: "),
+            std::string::npos)
+      << r.output;
+  // The same for the level nearest a number of elements, written by simplify itself
+  // (past the count: the first level).
+  r = run("simplify " + motor + " -o " + out + " --size 12 --tolerance 0.05 --stretch 0.05" +
+          " --elements 100000000 --check");
+  EXPECT_EQ(r.code, 3) << r.output;
+}
+
 // The simplifier's candidate kernels run on AVX2 where the processor has it, else on
 // the baseline instruction set (forced by TETLOD_NO_AVX2): the two must agree bit for
 // bit (same output mesh, same history), with a uniform size (where a run past the
