@@ -387,13 +387,6 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
                       &kStretchRange[1], "%.3f", ImGuiSliderFlags_AlwaysClamp);
   ImGui::SliderInt("valence (VL)", &t->valence, kValenceRange[0], kValenceRange[1], "%d",
                    ImGuiSliderFlags_AlwaysClamp);
-  ImGui::SliderScalar("crease angle", ImGuiDataType_Double, &t->crease_angle, &kCreaseRange[0],
-                      &kCreaseRange[1], "%.1f deg", ImGuiSliderFlags_AlwaysClamp);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "A boundary or interface edge whose two faces' normals differ by more than this\n"
-        "is a feature curve, kept as one (tetlod simplify --crease-angle; default %g)",
-        SimplifyParams{}.crease_angle_degrees);
   int mode = static_cast<int>(t->sizing_mode);
   // The size map is offered only where one was given (it belongs to the mesh opened).
   ImGui::Combo("Sizing", &mode,
@@ -470,6 +463,19 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     unlisted_note(status);
   }
   ImGui::Checkbox("Subdivide first", &t->subdivide);
+  // The crease angle beside it, in that row (a row of its own pushed Simplify below a
+  // 800-pixel window's edge).
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x -
+                                              ImGui::CalcTextSize("crease").x -
+                                              ImGui::GetStyle().ItemInnerSpacing.x));
+  ImGui::SliderScalar("crease", ImGuiDataType_Double, &t->crease_angle, &kCreaseRange[0],
+                      &kCreaseRange[1], "%.1f deg", ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "A boundary or interface edge whose two faces' normals differ by more than this\n"
+        "is a feature curve, kept as one (tetlod simplify --crease-angle; default %g)",
+        SimplifyParams{}.crease_angle_degrees);
   if (status.inside_group_triangles > 0) {
     ImGui::Checkbox("Keep groups inside materials", &t->keep_inside_groups);
     if (ImGui::IsItemHovered())

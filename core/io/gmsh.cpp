@@ -741,9 +741,14 @@ class GmshParser {
       if (name.size() >= 2 && name.front() == '"' && name.back() == '"') {
         name = name.substr(1, name.size() - 2);
       }
-      const int64_t material = material_from_name(name);
-      if (dimension == 3 && material >= 0) named_materials_[tag] = material;
-      if ((dimension == 2 || dimension == 3) && material < 0 && physical_names_.size() < 1000) {
+      // A volume group's tag is its material. "material_0" is how TetLOD writes material
+      // 0, which takes another tag; "material_<tag>" is its name for a material without
+      // one. Any other name is the material's, "material_<n>" too: it was taken as
+      // material n, which swapped or merged groups whose names and tags disagree.
+      const int64_t material = dimension == 3 ? material_from_name(name) : -1;
+      if (material == 0) named_materials_[tag] = 0;
+      const bool default_name = material == 0 || (material > 0 && material == tag);
+      if ((dimension == 2 || dimension == 3) && !default_name && physical_names_.size() < 1000) {
         std::string& kept = physical_names_[{dimension, tag}];
         std::string named = valid_utf8(name);
         if (!kept.empty() && kept != named && renamed_.size() < 10) {
@@ -1410,7 +1415,7 @@ class GmshParser {
   bool swap_ = false;    // binary numbers in the other byte order
   bool seen_nodes_ = false;
   bool seen_elements_ = false;
-  std::unordered_map<int64_t, int64_t> named_materials_;   // physical tag -> "material_<n>"
+  std::unordered_map<int64_t, int64_t> named_materials_;   // physical tag -> 0 ("material_0")
   std::unordered_map<int64_t, int64_t> volume_physical_;   // volume entity -> first physical tag
   std::unordered_map<int64_t, int64_t> volume_parent_;     // partition volume -> model volume
   std::unordered_map<int64_t, int64_t> surface_physical_;  // surface entity -> first physical
@@ -1465,12 +1470,10 @@ void append_physical_names(const std::vector<int32_t>& materials,
     out->append("3 ");
     append_number(out, physical_tags[i]);
     out->append(" \"");
-    // A name of its own, unless it is empty, would read as another material's
-    // number, or the tag is not the id (material 0).
+    // A name of its own, unless it is empty, or "material_0", which would read as
+    // material 0, or the tag is not the id (material 0).
     const std::string* name = materials[i] > 0 ? find_material_name(names, materials[i]) : nullptr;
-    if (name && (name->empty() ||
-                 (material_from_name(*name) >= 0 && material_from_name(*name) != materials[i])))
-      name = nullptr;
+    if (name && (name->empty() || material_from_name(*name) == 0)) name = nullptr;
     if (name) {
       out->append(quotable(*name));
     } else {

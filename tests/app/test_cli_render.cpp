@@ -574,7 +574,8 @@ TEST(CliReport, ThresholdsSayWhereTheSizeComesFrom) {
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(dir + "/report.html");
   const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_NE(html.find("size from the local sizing, stretch"), std::string::npos);
+  EXPECT_NE(html.find("size from the local sizing (material sizes 1=10, 2=10), stretch"),
+            std::string::npos);
   EXPECT_EQ(html.find("size inf"), std::string::npos);
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -95,30 +96,61 @@ TEST(MaterialNames, GmshWritesThemAndReadsThemBack) {
 }
 
 // Names that cannot be written as they are: material 0 (its Gmsh tag is not its id)
-// keeps material_0; an empty name, or one that reads as another material's number,
-// gives material_<m>; quotes and line breaks become '_'; names of absent materials
-// are ignored. Every tet keeps its material.
+// keeps material_0; an empty name, or "material_0" on another material, gives
+// material_<m>; quotes and line breaks become '_'; names of absent materials are
+// ignored. "material_9" on material 2 is a name like any other (its tag is the
+// material). Every tet keeps its material.
 TEST(MaterialNames, GmshNamesThatCannotStandAreReplaced) {
   const std::string dir = test::output_dir("material_names_odd");
   const TetMesh mesh = test::make_grid_mesh(
-      4, 1, 1, [](int i, int, int) { return i; }, 0.5);  // materials 0..3
-  const std::vector<MaterialName> names = {
-      {0, "zero"}, {1, "a\"b\nc"}, {2, "material_9"}, {3, ""}, {7, "absent"}};
+      5, 1, 1, [](int i, int, int) { return i; }, 0.5);  // materials 0..4
+  const std::vector<MaterialName> names = {{0, "zero"}, {1, "a\"b\nc"},    {2, "material_9"},
+                                           {3, ""},     {4, "material_0"}, {7, "absent"}};
   WriteOptions options;
   options.material_names = &names;
   const std::string path = dir + "/odd.msh";
   ASSERT_TRUE(write_mesh(path, mesh, options).ok());
   const std::string text = test::read_text(path);
-  EXPECT_NE(text.find("3 4 \"material_0\"\n3 1 \"a_b_c\"\n3 2 \"material_2\"\n3 3 "
-                      "\"material_3\"\n$EndPhysicalNames"),
+  EXPECT_NE(text.find("3 5 \"material_0\"\n3 1 \"a_b_c\"\n3 2 \"material_9\"\n3 3 "
+                      "\"material_3\"\n3 4 \"material_4\"\n$EndPhysicalNames"),
             std::string::npos)
-      << text.substr(0, 200);
+      << text.substr(0, 240);
   EXPECT_EQ(text.find("absent"), std::string::npos);
   TetMesh back;
   ReadInfo info;
   ASSERT_TRUE(read_mesh(path, &back, &info).ok());
   test::expect_same_mesh(mesh, back);
-  EXPECT_EQ(as_pairs(info.material_names), (Names{{1, "a_b_c"}}));
+  EXPECT_EQ(as_pairs(info.material_names), (Names{{1, "a_b_c"}, {2, "material_9"}}));
+}
+
+// A Gmsh volume group's tag is its material, whatever its name: groups named
+// "material_2" (tag 1) and "material_1" (tag 2) were read as materials 2 and 1,
+// swapped, and "material_1" on tag 12 merged into material 1. "material_0" on any tag
+// is material 0 (TetLOD writes it so), "material_<tag>" no name.
+TEST(MaterialNames, GmshTagsAreMaterialsWhateverTheirNames) {
+  const std::string dir = test::output_dir("material_names_tags");
+  const TetMesh mesh = test::make_grid_mesh(
+      4, 1, 1, [](int i, int, int) { return i + 1; }, 0.5);  // materials 1..4
+  const std::string path = dir + "/tags.msh";
+  ASSERT_TRUE(write_mesh(path, mesh).ok());
+  std::string text = test::read_text(path);
+  const std::string names =
+      "3 1 \"material_1\"\n3 2 \"material_2\"\n3 3 \"material_3\"\n"
+      "3 4 \"material_4\"\n";
+  const size_t at = text.find(names);
+  ASSERT_NE(at, std::string::npos) << text.substr(0, 240);
+  text.replace(at, names.size(),
+               "3 1 \"material_2\"\n3 2 \"material_1\"\n3 3 \"material_0\"\n"
+               "3 4 \"material_4\"\n");
+  std::ofstream(path) << text;
+  TetMesh back;
+  ReadInfo info;
+  ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+  TetMesh expected = mesh;
+  for (int32_t& m : expected.materials)
+    if (m == 3) m = 0;
+  test::expect_same_mesh(expected, back);
+  EXPECT_EQ(as_pairs(info.material_names), (Names{{1, "material_2"}, {2, "material_1"}}));
 }
 
 // Gmsh reads our names: it saves the physical groups again under them.
