@@ -23,27 +23,40 @@ constexpr int64_t kTet4 = 4;
 constexpr int64_t kTriangle3 = 2;
 constexpr int64_t kTet10 = 11;
 
-// Tets of any order (4, 10, 20, 35, 56 nodes): Gmsh lists their corners first, and
-// they are read by them.
-bool is_tet_type(int64_t type) {
-  return type == kTet4 || type == kTet10 || type == 29 || type == 30 || type == 31;
+// Nodes of an element type (Gmsh's GmshDefines.h, as Gmsh 4 numbers them: the
+// manual's list 1..31, 92 and 93, and the higher orders of tets, triangles,
+// quadrangles and lines; 0 if unknown.
+int nodes_per_element(int64_t type) {
+  static constexpr int kNodes[84] = {
+      0,  2,  3,  4,  4,  8,  6,  5,  3,   6,   9,   10,  27,  18, 14, 1,  8,  20, 15, 13, 9,
+      10, 12, 15, 15, 21, 4,  5,  6,  20,  35,  56,  22,  28,  0,  0,  16, 25, 36, 12, 16, 20,
+      28, 36, 45, 55, 66, 49, 64, 81, 100, 121, 18,  21,  24,  27, 30, 24, 28, 32, 36, 40, 7,
+      8,  9,  10, 11, 0,  0,  0,  0,  84,  120, 165, 220, 286, 0,  0,  0,  34, 40, 46, 52, 58};
+  if (type >= 1 && type < 84) return kNodes[type];
+  if (type == 92) return 64;
+  if (type == 93) return 125;
+  if (type == 137) return 16;
+  return 0;
 }
-// Triangles of any order (3 to 21 nodes): their corners come first.
+
+// Tets of any order, complete or not (4 to 286 nodes): Gmsh lists their corners first,
+// and they are read by them.
+bool is_tet_type(int64_t type) {
+  return type == kTet4 || type == kTet10 || (type >= 29 && type <= 33) ||
+         (type >= 71 && type <= 75) || (type >= 79 && type <= 83) || type == 137;
+}
+// Triangles of any order (3 to 66 nodes): their corners come first.
 bool is_triangle_type(int64_t type) {
-  return type == kTriangle3 || type == 9 || (type >= 20 && type <= 25);
+  return type == kTriangle3 || type == 9 || (type >= 20 && type <= 25) ||
+         (type >= 42 && type <= 46) || (type >= 52 && type <= 56);
+}
+// Quadrangles of any order (4 to 121 nodes).
+bool is_quadrangle_type(int64_t type) {
+  return type == 3 || type == 10 || type == 16 || (type >= 36 && type <= 41) ||
+         (type >= 47 && type <= 51) || (type >= 57 && type <= 61);
 }
 constexpr int64_t kMaxTag = std::numeric_limits<int64_t>::max();
 constexpr const char* kMaterialPrefix = "material_";
-
-// Nodes of the element types of the manual's list (1..31, 92, 93); 0 if unknown.
-int nodes_per_element(int64_t type) {
-  static constexpr int kNodes[32] = {0, 2,  3,  4,  4, 8,  6,  5,  3,  6,  9, 10, 27, 18, 14, 1,
-                                     8, 20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5,  6,  20, 35, 56};
-  if (type >= 1 && type <= 31) return kNodes[type];
-  if (type == 92) return 64;
-  if (type == 93) return 125;
-  return 0;
-}
 
 // What a reader that keeps only tets says of the elements it skips:
 // the plural name of a volume or surface element type, nullptr for other types
@@ -69,22 +82,7 @@ const char* skipped_volume_elements(int64_t type) {
   }
 }
 bool is_surface_element(int64_t type) {
-  switch (type) {
-    case 2:
-    case 3:
-    case 9:
-    case 10:
-    case 16:
-    case 20:
-    case 21:
-    case 22:
-    case 23:
-    case 24:
-    case 25:
-      return true;
-    default:
-      return false;
-  }
+  return is_triangle_type(type) || is_quadrangle_type(type);
 }
 
 // "material_<n>" with 0 <= n <= INT32_MAX gives n; else -1.
@@ -616,6 +614,7 @@ class GmshParser {
             if (k < 3) corners[k] = node;
           }
           if (c.ok() && physical > 0 && is_triangle_type(type)) store_triangle(physical, corners);
+          if (c.ok() && physical > 0 && is_quadrangle_type(type)) ++grouped_quads_[physical];
         }
       }
       read += uint64_t(following);
@@ -669,6 +668,7 @@ class GmshParser {
           dimension == 2 && is_triangle_type(type) ? surface_physical_of(entity) : 0;
       const std::vector<int64_t>* other_groups =
           surface_group > 0 ? other_physicals_of(entity) : nullptr;
+      count_grouped_quads(dimension, entity, type, block_size);
       for (uint64_t i = 0; i < block_size; ++i) {
         const uint64_t element_tag = c.u64();
         if (!is_tet) {
@@ -1093,8 +1093,9 @@ class GmshParser {
         }
       } else if (physical > 0 && is_triangle_type(type)) {
         if (!read_triangle(type, physical, nullptr)) return false;
-      } else if (!skip_element_nodes(type)) {
-        return false;
+      } else {
+        if (physical > 0 && is_quadrangle_type(type)) ++grouped_quads_[physical];
+        if (!skip_element_nodes(type)) return false;
       }
     }
     return expect_end("$EndElements");
@@ -1136,6 +1137,7 @@ class GmshParser {
           dimension == 2 && is_triangle_type(type) ? surface_physical_of(entity) : 0;
       const std::vector<int64_t>* other_groups =
           surface_group > 0 ? other_physicals_of(entity) : nullptr;
+      count_grouped_quads(dimension, entity, type, block_size);
       for (uint64_t i = 0; i < block_size; ++i) {
         int64_t element_tag = 0;
         if (!scanner_.read_int(&element_tag, "element tag")) return false;
@@ -1153,6 +1155,12 @@ class GmshParser {
   }
 
   void count_elements(int64_t type, uint64_t count) { element_counts_[type] += count; }
+  // A 4.1 block of quadrangles of a physical surface: a group that is not kept.
+  void count_grouped_quads(int64_t dimension, int64_t entity, int64_t type, uint64_t count) {
+    if (dimension != 2 || !is_quadrangle_type(type)) return;
+    if (const int64_t group = surface_physical_of(entity); group > 0)
+      grouped_quads_[group] += count;
+  }
 
   // What the user should know of what was not read: elements other than 4- and
   // 10-node tets, the mid-edge nodes of 10-node ones, surface groups, and how groups
@@ -1166,12 +1174,23 @@ class GmshParser {
       return text;
     };
     std::map<std::string, size_t> skipped_volumes;
-    uint64_t surface_elements = 0, lines = 0, points = 0;
+    uint64_t surface_elements = 0, lines = 0, points = 0, higher_order = 0;
+    std::vector<std::string> unknown;  // "type 140: 12 elements"
     for (const auto& [type, count] : element_counts_) {
       if (const char* name = skipped_volume_elements(type)) skipped_volumes[name] += count;
       if (is_surface_element(type)) surface_elements += count;
-      if (type == 1 || type == 8 || type == 26 || type == 27 || type == 28) lines += count;
+      if (type == 1 || type == 8 || (type >= 26 && type <= 28) || (type >= 62 && type <= 66))
+        lines += count;
       if (type == 15) points += count;
+      if (is_tet_type(type) && type != kTet4) higher_order += count;
+      if (nodes_per_element(type) == 0 && !skipped_volume_elements(type))
+        unknown.push_back("type " + std::to_string(type) + ": " + std::to_string(count) +
+                          (count == 1 ? " element" : " elements"));
+    }
+    if (!unknown.empty()) {
+      out_->notes.push_back("elements of types TetLOD does not know (" + quoted_list(unknown) +
+                            ") are not kept: it reads tetrahedra of any order, and the "
+                            "triangles of surface groups");
     }
     if (lines + points > 0) {
       out_->notes.push_back(std::to_string(lines) + " line and " + std::to_string(points) +
@@ -1184,11 +1203,6 @@ class GmshParser {
       out_->notes.push_back("skipped " + count_list(skipped_volumes) +
                             ": TetLOD reads tetrahedra only, so a region "
                             "meshed with other elements is not in the mesh");
-    }
-    uint64_t higher_order = 0;
-    for (int64_t type : {kTet10, int64_t{29}, int64_t{30}, int64_t{31}}) {
-      if (const auto it = element_counts_.find(type); it != element_counts_.end())
-        higher_order += it->second;
     }
     if (higher_order > 0) {
       out_->notes.push_back(std::to_string(higher_order) +
@@ -1232,7 +1246,25 @@ class GmshParser {
         if (has_tets) out_->material_names.push_back({int32_t(key.second), name});
       }
     }
-    out_->surface_elements_not_kept = surface_elements;
+    // Quadrangles of surface groups: said here, by group (the CLI's note on surface
+    // elements counts the others, and called these "in no group").
+    uint64_t quads = 0;
+    std::vector<std::string> quad_groups;
+    for (const auto& [group, count] : grouped_quads_) {
+      quads += count;
+      const auto named = physical_names_.find({2, group});
+      quad_groups.push_back(named != physical_names_.end() ? "'" + named->second + "'"
+                                                           : std::to_string(group));
+    }
+    if (quads > 0) {
+      out_->notes.push_back(
+          std::to_string(quads) + (quads == 1 ? " quadrangle" : " quadrangles") +
+          " of the surface group" + (quad_groups.size() > 1 ? "s " : " ") +
+          quoted_list(quad_groups) + (quads == 1 ? " is" : " are") +
+          " not kept: TetLOD keeps surface groups of triangles (mesh those surfaces "
+          "without recombining them into quadrangles)");
+    }
+    out_->surface_elements_not_kept = surface_elements - std::min(surface_elements, quads);
     for (const std::string& renamed : renamed_)
       out_->notes.push_back(renamed + " in $PhysicalNames: the last name is kept");
     if (!volume_names.empty()) {
@@ -1428,8 +1460,9 @@ class GmshParser {
   std::map<std::pair<int64_t, int64_t>, std::string> physical_names_;
   std::vector<std::string> renamed_;  // groups named twice, for a note (at most 10)
   std::map<int64_t, uint64_t> element_counts_;
-  bool from_elementary_ = false;  // of the last resolve_material()
-  bool periodic_ = false;         // the file has a $Periodic section (not read)
+  std::map<int64_t, uint64_t> grouped_quads_;  // physical surface -> its quadrangles
+  bool from_elementary_ = false;               // of the last resolve_material()
+  bool periodic_ = false;                      // the file has a $Periodic section (not read)
   uint64_t physical_tets_ = 0, elementary_tets_ = 0;
   std::set<int32_t> elementary_materials_, physical_materials_;  // the first 1000
   std::vector<uint64_t> node_tags_;                              // sorted by finish_nodes()

@@ -332,6 +332,60 @@ TEST(IoGmshInterop, WeReadGmshSecondOrderExports) {
   }
 }
 
+// Tets of every order Gmsh makes, complete or not (16-node incomplete third order,
+// type 137; 22-node incomplete fourth order, type 32; 84-node sixth order, type 71),
+// are read by their corners: the first-order mesh. They were skipped, and the file
+// said to have no tets. Quadrangles of a surface group are said to be lost, by group
+// (they were counted as "in no group").
+TEST(IoGmshInterop, WeReadGmshTetsOfEveryOrder) {
+  TETLOD_NEED_PROGRAM("gmsh");
+  const std::string dir = test::output_dir("gmsh_orders");
+  test::write_text(dir + "/box.geo",
+                   "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                   "Physical Volume(\"solid\", 1) = {1};\n"
+                   "Physical Surface(\"top quads\", 20) = {6};\nRecombine Surface{6};\n"
+                   "Mesh.MeshSizeMax = 0.4;\n");
+  const std::string log = dir + "/gmsh.log";
+  auto mesh_of = [&](const std::string& options, const std::string& name, TetMesh* mesh,
+                     ReadInfo* info) {
+    const std::string out = dir + "/" + name + ".msh";
+    ASSERT_TRUE(
+        run_gmsh("'" + dir + "/box.geo' -3 " + options + " -format msh41 -o '" + out + "'", log))
+        << test::read_text(log);
+    const Status status = read_mesh(out, mesh, info);
+    ASSERT_TRUE(status.ok()) << name << ": " << status.message();
+  };
+  TetMesh linear;
+  ReadInfo linear_info;
+  mesh_of("-order 1", "order1", &linear, &linear_info);
+  if (HasFatalFailure()) return;
+  ASSERT_GT(linear.tet_count(), 0u);
+  bool quads_noted = false;
+  for (const std::string& note : linear_info.notes)
+    quads_noted = quads_noted || note.find(
+                                     "quadrangles of the surface group 'top quads' are "
+                                     "not kept") != std::string::npos;
+  EXPECT_TRUE(quads_noted) << ::testing::PrintToString(linear_info.notes);
+  const struct {
+    const char* options;
+    const char* name;
+  } orders[] = {{"-order 3 -setnumber Mesh.SecondOrderIncomplete 1", "tet16"},
+                {"-order 4 -setnumber Mesh.SecondOrderIncomplete 1", "tet22"},
+                {"-order 6", "tet84"}};
+  for (const auto& o : orders) {
+    SCOPED_TRACE(o.name);
+    TetMesh mesh;
+    ReadInfo info;
+    mesh_of(o.options, o.name, &mesh, &info);
+    if (HasFatalFailure()) return;
+    EXPECT_EQ(test::canonical_tets(mesh), test::canonical_tets(linear));
+    const std::string note = std::to_string(linear.tet_count()) + " higher-order tetrahedra";
+    EXPECT_TRUE(std::any_of(info.notes.begin(), info.notes.end(), [&](const std::string& n) {
+      return n.rfind(note, 0) == 0;
+    })) << ::testing::PrintToString(info.notes);
+  }
+}
+
 TEST(IoGmshInterop, GmshFindsNoInvertedTets) {
   TETLOD_NEED_PROGRAM("gmsh");
   const std::string dir = test::output_dir("gmsh_orientation");
