@@ -87,8 +87,9 @@ int tet_nodes(const std::string& type) {
 // CPS6 in an *ELSET named after it): its first three nodes are its corners.
 bool is_triangle_type(const std::string& type) {
   for (const char* t :
-       {"CPS3", "CPE3", "CAX3", "S3", "S3R", "STRI3", "M3D3", "SFM3D3", "R3D3", "DS3", "CPS6",
-        "CPE6", "CAX6", "S6", "STRI65", "M3D6", "SFM3D6", "DC2D3", "DC2D6"})
+       {"CPS3",  "CPE3", "CAX3", "S3",   "S3R",   "STRI3",  "M3D3", "SFM3D3", "R3D3",
+        "DS3",   "CPS6", "CPE6", "CAX6", "S6",    "STRI65", "M3D6", "SFM3D6", "DC2D3",
+        "DC2D6", "S3RS", "S3T",  "S3RT", "CPS3T", "CPE3T",  "DS6"})
     if (type == t) return true;
   return false;
 }
@@ -168,6 +169,11 @@ class AbaqusParser {
                             ": TetLOD reads tetrahedra only, so a region meshed with other "
                             "elements is not in the mesh");
     }
+    if (!skipped_others_.empty()) {
+      out_->notes.push_back("skipped the elements " + count_list(skipped_others_) +
+                            ", and their element sets: TetLOD keeps the tetrahedra, and the "
+                            "triangles of element sets as surface groups");
+    }
     return Status();
   }
 
@@ -225,11 +231,12 @@ class AbaqusParser {
       const std::string type = upper(k.get("TYPE"));
       if (type.empty()) return fail(line_, "*ELEMENT needs TYPE=");
       element_nodes_ = tet_nodes(type);
-      // Solid elements other than tets (C3D8, C3D6, ...) are skipped: counted for a note.
-      skipped_type_ =
-          element_nodes_ == 0 && (type.rfind("C3D", 0) == 0 || type.rfind("DC3D", 0) == 0)
-              ? type
-              : std::string();
+      // Solid elements other than tets (C3D8, C3D6, ...) are skipped: counted for a note;
+      // so are other elements that are not triangles (lines, quadrangles, springs ...).
+      const bool solid = type.rfind("C3D", 0) == 0 || type.rfind("DC3D", 0) == 0;
+      skipped_type_ = element_nodes_ == 0 && solid ? type : std::string();
+      skipped_other_type_ =
+          element_nodes_ == 0 && !solid && !is_triangle_type(type) ? type : std::string();
       element_set_ = k.has("ELSET") ? key_of(k.get("ELSET")) : -1;
       element_set_name_ = upper(k.get("ELSET"));
       triangle_block_ = is_triangle_type(type);
@@ -387,6 +394,8 @@ class AbaqusParser {
     }
     if (element_nodes_ == 0) {  // not a tet
       if (!skipped_type_.empty() && skipped_solids_.size() < 100) ++skipped_solids_[skipped_type_];
+      if (!skipped_other_type_.empty() && skipped_others_.size() < 100)
+        ++skipped_others_[skipped_other_type_];
       other_elements_.insert(id);  // for the faces of surfaces, which are dropped
       // A triangle's corners, for the surface groups of the sets that hold it.
       std::array<int64_t, 3> corners{};
@@ -978,6 +987,9 @@ class AbaqusParser {
   std::unordered_map<int64_t, std::array<int64_t, 3>> triangles_;  // by element id: corners
   std::vector<std::string> triangle_sets_;        // ELSETs of triangle *ELEMENT blocks, as written
   std::map<std::string, size_t> skipped_solids_;  // by type
+  std::string skipped_other_type_;                // of the *ELEMENT block: neither a
+                                                  // solid nor a triangle (T3D2, CPS4 ...)
+  std::map<std::string, size_t> skipped_others_;  // by type
   int element_set_ = -1;
   std::string element_set_name_;
   std::string current_set_;

@@ -182,6 +182,7 @@ struct Sections {
   bool seen_tets = false;
   std::string skipped_volumes;  // "28 Prisms, 3 Hexahedra"
   uint64_t quadratic_tets = 0;  // TetrahedraP2, read by their corners
+  uint64_t edges = 0;           // Edges and EdgesP2, not kept
   std::vector<PendingTriangle> triangles;
   SurfaceElements surface;  // kept only as groups (the CLI says so)
 
@@ -229,6 +230,12 @@ Status finish(const std::string& name, Sections& s, ParsedMesh* out) {
                          " TetrahedraP2 (10-node) were read as 4-node tetrahedra (by their "
                          "corners; their mid-edge points are dropped)");
   }
+  if (s.edges > 0) {
+    out->notes.push_back(std::to_string(s.edges) +
+                         (s.edges == 1 ? " edge (Edges) is" : " edges (Edges) are") +
+                         " not kept: TetLOD keeps the tetrahedra, and Triangles as surface "
+                         "groups");
+  }
   if (!s.skipped_volumes.empty()) {
     out->notes.push_back("skipped " + s.skipped_volumes +
                          ": TetLOD reads 4-node tetrahedra only, so a region meshed with other "
@@ -246,6 +253,8 @@ struct CountedKeyword {
   int integers;
 };
 constexpr CountedKeyword kCountedKeywords[] = {
+    {kGmfEdges, "Edges", 3},
+    {kGmfEdgesP2, "EdgesP2", 4},
     {kGmfQuadrilaterals, "Quadrilaterals", 5},
     {kGmfQuadrilateralsQ2, "QuadrilateralsQ2", 10},
     {kGmfPrisms, "Prisms", 7},
@@ -363,6 +372,8 @@ class MeditBinaryReader {
             return false;
           if (keyword == kGmfQuadrilaterals || keyword == kGmfQuadrilateralsQ2) {
             sections_.surface.count(n);
+          } else if (keyword == kGmfEdges || keyword == kGmfEdgesP2) {
+            sections_.edges += n;
           } else {
             sections_.skip_volumes(counted.name, n);
           }
@@ -441,6 +452,8 @@ Status parse_medit(std::string_view text, const std::string& name, ParsedMesh* o
       // Surface elements are kept only as groups (Triangles), and the CLI says so.
       for (const char* kind : {"Quadrilaterals", "QuadrilateralsQ2"})
         if (std::string_view(skipped->name) == kind) sections.surface.count(count);
+      for (const char* kind : {"Edges", "EdgesP2"})
+        if (std::string_view(skipped->name) == kind) sections.edges += count;
       for (const char* volume : {"Prisms", "Pentahedra", "Pyramids", "Hexahedra", "HexahedraQ2"})
         if (std::string_view(skipped->name) == volume) sections.skip_volumes(volume, count);
     } else if (is_string_keyword(keyword)) {

@@ -77,9 +77,17 @@ void write_abaqus(const TetMesh& mesh, const SurfaceGroups* surfaces,
 // With extra point and cell arrays (sizes and names checked by the caller).
 void write_vtu(const TetMesh& mesh, const MeshFields& fields, bool binary, std::string* out);
 
-// VTK cell types read as tets (vtk.cpp, vtu.cpp): the quadratic tet gives its corners.
+// VTK cell types read as tets (vtk.cpp, vtu.cpp): the quadratic, Lagrange and Bezier
+// tets give their corners first.
 inline constexpr int64_t kVtkTetra = 10;
 inline constexpr int64_t kVtkQuadraticTetra = 24;
+inline constexpr int64_t kVtkLagrangeTetra = 71;
+inline constexpr int64_t kVtkBezierTetra = 78;
+// Whether a cell of `type` with `size` points is a tet TetLOD reads (by its first four
+// points): a tet, a quadratic one of 10 points, a Lagrange or Bezier one of any order
+// (a tetrahedral number of points: 4, 10, 20, 35, ...). `*is_tet` says whether the type is
+// one of these, whatever its size.
+bool vtk_tet_cell(int64_t type, uint64_t size, bool* is_tet);
 
 // The surface cells of a .vtk or .vtu: triangles and quadrilaterals of any order
 // (and strips, polygons, pixels). Each is counted (SurfaceElements); a triangle whose

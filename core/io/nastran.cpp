@@ -121,6 +121,11 @@ class NastranParser {
                             ": TetLOD reads CTETRA only, so a region meshed with other elements "
                             "is not in the mesh");
     }
+    if (!skipped_others_.empty()) {
+      out_->notes.push_back("skipped the elements " + count_list(skipped_others_) +
+                            ": TetLOD keeps the CTETRAs, and the CTRIA3s of a PID as a surface "
+                            "group");
+    }
     return Status();
   }
 
@@ -297,6 +302,15 @@ class NastranParser {
         card_name_ == "CPYRA") {
       ++skipped_solids_[card_name_];
       return true;
+    }
+    // Line, point, spring, mass and rigid elements: not kept, said in a note.
+    for (const char* card : {"CBAR",   "CBEAM",  "CROD",   "CONROD", "CTUBE",  "CBUSH", "CELAS1",
+                             "CELAS2", "CELAS3", "CELAS4", "CDAMP1", "CDAMP2", "CONM1", "CONM2",
+                             "CMASS1", "CMASS2", "RBE2",   "RBE3",   "RBAR",   "PLOTEL"}) {
+      if (card_name_ == card) {
+        ++skipped_others_[card_name_];
+        return true;
+      }
     }
     if (card_name_ == "INCLUDE") {
       return fail(card_line_,
@@ -494,6 +508,7 @@ class NastranParser {
   size_t renamed_ = 0;                            // comments naming a PID named otherwise before
   std::string first_renamed_;                     // the first of them, for the note
   std::map<std::string, size_t> skipped_solids_;  // CHEXA, CPENTA, CPYRAM entries
+  std::map<std::string, size_t> skipped_others_;  // CBAR, CONM2, RBE2 ... entries
 };
 
 // `value` in at most 16 characters as a Nastran real (with a decimal point): exact

@@ -722,12 +722,12 @@ class VtkLegacyParser {
       const uint64_t size = cell_starts_[c + 1] - cell_starts_[c];
       const int64_t type = cell_types_[c];
       if (type >= 0 && type < 128) ++counts_by_type[size_t(type)];
-      const bool tet = type == kVtkTetra || type == kVtkQuadraticTetra;
+      bool tet = false;
+      const bool tet_size = vtk_tet_cell(type, size, &tet);
       const int triangle = vtk_triangle_points(type);
       if (is_vtk_surface_cell(type)) surface.count();
       if (!tet && triangle < 0) continue;
-      const uint64_t points = tet ? (type == kVtkTetra ? 4u : 10u) : uint64_t(triangle);
-      if (points > 0 ? size != points : size < 3) {
+      if (tet ? !tet_size : triangle > 0 ? size != uint64_t(triangle) : size < 3) {
         return scanner_.fail_at_line(binary_ ? 0 : cell_lines_[c],
                                      "cell " + std::to_string(c) + " of type " +
                                          std::to_string(type) + " has " + std::to_string(size) +
@@ -803,12 +803,26 @@ bool is_vtk_surface_cell(int64_t type) {
     case 34:  // biquadratic triangle
     case 69:  // Lagrange triangle
     case 70:  // Lagrange quadrilateral
-    case 75:  // Bezier triangle
-    case 76:  // Bezier quadrilateral
+    case 76:  // Bezier triangle
+    case 77:  // Bezier quadrilateral
       return true;
     default:
       return false;
   }
+}
+
+bool vtk_tet_cell(int64_t type, uint64_t size, bool* is_tet) {
+  *is_tet = type == kVtkTetra || type == kVtkQuadraticTetra || type == kVtkLagrangeTetra ||
+            type == kVtkBezierTetra;
+  if (type == kVtkTetra) return size == 4;
+  if (type == kVtkQuadraticTetra) return size == 10;
+  if (!*is_tet) return false;
+  for (uint64_t n = 1; n <= 64; ++n) {  // order n: (n + 1)(n + 2)(n + 3) / 6 points
+    const uint64_t points = (n + 1) * (n + 2) * (n + 3) / 6;
+    if (points == size) return true;
+    if (points > size) break;
+  }
+  return false;
 }
 
 int vtk_triangle_points(int64_t type) {
@@ -819,8 +833,8 @@ int vtk_triangle_points(int64_t type) {
       return 6;
     case 34:
       return 7;
-    case 69:
-    case 75:
+    case 69:  // Lagrange triangle
+    case 76:  // Bezier triangle
       return 0;
     default:
       return -1;
@@ -848,11 +862,10 @@ void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh*
   const struct {
     const char* name;
     uint64_t n;
-  } skipped[] = {{"hexahedra", count({11, 12, 25, 29, 33, 72})},
-                 {"wedges", count({13, 26, 32, 73})},
-                 {"pyramids", count({14, 27, 74})},
-                 {"polyhedra", count({15, 16, 42})},
-                 {"higher-order tetrahedra", count({71})}};
+  } skipped[] = {{"hexahedra", count({11, 12, 25, 29, 33, 72, 79})},
+                 {"wedges", count({13, 26, 32, 73, 80})},
+                 {"pyramids", count({14, 27, 74, 81})},
+                 {"polyhedra", count({15, 16, 42})}};
   std::string list;
   for (const auto& s : skipped)
     if (s.n > 0) list += (list.empty() ? "" : ", ") + std::to_string(s.n) + " " + s.name;
@@ -865,6 +878,17 @@ void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh*
     out->notes.push_back(std::to_string(quadratic) +
                          " quadratic (10-node) tetrahedra were read as 4-node ones (by their "
                          "corners; their mid-edge points are dropped)");
+  }
+  if (const uint64_t high = count({int(kVtkLagrangeTetra), int(kVtkBezierTetra)}); high > 0) {
+    out->notes.push_back(std::to_string(high) +
+                         " Lagrange or Bezier tetrahedra were read as 4-node ones (by their "
+                         "corners; their other points are dropped)");
+  }
+  // Vertices, poly-vertices, lines, poly-lines and higher-order lines.
+  if (const uint64_t lines = count({1, 2, 3, 4, 21, 35, 68, 75}); lines > 0) {
+    out->notes.push_back(std::to_string(lines) +
+                         " vertex and line cells are not kept: TetLOD keeps the tetrahedra, and "
+                         "the triangles of surface groups");
   }
 }
 

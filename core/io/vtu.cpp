@@ -831,14 +831,14 @@ class VtuParser {
         return;
       }
       const int64_t type = types_[c];
-      const bool tet = type == kVtkTetra || type == kVtkQuadraticTetra;
+      const uint64_t size = end - start;
+      bool tet = false;
+      const bool tet_size = vtk_tet_cell(type, size, &tet);
       const int triangle = vtk_triangle_points(type);
       if (is_vtk_surface_cell(type)) surface.count();
       if (tet || triangle >= 0) {
-        const uint64_t size = end - start;
         const size_t line = start < connectivity_lines_.size() ? connectivity_lines_[start] : 0;
-        const uint64_t points = tet ? (type == kVtkTetra ? 4u : 10u) : uint64_t(triangle);
-        if (points > 0 ? size != points : size < 3) {
+        if (tet ? !tet_size : triangle > 0 ? size != uint64_t(triangle) : size < 3) {
           fail_at(line, "cell " + std::to_string(c) + " of type " + std::to_string(type) + " has " +
                             std::to_string(size) + " points");
           return;

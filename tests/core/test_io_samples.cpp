@@ -2,6 +2,8 @@
 // describes the same three-tet solid ABCD, BCDE, ACBF with its own materials.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/io/mesh_io.h"
 #include "core/test_io_helpers.h"
 
@@ -49,6 +51,44 @@ TEST(IoSamples, ReadFilesInOtherToolsConventions) {
   }
 }
 
+// Line, point and other elements that are neither tets nor triangles are named in a
+// note by every reader (Medit's Edges, Nastran's CBAR, Abaqus' T3D2 and CPS4 were
+// dropped without a word).
+TEST(IoSamples, LineElementsAreNoted) {
+  const struct {
+    MeshFormat format;
+    const char* name;
+    std::string text;
+    const char* note;
+  } files[] = {
+      {MeshFormat::kMedit, "m.mesh",
+       "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n"
+       "0 0 1 0\nTetrahedra\n1\n1 2 3 4 1\nEdges\n2\n1 2 5\n2 3 5\nEnd\n",
+       "2 edges (Edges) are not kept"},
+      {MeshFormat::kNastran, "m.bdf",
+       "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,0.,1.,0.\nGRID,4,,0.,0.,1.\n"
+       "CTETRA,1,3,1,2,3,4\nCBAR,2,7,1,2\nCONM2,3,1\nENDDATA\n",
+       "skipped the elements 1 CBAR, 1 CONM2"},
+      {MeshFormat::kAbaqus, "m.inp",
+       "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n"
+       "*ELEMENT, TYPE=C3D4, ELSET=solid\n1, 1, 2, 3, 4\n"
+       "*ELEMENT, TYPE=T3D2, ELSET=edge\n2, 1, 2\n"
+       "*ELEMENT, TYPE=CPS4, ELSET=quads\n3, 1, 2, 3, 4\n",
+       "skipped the elements 1 CPS4, 1 T3D2, and their element sets"},
+  };
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.name);
+    TetMesh mesh;
+    ReadInfo info;
+    const Status s = read_mesh_from_memory(f.text, f.format, f.name, &mesh, &info);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(mesh.tet_count(), 1u);
+    EXPECT_TRUE(std::any_of(info.notes.begin(), info.notes.end(), [&](const std::string& n) {
+      return n.find(f.note) != std::string::npos;
+    })) << ::testing::PrintToString(info.notes);
+  }
+}
+
 // Cells the readers skip, or read by their corners, are named in a note.
 TEST(IoSamples, SkippedCellsAreNoted) {
   TetMesh mesh;
@@ -71,6 +111,29 @@ TEST(IoSamples, SkippedCellsAreNoted) {
             std::string::npos)
       << info.notes[1];
   EXPECT_EQ(mesh.tet_count(), 1u);
+  // Lagrange (71) and Bezier (78) tets of any order are read by their corners (they were
+  // skipped); one whose point count is no tet's is an error naming it; vertices and lines
+  // are noted as not kept (they were dropped without a word).
+  const std::string lagrange =
+      "# vtk DataFile Version 3.0\nm\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 11 double\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1 0.5 0 0 0.5 0.5 0 0 0.5 0 0 0 0.5 0.5 0 0.5 0 0.5 0.5 1 1 1\n"
+      "CELLS 4 21\n10 0 1 2 3 4 5 6 7 8 9\n4 1 2 3 10\n1 4\n2 0 1\nCELL_TYPES 4\n71\n78\n1\n3\n";
+  ASSERT_TRUE(read_mesh_from_memory(lagrange, MeshFormat::kVtkLegacy, "m.vtk", &mesh, &info).ok());
+  EXPECT_EQ(mesh.tet_count(), 2u);
+  const auto noted = [&info](const std::string& part) {
+    return std::any_of(info.notes.begin(), info.notes.end(),
+                       [&](const std::string& n) { return n.find(part) != std::string::npos; });
+  };
+  EXPECT_TRUE(noted("2 Lagrange or Bezier tetrahedra were read as 4-node ones"))
+      << ::testing::PrintToString(info.notes);
+  EXPECT_TRUE(noted("2 vertex and line cells are not kept"))
+      << ::testing::PrintToString(info.notes);
+  std::string eight = lagrange;
+  eight.replace(eight.find("CELLS 4 21\n10 0 1 2 3 4 5 6 7 8 9"), 33,
+                "CELLS 4 19\n8 0 1 2 3 4 5 6 7");
+  const Status wrong = read_mesh_from_memory(eight, MeshFormat::kVtkLegacy, "m.vtk", &mesh, &info);
+  EXPECT_NE(wrong.message().find("cell 0 of type 71 has 8 points"), std::string::npos)
+      << wrong.message();
   // Medit: a Prisms section beside the tets is noted.
   const std::string medit =
       "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n"
