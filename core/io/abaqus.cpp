@@ -178,7 +178,16 @@ class AbaqusParser {
   }
 
  private:
-  enum class Mode { kSkip, kNodes, kElements, kElset, kElsetGenerate, kInstance, kSurface };
+  enum class Mode {
+    kSkip,
+    kNodes,
+    kElements,
+    kElset,
+    kElsetGenerate,
+    kInstance,
+    kSystem,
+    kSurface
+  };
 
   bool next_line(std::string_view* line) { return next_text_line(text_, &pos_, &line_, line); }
 
@@ -220,7 +229,20 @@ class AbaqusParser {
     } else if (k.name == "INSTANCE") {
       instance_line_ = line_;
       mode_ = Mode::kInstance;
+    } else if (k.name == "SYSTEM") {
+      // Its data line moves the nodes that follow (without one, it is the global system).
+      system_line_ = line_;
+      mode_ = Mode::kSystem;
+    } else if ((k.name == "NODE" || k.name == "ELEMENT") && k.has("INPUT")) {
+      return fail(line_, "*" + k.name + ", INPUT=" + k.get("INPUT") +
+                             " is not followed: paste that file's lines in instead");
     } else if (k.name == "NODE") {
+      const std::string system = upper(k.get("SYSTEM"));
+      if (!system.empty() && system != "R") {
+        return fail(line_, "*NODE, SYSTEM=" + k.get("SYSTEM") +
+                               " (cylindrical or spherical coordinates) is not supported: "
+                               "write the nodes in rectangular coordinates");
+      }
       if (!k.get("NSET").empty()) node_sets_.insert(upper(k.get("NSET")));
       mode_ = Mode::kNodes;
     } else if (k.name == "NSET") {
@@ -279,6 +301,20 @@ class AbaqusParser {
         return elset(record, line);
       case Mode::kInstance:
         return fail(line, "*INSTANCE with a translation or rotation is not supported");
+      case Mode::kSystem: {
+        // "0, 0, 0": the global system's origin, no move.
+        std::vector<std::string_view> f = split_commas(record);
+        if (!f.empty() && f.back().empty()) f.pop_back();
+        bool origin = f.size() <= 3;
+        for (std::string_view field : f) {
+          double value = 1;
+          origin = origin && real(trim_blanks(field), &value) && value == 0;
+        }
+        if (origin) return true;
+        return fail(line, "*SYSTEM (line " + std::to_string(system_line_) +
+                              ") with a translation or rotation is not supported: write the "
+                              "nodes in the global system");
+      }
       case Mode::kSurface:
         return surface_face(record, line);
     }
@@ -980,6 +1016,7 @@ class AbaqusParser {
   Mode mode_ = Mode::kSkip;
   int parts_ = 0;
   size_t instance_line_ = 0;
+  size_t system_line_ = 0;  // of the last *SYSTEM
   int element_nodes_ = 0;
   size_t quadratic_tets_ = 0;    // C3D10 and variants, read by their corners
   std::string skipped_type_;     // of the *ELEMENT block: a non-tet solid

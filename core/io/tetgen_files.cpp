@@ -327,6 +327,11 @@ Status parse_tetgen(std::string_view node_text, const std::string& node_name,
   TextScanner elements(ele_text, ele_name, '#');
   int64_t nodes_per_tet = 4;
   if (!read_elements(elements, base, out, &nodes_per_tet)) return elements.status();
+  if (nodes_per_tet == 10 && !out->mesh.tets.empty()) {
+    out->notes.push_back(std::to_string(out->mesh.tets.size()) +
+                         " 10-node tetrahedra (TetGen -o2) were read as 4-node ones (by their "
+                         "corners; their mid-edge nodes are dropped)");
+  }
   if (face_name) {
     TextScanner faces(face_text, *face_name, '#');
     if (Status status = read_faces(faces, base, nodes_per_tet, out); !status) return status;

@@ -88,6 +88,16 @@ TEST(IoAbaqus, ReadsACaeDeckWithPartsSetsAndSections) {
   EXPECT_EQ(info.format, MeshFormat::kAbaqus);
 }
 
+// A *SYSTEM at the global origin (or with no data line) moves nothing: read.
+TEST(IoAbaqus, AGlobalSystemIsRead) {
+  for (const std::string system : {"*SYSTEM\n0., 0., 0.\n", "*SYSTEM\n"}) {
+    TetMesh mesh;
+    const Status s = read(system + kNodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n", &mesh);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(mesh.tet_count(), 1u);
+  }
+}
+
 // Gmsh: elementary sets on *ELEMENT, physical groups as *ELSET: the latter win.
 TEST(IoAbaqus, ElsetsWinOverTheElementSet) {
   const std::string deck = std::string(kNodes) +
@@ -252,6 +262,12 @@ TEST(IoAbaqus, BrokenDecksNameTheLine) {
       {nodes + "*INCLUDE, INPUT=mesh.inp\n", 6, "*INCLUDE is not followed"},
       {"*PART, NAME=A\n*END PART\n*PART, NAME=B\n", 3, "several parts"},
       {nodes + "*INSTANCE, NAME=I, PART=P\n1., 0., 0.\n", 7, "translation or rotation"},
+      // A moved system or cylindrical coordinates, and nodes or elements from another
+      // file: refused (they were read as plain coordinates, or not at all).
+      {"*SYSTEM\n10., 0., 0.\n" + nodes, 2, "*SYSTEM (line 1) with a translation"},
+      {"*NODE, SYSTEM=C\n1, 1, 0, 0\n", 1, "SYSTEM=C (cylindrical or spherical"},
+      {"*NODE, INPUT=nodes.txt\n", 1, "*NODE, INPUT=nodes.txt is not followed"},
+      {nodes + "*ELEMENT, TYPE=C3D4, INPUT=e.txt\n", 6, "*ELEMENT, INPUT=e.txt is not"},
       {nodes + "*ELSET, ELSET=S, GENERATE\n5, 1\n", 7, "first <= last"},
       {nodes + "*ELSET, ELSET=S, GENERATE\n1, 9000000000000000000\n", 7, "more members"},
       {nodes + "*ELSET, ELSET=S, GENERATE\n-9000000000000000000, 9000000000000000000\n", 7,

@@ -207,10 +207,16 @@ TEST(IoSamples, TetGenTenNodeTetsGiveTheirCorners) {
   // Mid-edge nodes are not checked by TetLOD; reuse corners for them.
   const std::string ele = "2 10 1\n1 1 2 3 4 1 1 1 1 1 1 7\n2 2 3 4 5 2 2 2 2 2 2 8\n";
   TetMesh mesh;
-  const Status status = read_tetgen_from_memory(node, ele, "t.node", "t.ele", &mesh);
+  ReadInfo info;
+  const Status status = read_tetgen_from_memory(node, ele, "t.node", "t.ele", &mesh, &info);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(mesh.tets, (std::vector<Tet>{{0, 1, 2, 3}, {1, 2, 3, 4}}));
   EXPECT_EQ(mesh.materials, (std::vector<int32_t>{7, 8}));
+  // Said, as every other reader says it (it was not).
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_EQ(info.notes[0].rfind("2 10-node tetrahedra (TetGen -o2) were read as 4-node ones", 0),
+            0u)
+      << info.notes[0];
 }
 
 TEST(IoSamples, GmshTenNodeTetsGiveTheirCorners) {
