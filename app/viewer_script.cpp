@@ -153,6 +153,7 @@ Status parse_material_values(const LineParser& p, const std::string& key, const 
                              std::vector<std::pair<int32_t, double>>* out,
                              std::vector<ScriptAction::NamedMaterial>* named) {
   for (const std::string& item : split_value_items(text, ':')) {
+    if (item.empty()) return p.error("'" + key + "=" + text + "': " + kEmptyItem);
     std::string material;
     double value = 0;
     const bool has_value = split_material_value(item, ':', &material, &value);
@@ -186,6 +187,7 @@ Status parse_analysis(const LineParser& p, ScriptAction* a) {
     } else if (key == "ground") {
       has_ground = true;
       for (const std::string& item : split_items(value)) {
+        if (item.empty()) return p.error("'ground=" + value + "': " + kEmptyItem);
         if (item == "boundary") {
           a->problem.ground_boundary = true;
         } else if (const auto m = material_id(item)) {

@@ -308,6 +308,12 @@ TEST(ViewerScript, AnalysisSolveAndReport) {
   EXPECT_EQ(named[1].named[0].key, "ground");
   EXPECT_EQ(named[1].named[0].name, "shield");
   EXPECT_TRUE(named[1].problem.ground_boundary);
+  // An empty item (a trailing comma) is named as such.
+  EXPECT_EQ(parse_error("analysis conductor=1:1 ground=4,\n"),
+            "t.script:1: 'ground=4,': an empty item (a comma at either end, or two in a row)");
+  EXPECT_EQ(parse_error("analysis conductor=1:1, ground=4\n"),
+            "t.script:1: 'conductor=1:1,': an empty item (a comma at either end, or two in a "
+            "row)");
   EXPECT_EQ(parse_error("analysis conductor=1:1 ground=4 mu=2:1\n"),
             "t.script:1: unknown analysis key 'mu' (conductor, ground, eps)");
   EXPECT_EQ(parse_error("solve now\n"),
