@@ -38,7 +38,10 @@ constexpr const char* kSolveUsage =
     "  --eps M=E,...        permittivity per material, E > 0 (default 1 for the rest)\n"
     "  a material M is its id or its name in the input (a Gmsh physical group, an\n"
     "  Abaqus set): --conductor inner_conductor=1 --ground shield (in --ground a comma\n"
-    "  inside a name is written \\,; in M=V lists it is written as it is)\n"
+    "  inside a name is written \\,; in M=V lists it is written as it is); a name that\n"
+    "  is no material's may be one of the input's surface groups (a Gmsh physical\n"
+    "  surface, an Abaqus *SURFACE, ...: 'tetlod stats MESH' lists them), whose nodes\n"
+    "  are then held: --conductor port=1 --ground outer\n"
     "  -o FIELD.vtu         write the potential (point data) and |E| (cell data) for ParaView\n"
     "  --vtk-binary         write it with raw appended binary data (default: ASCII)\n"
     "  --solver S           auto (direct up to 2000 unknowns, else cg), direct (its\n"
@@ -117,14 +120,73 @@ bool parse_ground(const std::string& text, bool* boundary, std::vector<MaterialT
   return true;
 }
 
-// The id of material `text` (an id, or a name in `names`); false with a message.
+// The vertices of `mesh` at the corners of `group`'s triangles, sorted; false, with
+// the first corner that is none, if a corner is no vertex of the mesh.
+bool group_vertices(const TetMesh& mesh, const InputSurfaceGroup& group,
+                    std::vector<uint32_t>* vertices, Vec3* missing) {
+  std::vector<uint32_t> order(mesh.vertex_count());
+  for (uint32_t v = 0; v < order.size(); ++v) order[v] = v;
+  const auto less = [](const Vec3& a, const Vec3& b) {
+    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+  };
+  std::sort(order.begin(), order.end(),
+            [&](uint32_t a, uint32_t b) { return less(mesh.positions[a], mesh.positions[b]); });
+  vertices->clear();
+  for (const auto& triangle : group.triangles) {
+    for (const Vec3& p : triangle) {
+      const auto at =
+          std::lower_bound(order.begin(), order.end(), p,
+                           [&](uint32_t v, const Vec3& q) { return less(mesh.positions[v], q); });
+      if (at == order.end() || mesh.positions[*at] != p) {
+        *missing = p;
+        return false;
+      }
+      vertices->push_back(*at);
+    }
+  }
+  std::sort(vertices->begin(), vertices->end());
+  vertices->erase(std::unique(vertices->begin(), vertices->end()), vertices->end());
+  return true;
+}
+
+// `text` as a material (an id, or a name in `names`: `*id`) or, for a name no material
+// has, as one of the input's surface groups (`*surface`, its vertices). False with a
+// message naming both kinds where it is neither.
 bool resolve(const MaterialText& text, const std::vector<MaterialName>& names,
-             const std::string& option, int32_t* id) {
+             const std::string& option, const TetMesh& mesh,
+             const std::vector<InputSurfaceGroup>& groups, int32_t* id,
+             ElectrostaticsProblem::HeldSurface* surface = nullptr) {
   if (const auto number = parse_material(text)) {
     *id = *number;
     return true;
   }
-  return material_by_name(text, names, "solve", option, id);
+  std::string why;
+  if (find_material(text, names, id, &why)) return true;
+  if (surface) {
+    for (const InputSurfaceGroup& group : groups) {
+      if (group.name != text) continue;
+      Vec3 missing;
+      if (!group_vertices(mesh, group, &surface->vertices, &missing)) {
+        std::fprintf(stderr,
+                     "tetlod solve: %s: surface group '%s' has a corner (%.17g %.17g %.17g) that "
+                     "is no vertex of the mesh\n",
+                     option.c_str(), text.c_str(), missing.x, missing.y, missing.z);
+        return false;
+      }
+      surface->name = text;
+      return true;
+    }
+  }
+  std::string surfaces;
+  for (const InputSurfaceGroup& group : groups)
+    if (!group.name.empty() && surfaces.size() < 400)
+      surfaces += (surfaces.empty() ? "" : ", ") + group.name;
+  std::fprintf(stderr, "tetlod solve: %s: %s%s\n", option.c_str(), why.c_str(),
+               !surface ? ""
+               : surfaces.empty()
+                   ? "; the input names no surface group either"
+                   : ("; nor is it a surface group (the input's: " + surfaces + ")").c_str());
+  return false;
 }
 
 }  // namespace
@@ -237,21 +299,37 @@ int cmd_solve(const Args& args) {
   TetMesh mesh;
   ReadInfo info;
   if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
-  // The materials given by name, now that the names are read.
+  // The materials given by name, now that the names are read; a name no material has
+  // may be a surface group's.
+  const std::vector<InputSurfaceGroup>& groups = info.surface_groups;
   for (const auto& [text, potential] : conductors) {
-    int32_t id = 0;
-    if (!resolve(text, info.material_names, "--conductor", &id)) return kExitUsage;
-    problem.conductors.push_back({id, potential});
+    int32_t id = -1;
+    ElectrostaticsProblem::HeldSurface surface;
+    if (!resolve(text, info.material_names, "--conductor", mesh, groups, &id, &surface))
+      return kExitUsage;
+    if (!surface.name.empty()) {
+      surface.potential = potential;
+      problem.surfaces.push_back(std::move(surface));
+    } else {
+      problem.conductors.push_back({id, potential});
+    }
   }
   for (const auto& [text, eps] : permittivities) {
     int32_t id = 0;
-    if (!resolve(text, info.material_names, "--eps", &id)) return kExitUsage;
+    if (!resolve(text, info.material_names, "--eps", mesh, groups, &id)) return kExitUsage;
     problem.permittivities.push_back({id, eps});
   }
   for (const MaterialText& text : grounds) {
-    int32_t id = 0;
-    if (!resolve(text, info.material_names, "--ground", &id)) return kExitUsage;
-    problem.ground_materials.push_back(id);
+    int32_t id = -1;
+    ElectrostaticsProblem::HeldSurface surface;
+    if (!resolve(text, info.material_names, "--ground", mesh, groups, &id, &surface))
+      return kExitUsage;
+    if (!surface.name.empty()) {
+      surface.ground = true;
+      problem.surfaces.push_back(std::move(surface));
+    } else {
+      problem.ground_materials.push_back(id);
+    }
   }
   // What the options say, checked against the mesh: an error of theirs is one of usage
   // (a potential or permittivity out of range, a material twice or not in the mesh).

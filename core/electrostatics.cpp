@@ -92,8 +92,26 @@ namespace {
 Status check_problem(const ElectrostaticsProblem& problem, const std::vector<int32_t>& ids) {
   auto exists = [&](int32_t m) { return std::binary_search(ids.begin(), ids.end(), m); };
   // Every material named once across conductors and grounds, once among permittivities.
-  if (problem.conductors.empty()) {
-    return Status::error("no conductor: at least one material must be held at a potential");
+  const bool conductor_surface =
+      std::any_of(problem.surfaces.begin(), problem.surfaces.end(),
+                  [](const ElectrostaticsProblem::HeldSurface& h) { return !h.ground; });
+  if (problem.conductors.empty() && !conductor_surface) {
+    return Status::error(
+        "no conductor: at least one material or surface must be held at a potential");
+  }
+  for (size_t k = 0; k < problem.surfaces.size(); ++k) {
+    const ElectrostaticsProblem::HeldSurface& h = problem.surfaces[k];
+    for (size_t j = 0; j < k; ++j)
+      if (problem.surfaces[j].name == h.name)
+        return Status::error("surface '" + h.name +
+                             "' is given more than once as a conductor or ground");
+    const std::string what = (h.ground ? "ground surface '" : "conductor surface '") + h.name + "'";
+    if (h.vertices.empty()) return Status::error(what + " has no vertices");
+    if (!(std::fabs(h.potential) <= kMaxPotential) || (h.ground && h.potential != 0) ||
+        (h.potential != 0 && std::fabs(h.potential) < kMinPotential)) {
+      return Status::error(what + ": potential " + format_double(h.potential) +
+                           " is not 0 or a magnitude in [1e-30, 1e30]");
+    }
   }
   for (const auto& [m, potential] : problem.conductors) {
     if (!exists(m)) {
@@ -548,6 +566,33 @@ Status solve_electrostatics(const TetMesh& mesh, const ElectrostaticsProblem& pr
   for (const auto& [m, potential] : problem.conductors) {
     if (Status s = hold_material(mesh, m, potential, "conductor", &dirichlet, &holder); !s) {
       return s;
+    }
+  }
+  // Surfaces after materials: one held at another potential where it touches a
+  // conductor, a ground or another surface is an error naming both.
+  std::vector<uint32_t> surface_of(vertex_count, kInvalidIndex);
+  for (size_t k = 0; k < problem.surfaces.size(); ++k) {
+    const ElectrostaticsProblem::HeldSurface& h = problem.surfaces[k];
+    for (const uint32_t v : h.vertices) {
+      if (v >= vertex_count) {
+        return Status::error("surface '" + h.name + "': vertex " + std::to_string(v) +
+                             " is not in the mesh");
+      }
+      double& current = dirichlet[v];
+      if (std::isnan(current)) {
+        current = h.potential;
+        surface_of[v] = uint32_t(k);
+      } else if (current != h.potential) {
+        const std::string other = surface_of[v] != kInvalidIndex
+                                      ? "surface '" + problem.surfaces[surface_of[v]].name + "'"
+                                  : holder[v] == kOutsideMaterial
+                                      ? std::string("the grounded outer boundary")
+                                      : "material " + std::to_string(holder[v]);
+        return Status::error(std::string(h.ground ? "ground" : "conductor") + " surface '" +
+                             h.name + "' (held at " + format_double(h.potential) + ") touches " +
+                             other + " (held at " + format_double(current) + ") at " +
+                             describe_node(mesh, v));
+      }
     }
   }
   double lowest = std::numeric_limits<double>::infinity();

@@ -28,6 +28,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -44,6 +45,15 @@ struct ElectrostaticsProblem {
   std::vector<int32_t> ground_materials;
   // Also hold every node of the outer boundary at 0.
   bool ground_boundary = false;
+  // Surfaces held at a potential (0 for a ground): the input's surface groups (a Gmsh
+  // physical surface, say) given by their vertices, each < the mesh's vertex count.
+  struct HeldSurface {
+    std::string name;  // for messages
+    std::vector<uint32_t> vertices;
+    double potential = 0;
+    bool ground = false;  // a ground (held at 0), else a conductor
+  };
+  std::vector<HeldSurface> surfaces;
   // (material, eps), eps in [1e-30, 1e30]. Materials not listed get default_permittivity.
   std::vector<std::pair<int32_t, double>> permittivities;
   double default_permittivity = 1.0;

@@ -1912,6 +1912,51 @@ TEST(Cli, SolveSpheresPrintsCapacitanceAndWritesTheField) {
   EXPECT_NE(cg.output.find("iterations"), std::string::npos) << cg.output;
 }
 
+// A conductor or ground given by the name of one of the input's surface groups holds
+// that surface's nodes: the spheres with the inner sphere's surface at 1 and the outer
+// one's at 0 is the problem with materials 1 and 4 held, the same capacitance to the
+// last printed digit. A name that is neither a material's nor a surface group's lists
+// the groups; a surface given twice, or held at two potentials, is an error.
+TEST(Cli, SolveHoldsSurfaceGroups) {
+  const std::string spheres = std::string(TETLOD_SOURCE_DIR) + "/assets/spheres.mesh";
+  const std::string msh = out_dir() + "/spheres_groups.msh";
+  ASSERT_EQ(run("convert " + spheres + " -o " + msh + " --surfaces").code, 0);
+  const auto capacitance = [](const std::string& output) {
+    const size_t at = output.find("capacitance  C = ");
+    return at == std::string::npos ? std::string()
+                                   : output.substr(at, output.find(' ', at + 17) - at);
+  };
+  const CommandResult materials =
+      run("solve " + msh + " --conductor 1=1 --ground 4 --eps 2=2,3=5 --solver direct");
+  ASSERT_EQ(materials.code, 0) << materials.output;
+  const CommandResult surfaces = run("solve " + msh +
+                                     " --conductor interface_1_2=1 --ground interface_3_4"
+                                     " --eps 2=2,3=5 --solver direct");
+  ASSERT_EQ(surfaces.code, 0) << surfaces.output;
+  ASSERT_FALSE(capacitance(materials.output).empty()) << materials.output;
+  EXPECT_EQ(capacitance(surfaces.output), capacitance(materials.output)) << surfaces.output;
+  // Fewer nodes held: material 1's and 4's inner nodes are unknowns now.
+  EXPECT_NE(surfaces.output.find("unknowns     1680 (1389 nodes held)"), std::string::npos)
+      << surfaces.output;
+  const CommandResult unknown = run("solve " + msh + " --conductor nope=1 --ground 4");
+  EXPECT_EQ(unknown.code, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("nor is it a surface group (the input's: boundary_4, "
+                                "interface_1_2, interface_2_3, interface_3_4)"),
+            std::string::npos)
+      << unknown.output;
+  const CommandResult twice =
+      run("solve " + msh + " --conductor interface_1_2=1 --ground interface_1_2");
+  EXPECT_EQ(twice.code, 2) << twice.output;
+  EXPECT_NE(twice.output.find("surface 'interface_1_2' is given more than once"), std::string::npos)
+      << twice.output;
+  const CommandResult touching = run("solve " + msh + " --conductor interface_1_2=1 --ground 2");
+  EXPECT_EQ(touching.code, 1) << touching.output;
+  EXPECT_NE(touching.output.find("conductor surface 'interface_1_2' (held at 1) touches "
+                                 "material 2 (held at 0)"),
+            std::string::npos)
+      << touching.output;
+}
+
 // --solver direct on a mesh of more than 20000 nodes says, before it starts, that its
 // time grows as the square of the unknowns (a user forced it on 280,000 and waited ten
 // minutes); below that, and with auto, nothing. (The conductors here touch the ground,

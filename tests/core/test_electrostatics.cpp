@@ -160,6 +160,45 @@ TEST(Electrostatics, BadSetUpsNameTheOffendingValue) {
   // Two conductors at different potentials touching.
   m = solve_error(mesh, with([](P* p) { p->conductors = {{1, 2.0}, {2, 1.0}}; }));
   EXPECT_TRUE(has(m, "touches material 1")) << m;
+  // Held surfaces: a ground surface alone is no conductor; a vertex out of range, an
+  // empty surface, a potential out of range and one given twice are named.
+  m = solve_error(mesh, with([](P* p) {
+                    p->conductors.clear();
+                    p->surfaces = {{"g", {0}, 0.0, true}};
+                  }));
+  EXPECT_TRUE(has(m, "no conductor: at least one material or surface")) << m;
+  m = solve_error(mesh, with([&](P* p) { p->surfaces = {{"far", {99999}, 1.0, false}}; }));
+  EXPECT_TRUE(has(m, "surface 'far': vertex 99999 is not in the mesh")) << m;
+  m = solve_error(mesh, with([](P* p) { p->surfaces = {{"none", {}, 1.0, false}}; }));
+  EXPECT_TRUE(has(m, "conductor surface 'none' has no vertices")) << m;
+  m = solve_error(mesh, with([](P* p) { p->surfaces = {{"big", {0}, 1e31, false}}; }));
+  EXPECT_TRUE(has(m, "conductor surface 'big': potential 9.99")) << m;
+  m = solve_error(mesh, with([](P* p) {
+                    p->surfaces = {{"s", {0}, 1.0, false}, {"s", {1}, 0.0, true}};
+                  }));
+  EXPECT_TRUE(has(m, "surface 's' is given more than once")) << m;
+}
+
+// A surface held at a potential is a Dirichlet condition like a material's: the plates'
+// conductor (material 1, x <= 0.5) given instead by its face x = 0.5 gives the same
+// capacitance (the conductor's inside is then free, at the same potential).
+TEST(Electrostatics, AHeldSurfaceIsAConductor) {
+  const TetMesh mesh = layered_plates();
+  ElectrostaticsProblem by_surface = plates_problem();
+  ElectrostaticsProblem::HeldSurface face{"x = 0.5", {}, by_surface.conductors[0].second, false};
+  for (uint32_t v = 0; v < mesh.vertex_count(); ++v)
+    if (mesh.positions[v].x == 0.5) face.vertices.push_back(v);
+  ASSERT_FALSE(face.vertices.empty());
+  by_surface.conductors.clear();
+  by_surface.surfaces = {face};
+  SolveOptions options;
+  options.method = SolverMethod::kDirect;
+  ElectrostaticsSolution a, b;
+  ASSERT_TRUE(solve_electrostatics(mesh, plates_problem(), options, &a).ok());
+  const Status s = solve_electrostatics(mesh, by_surface, options, &b);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_NEAR(b.capacitance, a.capacitance, 1e-12);
+  EXPECT_GT(b.free_count, a.free_count);
 }
 
 TEST(Electrostatics, FloatingRegionIsAnError) {
