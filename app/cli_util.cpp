@@ -438,6 +438,14 @@ std::vector<std::string> split_value_items(const std::string& text, char separat
   std::string item;
   bool open = false;  // `item` holds pieces without the separator, not yet an item
   for (const std::string& piece : comma_pieces(text)) {
+    // An empty piece (a comma at either end, two in a row) is an empty item, not part
+    // of a name: ",3=0" was the name ",3".
+    if (trimmed(piece).empty()) {
+      if (open) items.push_back(trimmed(item));
+      open = false;
+      items.emplace_back();
+      continue;
+    }
     item = open ? item + "," + piece : piece;
     open = piece.find(separator) == std::string::npos;
     if (!open) items.push_back(trimmed(item));

@@ -191,7 +191,8 @@ std::vector<std::string> split_items(const std::string& text);
 // The items "M=X" of such a list (`separator` '=', or ':' in viewer scripts), where a
 // piece between commas without the separator is joined to the next, so that a name
 // with a comma needs no escape: "Cu (OFHC), 20 C=0.3,air=5" is two items. A last
-// piece without one is an item of its own, for the caller's error.
+// piece without one is an item of its own, and an empty piece (a comma at either end,
+// two in a row) an empty item, for the caller's error.
 std::vector<std::string> split_value_items(const std::string& text, char separator);
 // An item "M=X" of such a list (`separator` '=', or ':' in viewer scripts): the text
 // before the last separator (a name may hold one, a number does not) into `material`,

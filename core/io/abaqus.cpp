@@ -611,11 +611,13 @@ class AbaqusParser {
     }
     // The names, but not our own MATERIAL_<id>, which only says the number; where
     // TetLOD wrote the set, the name it had (kMaterialNameComment).
+    // (A name that is MATERIAL_<id> but for case, as "Material_1", is written so, with
+    // its comment: the comment's name is taken.)
     for (size_t k = 0; k < keys_.size(); ++k) {
-      if (used[k] && keys_[k] != "MATERIAL_" + std::to_string(id[k]) &&
+      const auto given = commented_names_.find(keys_[k]);
+      const bool commented = given != commented_names_.end() && given->second.id == id[k];
+      if (used[k] && (commented || keys_[k] != "MATERIAL_" + std::to_string(id[k])) &&
           id[k] <= std::numeric_limits<int32_t>::max()) {
-        const auto given = commented_names_.find(keys_[k]);
-        const bool commented = given != commented_names_.end() && given->second.id == id[k];
         if (commented) given->second.used = true;
         out_->material_names.push_back(
             {int32_t(id[k]), valid_utf8(commented ? given->second.name : spellings_[k])});

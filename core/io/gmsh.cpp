@@ -32,10 +32,15 @@ int nodes_per_element(int64_t type) {
       10, 12, 15, 15, 21, 4,  5,  6,  20,  35,  56,  22,  28,  0,  0,  16, 25, 36, 12, 16, 20,
       28, 36, 45, 55, 66, 49, 64, 81, 100, 121, 18,  21,  24,  27, 30, 24, 28, 32, 36, 40, 7,
       8,  9,  10, 11, 0,  0,  0,  0,  84,  120, 165, 220, 286, 0,  0,  0,  34, 40, 46, 52, 58};
+  // 84 to 140: first-order "_1" elements, then prisms, hexahedra and pyramids of higher
+  // orders (the node count is the name's number), the sub-elements (unknown), and the
+  // 16-node tet, mini-elements and the 4-node triangle.
+  static constexpr int kMore[57] = {
+      1,   1,   1,   1,   1,   1,   40,  75,  64, 125, 216, 343, 512, 729, 1000, 32, 44, 56, 68,
+      80,  92,  104, 126, 196, 288, 405, 550, 24, 33,  42,  51,  60,  69,  78,   30, 55, 91, 140,
+      204, 285, 385, 21,  29,  37,  45,  53,  61, 69,  1,   0,   0,   0,   0,    16, 4,  5,  4};
   if (type >= 1 && type < 84) return kNodes[type];
-  if (type == 92) return 64;
-  if (type == 93) return 125;
-  if (type == 137) return 16;
+  if (type >= 84 && type <= 140) return kMore[type - 84];
   return 0;
 }
 
@@ -62,34 +67,25 @@ constexpr const char* kMaterialPrefix = "material_";
 // the plural name of a volume or surface element type, nullptr for other types
 // (points, lines), which a tet mesh's file holds as a matter of course.
 const char* skipped_volume_elements(int64_t type) {
-  switch (type) {
-    case 5:
-    case 12:
-    case 17:
-    case 92:
-    case 93:
-      return "hexahedra";
-    case 6:
-    case 13:
-    case 18:
-      return "prisms";
-    case 7:
-    case 14:
-    case 19:
-      return "pyramids";
-    default:
-      return nullptr;
-  }
+  if (type == 5 || type == 12 || type == 17 || type == 88 || (type >= 92 && type <= 105))
+    return "hexahedra";
+  if (type == 6 || type == 13 || type == 18 || (type >= 89 && type <= 91) ||
+      (type >= 106 && type <= 117))
+    return "prisms";
+  if (type == 7 || type == 14 || type == 19 || (type >= 118 && type <= 132)) return "pyramids";
+  return nullptr;
 }
 bool is_surface_element(int64_t type) {
   return is_triangle_type(type) || is_quadrangle_type(type);
 }
 
-// "material_<n>" with 0 <= n <= INT32_MAX gives n; else -1.
+// "material_<n>" with 0 <= n <= INT32_MAX, written as TetLOD writes it (no leading
+// zero: "material_00" is a name), gives n; else -1.
 int64_t material_from_name(std::string_view name) {
   const std::string_view prefix = kMaterialPrefix;
   if (name.size() <= prefix.size() || name.size() > prefix.size() + 10 ||
-      name.substr(0, prefix.size()) != prefix) {
+      name.substr(0, prefix.size()) != prefix ||
+      (name[prefix.size()] == '0' && name.size() > prefix.size() + 1)) {
     return -1;
   }
   int64_t value = 0;
@@ -745,7 +741,11 @@ class GmshParser {
       // 0, which takes another tag; "material_<tag>" is its name for a material without
       // one. Any other name is the material's, "material_<n>" too: it was taken as
       // material n, which swapped or merged groups whose names and tags disagree.
-      const int64_t material = dimension == 3 ? material_from_name(name) : -1;
+      // A second group named "material_0" (TetLOD writes one) keeps its tag: two would
+      // merge.
+      int64_t material = dimension == 3 ? material_from_name(name) : -1;
+      if (material == 0 && !named_materials_.empty() && named_materials_.count(tag) == 0)
+        material = -1;
       if (material == 0) named_materials_[tag] = 0;
       const bool default_name = material == 0 || (material > 0 && material == tag);
       if ((dimension == 2 || dimension == 3) && !default_name && physical_names_.size() < 1000) {

@@ -304,9 +304,11 @@ class NastranParser {
       return true;
     }
     // Line, point, spring, mass and rigid elements: not kept, said in a note.
-    for (const char* card : {"CBAR",   "CBEAM",  "CROD",   "CONROD", "CTUBE",  "CBUSH", "CELAS1",
-                             "CELAS2", "CELAS3", "CELAS4", "CDAMP1", "CDAMP2", "CONM1", "CONM2",
-                             "CMASS1", "CMASS2", "RBE2",   "RBE3",   "RBAR",   "PLOTEL"}) {
+    for (const char* card :
+         {"CBAR",   "CBEAM",  "CBEND",  "CROD",  "CONROD", "CTUBE",   "CBUSH",  "CBUSH1D", "CGAP",
+          "CVISC",  "CSHEAR", "CWELD",  "CFAST", "CELAS1", "CELAS2",  "CELAS3", "CELAS4",  "CDAMP1",
+          "CDAMP2", "CDAMP3", "CDAMP4", "CONM1", "CONM2",  "CMASS1",  "CMASS2", "CMASS3",  "CMASS4",
+          "RBE1",   "RBE2",   "RBE3",   "RBAR",  "RROD",   "RSPLINE", "RTRPLT", "PLOTEL"}) {
       if (card_name_ == card) {
         ++skipped_others_[card_name_];
         return true;

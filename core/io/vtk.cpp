@@ -801,6 +801,10 @@ bool is_vtk_surface_cell(int64_t type) {
     case 28:  // biquadratic quad
     case 30:  // quadratic-linear quad
     case 34:  // biquadratic triangle
+    case 36:  // quadratic polygon
+    case 61:  // higher-order triangle (generic)
+    case 62:  // higher-order quadrilateral (generic)
+    case 63:  // higher-order polygon (generic)
     case 69:  // Lagrange triangle
     case 70:  // Lagrange quadrilateral
     case 76:  // Bezier triangle
@@ -862,10 +866,11 @@ void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh*
   const struct {
     const char* name;
     uint64_t n;
-  } skipped[] = {{"hexahedra", count({11, 12, 25, 29, 33, 72, 79})},
-                 {"wedges", count({13, 26, 32, 73, 80})},
-                 {"pyramids", count({14, 27, 74, 81})},
-                 {"polyhedra", count({15, 16, 42})}};
+  } skipped[] = {{"hexahedra", count({11, 12, 25, 29, 33, 67, 72, 79})},
+                 {"wedges", count({13, 26, 31, 32, 65, 73, 80})},
+                 {"pyramids", count({14, 27, 37, 66, 74, 81})},
+                 {"polyhedra", count({15, 16, 41, 42})},
+                 {"higher-order tetrahedra of the generic kind", count({64})}};
   std::string list;
   for (const auto& s : skipped)
     if (s.n > 0) list += (list.empty() ? "" : ", ") + std::to_string(s.n) + " " + s.name;
@@ -885,10 +890,26 @@ void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh*
                          "corners; their other points are dropped)");
   }
   // Vertices, poly-vertices, lines, poly-lines and higher-order lines.
-  if (const uint64_t lines = count({1, 2, 3, 4, 21, 35, 68, 75}); lines > 0) {
+  if (const uint64_t lines = count({1, 2, 3, 4, 21, 35, 60, 68, 75}); lines > 0) {
     out->notes.push_back(std::to_string(lines) +
                          " vertex and line cells are not kept: TetLOD keeps the tetrahedra, and "
                          "the triangles of surface groups");
+  }
+  // Any other type (one VTK may add, or none at all): named by its number.
+  std::string others;
+  for (size_t type = 0; type < counts_by_type.size(); ++type) {
+    static constexpr int kNamed[] = {1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 13, 14, 15,
+                                     16, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32, 33, 34,
+                                     35, 36, 37, 41, 42, 60, 61, 62, 63, 64, 65, 66, 67, 68, 69,
+                                     70, 71, 72, 73, 74, 75, 76, 77, 78, 79, 80, 81};
+    if (counts_by_type[type] == 0 ||
+        std::find(std::begin(kNamed), std::end(kNamed), int(type)) != std::end(kNamed))
+      continue;
+    others += (others.empty() ? "" : ", ") + std::string("type ") + std::to_string(type) + ": " +
+              std::to_string(counts_by_type[type]);
+  }
+  if (!others.empty()) {
+    out->notes.push_back("cells of types TetLOD does not know are not kept (" + others + ")");
   }
 }
 

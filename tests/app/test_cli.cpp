@@ -700,7 +700,12 @@ TEST(Cli, AnEmptyListItemIsNamed) {
         "render " + spheres + " -o " + out + ".png --hide 1,,2",
         "solve " + spheres + " --conductor 1=1 --ground 4,",
         "solve " + spheres + " --conductor 1=1, --ground 4",
-        "simplify " + spheres + " -o " + out + ".mesh --size 3 --material-size 1=2,"}) {
+        "simplify " + spheres + " -o " + out + ".mesh --size 3 --material-size 1=2,",
+        // Inside or at the start of an M=V list: not a name ",3" (commas inside names
+        // are written as they are there).
+        "solve " + spheres + " --conductor 1=1,,4=0",
+        "solve " + spheres + " --conductor 1=1 --ground 4 --eps ,2=2",
+        "simplify " + spheres + " -o " + out + ".mesh --size 3 --material-size 1=2,,2=3"}) {
     const CommandResult r = run(command);
     EXPECT_EQ(r.code, 2) << command << "\n" << r.output;
     EXPECT_NE(r.output.find("an empty item (a comma at either end, or two in a row)"),

@@ -184,7 +184,7 @@ TEST(IoGmshBinary, BrokenHeadersAndCountsNameTheProblem) {
       {damage([](Damage& d) { d.one = 7; }), "byte-order check reads 7"},
       {damage([](Damage& d) { d.node_count = 1000000000; }), "node count"},
       {damage([](Damage& d) { d.node_count = 5; }), ""},
-      {damage([](Damage& d) { d.tet_type = 99; }), "element type 99 is unknown: a binary file"},
+      {damage([](Damage& d) { d.tet_type = 141; }), "element type 141 is unknown: a binary file"},
       {damage([](Damage& d) { d.first_x = std::nan(""); }), "not a finite number"},
       {damage([](Damage& d) { d.first_tag = 0; }), "node tag 0"},
       {damage([](Damage& d) { d.first_tag = 6; }), "node tag 6 is defined twice"},

@@ -128,6 +128,16 @@ TEST(IoSamples, SkippedCellsAreNoted) {
       << ::testing::PrintToString(info.notes);
   EXPECT_TRUE(noted("2 vertex and line cells are not kept"))
       << ::testing::PrintToString(info.notes);
+  // A quadratic-linear wedge (31) is a wedge, a quadratic polygon (36) a surface cell,
+  // and a type VTK has not got (99) is named by its number (all three were dropped
+  // without a word).
+  std::string others = lagrange;
+  others.replace(others.find("CELL_TYPES 4\n71\n78\n1\n3\n"), 25, "CELL_TYPES 4\n71\n31\n36\n99\n");
+  ASSERT_TRUE(read_mesh_from_memory(others, MeshFormat::kVtkLegacy, "m.vtk", &mesh, &info).ok());
+  EXPECT_TRUE(noted("skipped 1 wedges")) << ::testing::PrintToString(info.notes);
+  EXPECT_EQ(info.surface_elements_not_kept, 1u);
+  EXPECT_TRUE(noted("cells of types TetLOD does not know are not kept (type 99: 1)"))
+      << ::testing::PrintToString(info.notes);
   std::string eight = lagrange;
   eight.replace(eight.find("CELLS 4 21\n10 0 1 2 3 4 5 6 7 8 9"), 33,
                 "CELLS 4 19\n8 0 1 2 3 4 5 6 7");

@@ -219,16 +219,18 @@ TEST(MaterialNames, AbaqusNamesAreRead) {
 TEST(MaterialNames, AbaqusElementSetsCarryThem) {
   const std::string dir = test::output_dir("material_names_abaqus");
   const TetMesh mesh = test::make_grid_mesh(
-      5, 1, 1, [](int i, int, int) { return i + 1; }, 0.5);  // materials 1..5
-  const std::vector<MaterialName> names = {
-      {1, "inner conductor"}, {2, "Rotor2"}, {3, "3phase"}, {4, "coil_2"}, {5, "Iron-Core"}};
+      6, 1, 1, [](int i, int, int) { return i + 1; }, 0.5);  // materials 1..6
+  // "Material_6" is MATERIAL_6 but for case: its comment gives it back (it was lost).
+  const std::vector<MaterialName> names = {{1, "inner conductor"}, {2, "Rotor2"},
+                                           {3, "3phase"},          {4, "coil_2"},
+                                           {5, "Iron-Core"},       {6, "Material_6"}};
   WriteOptions options;
   options.material_names = &names;
   const std::string path = dir + "/named.inp";
   ASSERT_TRUE(write_mesh(path, mesh, options).ok());
   const std::string text = test::read_text(path);
   for (const char* set : {"ELSET=inner_conductor_1\n", "ELSET=Rotor2\n", "ELSET=M_3phase_3\n",
-                          "ELSET=coil_2_4\n", "ELSET=Iron-Core_5\n"})
+                          "ELSET=coil_2_4\n", "ELSET=Iron-Core_5\n", "ELSET=Material_6\n"})
     EXPECT_NE(text.find(set), std::string::npos) << set;
   TetMesh back;
   ReadInfo info;
