@@ -471,6 +471,7 @@ std::string parse_materials(const std::string& text, std::vector<int32_t>* ids,
                             std::vector<std::string>* names) {
   ids->clear();
   names->clear();
+  if (trimmed(text).empty()) return "no material given";
   for (const std::string& item : split_items(text)) {
     if (item.empty()) return kEmptyItem;
     if (is_material_name(item)) {

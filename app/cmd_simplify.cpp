@@ -96,13 +96,14 @@ void print_improve(const ImproveResult& r, double seconds) {
   const ThresholdCounts& b0 = r.breaks_before;
   const ThresholdCounts& b1 = r.breaks_after;
   std::printf(
-      "improve (the level written): %d rounds, %zu edge removals, %zu 2-3 flips, %zu vertex "
+      "improve (the level written): %d round%s, %zu edge removals, %zu 2-3 flips, %zu vertex "
       "moves; stretch mean %.4f -> %.4f, min %.4f -> %.4f; breaking a threshold: %zu -> %zu "
       "tets below the stretch, %zu -> %zu above the size, %zu -> %zu nodes above the "
       "valence; %.3f s\n",
-      r.rounds, r.edge_removals, r.flips_23, r.moves, r.mean_stretch_before, r.mean_stretch_after,
-      r.min_stretch_before, r.min_stretch_after, b0.below_stretch, b1.below_stretch, b0.above_size,
-      b1.above_size, b0.above_valence, b1.above_valence, seconds);
+      r.rounds, r.rounds == 1 ? "" : "s", r.edge_removals, r.flips_23, r.moves,
+      r.mean_stretch_before, r.mean_stretch_after, r.min_stretch_before, r.min_stretch_after,
+      b0.below_stretch, b1.below_stretch, b0.above_size, b1.above_size, b0.above_valence,
+      b1.above_valence, seconds);
 }
 
 // --check: status 3, said on stderr, where the mesh written (`out`) breaks a threshold.

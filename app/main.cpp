@@ -36,7 +36,8 @@ constexpr const char* kUsage =
     "\n"
     "Run 'tetlod COMMAND --help' for the options of a command, 'tetlod --version' for the\n"
     "version.\n"
-    "Exit codes: 0 ok, 1 bad input, 2 bad usage, 3 a --check failed (stats, compare).\n";
+    "Exit codes: 0 ok, 1 bad input, 2 bad usage, 3 a --check failed (stats, compare,\n"
+    "simplify, lod).\n";
 
 // Ctrl-C, `timeout`, a closed terminal: remove the temporaries of the files being
 // written, then end as the signal would have ended the process.

@@ -1115,6 +1115,9 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     // A history's own thresholds, where the panel can hold them.
     thresholds_from_history_ = scene_->from_history && scene_->params_known &&
                                ui::from_simplify_params(scene_->params, &thresholds_);
+    // Where the rest does not fit the panel, the crease angle still does.
+    if (scene_->from_history && scene_->params_known && !thresholds_from_history_)
+      thresholds_.crease_angle = scene_->params.crease_angle_degrees;
     // A size map given with the mesh: its sizing, capped where the map never reaches.
     if (scene_->size_map) {
       thresholds_.sizing_mode = ui::SizingMode::kMap;

@@ -97,7 +97,8 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
         a->stretch = number;
       } else if (key == "crease-angle") {
         if (!(number > 0 && number < 180))
-          return p.error("crease-angle=" + value + " must lie between 0 and 180 (degrees)");
+          return p.error("crease-angle=" + value +
+                         " must lie strictly between 0 and 180 (degrees)");
         a->crease_angle = number;
       } else {
         if (!(number >= 0)) return p.error("tolerance must be >= 0");

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cinttypes>
 #include <cmath>
 #include <cstdarg>
@@ -1123,22 +1124,28 @@ bool from_simplify_params(const SimplifyParams& params, ThresholdSettings* setti
     t.sizing_mode = uniform && sizing.material_sizes.empty() ? SizingMode::kRegion
                                                              : SizingMode::kRegionAndMaterial;
     t.material_cap = uniform;
-    char rule[512];
+    // Each number in the shortest text that reads back to it ("0.2", not
+    // "0.20000000000000001"), so that the rules parse back to the same values.
+    const auto rule = [](const char* kind, std::initializer_list<double> numbers) {
+      std::string text = kind;
+      char buffer[32];
+      for (const double x : numbers) {
+        const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
+        text += (text.back() == ':' ? "" : ",") + std::string(buffer, end);
+      }
+      return text;
+    };
     for (const SizingField::Radial& r : sizing.radial) {
       const Vec3 &c = r.center, &a = r.axis;
-      if (a == Vec3{}) {
-        std::snprintf(rule, sizeof rule, "radial:%.17g,%.17g,%.17g,%.17g,%.17g", c.x, c.y, c.z,
-                      r.size0, r.growth);
-      } else {
-        std::snprintf(rule, sizeof rule, "axis:%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g",
-                      c.x, c.y, c.z, a.x, a.y, a.z, r.size0, r.growth);
-      }
-      t.region_spec += (t.region_spec.empty() ? "" : ";") + std::string(rule);
+      const std::string text =
+          a == Vec3{} ? rule("radial:", {c.x, c.y, c.z, r.size0, r.growth})
+                      : rule("axis:", {c.x, c.y, c.z, a.x, a.y, a.z, r.size0, r.growth});
+      t.region_spec += (t.region_spec.empty() ? "" : ";") + text;
     }
     for (const SizingField::Box& b : sizing.boxes) {
-      std::snprintf(rule, sizeof rule, "box:%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", b.low.x,
-                    b.low.y, b.low.z, b.high.x, b.high.y, b.high.z, b.size);
-      t.region_spec += (t.region_spec.empty() ? "" : ";") + std::string(rule);
+      t.region_spec +=
+          (t.region_spec.empty() ? "" : ";") +
+          rule("box:", {b.low.x, b.low.y, b.low.z, b.high.x, b.high.y, b.high.z, b.size});
     }
   } else if (!sizing.material_sizes.empty()) {
     t.sizing_mode = SizingMode::kPerMaterial;

@@ -1193,8 +1193,13 @@ class GmshParser {
                             "triangles of surface groups");
     }
     if (lines + points > 0) {
-      out_->notes.push_back(std::to_string(lines) + " line and " + std::to_string(points) +
-                            " point elements (Gmsh writes those of physical curves and points, or "
+      const std::string what =
+          lines == 0 ? std::to_string(points) + (points == 1 ? " point element" : " point elements")
+          : points == 0
+              ? std::to_string(lines) + (lines == 1 ? " line element" : " line elements")
+              : std::to_string(lines) + " line and " + std::to_string(points) + " point elements";
+      out_->notes.push_back(what +
+                            " (Gmsh writes those of physical curves and points, or "
                             "all with Mesh.SaveAll) are not kept: TetLOD keeps the tetrahedra, "
                             "their volume groups and the surface groups");
     }

@@ -151,6 +151,18 @@ TEST(MaterialNames, GmshTagsAreMaterialsWhateverTheirNames) {
     if (m == 3) m = 0;
   test::expect_same_mesh(expected, back);
   EXPECT_EQ(as_pairs(info.material_names), (Names{{1, "material_2"}, {2, "material_1"}}));
+  // "material_00" is a name, and a second "material_0" keeps its tag: they merged into
+  // material 0.
+  for (const char* fourth : {"material_00", "material_0"}) {
+    std::string again = text;
+    const std::string old_name = "3 4 \"material_4\"";
+    again.replace(again.find(old_name), old_name.size(), "3 4 \"" + std::string(fourth) + "\"");
+    std::ofstream(path) << again;
+    ASSERT_TRUE(read_mesh(path, &back, &info).ok());
+    test::expect_same_mesh(expected, back);
+    EXPECT_EQ(as_pairs(info.material_names),
+              (Names{{1, "material_2"}, {2, "material_1"}, {4, fourth}}));
+  }
 }
 
 // Gmsh reads our names: it saves the physical groups again under them.

@@ -87,6 +87,12 @@ TEST(ThresholdSettings, HistoryThresholdsRoundTripThroughThePanel) {
   EXPECT_FALSE(settings.material_cap);
   ASSERT_TRUE(ui::from_simplify_params(region, &settings));
   EXPECT_EQ(settings.sizing_mode, ui::SizingMode::kRegion);
+  // Shown as typed, each number in its shortest text (it showed 0.20000000000000001).
+  SimplifyParams tenths = uniform;
+  ASSERT_TRUE(parse_size_field("box:0,0,0,0.1,0.2,0.3,0.2", &tenths.sizing).ok());
+  ASSERT_TRUE(ui::from_simplify_params(tenths, &settings));
+  EXPECT_EQ(settings.region_spec, "box:0,0,0,0.1,0.2,0.3,0.2");
+  expect_same(tenths, round_trip(tenths));
 
   // What the panel cannot hold: left to the caller (the panel keeps its defaults).
   settings = ui::ThresholdSettings();
