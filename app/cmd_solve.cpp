@@ -302,34 +302,32 @@ int cmd_solve(const Args& args) {
   // The materials given by name, now that the names are read; a name no material has
   // may be a surface group's.
   const std::vector<InputSurfaceGroup>& groups = info.surface_groups;
-  for (const auto& [text, potential] : conductors) {
+  // A conductor or ground: a material, or a surface group.
+  const auto hold = [&](const MaterialText& text, double potential, bool ground) {
     int32_t id = -1;
     ElectrostaticsProblem::HeldSurface surface;
-    if (!resolve(text, info.material_names, "--conductor", mesh, groups, &id, &surface))
-      return kExitUsage;
+    if (!resolve(text, info.material_names, ground ? "--ground" : "--conductor", mesh, groups, &id,
+                 &surface))
+      return false;
     if (!surface.name.empty()) {
       surface.potential = potential;
+      surface.ground = ground;
       problem.surfaces.push_back(std::move(surface));
+    } else if (ground) {
+      problem.ground_materials.push_back(id);
     } else {
       problem.conductors.push_back({id, potential});
     }
-  }
+    return true;
+  };
+  for (const auto& [text, potential] : conductors)
+    if (!hold(text, potential, false)) return kExitUsage;
+  for (const MaterialText& text : grounds)
+    if (!hold(text, 0.0, true)) return kExitUsage;
   for (const auto& [text, eps] : permittivities) {
     int32_t id = 0;
     if (!resolve(text, info.material_names, "--eps", mesh, groups, &id)) return kExitUsage;
     problem.permittivities.push_back({id, eps});
-  }
-  for (const MaterialText& text : grounds) {
-    int32_t id = -1;
-    ElectrostaticsProblem::HeldSurface surface;
-    if (!resolve(text, info.material_names, "--ground", mesh, groups, &id, &surface))
-      return kExitUsage;
-    if (!surface.name.empty()) {
-      surface.ground = true;
-      problem.surfaces.push_back(std::move(surface));
-    } else {
-      problem.ground_materials.push_back(id);
-    }
   }
   // What the options say, checked against the mesh: an error of theirs is one of usage
   // (a potential or permittivity out of range, a material twice or not in the mesh).
