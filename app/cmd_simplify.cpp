@@ -108,7 +108,7 @@ void print_improve(const ImproveResult& r, double seconds) {
 
 // --check: status 3, said on stderr, where the mesh written (`out`) breaks a threshold.
 int check_written(const char* command, const std::string& out, const ThresholdCounts& breaks) {
-  if (breaks.below_stretch + breaks.above_size + breaks.above_valence == 0) return kExitOk;
+  if (breaks.total() == 0) return kExitOk;
   std::fprintf(stderr, "tetlod %s: --check: %s breaks a threshold: %s\n", command, out.c_str(),
                describe_breaks(breaks).c_str());
   return kExitBreaks;

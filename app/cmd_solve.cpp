@@ -121,16 +121,21 @@ bool parse_ground(const std::string& text, bool* boundary, std::vector<MaterialT
 }
 
 // The vertices of `mesh` at the corners of `group`'s triangles, sorted; false, with
-// the first corner that is none, if a corner is no vertex of the mesh.
+// the first corner that is none, if a corner is no vertex of the mesh. `order_cache`:
+// the mesh's vertices sorted by position, made on the first call (empty until then).
 bool group_vertices(const TetMesh& mesh, const InputSurfaceGroup& group,
-                    std::vector<uint32_t>* vertices, Vec3* missing) {
-  std::vector<uint32_t> order(mesh.vertex_count());
-  for (uint32_t v = 0; v < order.size(); ++v) order[v] = v;
+                    std::vector<uint32_t>* vertices, Vec3* missing,
+                    std::vector<uint32_t>* order_cache) {
   const auto less = [](const Vec3& a, const Vec3& b) {
     return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
   };
-  std::sort(order.begin(), order.end(),
-            [&](uint32_t a, uint32_t b) { return less(mesh.positions[a], mesh.positions[b]); });
+  std::vector<uint32_t>& order = *order_cache;
+  if (order.empty()) {
+    order.resize(mesh.vertex_count());
+    for (uint32_t v = 0; v < order.size(); ++v) order[v] = v;
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t a, uint32_t b) { return less(mesh.positions[a], mesh.positions[b]); });
+  }
   vertices->clear();
   for (const auto& triangle : group.triangles) {
     for (const Vec3& p : triangle) {
@@ -155,7 +160,8 @@ bool group_vertices(const TetMesh& mesh, const InputSurfaceGroup& group,
 bool resolve(const MaterialText& text, const std::vector<MaterialName>& names,
              const std::string& option, const TetMesh& mesh,
              const std::vector<InputSurfaceGroup>& groups, int32_t* id,
-             ElectrostaticsProblem::HeldSurface* surface = nullptr) {
+             ElectrostaticsProblem::HeldSurface* surface = nullptr,
+             std::vector<uint32_t>* order_cache = nullptr) {
   if (const auto number = parse_material(text)) {
     *id = *number;
     return true;
@@ -166,7 +172,7 @@ bool resolve(const MaterialText& text, const std::vector<MaterialName>& names,
     for (const InputSurfaceGroup& group : groups) {
       if (group.name != text) continue;
       Vec3 missing;
-      if (!group_vertices(mesh, group, &surface->vertices, &missing)) {
+      if (!group_vertices(mesh, group, &surface->vertices, &missing, order_cache)) {
         std::fprintf(stderr,
                      "tetlod solve: %s: surface group '%s' has a corner (%.17g %.17g %.17g) that "
                      "is no vertex of the mesh\n",
@@ -303,11 +309,12 @@ int cmd_solve(const Args& args) {
   // may be a surface group's.
   const std::vector<InputSurfaceGroup>& groups = info.surface_groups;
   // A conductor or ground: a material, or a surface group.
+  std::vector<uint32_t> by_position;  // the vertices sorted by position, for the groups
   const auto hold = [&](const MaterialText& text, double potential, bool ground) {
     int32_t id = -1;
     ElectrostaticsProblem::HeldSurface surface;
     if (!resolve(text, info.material_names, ground ? "--ground" : "--conductor", mesh, groups, &id,
-                 &surface))
+                 &surface, &by_position))
       return false;
     if (!surface.name.empty()) {
       surface.potential = potential;

@@ -141,7 +141,7 @@ int cmd_stats(const Args& args) {
       return code;
   const SimplifyParams& params = thresholds.params;
   const ThresholdCounts breaks = counting ? threshold_breaks(mesh, params) : ThresholdCounts{};
-  const bool broken = breaks.below_stretch + breaks.above_size + breaks.above_valence > 0;
+  const bool broken = breaks.total() > 0;
   const int exit_code = check && broken ? kExitBreaks : kExitOk;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

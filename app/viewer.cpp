@@ -1430,7 +1430,7 @@ void Viewer::update_stats() {
     level.stats = compute_mesh_stats(mesh, build_vertex_tets(mesh));
     if (params) {
       const ThresholdCounts b = threshold_breaks(mesh, *params);
-      if (b.below_stretch + b.above_size + b.above_valence > 0) level.breaks = describe_breaks(b);
+      if (b.total() > 0) level.breaks = describe_breaks(b);
     }
     return level;
   });
@@ -1730,7 +1730,7 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces, 
     }
     if (known) {
       const ThresholdCounts b = threshold_breaks(mesh, params);
-      if (b.below_stretch + b.above_size + b.above_valence > 0) saved.breaks = describe_breaks(b);
+      if (b.total() > 0) saved.breaks = describe_breaks(b);
     }
     options.material_names = material_names.get();
     if (!options.surface_groups) {

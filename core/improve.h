@@ -51,6 +51,7 @@ struct ThresholdCounts {
   size_t below_stretch = 0;  // tets with d_t < tau_ST
   size_t above_size = 0;     // tets with s_t > tau_SZ
   size_t above_valence = 0;  // nodes with valence > tau_VL
+  size_t total() const { return below_stretch + above_size + above_valence; }
 };
 
 // The tets and nodes of `mesh` that break params' stretch, size and valence thresholds.

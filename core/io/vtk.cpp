@@ -857,10 +857,15 @@ void SurfaceElements::finish(ParsedMesh* out) {
 }
 
 void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh* out) {
+  // The types a note below names (`said`); the rest are named by their number.
+  std::vector<bool> said(counts_by_type.size(), false);
   auto count = [&](std::initializer_list<int> types) {
     uint64_t n = 0;
-    for (int t : types)
-      if (size_t(t) < counts_by_type.size()) n += counts_by_type[size_t(t)];
+    for (int t : types) {
+      if (size_t(t) >= counts_by_type.size()) continue;
+      n += counts_by_type[size_t(t)];
+      said[size_t(t)] = true;
+    }
     return n;
   };
   const struct {
@@ -895,15 +900,12 @@ void add_vtk_cell_notes(const std::vector<uint64_t>& counts_by_type, ParsedMesh*
                          " vertex and line cells are not kept: TetLOD keeps the tetrahedra, and "
                          "the triangles of surface groups");
   }
-  // Any other type (one VTK may add, or none at all): named by its number.
+  // Any other type (one VTK may add, or none at all) but tets and the surface cells
+  // (counted apart): named by its number.
   std::string others;
   for (size_t type = 0; type < counts_by_type.size(); ++type) {
-    static constexpr int kNamed[] = {1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 13, 14, 15,
-                                     16, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32, 33, 34,
-                                     35, 36, 37, 41, 42, 60, 61, 62, 63, 64, 65, 66, 67, 68, 69,
-                                     70, 71, 72, 73, 74, 75, 76, 77, 78, 79, 80, 81};
-    if (counts_by_type[type] == 0 ||
-        std::find(std::begin(kNamed), std::end(kNamed), int(type)) != std::end(kNamed))
+    if (counts_by_type[type] == 0 || said[type] || int64_t(type) == kVtkTetra ||
+        is_vtk_surface_cell(int64_t(type)))
       continue;
     others += (others.empty() ? "" : ", ") + std::string("type ") + std::to_string(type) + ": " +
               std::to_string(counts_by_type[type]);
