@@ -41,14 +41,17 @@ void OrbitCamera::take_framing(const Vec3& lo, const Vec3& hi, const render::Cam
   pitch_ = std::clamp(std::asin(std::clamp(d.z / distance_, -1.0, 1.0)), -kMaxPitch, kMaxPitch);
   // Looking down z the framed camera has y up: keep the eye slightly on -y.
   yaw_ = (std::abs(d.x) + std::abs(d.y) > 1e-9 * distance_) ? std::atan2(d.y, d.x) : -kPi / 2;
+  moved_ = false;
 }
 
 void OrbitCamera::orbit(double dx, double dy) {
+  moved_ = moved_ || dx != 0 || dy != 0;
   yaw_ -= dx * 0.008;
   pitch_ = std::clamp(pitch_ + dy * 0.008, -kMaxPitch, kMaxPitch);
 }
 
 void OrbitCamera::pan(double dx, double dy, int viewport_height) {
+  moved_ = moved_ || dx != 0 || dy != 0;
   const render::Camera c = camera();
   const Vec3 forward = unit(c.target - c.eye);
   const Vec3 right = unit(cross(forward, c.up));
@@ -59,6 +62,7 @@ void OrbitCamera::pan(double dx, double dy, int viewport_height) {
 }
 
 void OrbitCamera::zoom(double clicks) {
+  moved_ = moved_ || clicks != 0;
   distance_ = std::max(distance_ * std::pow(0.88, clicks), 1e-6);
 }
 

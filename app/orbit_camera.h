@@ -26,6 +26,8 @@ class OrbitCamera {
   void zoom(double clicks);
 
   render::Camera camera() const;
+  // Whether the camera was orbited, panned or zoomed since it was last framed.
+  bool moved() const { return moved_; }
 
  private:
   void take_framing(const Vec3& lo, const Vec3& hi, const render::Camera& framed);
@@ -35,6 +37,7 @@ class OrbitCamera {
   double distance_ = 5;
   double yaw_ = 0, pitch_ = 0;  // radians; eye direction from the target
   double fov_y_degrees_ = 30;
+  bool moved_ = false;
 };
 
 }  // namespace tetlod::app

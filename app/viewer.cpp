@@ -367,6 +367,12 @@ class Viewer {
   // The view's aspect (width / height) and where its legend goes: the camera frames the
   // model clear of it.
   std::pair<double, render::LegendSpace> framing() const;
+  // Frames the shown materials from `view`, or from the current direction if null,
+  // clear of the legend (framing()).
+  void frame_view(const render::ViewDirection* view);
+  // A view nobody has moved since it was framed is framed again when the view's shape
+  // or the legend's space changes (a resize, a colour mode with a key).
+  void keep_framed();
   void draw_scene(int fb_width, int fb_height);
   // The tet under the pointer: the shown tet drawn at display pixel (x, y), or
   // kInvalidIndex (outside the view, over nothing). O(drawn faces).
@@ -413,6 +419,7 @@ class Viewer {
   bool imgui_glfw_ = false, imgui_gl_ = false;
 
   OrbitCamera camera_;
+  std::pair<double, render::LegendSpace> framed_with_;  // framing() at the last framing
   ui::ViewSettings view_;
   ui::ThresholdSettings thresholds_;
   ui::AnalysisSettings analysis_;
@@ -708,6 +715,7 @@ void Viewer::frame() {
   apply_view_changes();
   follow_scrubber();
   sync_field_colors();
+  keep_framed();
 
   int width = 0, height = 0;
   window_->framebuffer_size(&width, &height);
@@ -1125,10 +1133,8 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
       thresholds_.size_map_name = scene_->size_map_name;
       thresholds_.size = scene_->size_map->largest();
     }
-    Vec3 lo, hi;
-    shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-    const auto [aspect, legend] = framing();
-    camera_.fit(lo, hi, render::ViewDirection::kIso, aspect, legend);
+    const render::ViewDirection iso = render::ViewDirection::kIso;
+    frame_view(&iso);
     add_recent(scene_->path);
     std::snprintf(panel_.open_path, sizeof(panel_.open_path), "%s", scene_->path.c_str());
   }
@@ -1183,22 +1189,14 @@ void Viewer::execute(const ui::Command& command) {
             scene_->lod->step_for_elements(static_cast<size_t>(std::max(0LL, command.value))));
       break;
     case ui::CommandKind::kFit:  // reframes from the current direction (the views set one)
-      if (scene_) {
-        Vec3 lo, hi;
-        shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-        const auto [aspect, legend] = framing();
-        camera_.refit(lo, hi, aspect, legend);
-      }
+      if (scene_) frame_view(nullptr);
       break;
     case ui::CommandKind::kAxisView:
       if (scene_) {
         const render::ViewDirection views[] = {render::ViewDirection::kIso,
                                                render::ViewDirection::kX, render::ViewDirection::kY,
                                                render::ViewDirection::kZ};
-        Vec3 lo, hi;
-        shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
-        const auto [aspect, legend] = framing();
-        camera_.fit(lo, hi, views[std::clamp<long long>(command.value, 0, 3)], aspect, legend);
+        frame_view(&views[std::clamp<long long>(command.value, 0, 3)]);
       }
       break;
     case ui::CommandKind::kSave: {
@@ -1434,6 +1432,26 @@ void Viewer::update_stats() {
     }
     return level;
   });
+}
+
+void Viewer::frame_view(const render::ViewDirection* view) {
+  Vec3 lo, hi;
+  shown_bounds(*scene_->input, view_.hidden_materials, &lo, &hi);
+  framed_with_ = framing();
+  const auto& [aspect, legend] = framed_with_;
+  if (view)
+    camera_.fit(lo, hi, *view, aspect, legend);
+  else
+    camera_.refit(lo, hi, aspect, legend);
+}
+
+void Viewer::keep_framed() {
+  if (!scene_ || camera_.moved()) return;
+  const auto [aspect, legend] = framing();
+  const render::LegendSpace& was = framed_with_.second;
+  if (aspect != framed_with_.first || legend.bottom != was.bottom ||
+      legend.key_width != was.key_width || legend.key_height != was.key_height)
+    frame_view(nullptr);
 }
 
 std::pair<double, render::LegendSpace> Viewer::framing() const {

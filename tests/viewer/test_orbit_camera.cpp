@@ -111,6 +111,26 @@ TEST(OrbitCamera, RefitKeepsTheDirection) {
             0.1);  // not the iso direction
 }
 
+// moved(): since the last framing, any orbit, pan or zoom that changes the view; a
+// framing clears it.
+TEST(OrbitCamera, MovedSinceTheLastFraming) {
+  OrbitCamera camera;
+  camera.fit(kLo, kHi, render::ViewDirection::kIso);
+  camera.orbit(0, 0);
+  camera.pan(0, 0, 500);
+  camera.zoom(0);
+  EXPECT_FALSE(camera.moved());
+  camera.zoom(1);
+  EXPECT_TRUE(camera.moved());
+  camera.refit(kLo, kHi);
+  EXPECT_FALSE(camera.moved());
+  camera.pan(3, 0, 500);
+  EXPECT_TRUE(camera.moved());
+  camera.fit(kLo, kHi, render::ViewDirection::kX);
+  camera.orbit(0, 2);
+  EXPECT_TRUE(camera.moved());
+}
+
 TEST(OrbitCamera, PitchIsClampedBelowTheVertical) {
   OrbitCamera camera;
   camera.fit(kLo, kHi, render::ViewDirection::kIso);

@@ -328,6 +328,28 @@ TEST(ViewerWindow, FitKeepsTheViewDirection) {
             1000u);
 }
 
+// A colour mode with a material key frames a view nobody has moved again, clear of the
+// key, as Fit would: at 640x480 the motor's key covered part of it until Fit. A view
+// the user zoomed (even back to where it was) is left as it is.
+TEST(ViewerWindow, TheKeyReframesAViewNobodyMoved) {
+  const fs::path dir = fresh_output_dir("viewer_key_reframes");
+  std::ofstream(dir / "auto.script") << "color material\nscreenshot auto.png\nquit\n";
+  std::ofstream(dir / "fit.script") << "color material\nview fit\nscreenshot fit.png\nquit\n";
+  std::ofstream(dir / "moved.script")
+      << "zoom 1\nzoom -1\ncolor material\nscreenshot moved.png\nquit\n";
+  const std::string motor = "'" + kSource + "/assets/motor.mesh' --size 640x480 ";
+  for (const char* name : {"auto", "fit", "moved"}) {
+    const ViewerRun run = run_viewer(dir, motor + "--script " + name + ".script");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  const render::Image fitted = load_png(dir / "fit.png");
+  EXPECT_EQ(render::compare_images(load_png(dir / "auto.png"), fitted, 0, nullptr).differing_pixels,
+            0u);
+  EXPECT_GT(
+      render::compare_images(load_png(dir / "moved.png"), fitted, 8, nullptr).differing_pixels,
+      500u);
+}
+
 // With the legend, the framing keeps the model above the colour bar: the rows the bar
 // covers show only the background with the legend turned off afterwards (framed so
 // before, box2's nearest corner reached into them).
