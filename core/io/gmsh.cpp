@@ -454,8 +454,7 @@ class GmshParser {
         if (!binary_entity_tail(c, dimension, &physical, &others)) return false;
         if (dimension == 3) volume_physical_[tag] = physical;
         if (dimension == 2) surface_physical_[tag] = physical;
-        if (dimension == 3)
-          for (int64_t other : others) read_in_groups_[other].insert(physical);
+        if (dimension == 3) add_volume_groups(tag, physical, others);
         if (dimension == 2 && !others.empty()) surface_other_physicals_[tag] = std::move(others);
       }
     }
@@ -653,9 +652,7 @@ class GmshParser {
       const bool is_tet = is_tet_type(type);
       int32_t material = 0;
       if (is_tet) {
-        const auto it = volume_physical_.find(entity);
-        if (!resolve_material(it != volume_physical_.end() ? it->second : 0, elementary_of(entity),
-                              &material)) {
+        if (!entity_material(entity, block_size, &material)) {
           scanner_.advance(c.used());
           return false;
         }
@@ -805,8 +802,7 @@ class GmshParser {
         }
         if (dimension == 3) volume_physical_[tag] = physical;
         if (dimension == 2) surface_physical_[tag] = physical;
-        if (dimension == 3)
-          for (int64_t other : others) read_in_groups_[other].insert(physical);
+        if (dimension == 3) add_volume_groups(tag, physical, others);
         if (dimension == 2 && !others.empty()) surface_other_physicals_[tag] = std::move(others);
       }
     }
@@ -1027,6 +1023,27 @@ class GmshParser {
     return it != surface_physical_.end() ? it->second : 0;
   }
   // Its other physical tags (a surface in several groups), or null.
+  // A volume entity's physical tags after the first (4.1): each such group is said to
+  // hold the tets read in the first.
+  void add_volume_groups(int64_t entity, int64_t first, const std::vector<int64_t>& others) {
+    for (int64_t other : others) read_in_groups_[other].insert(first);
+    if (!others.empty()) volume_other_physicals_[entity] = others;
+  }
+
+  // The material of `tets` tets of volume entity `entity` (4.1): its first physical
+  // tag's, else its own. An entity of several groups is counted for a note.
+  bool entity_material(int64_t entity, uint64_t tets, int32_t* material) {
+    const auto first = volume_physical_.find(entity);
+    if (const auto more = volume_other_physicals_.find(entity);
+        more != volume_other_physicals_.end() && tets > 0) {
+      shared_volume_tets_ += tets;
+      for (int64_t group : more->second)
+        if (groups_not_read_in_.size() < 10) groups_not_read_in_.insert(group);
+    }
+    return resolve_material(first != volume_physical_.end() ? first->second : 0,
+                            elementary_of(entity), material);
+  }
+
   const std::vector<int64_t>* other_physicals_of(int64_t entity) const {
     const auto it = surface_other_physicals_.find(entity);
     return it != surface_other_physicals_.end() ? &it->second : nullptr;
@@ -1127,9 +1144,7 @@ class GmshParser {
       const bool is_tet = is_tet_type(type);
       int32_t material = 0;
       if (is_tet) {
-        const auto it = volume_physical_.find(entity);
-        if (!resolve_material(it != volume_physical_.end() ? it->second : 0, elementary_of(entity),
-                              &material)) {
+        if (!entity_material(entity, block_size, &material)) {
           return false;
         }
       }
@@ -1402,6 +1417,16 @@ class GmshParser {
 
   bool finish_elements() {
     drop_repeated_tets();
+    if (shared_volume_tets_ > 0) {
+      std::string groups;
+      for (int64_t g : groups_not_read_in_)
+        groups += (groups.empty() ? "" : ", ") + std::to_string(g);
+      const bool one = shared_volume_tets_ == 1;
+      out_->notes.push_back(
+          std::to_string(shared_volume_tets_) + (one ? " tetrahedron is" : " tetrahedra are") +
+          " in a volume of more than one physical group: " + (one ? "it is" : "each is") +
+          " read once, in the volume's first group, not in group(s) " + groups);
+    }
     separate_entity_materials();
     add_notes();
     for (auto& [tag, triangles] : surface_triangles_) {
@@ -1452,8 +1477,11 @@ class GmshParser {
   bool swap_ = false;    // binary numbers in the other byte order
   bool seen_nodes_ = false;
   bool seen_elements_ = false;
-  std::unordered_map<int64_t, int64_t> named_materials_;   // physical tag -> 0 ("material_0")
-  std::unordered_map<int64_t, int64_t> volume_physical_;   // volume entity -> first physical tag
+  std::unordered_map<int64_t, int64_t> named_materials_;  // physical tag -> 0 ("material_0")
+  std::unordered_map<int64_t, int64_t> volume_physical_;  // volume entity -> first physical tag
+  std::unordered_map<int64_t, std::vector<int64_t>> volume_other_physicals_;  // the others
+  uint64_t shared_volume_tets_ = 0;       // tets of entities of several groups (4.1)
+  std::set<int64_t> groups_not_read_in_;  // those groups' tags after the first (10 at most)
   std::unordered_map<int64_t, int64_t> volume_parent_;     // partition volume -> model volume
   std::unordered_map<int64_t, int64_t> surface_physical_;  // surface entity -> first physical
   std::unordered_map<int64_t, std::vector<int64_t>> surface_other_physicals_;  // -> the others

@@ -227,6 +227,28 @@ TEST(IoGmshFiles, ElementsInTwoGroupsAreReadOnce) {
                          "'iron' = 1, 'all' = 2 (no tetrahedra of its own: they are read in "
                          "group 1, which holds the same volume)"))
         << all_notes(two);
+    EXPECT_TRUE(has_note(two,
+                         "1 tetrahedron is in a volume of more than one physical group: it is "
+                         "read once, in the volume's first group, not in group(s) 2"))
+        << all_notes(two);
+  }
+  // The same where the second group has a volume of its own: its tets are read in it,
+  // those of the shared volume in the first group, and that is said (it was not).
+  const std::string own =
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n3 1 \"iron\"\n"
+      "3 2 \"all\"\n$EndPhysicalNames\n$Entities\n0 0 0 2\n1 0 0 0 1 1 1 2 1 2 0\n"
+      "2 0 0 0 1 1 1 1 2 0\n$EndEntities\n$Nodes\n1 5 1 5\n3 1 0 5\n1\n2\n3\n4\n5\n"
+      "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n$EndNodes\n$Elements\n2 2 1 2\n3 1 4 1\n"
+      "1 1 2 3 4\n3 2 4 1\n2 2 3 4 5\n$EndElements\n";
+  {
+    TetMesh mesh;
+    ReadInfo notes;
+    const Status read = read_mesh_from_memory(own, MeshFormat::kGmsh41, "own.msh", &mesh, &notes);
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(mesh.materials, (std::vector<int32_t>{1, 2}));
+    EXPECT_TRUE(has_note(notes, "1 tetrahedron is in a volume of more than one physical group"))
+        << all_notes(notes);
+    EXPECT_FALSE(has_note(notes, "no tetrahedra of its own")) << all_notes(notes);
   }
   // The same nodes in two elementary entities are not a repeat but a broken mesh.
   const std::string two_entities =
