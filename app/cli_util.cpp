@@ -485,6 +485,44 @@ std::string parse_materials(const std::string& text, std::vector<int32_t>* ids,
   return "";
 }
 
+std::string find_surface_groups(const std::string& text, const SurfacePatches& patches,
+                                std::vector<uint32_t>* groups) {
+  groups->clear();
+  const std::vector<SurfacePatches::Group>& all = patches.groups();
+  if (all.empty()) return "the input has no surface groups";
+  if (trimmed(text).empty()) return "no surface group given";
+  if (trimmed(text) == "all") {
+    for (uint32_t g = 0; g < all.size(); ++g) groups->push_back(g);
+    return "";
+  }
+  for (const std::string& item : split_items(text)) {
+    if (item.empty()) return kEmptyItem;
+    const auto tag = parse_integer(item);
+    size_t found = 0;
+    for (uint32_t g = 0; g < all.size(); ++g) {
+      if (all[g].name == item || (tag && all[g].tag == *tag)) {
+        groups->push_back(g);
+        ++found;
+      }
+    }
+    if (found == 0) {
+      std::string list;
+      for (const SurfacePatches::Group& g : all) {
+        if (list.size() > 400) {
+          list += ", ...";
+          break;
+        }
+        list += (list.empty() ? "" : ", ") + std::to_string(g.tag) +
+                (g.name.empty() ? "" : " '" + g.name + "'");
+      }
+      return "the input has no surface group '" + item + "' (it has " + list + ")";
+    }
+  }
+  std::sort(groups->begin(), groups->end());
+  groups->erase(std::unique(groups->begin(), groups->end()), groups->end());
+  return "";
+}
+
 bool find_material(const std::string& name, const std::vector<MaterialName>& names, int32_t* id,
                    std::string* why) {
   const MaterialName* found = nullptr;

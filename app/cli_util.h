@@ -207,6 +207,13 @@ extern const char* const kEmptyItem;
 std::string parse_materials(const std::string& text, std::vector<int32_t>* ids,
                             std::vector<std::string>* names);
 
+// The input's surface groups a list names (`text`: "all", or tags and names with
+// commas between, a comma inside a name written \,), as indices into
+// patches.groups(), increasing and distinct. What is wrong, or "": an empty item, a
+// group the input does not have (with those it has).
+std::string find_surface_groups(const std::string& text, const SurfacePatches& patches,
+                                std::vector<uint32_t>* groups);
+
 // Escapes a string for a JSON string literal (without the quotes).
 std::string json_escape(const std::string& text);
 

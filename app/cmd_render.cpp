@@ -18,8 +18,8 @@ constexpr const char* kRenderUsageHead =
     "                     [--materials 1,2,3 | --hide 1] [--cut AXIS=VALUE | --cut-plane "
     "NX,NY,NZ,D]\n"
     "                     [--view iso|x|y|z | --camera EX,EY,EZ,TX,TY,TZ] [--wireframe]\n"
-    "                     [--highlight-below D] [--simplify --size S ... [--elements N] "
-    "[--improve]]\n"
+    "                     [--highlight-below D] [--groups all|G,...]\n"
+    "                     [--simplify --size S ... [--elements N] [--improve]]\n"
     "\n"
     "Draws the boundary and interface faces of the visible tets offscreen (OpenGL 3.3 core\n"
     "through OSMesa, else EGL surfaceless; TETLOD_GL_BACKEND=osmesa|egl picks one: no\n"
@@ -118,19 +118,23 @@ int cmd_render(const Args& args) {
       return kExitBadInput;
     mesh = std::move(level.mesh);
     names = level.names;
+    patches = std::move(level.patches);
     if (options.simplify_options.improve) {
       if (!history_improve_params(in, "render", level.params)) return kExitUsage;
-      improve_mesh(&mesh, *level.params, 4, nullptr, &level.patches);
+      improve_mesh(&mesh, *level.params, 4, nullptr, &patches);
     }
   } else {
     ReadInfo info;
     if (!load_mesh(in, &mesh, &info)) return kExitBadInput;
     names = info.material_names;
-    if (options.simplify && !info.surface_groups.empty())
+    if ((options.simplify || !options.groups.empty()) && !info.surface_groups.empty())
       patches = SurfacePatches(mesh, info.surface_groups);
-    patches.drop_inside();  // no groups are written: the mesh may coarsen there
+    // No groups are written, nor drawn inside a material: the mesh may coarsen there.
+    if (options.groups.empty()) patches.drop_inside();
   }
-  if (!resolve_materials(mesh, names, "render", &options)) return kExitUsage;
+  if (!resolve_materials(mesh, names, "render", &options) ||
+      !resolve_groups(patches, "render", &options))
+    return kExitUsage;
   if (const Status s = render::check_drawable(mesh); !s) {
     std::fprintf(stderr, "tetlod render: %s: %s\n", in.c_str(), s.message().c_str());
     return kExitBadInput;
@@ -147,6 +151,8 @@ int cmd_render(const Args& args) {
 
   const auto start = std::chrono::steady_clock::now();
   const render::PreparedMesh prepared = render::prepare_mesh(std::move(mesh));
+  const std::vector<render::GroupOverlay::Group> groups =
+      show_surface_groups(offscreen.renderer.get(), prepared, patches, options);
   const render::Image image =
       render::render_snapshot(offscreen.renderer.get(), prepared, options.snapshot);
   const double seconds =
@@ -169,6 +175,7 @@ int cmd_render(const Args& args) {
         "--hide) or cut away (--cut, --cut-plane)\n",
         stderr);
   }
+  note_undrawn_groups("render", groups);
   // A legend that does not fit the picture is left out (render::Renderer::legend_space).
   const render::DrawSettings& draw = options.snapshot.draw;
   const render::LegendSpace legend =

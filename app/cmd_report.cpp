@@ -251,11 +251,14 @@ int cmd_report(const Args& args) {
     ReadInfo info;
     if (!load_mesh(in, &input, &info)) return kExitBadInput;
     names = std::move(info.material_names);
-    if (options.simplify && !info.surface_groups.empty())
+    if ((options.simplify || !options.groups.empty()) && !info.surface_groups.empty())
       patches = SurfacePatches(input, info.surface_groups);
-    patches.drop_inside();  // no groups are written: the mesh may coarsen there
+    // No groups are written, nor drawn inside a material: the mesh may coarsen there.
+    if (options.groups.empty()) patches.drop_inside();
   }
-  if (!resolve_materials(input, names, "report", &options)) return kExitUsage;
+  if (!resolve_materials(input, names, "report", &options) ||
+      !resolve_groups(from_history ? history.patches : patches, "report", &options))
+    return kExitUsage;
   if (const Status s = render::check_drawable(input); !s) {
     std::fprintf(stderr, "tetlod report: %s: %s\n", in.c_str(), s.message().c_str());
     return kExitBadInput;
@@ -368,6 +371,8 @@ int cmd_report(const Args& args) {
     summary += table_row(level.label, stats.whole);
 
     const render::PreparedMesh prepared = render::prepare_mesh(level.mesh);
+    show_surface_groups(offscreen.renderer.get(), prepared,
+                        from_history ? history.patches : patches, options);
     const render::Image picture =
         render::render_snapshot(offscreen.renderer.get(), prepared, options.snapshot);
     if (picture.width == 0) {

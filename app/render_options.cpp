@@ -29,6 +29,10 @@ const char* const kRenderFlagsHelp =
     "  --camera EX,EY,EZ,TX,TY,TZ   camera at E looking at T\n"
     "  --wireframe            draw the edges of the drawn faces\n"
     "  --highlight-below D    show tets with stretch < D in magenta, also through the surface\n"
+    "  --groups all|G,...     draw the input's surface groups (Gmsh physical surfaces,\n"
+    "                         Medit triangle references, Abaqus *SURFACEs, ...), by name\n"
+    "                         or tag, each in its colour over the faces and listed in the\n"
+    "                         key; those hidden behind the surface show through\n"
     "  --no-legend            no colour bar or material key\n";
 
 namespace {
@@ -165,6 +169,11 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
     if (s.view.eye == s.view.target) return bad_value("a camera whose eye differs from its target");
   } else if (a == "--wireframe") {
     s.draw.wireframe = true;
+  } else if (a == "--groups") {
+    if (!value()) return OptionResult::kError;
+    if (v.find_first_not_of(" \t") == std::string::npos)
+      return bad_value("a list of surface groups, or all");
+    options->groups = v;
   } else if (a == "--no-legend") {
     s.draw.legend = false;
   } else if (a == "--highlight-below") {
@@ -216,6 +225,40 @@ bool resolve_materials(const TetMesh& mesh, const std::vector<MaterialName>& nam
         hidden.push_back(m);
   }
   return true;
+}
+
+bool resolve_groups(const SurfacePatches& patches, const char* command, RenderOptions* options) {
+  if (options->groups.empty()) return true;
+  const std::string why = find_surface_groups(options->groups, patches, &options->surface_groups);
+  if (why.empty()) return true;
+  std::fprintf(stderr, "tetlod %s: --groups '%s': %s\n", command, options->groups.c_str(),
+               why.c_str());
+  return false;
+}
+
+std::vector<render::GroupOverlay::Group> show_surface_groups(render::Renderer* renderer,
+                                                             const render::PreparedMesh& mesh,
+                                                             const SurfacePatches& patches,
+                                                             const RenderOptions& options) {
+  render::GroupOverlay overlay = render::build_group_overlay(
+      mesh.mesh, mesh.neighbors, patches, options.surface_groups, options.snapshot.filter);
+  renderer->set_groups(overlay);
+  return std::move(overlay.groups);
+}
+
+void note_undrawn_groups(const char* command,
+                         const std::vector<render::GroupOverlay::Group>& groups) {
+  for (const render::GroupOverlay::Group& g : groups) {
+    if (g.count > 0) continue;
+    if (g.triangles > 0)
+      std::fprintf(stderr,
+                   "tetlod %s: note: surface group '%s' is not drawn: its %zu faces are hidden "
+                   "(--materials, --hide) or cut away\n",
+                   command, g.label.c_str(), g.triangles);
+    else
+      std::fprintf(stderr, "tetlod %s: note: surface group '%s' has no face on this mesh\n",
+                   command, g.label.c_str());
+  }
 }
 
 bool open_offscreen_renderer(const char* command, OffscreenRenderer* out) {

@@ -21,6 +21,8 @@ struct RenderOptions {
   std::vector<int32_t> hidden_materials;  // --hide
   // The materials of --materials and --hide given by name, for resolve_materials().
   std::vector<std::string> shown_names, hidden_names;
+  std::string groups;                     // --groups: the input's surface groups to draw
+  std::vector<uint32_t> surface_groups;   // those, by resolve_groups()
   bool simplify = false;                  // --simplify, or any simplifier flag
   bool simplify_beyond_elements = false;  // ... other than --elements and --improve
   SimplifyOptions simplify_options;
@@ -50,6 +52,20 @@ OptionResult parse_render_option(const Args& args, size_t* i, const char* comman
 // id or name is not in the mesh.
 bool resolve_materials(const TetMesh& mesh, const std::vector<MaterialName>& names,
                        const char* command, RenderOptions* options);
+
+// Resolves --groups against `patches`, the input's surface groups. False with a
+// message if it names a group the input does not have.
+bool resolve_groups(const SurfacePatches& patches, const char* command, RenderOptions* options);
+// Sets `renderer`'s surface groups to those of --groups on `mesh` (none without it),
+// and returns them (their triangles on `mesh`, and how many are drawn).
+std::vector<render::GroupOverlay::Group> show_surface_groups(render::Renderer* renderer,
+                                                             const render::PreparedMesh& mesh,
+                                                             const SurfacePatches& patches,
+                                                             const RenderOptions& options);
+
+// Notes on stderr the groups of show_surface_groups() that have no face drawn.
+void note_undrawn_groups(const char* command,
+                         const std::vector<render::GroupOverlay::Group>& groups);
 
 // An offscreen context with an initialised renderer.
 struct OffscreenRenderer {

@@ -57,6 +57,7 @@
 #include "core/sizing.h"
 #include "core/validate.h"
 #include "render/gl_context.h"
+#include "render/group_overlay.h"
 #include "render/image.h"
 #include "render/lod_surface.h"
 #include "render/renderer.h"
@@ -349,6 +350,9 @@ class Viewer {
   void start_surface_rebuild(const render::SurfaceFilter& filter);
   void follow_scrubber();
   void update_stats();
+  // Draws the surface groups ticked in the View section on the level shown: built off
+  // the UI thread once the level settles, none drawn while it or the view changes.
+  void update_groups();
   // Analysis.
   Status start_solve(int line);
   void poll_solve();
@@ -445,6 +449,22 @@ class Viewer {
     std::string breaks;
   };
   std::future<LevelStats> stats_future_;
+  // The surface groups drawn (groups_key_, if groups_drawn_), and those being built.
+  struct GroupsKey {
+    size_t step = 0, generation = 0;
+    std::vector<uint32_t> shown;
+    render::SurfaceFilter filter;
+  };
+  bool same_groups(const GroupsKey& a, const GroupsKey& b) const {
+    return a.step == b.step && a.generation == b.generation && a.shown == b.shown &&
+           same_filter(a.filter, b.filter);
+  }
+  GroupsKey groups_now() const;  // of the level and view shown
+  bool groups_wanted() const;    // whether any group is ticked (and the input has groups)
+  GroupsKey groups_key_, groups_future_key_;
+  size_t status_groups_generation_ = size_t(-1);  // of the groups fill_status() listed
+  bool groups_drawn_ = false;
+  std::future<render::GroupOverlay> groups_future_;
   size_t stats_future_step_ = 0, stats_future_generation_ = 0;
   bool has_stats_ = false;
   MeshStats stats_;
@@ -665,7 +685,8 @@ void Viewer::frame() {
   // quarter second passes, so an idle viewer leaves the cores to others.
   const bool idle = !job_ && !solve_job_ && !interacting_ && !needs_redraw_ &&
                     !options_.has_script && !stats_future_.valid() && !save_future_.valid() &&
-                    !surface_future_.valid() && ui_capture_countdown_ < 0 && !hover_waiting_ &&
+                    !groups_future_.valid() && !surface_future_.valid() &&
+                    ui_capture_countdown_ < 0 && !hover_waiting_ &&
                     (!scene_ || scene_->lod->step() == static_cast<size_t>(panel_.target_step));
   busy_frames_ = idle ? busy_frames_ - 1 : 3;
   const bool slept = last_slept_;
@@ -715,6 +736,7 @@ void Viewer::frame() {
   apply_view_changes();
   follow_scrubber();
   sync_field_colors();
+  update_groups();
   keep_framed();
 
   int width = 0, height = 0;
@@ -1099,6 +1121,7 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     // the model.
     auto& hidden = view_.hidden_materials;
     if (opened_mesh_) hidden.clear();
+    view_.shown_groups.clear();  // another file's groups
     opened_mesh_ = true;
     hide_by_name();
     hidden.erase(std::remove_if(hidden.begin(), hidden.end(),
@@ -1432,6 +1455,50 @@ void Viewer::update_stats() {
     }
     return level;
   });
+}
+
+Viewer::GroupsKey Viewer::groups_now() const {
+  GroupsKey now;
+  if (scene_) {
+    now.step = scene_->lod->step();
+    now.generation = scene_generation_;
+    now.shown = view_.shown_groups;
+    now.filter = make_filter(view_);
+  }
+  return now;
+}
+
+bool Viewer::groups_wanted() const {
+  return scene_ && !view_.shown_groups.empty() && scene_->input_patches;
+}
+
+void Viewer::update_groups() {
+  const GroupsKey now = groups_now();
+  if (groups_future_.valid() &&
+      groups_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    const render::GroupOverlay overlay = groups_future_.get();
+    if (scene_ && same_groups(groups_future_key_, now)) {
+      renderer_->set_groups(overlay);
+      groups_key_ = groups_future_key_;
+      groups_drawn_ = true;
+      needs_redraw_ = true;
+    }
+  }
+  const bool wanted = groups_wanted();
+  if (groups_drawn_ && (!wanted || !same_groups(groups_key_, now))) {
+    renderer_->set_groups({});  // of another level or view
+    groups_drawn_ = false;
+    needs_redraw_ = true;
+  }
+  if (!wanted || groups_drawn_ || groups_future_.valid()) return;
+  if (now.step != static_cast<size_t>(panel_.target_step) || jump_from_) return;  // moving
+  groups_future_key_ = now;
+  groups_future_ = std::async(
+      std::launch::async, [mesh = scene_->lod->extract(), patches = scene_->input_patches, now] {
+        std::vector<uint32_t> neighbors;
+        build_face_neighbors(mesh, &neighbors);
+        return render::build_group_overlay(mesh, neighbors, *patches, now.shown, now.filter);
+      });
 }
 
 void Viewer::frame_view(const render::ViewDirection* view) {
@@ -2030,6 +2097,13 @@ void Viewer::fill_status() {
   s.materials = scene.materials;
   s.inside_group_triangles = scene.input_patches ? scene.input_patches->inside_entries().size() : 0;
   s.material_names = scene.material_names ? *scene.material_names : std::vector<MaterialName>();
+  if (status_groups_generation_ != scene_generation_) {  // (once a mesh: they may be many)
+    status_groups_generation_ = scene_generation_;
+    s.surface_groups.clear();
+    if (scene.input_patches)
+      for (const SurfacePatches::Group& g : scene.input_patches->groups())
+        s.surface_groups.push_back({render::surface_group_label(g), g.tag, g.triangles});
+  }
   for (int k = 0; k < 3; ++k) {
     s.bounds_min[k] = static_cast<float>(k == 0 ? scene.lo.x : k == 1 ? scene.lo.y : scene.lo.z);
     s.bounds_max[k] = static_cast<float>(k == 0 ? scene.hi.x : k == 1 ? scene.hi.y : scene.hi.z);
@@ -2088,6 +2162,7 @@ bool Viewer::settled() const {
     return false;
   if (!scene_) return true;
   if (scene_->lod->step() != static_cast<size_t>(panel_.target_step)) return false;
+  if (groups_wanted() && !(groups_drawn_ && same_groups(groups_key_, groups_now()))) return false;
   return has_stats_ && stats_generation_ == scene_generation_ && stats_step_ == scene_->lod->step();
 }
 
@@ -2240,6 +2315,18 @@ Status Viewer::run_action(const ScriptAction& a) {
         hidden.insert(std::lower_bound(hidden.begin(), hidden.end(), m), m);
       break;
     }
+    case Kind::kGroups:
+      if (a.word == "none") {
+        view_.shown_groups.clear();
+      } else {
+        static const SurfacePatches kNoGroups;
+        std::vector<uint32_t> groups;
+        const std::string why = find_surface_groups(
+            a.word, scene_->input_patches ? *scene_->input_patches : kNoGroups, &groups);
+        if (!why.empty()) return Status::error("groups " + a.word + ": " + why);
+        view_.shown_groups = std::move(groups);
+      }
+      break;
     case Kind::kColor:
       view_.color_mode = a.word == "material" ? render::ColorMode::kMaterial
                          : a.word == "field"  ? render::ColorMode::kField

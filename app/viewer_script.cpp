@@ -288,6 +288,10 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     } else if (a->count < 0 || a->count > 0x7fffffff) {
       return p.error("'" + rest + "' is not a material id (>= 0)");
     }
+  } else if (command == "groups") {
+    a->kind = Kind::kGroups;
+    if (w.size() < 2) return p.arg_count(1, 1);
+    for (size_t i = 1; i < w.size(); ++i) a->word += (i > 1 ? " " : "") + w[i];
   } else if (command == "color") {
     a->kind = Kind::kColor;
     if (Status s = p.arg_count(1, 1); !s) return s;

@@ -30,6 +30,11 @@
 //   hide M | show M                  material visibility, by id or by the mesh's name for
 //                                    it (looked up when the line runs; the rest of the
 //                                    line: hide rotor iron)
+//   groups all|none|G[,G...]         the input's surface groups drawn over the surface
+//                                    (the View section's "Surface groups drawn"), by
+//                                    name or tag (looked up when the line runs; the rest
+//                                    of the line, a comma inside a name written \,);
+//                                    waits until they are drawn
 //   color stretch|material|field|size  range MIN MAX        colormap viridis|turbo
 //                                    (field: |E| of the last solve while it matches the
 //                                    displayed level; stretch otherwise. size: each tet's
@@ -111,6 +116,7 @@ struct ScriptAction {
     kCutOff,
     kHide,
     kShow,
+    kGroups,
     kColor,
     kRange,
     kColormap,
@@ -138,7 +144,7 @@ struct ScriptAction {
   Kind kind = Kind::kQuit;
   int line = 0;
   std::string path;     // open, screenshot, save, bench-scrub out, report-analysis, -tet
-  std::string word;     // color, colormap, view; hide, show: a material's name
+  std::string word;     // color, colormap, view; hide, show: a material's name; groups
   long long count = 0;  // step, elements, material, frames, solve: wait (1) or not (0)
   double value = 0;     // cut offset, highlight, range min, field-range percentile
   double value2 = 0;    // range max

@@ -402,27 +402,21 @@ uint32_t SurfacePatches::locate(const Vec3& a, const Vec3& b, const Vec3& c, int
   return entry.group;
 }
 
-Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
-                     bool inside, const std::vector<uint32_t>* neighbors) {
-  SurfaceGroups result;
-  std::vector<uint32_t> built;
-  const std::vector<uint32_t>& across = given_or_built(mesh, neighbors, &built);
+LocatedGroups locate_groups(const TetMesh& mesh, const SurfacePatches& patches, bool inside,
+                            const std::vector<uint32_t>& across) {
+  LocatedGroups result;
   result.surface = extract_surface(mesh, across);
+  result.boundary_count = result.surface.size();
+  result.in_group.resize(patches.groups().size());
+  result.label.resize(result.surface.size());
   const auto& p = mesh.positions;
-  std::map<PairKey, std::vector<uint32_t>> by_pair, unlabelled;
-  std::vector<std::vector<uint32_t>> in_group(patches.groups().size());
-  std::vector<uint32_t> label(result.surface.size());
   for (uint32_t i = 0; i < result.surface.size(); ++i) {
     SurfaceTriangle& t = result.surface[i];
     bool reversed = false;
-    const uint32_t g = label[i] =
+    const uint32_t g = result.label[i] =
         patches.locate(p[t.v[0]], p[t.v[1]], p[t.v[2]], t.inner, t.outer, &reversed);
-    by_pair[pair_key(t)].push_back(i);
-    if (g == SurfacePatches::kNone) {
-      unlabelled[pair_key(t)].push_back(i);
-      continue;
-    }
-    in_group[g].push_back(i);
+    if (g == SurfacePatches::kNone) continue;
+    result.in_group[g].push_back(i);
     // An interface triangle of an input group faces as the input's did there: seen
     // from the tet across (a boundary triangle keeps facing out: no tet is across).
     const uint32_t other =
@@ -446,9 +440,30 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePa
     for (size_t i = 0; i < entries.size(); ++i) {
       const InnerFace& f = faces[i];
       if (!f.found) continue;
-      in_group[entries[i].group].push_back(uint32_t(result.surface.size()));
+      result.in_group[entries[i].group].push_back(uint32_t(result.surface.size()));
       result.surface.push_back({f.v, f.material, f.material, f.tet, f.corner});
     }
+  }
+  return result;
+}
+
+Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,
+                     bool inside, const std::vector<uint32_t>* neighbors) {
+  std::vector<uint32_t> built;
+  LocatedGroups located =
+      locate_groups(mesh, patches, inside, given_or_built(mesh, neighbors, &built));
+  SurfaceGroups result;
+  result.surface = std::move(located.surface);
+  std::vector<std::vector<uint32_t>>& in_group = located.in_group;
+  const std::vector<uint32_t>& label = located.label;
+  std::map<PairKey, std::vector<uint32_t>> by_pair, unlabelled;
+  for (uint32_t i = 0; i < located.boundary_count; ++i) {
+    // By the pair as extract_surface() gave it (inner < outer), before any turn above.
+    SurfaceTriangle t = result.surface[i];
+    if (t.outer != kOutsideMaterial && t.outer < t.inner) std::swap(t.inner, t.outer);
+    const PairKey key = pair_key(t);
+    by_pair[key].push_back(i);
+    if (label[i] == SurfacePatches::kNone) unlabelled[key].push_back(i);
   }
   std::set<int32_t> used_tags;
   std::set<std::string> used_names;  // the input groups', which a generated one must not take

@@ -96,6 +96,21 @@ Status group_surface(const TetMesh& mesh, SurfaceGroups* groups);
 // meshes made from it by simplify() and improve_mesh() with these patches, which keep those faces;
 // a mesh made otherwise may keep only some of them.
 //
+// The input groups' triangles on `mesh`, as group_surface() finds them: `surface` is
+// extract_surface(mesh, across), each triangle that an input group holds facing as
+// the input's did there, then (with `inside`) the groups' faces inside one material
+// that are faces of `mesh`; `label` gives each of the first boundary_count its group
+// (an index into patches.groups()) or SurfacePatches::kNone; in_group[g] lists group
+// g's triangles, increasing. `across`: the face neighbours of `mesh`'s tets.
+struct LocatedGroups {
+  std::vector<SurfaceTriangle> surface;
+  size_t boundary_count = 0;
+  std::vector<uint32_t> label;
+  std::vector<std::vector<uint32_t>> in_group;
+};
+LocatedGroups locate_groups(const TetMesh& mesh, const SurfacePatches& patches, bool inside,
+                            const std::vector<uint32_t>& across);
+
 // `face_neighbors`, here and below: those of `mesh`'s tets (build_face_neighbors(), or
 // ReadInfo::face_neighbors) if the caller has them; null to build them.
 Status group_surface(const TetMesh& mesh, SurfaceGroups* groups, const SurfacePatches& patches,

@@ -131,10 +131,10 @@ Renderer::Renderer(const GlApi& gl) : gl_(gl) {}
 
 Renderer::~Renderer() {
   release_targets();
-  const GLuint buffers[] = {surface_vbo_, highlight_vbo_, overlay_vbo_};
-  gl_.DeleteBuffers(3, buffers);
-  const GLuint arrays[] = {surface_vao_, highlight_vao_, overlay_vao_};
-  gl_.DeleteVertexArrays(3, arrays);
+  const GLuint buffers[] = {surface_vbo_, highlight_vbo_, overlay_vbo_, groups_vbo_};
+  gl_.DeleteBuffers(4, buffers);
+  const GLuint arrays[] = {surface_vao_, highlight_vao_, overlay_vao_, groups_vao_};
+  gl_.DeleteVertexArrays(4, arrays);
   gl_.DeleteTextures(2, colormap_textures_);
   if (surface_program_) gl_.DeleteProgram(surface_program_);
   if (overlay_program_) gl_.DeleteProgram(overlay_program_);
@@ -146,11 +146,14 @@ bool Renderer::init(std::string* error) {
   gl_.GenVertexArrays(1, &surface_vao_);
   gl_.GenVertexArrays(1, &highlight_vao_);
   gl_.GenVertexArrays(1, &overlay_vao_);
+  gl_.GenVertexArrays(1, &groups_vao_);
   gl_.GenBuffers(1, &surface_vbo_);
   gl_.GenBuffers(1, &highlight_vbo_);
   gl_.GenBuffers(1, &overlay_vbo_);
+  gl_.GenBuffers(1, &groups_vbo_);
   setup_surface_vao(gl_, surface_vao_, surface_vbo_);
   setup_surface_vao(gl_, highlight_vao_, highlight_vbo_);
+  setup_surface_vao(gl_, groups_vao_, groups_vbo_);
   gl_.BindVertexArray(overlay_vao_);
   gl_.BindBuffer(GL_ARRAY_BUFFER, overlay_vbo_);
   const auto stride = static_cast<GLsizei>(sizeof(OverlayVertex));
@@ -201,6 +204,17 @@ void Renderer::upload(const SurfaceBuffers& buffers) {
   highlight_vertices_ = highlight_capacity_ = buffers.highlight.size();
   highlighted_tets_ = buffers.highlighted_tets;
   visible_materials_ = buffers.visible_materials;
+}
+
+void Renderer::set_groups(const GroupOverlay& overlay) {
+  gl_.BindBuffer(GL_ARRAY_BUFFER, groups_vbo_);
+  gl_.BufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(overlay.vertices.size() * sizeof(SurfaceVertex)),
+                 overlay.vertices.data(), GL_DYNAMIC_DRAW);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, 0);
+  groups_.clear();
+  for (const GroupOverlay::Group& g : overlay.groups)
+    groups_.push_back({g.first, g.count, g.color, g.label});
 }
 
 void Renderer::update_buffer(GLuint vbo, size_t* capacity,
@@ -289,6 +303,29 @@ bool Renderer::ensure_targets(int width, int height) {
   return true;
 }
 
+void Renderer::draw_see_through(GLuint vao, size_t first, size_t count, const Rgb& color,
+                                float stripe) {
+  const GLuint p = surface_program_;
+  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_color_mode"), stripe > 0 ? 3 : 2);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_stripe"), stripe);
+  gl_.Uniform3f(gl_.GetUniformLocation(p, "u_solid_color"), color[0], color[1], color[2]);
+  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_wireframe"), stripe > 0 ? 0 : 1);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_alpha"), 1);
+  gl_.BindVertexArray(vao);
+  gl_.DepthFunc(GL_LEQUAL);
+  gl_.DrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
+  gl_.Enable(GL_BLEND);
+  // Blend colour only: the frame stays opaque (alpha 1) for PNG export.
+  gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  gl_.DepthMask(GL_FALSE);
+  gl_.DepthFunc(GL_GREATER);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_alpha"), 0.45f);
+  gl_.DrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
+  gl_.DepthMask(GL_TRUE);
+  gl_.DepthFunc(GL_LESS);
+  gl_.Disable(GL_BLEND);
+}
+
 bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int width, int height,
                     const PixelRect* scene) {
   if (!ensure_targets(width, height)) return false;
@@ -340,27 +377,14 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
   gl_.BindVertexArray(surface_vao_);
   gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangle_vertices_));
 
-  // Highlighted tets: opaque where in front, then see-through where hidden behind
-  // the surface, so the worst elements can be found from outside.
-  if (highlight_vertices_ > 0) {
-    gl_.Uniform1i(gl_.GetUniformLocation(p, "u_color_mode"), 2);
-    gl_.Uniform3f(gl_.GetUniformLocation(p, "u_solid_color"), kHighlightRgb[0], kHighlightRgb[1],
-                  kHighlightRgb[2]);
-    gl_.Uniform1i(gl_.GetUniformLocation(p, "u_wireframe"), 1);
-    gl_.BindVertexArray(highlight_vao_);
-    gl_.DepthFunc(GL_LEQUAL);
-    gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(highlight_vertices_));
-    gl_.Enable(GL_BLEND);
-    // Blend colour only: the frame stays opaque (alpha 1) for PNG export.
-    gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-    gl_.DepthMask(GL_FALSE);
-    gl_.DepthFunc(GL_GREATER);
-    gl_.Uniform1f(gl_.GetUniformLocation(p, "u_alpha"), 0.45f);
-    gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(highlight_vertices_));
-    gl_.DepthMask(GL_TRUE);
-    gl_.DepthFunc(GL_LESS);
-    gl_.Disable(GL_BLEND);
-  }
+  // Highlighted tets, then the surface groups: opaque where in front, see-through where
+  // hidden behind the surface, so that they can be found from outside.
+  if (highlight_vertices_ > 0)
+    draw_see_through(highlight_vao_, 0, highlight_vertices_, kHighlightRgb, 0);
+  // Stripes 4 pixels wide on the screen, whatever the resolution drawn at.
+  const float stripe = std::max(1.0f, 4 * settings.resolution);
+  for (const GroupRange& g : groups_)
+    if (g.count > 0) draw_see_through(groups_vao_, g.first, g.count, g.color, stripe);
   gl_.BindVertexArray(0);
 
   gl_.Viewport(0, 0, width, height);
@@ -421,20 +445,23 @@ Renderer::KeyLayout Renderer::key_layout(const DrawSettings& settings, int width
   // the last says how many more there are.
   const float room = 0.6f * float(height) - 2 * margin - 8 * scale;
   const size_t fit = room < 0 ? 0 : std::min<size_t>(40, size_t(room / line) + 1);
-  const size_t wanted = materials + (highlight ? 1 : 0);
-  if (fit == 0 || (wanted > fit && fit < 2 + (highlight ? 1 : 0))) return key;
-  const size_t shown = wanted <= fit ? materials : fit - 1 - (highlight ? 1 : 0);
+  // Below the materials, the surface groups drawn and the highlight: always listed,
+  // so the materials give way if the key is too long.
+  const size_t extra = groups_.size() + (highlight ? 1 : 0);
+  const size_t wanted = materials + extra;
+  if (fit == 0 || (wanted > fit && (materials == 0 || fit < 2 + extra))) return key;
+  const size_t shown = wanted <= fit ? materials : fit - 1 - extra;
   // The fixed lines ("and N more materials", the highlight's count) in 90 % of the
   // width, else no key; the names cut to fit half the width (at most 40 characters; at
   // least 8, else no key).
-  std::vector<std::pair<Rgb, std::string>> fixed;
+  std::vector<KeyLayout::Line> fixed;
   if (shown < materials)
     fixed.push_back({Rgb{1, 1, 1}, "and " + std::to_string(materials - shown) + " more materials"});
   if (highlight)
     fixed.push_back({kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
                                         std::to_string(highlighted_tets_) + " tets"});
   float fixed_w = 0;
-  for (const auto& [color, text] : fixed) fixed_w = std::max(fixed_w, text_pixels(text, scale));
+  for (const KeyLayout::Line& f : fixed) fixed_w = std::max(fixed_w, text_pixels(f.text, scale));
   if (fixed_w > 0.9f * float(width) - 11 * scale - 2 * margin) return key;
   const float text_room = 0.5f * float(width) - 11 * scale - margin;
   for (size_t chars = 40; chars >= 8; chars -= 4) {
@@ -448,8 +475,14 @@ Renderer::KeyLayout Renderer::key_layout(const DrawSettings& settings, int width
       names_w = std::max(names_w, text_pixels(text, scale));
       key.lines.push_back({material_rgb(m), std::move(text)});
     }
+    if (shown < materials) key.lines.push_back(fixed.front());  // "and N more materials"
+    for (const GroupRange& g : groups_) {
+      std::string text = ascii_label(g.label, chars);
+      names_w = std::max(names_w, text_pixels(text, scale));
+      key.lines.push_back({g.color, std::move(text), true});
+    }
     if (names_w <= text_room) {
-      key.lines.insert(key.lines.end(), fixed.begin(), fixed.end());
+      key.lines.insert(key.lines.end(), fixed.begin() + (shown < materials ? 1 : 0), fixed.end());
       key.text_width = std::max(names_w, fixed_w);
       return key;
     }
@@ -533,9 +566,12 @@ void Renderer::draw_legend(const DrawSettings& settings, int width, int height) 
     add_panel(margin, margin, margin + 11 * scale + key.text_width,
               margin + float(key.lines.size() - 1) * line + 8 * scale);
     float y = margin;
-    for (const auto& [color, text] : key.lines) {
-      add_rect(&v, margin, y, margin + 8 * scale, y + 8 * scale, color);
-      add_text(&v, margin + 11 * scale, y + 1 * scale, text, ink, scale);
+    for (const KeyLayout::Line& l : key.lines) {
+      add_rect(&v, margin, y, margin + 8 * scale, y + 8 * scale, l.color);
+      if (l.striped)  // white bands, as the group's faces have
+        for (float x = 2; x < 8; x += 4)
+          add_rect(&v, margin + x * scale, y, margin + (x + 2) * scale, y + 8 * scale, {1, 1, 1});
+      add_text(&v, margin + 11 * scale, y + 1 * scale, l.text, ink, scale);
       y += line;
     }
   }

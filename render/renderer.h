@@ -11,6 +11,7 @@
 #include "render/camera.h"
 #include "render/colormap.h"
 #include "render/gl_api.h"
+#include "render/group_overlay.h"
 #include "render/image.h"
 #include "render/surface_builder.h"
 
@@ -62,6 +63,11 @@ class Renderer {
   void update_highlight(const std::vector<SurfaceVertex>& vertices,
                         const std::vector<DirtyRange>& dirty, size_t highlighted_tets);
 
+  // The input's surface groups drawn over the surface, each in its colour, opaque where
+  // in front and see-through where hidden (as the highlight), and listed in the key.
+  // Kept until set again; an empty overlay draws none.
+  void set_groups(const GroupOverlay& overlay);
+
   // The materials the legend lists in material mode. upload() sets them from its
   // buffers; after incremental updates (LodSurface) the caller sets them.
   void set_legend_materials(std::vector<int32_t> materials) {
@@ -102,8 +108,13 @@ class Renderer {
 
  private:
   struct KeyLayout {
-    std::vector<std::pair<Rgb, std::string>> lines;  // none: no key
-    float text_width = 0;                            // in pixels
+    struct Line {
+      Rgb color;
+      std::string text;
+      bool striped = false;  // a surface group's swatch
+    };
+    std::vector<Line> lines;  // none: no key
+    float text_width = 0;     // in pixels
   };
   KeyLayout key_layout(const DrawSettings& settings, int width, int height) const;
   bool bar_fits(const DrawSettings& settings, int width, int height) const;
@@ -114,6 +125,10 @@ class Renderer {
   bool ensure_targets(int width, int height);
   void release_targets();
   void draw_legend(const DrawSettings& settings, int width, int height);
+  // Draws vertices [first, first + count) of `vao` in `color`, with their edges or (if
+  // `stripe` > 0) in stripes that many pixels wide, opaque where in front of the
+  // surface, then at 45 % where behind it.
+  void draw_see_through(GLuint vao, size_t first, size_t count, const Rgb& color, float stripe);
   // Writes vertices[dirty] into `vbo`, growing it (and sending everything) if needed.
   void update_buffer(GLuint vbo, size_t* capacity, const std::vector<SurfaceVertex>& vertices,
                      const std::vector<DirtyRange>& dirty);
@@ -122,6 +137,13 @@ class Renderer {
   GLuint surface_program_ = 0, overlay_program_ = 0;
   GLuint surface_vao_ = 0, surface_vbo_ = 0, highlight_vao_ = 0, highlight_vbo_ = 0;
   GLuint overlay_vao_ = 0, overlay_vbo_ = 0;
+  GLuint groups_vao_ = 0, groups_vbo_ = 0;
+  struct GroupRange {
+    size_t first, count;
+    Rgb color;
+    std::string label;
+  };
+  std::vector<GroupRange> groups_;  // set_groups()'s, in the key's order
   GLuint colormap_textures_[2] = {0, 0};
   GLuint msaa_fbo_ = 0, msaa_color_ = 0, msaa_depth_ = 0, resolve_fbo_ = 0, resolve_color_ = 0;
   int target_width_ = 0, target_height_ = 0;

@@ -58,9 +58,6 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
   // The materials of the visible tets, one entry per run of a material.
   std::vector<int32_t>& seen = out->visible_materials;
 
-  const Vec3 n = filter.cut_plane.normal;
-  // The cut compares 4 * dot(n, centroid) with 4 * offset: no division per tet.
-  const double offset4 = 4 * filter.cut_plane.offset;
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   Vec3 drawn_lo = lo, drawn_hi = hi;  // of the tets the cut keeps
   uint8_t* visible = out->visible.data();
@@ -78,7 +75,7 @@ void build_surface(const SurfaceInput& input, const SurfaceFilter& filter, Surfa
       hi = {std::max(hi.x, p->x), std::max(hi.y, p->y), std::max(hi.z, p->z)};
     }
     uint8_t flags = kShownMaterial;
-    if (!filter.cut || dot(n, a + b + c + d) <= offset4) {
+    if (cut_keeps(filter, a, b, c, d)) {
       flags |= kVisible;
       ++out->visible_tets;
       for (const Vec3* p : {&a, &b, &c, &d}) {

@@ -56,6 +56,14 @@ struct SurfaceFilter {
   double highlight_below = 0;  // visible tets with stretch < this are highlighted
 };
 
+// Whether `filter`'s cut (if any) keeps the tet with corners a, b, c, d: its centroid
+// on the kept side (build_surface() and build_group_overlay() agree on it).
+inline bool cut_keeps(const SurfaceFilter& filter, const Vec3& a, const Vec3& b, const Vec3& c,
+                      const Vec3& d) {
+  // 4 * dot(n, centroid) against 4 * offset: no division per tet.
+  return !filter.cut || dot(filter.cut_plane.normal, a + b + c + d) <= 4 * filter.cut_plane.offset;
+}
+
 // The arrays of one mesh state. Pointers must stay valid during build_surface().
 struct SurfaceInput {
   const Vec3* positions = nullptr;

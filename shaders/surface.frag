@@ -8,11 +8,15 @@ flat in float v_stretch;
 flat in uint v_material;
 noperspective in vec3 v_barycentric;
 
-uniform int u_color_mode;  // 0: stretch through the colour map, 1: material, 2: u_solid_color
+// 0: stretch through the colour map, 1: material, 2: u_solid_color, 3: u_solid_color in
+// diagonal stripes with white, u_stripe pixels wide (a surface group: a pattern that no
+// colour map or material colour has)
+uniform int u_color_mode;
 uniform sampler2D u_colormap;  // 256 x 1
 uniform vec2 u_range;          // stretch at the two ends of the colour map
 uniform vec3 u_palette[20];  // render::kPaletteSize
 uniform vec3 u_solid_color;
+uniform float u_stripe;
 uniform float u_alpha;
 uniform int u_wireframe;
 uniform vec3 u_wire_color;
@@ -29,8 +33,10 @@ void main() {
     base = texture(u_colormap, vec2(t * (255.0 / 256.0) + 0.5 / 256.0, 0.5)).rgb;
   } else if (u_color_mode == 1) {
     base = u_palette[v_material % 20u];
-  } else {
+  } else if (u_color_mode == 2 || mod(gl_FragCoord.x + gl_FragCoord.y, 2.0 * u_stripe) < u_stripe) {
     base = u_solid_color;
+  } else {
+    base = vec3(1.0);
   }
   vec3 color = base * (0.3 + 0.7 * lambert);
   if (u_wireframe != 0) {

@@ -168,6 +168,47 @@ void file_section(const ViewerStatus& status, PanelState* panel, std::vector<Com
   }
 }
 
+// A box per surface group of the input, in its colour, flowing onto further lines: a
+// group ticked is drawn over the surface in stripes of its colour.
+void surface_group_boxes(const ViewerStatus& status, ViewSettings* view) {
+  ImGui::Text("Surface groups drawn:");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "the input's surface groups (boundary conditions) on the level shown, in stripes;\n"
+        "where the surface hides them they show through");
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+  const size_t listed = std::min(status.surface_groups.size(), kListedMaterials);
+  for (uint32_t g = 0; g < listed; ++g) {
+    const ViewerStatus::SurfaceGroupItem& item = status.surface_groups[g];
+    auto& shown = view->shown_groups;
+    const bool was = std::binary_search(shown.begin(), shown.end(), g);
+    bool on = was;
+    const render::Rgb c = render::surface_group_rgb(g);
+    const std::string label =
+        (item.label.size() > 16 ? item.label.substr(0, 16) + "..." : item.label) + "##group" +
+        std::to_string(g);
+    const float width = ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                        ImGui::CalcTextSize(label.c_str(), nullptr, true).x;
+    if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
+    ImGui::PushStyleColor(ImGuiCol_CheckMark, ImVec4(c[0], c[1], c[2], 1));
+    ImGui::Checkbox(label.c_str(), &on);
+    ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s: tag %d, %zu triangles in the input", item.label.c_str(), item.tag,
+                        item.triangles);
+    if (on != was) {
+      if (on)
+        shown.insert(std::lower_bound(shown.begin(), shown.end(), g), g);
+      else
+        shown.erase(std::find(shown.begin(), shown.end(), g));
+    }
+  }
+  if (listed < status.surface_groups.size())
+    text_disabled_wrapped("and %zu more groups (a script's 'groups' line draws any by name)",
+                          status.surface_groups.size() - listed);
+}
+
 void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Command>* commands) {
   int mode = view->color_mode == render::ColorMode::kStretch    ? 0
              : view->color_mode == render::ColorMode::kMaterial ? 1
@@ -276,6 +317,7 @@ void view_section(const ViewerStatus& status, ViewSettings* view, std::vector<Co
     }
     unlisted_note(status);
   }
+  if (!status.surface_groups.empty()) surface_group_boxes(status, view);
   ImGui::Text("Camera:");
   const char* names[] = {"Fit", "Iso", "X", "Y", "Z"};
   for (int i = 0; i < 5; ++i) {

@@ -41,6 +41,9 @@ struct ViewSettings {
   float cut_offset = 0;                   // position along the axis, model units
   bool cut_flip = false;                  // keep the other side
   std::vector<int32_t> hidden_materials;  // sorted
+  // The input's surface groups drawn over the surface (indices into
+  // ViewerStatus::surface_groups), sorted.
+  std::vector<uint32_t> shown_groups;
   bool highlight = false;
   float highlight_below = 0.2f;  // tets with stretch below this are highlighted
 };
@@ -220,6 +223,14 @@ struct ViewerStatus {
   // What the reader noted of the loaded file (repairs, what it does not keep, names),
   // until another is loaded.
   std::vector<std::string> load_notes;
+  // The input file's surface groups (Gmsh physical surfaces, ...; SurfacePatches::
+  // groups(), in order): the View section offers to draw them.
+  struct SurfaceGroupItem {
+    std::string label;  // its name, or "surface <tag>"
+    int32_t tag = 0;
+    size_t triangles = 0;  // of the input
+  };
+  std::vector<SurfaceGroupItem> surface_groups;
   bool loading = false;
   std::string loading_path;
   // The thresholds opening the mesh set (the viewer's defaults for it).

@@ -345,6 +345,49 @@ TEST(CliRender, MaterialsByName) {
       << r.output;
 }
 
+// --groups draws the input's surface groups over the faces, in stripes of their
+// colours (the top of tests/data/gmsh/sheet.msh, seen from +z, is "top_and_sheet",
+// the third group: blue), and names the groups the input has when one is not there.
+TEST(CliRender, DrawsTheInputsSurfaceGroups) {
+  const std::string sheet = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/sheet.msh";
+  const std::string plain = out_dir() + "/groups_plain.png", drawn = out_dir() + "/groups.png";
+  const std::string flags = " --view z --color material --no-legend --width 96 --height 96 -o ";
+  ASSERT_EQ(run("render " + sheet + flags + plain).code, 0);
+  const CommandResult r = run("render " + sheet + " --groups top_and_sheet" + flags + drawn);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto blue_and_white = [](const std::string& path) {
+    render::Image image;
+    EXPECT_TRUE(render::read_png(path, &image).ok()) << path;
+    size_t blue = 0, white = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+      const int red = image.rgba[i], green = image.rgba[i + 1], b = image.rgba[i + 2];
+      blue += b > red + 80 && b > green + 50;
+      white += red > 150 && green > 150 && b > 150 && std::abs(red - b) < 30;
+    }
+    return std::make_pair(blue, white);
+  };
+  const auto [plain_blue, plain_white] = blue_and_white(plain);
+  const auto [blue, white] = blue_and_white(drawn);
+  EXPECT_EQ(plain_blue, 0u);
+  EXPECT_GT(blue, 1000u);               // of 96 x 96, the block filling half
+  EXPECT_GT(white, plain_white + 500);  // the stripes
+  const CommandResult missing = run("render " + sheet + " --groups sheet,nope -o " + drawn);
+  EXPECT_EQ(missing.code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("--groups 'sheet,nope': the input has no surface group 'nope' "
+                                "(it has 100 'sheet', 200 'bottom', 300 'top_and_sheet')"),
+            std::string::npos)
+      << missing.output;
+  const CommandResult none = run("render " + asset("box2.mesh") + " --groups all -o " + drawn);
+  EXPECT_EQ(none.code, 2) << none.output;
+  EXPECT_NE(none.output.find("the input has no surface groups"), std::string::npos) << none.output;
+  const CommandResult hidden = run("render " + sheet + " --groups 200 --cut z=0.8 -o " + drawn);
+  EXPECT_EQ(hidden.code, 0) << hidden.output;
+  EXPECT_EQ(hidden.output.find("note: surface group"), std::string::npos) << hidden.output;
+  const CommandResult cut = run("render " + sheet + " --groups 200 --cut z=-1 -o " + drawn);
+  EXPECT_NE(cut.output.find("note: surface group 'bottom' is not drawn: its"), std::string::npos)
+      << cut.output;
+}
+
 // A picture with nothing in it is still written, with a note that says why.
 TEST(CliRender, AnEmptyPictureSaysWhy) {
   const std::string out = out_dir() + "/empty.png";

@@ -53,6 +53,17 @@ TEST(ViewerScript, HideAndShowTakeIdsOrNames) {
   EXPECT_EQ(parse_error("hide -2\n"), "t.script:1: '-2' is not a material id (>= 0)");
 }
 
+// 'groups' takes the rest of the line (names may hold blanks), looked up when it runs.
+TEST(ViewerScript, GroupsTakeTheRestOfTheLine) {
+  const auto a = parse_ok("groups all\ngroups none\ngroups port, outer wall,3\n");
+  ASSERT_EQ(a.size(), 3u);
+  for (const auto& action : a) EXPECT_EQ(action.kind, Kind::kGroups);
+  EXPECT_EQ(a[0].word, "all");
+  EXPECT_EQ(a[1].word, "none");
+  EXPECT_EQ(a[2].word, "port, outer wall,3");
+  EXPECT_EQ(parse_error("groups\n"), "t.script:1: 'groups' takes 1 argument(s), got 0");
+}
+
 TEST(ViewerScript, ParsesEveryCommand) {
   const auto a = parse_ok(
       "# comment\n"

@@ -350,6 +350,39 @@ TEST(ViewerWindow, TheKeyReframesAViewNobodyMoved) {
       500u);
 }
 
+// 'groups' draws the input's surface groups on the level shown, in the picture and
+// the key, waiting until they are drawn; 'groups none' takes them away again. One the
+// input does not have fails the script with those it has.
+TEST(ViewerWindow, DrawsTheInputsSurfaceGroups) {
+  const fs::path dir = fresh_output_dir("viewer_groups");
+  std::ofstream(dir / "run.script")
+      << "screenshot plain.png\ngroups top_and_sheet, sheet\nscreenshot groups.png\n"
+         "thresholds size=0.5\nsimplify\nscreenshot simplified.png\ngroups none\n"
+         "screenshot none.png\nquit\n";
+  const std::string sheet = "'" + kSource + "/tests/data/gmsh/sheet.msh' --size 640x480 ";
+  const ViewerRun run = run_viewer(dir, sheet + "--script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const render::Image plain = load_png(dir / "plain.png");
+  EXPECT_GT(
+      render::compare_images(plain, load_png(dir / "groups.png"), 8, nullptr).differing_pixels,
+      2000u);
+  EXPECT_GT(
+      render::compare_images(plain, load_png(dir / "simplified.png"), 8, nullptr).differing_pixels,
+      2000u);
+  // The simplified level without groups: only its faces differ from the input's, far
+  // fewer pixels than the stripes.
+  EXPECT_LT(
+      render::compare_images(plain, load_png(dir / "none.png"), 8, nullptr).differing_pixels,
+      render::compare_images(plain, load_png(dir / "simplified.png"), 8, nullptr).differing_pixels);
+  std::ofstream(dir / "bad.script") << "groups nope\nquit\n";
+  const ViewerRun bad = run_viewer(dir, sheet + "--script bad.script");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("bad.script:1: groups nope: the input has no surface group 'nope' "
+                            "(it has 100 'sheet', 200 'bottom', 300 'top_and_sheet')"),
+            std::string::npos)
+      << bad.output;
+}
+
 // With the legend, the framing keeps the model above the colour bar: the rows the bar
 // covers show only the background with the legend turned off afterwards (framed so
 // before, box2's nearest corner reached into them).
