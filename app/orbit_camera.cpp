@@ -44,6 +44,11 @@ void OrbitCamera::take_framing(const Vec3& lo, const Vec3& hi, const render::Cam
   moved_ = false;
 }
 
+void OrbitCamera::include_in_depth(const Vec3& lo, const Vec3& hi) {
+  lo_ = {std::min(lo_.x, lo.x), std::min(lo_.y, lo.y), std::min(lo_.z, lo.z)};
+  hi_ = {std::max(hi_.x, hi.x), std::max(hi_.y, hi.y), std::max(hi_.z, hi.z)};
+}
+
 void OrbitCamera::orbit(double dx, double dy) {
   moved_ = moved_ || dx != 0 || dy != 0;
   yaw_ -= dx * 0.008;

@@ -19,6 +19,10 @@ class OrbitCamera {
   // button: only the views set a direction).
   void refit(const Vec3& lo, const Vec3& hi, double aspect = 1,
              const render::LegendSpace& legend = {});
+  // Widens the box that sets the near and far planes (fit() and refit() set it to the
+  // box framed) to hold [lo, hi] too: the whole model, when only some materials are
+  // framed and the others may be shown again without a new framing.
+  void include_in_depth(const Vec3& lo, const Vec3& hi);
   // Mouse drags in pixels; `viewport_height` in pixels scales the pan.
   void orbit(double dx, double dy);
   void pan(double dx, double dy, int viewport_height);

@@ -1510,6 +1510,9 @@ void Viewer::frame_view(const render::ViewDirection* view) {
     camera_.fit(lo, hi, *view, aspect, legend);
   else
     camera_.refit(lo, hi, aspect, legend);
+  // The hidden materials too, which may be shown again without a new framing (their
+  // faces were cut by the near and far planes of the shown ones').
+  camera_.include_in_depth(scene_->lo, scene_->hi);
 }
 
 void Viewer::keep_framed() {

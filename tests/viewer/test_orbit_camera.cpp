@@ -131,6 +131,23 @@ TEST(OrbitCamera, MovedSinceTheLastFraming) {
   EXPECT_TRUE(camera.moved());
 }
 
+// Framed on a small part (the other materials hidden), the near and far planes still
+// hold the whole model once include_in_depth() is given it: showing the rest again
+// draws it whole (an antenna's air sphere was drawn with a hole, its far side gone).
+TEST(OrbitCamera, TheDepthRangeHoldsTheWholeModel) {
+  OrbitCamera camera;
+  const Vec3 lo{-1, -1, -1}, hi{1, 1, 1}, big_lo{-100, -100, -100}, big_hi{100, 100, 100};
+  camera.fit(lo, hi, render::ViewDirection::kX);
+  const render::Camera small = camera.camera();
+  const double far_corner = length(small.eye - Vec3{-100, -100, -100});
+  EXPECT_LT(small.far_distance, far_corner);
+  camera.include_in_depth(big_lo, big_hi);
+  const render::Camera whole = camera.camera();
+  EXPECT_GE(whole.far_distance, far_corner);
+  EXPECT_EQ(whole.eye, small.eye);  // the view itself is as it was
+  EXPECT_FALSE(camera.moved());
+}
+
 TEST(OrbitCamera, PitchIsClampedBelowTheVertical) {
   OrbitCamera camera;
   camera.fit(kLo, kHi, render::ViewDirection::kIso);
