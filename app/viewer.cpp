@@ -258,16 +258,50 @@ struct Job {
   bool cancelled = false;
 };
 
+// (Surfaces by name and potential: their nodes are those of the level solved.)
 bool same_problem(const ElectrostaticsProblem& a, const ElectrostaticsProblem& b) {
+  const auto same_surfaces = [&] {
+    if (a.surfaces.size() != b.surfaces.size()) return false;
+    for (size_t k = 0; k < a.surfaces.size(); ++k) {
+      const auto &x = a.surfaces[k], &y = b.surfaces[k];
+      if (x.name != y.name || x.potential != y.potential || x.ground != y.ground) return false;
+    }
+    return true;
+  };
   return a.conductors == b.conductors && a.ground_materials == b.ground_materials &&
          a.ground_boundary == b.ground_boundary && a.permittivities == b.permittivities &&
-         a.default_permittivity == b.default_permittivity;
+         a.default_permittivity == b.default_permittivity && same_surfaces();
+}
+
+// `problem` with the nodes of its surfaces, the input's surface groups `groups` (one
+// per surface, indices into patches.groups()), as they lie on `mesh` (a level). An
+// error names a group with no face there.
+Status hold_groups(const TetMesh& mesh, const SurfacePatches& patches,
+                   const std::vector<uint32_t>& groups, ElectrostaticsProblem* problem) {
+  if (groups.empty()) return Status();
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(mesh, &neighbors);
+  const LocatedGroups located = locate_groups(mesh, patches, true, neighbors);
+  for (size_t k = 0; k < groups.size(); ++k) {
+    std::vector<uint32_t>& vertices = problem->surfaces[k].vertices;
+    vertices.clear();
+    for (uint32_t i : located.in_group[groups[k]])
+      vertices.insert(vertices.end(), located.surface[i].v.begin(), located.surface[i].v.end());
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    if (vertices.empty())
+      return Status::error("surface group '" + problem->surfaces[k].name +
+                           "' has no face on this mesh");
+  }
+  return Status();
 }
 
 // One electrostatic solve of the displayed level, then (if asked) of the finest.
 struct SolveJob {
   size_t generation = 0, step = 0;
-  ElectrostaticsProblem problem;
+  ElectrostaticsProblem problem;         // its surfaces without their nodes (hold_groups())
+  std::vector<uint32_t> surface_groups;  // of problem.surfaces, in the input's
+  std::shared_ptr<const SurfacePatches> patches;  // groups
   std::thread thread;
   std::atomic<bool> cancel{false};
   std::atomic<bool> done{false};
@@ -355,6 +389,9 @@ class Viewer {
   void update_groups();
   // Analysis.
   Status start_solve(int line);
+  // The Analysis panel's problem, its held surface groups' nodes left out (indices into
+  // the input's groups in `groups`, if given: hold_groups()).
+  ElectrostaticsProblem analysis_problem(std::vector<uint32_t>* groups = nullptr) const;
   void poll_solve();
   bool field_shown() const;  // the last solve is of the displayed level
   // The input file's names of its materials (none without a mesh or names).
@@ -1122,6 +1159,7 @@ void Viewer::swap_in(std::unique_ptr<Scene> scene, bool is_load) {
     auto& hidden = view_.hidden_materials;
     if (opened_mesh_) hidden.clear();
     view_.shown_groups.clear();  // another file's groups
+    analysis_.groups.clear();
     opened_mesh_ = true;
     hide_by_name();
     hidden.erase(std::remove_if(hidden.begin(), hidden.end(),
@@ -1850,6 +1888,24 @@ Status Viewer::save_level(const std::string& path, bool improve, bool surfaces, 
 
 // --- Analysis ----------------------------------------------------------------------
 
+ElectrostaticsProblem Viewer::analysis_problem(std::vector<uint32_t>* groups) const {
+  ElectrostaticsProblem problem = ui::to_electrostatics_problem(analysis_);
+  if (groups) groups->clear();
+  if (!scene_ || !scene_->input_patches) return problem;
+  const std::vector<SurfacePatches::Group>& input = scene_->input_patches->groups();
+  for (uint32_t g = 0; g < analysis_.groups.size() && g < input.size(); ++g) {
+    const ui::GroupAnalysis& a = analysis_.groups[g];
+    if (a.role == ui::MaterialRole::kDielectric) continue;
+    ElectrostaticsProblem::HeldSurface held;
+    held.name = render::surface_group_label(input[g]);
+    held.ground = a.role == ui::MaterialRole::kGround;
+    held.potential = held.ground ? 0 : a.potential;
+    problem.surfaces.push_back(std::move(held));
+    if (groups) groups->push_back(g);
+  }
+  return problem;
+}
+
 Status Viewer::start_solve(int line) {
   if (!scene_) return Status::error("nothing to solve: no mesh loaded");
   if (solve_job_) return Status::error("a solve is already running");
@@ -1857,7 +1913,8 @@ Status Viewer::start_solve(int line) {
   auto job = std::make_unique<SolveJob>();
   job->generation = scene_generation_;
   job->step = scene_->lod->step();
-  job->problem = ui::to_electrostatics_problem(analysis_);
+  job->problem = analysis_problem(&job->surface_groups);
+  job->patches = scene_->input_patches;
   job->line = line;
   // The finest level: step 0 of the history (the input itself when nothing was
   // simplified, where step 0 is the only one). Solved once per mesh and set-up.
@@ -1877,8 +1934,10 @@ Status Viewer::start_solve(int line) {
       std::lock_guard<std::mutex> lock(j->mutex);
       j->progress = p;
     };
-    j->status =
-        solve_electrostatics(*mesh, j->problem, options, &j->solution, progress, &j->cancel);
+    ElectrostaticsProblem problem = j->problem;
+    j->status = hold_groups(*mesh, *j->patches, j->surface_groups, &problem);
+    if (j->status)
+      j->status = solve_electrostatics(*mesh, problem, options, &j->solution, progress, &j->cancel);
     if (j->status && !j->solution.cancelled) {
       // Extract() keeps the alive tets in id order: the k-th solved tet is the k-th
       // alive one.
@@ -1908,8 +1967,10 @@ Status Viewer::start_solve(int line) {
         const TetMesh fine = extract_alive(finest->positions, finest->tets, finest->materials,
                                            std::vector<uint8_t>(finest->tet_count(), 1));
         ElectrostaticsSolution fine_solution;
-        j->finest_status =
-            solve_electrostatics(fine, j->problem, options, &fine_solution, progress, &j->cancel);
+        j->finest_status = hold_groups(fine, *j->patches, j->surface_groups, &problem);
+        if (j->finest_status)
+          j->finest_status =
+              solve_electrostatics(fine, problem, options, &fine_solution, progress, &j->cancel);
         j->has_finest = j->finest_status && !fine_solution.cancelled;
         j->finest_capacitance = fine_solution.capacitance;
       }
@@ -2071,7 +2132,7 @@ void Viewer::fill_status() {
     const AnalysisResult& r = *analysis_result_;
     const ElectrostaticsSolution& sol = r.solution;
     a.stale = !field_shown();
-    a.setup_changed = !same_problem(r.problem, ui::to_electrostatics_problem(analysis_));
+    a.setup_changed = !same_problem(r.problem, analysis_problem());
     a.solved_step = r.step;
     a.solved_tets = r.tets;
     a.unknowns = sol.free_count;
@@ -2341,11 +2402,41 @@ Status Viewer::run_action(const ScriptAction& a) {
       break;
     case Kind::kAnalysis: {
       ElectrostaticsProblem problem = a.problem;
+      // A name no material has may be one of the input's surface groups' (as for
+      // `tetlod solve`): its nodes are held.
+      const std::vector<SurfacePatches::Group> no_groups;
+      const std::vector<SurfacePatches::Group>& input_groups =
+          scene_->input_patches ? scene_->input_patches->groups() : no_groups;
+      std::vector<ui::GroupAnalysis> groups(input_groups.size());
+      std::vector<bool> held(input_groups.size(), false);
       for (const ScriptAction::NamedMaterial& n : a.named) {
         int32_t m = 0;
         std::string why;
-        if (!find_material(n.name, material_names(), &m, &why))
-          return Status::error(n.key + ": " + why);
+        if (!find_material(n.name, material_names(), &m, &why)) {
+          uint32_t g = 0;
+          while (g < input_groups.size() && render::surface_group_label(input_groups[g]) != n.name)
+            ++g;
+          if (g == input_groups.size() || n.key == "eps") {
+            std::string names;
+            for (const SurfacePatches::Group& x : input_groups)
+              if (names.size() < 400)
+                names += (names.empty() ? "" : ", ") + render::surface_group_label(x);
+            return Status::error(
+                n.key + ": " + why +
+                (g < input_groups.size() ? "; '" + n.name +
+                                               "' is a surface group, which holds no "
+                                               "permittivity (eps is a material's)"
+                 : names.empty() ? std::string("; the input names no surface group either")
+                                 : "; nor is it a surface group (the input's: " + names + ")"));
+          }
+          if (held[g])
+            return Status::error(n.key + ": surface group '" + n.name + "' is given twice");
+          held[g] = true;
+          groups[g].role =
+              n.key == "ground" ? ui::MaterialRole::kGround : ui::MaterialRole::kConductor;
+          groups[g].potential = n.value;
+          continue;
+        }
         if (n.key == "ground")
           problem.ground_materials.push_back(m);
         else
@@ -2361,6 +2452,7 @@ Status Viewer::run_action(const ScriptAction& a) {
         if (!std::binary_search(scene_->materials.begin(), scene_->materials.end(), m))
           return Status::error("material " + std::to_string(m) + " is not in the mesh");
       analysis_ = ui::analysis_settings_from(problem, scene_->materials);
+      analysis_.groups = std::move(groups);
       break;
     }
     case Kind::kSolve: {

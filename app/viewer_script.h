@@ -72,7 +72,9 @@
 //                                    ground= is needed unless the conductors hold two
 //                                    potentials; M is a material's id or its name (one
 //                                    without ','; in quotes if it has blanks:
-//                                    "conductor=phase A:1"); a material given twice is an
+//                                    "conductor=phase A:1"), or for a conductor or ground
+//                                    the name of one of the input's surface groups (its
+//                                    nodes held); a material given twice is an
 //                                    error. The syntax is checked here, the materials
 //                                    when it runs; a bad set-up (a conductor touching
 //                                    the ground, eps <= 0, ...) fails at 'solve'

@@ -7,7 +7,7 @@ namespace tetlod::render {
 Rgb surface_group_rgb(uint32_t index) {
   static constexpr Rgb kColors[8] = {
       {0.90f, 0.10f, 0.10f}, {1.00f, 0.55f, 0.00f}, {0.10f, 0.35f, 1.00f}, {0.00f, 0.80f, 0.80f},
-      {0.60f, 1.00f, 0.10f}, {0.55f, 0.30f, 0.10f}, {0.50f, 0.10f, 0.70f}, {0.25f, 0.25f, 0.25f}};
+      {0.60f, 1.00f, 0.10f}, {0.55f, 0.30f, 0.10f}, {0.50f, 0.10f, 0.70f}, {0.50f, 0.50f, 0.50f}};
   return kColors[index % 8];
 }
 

@@ -786,6 +786,8 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
     if (it == materials.end() || it->material != m) materials.insert(it, MaterialAnalysis{m});
   }
   text_disabled_wrapped("-div(eps grad u) = 0, linear elements (tetlod solve)");
+  settings->groups.resize(status.surface_groups.size());
+  const size_t listed_groups = std::min(status.surface_groups.size(), kListedMaterials);
   if (ImGui::BeginTable("analysis_materials", 3, ImGuiTableFlags_SizingStretchProp)) {
     for (MaterialAnalysis& m : materials) {
       ImGui::PushID(m.material);
@@ -810,11 +812,43 @@ void analysis_section(const ViewerStatus& status, AnalysisSettings* settings,
       }
       ImGui::PopID();
     }
+    // The input's surface groups, whose nodes a conductor or ground may hold (a port),
+    // in the same columns.
+    for (uint32_t g = 0; g < listed_groups; ++g) {
+      GroupAnalysis& group = settings->groups[g];
+      ImGui::PushID(-1 - static_cast<int>(g));  // apart from the materials' ids
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      const std::string& label = status.surface_groups[g].label;
+      const render::Rgb c = render::surface_group_rgb(g);
+      ImGui::TextColored(ImVec4(c[0], c[1], c[2], 1), "%s",
+                         (label.size() > 24 ? label.substr(0, 24) + "..." : label).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "surface group %s (tag %d): held as a conductor or ground, its nodes "
+            "are; free, they are not",
+            label.c_str(), status.surface_groups[g].tag);
+      ImGui::TableNextColumn();
+      int role = static_cast<int>(group.role);
+      ImGui::SetNextItemWidth(-1);
+      ImGui::Combo("##grouprole", &role, "free\0conductor\0ground\0");
+      group.role = static_cast<MaterialRole>(role);
+      ImGui::TableNextColumn();
+      ImGui::SetNextItemWidth(-1);
+      if (group.role == MaterialRole::kConductor)
+        ImGui::InputDouble("##gv", &group.potential, 0, 0, "V = %.4g");
+      else if (group.role == MaterialRole::kGround)
+        ImGui::TextDisabled("V = 0");
+      ImGui::PopID();
+    }
     ImGui::EndTable();
   }
   if (status.materials.size() > kListedMaterials)
     text_disabled_wrapped("and %zu more materials, not listed: dielectrics of eps 1",
                           status.materials.size() - kListedMaterials);
+  if (status.surface_groups.size() > listed_groups)
+    text_disabled_wrapped("and %zu more surface groups, not listed: free",
+                          status.surface_groups.size() - listed_groups);
   ImGui::Checkbox("Ground the outer boundary", &settings->ground_boundary);
 
   ImGui::BeginDisabled(a.solving);  // as Simplify: in place, greyed while it solves

@@ -138,12 +138,21 @@ struct MaterialAnalysis {
   double potential = 1;     // kConductor
   double permittivity = 1;  // kDielectric (conductors and ground hold every node fixed)
 };
+// An input surface group's part (a Gmsh physical surface as a port or a boundary):
+// free (kDielectric: its nodes are not held), or its nodes held as a conductor's or a
+// ground's (`tetlod solve --conductor NAME=V`).
+struct GroupAnalysis {
+  MaterialRole role = MaterialRole::kDielectric;
+  double potential = 1;  // kConductor
+};
 struct AnalysisSettings {
   std::vector<MaterialAnalysis> materials;  // by id, one per material of the loaded mesh
+  std::vector<GroupAnalysis> groups;        // one per ViewerStatus::surface_groups
   bool ground_boundary = false;             // hold the outer boundary at 0 too
 };
 
-// The problem the settings describe. It is not checked here: the solver's own checks
+// The problem the settings describe, but for the surface groups (whose nodes depend on
+// the level: the viewer adds them). It is not checked here: the solver's own checks
 // give the messages the panel shows (no conductor, a conductor touching the ground,
 // eps <= 0, ...).
 ElectrostaticsProblem to_electrostatics_problem(const AnalysisSettings& settings);

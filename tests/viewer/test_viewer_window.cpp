@@ -1579,11 +1579,13 @@ std::map<std::string, double> read_report(const fs::path& path) {
   return values;
 }
 
-// C printed by `tetlod solve` (%.10g) for a mesh and the spherical capacitor's set-up.
-double cli_capacitance(const fs::path& dir, const std::string& mesh) {
+// C printed by `tetlod solve` (%.10g) for a mesh and a set-up (by default the
+// spherical capacitor's).
+double cli_capacitance(const fs::path& dir, const std::string& mesh,
+                       const std::string& setup = "--conductor 1=1 --ground 4 --eps 2=2,3=5") {
   const std::string log = (dir / "solve_log.txt").string();
   const std::string command = "cd '" + dir.string() + "' && " + TETLOD_BINARY + " solve '" + mesh +
-                              "' --conductor 1=1 --ground 4 --eps 2=2,3=5 >'" + log + "' 2>&1";
+                              "' " + setup + " >'" + log + "' 2>&1";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
   std::ifstream in(log);
   for (std::string line; std::getline(in, line);) {
@@ -1597,6 +1599,39 @@ double cli_capacitance(const fs::path& dir, const std::string& mesh) {
 
 bool same_relative(double a, double b, double tolerance) {
   return std::abs(a - b) <= tolerance * std::max(std::abs(a), std::abs(b));
+}
+
+// A conductor or ground may be one of the input's surface groups, by name, as for
+// `tetlod solve`: its nodes on the level solved are held. The C the viewer reports for
+// the input and for a simplified level is the one `tetlod solve` gives for the same
+// mesh (the level saved with its groups); a surface group given a permittivity is
+// named as such.
+TEST(ViewerWindow, AnalysisHoldsSurfaceGroups) {
+  const fs::path dir = fresh_output_dir("viewer_analysis_groups");
+  std::ofstream(dir / "run.script")
+      << "analysis conductor=sheet:1 ground=bottom\nsolve\nreport-analysis input.txt\n"
+         "thresholds size=0.5\nsimplify\nsave level.msh surfaces\nsolve\n"
+         "report-analysis level.txt\nquit\n";
+  const std::string sheet = kSource + "/tests/data/gmsh/sheet.msh";
+  const ViewerRun run = run_viewer(dir, "'" + sheet + "' --size 640x480 --script run.script");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string setup = "--conductor sheet=1 --ground bottom";
+  const auto input = read_report(dir / "input.txt");
+  const auto level = read_report(dir / "level.txt");
+  ASSERT_TRUE(input.count("capacitance") && level.count("capacitance"));
+  EXPECT_TRUE(same_relative(input.at("capacitance"), cli_capacitance(dir, sheet, setup), 1e-9))
+      << input.at("capacitance");
+  EXPECT_TRUE(same_relative(level.at("capacitance"),
+                            cli_capacitance(dir, (dir / "level.msh").string(), setup), 1e-9))
+      << level.at("capacitance");
+  EXPECT_LT(level.at("tets"), input.at("tets"));
+  std::ofstream(dir / "eps.script")
+      << "analysis conductor=sheet:1 ground=bottom eps=top_and_sheet:2\nquit\n";
+  const ViewerRun eps = run_viewer(dir, "'" + sheet + "' --size 640x480 --script eps.script");
+  EXPECT_EQ(eps.exit_code, 1) << eps.output;
+  EXPECT_NE(eps.output.find("'top_and_sheet' is a surface group, which holds no permittivity"),
+            std::string::npos)
+      << eps.output;
 }
 
 // The Analysis panel on the bundled spherical capacitor (conductor 1 at 1 V, shell 4
