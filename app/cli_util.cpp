@@ -10,6 +10,7 @@
 #include <memory>
 #include <utility>
 
+#include "core/adjacency.h"
 #include "core/io/text_lines.h"
 #include "core/lod.h"
 #include "core/utf8.h"
@@ -608,6 +609,51 @@ std::string volume_changes(const std::vector<MaterialVolume>& before,
     text += (text.empty() ? "material " : ", material ") + std::to_string(m.material) +
             (name.empty() ? "" : " (" + name + ")") + change;
   }
+  return text;
+}
+
+namespace {
+
+// The area of each of the input's surface groups on `mesh`.
+std::vector<double> group_areas(const TetMesh& mesh, const SurfacePatches& patches) {
+  std::vector<uint32_t> neighbors;
+  build_face_neighbors(mesh, &neighbors);
+  const LocatedGroups located = locate_groups(mesh, patches, true, neighbors);
+  std::vector<double> areas(located.in_group.size(), 0.0);
+  for (size_t g = 0; g < areas.size(); ++g)
+    for (uint32_t i : located.in_group[g]) {
+      const auto& v = located.surface[i].v;
+      const Vec3& a = mesh.positions[v[0]];
+      areas[g] += 0.5 * length(cross(mesh.positions[v[1]] - a, mesh.positions[v[2]] - a));
+    }
+  return areas;
+}
+
+}  // namespace
+
+std::string group_area_changes(const TetMesh& before, const TetMesh& after,
+                               const SurfacePatches& patches) {
+  if (!patches.any() && patches.inside_entries().empty()) return "";
+  const std::vector<double> was = group_areas(before, patches), now = group_areas(after, patches);
+  std::string text;
+  size_t listed = 0, more = 0;
+  for (size_t g = 0; g < was.size(); ++g) {
+    if (!(was[g] > 0)) continue;
+    const double percent = 100 * (now[g] - was[g]) / was[g];
+    if (!(std::fabs(percent) > kVolumeNotePercent)) continue;
+    if (listed == 10) {
+      ++more;
+      continue;
+    }
+    const SurfacePatches::Group& group = patches.groups()[g];
+    char change[32];
+    std::snprintf(change, sizeof change, " %+.1f %%", percent);
+    text += (text.empty() ? "" : ", ") +
+            (group.name.empty() ? "surface " + std::to_string(group.tag) : "'" + group.name + "'") +
+            change;
+    ++listed;
+  }
+  if (more > 0) text += " and " + std::to_string(more) + " more";
   return text;
 }
 

@@ -158,6 +158,13 @@ std::string volume_changes(const std::vector<MaterialVolume>& before,
                            const std::vector<MaterialVolume>& after,
                            const std::vector<MaterialName>* names);
 
+// "'port' -18.1 %, ..." for each of the input's surface groups (`patches`) whose area
+// on `after` differs from that on `before` by more than kVolumeNotePercent, "" if none
+// (or no groups): a port or a boundary condition's surface shrinks where the tolerance
+// lets its border move; the volume note does not tell.
+std::string group_area_changes(const TetMesh& before, const TetMesh& after,
+                               const SurfacePatches& patches);
+
 // The materials thinner than kThinLayerTolerances times `tolerance` (twice their volume
 // over their surface's area, material_surfaces()), as "material 9 (barrier) about 0.3
 // thick, ..." ("" if none; at most five named, then how many more): boundaries and

@@ -278,6 +278,13 @@ int cmd_simplify(const Args& args) {
                  "part a few times as thick: a smaller --tolerance keeps it\n",
                  kVolumeNotePercent, changes.c_str(), params.tolerance);
   }
+  if (const std::string changes = group_area_changes(input, output, patches); !changes.empty()) {
+    std::fprintf(stderr,
+                 "tetlod simplify: note: surface groups' areas changed by more than %g %%: %s; "
+                 "the tolerance (%g) lets their borders move that far, which changes a small "
+                 "group's area (a port): a smaller --tolerance keeps it\n",
+                 kVolumeNotePercent, changes.c_str(), params.tolerance);
+  }
   const std::string kept_unsplit =
       result.splits_skipped_inside == 0
           ? std::string()

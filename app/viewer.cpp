@@ -85,6 +85,7 @@ struct Scene {
   std::shared_ptr<const SimplifyResult> result;  // null: no simplification yet
   std::string above_size_reason;                 // of the result ("" if nothing is above)
   std::string volume_changes;                    // of the result (cli_util.h; "" if none)
+  std::string area_changes;                      // of its surface groups (likewise)
   std::string thin_materials;                    // thin for its tolerance (cli_util.h; "")
   ThresholdCounts input_breaks;                  // what the input broke of the result's thresholds
   SimplifyParams params;                         // of the result's run, if params_known
@@ -1042,6 +1043,8 @@ void Viewer::start_simplify() {
       auto scene = make_scene(job->path, input, std::move(result), view);
       scene->above_size_reason = reason;
       scene->volume_changes = changes;
+      if (patches)
+        scene->area_changes = group_area_changes(*input, scene->result->output, *patches);
       scene->thin_materials = thin;
       scene->input_breaks = input_breaks;
       scene->params = params;
@@ -1114,6 +1117,11 @@ void Viewer::poll_job() {
     if (!scene_->volume_changes.empty()) {  // as tetlod simplify says it (and the panel)
       std::fprintf(stderr, "tetlod view: note: volumes changed by more than %g %%: %s\n",
                    kVolumeNotePercent, scene_->volume_changes.c_str());
+    }
+    if (!scene_->area_changes.empty()) {
+      std::fprintf(stderr,
+                   "tetlod view: note: surface groups' areas changed by more than %g %%: %s\n",
+                   kVolumeNotePercent, scene_->area_changes.c_str());
     }
     if (!scene_->thin_materials.empty()) {
       std::fprintf(stderr, "tetlod view: note: thin for the tolerance (%g): %s\n",
@@ -2188,6 +2196,7 @@ void Viewer::fill_status() {
     s.input_breaks = scene.input_breaks;
     s.above_size_reason = scene.above_size_reason;
     s.volume_changes = scene.volume_changes;
+    s.area_changes = scene.area_changes;
     s.thin_materials = scene.thin_materials;
     s.past_valence = past_valence_summary(*scene.result);
     s.simplify_seconds = run_seconds(*scene.result);

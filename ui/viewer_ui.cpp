@@ -581,6 +581,12 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
           "a smaller one keeps them).",
           status.volume_changes.c_str());
     }
+    if (!status.area_changes.empty()) {
+      text_warning_wrapped(
+          "Surface groups' areas changed by more than 1 %%: %s (their borders move within "
+          "the tolerance; a smaller one keeps them).",
+          status.area_changes.c_str());
+    }
     // Layers a few tolerances thick, whose volume may hardly change as both sides move.
     if (!status.thin_materials.empty()) {
       text_warning_wrapped(

@@ -275,6 +275,7 @@ struct ViewerStatus {
   std::string above_size_reason;  // why it has tets above the size ("" if none)
   std::string past_valence;       // what subdivision past the valence did ("" if nothing)
   std::string volume_changes;     // materials whose volume the run changed by over 1 % ("")
+  std::string area_changes;       // surface groups whose area it changed by over 1 % ("")
   std::string thin_materials;     // materials a few of its tolerances thick ("")
 
   // The displayed level.

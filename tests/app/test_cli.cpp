@@ -98,6 +98,27 @@ TEST(Cli, ANameTwoMaterialsShareIsAnError) {
   EXPECT_EQ(r.code, 0) << r.output;
 }
 
+// A tolerance that shrinks a surface group is said too, with its change: the round port
+// on the block's top (tests/data/gmsh/port.msh) at tolerance 0.2 loses a quarter of its
+// area, as the border's vertices move along the face (its volume does not change); at
+// 0.001 it keeps it within 1 %.
+TEST(Cli, SimplifySaysWhichSurfaceGroupsChangedArea) {
+  const std::string dir = test::cli_output_dir("area_note");
+  const std::string port = std::string(TETLOD_SOURCE_DIR) + "/tests/data/gmsh/port.msh";
+  const test::CommandResult coarse =
+      test::run_tetlod("simplify '" + port + "' -o " + dir + "/p.msh --size 2 --tolerance 0.2");
+  ASSERT_EQ(coarse.code, 0) << coarse.output;
+  EXPECT_NE(coarse.output.find("note: surface groups' areas changed by more than 1 %: 'port' -26.9 "
+                               "%; the tolerance (0.2)"),
+            std::string::npos)
+      << coarse.output;
+  EXPECT_EQ(coarse.output.find("volumes changed"), std::string::npos) << coarse.output;
+  const test::CommandResult fine =
+      test::run_tetlod("simplify '" + port + "' -o " + dir + "/p.msh --size 2 --tolerance 0.001");
+  ASSERT_EQ(fine.code, 0) << fine.output;
+  EXPECT_EQ(fine.output.find("areas changed"), std::string::npos) << fine.output;
+}
+
 // A tolerance that thins a part is said, with each material's change: the motor at
 // tolerance 3 changes its shaft (material 3) by -15.9 %; at the default (0.18) none by 1 %.
 // And before the run, which parts are thin for the tolerance.
