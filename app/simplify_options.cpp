@@ -282,6 +282,52 @@ std::string outside_background_note(const TetMesh& input, const TetMesh& backgro
          "not the same units?)";
 }
 
+namespace {
+
+// A region rule that sets no tet's size does nothing, which is likely a mistake (a box
+// in metres for a model in millimetres): a note on stderr says so. A box that holds no
+// tet's centroid; a radial rule around a point whose size at the mesh's nearest point
+// is already no smaller than the uniform size.
+void unused_rule_notes(const TetMesh& input, const Vec3& lo, const Vec3& hi,
+                       const SizingField& sizing, const char* command) {
+  const auto point = [](const Vec3& p) {
+    char text[96];
+    std::snprintf(text, sizeof text, "(%g, %g, %g)", p.x, p.y, p.z);
+    return std::string(text);
+  };
+  const std::string extent = "the mesh spans " + point(lo) + " to " + point(hi);
+  for (const SizingField::Box& b : sizing.boxes) {
+    bool reached = false;
+    for (size_t t = 0; t < input.tets.size() && !reached; ++t) {
+      const Tet& v = input.tets[t];
+      const Vec3 c = (input.positions[v[0]] + input.positions[v[1]] + input.positions[v[2]] +
+                      input.positions[v[3]]) *
+                     0.25;
+      reached = c.x >= b.low.x && c.x <= b.high.x && c.y >= b.low.y && c.y <= b.high.y &&
+                c.z >= b.low.z && c.z <= b.high.z;
+    }
+    if (!reached)
+      std::fprintf(stderr,
+                   "tetlod %s: note: --size-field box %s to %s holds no tet's centroid (%s): "
+                   "it sets no size (a box in other units?)\n",
+                   command, point(b.low).c_str(), point(b.high).c_str(), extent.c_str());
+  }
+  if (!std::isfinite(sizing.uniform)) return;
+  for (const SizingField::Radial& r : sizing.radial) {
+    if (r.axis != Vec3{0, 0, 0}) continue;  // (a line's distance to the box: not bounded here)
+    const Vec3 nearest{std::clamp(r.center.x, lo.x, hi.x), std::clamp(r.center.y, lo.y, hi.y),
+                       std::clamp(r.center.z, lo.z, hi.z)};
+    const double least = r.size0 + r.growth * length(nearest - r.center);
+    if (least >= sizing.uniform)
+      std::fprintf(stderr,
+                   "tetlod %s: note: --size-field radial rule around %s gives no size below "
+                   "--size %g on the mesh (at least %g there; %s): it sets no size\n",
+                   command, point(r.center).c_str(), sizing.uniform, least, extent.c_str());
+  }
+}
+
+}  // namespace
+
 int finish_simplify_options(const TetMesh& input, const std::vector<MaterialName>& names,
                             const char* command, SimplifyOptions* options,
                             const ValidationReport* read) {
@@ -351,6 +397,7 @@ int finish_simplify_options(const TetMesh& input, const std::vector<MaterialName
   if (input.positions.empty()) return kExitOk;
   Vec3 lo, hi;
   mesh_bounds(input, &lo, &hi);
+  unused_rule_notes(input, lo, hi, options->params.sizing, command);
   if (!options->tolerance_given) {
     options->params.tolerance = 1e-3 * length(hi - lo);
     return kExitOk;

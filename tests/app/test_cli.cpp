@@ -98,6 +98,31 @@ TEST(Cli, ANameTwoMaterialsShareIsAnError) {
   EXPECT_EQ(r.code, 0) << r.output;
 }
 
+// A region rule that sets no tet's size is said (a box in metres for a model in
+// millimetres): a box that holds no tet's centroid, a radial rule nowhere below --size.
+// Rules that reach the mesh are not.
+TEST(Cli, RegionRulesThatSetNoSizeAreSaid) {
+  const std::string motor = std::string(TETLOD_SOURCE_DIR) + "/assets/motor.mesh";
+  const test::CommandResult unused = test::run_tetlod(
+      "stats '" + motor +
+      "' --size 20 --size-field 'radial:0,0,0,30,0.1;box:0.001,0.001,0.001,0.002,0.002,0.002,1'");
+  ASSERT_EQ(unused.code, 0) << unused.output;
+  EXPECT_NE(unused.output.find("note: --size-field box (0.001, 0.001, 0.001) to (0.002, 0.002, "
+                               "0.002) holds no tet's centroid (the mesh spans (-60, -60, -30) "
+                               "to (60, 60, 30)): it sets no size"),
+            std::string::npos)
+      << unused.output;
+  EXPECT_NE(unused.output.find("note: --size-field radial rule around (0, 0, 0) gives no size "
+                               "below --size 20 on the mesh (at least 30 there"),
+            std::string::npos)
+      << unused.output;
+  const test::CommandResult used =
+      test::run_tetlod("stats '" + motor +
+                       "' --size 20 --size-field 'radial:0,0,0,3,0.1;box:-10,-10,-10,10,10,10,5'");
+  ASSERT_EQ(used.code, 0) << used.output;
+  EXPECT_EQ(used.output.find("--size-field"), std::string::npos) << used.output;
+}
+
 // A tolerance that shrinks a surface group is said too, with its change: the round port
 // on the block's top (tests/data/gmsh/port.msh) at tolerance 0.2 loses a quarter of its
 // area, as the border's vertices move along the face (its volume does not change); at
