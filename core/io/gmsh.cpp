@@ -1253,13 +1253,17 @@ class GmshParser {
               holders.push_back(std::to_string(group));
           }
         }
-        const std::string why = holders.empty()
-                                    ? " (no tetrahedra: not in the mesh)"
-                                    : " (no tetrahedra of its own: they are read in group" +
-                                          std::string(holders.size() > 1 ? "s " : " ") +
-                                          quoted_list(holders) +
-                                          (holders.size() > 1 ? ", which hold the same volumes)"
-                                                              : ", which holds the same volume)");
+        const std::string why =
+            holders.empty()
+                ? " (no tetrahedra: not in the mesh)"
+                : " (no tetrahedra of its own: they are read in group" +
+                      std::string(holders.size() > 1 ? "s " : " ") + quoted_list(holders) +
+                      (holders.size() > 1 ? ", which hold the same volumes; a tet has one "
+                                            "material, so this group is not kept: name "
+                                            "those)"
+                                          : ", which holds the same volume; a tet has one "
+                                            "material, so this group is not kept: name "
+                                            "that one)");
         volume_names.push_back("'" + name + "' = " + std::to_string(key.second) +
                                (has_tets ? "" : why));
         // Sorted by tag, so by material; a group's name is its material's.

@@ -209,7 +209,8 @@ TEST(IoGmshFiles, ElementsInTwoGroupsAreReadOnce) {
   // The group of both conductors is not said to have no tets: they are in 1 and 4.
   EXPECT_TRUE(has_note(info,
                        "'conductors' = 100 (no tetrahedra of its own: they are read in "
-                       "groups 1, 4, which hold the same volumes)"))
+                       "groups 1, 4, which hold the same volumes; a tet has one material, so this "
+                       "group is not kept: name those)"))
       << all_notes(info);
   // Gmsh 4.1 writes a volume in two groups once, with both tags: its tets go to the
   // first, and the second is said to hold them too.
@@ -223,9 +224,11 @@ TEST(IoGmshFiles, ElementsInTwoGroupsAreReadOnce) {
     ReadInfo two;
     ASSERT_TRUE(read_mesh_from_memory(two_tags, MeshFormat::kGmsh41, "two.msh", &mesh, &two).ok());
     EXPECT_EQ(mesh.materials, std::vector<int32_t>{1});
-    EXPECT_TRUE(has_note(two,
-                         "'iron' = 1, 'all' = 2 (no tetrahedra of its own: they are read in "
-                         "group 1, which holds the same volume)"))
+    EXPECT_TRUE(
+        has_note(two,
+                 "'iron' = 1, 'all' = 2 (no tetrahedra of its own: they are read in "
+                 "group 1, which holds the same volume; a tet has one material, so this group "
+                 "is not kept: name that one)"))
         << all_notes(two);
     EXPECT_TRUE(has_note(two,
                          "1 tetrahedron is in a volume of more than one physical group: it is "
