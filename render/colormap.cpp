@@ -1,6 +1,7 @@
 #include "render/colormap.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tetlod::render {
 
@@ -57,8 +58,21 @@ Rgb material_rgb(int32_t material) {
       {0.749f, 0.396f, 0.133f},
       {0.392f, 0.392f, 0.416f},
       {0.741f, 0.918f, 0.780f}};
-  const int32_t index = material < 0 ? 0 : material % kPaletteSize;
-  return kPalette[index];
+  const int32_t index = material < 0 ? 0 : material % kColorCycle;
+  if (index < kPaletteSize) return kPalette[index];
+  // Hues a golden angle apart, three saturations and three values in turn: neighbours
+  // in id differ in hue by 137.5 degrees.
+  const int k = index - kPaletteSize;
+  const double h = 6 * std::fmod(0.13 + 0.6180339887498949 * k, 1.0);
+  const double sat = (k % 3 == 0) ? 0.45 : (k % 3 == 1) ? 0.65 : 0.85;
+  const double val = ((k / 3) % 3 == 0) ? 0.9 : ((k / 3) % 3 == 1) ? 0.72 : 0.58;
+  const int sector = static_cast<int>(h) % 6;
+  const double f = h - std::floor(h);
+  const double p = val * (1 - sat), q = val * (1 - sat * f), t = val * (1 - sat * (1 - f));
+  const double rgb[6][3] = {{val, t, p}, {q, val, p}, {p, val, t},
+                            {p, q, val}, {t, p, val}, {val, p, q}};
+  return {static_cast<float>(rgb[sector][0]), static_cast<float>(rgb[sector][1]),
+          static_cast<float>(rgb[sector][2])};
 }
 
 }  // namespace tetlod::render

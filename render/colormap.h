@@ -15,8 +15,12 @@ using Rgb = std::array<float, 3>;
 // polynomial fits (M. Zucker's viridis fit; A. Mikhailov, Google, 2019, for Turbo).
 Rgb colormap_rgb(ColorMap map, double t);
 
-// Colour of a material id (ids >= 0; a 20-colour qualitative palette, cycled).
+// Colour of a material id (ids >= 0): a 20-colour qualitative palette for ids 0-19,
+// then colours of hues a golden angle apart (in varying saturation and value) up to
+// kColorCycle - 1, cycled after that: two materials share a colour only kColorCycle
+// ids apart (ids 1 and 21 of a 24-material motor were one orange).
 inline constexpr int kPaletteSize = 20;
+inline constexpr int kColorCycle = 256;  // the shader's palette (surface.frag)
 Rgb material_rgb(int32_t material);
 
 // The colour of highlighted (low-stretch) tets; in neither colour map.

@@ -361,12 +361,12 @@ bool Renderer::draw(const DrawSettings& settings, const Camera& camera, int widt
       settings.range_max > settings.range_min ? settings.range_max - settings.range_min : 1e-9;
   gl_.Uniform2f(gl_.GetUniformLocation(p, "u_range"), float(settings.range_min),
                 float(settings.range_min + span));
-  float palette[kPaletteSize * 3];
-  for (int i = 0; i < kPaletteSize; ++i) {
+  float palette[kColorCycle * 3];
+  for (int i = 0; i < kColorCycle; ++i) {
     const Rgb c = material_rgb(i);
     for (int k = 0; k < 3; ++k) palette[i * 3 + k] = c[k];
   }
-  gl_.Uniform3fv(gl_.GetUniformLocation(p, "u_palette"), kPaletteSize, palette);
+  gl_.Uniform3fv(gl_.GetUniformLocation(p, "u_palette"), kColorCycle, palette);
   gl_.Uniform3f(gl_.GetUniformLocation(p, "u_wire_color"), 0.1f, 0.1f, 0.12f);
 
   // The surface.

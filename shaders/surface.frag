@@ -14,7 +14,7 @@ noperspective in vec3 v_barycentric;
 uniform int u_color_mode;
 uniform sampler2D u_colormap;  // 256 x 1
 uniform vec2 u_range;          // stretch at the two ends of the colour map
-uniform vec3 u_palette[20];  // render::kPaletteSize
+uniform vec3 u_palette[256];  // render::kColorCycle
 uniform vec3 u_solid_color;
 uniform float u_stripe;
 uniform float u_alpha;
@@ -32,7 +32,7 @@ void main() {
     float t = clamp((v_stretch - u_range.x) / (u_range.y - u_range.x), 0.0, 1.0);
     base = texture(u_colormap, vec2(t * (255.0 / 256.0) + 0.5 / 256.0, 0.5)).rgb;
   } else if (u_color_mode == 1) {
-    base = u_palette[v_material % 20u];
+    base = u_palette[v_material % 256u];
   } else if (u_color_mode == 2 || mod(gl_FragCoord.x + gl_FragCoord.y, 2.0 * u_stripe) < u_stripe) {
     base = u_solid_color;
   } else {

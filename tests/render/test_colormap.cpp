@@ -48,7 +48,19 @@ TEST(Colormap, ViridisGetsLighterAndTurboPeaksInTheMiddle) {
 TEST(Colormap, MaterialsGetDistinctColoursAndHighlightStandsOut) {
   for (int a = 0; a < kPaletteSize; ++a)
     for (int b = a + 1; b < kPaletteSize; ++b) EXPECT_NE(material_rgb(a), material_rgb(b));
-  EXPECT_EQ(material_rgb(3), material_rgb(3 + kPaletteSize));
+  // Past the palette, other colours, none of them twice before the cycle: ids 1 and 21
+  // are not one orange, nor 4 and 24 one green.
+  for (int a = 0; a < kColorCycle; ++a) {
+    for (int b = a + 1; b < kColorCycle; ++b)
+      EXPECT_NE(material_rgb(a), material_rgb(b)) << a << " " << b;
+    for (const float c : material_rgb(a)) EXPECT_TRUE(c >= 0 && c <= 1) << a;
+  }
+  const auto apart = [](const Rgb& x, const Rgb& y) {
+    return std::abs(x[0] - y[0]) + std::abs(x[1] - y[1]) + std::abs(x[2] - y[2]);
+  };
+  EXPECT_GT(apart(material_rgb(1), material_rgb(21)), 0.3);
+  EXPECT_GT(apart(material_rgb(4), material_rgb(24)), 0.3);
+  EXPECT_EQ(material_rgb(3), material_rgb(3 + kColorCycle));
   for (int i = 0; i <= 20; ++i)
     for (const ColorMap map : {ColorMap::kViridis, ColorMap::kTurbo}) {
       const Rgb c = colormap_rgb(map, i / 20.0);
