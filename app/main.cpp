@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
     sigemptyset(&action.sa_mask);
     sigaction(signal_number, &action, nullptr);
   }
+  // A closed pipe (tetlod stats big.mesh | head) is a write error, said and exit 1 as a
+  // full disk is, not a SIGPIPE that kills the process silently (exit 141).
+  std::signal(SIGPIPE, SIG_IGN);
   if (argc < 2) {
     std::fputs(kUsage, stderr);
     return kExitUsage;
@@ -86,8 +89,11 @@ int main(int argc, char** argv) {
   // What went to standard output must have got there (a full disk, a closed pipe).
   const auto written = [&command](int code) {
     if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      std::fprintf(stderr, "tetlod %s: cannot write to standard output: %s\n", command.c_str(),
-                   std::strerror(errno));
+      // (The command's own files are complete: each is written whole or not at all.)
+      std::fprintf(
+          stderr, "tetlod %s: cannot write to standard output: %s%s\n", command.c_str(),
+          std::strerror(errno),
+          code == kExitOk ? " (the command itself succeeded; any file it wrote is complete)" : "");
       return kExitBadInput;
     }
     return code;

@@ -256,6 +256,29 @@ TEST(Cli, AStandardOutputThatCannotBeWrittenIsAnError) {
   }
 }
 
+// A pipe closed early (tetlod stats | head) is such an error too, exit 1 with the
+// message, not a SIGPIPE that killed the process silently (exit 141; found by a
+// hostile-input test): a mesh of 1,728 materials, whose table outgrows the pipe's buffer.
+TEST(Cli, APipeClosedEarlyIsAnError) {
+  const TetMesh mesh = test::make_grid_mesh(
+      12, 12, 12, [](int i, int j, int k) { return 1 + i + 12 * j + 144 * k; }, 1.0);
+  const std::string path = out_dir() + "/many_materials.mesh";
+  ASSERT_TRUE(write_mesh(path, mesh).ok());
+  const std::string command = "bash -c '{ " + std::string(TETLOD_BINARY) + " stats " + path +
+                              " | head -c 10 > /dev/null; exit ${PIPESTATUS[0]}; } 2>&1'";
+  std::FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[4096];
+  size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
+  const int status = pclose(pipe);
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << command << "\n" << output;
+  EXPECT_NE(output.find("tetlod stats: cannot write to standard output: Broken pipe"),
+            std::string::npos)
+      << output;
+}
+
 // Running out of memory is an error that says so, with no output file, not an abort
 // (std::bad_alloc ended the process; found by a hostile-input test): box2 at a size
 // that subdivides it into millions of tets, in 200 MB of address space.
