@@ -97,8 +97,7 @@ bool expect_end_of_file(TextScanner& scanner, const char* items) {
 bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
   uint64_t count = 0;
   int64_t dimension = 3, attributes = 0, markers = 0;
-  // A point line "i x y z\n" takes at least 8 bytes.
-  if (!scanner.read_count(&count, "point count", 8)) return false;
+  if (!scanner.read_count(&count, "point count", 0)) return false;
   TextScanner header = rest_of_header(scanner);
   if (!read_header_field(header, &dimension, "dimension") ||
       !read_header_field(header, &attributes, "attribute count") ||
@@ -113,6 +112,13 @@ bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
   }
   if (markers > 1) {
     header.fail("boundary marker count must be 0 or 1");
+    return scanner.adopt_failure(header);
+  }
+  // A point line "i x y z\n" takes at least 8 bytes (checked after the dimension: a 2-D
+  // file's shorter lines were said to be too few for its count).
+  if (count > (uint64_t(scanner.remaining_bytes()) + 1) / 8) {
+    header.fail("point count " + std::to_string(count) +
+                " is larger than the rest of the file can hold (wrong count or truncated file?)");
     return scanner.adopt_failure(header);
   }
   if (count == 0) return scanner.fail("no points (points in a .poly file are not supported)");

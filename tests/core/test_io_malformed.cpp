@@ -231,6 +231,12 @@ TEST(IoMalformed, TetGen) {
       {{}, {{3, "7 2 3 4 5 2"}}, "m.ele", 3, "expected tetrahedron index 2"},
       {{{2, "2 0 0 0"}}, {}, "m.node", 2, "must be 0 or 1"},
       {{{1, "5 2 0 0"}}, {}, "m.node", 1, "3-dimensional"},
+      // A 2-D file's short lines: its dimension is said, not a count too large.
+      {{{1, "5 2 0 0"}, {2, "1 0 0"}, {3, "2 1 0"}, {4, "3 0 1"}, {5, "4 0 0"}, {6, "5 1 1"}},
+       {},
+       "m.node",
+       1,
+       "only 3-dimensional points are supported (dimension 2)"},
       {{}, {{1, "2 6 1"}}, "m.ele", 1, "4 or 10"},
       {{{1, "5 3 0 0 z"}}, {}, "m.node", 1, "unexpected 'z' in the header"},
       {{{1, "5 3 0 x"}}, {}, "m.node", 1, "boundary marker count 'x' is not an integer"},
