@@ -98,6 +98,7 @@ bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
   uint64_t count = 0;
   int64_t dimension = 3, attributes = 0, markers = 0;
   if (!scanner.read_count(&count, "point count", 0)) return false;
+  const uint64_t rest = scanner.remaining_bytes();  // (the header's rest included)
   TextScanner header = rest_of_header(scanner);
   if (!read_header_field(header, &dimension, "dimension") ||
       !read_header_field(header, &attributes, "attribute count") ||
@@ -116,7 +117,7 @@ bool read_nodes(TextScanner& scanner, TetMesh& mesh, int64_t* base) {
   }
   // A point line "i x y z\n" takes at least 8 bytes (checked after the dimension: a 2-D
   // file's shorter lines were said to be too few for its count).
-  if (count > (uint64_t(scanner.remaining_bytes()) + 1) / 8) {
+  if (count > (rest + 1) / 8) {
     header.fail("point count " + std::to_string(count) +
                 " is larger than the rest of the file can hold (wrong count or truncated file?)");
     return scanner.adopt_failure(header);
