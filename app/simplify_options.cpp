@@ -1,8 +1,10 @@
 #include "app/simplify_options.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <set>
@@ -475,8 +477,15 @@ std::string describe_size(const SizingField& sizing) {
 
 std::string describe_thresholds(const SimplifyParams& params, bool with_tolerance) {
   char text[256];
-  std::snprintf(text, sizeof text, "stretch %g, valence %u", params.min_stretch,
-                params.max_valence);
+  // The stretch as %g shows it, unless that is another number (0.9999999 read "1", a
+  // stretch --stretch refuses): then in full.
+  std::snprintf(text, sizeof text, "%g", params.min_stretch);
+  if (std::strtod(text, nullptr) != params.min_stretch) {
+    const auto end = std::to_chars(text, text + sizeof text - 1, params.min_stretch).ptr;
+    *end = '\0';
+  }
+  const std::string stretch = text;
+  std::snprintf(text, sizeof text, "stretch %s, valence %u", stretch.c_str(), params.max_valence);
   std::string result = "size " + describe_size(params.sizing) + ", " + text;
   if (with_tolerance) {
     std::snprintf(text, sizeof text, ", tolerance %g", params.tolerance);

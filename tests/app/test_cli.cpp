@@ -256,6 +256,22 @@ TEST(Cli, AStandardOutputThatCannotBeWrittenIsAnError) {
   }
 }
 
+// The thresholds line shows a stretch as given where %g would show another number
+// (0.9999999 read "stretch 1", which --stretch refuses; a hostile-input test).
+TEST(Cli, TheThresholdsLineShowsTheStretchGiven) {
+  const std::string box2 = std::string(TETLOD_SOURCE_DIR) + "/assets/box2.mesh";
+  const std::string out = out_dir() + "/stretch.mesh";
+  const CommandResult near_one =
+      run("simplify " + box2 + " -o " + out + " --size 1 --stretch 0.9999999");
+  ASSERT_EQ(near_one.code, 0) << near_one.output;
+  EXPECT_NE(near_one.output.find("thresholds: size 1, stretch 0.9999999, valence 25"),
+            std::string::npos)
+      << near_one.output;
+  const CommandResult usual = run("simplify " + box2 + " -o " + out + " --size 1 --stretch 0.15");
+  EXPECT_NE(usual.output.find("thresholds: size 1, stretch 0.15, valence 25"), std::string::npos)
+      << usual.output;
+}
+
 // A pipe closed early (tetlod stats | head) is such an error too, exit 1 with the
 // message, not a SIGPIPE that killed the process silently (exit 141; found by a
 // hostile-input test): a mesh of 1,728 materials, whose table outgrows the pipe's buffer.
