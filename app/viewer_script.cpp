@@ -252,6 +252,8 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
       a->kind = key == "step" ? Kind::kScrubStep : Kind::kScrubElements;
       if (Status s = p.integer(key, value, &a->count); !s) return s;
       if (a->count < 0) return p.error("'" + key + "' must be >= 0");
+      // As --elements: a level of at least one element.
+      if (key == "elements" && a->count < 1) return p.error("'elements' must be >= 1");
     } else {
       return p.error("'scrub' takes step=K, elements=N or end, got '" + w[1] + "'");
     }
@@ -325,6 +327,9 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     } else {
       a->kind = Kind::kHighlight;
       if (Status s = p.number("highlight", w[1], &a->value); !s) return s;
+      // As --highlight-below (and the panel's slider): a stretch in (0, 1].
+      if (!(a->value > 0 && a->value <= 1))
+        return p.error("'highlight' takes a stretch in (0, 1] or off, got '" + w[1] + "'");
     }
   } else if (command == "view") {
     a->kind = Kind::kView;

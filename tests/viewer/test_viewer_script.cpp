@@ -411,6 +411,7 @@ TEST(ViewerScript, RejectsBadValues) {
            "simplify now\n",
            "scrub\n",
            "scrub elements=-3\n",
+           "scrub elements=0\n",  // (as --elements 0)
            "scrub elements=many\n",
            "scrub frame=3\n",
            "cut w=0\n",
@@ -424,6 +425,8 @@ TEST(ViewerScript, RejectsBadValues) {
            "range 0\n",
            "wireframe maybe\n",
            "highlight lots\n",
+           "highlight 2\n",  // (as --highlight-below 2)
+           "highlight 0\n",
            "view top\n",
            "screenshot\n",
            "screenshot a.png ui=2\n",
