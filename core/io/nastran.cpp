@@ -45,6 +45,7 @@ struct PendingTet {
   int64_t element = 0;
   int64_t property = 0;
   int64_t grids[4] = {};
+  int64_t mid_grids[6] = {};  // G5..G10 of a 10-node CTETRA (0: blank), checked only
   size_t line = 0;
 };
 
@@ -105,6 +106,12 @@ class NastranParser {
                            "ends with ENDDATA");
     }
     if (!resolve()) return error_;
+    if (blank_pids_ > 0)
+      out_->notes.push_back(
+          std::to_string(blank_pids_) + (blank_pids_ == 1 ? " CTETRA has" : " CTETRAs have") +
+          " a blank or zero PID, not a property of Nastran's: read as material 0 (Nastran "
+          "takes a blank PID as the element's id, which would make every such tet a material "
+          "of its own)");
     if (quadratic_tets_ > 0) {
       out_->notes.push_back(std::to_string(quadratic_tets_) +
                             " 10-node CTETRAs were read as 4-node ones (by their corners; "
@@ -372,6 +379,19 @@ class NastranParser {
     return true;
   }
 
+  // Fails on a CTETRA id given twice, as on a GRID's.
+  bool unique_elements() {
+    std::vector<uint32_t> order(tets_.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return tets_[a].element < tets_[b].element; });
+    for (size_t i = 1; i < order.size(); ++i)
+      if (tets_[order[i]].element == tets_[order[i - 1]].element)
+        return fail(tets_[order[i]].line,
+                    "CTETRA " + std::to_string(tets_[order[i]].element) + " is defined twice");
+    return true;
+  }
+
   uint32_t find_grid(int64_t id) const {
     if (!dense_index_.empty()) {
       const uint64_t key = uint64_t(id - first_id_);
@@ -397,9 +417,18 @@ class NastranParser {
     for (int k = 0; k < 4; ++k) {
       if (!integer_field(2 + k, "grid", 1, &t.grids[k])) return false;
     }
+    // G5..G10, the mid-side grids (any may be blank): read by the corners, but each
+    // given must be a GRID, as a corner must.
+    bool quadratic = false;
+    for (int k = 0; k < 6; ++k) {
+      if (field(6 + k).empty()) continue;
+      if (!integer_field(6 + k, "grid", 1, &t.mid_grids[k])) return false;
+      quadratic = true;
+    }
     if (tets_.size() + 1 >= kInvalidIndex) return fail(card_line_, "too many CTETRAs");
     tets_.push_back(t);
-    quadratic_tets_ += !field(6).empty();  // G5..G10: the mid-side grids
+    quadratic_tets_ += quadratic;
+    blank_pids_ += t.property == 0;
     return true;
   }
 
@@ -421,7 +450,7 @@ class NastranParser {
 
   // GRIDs may come after the CTETRAs that use them: corners are resolved at the end.
   bool resolve() {
-    if (!index_grids()) return false;
+    if (!index_grids() || !unique_elements()) return false;
     out_->mesh.tets.reserve(tets_.size());
     out_->mesh.materials.reserve(tets_.size());
     out_->tet_lines.reserve(tets_.size());
@@ -434,6 +463,10 @@ class NastranParser {
                                   std::to_string(t.grids[k]) + ", which is not defined");
         }
       }
+      for (const int64_t g : t.mid_grids)
+        if (g != 0 && find_grid(g) == kInvalidIndex)
+          return fail(t.line, "CTETRA " + std::to_string(t.element) + " uses GRID " +
+                                  std::to_string(g) + " (a mid-side node), which is not defined");
       out_->mesh.tets.push_back(tet);
       out_->mesh.materials.push_back(t.property == zero_pid_ ? 0 : int32_t(t.property));
       out_->tet_lines.push_back(line_number(t.line));
@@ -499,6 +532,7 @@ class NastranParser {
   std::vector<PendingTriangle> triangles_;
   uint64_t quads_ = 0;                // CQUAD4, CQUAD8, CQUADR entries
   uint64_t quadratic_tets_ = 0;       // 10-node CTETRAs, read by their corners
+  uint64_t blank_pids_ = 0;           // CTETRAs with a blank or zero PID (material 0)
   std::vector<int64_t> grid_ids_;     // per vertex, in file order
   std::vector<uint32_t> grid_lines_;  // per vertex
   int64_t first_id_ = 0;

@@ -440,7 +440,30 @@ TEST(IoMalformed, Nastran) {
           {{{1, "CTRIA3,9,20,1,2,99"}}, 1, "CTRIA3 9 uses GRID 99, which is not defined"},
           {{{1, "CTRIA6,9,20,1,x,3,4,5,6"}}, 1, "CTRIA6 9: grid 'x' is not an integer >= 1"},
           {{{1, "CTRIA3,9,-2,1,2,3"}}, 1, "property id (PID) '-2'"},
+          // An element id given twice, as a GRID's; a 10-node CTETRA's mid-side grids
+          // are checked as its corners are (they were not read at all).
+          {{{8, "CTETRA,1,7,2,3,4,5"}}, 8, "CTETRA 1 is defined twice"},
+          {{{8, "CTETRA,2,7,2,3,4,5,1,2\n+,3,4,5,77"}},
+           8,
+           "CTETRA 2 uses GRID 77 (a mid-side node), which is not defined"},
+          {{{8, "CTETRA,2,7,2,3,4,5,x"}}, 8, "grid 'x' is not an integer >= 1"},
       });
+}
+
+// A CTETRA with a blank or zero PID (meshio leaves it blank for a mesh without
+// properties) is read as material 0, with a note: Nastran would take its element id.
+TEST(IoMalformed, NastranBlankPidIsNoted) {
+  TetMesh mesh;
+  ReadInfo info;
+  const std::string text =
+      edit_lines(kNastran, {{7, "CTETRA,1,,1,2,3,4"}, {8, "CTETRA,2,0,2,3,4,5"}});
+  const Status s = read_mesh_from_memory(text, MeshFormat::kNastran, "m.bdf", &mesh, &info);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(mesh.materials, (std::vector<int32_t>{0, 0}));
+  bool noted = false;
+  for (const std::string& note : info.notes)
+    noted |= note.find("2 CTETRAs have a blank or zero PID") != std::string::npos;
+  EXPECT_TRUE(noted);
 }
 
 // Inputs the fuzzers found.
