@@ -449,8 +449,9 @@ class AbaqusParser {
     t.element = id;
     t.line = line;
     t.element_set = element_set_;
-    for (int k = 0; k < 4; ++k) {
-      if (!integer(f[size_t(k + 1)], &t.nodes[k])) {
+    for (int k = 0; k < element_nodes_; ++k) {
+      int64_t& node = k < 4 ? t.nodes[k] : t.mid_nodes[k - 4];
+      if (!integer(f[size_t(k + 1)], &node)) {
         return fail(line, "element " + std::to_string(id) + ": node '" +
                               std::string(f[size_t(k + 1)]) + "' is not an integer");
       }
@@ -639,6 +640,12 @@ class AbaqusParser {
         }
         tet[k] = it->second;
       }
+      // A C3D10's mid-side nodes: read by its corners, but each must be a node.
+      for (const int64_t node : p.mid_nodes)
+        if (node != 0 && node_index_.find(node) == node_index_.end())
+          return fail(p.line, "element " + std::to_string(p.element) + " uses node " +
+                                  std::to_string(node) +
+                                  " (a mid-side node), which is not defined");
       const int64_t material = key[t] < 0 ? 0 : id[size_t(key[t])];
       if (material > std::numeric_limits<int32_t>::max()) {
         return fail(p.line, "element " + std::to_string(p.element) + ": material " +
@@ -988,7 +995,8 @@ class AbaqusParser {
   struct PendingTet {
     int64_t element = 0;
     int64_t nodes[4] = {};
-    int element_set = -1;  // key of *ELEMENT's ELSET
+    int64_t mid_nodes[6] = {};  // a C3D10's, checked only (0: a C3D4)
+    int element_set = -1;       // key of *ELEMENT's ELSET
     size_t line = 0;
   };
   struct Section {

@@ -595,9 +595,10 @@ class GmshParser {
         if (is_tet) {
           int64_t corners[4];
           for (int64_t& corner : corners) corner = c.i32();
-          for (int k = 4; k < nodes; ++k) c.i32();
+          bool others = true;
+          for (int k = 4; k < nodes; ++k) others = others && other_node(element_tag, c.i32());
           int32_t material = 0;
-          if (!resolve_material(physical, elementary, &material) ||
+          if (!others || !resolve_material(physical, elementary, &material) ||
               !store_tet(element_tag, corners, material, 0)) {
             scanner_.advance(c.used());
             return false;
@@ -679,8 +680,10 @@ class GmshParser {
         }
         int64_t corners[4];
         for (int64_t& corner : corners) corner = as_tag(c.u64());
-        for (int k = 4; k < nodes; ++k) c.u64();
-        if (!store_tet(as_tag(element_tag), corners, material, 0)) {
+        bool others = true;
+        for (int k = 4; k < nodes; ++k)
+          others = others && other_node(as_tag(element_tag), as_tag(c.u64()));
+        if (!others || !store_tet(as_tag(element_tag), corners, material, 0)) {
           scanner_.advance(c.used());
           return false;
         }
@@ -991,8 +994,19 @@ class GmshParser {
       if (!scanner_.read_int(&corner, "node tag")) return false;
     }
     if (!store_tet(element_tag, corners, material, line)) return false;
-    return type == kTet4 ||
-           scanner_.skip_numbers(uint64_t(nodes_per_element(type) - 4), "node tags");
+    for (int k = 4; k < nodes_per_element(type); ++k) {
+      int64_t tag = 0;
+      if (!scanner_.read_int(&tag, "node tag") || !other_node(element_tag, tag)) return false;
+    }
+    return true;
+  }
+
+  // A higher-order tet's node past its corners: read by its corners only, but each node
+  // it names must be in $Nodes, as a corner must.
+  bool other_node(int64_t element_tag, int64_t tag) {
+    if (find_node(tag) != kInvalidIndex) return true;
+    return scanner_.fail("element " + std::to_string(element_tag) + " uses node " +
+                         std::to_string(tag) + " (a higher-order node), which is not in $Nodes");
   }
 
   // Stores a tet from the node tags of its corners (`line` only for text files).

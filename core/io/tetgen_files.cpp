@@ -181,7 +181,9 @@ bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out, int64_t*
     }
     out->tet_lines.push_back(line_number(scanner.line()));
     Tet tet;
-    for (int k = 0; k < 4; ++k) {
+    // The corners, then (TetGen -o2) the mid-side points: read by the corners, but each
+    // must be a point, as a corner must.
+    for (int k = 0; k < corners; ++k) {
       int64_t vertex = 0;
       if (!scanner.read_int(&vertex, "vertex index")) return false;
       if (vertex < base || vertex - base >= int64_t(mesh.positions.size())) {
@@ -189,11 +191,10 @@ bool read_elements(TextScanner& scanner, int64_t base, ParsedMesh* out, int64_t*
                             "points are numbered from " + std::to_string(base) + " to " +
                             std::to_string(base + int64_t(mesh.positions.size()) - 1) + ")");
       }
-      tet[k] = uint32_t(vertex - base);
+      if (k < 4) tet[k] = uint32_t(vertex - base);
     }
     int32_t material = 0;
-    if (!scanner.skip_numbers(uint64_t(corners - 4), "vertex indices") ||
-        (attributes > 0 && !read_material(scanner, &material)) ||
+    if ((attributes > 0 && !read_material(scanner, &material)) ||
         !scanner.skip_numbers(uint64_t(attributes > 0 ? attributes - 1 : 0), "attributes") ||
         !skip_extra_fields(scanner, "tetrahedron")) {
       return false;

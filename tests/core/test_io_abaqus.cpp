@@ -255,6 +255,9 @@ TEST(IoAbaqus, BrokenDecksNameTheLine) {
   } cases[] = {
       {nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3\n", 7, "has 3 nodes, its type 4"},
       {nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 9\n", 7, "uses node 9, which is not defined"},
+      // A C3D10's mid-side nodes are checked as its corners are.
+      {nodes + "*ELEMENT, TYPE=C3D10\n1, 1, 2, 3, 4, 1, 2, 3, 4, 1, 16\n", 7,
+       "element 1 uses node 16 (a mid-side node), which is not defined"},
       {nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n1, 1, 2, 3, 4\n", 8, "defined twice"},
       {nodes + "2, 5, 5, 5\n", 6, "node 2 is defined twice"},
       {nodes + "5, 1, 1, x\n", 6, "coordinate 'x' is not a finite number"},

@@ -116,6 +116,10 @@ TEST(IoMalformed, Gmsh22) {
                       {{{5, "4"}}, 10, "wrong count"},
                       {{{13, "3"}}, 16, "not an integer"},
                       {{{14, "1 4 2 1 1 1 2 3 9"}}, 14, "not in $Nodes"},
+                      // A 10-node tet's other nodes are checked as its corners are.
+                      {{{14, "1 11 2 1 1 1 2 3 4 5 1 2 3 4 16"}},
+                       14,
+                       "element 1 uses node 16 (a higher-order node), which is not in $Nodes"},
                       {{{14, "1 4 2 1 1 0 2 3 4"}}, 14, "not in $Nodes"},
                       {{{7, "2 nan 0 0"}}, 7, "not a finite"},
                       {{{7, "2 1 -inf 0"}}, 7, "not a finite"},
@@ -218,6 +222,12 @@ TEST(IoMalformed, TetGen) {
        2,
        "vertex index 9 is out of range (the points are numbered from 1 to 5)"},
       {{}, {{2, "1 1 2 3 6 1"}}, "m.ele", 2, "vertex index 6 is out of range"},
+      // A 10-node tet's mid-side points are checked as its corners are.
+      {{},
+       {{1, "2 10 1"}, {2, "1 1 2 3 4 5 1 2 3 4 9 1"}, {3, "2 2 3 4 5 1 2 3 4 5 1 2"}},
+       "m.ele",
+       2,
+       "vertex index 9 is out of range"},
       {{{3, "2 nan 0 0"}}, {}, "m.node", 3, "not a finite"},
       {{{3, "2 INF 0 0"}}, {}, "m.node", 3, "not a finite"},
       {{{3, "2 1e999 0 0"}}, {}, "m.node", 3, "overflow"},
