@@ -289,6 +289,9 @@ Status build_pattern(const TetMesh& mesh, const std::vector<double>& dirichlet, 
   const size_t free_count = sys->vertex_of_free.size();
   const VertexTets vertex_tets = build_vertex_tets(mesh);
   std::vector<uint8_t> touches_dirichlet(free_count, 0);
+  // The least and the greatest potential held next to each free node.
+  std::vector<double> held_lo(free_count, std::numeric_limits<double>::infinity());
+  std::vector<double> held_hi(free_count, -std::numeric_limits<double>::infinity());
   sys->row_offsets.assign(free_count + 1, 0);
   sys->columns.clear();
   sys->columns.reserve(free_count * 16);
@@ -301,6 +304,8 @@ Status build_pattern(const TetMesh& mesh, const std::vector<double>& dirichlet, 
         const uint32_t f = sys->free_of_vertex[w];
         if (f == kInvalidIndex) {
           touches_dirichlet[i] = 1;
+          held_lo[i] = std::min(held_lo[i], dirichlet[w]);
+          held_hi[i] = std::max(held_hi[i], dirichlet[w]);
         } else {
           row.push_back(static_cast<int>(f));
         }
@@ -318,10 +323,14 @@ Status build_pattern(const TetMesh& mesh, const std::vector<double>& dirichlet, 
   // is only determined up to a constant (a singular matrix).
   std::vector<uint8_t> seen(free_count, 0);
   std::vector<int> stack;
+  // Whether any free region lies between two potentials (else the field is 0
+  // everywhere: no capacitance to measure).
+  bool field = false;
   for (size_t start = 0; start < free_count; ++start) {
     if (seen[start]) continue;
     bool anchored = false;
     size_t region_size = 0;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     stack.assign(1, static_cast<int>(start));
     seen[start] = 1;
     while (!stack.empty()) {
@@ -329,6 +338,8 @@ Status build_pattern(const TetMesh& mesh, const std::vector<double>& dirichlet, 
       stack.pop_back();
       ++region_size;
       anchored = anchored || touches_dirichlet[i];
+      lo = std::min(lo, held_lo[i]);
+      hi = std::max(hi, held_hi[i]);
       for (int k = sys->row_offsets[i]; k < sys->row_offsets[i + 1]; ++k) {
         const int j = sys->columns[k];
         if (!seen[j]) {
@@ -345,7 +356,20 @@ Status build_pattern(const TetMesh& mesh, const std::vector<double>& dirichlet, 
                            describe_node(mesh, v) +
                            ") touches no conductor or ground: its potential is undetermined");
     }
+    field = field || hi > lo;
   }
+  // (A tet whose corners are all held at two potentials has a field too.)
+  for (size_t t = 0; t < mesh.tet_count() && !field; ++t) {
+    const Tet& tet = mesh.tets[t];
+    bool held = true;
+    for (const uint32_t v : tet) held = held && !std::isnan(dirichlet[v]);
+    if (held)
+      for (const uint32_t v : tet) field = field || dirichlet[v] != dirichlet[tet[0]];
+  }
+  if (!field)
+    return Status::error(
+        "no dielectric lies between two potentials (each body holds one: the conductors and "
+        "the grounds are separate bodies), so there is no field and no capacitance to measure");
   sys->values.assign(sys->columns.size(), 0.0);
   sys->rhs.assign(free_count, 0.0);
   return Status();

@@ -218,6 +218,32 @@ TEST(Electrostatics, FloatingRegionIsAnError) {
       << s.message();
 }
 
+// A conductor and a ground in separate bodies (the conductor in its dielectric, the
+// ground apart): no region lies between two potentials, so there is no field. That is
+// an error, not a capacitance of rounding noise (8.96e-30 was printed).
+TEST(Electrostatics, SeparateBodiesHaveNoCapacitance) {
+  TetMesh mesh = test::make_grid_mesh(2, 1, 1, [](int i, int, int) { return i == 0 ? 1 : 2; });
+  const uint32_t base = static_cast<uint32_t>(mesh.vertex_count());
+  for (const Vec3& p : test::make_single_tet().positions)
+    mesh.positions.push_back(p + Vec3{10, 0, 0});
+  mesh.tets.push_back({base, base + 1, base + 2, base + 3});
+  mesh.materials.push_back(3);
+  ElectrostaticsProblem problem;
+  problem.conductors = {{1, 1.0}};
+  problem.ground_materials = {3};
+  ElectrostaticsSolution solution;
+  const Status s = solve_electrostatics(mesh, problem, {}, &solution);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("no dielectric lies between two potentials"), std::string::npos)
+      << s.message();
+  // Joined (the ground beside the dielectric), there is.
+  TetMesh joined = test::make_grid_mesh(3, 1, 1, [](int i, int, int) {
+    return i == 0 ? 1 : i == 1 ? 2 : 3;
+  });
+  EXPECT_TRUE(solve_electrostatics(joined, problem, {}, &solution).ok());
+  EXPECT_GT(solution.capacitance, 0);
+}
+
 TEST(Electrostatics, BrokenMeshesAreErrors) {
   TetMesh inverted = layered_plates();
   std::swap(inverted.tets[5][2], inverted.tets[5][3]);
