@@ -75,8 +75,12 @@ Status validate_mesh(TetMesh* mesh, const std::string& source,
       }
       for (int l = 0; l < k; ++l) {
         if (tet[k] == tet[l]) {
-          return Status::error(where(source, tet_lines, t) + tet_name(t) + " repeats vertex " +
-                               std::to_string(uint64_t{tet[k]} + 1));
+          // By the node's position: its number here is the order read, not the file's id.
+          const Vec3& p = mesh->positions[tet[k]];
+          char text[96];
+          std::snprintf(text, sizeof text, "(%.17g, %.17g, %.17g)", p.x, p.y, p.z);
+          return Status::error(where(source, tet_lines, t) + tet_name(t) +
+                               " repeats vertex: it names the node at " + text + " twice");
         }
       }
     }

@@ -168,7 +168,13 @@ TEST(Validate, RejectsBadMeshesWithLineNumbers) {
 
   m = test::make_single_tet();
   m.tets[0][2] = m.tets[0][1];
-  expect_error(m, "repeats vertex");
+  // By the node's position: its number here is not the file's id (a hostile-input
+  // tester read "repeats vertex 3" of a file whose nodes were numbered 10 to 50).
+  const Vec3 p = m.positions[m.tets[0][1]];
+  char at[128];
+  std::snprintf(at, sizeof at, "repeats vertex: it names the node at (%.17g, %.17g, %.17g) twice",
+                p.x, p.y, p.z);
+  expect_error(m, at);
 
   m = test::make_single_tet();
   m.positions[3] = {0.5, 0.5, 0};  // coplanar
