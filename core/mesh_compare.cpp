@@ -1,6 +1,7 @@
 #include "core/mesh_compare.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -80,10 +81,44 @@ PairSurfaces pair_surfaces(const TetMesh& mesh, const Vec3& shift) {
   return out;
 }
 
-// Largest distance from the sample points of `from` to the triangles of `to`.
-double one_sided(const std::vector<Triangle3>& from, const TriangleGrid& to) {
+// A triangle's corners in a fixed order (sorted), to find the same triangle in another
+// list.
+std::array<Vec3, 3> sorted_corners(const Triangle3& t) {
+  std::array<Vec3, 3> c = {t[0], t[1], t[2]};
+  const auto less = [](const Vec3& a, const Vec3& b) {
+    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+  };
+  std::sort(c.begin(), c.end(), less);
+  return c;
+}
+
+bool corners_less(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) {
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c)
+      if (a[k][c] != b[k][c]) return a[k][c] < b[k][c];
+  return false;
+}
+
+// The sorted_corners() of each triangle of `list`, sorted by corners_less().
+std::vector<std::array<Vec3, 3>> sorted_triangles(const std::vector<Triangle3>& list) {
+  std::vector<std::array<Vec3, 3>> out;
+  out.reserve(list.size());
+  for (const Triangle3& t : list) out.push_back(sorted_corners(t));
+  std::sort(out.begin(), out.end(), corners_less);
+  return out;
+}
+
+// Largest distance from the sample points of `from` to the triangles of `to`. A
+// triangle of `from` that is one of `to` (`to_sorted`: their sorted_corners(), sorted)
+// is at 0 and not searched: on an unchanged surface, and where a search would read
+// every triangle of a cell (a fan of N triangles round one edge put N in each cell
+// there, and comparing it with itself took minutes).
+double one_sided(const std::vector<Triangle3>& from, const TriangleGrid& to,
+                 const std::vector<std::array<Vec3, 3>>& to_sorted) {
   double worst2 = 0;
   for (const Triangle3& t : from) {
+    if (std::binary_search(to_sorted.begin(), to_sorted.end(), sorted_corners(t), corners_less))
+      continue;
     const Vec3 samples[7] = {t[0],
                              t[1],
                              t[2],
@@ -125,7 +160,8 @@ MeshComparison compare_meshes(const TetMesh& before, const TetMesh& after) {
     }
     const TriangleGrid grid0(triangles), grid1(other->second);
     c.pairs.push_back(
-        {pair, std::max(one_sided(triangles, grid1), one_sided(other->second, grid0))});
+        {pair, std::max(one_sided(triangles, grid1, sorted_triangles(other->second)),
+                        one_sided(other->second, grid0, sorted_triangles(triangles)))});
     c.euler.push_back({pair, s0.euler.at(pair), s1.euler.at(pair)});
   }
   for (const auto& entry : s1.triangles)
