@@ -35,7 +35,7 @@ constexpr const char* kRenderUsageTail =
     "                    --size-field, --size-map, --size-map-mesh, --no-subdivide,\n"
     "                    --within-valence, --past-valence-factor, --one-thread,\n"
     "                    --crease-angle, --improve (as there: --stretch 0.00012 <= D < 1,\n"
-    "                    --valence V >= 4), and\n"
+    "                    4 <= --valence V <= 255), and\n"
     "  --elements N      the level of the collapse history nearest N elements\n";
 
 void print_usage(std::FILE* stream) {

@@ -37,7 +37,7 @@ constexpr const char* kReportUsageHead =
     "  --simplify        simplify with the flags of 'tetlod simplify' (--size, --stretch,\n"
     "                    --valence, --tolerance, --material-size, --size-field,\n"
     "                    --size-map, ...; as there, --stretch 0.00012 <= D < 1 and\n"
-    "                    --valence V >= 4);\n"
+    "                    4 <= --valence V <= 255);\n"
     "                    with --improve, every level is drawn and measured after\n"
     "                    'tetlod simplify --improve' has improved its shapes\n"
     "View flags, as for 'tetlod render' (default picture 480 x 480):\n";

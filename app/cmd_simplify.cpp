@@ -72,7 +72,7 @@ constexpr const char* kLodUsage =
     "                    rules; a size map saved with the history is kept). Histories\n"
     "                    saved before 2026-11-24 have none: give the ones it was made\n"
     "                    with. The thresholds are written as 'tetlod simplify' takes\n"
-    "                    them (--stretch 0.00012 <= D < 1, --valence V >= 4)\n"
+    "                    them (--stretch 0.00012 <= D < 1, 4 <= --valence V <= 255)\n"
     "  --check           exit with status 3 if the level written breaks a threshold saved\n"
     "                    in the history (or, with --improve, those it improves within);\n"
     "                    the file is written all the same\n";

@@ -107,7 +107,8 @@ Status parse_thresholds(const LineParser& p, ScriptAction* a) {
     } else if (key == "valence") {
       long long v = 0;
       if (Status s = p.integer(key, value, &v); !s) return s;
-      if (v < 4 || v > 100000) return p.error("valence must be in [4, 100000]");
+      if (v < 4 || v > kMaxValence)
+        return p.error("valence must be in [4, " + std::to_string(kMaxValence) + "]");
       a->valence = v;
     } else if (key == "subdivide") {
       bool on = false;

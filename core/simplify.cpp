@@ -72,7 +72,9 @@ Status check_params(const SimplifyParams& p) {
   }
   if (p.max_valence > kMaxValence) {
     return Status::bad_value("valence " + std::to_string(p.max_valence) + " must be at most " +
-                             std::to_string(kMaxValence) + " (a larger one limits nothing)");
+                             std::to_string(kMaxValence) +
+                             " (analysis meshes have nodes of 20 to 60 neighbours; the work of a "
+                             "collapse grows with its nodes')");
   }
   if (p.sizing.unlimited()) return Status::bad_value("no size limit given (set --size)");
   const double smallest = p.sizing.smallest_size();

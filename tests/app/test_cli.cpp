@@ -808,12 +808,18 @@ TEST(Cli, SimplifyRejectsAbsurdThresholds) {
   const std::string out = out_dir() + "/thr_out.mesh";
   for (const char* flags :
        {"--size -1", "--size nan", "--size 1 --stretch 1", "--size 1 --stretch 0",
-        "--size 1 --stretch 1e-06", "--size 1 --valence 3", "--size 1 --tolerance -2",
-        "--stretch 0.2", "--size 1 --material-size 1=0", "--size 1 --size-field box:0,0,0,1,1",
-        "--material-size ''", "--material-size ,", "--size 1e-05"}) {
+        "--size 1 --stretch 1e-06", "--size 1 --valence 3", "--size 1 --valence 256",
+        "--size 1 --tolerance -2", "--stretch 0.2", "--size 1 --material-size 1=0",
+        "--size 1 --size-field box:0,0,0,1,1", "--material-size ''", "--material-size ,",
+        "--size 1e-05"}) {
     const CommandResult r = run("simplify " + path + " -o " + out + " " + flags);
     EXPECT_EQ(r.code, 2) << flags << "\n" << r.output;
   }
+  // Past 255 the work of a collapse at a node of hundreds of neighbours took minutes.
+  EXPECT_NE(run("simplify " + path + " -o " + out + " --size 1 --valence 100000")
+                .output.find("--valence '100000' is not a valence, a whole number of neighbours "
+                             "in [4, 255]"),
+            std::string::npos);
   // A size that would subdivide the mesh past the tet limit is a value refused too.
   EXPECT_NE(run("simplify " + path + " -o " + out + " --size 1e-05")
                 .output.find("size 1e-05 would subdivide the mesh into more than 10^15 tets"),

@@ -39,7 +39,7 @@ SimplifyParams loose_params() {
   SimplifyParams p;
   p.tolerance = 1e3;
   p.min_stretch = 0.01;
-  p.max_valence = 1000;
+  p.max_valence = kMaxValence;
   p.sizing.uniform = 1e3;
   p.subdivide = false;
   return p;
