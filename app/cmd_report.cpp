@@ -371,8 +371,9 @@ int cmd_report(const Args& args) {
     summary += table_row(level.label, stats.whole);
 
     const render::PreparedMesh prepared = render::prepare_mesh(level.mesh);
-    show_surface_groups(offscreen.renderer.get(), prepared,
-                        from_history ? history.patches : patches, options);
+    const std::vector<render::GroupOverlay::Group> groups = show_surface_groups(
+        offscreen.renderer.get(), prepared, from_history ? history.patches : patches, options);
+    if (k == 0) note_undrawn_groups("report", groups);  // (as render says it)
     const render::Image picture =
         render::render_snapshot(offscreen.renderer.get(), prepared, options.snapshot);
     if (picture.width == 0) {

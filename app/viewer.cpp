@@ -1519,6 +1519,7 @@ bool Viewer::groups_wanted() const {
 }
 
 void Viewer::update_groups() {
+  if (!groups_wanted() && !groups_drawn_ && !groups_future_.valid()) return;  // (most frames)
   const GroupsKey now = groups_now();
   if (groups_future_.valid() &&
       groups_future_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {

@@ -229,6 +229,18 @@ TEST(Cli, StatsPrintsTableOneAndJson) {
   EXPECT_EQ(named.output.find("caf\xe9"), std::string::npos) << named.output;
 }
 
+// Runs `command` through the shell: its exit status (-1 if it did not exit), and what
+// it wrote to the shell's standard output in `output`.
+int shell(const std::string& command, std::string* output) {
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return -1;
+  char buffer[4096];
+  size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output->append(buffer, n);
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 // Standard output that cannot be written (a full disk, a closed descriptor) is an
 // error, not a success with nothing written (found by a hostile-input test).
 TEST(Cli, AStandardOutputThatCannotBeWrittenIsAnError) {
@@ -243,14 +255,8 @@ TEST(Cli, AStandardOutputThatCannotBeWrittenIsAnError) {
   for (const Case& c : cases) {
     // stderr to the pipe, stdout where asked.
     const std::string command = std::string(TETLOD_BINARY) + " " + c.arguments + " 2>&1 " + c.to;
-    std::FILE* pipe = popen(command.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
     std::string output;
-    char buffer[4096];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
-    const int status = pclose(pipe);
-    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << command << "\n" << output;
+    EXPECT_EQ(shell(command, &output), 1) << command << "\n" << output;
     EXPECT_NE(output.find(c.says + " to standard output"), std::string::npos) << command << "\n"
                                                                               << output;
   }
@@ -282,14 +288,8 @@ TEST(Cli, APipeClosedEarlyIsAnError) {
   ASSERT_TRUE(write_mesh(path, mesh).ok());
   const std::string command = "bash -c '{ " + std::string(TETLOD_BINARY) + " stats " + path +
                               " | head -c 10 > /dev/null; exit ${PIPESTATUS[0]}; } 2>&1'";
-  std::FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
   std::string output;
-  char buffer[4096];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
-  const int status = pclose(pipe);
-  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << command << "\n" << output;
+  EXPECT_EQ(shell(command, &output), 1) << command << "\n" << output;
   EXPECT_NE(output.find("tetlod stats: cannot write to standard output: Broken pipe"),
             std::string::npos)
       << output;
