@@ -2200,6 +2200,11 @@ void Viewer::fill_status() {
     s.area_changes = scene.area_changes;
     s.thin_materials = scene.thin_materials;
     s.past_valence = past_valence_summary(*scene.result);
+    // Faces kept inside a material can be why such a run was given up (tetlod simplify
+    // says the same).
+    const PastValence& pv = scene.result->past_valence;
+    s.kept_faces_stopped_past_valence = pv.tried && !pv.taken && !pv.stopped && pv.nodes_left > 0 &&
+                                        scene.patches && !scene.patches->inside_entries().empty();
     s.simplify_seconds = run_seconds(*scene.result);
     s.result_cancelled = scene.result->cancelled;
   }

@@ -573,6 +573,12 @@ void thresholds_section(const ViewerStatus& status, ThresholdSettings* t,
     }
     if (!status.past_valence.empty())
       ImGui::TextWrapped("Past the valence: %s.", status.past_valence.c_str());
+    if (status.kept_faces_stopped_past_valence)
+      text_disabled_wrapped(
+          "The surface groups inside a material are kept as they are, which can leave nodes "
+          "next to them that nothing may bring back: unticking \"Keep groups inside materials\" "
+          "may "
+          "let that run be taken.");
     // What the tolerance did to the materials' volumes, where it is much (a thin conductor
     // thinned): in orange, as tetlod simplify's note.
     if (!status.volume_changes.empty()) {

@@ -276,7 +276,9 @@ struct ViewerStatus {
   std::string past_valence;       // what subdivision past the valence did ("" if nothing)
   std::string volume_changes;     // materials whose volume the run changed by over 1 % ("")
   std::string area_changes;       // surface groups whose area it changed by over 1 % ("")
-  std::string thin_materials;     // materials a few of its tolerances thick ("")
+  // The run past the valence was given up while faces inside a material were kept.
+  bool kept_faces_stopped_past_valence = false;
+  std::string thin_materials;  // materials a few of its tolerances thick ("")
 
   // The displayed level.
   size_t step = 0, step_count = 0;
