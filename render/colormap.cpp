@@ -34,6 +34,23 @@ Rgb colormap_rgb(ColorMap map, double t) {
   return rgb;
 }
 
+Rgb generated_rgb(uint32_t k) {
+  // Hue, saturation and value from the R3 low-discrepancy sequence (the plastic number's
+  // powers): any two of the first few hundred differ in at least one by a good step (a
+  // golden angle of hue alone came back near every 144th).
+  constexpr double g = 1.22074408460575947536;
+  const double h = 6 * std::fmod(0.13 + k / g, 1.0);
+  const double sat = 0.45 + 0.45 * std::fmod(0.5 + k / (g * g), 1.0);
+  const double val = 0.55 + 0.4 * std::fmod(0.5 + k / (g * g * g), 1.0);
+  const int sector = static_cast<int>(h) % 6;
+  const double f = h - std::floor(h);
+  const double p = val * (1 - sat), q = val * (1 - sat * f), t = val * (1 - sat * (1 - f));
+  const double rgb[6][3] = {{val, t, p}, {q, val, p}, {p, val, t},
+                            {p, q, val}, {t, p, val}, {val, p, q}};
+  return {static_cast<float>(rgb[sector][0]), static_cast<float>(rgb[sector][1]),
+          static_cast<float>(rgb[sector][2])};
+}
+
 Rgb material_rgb(int32_t material) {
   static constexpr Rgb kPalette[kPaletteSize] = {
       {0.306f, 0.475f, 0.655f},
@@ -60,19 +77,7 @@ Rgb material_rgb(int32_t material) {
       {0.741f, 0.918f, 0.780f}};
   const int32_t index = material < 0 ? 0 : material % kColorCycle;
   if (index < kPaletteSize) return kPalette[index];
-  // Hues a golden angle apart, three saturations and three values in turn: neighbours
-  // in id differ in hue by 137.5 degrees.
-  const int k = index - kPaletteSize;
-  const double h = 6 * std::fmod(0.13 + 0.6180339887498949 * k, 1.0);
-  const double sat = (k % 3 == 0) ? 0.45 : (k % 3 == 1) ? 0.65 : 0.85;
-  const double val = ((k / 3) % 3 == 0) ? 0.9 : ((k / 3) % 3 == 1) ? 0.72 : 0.58;
-  const int sector = static_cast<int>(h) % 6;
-  const double f = h - std::floor(h);
-  const double p = val * (1 - sat), q = val * (1 - sat * f), t = val * (1 - sat * (1 - f));
-  const double rgb[6][3] = {{val, t, p}, {q, val, p}, {p, val, t},
-                            {p, q, val}, {t, p, val}, {val, p, q}};
-  return {static_cast<float>(rgb[sector][0]), static_cast<float>(rgb[sector][1]),
-          static_cast<float>(rgb[sector][2])};
+  return generated_rgb(uint32_t(index - kPaletteSize));
 }
 
 }  // namespace tetlod::render

@@ -16,12 +16,16 @@ using Rgb = std::array<float, 3>;
 Rgb colormap_rgb(ColorMap map, double t);
 
 // Colour of a material id (ids >= 0): a 20-colour qualitative palette for ids 0-19,
-// then colours of hues a golden angle apart (in varying saturation and value) up to
-// kColorCycle - 1, cycled after that: two materials share a colour only kColorCycle
-// ids apart (ids 1 and 21 of a 24-material motor were one orange).
+// then generated_rgb(id - 20) up to kColorCycle - 1, cycled after that: two materials
+// share a colour only kColorCycle ids apart (ids 1 and 21 of a 24-material motor were
+// one orange).
 inline constexpr int kPaletteSize = 20;
 inline constexpr int kColorCycle = 256;  // the shader's palette (surface.frag)
 Rgb material_rgb(int32_t material);
+// The k-th of a sequence of colours spread over hue, saturation and value, none near
+// another in the first few hundred (material and surface group colours past their
+// palettes).
+Rgb generated_rgb(uint32_t k);
 
 // The colour of highlighted (low-stretch) tets; in neither colour map.
 inline constexpr Rgb kHighlightRgb = {1.0f, 0.1f, 0.75f};

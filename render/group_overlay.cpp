@@ -8,7 +8,10 @@ Rgb surface_group_rgb(uint32_t index) {
   static constexpr Rgb kColors[8] = {
       {0.90f, 0.10f, 0.10f}, {1.00f, 0.55f, 0.00f}, {0.10f, 0.35f, 1.00f}, {0.00f, 0.80f, 0.80f},
       {0.60f, 1.00f, 0.10f}, {0.55f, 0.30f, 0.10f}, {0.50f, 0.10f, 0.70f}, {0.50f, 0.50f, 0.50f}};
-  return kColors[index % 8];
+  // Then generated colours (from further along than the materials' take them), cycled
+  // as the materials' are: groups 1 and 9 were one red.
+  const uint32_t cycled = index % kColorCycle;
+  return cycled < 8 ? kColors[cycled] : generated_rgb(kColorCycle + cycled);
 }
 
 std::string surface_group_label(const SurfacePatches::Group& group) {

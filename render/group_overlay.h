@@ -27,8 +27,9 @@ struct GroupOverlay {
   std::vector<Group> groups;            // the groups asked for, in the input's order
 };
 
-// The colour of the input's surface group `index` (a palette of 8, cycled, apart from
-// the material palette's first colours and the highlight's).
+// The colour of the input's surface group `index`: a palette of 8, then generated_rgb()
+// colours, cycled every kColorCycle (groups are drawn in stripes, which no material
+// has).
 Rgb surface_group_rgb(uint32_t index);
 
 // A group's name for a key or a list: its name, or "surface <tag>".

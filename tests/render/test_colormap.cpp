@@ -60,6 +60,13 @@ TEST(Colormap, MaterialsGetDistinctColoursAndHighlightStandsOut) {
   };
   EXPECT_GT(apart(material_rgb(1), material_rgb(21)), 0.3);
   EXPECT_GT(apart(material_rgb(4), material_rgb(24)), 0.3);
+  // Past the palette none is near another (golden-angle hues alone came back near every
+  // 144th: ids 28 and 172 differed by under 10 of 255 in each channel).
+  double nearest = 3;
+  for (int a = kPaletteSize; a < kColorCycle; ++a)
+    for (int b = a + 1; b < kColorCycle; ++b)
+      nearest = std::min(nearest, double(apart(material_rgb(a), material_rgb(b))));
+  EXPECT_GT(nearest, 20 / 255.0);
   EXPECT_EQ(material_rgb(3), material_rgb(3 + kColorCycle));
   for (int i = 0; i <= 20; ++i)
     for (const ColorMap map : {ColorMap::kViridis, ColorMap::kTurbo}) {
