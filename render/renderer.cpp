@@ -445,23 +445,39 @@ Renderer::KeyLayout Renderer::key_layout(const DrawSettings& settings, int width
   // the last says how many more there are.
   const float room = 0.6f * float(height) - 2 * margin - 8 * scale;
   const size_t fit = room < 0 ? 0 : std::min<size_t>(40, size_t(room / line) + 1);
-  // Below the materials, the surface groups drawn and the highlight: always listed,
-  // so the materials give way if the key is too long.
-  const size_t extra = groups_.size() + (highlight ? 1 : 0);
-  const size_t wanted = materials + extra;
-  if (fit == 0 || (wanted > fit && (materials == 0 || fit < 2 + extra))) return key;
-  const size_t shown = wanted <= fit ? materials : fit - 1 - extra;
-  // The fixed lines ("and N more materials", the highlight's count) in 90 % of the
+  // Materials, then the surface groups drawn, then the highlight's line. Where they do
+  // not all fit, the longer list gives way a line at a time, each cut list ending in
+  // "and N more ..." (the groups' key had vanished past 16, taking the materials' with
+  // it); the highlight's line always stays.
+  const size_t groups = groups_.size(), high = highlight ? 1 : 0;
+  size_t shown = materials, shown_groups = groups;
+  const auto lines = [&] {
+    return shown + (shown < materials) + shown_groups + (shown_groups < groups) + high;
+  };
+  while (lines() > fit && (shown > 0 || shown_groups > 0)) {
+    if (shown >= shown_groups && shown > 0)
+      --shown;
+    else
+      --shown_groups;
+  }
+  // (A list cut to nothing but its "and N more" line leaves the key out.)
+  if (fit == 0 || lines() > fit || (materials > 0 && shown == 0) ||
+      (groups > 0 && shown_groups == 0))
+    return key;
+  // The fixed lines (the "and N more" lines, the highlight's count) in 90 % of the
   // width, else no key; the names cut to fit half the width (at most 40 characters; at
   // least 8, else no key).
-  std::vector<KeyLayout::Line> fixed;
-  if (shown < materials)
-    fixed.push_back({Rgb{1, 1, 1}, "and " + std::to_string(materials - shown) + " more materials"});
-  if (highlight)
-    fixed.push_back({kHighlightRgb, "stretch < " + format_value(settings.highlight_below) + ": " +
-                                        std::to_string(highlighted_tets_) + " tets"});
+  const KeyLayout::Line more_materials{
+      Rgb{1, 1, 1}, "and " + std::to_string(materials - shown) + " more materials"};
+  const KeyLayout::Line more_groups{
+      Rgb{1, 1, 1}, "and " + std::to_string(groups - shown_groups) + " more surface groups"};
+  const KeyLayout::Line high_line{kHighlightRgb, "stretch < " +
+                                                     format_value(settings.highlight_below) + ": " +
+                                                     std::to_string(highlighted_tets_) + " tets"};
   float fixed_w = 0;
-  for (const KeyLayout::Line& f : fixed) fixed_w = std::max(fixed_w, text_pixels(f.text, scale));
+  if (shown < materials) fixed_w = std::max(fixed_w, text_pixels(more_materials.text, scale));
+  if (shown_groups < groups) fixed_w = std::max(fixed_w, text_pixels(more_groups.text, scale));
+  if (highlight) fixed_w = std::max(fixed_w, text_pixels(high_line.text, scale));
   if (fixed_w > 0.9f * float(width) - 11 * scale - 2 * margin) return key;
   const float text_room = 0.5f * float(width) - 11 * scale - margin;
   for (size_t chars = 40; chars >= 8; chars -= 4) {
@@ -475,14 +491,15 @@ Renderer::KeyLayout Renderer::key_layout(const DrawSettings& settings, int width
       names_w = std::max(names_w, text_pixels(text, scale));
       key.lines.push_back({material_rgb(m), std::move(text)});
     }
-    if (shown < materials) key.lines.push_back(fixed.front());  // "and N more materials"
-    for (const GroupRange& g : groups_) {
-      std::string text = ascii_label(g.label, chars);
+    if (shown < materials) key.lines.push_back(more_materials);
+    for (size_t g = 0; g < shown_groups; ++g) {
+      std::string text = ascii_label(groups_[g].label, chars);
       names_w = std::max(names_w, text_pixels(text, scale));
-      key.lines.push_back({g.color, std::move(text), true});
+      key.lines.push_back({groups_[g].color, std::move(text), true});
     }
+    if (shown_groups < groups) key.lines.push_back(more_groups);
     if (names_w <= text_room) {
-      key.lines.insert(key.lines.end(), fixed.begin() + (shown < materials ? 1 : 0), fixed.end());
+      if (highlight) key.lines.push_back(high_line);
       key.text_width = std::max(names_w, fixed_w);
       return key;
     }

@@ -450,5 +450,33 @@ TEST(Legend, APictureTooSmallForTheLegendHasNone) {
   EXPECT_EQ(renderer->legend_space(draw, 320, 320).key_width, 0);
 }
 
+// Many surface groups drawn keep a key: those that fit, then "and N more surface groups",
+// the materials' key giving way a line at a time too (past 16 groups the key vanished,
+// the materials' with it). A key of groups is as tall as one of the same number of
+// materials.
+TEST(Legend, ManySurfaceGroupsKeepAKey) {
+  Renderer* renderer = Offscreen::get().renderer();
+  ASSERT_TRUE(renderer) << Offscreen::get().error();
+  SurfaceBuffers buffers;
+  build_surface(Offscreen::get().mesh("motor.mesh").surface_input(), SurfaceFilter{}, &buffers);
+  renderer->upload(buffers);
+  GroupOverlay overlay;
+  for (uint32_t g = 0; g < 40; ++g)
+    overlay.groups.push_back({g, 0, 0, 0, surface_group_rgb(g), "group " + std::to_string(g)});
+  DrawSettings draw;
+  const LegendSpace none = renderer->legend_space(draw, 640, 480);
+  EXPECT_EQ(none.key_height, 0);
+  renderer->set_groups(overlay);
+  const LegendSpace groups = renderer->legend_space(draw, 640, 480);
+  EXPECT_GT(groups.key_height, 0.3);  // (60 % of the picture at most)
+  EXPECT_LE(groups.key_height, 0.62);
+  draw.color_mode = ColorMode::kMaterial;  // the motor's 7 materials and 40 groups
+  const LegendSpace both = renderer->legend_space(draw, 640, 480);
+  EXPECT_GT(both.key_height, 0.3);
+  EXPECT_LE(both.key_height, 0.62);
+  renderer->set_groups({});
+  EXPECT_LT(renderer->legend_space(draw, 640, 480).key_height, both.key_height);
+}
+
 }  // namespace
 }  // namespace tetlod::render
