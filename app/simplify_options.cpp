@@ -314,18 +314,36 @@ void unused_rule_notes(const TetMesh& input, const Vec3& lo, const Vec3& hi,
                    "tetlod %s: note: --size-field box %s to %s holds no tet's centroid (%s): "
                    "it sets no size (a box in other units?)\n",
                    command, point(b.low).c_str(), point(b.high).c_str(), extent.c_str());
+    else if (b.size >= sizing.uniform)
+      std::fprintf(stderr,
+                   "tetlod %s: note: --size-field box %s to %s gives size %g, not below --size "
+                   "%g: it sets no size\n",
+                   command, point(b.low).c_str(), point(b.high).c_str(), b.size, sizing.uniform);
   }
   if (!std::isfinite(sizing.uniform)) return;
+  // A radial rule's least size on the mesh, at least: its size at the distance from
+  // its point to the mesh's box; for an axis, from its line to the box's bounding
+  // sphere (a bound, so an axis rule that reaches the mesh is never named).
+  const Vec3 middle = 0.5 * (lo + hi);
+  const double radius = 0.5 * length(hi - lo);
   for (const SizingField::Radial& r : sizing.radial) {
-    if (r.axis != Vec3{0, 0, 0}) continue;  // (a line's distance to the box: not bounded here)
-    const Vec3 nearest{std::clamp(r.center.x, lo.x, hi.x), std::clamp(r.center.y, lo.y, hi.y),
-                       std::clamp(r.center.z, lo.z, hi.z)};
-    const double least = r.size0 + r.growth * length(nearest - r.center);
+    double distance = 0;
+    if (r.axis == Vec3{0, 0, 0}) {
+      const Vec3 nearest{std::clamp(r.center.x, lo.x, hi.x), std::clamp(r.center.y, lo.y, hi.y),
+                         std::clamp(r.center.z, lo.z, hi.z)};
+      distance = length(nearest - r.center);
+    } else {
+      const Vec3 d = middle - r.center;
+      distance = std::max(0.0, length(d - r.axis * dot(d, r.axis)) - radius);
+    }
+    const double least = r.size0 + r.growth * distance;
     if (least >= sizing.uniform)
       std::fprintf(stderr,
-                   "tetlod %s: note: --size-field radial rule around %s gives no size below "
-                   "--size %g on the mesh (at least %g there; %s): it sets no size\n",
-                   command, point(r.center).c_str(), sizing.uniform, least, extent.c_str());
+                   "tetlod %s: note: --size-field %s rule %s %s gives no size below --size %g "
+                   "on the mesh (at least %g there; %s): it sets no size\n",
+                   command, r.axis == Vec3{0, 0, 0} ? "radial" : "axis",
+                   r.axis == Vec3{0, 0, 0} ? "around" : "along the line through",
+                   point(r.center).c_str(), sizing.uniform, least, extent.c_str());
   }
 }
 

@@ -116,6 +116,25 @@ TEST(Cli, RegionRulesThatSetNoSizeAreSaid) {
                                "below --size 20 on the mesh (at least 30 there"),
             std::string::npos)
       << unused.output;
+  // An axis rule nowhere below --size (the line far off, or its least size above it), and
+  // a box whose size is not below it (a re-check tester's cases).
+  const test::CommandResult more = test::run_tetlod(
+      "stats '" + motor +
+      "' --size 20 --size-field "
+      "'axis:1000,0,0,0,0,1,1,0.1;axis:0,0,0,0,0,1,25,0.1;box:-10,-10,-10,10,10,10,30'");
+  ASSERT_EQ(more.code, 0) << more.output;
+  EXPECT_NE(more.output.find("note: --size-field axis rule along the line through (1000, 0, 0) "
+                             "gives no size below --size 20"),
+            std::string::npos)
+      << more.output;
+  EXPECT_NE(more.output.find("note: --size-field axis rule along the line through (0, 0, 0) "
+                             "gives no size below --size 20 on the mesh (at least 25 there"),
+            std::string::npos)
+      << more.output;
+  EXPECT_NE(more.output.find("note: --size-field box (-10, -10, -10) to (10, 10, 10) gives size "
+                             "30, not below --size 20: it sets no size"),
+            std::string::npos)
+      << more.output;
   const test::CommandResult used =
       test::run_tetlod("stats '" + motor +
                        "' --size 20 --size-field 'radial:0,0,0,3,0.1;box:-10,-10,-10,10,10,10,5'");
