@@ -501,7 +501,10 @@ std::string find_surface_groups(const std::string& text, const SurfacePatches& p
     const auto tag = parse_integer(item);
     size_t found = 0;
     for (uint32_t g = 0; g < all.size(); ++g) {
-      if (all[g].name == item || (tag && all[g].tag == *tag)) {
+      // An unnamed group (a Medit reference) by its tag, or as the key calls it.
+      const std::string unnamed = "surface_" + std::to_string(all[g].tag);
+      if (all[g].name == item || (tag && all[g].tag == *tag) ||
+          (all[g].name.empty() && (item == unnamed || item == "surface " + unnamed.substr(8)))) {
         groups->push_back(g);
         ++found;
       }

@@ -170,7 +170,10 @@ bool resolve(const MaterialText& text, const std::vector<MaterialName>& names,
   if (find_material(text, names, id, &why)) return true;
   if (surface) {
     for (const InputSurfaceGroup& group : groups) {
-      if (group.name != text) continue;
+      // An unnamed group (a Medit reference) as surface_<tag>.
+      if (group.name != text &&
+          !(group.name.empty() && text == "surface_" + std::to_string(group.tag)))
+        continue;
       Vec3 missing;
       if (!group_vertices(mesh, group, &surface->vertices, &missing, order_cache)) {
         std::fprintf(stderr,
@@ -185,8 +188,9 @@ bool resolve(const MaterialText& text, const std::vector<MaterialName>& names,
   }
   std::string surfaces;
   for (const InputSurfaceGroup& group : groups)
-    if (!group.name.empty() && surfaces.size() < 400)
-      surfaces += (surfaces.empty() ? "" : ", ") + group.name;
+    if (surfaces.size() < 400)
+      surfaces += (surfaces.empty() ? "" : ", ") +
+                  (group.name.empty() ? "surface_" + std::to_string(group.tag) : group.name);
   std::fprintf(stderr, "tetlod solve: %s: %s%s\n", option.c_str(), why.c_str(),
                !surface ? ""
                : surfaces.empty()

@@ -2429,8 +2429,12 @@ Status Viewer::run_action(const ScriptAction& a) {
         std::string why;
         if (!find_material(n.name, material_names(), &m, &why)) {
           uint32_t g = 0;
-          while (g < input_groups.size() && render::surface_group_label(input_groups[g]) != n.name)
-            ++g;
+          // (An unnamed group, a Medit reference, as the key calls it or as surface_<tag>.)
+          const auto named = [&](const SurfacePatches::Group& x) {
+            return render::surface_group_label(x) == n.name ||
+                   (x.name.empty() && n.name == "surface_" + std::to_string(x.tag));
+          };
+          while (g < input_groups.size() && !named(input_groups[g])) ++g;
           if (g == input_groups.size() || n.key == "eps") {
             std::string names;
             for (const SurfacePatches::Group& x : input_groups)

@@ -380,6 +380,17 @@ TEST(CliRender, DrawsTheInputsSurfaceGroups) {
   const CommandResult none = run("render " + asset("box2.mesh") + " --groups all -o " + drawn);
   EXPECT_EQ(none.code, 2) << none.output;
   EXPECT_NE(none.output.find("the input has no surface groups"), std::string::npos) << none.output;
+  // An unnamed group (a Medit reference) by its tag, or as the key calls it; solve
+  // takes it as surface_<tag> too (a re-check tester could name it by tag only).
+  const std::string p2 = std::string(TETLOD_SOURCE_DIR) + "/tests/data/medit_p2.mesh";
+  for (const char* name : {"5", "surface_5", "'surface 5'"}) {
+    const CommandResult unnamed = run("render " + p2 + " --groups " + name + " -o " + drawn);
+    EXPECT_EQ(unnamed.code, 0) << name << "\n" << unnamed.output;
+  }
+  const CommandResult solve = run("solve " + p2 + " --conductor nope=1 --ground boundary");
+  EXPECT_NE(solve.output.find("nor is it a surface group (the input's: surface_5)"),
+            std::string::npos)
+      << solve.output;
   const CommandResult hidden = run("render " + sheet + " --groups 200 --cut z=0.8 -o " + drawn);
   EXPECT_EQ(hidden.code, 0) << hidden.output;
   EXPECT_EQ(hidden.output.find("note: surface group"), std::string::npos) << hidden.output;
