@@ -252,9 +252,9 @@ Status parse_line(const LineParser& p, ScriptAction* a) {
     } else if (LineParser::key_value(w[1], &key, &value) && (key == "step" || key == "elements")) {
       a->kind = key == "step" ? Kind::kScrubStep : Kind::kScrubElements;
       if (Status s = p.integer(key, value, &a->count); !s) return s;
-      if (a->count < 0) return p.error("'" + key + "' must be >= 0");
-      // As --elements: a level of at least one element.
-      if (key == "elements" && a->count < 1) return p.error("'elements' must be >= 1");
+      // (elements, as --elements: a level of at least one element.)
+      const long long least = key == "elements" ? 1 : 0;
+      if (a->count < least) return p.error("'" + key + "' must be >= " + std::to_string(least));
     } else {
       return p.error("'scrub' takes step=K, elements=N or end, got '" + w[1] + "'");
     }
