@@ -289,8 +289,9 @@ namespace {
 
 // A region rule that sets no tet's size does nothing, which is likely a mistake (a box
 // in metres for a model in millimetres): a note on stderr says so. A box that holds no
-// tet's centroid; a radial rule around a point whose size at the mesh's nearest point
-// is already no smaller than the uniform size.
+// tet's centroid, or whose size is no smaller than the uniform size; a radial rule
+// whose size is no smaller than the uniform size anywhere on the mesh (at least as far
+// as a bound on its distance tells).
 void unused_rule_notes(const TetMesh& input, const Vec3& lo, const Vec3& hi,
                        const SizingField& sizing, const char* command) {
   const auto point = [](const Vec3& p) {

@@ -1,6 +1,6 @@
 // The input file's surface groups (Gmsh physical surfaces, Medit triangle references,
 // Abaqus *SURFACEs, ...) drawn over the surface of a mesh made from it: the viewer's
-// "Surface groups" and `tetlod render --surfaces`.
+// "Surface groups drawn" and `tetlod render --groups`.
 #pragma once
 
 #include <cstddef>
